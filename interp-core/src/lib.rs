@@ -1,0 +1,3 @@
+//! Lathe interpreter core.
+#![no_std]
+#![forbid(unsafe_code)]
