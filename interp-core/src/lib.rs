@@ -1,3 +1,36 @@
-//! Lathe interpreter core.
+//! Lathe interpreter core: FANUC-style lathe programs (ELESY-E3TA dialect, G-code
+//! system A/B/C) in, canonical machining actions out. `no_std`, no allocation,
+//! no unsafe code: the same logic runs in the firmware and in the host simulator.
+//!
+//! Layers, one module each:
+//! - [`program`]: program text and the cursor that cuts blocks out of it;
+//! - [`parse`]: one block of text into words (syntax);
+//! - [`check`]: words into a validated command in internal units (meaning);
+//! - [`exec`]: the command applied to the modal state, emitting [`canon`] actions;
+//! - [`interpreter`]: the incremental driver, one block per step.
+//!
+//! Units: lengths in nanometres, angles in micro-degrees, X as a radius (see [`units`]).
 #![no_std]
 #![forbid(unsafe_code)]
+
+pub mod alarm;
+pub mod axis;
+pub mod canon;
+pub mod check;
+pub mod codes;
+pub mod config;
+pub mod env;
+pub mod exec;
+pub mod geom;
+pub mod interpreter;
+pub mod parse;
+pub mod program;
+pub mod units;
+
+pub use alarm::{Alarm, AlarmKind};
+pub use axis::{Axis, Pos};
+pub use canon::{Action, Canon, CanonSink};
+pub use config::MachineConfig;
+pub use env::{Environment, Panel};
+pub use interpreter::{Interpreter, Progress};
+pub use program::{ProgramStore, SingleProgram};

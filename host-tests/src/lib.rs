@@ -1,0 +1,67 @@
+//! Helpers shared by the host tests: a growable recording sink, a runner that
+//! drives the interpreter over a whole program, and compact action formatting.
+
+use interp_core::canon::{Action, Canon, CanonSink, Full};
+use interp_core::{Alarm, Interpreter, MachineConfig, Panel, Progress, SingleProgram};
+
+/// A sink that records every action (never full).
+#[derive(Debug, Default)]
+pub struct VecSink(pub Vec<Canon>);
+
+impl CanonSink for VecSink {
+    fn push(&mut self, action: Canon) -> Result<(), Full> {
+        self.0.push(action);
+        Ok(())
+    }
+}
+
+/// The outcome of running a program to its end.
+#[derive(Debug)]
+pub struct Run {
+    /// Every action, in order.
+    pub actions: Vec<Canon>,
+    /// Every alarm, in order (the run goes on after each, like `lathe check`).
+    pub alarms: Vec<Alarm>,
+    /// The interpreter afterwards.
+    pub interp: Interpreter,
+}
+
+impl Run {
+    /// The actions only.
+    pub fn kinds(&self) -> Vec<Action> {
+        self.actions.iter().map(|c| c.action).collect()
+    }
+
+    /// Alarm codes with their lines.
+    pub fn alarm_codes(&self) -> Vec<(u32, u16)> {
+        self.alarms.iter().map(|a| (a.line, a.code())).collect()
+    }
+}
+
+/// Runs `text` on machine `cfg` with switches `panel` until it ends, collecting
+/// actions and alarms; M00/M01 are answered with cycle start.
+pub fn run_with(text: &str, cfg: MachineConfig, panel: Panel) -> Run {
+    let mut interp = Interpreter::new(cfg);
+    let mut sink = VecSink::default();
+    let mut alarms = Vec::new();
+    let store = SingleProgram(text.as_bytes());
+    for _ in 0..1_000_000 {
+        match interp.step(&store, &panel, &mut sink) {
+            Ok(Progress::Ended) => break,
+            Ok(Progress::Paused) => interp.cycle_start(),
+            Ok(_) => {}
+            Err(a) => alarms.push(a),
+        }
+    }
+    Run { actions: sink.0, alarms, interp }
+}
+
+/// Runs `text` on the default machine.
+pub fn run(text: &str) -> Run {
+    run_with(text, MachineConfig::default(), Panel::default())
+}
+
+/// Millimetres to internal nanometres.
+pub fn mm(v: f64) -> i64 {
+    (v * 1e6).round() as i64
+}

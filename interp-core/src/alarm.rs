@@ -1,0 +1,448 @@
+//! Alarms: the one error type the interpreter reports to the operator.
+//!
+//! An alarm carries a code, the program line and what is wrong. Codes follow the
+//! manual where it numbers an alarm (3576, 3577, 3605, 3607), FANUC's PS/OT numbers
+//! where the manual only says "alarm" and FANUC has an equivalent, and 4000–4999 for
+//! alarms of this controller with no FANUC counterpart. [`CATALOG`] is the one table
+//! of every code; `lathe alarms` prints it and docs/ALARMS.md is generated from it.
+
+use core::fmt;
+
+/// A program alarm: what went wrong, where. The block that raised it changed nothing.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Alarm {
+    /// 1-based source line of the block that raised the alarm (0 when unknown).
+    pub line: u32,
+    /// What is wrong.
+    pub kind: AlarmKind,
+}
+
+impl Alarm {
+    /// An alarm of `kind` raised by the block on `line`.
+    pub const fn new(line: u32, kind: AlarmKind) -> Self {
+        Alarm { line, kind }
+    }
+
+    /// The alarm number shown to the operator.
+    pub fn code(&self) -> u16 {
+        self.kind.code()
+    }
+}
+
+impl fmt::Display for Alarm {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "line {}: alarm {:04}: {}", self.line, self.code(), self.kind)
+    }
+}
+
+/// An axis or address letter as written in the program (`b'X'`, `b'U'` …).
+pub type Letter = u8;
+
+/// A G code number in tenths (G01 = 10, G02.1 = 21, G12.1 = 121), for messages.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct GNum(pub u16);
+
+impl fmt::Display for GNum {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.0.is_multiple_of(10) {
+            write!(f, "G{:02}", self.0 / 10)
+        } else {
+            write!(f, "G{:02}.{}", self.0 / 10, self.0 % 10)
+        }
+    }
+}
+
+/// Everything that can be wrong with a block, one variant per alarm code.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
+pub enum AlarmKind {
+    /// 0003: a number has more digits than a word may hold.
+    TooManyDigits { letter: Letter },
+    /// 0004: a number, sign or symbol stands where an address letter was expected.
+    AddressNotFound { found: u8 },
+    /// 0005: an address letter is not followed by a value.
+    NoDataAfterAddress { letter: Letter },
+    /// 0006: a minus sign where the word takes no sign.
+    IllegalMinusSign { letter: Letter },
+    /// 0007: a decimal point where the word takes none (N, G04 P, T, M …).
+    IllegalDecimalPoint { letter: Letter },
+    /// 0009: an address letter this controller does not use.
+    ImproperAddress { letter: Letter },
+    /// 0009: an axis word for an axis this machine does not have.
+    AxisNotConfigured { letter: Letter },
+    /// 0010: a G code that does not exist in the selected G-code system.
+    ImproperGCode { code: GNum },
+    /// 0011: a cutting feed with F zero or never set.
+    FeedZero,
+    /// 0020: arc end point not on the circle (I/K form) or R shorter than half the chord.
+    ArcRadiusTolerance { excess_nm: i64 },
+    /// 0021: an axis outside the selected plane in an arc block (2.3 note 7, 2.13 note 5).
+    ArcAxisOutsidePlane { letter: Letter },
+    /// 0022: arc with neither R nor I/J/K (2.3 note 2, parameter 3403 = alarm).
+    ArcCenterMissing,
+    /// 0023: arc radius R of zero.
+    ArcRadiusZero,
+    /// 0030: offset number not in the tool offset table.
+    IllegalOffsetNumber { number: u16 },
+    /// 0030: tool number not on the turret.
+    IllegalToolNumber { number: u16 },
+    /// 0046: G30 with P other than 1–4.
+    IllegalReferenceNumber,
+    /// 0224: G28/G30 before the axis has been referenced (2.11.2 note 2).
+    ReferenceNotEstablished { letter: Letter },
+    /// 0500: the move would pass the positive soft limit.
+    OvertravelPositive { letter: Letter },
+    /// 0501: the move would pass the negative soft limit.
+    OvertravelNegative { letter: Letter },
+    /// 5010: the program text ended without M02, M30 or M99.
+    EndOfRecord,
+    /// 4001: G20/G21 must stand alone in its block (2.9 note 2).
+    UnitsNotAlone,
+    /// 4002: G20/G21 after the program started moving (2.9 note 2).
+    UnitsNotAtStart,
+    /// 4003: two G codes of one modal group in a block.
+    DuplicateGroup { first: GNum, second: GNum },
+    /// 4004: an address given twice in one block.
+    DuplicateAddress { letter: Letter },
+    /// 4005: a word that the block's codes do not use.
+    WordNotAllowed { letter: Letter, context: &'static str },
+    /// 4006: a word the block's code requires is missing.
+    MissingWord { letter: Letter, context: &'static str },
+    /// 4007: a code this controller recognises but does not implement yet.
+    NotSupportedYet { what: &'static str },
+    /// 4008: an M code neither in the manual's tables nor configured as a user output.
+    UnknownMCode { m: u16 },
+    /// 4009: two M codes of a block contradict each other (M03 with M04 …).
+    ConflictingMCodes { first: u16, second: u16 },
+    /// 4010: more M codes in a block than the controller executes at once (3).
+    TooManyMCodes,
+    /// 4011: a value outside the range the word accepts.
+    ValueOutOfRange { letter: Letter },
+    /// 4012: G50 coordinate setting is disabled by parameter 5152.
+    CoordinateSettingDisabled,
+    /// 4013: feed per revolution (G99) commanded while the spindle is stopped.
+    FeedPerRevSpindleStopped,
+    /// 4014: a comment `(` without its closing `)`.
+    CommentNotClosed,
+    /// 4015: G53 takes absolute X/Z only.
+    MachineCoordinatesIncremental,
+    /// 4016: a G code that must be alone in its block shares it (G04 with motion …).
+    CodeMustBeAlone { code: GNum },
+    /// 4017: a value or position that does not fit the controller's number range.
+    Overflow,
+    /// 4018: a `/` block skip in the middle of a block.
+    MisplacedBlockSkip,
+    /// 4019: a character that cannot start a word (`?`, `@`, `$` …).
+    IllegalCharacter { found: u8 },
+    /// 4020: an axis given both absolute and incremental (X with U, Z with W).
+    AxisTwice { absolute: Letter, incremental: Letter },
+    /// 3576: reversing G41/G42 directly while compensating (2.18.4).
+    NoseCompReversed,
+    /// 3577: T code while nose compensation is active (2.18.4).
+    ToolChangeInNoseComp,
+    /// 3605: nose compensation would gouge the part (2.18.4).
+    NoseCompGouge,
+    /// 3607: nose compensation corner angle under 0.1° (2.18.4).
+    NoseCompCornerAngle,
+}
+
+impl AlarmKind {
+    /// The alarm number.
+    pub fn code(&self) -> u16 {
+        use AlarmKind::*;
+        match self {
+            TooManyDigits { .. } => 3,
+            AddressNotFound { .. } => 4,
+            NoDataAfterAddress { .. } => 5,
+            IllegalMinusSign { .. } => 6,
+            IllegalDecimalPoint { .. } => 7,
+            ImproperAddress { .. } | AxisNotConfigured { .. } => 9,
+            ImproperGCode { .. } => 10,
+            FeedZero => 11,
+            ArcRadiusTolerance { .. } => 20,
+            ArcAxisOutsidePlane { .. } => 21,
+            ArcCenterMissing => 22,
+            ArcRadiusZero => 23,
+            IllegalOffsetNumber { .. } | IllegalToolNumber { .. } => 30,
+            IllegalReferenceNumber => 46,
+            ReferenceNotEstablished { .. } => 224,
+            OvertravelPositive { .. } => 500,
+            OvertravelNegative { .. } => 501,
+            EndOfRecord => 5010,
+            UnitsNotAlone => 4001,
+            UnitsNotAtStart => 4002,
+            DuplicateGroup { .. } => 4003,
+            DuplicateAddress { .. } => 4004,
+            WordNotAllowed { .. } => 4005,
+            MissingWord { .. } => 4006,
+            NotSupportedYet { .. } => 4007,
+            UnknownMCode { .. } => 4008,
+            ConflictingMCodes { .. } => 4009,
+            TooManyMCodes => 4010,
+            ValueOutOfRange { .. } => 4011,
+            CoordinateSettingDisabled => 4012,
+            FeedPerRevSpindleStopped => 4013,
+            CommentNotClosed => 4014,
+            MachineCoordinatesIncremental => 4015,
+            CodeMustBeAlone { .. } => 4016,
+            Overflow => 4017,
+            MisplacedBlockSkip => 4018,
+            IllegalCharacter { .. } => 4019,
+            AxisTwice { .. } => 4020,
+            NoseCompReversed => 3576,
+            ToolChangeInNoseComp => 3577,
+            NoseCompGouge => 3605,
+            NoseCompCornerAngle => 3607,
+        }
+    }
+}
+
+/// Writes a byte as a character (letters and symbols are ASCII).
+struct Ch(u8);
+
+impl fmt::Display for Ch {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.0.is_ascii_graphic() { write!(f, "{}", self.0 as char) } else { write!(f, "0x{:02X}", self.0) }
+    }
+}
+
+impl fmt::Display for AlarmKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        use AlarmKind::*;
+        match *self {
+            TooManyDigits { letter } => write!(f, "too many digits in {} word", Ch(letter)),
+            AddressNotFound { found } => write!(f, "'{}' where an address letter was expected", Ch(found)),
+            NoDataAfterAddress { letter } => write!(f, "no value after address {}", Ch(letter)),
+            IllegalMinusSign { letter } => write!(f, "address {} takes no minus sign", Ch(letter)),
+            IllegalDecimalPoint { letter } => write!(f, "address {} takes no decimal point", Ch(letter)),
+            ImproperAddress { letter } => write!(f, "address {} is not used by this controller", Ch(letter)),
+            AxisNotConfigured { letter } => write!(f, "axis {} is not configured on this machine", Ch(letter)),
+            ImproperGCode { code } => write!(f, "{code} is not a G code of the selected G-code system"),
+            FeedZero => write!(f, "cutting feed F is zero or was never given"),
+            ArcRadiusTolerance { excess_nm } => write!(
+                f,
+                "arc end point is {}.{:03} mm off the circle (R too small or I/K inconsistent)",
+                excess_nm / 1_000_000,
+                (excess_nm % 1_000_000) / 1_000
+            ),
+            ArcAxisOutsidePlane { letter } => write!(f, "axis {} is outside the arc's plane", Ch(letter)),
+            ArcCenterMissing => write!(f, "arc needs R or I/J/K"),
+            ArcRadiusZero => write!(f, "arc radius R is zero"),
+            IllegalOffsetNumber { number } => write!(f, "tool offset number {number} is not in the offset table"),
+            IllegalToolNumber { number } => write!(f, "tool number {number} is not on the turret"),
+            IllegalReferenceNumber => write!(f, "G30 P must be 1, 2, 3 or 4"),
+            ReferenceNotEstablished { letter } => {
+                write!(f, "axis {} has not been referenced (home it before G28/G30)", Ch(letter))
+            }
+            OvertravelPositive { letter } => write!(f, "move exceeds the + soft limit of axis {}", Ch(letter)),
+            OvertravelNegative { letter } => write!(f, "move exceeds the - soft limit of axis {}", Ch(letter)),
+            EndOfRecord => write!(f, "program ended without M02, M30 or M99"),
+            UnitsNotAlone => write!(f, "G20/G21 must be alone in its block"),
+            UnitsNotAtStart => write!(f, "G20/G21 only at the start of the program, before any move"),
+            DuplicateGroup { first, second } => write!(f, "{first} and {second} are of the same modal group"),
+            DuplicateAddress { letter } => write!(f, "address {} given twice", Ch(letter)),
+            WordNotAllowed { letter, context } => write!(f, "address {} is not used by {context}", Ch(letter)),
+            MissingWord { letter, context } => write!(f, "{context} needs address {}", Ch(letter)),
+            NotSupportedYet { what } => write!(f, "{what} is not supported yet"),
+            UnknownMCode { m } => write!(f, "M{m:02} is not a known M code"),
+            ConflictingMCodes { first, second } => write!(f, "M{first:02} and M{second:02} contradict each other"),
+            TooManyMCodes => write!(f, "more than 3 M codes in one block"),
+            ValueOutOfRange { letter } => write!(f, "value of {} out of range", Ch(letter)),
+            CoordinateSettingDisabled => write!(f, "G50 coordinate setting is disabled (parameter 5152)"),
+            FeedPerRevSpindleStopped => write!(f, "feed per revolution (G99) with the spindle stopped"),
+            CommentNotClosed => write!(f, "comment '(' is not closed"),
+            MachineCoordinatesIncremental => write!(f, "G53 takes absolute coordinates only"),
+            CodeMustBeAlone { code } => write!(f, "{code} must not share its block with other G codes or moves"),
+            Overflow => write!(f, "value out of the controller's range"),
+            MisplacedBlockSkip => write!(f, "block skip '/' only at the start of a block"),
+            IllegalCharacter { found } => write!(f, "illegal character '{}'", Ch(found)),
+            AxisTwice { absolute, incremental } => {
+                write!(f, "{} and {} address the same axis in one block", Ch(absolute), Ch(incremental))
+            }
+            NoseCompReversed => write!(f, "G41/G42 reversed while nose compensation is active"),
+            ToolChangeInNoseComp => write!(f, "T code while nose compensation is active"),
+            NoseCompGouge => write!(f, "nose compensation would gouge the part"),
+            NoseCompCornerAngle => write!(f, "nose compensation corner angle below 0.1 degrees"),
+        }
+    }
+}
+
+/// One row of the alarm table: code, short title, when it is raised.
+#[derive(Clone, Copy, Debug)]
+pub struct CatalogEntry {
+    /// Alarm number.
+    pub code: u16,
+    /// Short name.
+    pub title: &'static str,
+    /// When the controller raises it, with the manual section where there is one.
+    pub when: &'static str,
+}
+
+/// Every alarm code, in numeric order. Tests keep it in step with [`AlarmKind::code`].
+pub const CATALOG: &[CatalogEntry] = &[
+    CatalogEntry {
+        code: 3,
+        title: "too many digits",
+        when: "a word's number has more than 9 digits before or after the point",
+    },
+    CatalogEntry {
+        code: 4,
+        title: "address not found",
+        when: "a value or symbol stands where an address letter belongs",
+    },
+    CatalogEntry { code: 5, title: "no data after address", when: "a letter with no number after it" },
+    CatalogEntry { code: 6, title: "illegal minus sign", when: "minus sign on N, O, G, M, T, S, P of G04, L" },
+    CatalogEntry {
+        code: 7,
+        title: "illegal decimal point",
+        when: "decimal point on N, O, M, T, L, G04 P (2.6), cycle P/Q",
+    },
+    CatalogEntry { code: 9, title: "improper address", when: "unknown letter, or an axis the machine does not have" },
+    CatalogEntry {
+        code: 10,
+        title: "improper G code",
+        when: "G code not in table 1.1 for the configured system A/B/C",
+    },
+    CatalogEntry { code: 11, title: "feed zero", when: "G01/G02/G03 with F zero or never commanded" },
+    CatalogEntry {
+        code: 20,
+        title: "arc radius out of tolerance",
+        when: "R shorter than half the chord, or I/K end point off the circle by more than parameter 3410",
+    },
+    CatalogEntry {
+        code: 21,
+        title: "axis outside arc plane",
+        when: "arc block moves an axis outside the G17/G18/G19 plane (2.3 note 7, 2.13 note 5)",
+    },
+    CatalogEntry {
+        code: 22,
+        title: "arc centre missing",
+        when: "G02/G03 without R or I/J/K and parameter 3403 = 0 (2.3 note 2)",
+    },
+    CatalogEntry { code: 23, title: "arc radius zero", when: "G02/G03 with R0" },
+    CatalogEntry {
+        code: 30,
+        title: "illegal offset or tool number",
+        when: "T word selects a tool or offset outside the tool table",
+    },
+    CatalogEntry { code: 46, title: "illegal reference number", when: "G30 P other than 1-4 (2.11.2)" },
+    CatalogEntry {
+        code: 224,
+        title: "reference not established",
+        when: "G28/G30 on an axis that has not been homed (2.11.2 note 2)",
+    },
+    CatalogEntry {
+        code: 500,
+        title: "+ overtravel (soft)",
+        when: "a move's end point or arc passes the axis's + travel limit",
+    },
+    CatalogEntry {
+        code: 501,
+        title: "- overtravel (soft)",
+        when: "a move's end point or arc passes the axis's - travel limit",
+    },
+    CatalogEntry {
+        code: 3576,
+        title: "nose compensation reversed",
+        when: "G41 to G42 or back directly while compensating (2.18.4)",
+    },
+    CatalogEntry { code: 3577, title: "tool change in nose compensation", when: "T code in G41/G42 (2.18.4)" },
+    CatalogEntry {
+        code: 3605,
+        title: "nose compensation gouge",
+        when: "interference check finds overcutting (2.18.4)",
+    },
+    CatalogEntry {
+        code: 3607,
+        title: "compensation corner angle",
+        when: "corner between two paths under 0.1 degrees (2.18.4)",
+    },
+    CatalogEntry {
+        code: 4001,
+        title: "G20/G21 not alone",
+        when: "G20/G21 shares its block with other words (2.9 note 2)",
+    },
+    CatalogEntry {
+        code: 4002,
+        title: "G20/G21 not at start",
+        when: "G20/G21 after the program has moved an axis (2.9 note 2)",
+    },
+    CatalogEntry { code: 4003, title: "modal group conflict", when: "two G codes of one modal group in one block" },
+    CatalogEntry { code: 4004, title: "duplicate address", when: "the same address twice in one block" },
+    CatalogEntry {
+        code: 4005,
+        title: "word not allowed",
+        when: "a word the block's codes do not use (I/K in G01, P in G00 ...)",
+    },
+    CatalogEntry {
+        code: 4006,
+        title: "word missing",
+        when: "a word the block's code requires (G04 time, G52 axes ...)",
+    },
+    CatalogEntry {
+        code: 4007,
+        title: "not supported yet",
+        when: "a code of the manual this build does not implement yet",
+    },
+    CatalogEntry {
+        code: 4008,
+        title: "unknown M code",
+        when: "M code not in tables 1.2/3.1 nor configured as a user output",
+    },
+    CatalogEntry { code: 4009, title: "conflicting M codes", when: "M03 with M04, M08 with M09 ... in one block" },
+    CatalogEntry { code: 4010, title: "too many M codes", when: "more than 3 M codes in one block" },
+    CatalogEntry {
+        code: 4011,
+        title: "value out of range",
+        when: "a word's value outside its range (T digits, S negative, G30 P ...)",
+    },
+    CatalogEntry {
+        code: 4012,
+        title: "G50 disabled",
+        when: "G50 coordinate setting while parameter 5152 = 1 (2.12.1 note 3)",
+    },
+    CatalogEntry {
+        code: 4013,
+        title: "feed per rev without spindle",
+        when: "G99 cutting move while the spindle is stopped",
+    },
+    CatalogEntry { code: 4014, title: "comment not closed", when: "'(' without ')' in the block" },
+    CatalogEntry { code: 4015, title: "G53 incremental", when: "G53 with U/W instead of X/Z" },
+    CatalogEntry {
+        code: 4016,
+        title: "code must be alone",
+        when: "G04, G28, G30, G50, G52, G53 with a motion G code in the same block",
+    },
+    CatalogEntry { code: 4017, title: "overflow", when: "a value or computed position beyond the controller's range" },
+    CatalogEntry { code: 4018, title: "misplaced block skip", when: "'/' inside a block outside an expression" },
+    CatalogEntry { code: 4019, title: "illegal character", when: "a character that cannot start a word" },
+    CatalogEntry {
+        code: 4020,
+        title: "axis given twice",
+        when: "absolute and incremental address of one axis in a block (X with U, Z with W; 2.17.1 note 7)",
+    },
+    CatalogEntry { code: 5010, title: "end of record", when: "program text ends without M02, M30 or M99" },
+];
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn catalog_is_sorted_and_unique() {
+        for w in CATALOG.windows(2) {
+            assert!(w[0].code < w[1].code, "{} before {}", w[0].code, w[1].code);
+        }
+    }
+
+    #[test]
+    fn gnum_formats_like_the_manual() {
+        use core::fmt::Write;
+        let mut s = heapless::String::<16>::new();
+        write!(s, "{} {} {}", GNum(10), GNum(21), GNum(121)).unwrap();
+        assert_eq!(s.as_str(), "G01 G02.1 G12.1");
+    }
+}

@@ -1,0 +1,269 @@
+//! The canonical machining actions: the only way the interpreter affects the world.
+//!
+//! The interpreter turns blocks into a stream of [`Canon`] actions and offers them
+//! to a [`CanonSink`]. A recording sink makes golden tests trivial, the motion
+//! planner is another sink, `lathe sim` prints them. Every position is given twice:
+//! in machine coordinates (what the axes must do, tool offset included) and in work
+//! coordinates (what the program said), so no consumer has to track frames.
+
+mod record;
+
+pub use record::RecordingSink;
+
+use crate::axis::{Axis, Pos};
+
+/// One canonical action and the program line that produced it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Canon {
+    /// 1-based source line of the block (for cycles: of the cycle block).
+    pub line: u32,
+    /// What to do.
+    pub action: Action,
+}
+
+/// A canonical machining action.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Action {
+    /// Positioning at rapid rate.
+    Rapid(Move),
+    /// Straight cutting move at the commanded feed.
+    Linear(Move),
+    /// Circular cutting move.
+    Arc(ArcMove),
+    /// Spindle-synchronised thread move (G32/G34/G92/G76).
+    Thread(ThreadMove),
+    /// Rigid-tapping move locked to the spindle (M29 G84/G88).
+    Tap(TapMove),
+    /// Dwell in milliseconds; 0 is an exact stop between blocks (G04 note 1).
+    Dwell {
+        /// Duration.
+        ms: u32,
+    },
+    /// Spindle direction and speed change.
+    Spindle(SpindleCommand),
+    /// Tool change: turret station and offset number (0 = offset cancelled).
+    Tool {
+        /// Turret station.
+        tool: u16,
+        /// Offset number now in effect.
+        offset: u16,
+    },
+    /// A machine output switched by an M code (coolant, chuck, tailstock, gears …).
+    Aux {
+        /// The M number.
+        m: u16,
+    },
+    /// Program stop (M00) or optional stop (M01 with the switch on): wait for cycle start.
+    Stop {
+        /// True for M01.
+        optional: bool,
+    },
+    /// End of program (M02, M30): spindle, coolant and feed stop.
+    End {
+        /// True for M30 (rewind).
+        rewind: bool,
+    },
+}
+
+/// Where a move ends, in both coordinate systems (internal units, X radius).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Endpoint {
+    /// Axis positions in machine coordinates, tool offset included.
+    pub machine: Pos,
+    /// The programmed point in the work coordinates in force.
+    pub work: Pos,
+}
+
+/// Feed per minute or per revolution.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum FeedMode {
+    /// G98: nm per minute.
+    PerMin,
+    /// G99: nm per spindle revolution.
+    PerRev,
+}
+
+/// A commanded feed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Feed {
+    /// Per minute or per revolution.
+    pub mode: FeedMode,
+    /// nm/min or nm/rev along the path.
+    pub value: i64,
+}
+
+/// The spindle speed the control commands while a move runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct SpindleSpeed {
+    /// Commanded speed in rev/min (at the end point under G96), `None` if stopped.
+    pub rpm: Option<u32>,
+    /// Surface speed in mm/min under G96 (the speed follows |X| along the move).
+    pub css: Option<u32>,
+    /// Speed cap of G96 (G50 S and the gear limit), rev/min.
+    pub max_rpm: u32,
+}
+
+/// A straight move (rapid or cutting).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Move {
+    /// End point.
+    pub to: Endpoint,
+    /// Feed of a cutting move; `None` for rapids.
+    pub feed: Option<Feed>,
+    /// Spindle during the move.
+    pub spindle: SpindleSpeed,
+    /// Stop exactly at the end before the next block (G09, G61, rapids, G04 …).
+    pub exact_stop: bool,
+    /// Rapids: each axis at its own rate, not interpolated (G28/G30, dog-leg G00).
+    pub independent: bool,
+}
+
+/// The working plane of an arc (G17/G18/G19).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Plane {
+    /// G17: X–Y.
+    Xy,
+    /// G18: Z–X, the lathe's plane.
+    Zx,
+    /// G19: Y–Z.
+    Yz,
+}
+
+impl Plane {
+    /// The plane's two axes in the order that makes G02 clockwise when the plane is
+    /// seen from the positive side of its normal (G18: Z right, X up, Y towards you).
+    pub const fn axes(self) -> (Axis, Axis) {
+        match self {
+            Plane::Xy => (Axis::X, Axis::Y),
+            Plane::Zx => (Axis::Z, Axis::X),
+            Plane::Yz => (Axis::Y, Axis::Z),
+        }
+    }
+
+    /// Whether `a` lies in the plane.
+    pub fn contains(self, a: Axis) -> bool {
+        let (p, q) = self.axes();
+        a == p || a == q
+    }
+}
+
+/// A circular move in a plane.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct ArcMove {
+    /// End point.
+    pub to: Endpoint,
+    /// Centre (the plane's two axes are meaningful, the others equal the end point).
+    pub center: Endpoint,
+    /// The plane.
+    pub plane: Plane,
+    /// G02 (clockwise) or G03.
+    pub cw: bool,
+    /// A full circle (start = end given with I/J/K).
+    pub full_circle: bool,
+    /// Feed.
+    pub feed: Feed,
+    /// Spindle during the move.
+    pub spindle: SpindleSpeed,
+    /// Stop exactly at the end.
+    pub exact_stop: bool,
+}
+
+/// How a thread pass starts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum ThreadSync {
+    /// Wait for the spindle index (plus the start angle), then lock to the spindle.
+    Index,
+    /// Continue locked from the previous thread block without re-synchronising.
+    Continue,
+}
+
+/// A spindle-synchronised thread move.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct ThreadMove {
+    /// End point.
+    pub to: Endpoint,
+    /// Lead in nm per spindle revolution along the long axis.
+    pub lead: i64,
+    /// Lead change per revolution (G34 K), nm/rev per rev.
+    pub lead_delta: i64,
+    /// Spindle angle after the index where the pass starts, micro-degrees.
+    pub start_udeg: u32,
+    /// Index-synchronised or continuing.
+    pub sync: ThreadSync,
+    /// Spindle during the move.
+    pub spindle: SpindleSpeed,
+}
+
+/// Spindle direction.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum SpindleDir {
+    /// M03.
+    Cw,
+    /// M04.
+    Ccw,
+    /// M05.
+    Stop,
+}
+
+/// A rigid-tapping move: the tapping axis locked to the spindle position.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct TapMove {
+    /// End point.
+    pub to: Endpoint,
+    /// Lead in nm per spindle revolution.
+    pub lead: i64,
+    /// Spindle direction during this move (reverses on the way out).
+    pub dir: SpindleDir,
+    /// Spindle during the move.
+    pub spindle: SpindleSpeed,
+}
+
+/// A spindle command.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct SpindleCommand {
+    /// Direction.
+    pub dir: SpindleDir,
+    /// Speed now commanded, rev/min (`None` when stopped).
+    pub rpm: Option<u32>,
+    /// Surface speed in mm/min under G96.
+    pub css: Option<u32>,
+}
+
+impl Action {
+    /// The end point of a motion action.
+    pub fn endpoint(&self) -> Option<&Endpoint> {
+        match self {
+            Action::Rapid(m) | Action::Linear(m) => Some(&m.to),
+            Action::Arc(a) => Some(&a.to),
+            Action::Thread(t) => Some(&t.to),
+            Action::Tap(t) => Some(&t.to),
+            _ => None,
+        }
+    }
+}
+
+/// The sink cannot take an action now; offer it again later.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Full;
+
+/// Consumer of canonical actions.
+pub trait CanonSink {
+    /// Takes one action, or returns [`Full`] to apply back-pressure; the
+    /// interpreter keeps the action and offers it again on its next step.
+    fn push(&mut self, action: Canon) -> Result<(), Full>;
+}

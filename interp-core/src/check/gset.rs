@@ -1,0 +1,139 @@
+//! Resolving a block's G codes: table lookup, one code per modal group, and the
+//! rules about codes that must stand alone.
+
+use crate::alarm::{AlarmKind, GNum};
+use crate::canon::{FeedMode, Plane};
+use crate::codes::{GCode, Group};
+use crate::config::MachineConfig;
+use crate::exec::State;
+use crate::parse::Block;
+use crate::units::Units;
+
+/// The G codes of one block, one slot per modal group.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct GSet {
+    /// Group 01.
+    pub motion: Option<GCode>,
+    /// Group 00 (G04, G09, G28, G30, G50, G52, G53, G70–G76).
+    pub one_shot: Option<GCode>,
+    /// Group 16.
+    pub plane: Option<Plane>,
+    /// Group 06.
+    pub units: Option<Units>,
+    /// Group 03 (B/C): Some(true) = G91.
+    pub incremental: Option<bool>,
+    /// Group 05.
+    pub feed_mode: Option<FeedMode>,
+    /// Group 02: Some(true) = G96.
+    pub css: Option<bool>,
+    /// Group 07.
+    pub nose_comp: Option<GCode>,
+    /// Group 14: frame 0–5.
+    pub work_frame: Option<u8>,
+    /// Group 15: Some(true) = G61.
+    pub exact_stop_mode: Option<bool>,
+    /// Group 10.
+    pub drilling: Option<GCode>,
+    /// Group 11 (B/C): Some(true) = G99.
+    pub return_to_r: Option<bool>,
+}
+
+/// Whether a group-00 code takes the block's axis words for itself.
+pub(crate) fn uses_axes(c: GCode) -> bool {
+    use GCode::*;
+    matches!(c, Dwell | ReferenceReturn | ReferenceReturnN | SetCoordinates | LocalFrame | MachineCoordinates)
+}
+
+impl GSet {
+    /// Looks up every G code of `block` and sorts it into its group.
+    pub fn resolve(block: &Block, state: &State, cfg: &MachineConfig) -> Result<GSet, AlarmKind> {
+        let mut set = GSet::default();
+        let mut seen: [Option<u16>; 16] = [None; 16];
+        for &tenths in &block.g {
+            let code =
+                GCode::from_tenths(cfg.gcode_system, tenths).ok_or(AlarmKind::ImproperGCode { code: GNum(tenths) })?;
+            let slot = &mut seen[code.group() as usize];
+            if let Some(first) = slot.replace(tenths) {
+                return Err(AlarmKind::DuplicateGroup { first: GNum(first), second: GNum(tenths) });
+            }
+            supported(code)?;
+            set.assign(code);
+        }
+        set.check_units_alone(block, state)?;
+        if let (Some(one), Some(_)) = (set.one_shot, set.motion)
+            && uses_axes(one)
+        {
+            let tenths = seen[Group::NonModal as usize].unwrap_or(0);
+            return Err(AlarmKind::CodeMustBeAlone { code: GNum(tenths) });
+        }
+        Ok(set)
+    }
+
+    fn assign(&mut self, code: GCode) {
+        use GCode::*;
+        match code {
+            PlaneXy => self.plane = Some(Plane::Xy),
+            PlaneZx => self.plane = Some(Plane::Zx),
+            PlaneYz => self.plane = Some(Plane::Yz),
+            Inch => self.units = Some(Units::Inch),
+            Metric => self.units = Some(Units::Metric),
+            Absolute => self.incremental = Some(false),
+            Incremental => self.incremental = Some(true),
+            FeedPerMin => self.feed_mode = Some(FeedMode::PerMin),
+            FeedPerRev => self.feed_mode = Some(FeedMode::PerRev),
+            CssOn => self.css = Some(true),
+            CssOff => self.css = Some(false),
+            WorkFrame(n) => self.work_frame = Some(n),
+            ExactStopMode => self.exact_stop_mode = Some(true),
+            ContinuousMode => self.exact_stop_mode = Some(false),
+            ReturnInitial => self.return_to_r = Some(false),
+            ReturnR => self.return_to_r = Some(true),
+            _ => match code.group() {
+                Group::Motion => self.motion = Some(code),
+                Group::NonModal => self.one_shot = Some(code),
+                Group::NoseComp => self.nose_comp = Some(code),
+                Group::Drilling => self.drilling = Some(code),
+                // Polar, polygon and stroke-check codes that reach here are the
+                // cancel codes of modes that are never on: nothing to record.
+                _ => {}
+            },
+        }
+    }
+
+    /// G20/G21 that switches units must be alone and before any move (2.9 note 2);
+    /// repeating the units already in force is harmless anywhere.
+    fn check_units_alone(&self, block: &Block, state: &State) -> Result<(), AlarmKind> {
+        if self.units.is_some_and(|u| u != state.modal.units) {
+            let alone = block.g.len() == 1 && block.m.is_empty() && block.letters().next().is_none();
+            if !alone {
+                return Err(AlarmKind::UnitsNotAlone);
+            }
+            if state.moved {
+                return Err(AlarmKind::UnitsNotAtStart);
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Rejects codes this build does not implement with a clear alarm; accepts the
+/// cancel codes of modes that can never be on (G13.1, G50.2, G23, G80, G40).
+fn supported(code: GCode) -> Result<(), AlarmKind> {
+    use GCode::*;
+    let what = match code {
+        EllipseCw | EllipseCcw => "elliptical interpolation G02.1/G03.1",
+        ParabolaCw | ParabolaCcw => "parabolic interpolation G02.2/G03.2",
+        PolarOn => "polar coordinate interpolation G12.1",
+        PolygonOn => "polygon turning G51.2",
+        StrokeCheckOn => "stored stroke check 2 (G22)",
+        NoseCompLeft | NoseCompRight => "tool nose radius compensation G41/G42",
+        TurningCycle | ThreadCycle | FacingCycle => "single cycles G90/G92/G94",
+        Thread | VariableLeadThread => "threading G32/G34",
+        FinishCycle | RoughTurnCycle | RoughFaceCycle | PatternCycle | FacePeckCycle | GroovePeckCycle
+        | MultiThreadCycle => "multiple repetitive cycles G70-G76",
+        FaceDrill | FaceTap | FaceBore | SideDrill | SideTap | SideBore => "drilling and tapping cycles G83-G89",
+        _ => return Ok(()),
+    };
+    Err(AlarmKind::NotSupportedYet { what })
+}

@@ -1,0 +1,128 @@
+//! Checking: a [`Block`] of words becomes a [`Command`] — G and M codes resolved,
+//! every word verified to belong to the block, values converted to internal units.
+//! Nothing here changes state; a block that fails never reaches execution.
+
+mod gset;
+mod words;
+
+pub use gset::GSet;
+
+use crate::alarm::AlarmKind;
+use crate::axis::{AXIS_COUNT, Axis};
+use crate::codes::{GCode, MFunction, m_codes_conflict, m_function};
+use crate::config::MachineConfig;
+use crate::exec::State;
+use crate::parse::{Block, MAX_M};
+use crate::units::NumberFormat;
+
+/// One axis word converted to internal units (X as radius).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct AxisWord {
+    /// Value in nm (µdeg for C).
+    pub value: i64,
+    /// Incremental (U/V/W/H, or X/Z under G91 of systems B/C).
+    pub incremental: bool,
+}
+
+/// A checked block: everything execution needs, in internal units.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Command {
+    /// Source line.
+    pub line: u32,
+    /// Sequence number.
+    pub seq: Option<u32>,
+    /// G codes by group.
+    pub g: GSet,
+    /// M codes with their functions, in the order written.
+    pub m: heapless::Vec<(u16, MFunction), MAX_M>,
+    /// Axis words by axis.
+    pub axes: [Option<AxisWord>; AXIS_COUNT],
+    /// Arc centre offsets I/J/K by axis (radius values, nm).
+    pub center: [Option<i64>; AXIS_COUNT],
+    /// Arc radius R (nm, negative = more than 180°).
+    pub radius: Option<i64>,
+    /// G04 dwell time in ms (0 = exact stop).
+    pub dwell_ms: Option<u32>,
+    /// Reference position number of G28 (1) or G30 P (1–4, default 2).
+    pub reference: u8,
+    /// F in nm per minute or per revolution (mode decided at execution).
+    pub feed: Option<i64>,
+    /// S as written (rev/min, surface speed, or G50 clamp).
+    pub speed: Option<u32>,
+    /// T: turret station and offset number.
+    pub tool: Option<(u16, u16)>,
+}
+
+impl Command {
+    /// The code that consumes the block's axis words.
+    pub fn axis_user(&self, state: &State) -> GCode {
+        match self.g.one_shot {
+            Some(c) if gset::uses_axes(c) => c,
+            _ => self.g.motion.unwrap_or(state.modal.motion),
+        }
+    }
+
+    /// Whether any axis word was given.
+    pub fn has_axes(&self) -> bool {
+        self.axes.iter().any(Option::is_some)
+    }
+}
+
+/// Checks `block` against the machine and the current state.
+pub fn check(block: &Block, state: &State, cfg: &MachineConfig) -> Result<Command, AlarmKind> {
+    let g = GSet::resolve(block, state, cfg)?;
+    let fmt = NumberFormat {
+        units: g.units.unwrap_or(state.modal.units),
+        input: cfg.input_mode(),
+        increments: cfg.increments,
+    };
+    let mut cmd = Command {
+        line: block.line,
+        seq: block.seq,
+        g,
+        m: resolve_m(block, cfg)?,
+        axes: [None; AXIS_COUNT],
+        center: [None; AXIS_COUNT],
+        radius: None,
+        dwell_ms: None,
+        reference: 1,
+        feed: None,
+        speed: None,
+        tool: None,
+    };
+    let user = cmd.axis_user(state);
+    words::check_letters(block, user, cfg)?;
+    words::convert(block, user, state, cfg, &fmt, &mut cmd)?;
+    Ok(cmd)
+}
+
+/// Looks up every M code and rejects contradicting pairs.
+fn resolve_m(block: &Block, cfg: &MachineConfig) -> Result<heapless::Vec<(u16, MFunction), MAX_M>, AlarmKind> {
+    let mut out = heapless::Vec::new();
+    for (i, &m) in block.m.iter().enumerate() {
+        if matches!(m, 91 | 92 | 98 | 99) {
+            return Err(AlarmKind::NotSupportedYet { what: "subprograms and jumps (M98/M99/M91/M92)" });
+        }
+        let f = m_function(m, cfg).ok_or(AlarmKind::UnknownMCode { m })?;
+        if let Some(&other) = block.m[..i].iter().find(|&&o| m_codes_conflict(o, m)) {
+            return Err(AlarmKind::ConflictingMCodes { first: other, second: m });
+        }
+        // Capacity equals the reader's, so this push cannot fail.
+        let _ = out.push((m, f));
+    }
+    Ok(out)
+}
+
+/// The axis addressed by `letter` and whether the letter is incremental.
+pub(crate) fn axis_of(letter: u8) -> Option<(Axis, bool)> {
+    Axis::ALL.into_iter().find_map(|a| {
+        if a.letter() == letter {
+            Some((a, false))
+        } else if a.incremental_letter() == letter {
+            Some((a, true))
+        } else {
+            None
+        }
+    })
+}

@@ -1,0 +1,239 @@
+//! Which words a block may hold, and their conversion into internal units.
+
+use super::{AxisWord, Command, axis_of};
+use crate::alarm::AlarmKind;
+use crate::axis::Axis;
+use crate::codes::GCode;
+use crate::config::{MAX_OFFSETS, MachineConfig, Param};
+use crate::exec::State;
+use crate::parse::Block;
+use crate::units::{Number, NumberFormat};
+
+/// A set of address letters, one bit per letter A–Z.
+#[derive(Clone, Copy)]
+struct Letters(u32);
+
+impl Letters {
+    const fn of(letters: &[u8]) -> Letters {
+        let mut bits = 0;
+        let mut i = 0;
+        while i < letters.len() {
+            bits |= 1 << (letters[i] - b'A');
+            i += 1;
+        }
+        Letters(bits)
+    }
+
+    const fn with(self, o: Letters) -> Letters {
+        Letters(self.0 | o.0)
+    }
+
+    const fn contains(self, l: u8) -> bool {
+        self.0 & (1 << (l - b'A')) != 0
+    }
+}
+
+/// Axis addresses, absolute and incremental.
+const AXES: Letters = Letters::of(b"XYZCUVWH");
+/// Words every block may hold.
+const ALWAYS: Letters = Letters::of(b"FST");
+/// Letters no function of this controller uses.
+const UNUSED: Letters = Letters::of(b"D");
+
+/// The words `code` takes besides [`ALWAYS`], and its name for messages.
+fn words_of(code: GCode) -> (Letters, &'static str) {
+    use GCode::*;
+    match code {
+        Rapid => (AXES, "G00"),
+        Linear => (AXES, "G01"),
+        ArcCw | ArcCcw => (AXES.with(Letters::of(b"IJKR")), "G02/G03"),
+        Dwell => (Letters::of(b"PXU"), "G04"),
+        ReferenceReturn => (AXES, "G28"),
+        ReferenceReturnN => (AXES.with(Letters::of(b"P")), "G30"),
+        SetCoordinates => (AXES, "G50"),
+        LocalFrame => (AXES, "G52"),
+        MachineCoordinates => (AXES, "G53"),
+        _ => (Letters(0), "this block"),
+    }
+}
+
+/// Every letter of the block must belong to the code that uses the axis words,
+/// and every axis word must name an axis the machine has.
+pub(super) fn check_letters(block: &Block, user: GCode, cfg: &MachineConfig) -> Result<(), AlarmKind> {
+    let (allowed, name) = words_of(user);
+    for letter in block.letters() {
+        if UNUSED.contains(letter) {
+            return Err(AlarmKind::ImproperAddress { letter });
+        }
+        if !allowed.with(ALWAYS).contains(letter) {
+            return Err(AlarmKind::WordNotAllowed { letter, context: name });
+        }
+        if user != GCode::Dwell
+            && let Some((axis, _)) = axis_of(letter)
+            && !cfg.axis(axis).present
+        {
+            return Err(AlarmKind::AxisNotConfigured { letter });
+        }
+    }
+    if block.chamfer.is_some() || block.corner.is_some() {
+        return Err(AlarmKind::NotSupportedYet { what: "chamfer and corner rounding ,C/,R" });
+    }
+    Ok(())
+}
+
+/// Converts the block's values into `cmd`.
+pub(super) fn convert(
+    block: &Block,
+    user: GCode,
+    state: &State,
+    cfg: &MachineConfig,
+    fmt: &NumberFormat,
+    cmd: &mut Command,
+) -> Result<(), AlarmKind> {
+    if user == GCode::Dwell {
+        cmd.dwell_ms = Some(dwell_ms(block, fmt)?);
+    } else {
+        convert_axes(block, state, cfg, fmt, cmd)?;
+    }
+    if matches!(user, GCode::ArcCw | GCode::ArcCcw) {
+        convert_arc_words(block, fmt, cmd)?;
+    }
+    if user == GCode::ReferenceReturnN {
+        cmd.reference = match block.get(b'P') {
+            None => 2,
+            Some(p) => match p.as_integer() {
+                Some(n @ 1..=4) if !p.has_point => n as u8,
+                _ => return Err(AlarmKind::IllegalReferenceNumber),
+            },
+        };
+    }
+    if let Some(f) = block.get(b'F') {
+        if f.is_negative() {
+            return Err(AlarmKind::IllegalMinusSign { letter: b'F' });
+        }
+        cmd.feed = Some(fmt.feed_nm(&f).ok_or(AlarmKind::Overflow)?);
+    }
+    if let Some(s) = block.get(b'S') {
+        cmd.speed = Some(whole(b'S', &s, 99_999)?);
+    }
+    if let Some(t) = block.get(b'T') {
+        cmd.tool = Some(tool_word(&t, cfg)?);
+    }
+    required_words(user, cmd)
+}
+
+/// Axis words into nm (X diameter halved), noting absolute or incremental.
+fn convert_axes(
+    block: &Block,
+    state: &State,
+    cfg: &MachineConfig,
+    fmt: &NumberFormat,
+    cmd: &mut Command,
+) -> Result<(), AlarmKind> {
+    let g91 = cmd.g.incremental.unwrap_or(state.modal.incremental);
+    for axis in Axis::ALL {
+        let abs = block.get(axis.letter());
+        let inc = block.get(axis.incremental_letter());
+        let (n, incremental) = match (abs, inc) {
+            (Some(_), Some(_)) => {
+                return Err(AlarmKind::AxisTwice { absolute: axis.letter(), incremental: axis.incremental_letter() });
+            }
+            (Some(n), None) => (n, g91),
+            (None, Some(n)) => (n, true),
+            (None, None) => continue,
+        };
+        let value = axis_value(axis, &n, cfg, fmt)?;
+        cmd.axes[axis.index()] = Some(AxisWord { value, incremental });
+    }
+    Ok(())
+}
+
+/// One axis value in internal units.
+fn axis_value(axis: Axis, n: &Number, cfg: &MachineConfig, fmt: &NumberFormat) -> Result<i64, AlarmKind> {
+    let v = if axis.is_rotary() { fmt.angle_udeg(n) } else { fmt.length_nm(n) };
+    let v = v.ok_or(AlarmKind::Overflow)?;
+    Ok(if axis == Axis::X && cfg.diameter_x { v / 2 } else { v })
+}
+
+/// I/J/K (radius values) and R of an arc.
+fn convert_arc_words(block: &Block, fmt: &NumberFormat, cmd: &mut Command) -> Result<(), AlarmKind> {
+    for axis in Axis::ALL {
+        if let Some(l) = axis.center_letter()
+            && let Some(n) = block.get(l)
+        {
+            cmd.center[axis.index()] = Some(fmt.length_nm(&n).ok_or(AlarmKind::Overflow)?);
+        }
+    }
+    if let Some(r) = block.get(b'R') {
+        let r = fmt.length_nm(&r).ok_or(AlarmKind::Overflow)?;
+        if r == 0 {
+            return Err(AlarmKind::ArcRadiusZero);
+        }
+        cmd.radius = Some(r);
+    }
+    Ok(())
+}
+
+/// G04: P in ms without decimal point, or X/U in seconds; none = exact stop.
+fn dwell_ms(block: &Block, fmt: &NumberFormat) -> Result<u32, AlarmKind> {
+    let secs = match (block.get(b'X'), block.get(b'U')) {
+        (Some(_), Some(_)) => return Err(AlarmKind::AxisTwice { absolute: b'X', incremental: b'U' }),
+        (x, u) => x.map(|n| (b'X', n)).or(u.map(|n| (b'U', n))),
+    };
+    match (block.get(b'P'), secs) {
+        (Some(_), Some((l, _))) => Err(AlarmKind::WordNotAllowed { letter: l, context: "G04 with P" }),
+        (Some(p), None) => whole(b'P', &p, 99_999_999),
+        (None, Some((l, n))) => {
+            if n.is_negative() {
+                return Err(AlarmKind::IllegalMinusSign { letter: l });
+            }
+            let ms = fmt.seconds_ms(&n).ok_or(AlarmKind::Overflow)?;
+            u32::try_from(ms).map_err(|_| AlarmKind::ValueOutOfRange { letter: l })
+        }
+        (None, None) => Ok(0),
+    }
+}
+
+/// Words a code cannot do without.
+fn required_words(user: GCode, cmd: &Command) -> Result<(), AlarmKind> {
+    use GCode::*;
+    let (context, needs_axis) = match user {
+        ReferenceReturn => ("G28", true),
+        ReferenceReturnN => ("G30", true),
+        LocalFrame => ("G52", true),
+        SetCoordinates => ("G50", cmd.speed.is_none()),
+        _ => ("", false),
+    };
+    if needs_axis && !cmd.has_axes() {
+        return Err(AlarmKind::MissingWord { letter: b'X', context });
+    }
+    if user == MachineCoordinates && cmd.axes.iter().flatten().any(|w| w.incremental) {
+        return Err(AlarmKind::MachineCoordinatesIncremental);
+    }
+    Ok(())
+}
+
+/// A whole number without sign or decimal point, at most `max`.
+fn whole(letter: u8, n: &Number, max: u32) -> Result<u32, AlarmKind> {
+    if n.has_point {
+        return Err(AlarmKind::IllegalDecimalPoint { letter });
+    }
+    if n.is_negative() {
+        return Err(AlarmKind::IllegalMinusSign { letter });
+    }
+    u32::try_from(n.mantissa).ok().filter(|v| *v <= max).ok_or(AlarmKind::ValueOutOfRange { letter })
+}
+
+/// T: turret station and offset number (the last 1 or 2 digits, parameter 5002).
+fn tool_word(t: &Number, cfg: &MachineConfig) -> Result<(u16, u16), AlarmKind> {
+    let v = whole(b'T', t, 99_999_999)?;
+    let split = if cfg.params.get(Param::OffsetDigits) == 1 { 10 } else { 100 };
+    let (tool, offset) = (v / split, v % split);
+    if tool > u32::from(cfg.tool_count) {
+        return Err(AlarmKind::IllegalToolNumber { number: tool.min(u32::from(u16::MAX)) as u16 });
+    }
+    if offset as usize > MAX_OFFSETS {
+        return Err(AlarmKind::IllegalOffsetNumber { number: offset as u16 });
+    }
+    Ok((tool as u16, offset as u16))
+}

@@ -1,0 +1,322 @@
+//! The language tables: G codes of table 1.1 in systems A/B/C with their modal
+//! groups, and the M codes of tables 1.2 and 3.1 with their timing.
+
+use crate::config::{GCodeSystem, MTiming, MachineConfig};
+
+/// A G code by meaning, independent of the G-code system it was written in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum GCode {
+    Rapid,
+    Linear,
+    ArcCw,
+    ArcCcw,
+    EllipseCw,
+    EllipseCcw,
+    ParabolaCw,
+    ParabolaCcw,
+    Dwell,
+    ExactStopOnce,
+    PolarOn,
+    PolarOff,
+    PlaneXy,
+    PlaneZx,
+    PlaneYz,
+    TurningCycle,
+    ThreadCycle,
+    FacingCycle,
+    ReferenceReturn,
+    ReferenceReturnN,
+    Thread,
+    VariableLeadThread,
+    NoseCompOff,
+    NoseCompLeft,
+    NoseCompRight,
+    PolygonOn,
+    PolygonOff,
+    LocalFrame,
+    MachineCoordinates,
+    /// G54–G59: work frame 0–5.
+    WorkFrame(u8),
+    Inch,
+    Metric,
+    FinishCycle,
+    RoughTurnCycle,
+    RoughFaceCycle,
+    PatternCycle,
+    FacePeckCycle,
+    GroovePeckCycle,
+    MultiThreadCycle,
+    DrillCancel,
+    FaceDrill,
+    FaceTap,
+    FaceBore,
+    SideDrill,
+    SideTap,
+    SideBore,
+    /// G50 (A) / G92 (B, C): coordinate setting and spindle clamp.
+    SetCoordinates,
+    FeedPerMin,
+    FeedPerRev,
+    CssOn,
+    CssOff,
+    StrokeCheckOn,
+    StrokeCheckOff,
+    ExactStopMode,
+    ContinuousMode,
+    /// G90 of systems B/C.
+    Absolute,
+    /// G91 of systems B/C.
+    Incremental,
+    /// G98 of systems B/C: drilling cycles return to the initial level.
+    ReturnInitial,
+    /// G99 of systems B/C: drilling cycles return to the R level.
+    ReturnR,
+}
+
+/// Modal groups (FANUC numbering in the comments). Group 00 codes act in their block only.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Group {
+    /// 00: one-shot codes.
+    NonModal,
+    /// 01: motion and single cycles.
+    Motion,
+    /// 02: G96/G97.
+    SpindleMode,
+    /// 03: G90/G91 (systems B/C).
+    Distance,
+    /// 04: G22/G23.
+    StrokeCheck,
+    /// 05: G98/G99 (A), G94/G95 (B/C).
+    FeedMode,
+    /// 06: G20/G21.
+    Units,
+    /// 07: G40/G41/G42.
+    NoseComp,
+    /// 10: drilling cycles and G80.
+    Drilling,
+    /// 11: G98/G99 return level (B/C).
+    ReturnLevel,
+    /// 14: G54–G59.
+    WorkFrame,
+    /// 15: G61/G64.
+    PathMode,
+    /// 16: G17/G18/G19.
+    Plane,
+    /// 20: G50.2/G51.2.
+    Polygon,
+    /// 21: G12.1/G13.1.
+    Polar,
+}
+
+impl GCode {
+    /// The G code written as `G<tenths/10>` in `system`, if it exists there.
+    pub fn from_tenths(system: GCodeSystem, tenths: u16) -> Option<GCode> {
+        use GCode::*;
+        let common = match tenths {
+            0 => Rapid,
+            10 => Linear,
+            20 => ArcCw,
+            30 => ArcCcw,
+            21 => EllipseCw,
+            31 => EllipseCcw,
+            22 => ParabolaCw,
+            32 => ParabolaCcw,
+            40 => Dwell,
+            90 => ExactStopOnce,
+            121 => PolarOn,
+            131 => PolarOff,
+            170 => PlaneXy,
+            180 => PlaneZx,
+            190 => PlaneYz,
+            220 => StrokeCheckOn,
+            230 => StrokeCheckOff,
+            280 => ReferenceReturn,
+            300 => ReferenceReturnN,
+            340 => VariableLeadThread,
+            400 => NoseCompOff,
+            410 => NoseCompLeft,
+            420 => NoseCompRight,
+            502 => PolygonOff,
+            512 => PolygonOn,
+            520 => LocalFrame,
+            530 => MachineCoordinates,
+            540..=590 if tenths.is_multiple_of(10) => WorkFrame(((tenths - 540) / 10) as u8),
+            610 => ExactStopMode,
+            640 => ContinuousMode,
+            800 => DrillCancel,
+            830 => FaceDrill,
+            840 => FaceTap,
+            850 => FaceBore,
+            870 => SideDrill,
+            880 => SideTap,
+            890 => SideBore,
+            960 => CssOn,
+            970 => CssOff,
+            _ => return Self::system_specific(system, tenths),
+        };
+        Some(common)
+    }
+
+    /// Codes whose number differs between systems (table 1.1 columns).
+    fn system_specific(system: GCodeSystem, tenths: u16) -> Option<GCode> {
+        use GCode::*;
+        use GCodeSystem::*;
+        Some(match (system, tenths) {
+            (A, 200) | (B, 200) | (C, 700) => Inch,
+            (A, 210) | (B, 210) | (C, 710) => Metric,
+            (A, 320) | (B, 330) | (C, 330) => Thread,
+            (A, 500) | (B, 920) | (C, 920) => SetCoordinates,
+            (A, 700) | (B, 700) | (C, 720) => FinishCycle,
+            (A, 710) | (B, 710) | (C, 730) => RoughTurnCycle,
+            (A, 720) | (B, 720) | (C, 740) => RoughFaceCycle,
+            (A, 730) | (B, 730) | (C, 750) => PatternCycle,
+            (A, 740) | (B, 740) | (C, 760) => FacePeckCycle,
+            (A, 750) | (B, 750) | (C, 770) => GroovePeckCycle,
+            (A, 760) | (B, 760) | (C, 780) => MultiThreadCycle,
+            (A, 900) | (B, 770) | (C, 200) => TurningCycle,
+            (A, 920) | (B, 780) | (C, 210) => ThreadCycle,
+            (A, 940) | (B, 790) | (C, 240) => FacingCycle,
+            (A, 980) | (B, 940) | (C, 940) => FeedPerMin,
+            (A, 990) | (B, 950) | (C, 950) => FeedPerRev,
+            (B, 900) | (C, 900) => Absolute,
+            (B, 910) | (C, 910) => Incremental,
+            (B, 980) | (C, 980) => ReturnInitial,
+            (B, 990) | (C, 990) => ReturnR,
+            _ => return None,
+        })
+    }
+
+    /// The modal group of the code.
+    pub fn group(self) -> Group {
+        use GCode::*;
+        match self {
+            Rapid | Linear | ArcCw | ArcCcw | EllipseCw | EllipseCcw | ParabolaCw | ParabolaCcw | Thread
+            | VariableLeadThread | TurningCycle | ThreadCycle | FacingCycle => Group::Motion,
+            Dwell | ExactStopOnce | ReferenceReturn | ReferenceReturnN | LocalFrame | MachineCoordinates
+            | SetCoordinates | FinishCycle | RoughTurnCycle | RoughFaceCycle | PatternCycle | FacePeckCycle
+            | GroovePeckCycle | MultiThreadCycle => Group::NonModal,
+            CssOn | CssOff => Group::SpindleMode,
+            Absolute | Incremental => Group::Distance,
+            StrokeCheckOn | StrokeCheckOff => Group::StrokeCheck,
+            FeedPerMin | FeedPerRev => Group::FeedMode,
+            Inch | Metric => Group::Units,
+            NoseCompOff | NoseCompLeft | NoseCompRight => Group::NoseComp,
+            DrillCancel | FaceDrill | FaceTap | FaceBore | SideDrill | SideTap | SideBore => Group::Drilling,
+            ReturnInitial | ReturnR => Group::ReturnLevel,
+            WorkFrame(_) => Group::WorkFrame,
+            ExactStopMode | ContinuousMode => Group::PathMode,
+            PlaneXy | PlaneZx | PlaneYz => Group::Plane,
+            PolygonOn | PolygonOff => Group::Polygon,
+            PolarOn | PolarOff => Group::Polar,
+        }
+    }
+}
+
+/// What an M code does.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum MFunction {
+    /// M00: program stop.
+    Stop,
+    /// M01: optional stop (only with the optional-stop switch on).
+    OptionalStop,
+    /// M02: end of program.
+    End,
+    /// M30: end of program and rewind.
+    EndRewind,
+    /// M03: spindle clockwise.
+    SpindleCw,
+    /// M04: spindle counter-clockwise.
+    SpindleCcw,
+    /// M05: spindle stop.
+    SpindleStop,
+    /// Any other M code: a machine output switched before or after the motion.
+    Aux(MTiming),
+}
+
+/// Conflict class of an M code: two codes of one class in a block contradict
+/// each other (M07 and M08 may be on together, so coolant-on codes have none).
+fn m_class(m: u16) -> Option<u8> {
+    Some(match m {
+        0 | 1 | 2 | 30 => 0,
+        3..=5 => 1,
+        9 => 2,
+        10 | 11 => 3,
+        12 | 13 => 4,
+        19 | 20 => 5,
+        31..=33 => 6,
+        41..=44 => 7,
+        45..=48 => 8,
+        63..=65 => 9,
+        _ => return None,
+    })
+}
+
+/// Whether M codes `a` and `b` in one block contradict each other.
+pub fn m_codes_conflict(a: u16, b: u16) -> bool {
+    if a == b {
+        return true;
+    }
+    let coolant = |m| matches!(m, 7..=9);
+    if coolant(a) && coolant(b) {
+        return a == 9 || b == 9;
+    }
+    matches!((m_class(a), m_class(b)), (Some(x), Some(y)) if x == y)
+}
+
+/// The function of M code `m` on this machine, `None` if unknown.
+///
+/// Timing follows the usual ladder (seed 003 2.2.2: "前置 G00 M03, 后置 G00 M02"):
+/// codes that switch something on act before the motion, codes that switch off or
+/// stop act after it.
+pub fn m_function(m: u16, cfg: &MachineConfig) -> Option<MFunction> {
+    use MTiming::{After, Before};
+    Some(match m {
+        0 => MFunction::Stop,
+        1 => MFunction::OptionalStop,
+        2 => MFunction::End,
+        30 => MFunction::EndRewind,
+        3 => MFunction::SpindleCw,
+        4 => MFunction::SpindleCcw,
+        5 => MFunction::SpindleStop,
+        7 | 8 | 10 | 12 | 19 | 20 | 29 | 31 | 32 | 41..=48 | 63 | 64 => MFunction::Aux(Before),
+        9 | 11 | 13 | 33 | 65 => MFunction::Aux(After),
+        _ => return cfg.user_m(m).map(|u| MFunction::Aux(u.timing)),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn systems_map_the_cycles_of_table_1_1() {
+        use GCodeSystem::*;
+        assert_eq!(GCode::from_tenths(A, 900), Some(GCode::TurningCycle));
+        assert_eq!(GCode::from_tenths(B, 770), Some(GCode::TurningCycle));
+        assert_eq!(GCode::from_tenths(C, 200), Some(GCode::TurningCycle));
+        assert_eq!(GCode::from_tenths(C, 700), Some(GCode::Inch));
+        assert_eq!(GCode::from_tenths(A, 200), Some(GCode::Inch));
+        assert_eq!(GCode::from_tenths(B, 900), Some(GCode::Absolute));
+        assert_eq!(GCode::from_tenths(A, 910), None);
+        assert_eq!(GCode::from_tenths(A, 990), Some(GCode::FeedPerRev));
+        assert_eq!(GCode::from_tenths(B, 950), Some(GCode::FeedPerRev));
+        assert_eq!(GCode::from_tenths(A, 570), Some(GCode::WorkFrame(3)));
+        assert_eq!(GCode::from_tenths(A, 545), None);
+        assert_eq!(GCode::from_tenths(A, 500), Some(GCode::SetCoordinates));
+        assert_eq!(GCode::from_tenths(B, 920), Some(GCode::SetCoordinates));
+        assert_eq!(GCode::from_tenths(A, 70), None);
+    }
+
+    #[test]
+    fn conflicting_m_codes() {
+        assert!(m_codes_conflict(3, 4));
+        assert!(m_codes_conflict(8, 9));
+        assert!(!m_codes_conflict(7, 8));
+        assert!(!m_codes_conflict(3, 8));
+        assert!(m_codes_conflict(41, 42));
+        assert!(m_codes_conflict(0, 30));
+    }
+}

@@ -1,0 +1,164 @@
+//! The machine description: axes, reference positions, work offsets, tool table,
+//! spindle limits and the numbered parameters. Built with defaults that run every
+//! example of the manual; the host reads it from a TOML machine file, the firmware
+//! from flash.
+
+pub mod params;
+pub mod tools;
+
+pub use params::{PARAMS, Param, ParamUnit, Parameters};
+pub use tools::{MAX_OFFSETS, ToolOffset, ToolTable};
+
+use crate::axis::{AXIS_COUNT, Axis, Pos};
+use crate::units::{IncrementSystem, InputMode};
+
+/// Which G-code table of 1.1 the programs are written in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum GCodeSystem {
+    /// System A: the manual's own (G90 turning cycle, G98/G99 feed modes, U/W incremental).
+    A,
+    /// System B: G90/G91 absolute/incremental, G94/G95 feed modes, G77/G78/G79 cycles.
+    B,
+    /// System C: as B with G20/G21/G24 cycles and G70/G71 inch/metric.
+    C,
+}
+
+/// Limits and rates of one axis.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct AxisConfig {
+    /// Whether the machine has this axis (X and Z always; Y and C optional).
+    pub present: bool,
+    /// Negative soft limit, machine coordinates, internal units (X radius).
+    pub min: i64,
+    /// Positive soft limit, machine coordinates, internal units (X radius).
+    pub max: i64,
+    /// Rapid rate (parameters 6032–6035), internal units per minute.
+    pub rapid_per_min: i64,
+    /// Maximum cutting feed of this axis (parameters 6040–6043), units per minute.
+    pub max_feed_per_min: i64,
+    /// Acceleration, internal units per second squared.
+    pub accel_per_s2: i64,
+}
+
+impl AxisConfig {
+    /// A linear axis with the given travel (mm, as stored: X radius) and rates.
+    pub const fn linear(min_mm: i64, max_mm: i64, rapid_mm_min: i64) -> Self {
+        AxisConfig {
+            present: true,
+            min: min_mm * 1_000_000,
+            max: max_mm * 1_000_000,
+            rapid_per_min: rapid_mm_min * 1_000_000,
+            max_feed_per_min: 5_000 * 1_000_000,
+            accel_per_s2: 500 * 1_000_000,
+        }
+    }
+
+    /// An axis the machine does not have.
+    pub const ABSENT: AxisConfig =
+        AxisConfig { present: false, min: 0, max: 0, rapid_per_min: 0, max_feed_per_min: 0, accel_per_s2: 0 };
+}
+
+/// Spindle limits.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SpindleConfig {
+    /// Speed at full output (10 V): the cap of every commanded speed (2.19 note 7).
+    pub max_rpm: u32,
+    /// Lowest speed G96 commands when no surface speed was ever given (2.19 note 2).
+    pub css_min_rpm: u32,
+    /// Top speed of gears 1–4 (M41–M44); 0 = no gear limit (2.19 note 5).
+    pub gear_max_rpm: [u32; 4],
+}
+
+/// When an M code's action happens relative to the motion of its block.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum MTiming {
+    /// Before the block's motion starts (M03, M08 …).
+    Before,
+    /// After the block's motion has finished (M05, M09 …).
+    After,
+}
+
+/// An M code the machine builder wired to an output beyond the manual's tables.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct UserMCode {
+    /// The M number.
+    pub m: u16,
+    /// Before or after the motion of its block.
+    pub timing: MTiming,
+}
+
+/// Capacity of the user M-code list.
+pub const MAX_USER_M: usize = 16;
+
+/// Everything the interpreter needs to know about the machine.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MachineConfig {
+    /// G-code system A, B or C (table 1.1).
+    pub gcode_system: GCodeSystem,
+    /// IS-B or IS-C least increments.
+    pub increments: IncrementSystem,
+    /// Whether X is programmed as a diameter (the manual's convention).
+    pub diameter_x: bool,
+    /// Whether G00 moves each axis at its own rapid rate (dog-leg path) instead of
+    /// interpolating a straight line. G28/G30 always move the axes independently.
+    pub rapid_independent: bool,
+    /// Axis limits and rates, indexed by [`Axis`].
+    pub axes: [AxisConfig; AXIS_COUNT],
+    /// Reference positions 1–4 (G28 = 1; G30 P1–P4), machine coordinates.
+    pub reference: [Pos; 4],
+    /// Work offsets of G54–G59, machine coordinates of each work zero.
+    pub work_offsets: [Pos; 6],
+    /// External work offset, added to all six.
+    pub external_offset: Pos,
+    /// Highest tool (turret station) number.
+    pub tool_count: u16,
+    /// Tool offsets: geometry, wear, nose radius, tip direction.
+    pub tools: ToolTable,
+    /// Spindle limits.
+    pub spindle: SpindleConfig,
+    /// M codes configured as user outputs.
+    pub user_m_codes: heapless::Vec<UserMCode, MAX_USER_M>,
+    /// Numbered parameters.
+    pub params: Parameters,
+}
+
+impl Default for MachineConfig {
+    fn default() -> Self {
+        let x = AxisConfig::linear(-5, 160, 6_000);
+        let z = AxisConfig::linear(-600, 300, 8_000);
+        MachineConfig {
+            gcode_system: GCodeSystem::A,
+            increments: IncrementSystem::IsB,
+            diameter_x: true,
+            rapid_independent: false,
+            axes: [x, AxisConfig::ABSENT, z, AxisConfig::ABSENT],
+            reference: [Pos::xz(150_000_000, 250_000_000); 4],
+            work_offsets: [Pos::ZERO; 6],
+            external_offset: Pos::ZERO,
+            tool_count: 12,
+            tools: ToolTable::default(),
+            spindle: SpindleConfig { max_rpm: 3_000, css_min_rpm: 50, gear_max_rpm: [0; 4] },
+            user_m_codes: heapless::Vec::new(),
+            params: Parameters::default(),
+        }
+    }
+}
+
+impl MachineConfig {
+    /// The configuration of axis `a`.
+    pub fn axis(&self, a: Axis) -> &AxisConfig {
+        &self.axes[a.index()]
+    }
+
+    /// Input mode from parameter 3401.
+    pub fn input_mode(&self) -> InputMode {
+        if self.params.flag(Param::CalculatorInput) { InputMode::Calculator } else { InputMode::LeastIncrement }
+    }
+
+    /// The user M code `m`, if configured.
+    pub fn user_m(&self, m: u16) -> Option<UserMCode> {
+        self.user_m_codes.iter().copied().find(|u| u.m == m)
+    }
+}

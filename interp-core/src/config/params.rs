@@ -1,0 +1,235 @@
+//! The numbered parameter set: every parameter the manual refers to by number, with
+//! its meaning, unit and default. This is the one place parameters are defined;
+//! machine files set them by number, programs may update some (G71 U(Δd) writes 5147).
+
+/// How a parameter's value is written in a machine file and stored.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum ParamUnit {
+    /// 0 or 1.
+    Bool,
+    /// A whole number (a count, a code, digits).
+    Count,
+    /// Millimetres in the file, nanometres stored.
+    Mm,
+    /// Millimetres per minute in the file, nanometres per minute stored.
+    MmPerMin,
+    /// Milliseconds.
+    Ms,
+    /// Whole degrees.
+    Deg,
+    /// Tenths of the thread lead (parameter 5130).
+    TenthLead,
+}
+
+/// A parameter: what the manual calls "参数 NO.n".
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[repr(u8)]
+pub enum Param {
+    /// No.10: inch input at power-on (2.9 note 1).
+    InchAtPowerOn,
+    /// No.405: F at power-up for both G98 and G99 memories (2.20 note 5).
+    InitialFeed,
+    /// No.3401#0 (DPI, seed 004): 1 = calculator-type input, 0 = least increment.
+    CalculatorInput,
+    /// No.3403: G02/G03 without R/I/J/K: 1 = straight line, 0 = alarm 0022 (2.3 note 2).
+    ArcWithoutCenterIsLine,
+    /// No.3410: tolerance of the arc end-point radius (2.3, 2.16.1 note 5).
+    ArcRadiusTolerance,
+    /// No.5002: digits of the offset number at the end of a T word (1 or 2).
+    OffsetDigits,
+    /// No.5101: G83/G87 with Q: 0 = high-speed peck, 1 = deep peck (2.21.1).
+    DeepPeckDrilling,
+    /// No.5102: G84/G88 with Q: 0 = high-speed peck, 1 = deep peck tapping (2.22.2).
+    DeepPeckTapping,
+    /// No.5113: return / clearance d of peck drilling (2.21.1).
+    PeckDrillClearance,
+    /// No.5114: return / clearance d of peck tapping (2.22.2).
+    PeckTapClearance,
+    /// No.5130: thread pull-out (chamfer) in 0.1 × lead (2.17.3, 2.17.4).
+    ThreadChamfer,
+    /// No.5131: thread pull-out angle, degrees; 0 = 45° (2.17.3).
+    ThreadChamferAngle,
+    /// No.5139: retract e of G74/G75 (2.16.5).
+    GrooveRetract,
+    /// No.5140: minimum depth Δdmin of G76 (2.17.4).
+    ThreadMinDepth,
+    /// No.5141: finishing allowance d of G76 (2.17.4).
+    ThreadFinishAllowance,
+    /// No.5142: finishing repetitions m of G76 (2.17.4).
+    ThreadFinishCount,
+    /// No.5143: tool angle a of G76 (2.17.4).
+    ThreadToolAngle,
+    /// No.5144: relief Δi of G73 in X (radius) (2.16.3).
+    PatternReliefX,
+    /// No.5145: relief Δk of G73 in Z (2.16.3).
+    PatternReliefZ,
+    /// No.5146: number of divisions d of G73 (2.16.3).
+    PatternDivisions,
+    /// No.5147: depth of cut Δd of G71/G72 (2.16.1).
+    RoughingDepth,
+    /// No.5148: retract e of G71/G72 (2.16.1).
+    RoughingRetract,
+    /// No.5152: 1 = G50 coordinate setting disabled (2.12.1 note 3).
+    DisableCoordinateSetting,
+    /// No.5153: motion mode at power-on: 0 = G00, 1 = G01 (2.1 note 2).
+    InitialLinear,
+    /// No.5154: feed mode at power-on: 0 = G98 per minute, 1 = G99 per revolution (2.20 note 1).
+    InitialPerRev,
+    /// No.5160: 1 = reset cancels the G52 local frame (2.12.3 note 5).
+    ResetCancelsLocal,
+    /// No.5170: 1 = reverse-thread rigid tapping option (2.22.2).
+    ReverseTapping,
+    /// No.6023: maximum cutting feed along the path (2.2 note 3).
+    MaxCuttingFeed,
+    /// No.7013: dwell at R point in rigid tapping (2.22.2).
+    TapDwellAtR,
+}
+
+/// Definition of a parameter: number, unit, default (in file units) and meaning.
+#[derive(Clone, Copy, Debug)]
+pub struct ParamDef {
+    /// The parameter.
+    pub id: Param,
+    /// The manual's number ("NO.n").
+    pub number: u16,
+    /// Unit of the value in machine files.
+    pub unit: ParamUnit,
+    /// Default, in file units.
+    pub default: f64,
+    /// What it does.
+    pub meaning: &'static str,
+}
+
+macro_rules! defs {
+    ($($id:ident $num:literal $unit:ident $def:literal $text:literal;)*) => {
+        /// Every parameter, in the order of [`Param`].
+        pub const PARAMS: &[ParamDef] = &[
+            $(ParamDef { id: Param::$id, number: $num, unit: ParamUnit::$unit, default: $def, meaning: $text },)*
+        ];
+    };
+}
+
+defs! {
+    InchAtPowerOn 10 Bool 0.0 "1 = G20 (inch) at power-on, 0 = G21 (2.9 note 1)";
+    InitialFeed 405 Count 0.0 "F value of both G98 and G99 memories at power-on (2.20 note 5)";
+    CalculatorInput 3401 Bool 1.0 "1 = calculator-type input (X60 = 60 mm), 0 = least increment (X60 = 0.060 mm)";
+    ArcWithoutCenterIsLine 3403 Bool 0.0 "G02/G03 without R and I/J/K: 1 = straight line, 0 = alarm 0022 (2.3 note 2)";
+    ArcRadiusTolerance 3410 Mm 0.01 "allowed difference of start and end radius of an arc (2.3)";
+    OffsetDigits 5002 Count 2.0 "digits of the offset number at the end of T (T0101: 2)";
+    DeepPeckDrilling 5101 Bool 0.0 "G83/G87 with Q: 0 = high-speed peck, 1 = deep peck (2.21.1)";
+    DeepPeckTapping 5102 Bool 0.0 "G84/G88 with Q: 0 = high-speed peck, 1 = deep peck tapping (2.22.2)";
+    PeckDrillClearance 5113 Mm 0.5 "return/clearance d of peck drilling (2.21.1)";
+    PeckTapClearance 5114 Mm 0.5 "return/clearance d of peck tapping (2.22.2)";
+    ThreadChamfer 5130 TenthLead 10.0 "thread pull-out length in 0.1 x lead (2.17.3 note 1, 2.17.4)";
+    ThreadChamferAngle 5131 Deg 0.0 "thread pull-out angle in degrees, 0 = 45 (2.17.3 note 1)";
+    GrooveRetract 5139 Mm 0.1 "retract e of G74/G75 (2.16.5, 2.16.6)";
+    ThreadMinDepth 5140 Mm 0.1 "minimum cut depth dmin of G76 (2.17.4)";
+    ThreadFinishAllowance 5141 Mm 0.05 "finishing allowance d of G76 (2.17.4)";
+    ThreadFinishCount 5142 Count 1.0 "finishing passes m of G76 (2.17.4)";
+    ThreadToolAngle 5143 Deg 60.0 "tool nose angle a of G76 (2.17.4)";
+    PatternReliefX 5144 Mm 0.0 "relief di in X (radius) of G73 (2.16.3)";
+    PatternReliefZ 5145 Mm 0.0 "relief dk in Z of G73 (2.16.3)";
+    PatternDivisions 5146 Count 1.0 "number of passes d of G73 (2.16.3)";
+    RoughingDepth 5147 Mm 1.0 "depth of cut dd of G71/G72 (2.16.1, 2.16.2)";
+    RoughingRetract 5148 Mm 0.5 "retract e of G71/G72 (2.16.1, 2.16.2)";
+    DisableCoordinateSetting 5152 Bool 0.0 "1 = G50 X/Z coordinate setting disabled (2.12.1 note 3)";
+    InitialLinear 5153 Bool 0.0 "motion mode at power-on: 0 = G00, 1 = G01 (2.1 note 2)";
+    InitialPerRev 5154 Bool 0.0 "feed mode at power-on: 0 = G98 per minute, 1 = G99 per revolution (2.20 note 1)";
+    ResetCancelsLocal 5160 Bool 0.0 "1 = reset cancels the G52 local coordinate system (2.12.3 note 5)";
+    ReverseTapping 5170 Bool 0.0 "1 = reverse-thread rigid tapping option (2.22.2)";
+    MaxCuttingFeed 6023 MmPerMin 5000.0 "maximum cutting feed along the path (2.2 note 3)";
+    TapDwellAtR 7013 Ms 0.0 "dwell at the R point in rigid tapping (2.22.2)";
+}
+
+/// Number of parameters.
+pub const PARAM_COUNT: usize = PARAMS.len();
+
+impl Param {
+    /// The definition row.
+    pub fn def(self) -> &'static ParamDef {
+        &PARAMS[self as usize]
+    }
+
+    /// The parameter with the manual's number `n`.
+    pub fn by_number(n: u16) -> Option<Param> {
+        PARAMS.iter().find(|d| d.number == n).map(|d| d.id)
+    }
+}
+
+/// Stored parameter values in internal units (nm, nm/min, ms, counts).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Parameters {
+    values: [i64; PARAM_COUNT],
+}
+
+impl Default for Parameters {
+    fn default() -> Self {
+        let mut p = Parameters { values: [0; PARAM_COUNT] };
+        for d in PARAMS {
+            p.values[d.id as usize] = to_internal(d.unit, d.default);
+        }
+        p
+    }
+}
+
+/// A file-unit value in internal units.
+fn to_internal(unit: ParamUnit, v: f64) -> i64 {
+    let scale = match unit {
+        ParamUnit::Mm | ParamUnit::MmPerMin => 1e6,
+        _ => 1.0,
+    };
+    libm::round(v * scale) as i64
+}
+
+impl Parameters {
+    /// The value in internal units.
+    pub fn get(&self, p: Param) -> i64 {
+        self.values[p as usize]
+    }
+
+    /// Whether a Bool parameter is 1.
+    pub fn flag(&self, p: Param) -> bool {
+        self.get(p) != 0
+    }
+
+    /// Sets a value in internal units (what a program's G71 U(Δd) does to 5147).
+    pub fn set(&mut self, p: Param, internal: i64) {
+        self.values[p as usize] = internal;
+    }
+
+    /// Sets parameter number `n` from a machine-file value in file units.
+    /// Returns false if there is no parameter with that number.
+    pub fn set_from_file(&mut self, n: u16, value: f64) -> bool {
+        match Param::by_number(n) {
+            Some(p) => {
+                self.set(p, to_internal(p.def().unit, value));
+                true
+            }
+            None => false,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn table_order_matches_the_enum() {
+        for (i, d) in PARAMS.iter().enumerate() {
+            assert_eq!(d.id as usize, i, "parameter {} out of order", d.number);
+        }
+    }
+
+    #[test]
+    fn defaults_and_file_values_convert_to_internal_units() {
+        let mut p = Parameters::default();
+        assert_eq!(p.get(Param::ArcRadiusTolerance), 10_000);
+        assert!(p.set_from_file(5147, 2.5));
+        assert_eq!(p.get(Param::RoughingDepth), 2_500_000);
+        assert!(!p.set_from_file(9999, 1.0));
+        assert_eq!(Param::by_number(5152), Some(Param::DisableCoordinateSetting));
+    }
+}

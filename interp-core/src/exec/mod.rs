@@ -1,0 +1,179 @@
+//! Execution: a checked [`Command`] applied to the [`State`], emitting canonical
+//! actions in the order the control performs them. Runs on a copy of the state;
+//! the caller commits it only if the whole block succeeded.
+
+mod coords;
+mod motion;
+mod spindle;
+mod state;
+
+pub use spindle::spindle_speed;
+pub use state::{FeedMemory, Frames, Modal, SpindleState, State, ToolState};
+
+use crate::alarm::AlarmKind;
+use crate::axis::Pos;
+use crate::canon::{Action, Canon, SpindleDir};
+use crate::check::Command;
+use crate::codes::{GCode, MFunction};
+use crate::config::{MTiming, MachineConfig, ToolOffset};
+use crate::env::Environment;
+
+/// Most actions one block produces.
+pub const STAGE: usize = 16;
+
+/// Actions of the block being executed, delivered only if the block succeeds.
+#[derive(Debug, Default)]
+pub struct Staged {
+    line: u32,
+    /// The staged actions, in order.
+    pub actions: heapless::Vec<Canon, STAGE>,
+}
+
+impl Staged {
+    /// An empty stage for the block on `line`.
+    pub fn new(line: u32) -> Self {
+        Staged { line, actions: heapless::Vec::new() }
+    }
+
+    /// Stages one action.
+    pub fn emit(&mut self, action: Action) -> Result<(), AlarmKind> {
+        self.actions.push(Canon { line: self.line, action }).map_err(|_| AlarmKind::Overflow)
+    }
+}
+
+/// What the interpreter does after a block.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Flow {
+    /// Go on with the next block.
+    Continue,
+    /// M00, or M01 with the optional-stop switch on: wait for cycle start.
+    Stop,
+    /// M02/M30.
+    End,
+}
+
+/// Executes `cmd` on `st`, staging the actions in `out`.
+pub fn execute(
+    cmd: &Command,
+    st: &mut State,
+    cfg: &MachineConfig,
+    env: &dyn Environment,
+    out: &mut Staged,
+) -> Result<Flow, AlarmKind> {
+    apply_modal(cmd, st);
+    spindle::before_motion(cmd, st, cfg, out)?;
+    tool_change(cmd, st, cfg, out)?;
+    aux(cmd, MTiming::Before, out)?;
+    match cmd.g.one_shot {
+        Some(GCode::Dwell) => out.emit(Action::Dwell { ms: cmd.dwell_ms.unwrap_or(0) })?,
+        Some(GCode::SetCoordinates) => coords::set_coordinates(cmd, st, cfg)?,
+        Some(GCode::LocalFrame) => coords::local_frame(cmd, st),
+        Some(GCode::MachineCoordinates) => coords::machine_move(cmd, st, cfg, out)?,
+        Some(GCode::ReferenceReturn | GCode::ReferenceReturnN) => coords::reference_return(cmd, st, cfg, env, out)?,
+        _ => motion::execute(cmd, st, cfg, out)?,
+    }
+    // 2.14 item 5: G61/G64 take effect from the next block.
+    if let Some(e) = cmd.g.exact_stop_mode {
+        st.modal.exact_stop_mode = e;
+    }
+    aux(cmd, MTiming::After, out)?;
+    spindle::after_motion(cmd, st, out)?;
+    program_flow(cmd, env, out)
+}
+
+/// Modal codes that govern how the rest of the block is read.
+fn apply_modal(cmd: &Command, st: &mut State) {
+    let g = &cmd.g;
+    let m = &mut st.modal;
+    if let Some(u) = g.units {
+        m.units = u;
+    }
+    if let Some(f) = g.feed_mode {
+        m.feed_mode = f;
+    }
+    if let Some(f) = cmd.feed {
+        st.feed.set(m.feed_mode, f);
+    }
+    if let Some(p) = g.plane {
+        m.plane = p;
+    }
+    if let Some(i) = g.incremental {
+        m.incremental = i;
+    }
+    if let Some(n) = g.nose_comp {
+        m.nose_comp = n;
+    }
+    if let Some(w) = g.work_frame {
+        m.work_frame = w;
+    }
+    if let Some(d) = g.drilling {
+        m.drilling = d;
+    }
+    if let Some(r) = g.return_to_r {
+        m.return_to_r = r;
+    }
+    if let Some(mo) = g.motion {
+        m.motion = mo;
+    }
+}
+
+/// T: index the turret and put the offset in force; the axes pick the offset up
+/// with their next move.
+fn tool_change(cmd: &Command, st: &mut State, cfg: &MachineConfig, out: &mut Staged) -> Result<(), AlarmKind> {
+    let Some((tool, offset_number)) = cmd.tool else { return Ok(()) };
+    let row = match offset_number {
+        0 => ToolOffset::default(),
+        n => *cfg.tools.get(n).ok_or(AlarmKind::IllegalOffsetNumber { number: n })?,
+    };
+    st.tool = ToolState {
+        tool: if tool == 0 { st.tool.tool } else { tool },
+        offset_number,
+        offset: Pos::xz(row.total_x(), row.total_z()),
+        nose_radius: row.radius,
+        tip: row.tip,
+    };
+    out.emit(Action::Tool { tool, offset: offset_number })
+}
+
+/// Machine outputs switched by M codes at `timing`.
+fn aux(cmd: &Command, timing: MTiming, out: &mut Staged) -> Result<(), AlarmKind> {
+    for &(m, f) in &cmd.m {
+        if f == MFunction::Aux(timing) {
+            out.emit(Action::Aux { m })?;
+        }
+    }
+    Ok(())
+}
+
+/// M00, M01, M02, M30 after the block's motion.
+fn program_flow(cmd: &Command, env: &dyn Environment, out: &mut Staged) -> Result<Flow, AlarmKind> {
+    for &(_, f) in &cmd.m {
+        match f {
+            MFunction::Stop => {
+                out.emit(Action::Stop { optional: false })?;
+                return Ok(Flow::Stop);
+            }
+            MFunction::OptionalStop if env.optional_stop() => {
+                out.emit(Action::Stop { optional: true })?;
+                return Ok(Flow::Stop);
+            }
+            MFunction::End | MFunction::EndRewind => {
+                out.emit(Action::End { rewind: f == MFunction::EndRewind })?;
+                return Ok(Flow::End);
+            }
+            _ => {}
+        }
+    }
+    Ok(Flow::Continue)
+}
+
+/// Direction a spindle M code commands, if it is one.
+pub(crate) fn spindle_dir(f: MFunction) -> Option<SpindleDir> {
+    match f {
+        MFunction::SpindleCw => Some(SpindleDir::Cw),
+        MFunction::SpindleCcw => Some(SpindleDir::Ccw),
+        MFunction::SpindleStop => Some(SpindleDir::Stop),
+        _ => None,
+    }
+}

@@ -1,0 +1,179 @@
+//! The interpreter's state: one field per modal group, the current position, the
+//! coordinate frames, the tool, and the remembered feed and spindle values.
+
+use crate::axis::{Axis, Pos};
+use crate::canon::{FeedMode, Plane, SpindleDir};
+use crate::codes::GCode;
+use crate::config::{MachineConfig, Param};
+use crate::units::{NM_PER_MM, Units};
+
+/// One field per modal group (table 1.1), with the power-on states of the notes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Modal {
+    /// Group 01: G00 or G01 at power-on (parameter 5153), G02/G03, later the cycles.
+    pub motion: GCode,
+    /// Group 16: G18 at power-on (2.13 note 3).
+    pub plane: Plane,
+    /// Group 06: G21 unless parameter 10 says inch (2.9 note 1).
+    pub units: Units,
+    /// Group 03 (systems B/C): G91 incremental X/Z.
+    pub incremental: bool,
+    /// Group 05: G98 or G99 at power-on (parameter 5154).
+    pub feed_mode: FeedMode,
+    /// Group 02: G96 on; G97 at power-on (2.19 note 1).
+    pub css: bool,
+    /// Group 07: G40 at power-on.
+    pub nose_comp: GCode,
+    /// Group 14: G54 (frame 0) at power-on (2.12.2 note 1).
+    pub work_frame: u8,
+    /// Group 15: G61 exact-stop mode; G64 at power-on (2.14).
+    pub exact_stop_mode: bool,
+    /// Group 10: drilling cycle in force; G80 at power-on.
+    pub drilling: GCode,
+    /// Group 11 (systems B/C): G99 return to R level; G98 at power-on.
+    pub return_to_r: bool,
+}
+
+/// Shifts that together with the work offsets make up the work frame.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Frames {
+    /// Shift set by G50 X/Z: moves all six work frames alike (2.12.2 note 4).
+    pub shift: Pos,
+    /// G52 local frame origin in work coordinates (2.12.3).
+    pub local: Pos,
+}
+
+/// The tool in the turret position and the offset in force.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct ToolState {
+    /// Turret station.
+    pub tool: u16,
+    /// Offset number (0 = none).
+    pub offset_number: u16,
+    /// Geometry + wear shift of the offset in force (X radius).
+    pub offset: Pos,
+    /// Nose radius of the offset in force, for compensation.
+    pub nose_radius: i64,
+    /// Imaginary tip direction of the offset in force.
+    pub tip: u8,
+}
+
+/// Spindle memory (2.19).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct SpindleState {
+    /// Direction commanded by M03/M04/M05.
+    pub dir: SpindleDir,
+    /// S of G97 in rev/min.
+    pub rpm: u32,
+    /// S of G96 as a surface speed in mm/min; kept while in G97 (note 2).
+    pub css: Option<u32>,
+    /// G50 S clamp in rev/min; `None` = no clamp given since power-on.
+    pub clamp: Option<u32>,
+    /// Gear selected by M41–M44 (0 = none).
+    pub gear: u8,
+}
+
+/// Feed memory: G98 and G99 remember their own F (2.20 note 4).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct FeedMemory {
+    /// Last F of G98, nm/min.
+    pub per_min: i64,
+    /// Last F of G99, nm/rev.
+    pub per_rev: i64,
+}
+
+impl FeedMemory {
+    /// The F in force for `mode`.
+    pub fn get(&self, mode: FeedMode) -> i64 {
+        match mode {
+            FeedMode::PerMin => self.per_min,
+            FeedMode::PerRev => self.per_rev,
+        }
+    }
+
+    /// Sets the F of `mode`.
+    pub fn set(&mut self, mode: FeedMode, v: i64) {
+        match mode {
+            FeedMode::PerMin => self.per_min = v,
+            FeedMode::PerRev => self.per_rev = v,
+        }
+    }
+}
+
+/// Everything that persists from one block to the next.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct State {
+    /// Modal groups.
+    pub modal: Modal,
+    /// Machine position of the axes at the end of the last block.
+    pub pos: Pos,
+    /// G50 shift and G52 local frame.
+    pub frames: Frames,
+    /// Tool and offset.
+    pub tool: ToolState,
+    /// Remembered F values.
+    pub feed: FeedMemory,
+    /// Spindle memory.
+    pub spindle: SpindleState,
+    /// Whether any axis has moved since the program started (G20/G21 rule, 2.9 note 2).
+    pub moved: bool,
+}
+
+impl State {
+    /// The power-on state for machine `cfg` with the axes at machine position `pos`.
+    pub fn power_on(cfg: &MachineConfig, pos: Pos) -> Self {
+        let p = &cfg.params;
+        let f0 = p.get(Param::InitialFeed);
+        State {
+            modal: Modal {
+                motion: if p.flag(Param::InitialLinear) { GCode::Linear } else { GCode::Rapid },
+                plane: Plane::Zx,
+                units: if p.flag(Param::InchAtPowerOn) { Units::Inch } else { Units::Metric },
+                incremental: false,
+                feed_mode: if p.flag(Param::InitialPerRev) { FeedMode::PerRev } else { FeedMode::PerMin },
+                css: false,
+                nose_comp: GCode::NoseCompOff,
+                work_frame: 0,
+                exact_stop_mode: false,
+                drilling: GCode::DrillCancel,
+                return_to_r: false,
+            },
+            pos,
+            frames: Frames::default(),
+            tool: ToolState::default(),
+            feed: FeedMemory { per_min: f0 * NM_PER_MM, per_rev: f0 * NM_PER_MM },
+            spindle: SpindleState { dir: SpindleDir::Stop, rpm: 0, css: None, clamp: None, gear: 0 },
+            moved: false,
+        }
+    }
+
+    /// Machine position of the work frame's origin, without the tool offset:
+    /// work offset of G54–G59 + external offset + G50 shift + G52 local origin.
+    pub fn frame_origin(&self, cfg: &MachineConfig) -> Pos {
+        cfg.work_offsets[usize::from(self.modal.work_frame)]
+            + cfg.external_offset
+            + self.frames.shift
+            + self.frames.local
+    }
+
+    /// What is added to a work position to get the machine position of the axes.
+    pub fn work_to_machine(&self, cfg: &MachineConfig) -> Pos {
+        self.frame_origin(cfg) + self.tool.offset
+    }
+
+    /// The current position in work coordinates.
+    pub fn work_pos(&self, cfg: &MachineConfig) -> Pos {
+        self.pos - self.work_to_machine(cfg)
+    }
+
+    /// Current work coordinate of one axis.
+    pub fn work_axis(&self, cfg: &MachineConfig, a: Axis) -> i64 {
+        self.work_pos(cfg)[a]
+    }
+}

@@ -1,0 +1,133 @@
+//! Arc centres and extents. Coordinates are the plane's two axes `(a, b)` in the
+//! order of [`crate::canon::Plane::axes`], so G02 is clockwise with `a` right, `b` up.
+
+use crate::alarm::AlarmKind;
+
+/// A point in a plane, nanometres.
+pub type P2 = (i64, i64);
+
+/// Centre of an arc of radius `r` from `start` to `end` (2.3 note 6: `r < 0` takes
+/// the arc of more than 180°). A chord longer than `2|r|` by no more than `tol`
+/// gives a half circle; longer still raises alarm 0020.
+pub fn center_from_radius(start: P2, end: P2, r: i64, cw: bool, tol: i64) -> Result<P2, AlarmKind> {
+    let (sa, sb) = (start.0 as f64, start.1 as f64);
+    let (da, db) = ((end.0 - start.0) as f64, (end.1 - start.1) as f64);
+    let chord = libm::hypot(da, db);
+    let half = chord / 2.0;
+    let radius = (r as f64).abs();
+    let excess = half - radius;
+    if excess > tol as f64 {
+        return Err(AlarmKind::ArcRadiusTolerance { excess_nm: excess as i64 });
+    }
+    let h = libm::sqrt((radius * radius - half * half).max(0.0));
+    // Clockwise arcs of up to 180° have their centre to the right of the chord.
+    let right = cw == (r > 0);
+    let s = if right { 1.0 } else { -1.0 };
+    let (ua, ub) = (db / chord, -da / chord);
+    let ca = sa + da / 2.0 + s * h * ua;
+    let cb = sb + db / 2.0 + s * h * ub;
+    Ok((libm::round(ca) as i64, libm::round(cb) as i64))
+}
+
+/// Centre from I/J/K offsets; the end point must lie on the circle within `tol`
+/// (alarm 0020 otherwise).
+pub fn center_from_offsets(start: P2, end: P2, off: P2, tol: i64) -> Result<P2, AlarmKind> {
+    let c = (start.0.saturating_add(off.0), start.1.saturating_add(off.1));
+    let rs = dist(start, c);
+    let re = dist(end, c);
+    let diff = (rs - re).abs();
+    if diff > tol as f64 {
+        return Err(AlarmKind::ArcRadiusTolerance { excess_nm: diff as i64 });
+    }
+    Ok(c)
+}
+
+fn dist(p: P2, q: P2) -> f64 {
+    libm::hypot((p.0 - q.0) as f64, (p.1 - q.1) as f64)
+}
+
+/// Bounding box of a path in the plane.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Extents {
+    /// Smallest and largest `a`.
+    pub a: (i64, i64),
+    /// Smallest and largest `b`.
+    pub b: (i64, i64),
+}
+
+/// Bounding box of the arc from `start` to `end` around `center`: the end points
+/// plus every quadrant point (0°, 90°, 180°, 270°) the arc passes.
+pub fn arc_extents(start: P2, end: P2, center: P2, cw: bool, full: bool) -> Extents {
+    let r = libm::round(dist(start, center)) as i64;
+    let mut e = Extents { a: (start.0.min(end.0), start.0.max(end.0)), b: (start.1.min(end.1), start.1.max(end.1)) };
+    let ang = |p: P2| libm::atan2((p.1 - center.1) as f64, (p.0 - center.0) as f64);
+    let (s, t) = (ang(start), ang(end));
+    // Sweep counter-clockwise from `from` to `to`.
+    let (from, to) = if cw { (t, s) } else { (s, t) };
+    let tau = core::f64::consts::TAU;
+    let mut sweep = wrap(to - from);
+    if full || sweep == 0.0 {
+        sweep = tau;
+    }
+    let quads = [(0.0, (r, 0)), (tau / 4.0, (0, r)), (tau / 2.0, (-r, 0)), (3.0 * tau / 4.0, (0, -r))];
+    for (q, (da, db)) in quads {
+        if wrap(q - from) <= sweep {
+            let (pa, pb) = (center.0 + da, center.1 + db);
+            e.a = (e.a.0.min(pa), e.a.1.max(pa));
+            e.b = (e.b.0.min(pb), e.b.1.max(pb));
+        }
+    }
+    e
+}
+
+/// An angle in radians wrapped into `[0, 2π)`.
+fn wrap(x: f64) -> f64 {
+    let tau = core::f64::consts::TAU;
+    let r = libm::fmod(x, tau);
+    if r < 0.0 { r + tau } else { r }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const MM: i64 = 1_000_000;
+
+    #[test]
+    fn radius_centres_follow_direction_and_sign() {
+        // Half-chord 1 mm, R = 1 mm: half circle, centre on the chord.
+        assert_eq!(center_from_radius((0, 0), (2 * MM, 0), MM, true, 0), Ok((MM, 0)));
+        // R 5 mm from (0,0) to (6,0): h = 4. CW small arc: centre below the chord.
+        assert_eq!(center_from_radius((0, 0), (6 * MM, 0), 5 * MM, true, 0), Ok((3 * MM, -4 * MM)));
+        assert_eq!(center_from_radius((0, 0), (6 * MM, 0), 5 * MM, false, 0), Ok((3 * MM, 4 * MM)));
+        // R < 0: the large arc, centre on the other side.
+        assert_eq!(center_from_radius((0, 0), (6 * MM, 0), -5 * MM, true, 0), Ok((3 * MM, 4 * MM)));
+    }
+
+    #[test]
+    fn radius_too_small_is_alarm_0020_unless_within_tolerance() {
+        assert!(matches!(
+            center_from_radius((0, 0), (10 * MM, 0), 4 * MM, true, 10_000),
+            Err(AlarmKind::ArcRadiusTolerance { excess_nm: 1_000_000 })
+        ));
+        assert_eq!(center_from_radius((0, 0), (10 * MM, 0), 5 * MM - 5_000, true, 10_000), Ok((5 * MM, 0)));
+    }
+
+    #[test]
+    fn offsets_must_put_the_end_on_the_circle() {
+        assert_eq!(center_from_offsets((0, 0), (10 * MM, 0), (5 * MM, 0), 10_000), Ok((5 * MM, 0)));
+        assert!(center_from_offsets((0, 0), (11 * MM, 0), (5 * MM, 0), 10_000).is_err());
+    }
+
+    #[test]
+    fn extents_include_the_quadrant_points_passed() {
+        // CCW half circle from (10,0) around (0,0) to (-10,0) passes (0,10).
+        let e = arc_extents((10 * MM, 0), (-10 * MM, 0), (0, 0), false, false);
+        assert_eq!(e.b, (0, 10 * MM));
+        // The CW one passes (0,-10).
+        let e = arc_extents((10 * MM, 0), (-10 * MM, 0), (0, 0), true, false);
+        assert_eq!(e.b, (-10 * MM, 0));
+        let e = arc_extents((10 * MM, 0), (10 * MM, 0), (0, 0), true, true);
+        assert_eq!(e, Extents { a: (-10 * MM, 10 * MM), b: (-10 * MM, 10 * MM) });
+    }
+}

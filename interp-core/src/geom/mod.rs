@@ -1,0 +1,6 @@
+//! Per-block geometry in a plane: arc centres from R or I/J/K, arc extents.
+//! Uses f64 (libm) for the computation, returns integer nanometres.
+
+mod arc;
+
+pub use arc::{Extents, P2, arc_extents, center_from_offsets, center_from_radius};

@@ -1,0 +1,204 @@
+//! The interpreter driver: one block per [`Interpreter::step`], bounded work, so a
+//! firmware task stays responsive and a full motion queue applies back-pressure.
+//!
+//! Each step first delivers actions still waiting in the outbox; only when the
+//! outbox is empty does it read, check and execute the next block. A block runs on
+//! a copy of the state and is committed only if it succeeded, so an alarm leaves
+//! the state exactly as it was.
+
+use crate::alarm::{Alarm, AlarmKind};
+use crate::axis::Pos;
+use crate::canon::{Canon, CanonSink};
+use crate::check::check;
+use crate::config::{MachineConfig, Param};
+use crate::env::Environment;
+use crate::exec::{Flow, STAGE, Staged, State, execute};
+use crate::parse::read_block;
+use crate::program::{Cursor, ProgramStore, next_block};
+
+/// Actions waiting for the sink.
+pub const OUTBOX: usize = STAGE;
+
+/// What a step did.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Progress {
+    /// Executed the block on `line`; its actions are delivered or waiting.
+    Executed {
+        /// Source line.
+        line: u32,
+    },
+    /// Passed over a blank, comment-only, record-mark or skipped (`/`) block.
+    Skipped {
+        /// Source line.
+        line: u32,
+    },
+    /// The sink is full; call again when it has room.
+    Blocked,
+    /// Stopped by M00/M01; call [`Interpreter::cycle_start`] to go on.
+    Paused,
+    /// The program has ended (M02/M30, or after an end-of-record alarm).
+    Ended,
+}
+
+/// Where the run is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+enum Phase {
+    Running,
+    Paused,
+    Ended,
+}
+
+/// The lathe interpreter.
+#[derive(Debug)]
+pub struct Interpreter {
+    cfg: MachineConfig,
+    state: State,
+    cursor: Cursor,
+    outbox: heapless::Deque<Canon, OUTBOX>,
+    phase: Phase,
+    /// A block other than `%`/`O` has been executed (a later `%` ends the record).
+    started: bool,
+}
+
+impl Interpreter {
+    /// A powered-on interpreter for machine `cfg`, axes at machine zero.
+    pub fn new(cfg: MachineConfig) -> Self {
+        let state = State::power_on(&cfg, Pos::ZERO);
+        Interpreter {
+            cfg,
+            state,
+            cursor: Cursor::start(0),
+            outbox: heapless::Deque::new(),
+            phase: Phase::Running,
+            started: false,
+        }
+    }
+
+    /// The machine configuration.
+    pub fn config(&self) -> &MachineConfig {
+        &self.cfg
+    }
+
+    /// Mutable machine configuration (offset and parameter edits between runs).
+    pub fn config_mut(&mut self) -> &mut MachineConfig {
+        &mut self.cfg
+    }
+
+    /// The interpreter state (modal codes, position, frames, tool …).
+    pub fn state(&self) -> &State {
+        &self.state
+    }
+
+    /// Tells the interpreter where the axes really are (after homing, jogging, or
+    /// an aborted motion), in machine coordinates.
+    pub fn set_machine_position(&mut self, pos: Pos) {
+        self.state.pos = pos;
+    }
+
+    /// Reset: modal state back to power-on (the G50 shift and the G52 frame
+    /// follow parameter 5160), program rewound, pending actions dropped.
+    pub fn reset(&mut self) {
+        let keep_local = !self.cfg.params.flag(Param::ResetCancelsLocal);
+        let old = self.state;
+        self.state = State::power_on(&self.cfg, old.pos);
+        self.state.frames.shift = old.frames.shift;
+        self.state.tool = old.tool;
+        if keep_local {
+            self.state.frames.local = old.frames.local;
+        }
+        self.rewind();
+    }
+
+    /// Back to the start of the main program, keeping the modal state.
+    pub fn rewind(&mut self) {
+        self.cursor = Cursor::start(0);
+        self.outbox.clear();
+        self.phase = Phase::Running;
+        self.started = false;
+        self.state.moved = false;
+    }
+
+    /// Cycle start after M00/M01.
+    pub fn cycle_start(&mut self) {
+        if self.phase == Phase::Paused {
+            self.phase = Phase::Running;
+        }
+    }
+
+    /// Runs one block (or delivers pending actions). On an alarm the offending
+    /// block has been passed over and the state is unchanged: a control stops
+    /// there, `lathe check` goes on to report further alarms.
+    pub fn step<P, E, S>(&mut self, programs: &P, env: &E, sink: &mut S) -> Result<Progress, Alarm>
+    where
+        P: ProgramStore + ?Sized,
+        E: Environment,
+        S: CanonSink + ?Sized,
+    {
+        if !self.deliver(sink) {
+            return Ok(Progress::Blocked);
+        }
+        match self.phase {
+            Phase::Paused => return Ok(Progress::Paused),
+            Phase::Ended => return Ok(Progress::Ended),
+            Phase::Running => {}
+        }
+        let text = programs.text(self.cursor.program).unwrap_or(&[]);
+        let Some(raw) = next_block(text, &mut self.cursor) else {
+            return Err(self.end_of_record(self.cursor.line));
+        };
+        let line = raw.line;
+        if raw.percent {
+            return if self.started { Err(self.end_of_record(line)) } else { Ok(Progress::Skipped { line }) };
+        }
+        let block = read_block(raw.text, line).map_err(|k| Alarm::new(line, k))?;
+        if block.program.is_some() && self.started {
+            // The next program of a multi-program text: this one ran off its end.
+            return Err(self.end_of_record(line));
+        }
+        let skipped = block.skip_level.is_some_and(|l| env.block_skip(l));
+        if skipped || block.is_empty() {
+            return Ok(Progress::Skipped { line });
+        }
+        self.started = true;
+        let flow = self.run_block(&block, env).map_err(|k| Alarm::new(line, k))?;
+        self.phase = match flow {
+            Flow::Continue => Phase::Running,
+            Flow::Stop => Phase::Paused,
+            Flow::End => Phase::Ended,
+        };
+        self.deliver(sink);
+        Ok(Progress::Executed { line })
+    }
+
+    /// Check and execute one block on a copy of the state; commit on success.
+    fn run_block<E: Environment>(&mut self, block: &crate::parse::Block, env: &E) -> Result<Flow, AlarmKind> {
+        let cmd = check(block, &self.state, &self.cfg)?;
+        let mut next = self.state;
+        let mut staged = Staged::new(block.line);
+        let flow = execute(&cmd, &mut next, &self.cfg, env, &mut staged)?;
+        self.state = next;
+        for c in staged.actions {
+            // The outbox was empty before the block and holds as many as a stage.
+            let _ = self.outbox.push_back(c);
+        }
+        Ok(flow)
+    }
+
+    /// Offers waiting actions to the sink; true when the outbox is empty.
+    fn deliver<S: CanonSink + ?Sized>(&mut self, sink: &mut S) -> bool {
+        while let Some(c) = self.outbox.front() {
+            if sink.push(*c).is_err() {
+                return false;
+            }
+            self.outbox.pop_front();
+        }
+        true
+    }
+
+    fn end_of_record(&mut self, line: u32) -> Alarm {
+        self.phase = Phase::Ended;
+        Alarm::new(line, AlarmKind::EndOfRecord)
+    }
+}

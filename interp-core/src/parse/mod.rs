@@ -1,0 +1,72 @@
+//! Reading: one block of program text into a [`Block`] of words. Syntax only —
+//! what the words mean and whether they belong together is checked later.
+
+mod reader;
+
+pub use reader::read_block;
+
+use crate::units::Number;
+
+/// Most G codes one block may hold.
+pub const MAX_G: usize = 8;
+/// Most M codes one block may hold (alarm 4010 beyond).
+pub const MAX_M: usize = 3;
+
+/// The words of one block, as written.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Block {
+    /// 1-based source line.
+    pub line: u32,
+    /// Optional block skip level: `/` or `/1` = 1, `/2`…`/9`.
+    pub skip_level: Option<u8>,
+    /// Sequence number `N`.
+    pub seq: Option<u32>,
+    /// Program number `O`.
+    pub program: Option<u32>,
+    /// G codes in tenths (G01 = 10, G02.1 = 21), in order of appearance.
+    pub g: heapless::Vec<u16, MAX_G>,
+    /// M codes, in order of appearance.
+    pub m: heapless::Vec<u16, MAX_M>,
+    /// Every other address A–Z, indexed by letter.
+    words: [Option<Number>; 26],
+    /// `,C` chamfer.
+    pub chamfer: Option<Number>,
+    /// `,R` corner radius.
+    pub corner: Option<Number>,
+}
+
+impl Block {
+    /// The value of address `letter` (uppercase ASCII), if given.
+    pub fn get(&self, letter: u8) -> Option<Number> {
+        self.words.get(usize::from(letter.wrapping_sub(b'A'))).copied().flatten()
+    }
+
+    /// Whether address `letter` is given.
+    pub fn has(&self, letter: u8) -> bool {
+        self.get(letter).is_some()
+    }
+
+    /// The addresses given (beyond N, O, G, M), in alphabetical order.
+    pub fn letters(&self) -> impl Iterator<Item = u8> + '_ {
+        (b'A'..=b'Z').filter(|l| self.has(*l))
+    }
+
+    /// Sets address `letter`; false if it was already set.
+    pub(crate) fn set(&mut self, letter: u8, n: Number) -> bool {
+        let slot = &mut self.words[usize::from(letter - b'A')];
+        if slot.is_some() {
+            return false;
+        }
+        *slot = Some(n);
+        true
+    }
+
+    /// True if the block commands nothing (blank, comment only, or only N/O).
+    pub fn is_empty(&self) -> bool {
+        self.g.is_empty()
+            && self.m.is_empty()
+            && self.words.iter().all(Option::is_none)
+            && self.chamfer.is_none()
+            && self.corner.is_none()
+    }
+}

@@ -1,0 +1,281 @@
+//! Internal units and the conversion of program numbers into them.
+//!
+//! Every length inside the controller is an integer number of nanometres (`i64`),
+//! every angle an integer number of micro-degrees. Nanometres make both metric
+//! (0.001 mm = 1000 nm) and inch (0.0001 in = 2540 nm) increments exact. The X axis is
+//! held as a *radius* internally; diameter values exist only at the program and
+//! display boundary.
+
+/// Nanometres per millimetre.
+pub const NM_PER_MM: i64 = 1_000_000;
+/// Nanometres per inch (exact).
+pub const NM_PER_INCH: i64 = 25_400_000;
+/// Micro-degrees per degree.
+pub const UDEG_PER_DEG: i64 = 1_000_000;
+
+/// A decimal number exactly as written in a program word: `mantissa × 10^-frac_digits`.
+///
+/// Keeping the decimal form (instead of a float) makes every conversion exact and
+/// remembers whether the programmer wrote a decimal point, which decides how
+/// least-increment input and words like `G04 P` are read.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Number {
+    /// Digits of the number with the decimal point removed, signed.
+    pub mantissa: i64,
+    /// How many of those digits follow the decimal point.
+    pub frac_digits: u8,
+    /// Whether a decimal point was written (`X10.` has one, `X10` has not).
+    pub has_point: bool,
+}
+
+/// Most fraction digits a [`Number`] keeps (a value from a macro expression is
+/// rounded to this many).
+pub const MAX_FRAC_DIGITS: u8 = 9;
+
+impl Number {
+    /// An integer written without a decimal point.
+    pub const fn int(value: i64) -> Self {
+        Number { mantissa: value, frac_digits: 0, has_point: false }
+    }
+
+    /// The exact integer value, if the number has no non-zero fraction.
+    pub fn as_integer(&self) -> Option<i64> {
+        let p = pow10(self.frac_digits)?;
+        if self.mantissa % p == 0 { Some(self.mantissa / p) } else { None }
+    }
+
+    /// The value multiplied by `10^shift`, rounded half away from zero.
+    /// `None` if the result does not fit in an `i64`.
+    pub fn scaled(&self, shift: u8) -> Option<i64> {
+        if shift >= self.frac_digits {
+            self.mantissa.checked_mul(pow10(shift - self.frac_digits)?)
+        } else {
+            Some(div_round(self.mantissa, pow10(self.frac_digits - shift)?))
+        }
+    }
+
+    /// The value as a float (for geometry and macro arithmetic only).
+    pub fn to_f64(&self) -> f64 {
+        self.mantissa as f64 / libm::pow(10.0, f64::from(self.frac_digits))
+    }
+
+    /// The number nearest to `value` with [`MAX_FRAC_DIGITS`] fraction digits,
+    /// marked as having a decimal point (macro values are real numbers).
+    /// `None` for NaN, infinities and values beyond ±9.2e9.
+    pub fn from_f64(value: f64) -> Option<Self> {
+        let m = libm::round(value * 1e9);
+        if !m.is_finite() || m.abs() >= 9.2e18 {
+            return None;
+        }
+        let mut n = Number { mantissa: m as i64, frac_digits: MAX_FRAC_DIGITS, has_point: true };
+        while n.frac_digits > 0 && n.mantissa % 10 == 0 {
+            n.mantissa /= 10;
+            n.frac_digits -= 1;
+        }
+        Some(n)
+    }
+
+    /// True if the value is negative.
+    pub fn is_negative(&self) -> bool {
+        self.mantissa < 0
+    }
+}
+
+/// `10^n` as an `i64`, `None` above `10^18`.
+pub const fn pow10(n: u8) -> Option<i64> {
+    if n > 18 {
+        return None;
+    }
+    let mut r = 1i64;
+    let mut i = 0;
+    while i < n {
+        r *= 10;
+        i += 1;
+    }
+    Some(r)
+}
+
+/// Integer division rounding half away from zero (`d > 0`).
+pub const fn div_round(n: i64, d: i64) -> i64 {
+    let q = n / d;
+    let r = n % d;
+    if 2 * r.abs() >= d { if n < 0 { q - 1 } else { q + 1 } } else { q }
+}
+
+/// Round `v` to the nearest multiple of `step` (half away from zero).
+pub const fn round_to(v: i64, step: i64) -> i64 {
+    div_round(v, step) * step
+}
+
+/// Inch or metric program input (G20/G21).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Units {
+    /// G21: millimetres.
+    Metric,
+    /// G20: inches.
+    Inch,
+}
+
+impl Units {
+    /// Nanometres in one program unit (1 mm or 1 in).
+    pub const fn nm_per_unit(self) -> i64 {
+        match self {
+            Units::Metric => NM_PER_MM,
+            Units::Inch => NM_PER_INCH,
+        }
+    }
+}
+
+/// How a number without a decimal point is read (FANUC parameter DPI, No.3401#0).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum InputMode {
+    /// Calculator-type input: `X60` is 60 mm, as every example of the manual is written.
+    Calculator,
+    /// Least-increment input: `X60` is 60 least increments (0.060 mm in IS-B metric).
+    LeastIncrement,
+}
+
+/// Increment system: the least input increment of linear and angular words.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum IncrementSystem {
+    /// IS-B: 0.001 mm, 0.0001 in, 0.001°.
+    IsB,
+    /// IS-C: 0.0001 mm, 0.00001 in, 0.0001°.
+    IsC,
+}
+
+impl IncrementSystem {
+    /// Least input increment of a linear word, in nanometres.
+    pub const fn linear_nm(self, units: Units) -> i64 {
+        match (self, units) {
+            (IncrementSystem::IsB, Units::Metric) => 1_000,
+            (IncrementSystem::IsC, Units::Metric) => 100,
+            (IncrementSystem::IsB, Units::Inch) => 2_540,
+            (IncrementSystem::IsC, Units::Inch) => 254,
+        }
+    }
+
+    /// Least input increment of an angle, in micro-degrees.
+    pub const fn angle_udeg(self) -> i64 {
+        match self {
+            IncrementSystem::IsB => 1_000,
+            IncrementSystem::IsC => 100,
+        }
+    }
+}
+
+/// Everything needed to turn a program number into internal units.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct NumberFormat {
+    /// G20/G21 in force.
+    pub units: Units,
+    /// Calculator or least-increment input.
+    pub input: InputMode,
+    /// IS-B or IS-C.
+    pub increments: IncrementSystem,
+}
+
+impl NumberFormat {
+    /// A length word (`X Z U W I K R …`) in nanometres, rounded to the least input
+    /// increment as the manual requires for macro values (2.24.1). `None` on overflow.
+    pub fn length_nm(&self, n: &Number) -> Option<i64> {
+        let inc = self.increments.linear_nm(self.units);
+        let nm = if n.has_point || self.input == InputMode::Calculator {
+            scale_to(n, self.units.nm_per_unit())?
+        } else {
+            n.mantissa.checked_mul(inc)?
+        };
+        Some(round_to(nm, inc))
+    }
+
+    /// An angle word (`C`, degrees) in micro-degrees, rounded to the least increment.
+    pub fn angle_udeg(&self, n: &Number) -> Option<i64> {
+        let inc = self.increments.angle_udeg();
+        let u = if n.has_point || self.input == InputMode::Calculator {
+            scale_to(n, UDEG_PER_DEG)?
+        } else {
+            n.mantissa.checked_mul(inc)?
+        };
+        Some(round_to(u, inc))
+    }
+
+    /// A time in seconds written with X/U in `G04` (0.001 s least increment), in ms.
+    pub fn seconds_ms(&self, n: &Number) -> Option<i64> {
+        if n.has_point || self.input == InputMode::Calculator { n.scaled(3) } else { Some(n.mantissa) }
+    }
+
+    /// A feed value (`F`) in nanometres per minute or per revolution. F is always read
+    /// as written (F500 = 500 mm/min, F0.15 = 0.15 mm/rev) in both input modes.
+    pub fn feed_nm(&self, n: &Number) -> Option<i64> {
+        scale_to(n, self.units.nm_per_unit())
+    }
+}
+
+/// `n × per_unit`, with `n` a decimal number and `per_unit` an integer, rounded.
+fn scale_to(n: &Number, per_unit: i64) -> Option<i64> {
+    let p = pow10(n.frac_digits)?;
+    let v = i128::from(n.mantissa) * i128::from(per_unit);
+    let q = v / i128::from(p);
+    let r = v % i128::from(p);
+    let q = if 2 * r.abs() >= i128::from(p) { q + v.signum() } else { q };
+    i64::try_from(q).ok()
+}
+
+/// Internal nanometres to millimetres, for presentation only.
+pub fn nm_to_mm(nm: i64) -> f64 {
+    nm as f64 / NM_PER_MM as f64
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn num(m: i64, f: u8, p: bool) -> Number {
+        Number { mantissa: m, frac_digits: f, has_point: p }
+    }
+
+    const METRIC_CALC: NumberFormat =
+        NumberFormat { units: Units::Metric, input: InputMode::Calculator, increments: IncrementSystem::IsB };
+
+    #[test]
+    fn calculator_input_reads_integers_as_millimetres() {
+        assert_eq!(METRIC_CALC.length_nm(&num(60, 0, false)), Some(60_000_000));
+        assert_eq!(METRIC_CALC.length_nm(&num(60, 0, true)), Some(60_000_000));
+        assert_eq!(METRIC_CALC.length_nm(&num(-1235, 3, true)), Some(-1_235_000));
+    }
+
+    #[test]
+    fn least_increment_input_reads_integers_as_increments() {
+        let f = NumberFormat { input: InputMode::LeastIncrement, ..METRIC_CALC };
+        assert_eq!(f.length_nm(&num(60, 0, false)), Some(60_000));
+        assert_eq!(f.length_nm(&num(60, 0, true)), Some(60_000_000));
+        let inch = NumberFormat { units: Units::Inch, ..f };
+        assert_eq!(inch.length_nm(&num(1, 0, false)), Some(2_540));
+    }
+
+    #[test]
+    fn values_round_to_the_least_increment() {
+        // 2.24.1: #1=1.23456, least increment 0.001 -> X#1 positions to 1.235.
+        assert_eq!(METRIC_CALC.length_nm(&num(123456, 5, true)), Some(1_235_000));
+        assert_eq!(METRIC_CALC.length_nm(&num(-123456, 5, true)), Some(-1_235_000));
+        let inch = NumberFormat { units: Units::Inch, ..METRIC_CALC };
+        assert_eq!(inch.length_nm(&num(1, 0, true)), Some(25_400_000));
+        assert_eq!(inch.length_nm(&num(12345, 4, true)), Some(31_356_300));
+    }
+
+    #[test]
+    fn number_helpers() {
+        assert_eq!(num(2500, 3, true).as_integer(), None);
+        assert_eq!(num(2000, 3, true).as_integer(), Some(2));
+        assert_eq!(num(25, 1, true).scaled(0), Some(3));
+        assert_eq!(num(-25, 1, true).scaled(0), Some(-3));
+        assert_eq!(Number::from_f64(1.5), Some(num(15, 1, true)));
+        assert_eq!(Number::from_f64(f64::NAN), None);
+        assert_eq!(div_round(-7, 2), -4);
+        assert_eq!(round_to(1_234_567, 1000), 1_235_000);
+    }
+}
