@@ -1,0 +1,88 @@
+/*
+ * icount: a QEMU TCG plugin that counts guest instructions executed between region
+ * markers and prints "instructions: N" for each region.
+ *
+ * Markers are the Thumb-2 hint DBG (a no-op that compilers never emit):
+ * DBG #1 starts a region, DBG #2 ends it; the markers themselves are not counted
+ * (m4-tests' `measure` emits them). At exit it prints the total executed.
+ *
+ * Debian ships no qemu-plugin.h, so the few API types and functions used here are
+ * declared below as in QEMU 10.0 (plugin API version 4).
+ * Build: gcc -O2 -shared -fPIC -o icount.so icount.c
+ * Use:   qemu-system-arm ... -plugin ./icount.so -d plugin
+ */
+#include <inttypes.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+typedef uint64_t qemu_plugin_id_t;
+typedef struct qemu_info_t qemu_info_t; /* only passed through */
+struct qemu_plugin_tb;
+struct qemu_plugin_insn;
+enum qemu_plugin_cb_flags { QEMU_PLUGIN_CB_NO_REGS };
+typedef void (*vcpu_udata_cb)(unsigned int vcpu_index, void *userdata);
+typedef void (*tb_trans_cb)(qemu_plugin_id_t id, struct qemu_plugin_tb *tb);
+typedef void (*udata_cb)(qemu_plugin_id_t id, void *userdata);
+
+void qemu_plugin_register_vcpu_tb_trans_cb(qemu_plugin_id_t id, tb_trans_cb cb);
+void qemu_plugin_register_vcpu_insn_exec_cb(struct qemu_plugin_insn *insn, vcpu_udata_cb cb,
+                                            enum qemu_plugin_cb_flags flags, void *userdata);
+void qemu_plugin_register_atexit_cb(qemu_plugin_id_t id, udata_cb cb, void *userdata);
+size_t qemu_plugin_tb_n_insns(const struct qemu_plugin_tb *tb);
+struct qemu_plugin_insn *qemu_plugin_tb_get_insn(const struct qemu_plugin_tb *tb, size_t idx);
+size_t qemu_plugin_insn_data(const struct qemu_plugin_insn *insn, void *dest, size_t len);
+void qemu_plugin_outs(const char *string);
+
+__attribute__((visibility("default"))) int qemu_plugin_version = 4;
+
+/* DBG #n is the halfword pair 0xf3af, 0x80f0 | n. */
+enum marker { NONE, START, STOP };
+
+static uint64_t executed;     /* every instruction so far, markers excluded */
+static uint64_t region_start; /* `executed` at the last start marker */
+
+static void on_insn(unsigned int vcpu, void *udata) { executed++; }
+
+static void on_start(unsigned int vcpu, void *udata) { region_start = executed; }
+
+static void on_stop(unsigned int vcpu, void *udata)
+{
+    char line[64];
+    snprintf(line, sizeof line, "instructions: %" PRIu64 "\n", executed - region_start);
+    qemu_plugin_outs(line);
+}
+
+static enum marker marker_of(const struct qemu_plugin_insn *insn)
+{
+    uint16_t hw[2];
+    if (qemu_plugin_insn_data(insn, hw, sizeof hw) != sizeof hw || hw[0] != 0xf3af ||
+        (hw[1] & 0xfff0) != 0x80f0)
+        return NONE;
+    return (hw[1] & 0xf) == 1 ? START : (hw[1] & 0xf) == 2 ? STOP : NONE;
+}
+
+static void on_translate(qemu_plugin_id_t id, struct qemu_plugin_tb *tb)
+{
+    static const vcpu_udata_cb callbacks[] = {[NONE] = on_insn, [START] = on_start, [STOP] = on_stop};
+    for (size_t i = 0; i < qemu_plugin_tb_n_insns(tb); i++) {
+        struct qemu_plugin_insn *insn = qemu_plugin_tb_get_insn(tb, i);
+        qemu_plugin_register_vcpu_insn_exec_cb(insn, callbacks[marker_of(insn)],
+                                               QEMU_PLUGIN_CB_NO_REGS, NULL);
+    }
+}
+
+static void report_total(qemu_plugin_id_t id, void *udata)
+{
+    char line[64];
+    snprintf(line, sizeof line, "total instructions: %" PRIu64 "\n", executed);
+    qemu_plugin_outs(line);
+}
+
+__attribute__((visibility("default"))) int
+qemu_plugin_install(qemu_plugin_id_t id, const qemu_info_t *info, int argc, char **argv)
+{
+    qemu_plugin_register_vcpu_tb_trans_cb(id, on_translate);
+    qemu_plugin_register_atexit_cb(id, report_total, NULL);
+    return 0;
+}
