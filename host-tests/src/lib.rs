@@ -65,3 +65,43 @@ pub fn run(text: &str) -> Run {
 pub fn mm(v: f64) -> i64 {
     (v * 1e6).round() as i64
 }
+
+/// Work end point of a motion action as (X diameter mm, Z mm).
+pub fn xz(c: &Canon) -> Option<(f64, f64)> {
+    c.action.endpoint().map(|e| (nm_mm(2 * e.work.0[0]), nm_mm(e.work.0[2])))
+}
+
+/// Machine end point of a motion action as (X diameter mm, Z mm).
+pub fn machine_xz(c: &Canon) -> Option<(f64, f64)> {
+    c.action.endpoint().map(|e| (nm_mm(2 * e.machine.0[0]), nm_mm(e.machine.0[2])))
+}
+
+/// Nanometres to millimetres.
+pub fn nm_mm(nm: i64) -> f64 {
+    nm as f64 / 1e6
+}
+
+/// End points (X diameter, Z) of all motion actions, work coordinates.
+pub fn path(r: &Run) -> Vec<(f64, f64)> {
+    r.actions.iter().filter_map(xz).collect()
+}
+
+/// A short name of each action kind, for order assertions.
+pub fn kind_names(r: &Run) -> Vec<String> {
+    r.actions
+        .iter()
+        .map(|c| match c.action {
+            Action::Rapid(_) => "rapid".into(),
+            Action::Linear(_) => "linear".into(),
+            Action::Arc(_) => "arc".into(),
+            Action::Thread(_) => "thread".into(),
+            Action::Tap(_) => "tap".into(),
+            Action::Dwell { ms } => format!("dwell {ms}"),
+            Action::Spindle(s) => format!("spindle {:?} {:?}", s.dir, s.rpm),
+            Action::Tool { tool, offset } => format!("tool {tool} {offset}"),
+            Action::Aux { m } => format!("M{m:02}"),
+            Action::Stop { optional } => format!("stop {optional}"),
+            Action::End { rewind } => format!("end {rewind}"),
+        })
+        .collect()
+}

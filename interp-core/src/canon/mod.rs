@@ -73,7 +73,8 @@ pub enum Action {
 pub struct Endpoint {
     /// Axis positions in machine coordinates, tool offset included.
     pub machine: Pos,
-    /// The programmed point in the work coordinates in force.
+    /// The programmed point in the coordinates the program uses: the work frame in
+    /// force (G54–G59 with the G50 shift) and, when set, the G52 local frame.
     pub work: Pos,
 }
 
@@ -115,8 +116,9 @@ pub struct SpindleSpeed {
 pub struct Move {
     /// End point.
     pub to: Endpoint,
-    /// Feed of a cutting move; `None` for rapids.
-    pub feed: Option<Feed>,
+    /// The feed in force. A cutting move runs at it; a rapid ignores it (the axes'
+    /// rapid rates apply) and carries it only to tell the modal feed mode.
+    pub feed: Feed,
     /// Spindle during the move.
     pub spindle: SpindleSpeed,
     /// Stop exactly at the end before the next block (G09, G61, rapids, G04 …).

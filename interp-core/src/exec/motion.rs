@@ -93,8 +93,9 @@ pub(super) fn rapid_to(
         return Ok(());
     }
     let spindle = spindle_speed(st, cfg, to.work[Axis::X]);
+    let feed = Feed { mode: st.modal.feed_mode, value: st.feed.get(st.modal.feed_mode) };
     // Rapids always stop exactly at their end (2.14 item 4).
-    out.emit(Action::Rapid(Move { to, feed: None, spindle, exact_stop: true, independent }))?;
+    out.emit(Action::Rapid(Move { to, feed, spindle, exact_stop: true, independent }))?;
     arrive(st, to.machine);
     Ok(())
 }
@@ -107,7 +108,7 @@ fn linear(work: Pos, st: &mut State, cfg: &MachineConfig, out: &mut Staged, exac
         return Ok(());
     }
     let spindle = spindle_speed(st, cfg, to.work[Axis::X]);
-    out.emit(Action::Linear(Move { to, feed: Some(feed), spindle, exact_stop, independent: false }))?;
+    out.emit(Action::Linear(Move { to, feed, spindle, exact_stop, independent: false }))?;
     arrive(st, to.machine);
     Ok(())
 }
