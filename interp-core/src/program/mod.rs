@@ -84,6 +84,51 @@ pub fn next_block<'a>(text: &'a [u8], cur: &mut Cursor) -> Option<RawBlock<'a>> 
     Some(RawBlock { text: body, line, percent })
 }
 
+/// The cursor of the first block of `text` whose sequence number is `n`, searching
+/// from the start. A sequence number counts only as the first word of a block
+/// (after an optional `/` skip mark and blanks), as FANUC searches it.
+pub fn find_sequence(text: &[u8], program: ProgramId, n: u32) -> Option<Cursor> {
+    let mut cur = Cursor::start(program);
+    loop {
+        let at = cur;
+        let block = next_block(text, &mut cur)?;
+        if leading_sequence(block.text) == Some(n) {
+            return Some(at);
+        }
+    }
+}
+
+/// The N number a block starts with, if any.
+fn leading_sequence(text: &[u8]) -> Option<u32> {
+    let mut i = 0;
+    let skip = |i: &mut usize| {
+        while *i < text.len() && matches!(text[*i], b' ' | b'\t' | b'\r') {
+            *i += 1;
+        }
+    };
+    skip(&mut i);
+    if text.get(i) == Some(&b'/') {
+        i += 1;
+        if text.get(i).is_some_and(u8::is_ascii_digit) {
+            i += 1;
+        }
+        skip(&mut i);
+    }
+    if !matches!(text.get(i), Some(b'N' | b'n')) {
+        return None;
+    }
+    i += 1;
+    skip(&mut i);
+    let digits = text[i..].iter().take_while(|c| c.is_ascii_digit()).take(6);
+    let mut v: u32 = 0;
+    let mut any = false;
+    for d in digits {
+        v = v * 10 + u32::from(d - b'0');
+        any = true;
+    }
+    any.then_some(v)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -105,5 +150,16 @@ mod tests {
         assert_eq!(got[6], (&b"M30"[..], 5, false));
         assert_eq!(got[7], (&b"%"[..], 6, true));
         assert_eq!(got.len(), 8);
+    }
+
+    #[test]
+    fn sequence_numbers_are_found_at_the_start_of_blocks_only() {
+        let t = b"O1\nN10 G00 X1\nG01 N20 X2\n/ N30 X3\nN0040 X4;N50 X5\nN10 X6\n";
+        assert_eq!(find_sequence(t, 0, 10), Some(Cursor { program: 0, offset: 3, line: 2 }));
+        assert_eq!(find_sequence(t, 0, 20), None);
+        assert_eq!(find_sequence(t, 0, 30).map(|c| c.line), Some(4));
+        assert_eq!(find_sequence(t, 0, 40).map(|c| c.line), Some(5));
+        let c = find_sequence(t, 0, 50).unwrap();
+        assert_eq!((c.line, &t[c.offset..c.offset + 3]), (5, &b"N50"[..]));
     }
 }
