@@ -28,6 +28,7 @@ pub mod fixed;
 pub mod geom;
 pub mod interpolator;
 pub mod interpreter;
+pub mod motion;
 pub mod parse;
 pub mod planner;
 pub mod program;

@@ -7,7 +7,7 @@ mod motion;
 mod spindle;
 mod state;
 
-pub use spindle::spindle_speed;
+pub use spindle::{css_rpm, spindle_speed};
 pub use state::{FeedMemory, Frames, Modal, SpindleState, State, ToolState};
 
 use crate::alarm::AlarmKind;

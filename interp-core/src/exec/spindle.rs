@@ -34,7 +34,9 @@ pub fn spindle_speed(st: &State, cfg: &MachineConfig, x: i64) -> SpindleSpeed {
 
 /// rev/min for surface speed `css` (mm/min) at radius `x` (nm), rounded;
 /// at the centre the speed is unbounded (2.19 note 7: the cap applies).
-fn css_rpm(css: u32, x: i64) -> u32 {
+/// The interpreter uses it for each block's end point, the motion core along the
+/// path while a G96 cut runs.
+pub fn css_rpm(css: u32, x: i64) -> u32 {
     let d_mm = 2.0 * (x.unsigned_abs() as f64) / 1e6;
     if d_mm == 0.0 {
         return u32::MAX;

@@ -107,12 +107,14 @@ struct Tail {
 pub struct Planner<const N: usize> {
     queue: heapless::Deque<Item, N>,
     tail: Tail,
+    /// Motion blocks taken out so far.
+    taken: u64,
 }
 
 impl<const N: usize> Planner<N> {
     /// An empty queue with the axes at `pos` (machine, nm).
     pub fn new(pos: Pos) -> Self {
-        Planner { queue: heapless::Deque::new(), tail: Self::rest(pos) }
+        Planner { queue: heapless::Deque::new(), tail: Self::rest(pos), taken: 0 }
     }
 
     fn rest(end: Pos) -> Tail {
@@ -157,7 +159,16 @@ impl<const N: usize> Planner<N> {
 
     /// Takes the next entry.
     pub fn pop(&mut self) -> Option<Item> {
-        self.queue.pop_front()
+        let item = self.queue.pop_front();
+        if let Some(Item::Motion(_)) = item {
+            self.taken += 1;
+        }
+        item
+    }
+
+    /// Motion blocks taken out of the queue so far.
+    pub fn taken(&self) -> u64 {
+        self.taken
     }
 
     /// Planned entry speed of the next block, Q8 nm/period (0 if the next entry is

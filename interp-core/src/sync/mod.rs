@@ -295,6 +295,32 @@ impl Gear {
         }
     }
 
+    /// The long axis and the other axis of a taper, if any: the axes the gearbox drives.
+    pub fn axes(&self) -> (usize, Option<usize>) {
+        (self.leg.long, self.follower.map(|f| f.0))
+    }
+
+    /// The leg running.
+    pub fn leg(&self) -> &Leg {
+        &self.leg
+    }
+
+    /// Whether this is a rigid tap (and not a thread pass).
+    pub fn is_tap(&self) -> bool {
+        self.mode == Mode::Tap
+    }
+
+    /// Whether a tap is on its way out.
+    pub fn is_way_out(&self) -> bool {
+        self.way_out
+    }
+
+    /// Long-axis steps left to the end of the leg (tap: to the bottom, or back to
+    /// the start on the way out).
+    pub fn remaining(&self) -> i64 {
+        if self.way_out { self.p } else { self.delta - self.p }
+    }
+
     /// Whole-step position of the axes the gearbox drives (others unchanged).
     pub fn positions(&self, out: &mut [i64; AXIS_COUNT]) {
         let leg = &self.leg;
