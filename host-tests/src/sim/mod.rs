@@ -107,6 +107,8 @@ pub struct TraceRow {
     pub axis: u8,
     /// Encoder count at that moment.
     pub count: i64,
+    /// Source line running.
+    pub line: u32,
 }
 
 /// One interpolation period, for kinematic checks.
@@ -298,6 +300,12 @@ impl Sim {
         self.run(Source::Actions { list, next: 0 }, hook)
     }
 
+    /// The count the encoder latched at its last index pulse (the index is at one
+    /// angle: every latch is the same modulo the counts per revolution).
+    pub fn spindle_index(&self) -> i64 {
+        self.spindle.index_count().unwrap_or(0)
+    }
+
     /// Simulated time, s.
     pub fn time_s(&self) -> f64 {
         self.clock.0 as f64 / 1e9
@@ -464,6 +472,7 @@ impl Sim {
                 spindle_deg: self.count as f64 * 360.0 / f64::from(self.cfg.spindle.encoder_cpr),
                 axis: axis as u8,
                 count: self.count,
+                line: self.core.line(),
             });
         }
     }

@@ -229,7 +229,7 @@ mod tests {
         let mut s = SimSpindle::new(SpindleModel { accel_rpm_s: 1e9, ..SpindleModel::default() });
         s.set_speed(Rotation::Cw, 600); // 10 rev/s
         let mut edges = Vec::new();
-        s.advance(0.1, 1e-4, &mut edges);
+        s.advance(0.100_01, 1e-4, &mut edges);
         assert_eq!(s.count(), 4_096);
         assert_eq!(edges.len(), 4_096);
         // Edge k at k / 40960 s.

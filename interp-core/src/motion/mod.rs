@@ -526,11 +526,7 @@ impl<const N: usize> MotionCore<N> {
             BlockKind::Tap(_) => self.begin_tap(b),
             _ => {
                 self.release_tap();
-                if self.spindle.dir != SpindleDir::Stop
-                    && let Some(rpm) = b.spindle.rpm
-                {
-                    self.set_spindle(self.spindle.dir, rpm);
-                }
+                self.block_spindle(&b);
                 if b.feed != FeedSpec::Rapid && self.needs_spindle(&b) {
                     self.pending = Some(b);
                     self.state = State::WaitSpindle { since: self.now };
@@ -540,6 +536,30 @@ impl<const N: usize> MotionCore<N> {
                 }
             }
         }
+    }
+
+    /// The spindle speed a block starts with: a rapid's (and a G97 cut's) own, a G96
+    /// cut's from where it starts (it then follows X, 2.19).
+    fn block_spindle(&mut self, b: &Block) {
+        if self.spindle.dir == SpindleDir::Stop {
+            return;
+        }
+        let rpm = match (b.spindle.css, b.feed) {
+            (Some(css), FeedSpec::PerMin(_) | FeedSpec::PerRev(_)) => {
+                let x = self.work_x(self.interp.position()[Axis::X.index()], &b.offset);
+                Some(css_rpm(css, x).min(b.spindle.max_rpm))
+            }
+            _ => b.spindle.rpm,
+        };
+        if let Some(rpm) = rpm {
+            self.set_spindle(self.spindle.dir, rpm);
+        }
+    }
+
+    /// Work X (nm, radius) of a commanded X position (Q16 steps) under `offset`.
+    fn work_x(&self, q16: i64, offset: &Pos) -> i64 {
+        let nm = q16 as f64 / f64::from(1u32 << STEP_FRAC) * self.p.scale[Axis::X.index()].nm_per_step();
+        nm as i64 - offset[Axis::X]
     }
 
     /// Whether a cutting block must wait for the spindle to reach its speed.
@@ -601,9 +621,8 @@ impl<const N: usize> MotionCore<N> {
         if self.spindle.dir == SpindleDir::Stop {
             return;
         }
-        let x = self.interp.position()[Axis::X.index()];
-        let x_nm = (x as f64 / f64::from(1u32 << STEP_FRAC) * self.p.scale[0].nm_per_step()) as i64;
-        let rpm = css_rpm(css, x_nm - seg.offset[Axis::X]).min(seg.spindle.max_rpm);
+        let x = self.work_x(self.interp.position()[Axis::X.index()], &seg.offset);
+        let rpm = css_rpm(css, x).min(seg.spindle.max_rpm);
         self.spindle.command(self.spindle.dir, rpm, 0);
     }
 

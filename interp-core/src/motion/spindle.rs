@@ -15,10 +15,10 @@ pub struct Spindle {
     pub dir: SpindleDir,
     /// Commanded speed, rev/min.
     pub rpm: u32,
-    /// Encoder counts at the last `window` periods (ring).
-    counts: [i64; MAX_WINDOW],
+    /// Encoder counts of the last `window + 1` periods (a ring of `len` entries).
+    counts: [i64; MAX_WINDOW + 1],
     head: usize,
-    window: usize,
+    len: usize,
     filled: usize,
     /// Counts over the window → revolutions per period, Q48.
     rev_q48: u64,
@@ -37,9 +37,9 @@ impl Spindle {
         Spindle {
             dir: SpindleDir::Stop,
             rpm: 0,
-            counts: [0; MAX_WINDOW],
+            counts: [0; MAX_WINDOW + 1],
             head: 0,
-            window,
+            len: window + 1,
             filled: 0,
             rev_q48: (1u64 << 48) / counts_per_window,
             rpm_per_count: (60e9 / (counts_per_window as f64 * f64::from(p.tick_ns))) as f32,
@@ -50,19 +50,19 @@ impl Spindle {
 
     /// Takes this period's encoder reading.
     pub fn sample(&mut self, count: i64, index: Option<i64>) {
-        self.head = if self.head + 1 == self.window { 0 } else { self.head + 1 };
+        self.head = if self.head + 1 == self.len { 0 } else { self.head + 1 };
         self.counts[self.head] = count;
-        self.filled = (self.filled + 1).min(self.window);
+        self.filled = (self.filled + 1).min(self.len);
         self.count = count;
         self.index = index;
     }
 
     /// Counts over the window (signed; positive when counting up).
     fn delta(&self) -> i64 {
-        if self.filled < self.window {
+        if self.filled < self.len {
             return 0;
         }
-        let oldest = if self.head + 1 == self.window { 0 } else { self.head + 1 };
+        let oldest = if self.head + 1 == self.len { 0 } else { self.head + 1 };
         self.count - self.counts[oldest]
     }
 
@@ -78,7 +78,7 @@ impl Spindle {
 
     /// Encoder counts per period at the measured speed (magnitude).
     pub fn counts_per_tick(&self) -> f32 {
-        self.delta().unsigned_abs() as f32 / self.window as f32
+        self.delta().unsigned_abs() as f32 / (self.len - 1) as f32
     }
 
     /// Commands direction and speed; true if either changed by more than `pct` %.

@@ -280,6 +280,17 @@ impl Gear {
         self.legs_done
     }
 
+    /// Raw encoder count where the pass started: the ramp start of a thread, the
+    /// lock of a tap.
+    pub fn origin(&self) -> i64 {
+        self.sigma * self.origin
+    }
+
+    /// Encoder direction of forward rotation.
+    pub fn sigma(&self) -> i64 {
+        self.sigma
+    }
+
     /// Forward counts since the pass started (negative while waiting).
     pub fn counts(&self) -> i64 {
         self.m
