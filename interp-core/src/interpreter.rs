@@ -11,6 +11,7 @@ use crate::axis::Pos;
 use crate::canon::{Canon, CanonSink};
 use crate::check::check;
 use crate::config::{MachineConfig, Param};
+use crate::cycles::Expansion;
 use crate::env::Environment;
 use crate::exec::{Flow, STAGE, Staged, State, execute};
 use crate::parse::read_block;
@@ -60,6 +61,8 @@ pub struct Interpreter {
     phase: Phase,
     /// A block other than `%`/`O` has been executed (a later `%` ends the record).
     started: bool,
+    /// The canned cycle being delivered (see [`crate::cycles`]).
+    cycle: Option<Expansion>,
 }
 
 impl Interpreter {
@@ -73,6 +76,7 @@ impl Interpreter {
             outbox: heapless::Deque::new(),
             phase: Phase::Running,
             started: false,
+            cycle: None,
         }
     }
 
@@ -115,6 +119,7 @@ impl Interpreter {
     pub fn rewind(&mut self) {
         self.cursor = Cursor::start(0);
         self.outbox.clear();
+        self.cycle = None;
         self.phase = Phase::Running;
         self.started = false;
         self.state.moved = false;
@@ -139,6 +144,10 @@ impl Interpreter {
         if !self.deliver(sink) {
             return Ok(Progress::Blocked);
         }
+        if let Some(line) = self.run_cycle(programs, env)? {
+            self.deliver(sink);
+            return Ok(Progress::Executed { line });
+        }
         match self.phase {
             Phase::Paused => return Ok(Progress::Paused),
             Phase::Ended => return Ok(Progress::Ended),
@@ -162,7 +171,7 @@ impl Interpreter {
             return Ok(Progress::Skipped { line });
         }
         self.started = true;
-        let flow = self.run_block(&block, env).map_err(|k| Alarm::new(line, k))?;
+        let flow = self.run_block(&block, text, env).map_err(|k| Alarm::new(line, k))?;
         self.phase = match flow {
             Flow::Continue => Phase::Running,
             Flow::Stop => Phase::Paused,
@@ -173,17 +182,63 @@ impl Interpreter {
     }
 
     /// Check and execute one block on a copy of the state; commit on success.
-    fn run_block<E: Environment>(&mut self, block: &crate::parse::Block, env: &E) -> Result<Flow, AlarmKind> {
+    fn run_block<E: Environment>(
+        &mut self,
+        block: &crate::parse::Block,
+        text: &[u8],
+        env: &E,
+    ) -> Result<Flow, AlarmKind> {
         let cmd = check(block, &self.state, &self.cfg)?;
         let mut next = self.state;
-        let mut staged = Staged::new(block.line);
+        // ---- canned cycles (branch `cycles`): the block may start an expansion and
+        // write parameters; both are committed only if the block succeeds.
+        let mut slot = None;
+        let mut staged = Staged::in_program(block.line, text, &mut slot);
         let flow = execute(&cmd, &mut next, &self.cfg, env, &mut staged)?;
+        let split = staged.split.unwrap_or(staged.actions.len());
+        let (actions, params, resume) = (staged.actions, staged.params, staged.resume);
+        if let Some(mut exp) = slot {
+            exp.set_tail(actions.get(split..).unwrap_or(&[]))?;
+            self.cycle = Some(exp);
+        }
+        for (p, v) in params {
+            self.cfg.params.set(p, v);
+        }
+        // A shape after the cycle block is skipped; one before it (reached by a
+        // search backwards) leaves the program where it is.
+        if let Some(r) = resume.filter(|r| r.offset > self.cursor.offset) {
+            self.cursor = Cursor { program: self.cursor.program, ..r };
+        }
+        // ---- end canned cycles
         self.state = next;
-        for c in staged.actions {
+        for c in actions.iter().take(split) {
             // The outbox was empty before the block and holds as many as a stage.
-            let _ = self.outbox.push_back(c);
+            let _ = self.outbox.push_back(*c);
         }
         Ok(flow)
+    }
+
+    /// ---- canned cycles (branch `cycles`): lets the cycle in progress refill the
+    /// outbox (bounded work: until the outbox is full). `Some(line of the cycle
+    /// block)` while a cycle is being delivered.
+    fn run_cycle<P, E>(&mut self, programs: &P, env: &E) -> Result<Option<u32>, Alarm>
+    where
+        P: ProgramStore + ?Sized,
+        E: Environment,
+    {
+        let Some(exp) = self.cycle.as_mut() else { return Ok(None) };
+        let line = exp.line();
+        let text = programs.text(self.cursor.program).unwrap_or(&[]);
+        match exp.run(&self.cfg, text, env, &mut self.outbox) {
+            Ok(false) => {}
+            Ok(true) => self.cycle = None,
+            Err(k) => {
+                // Cannot happen after the dry run; stop the cycle rather than loop.
+                self.cycle = None;
+                return Err(Alarm::new(line, k));
+            }
+        }
+        Ok(Some(line))
     }
 
     /// Offers waiting actions to the sink; true when the outbox is empty.

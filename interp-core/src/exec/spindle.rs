@@ -48,7 +48,7 @@ pub(super) fn before_motion(
     cmd: &Command,
     st: &mut State,
     cfg: &MachineConfig,
-    out: &mut Staged,
+    out: &mut Staged<'_>,
 ) -> Result<(), AlarmKind> {
     let x = st.work_axis(cfg, Axis::X);
     let before = spindle_speed(st, cfg, x);
@@ -85,7 +85,7 @@ pub(super) fn before_motion(
 }
 
 /// M05 after the block's motion.
-pub(super) fn after_motion(cmd: &Command, st: &mut State, out: &mut Staged) -> Result<(), AlarmKind> {
+pub(super) fn after_motion(cmd: &Command, st: &mut State, out: &mut Staged<'_>) -> Result<(), AlarmKind> {
     if cmd.m.iter().any(|&(_, f)| spindle_dir(f) == Some(SpindleDir::Stop)) {
         st.spindle.dir = SpindleDir::Stop;
         let css = if st.modal.css { st.spindle.css } else { None };
