@@ -139,7 +139,7 @@ impl RoughGen {
         }
         let frame = Frame { level, cut, out, dir };
         let shape = &profile.segs[1..];
-        check_monotone(&frame, shape, type2)?;
+        check_monotone(&frame, if type2 { &profile.segs[..] } else { shape }, type2)?;
         let bottom = shape.iter().map(|s| lowest(&frame, s)).min().unwrap_or(frame.norm(b).0).min(frame.norm(b).0);
         let a_n = frame.norm(a);
         let return_u = if type2 {
@@ -166,16 +166,17 @@ impl RoughGen {
 
     /// The next group of steps (at most 6); `false` when the cycle is finished.
     pub fn fill(&mut self, profile: &Profile, here: Pt, out: &mut super::StepQueue) -> Result<bool, AlarmKind> {
+        let full = &profile.segs[..];
         let shape = &profile.segs[1..];
         match self.phase {
             Phase::Start => {
                 self.phase = Phase::Rough;
-                match self.first_run(shape)? {
+                match self.first_run(full)? {
                     Some((lv, run)) => self.cut(lv, run, here, 0, out)?,
                     None => self.phase = Phase::Contour(0),
                 }
             }
-            Phase::Rough => match self.next_run(shape)? {
+            Phase::Rough => match self.next_run(full)? {
                 Some((lv, run, safe)) => self.cut(lv, run, here, safe, out)?,
                 None => {
                     self.approach_contour(profile, here, out)?;
@@ -296,7 +297,7 @@ impl RoughGen {
     }
 
     /// The runs of material at level `u`, in cutting order.
-    fn runs(&self, shape: &[Seg], u: i64) -> Result<heapless::Vec<Run, MAX_RUNS>, AlarmKind> {
+    fn runs(&self, full: &[Seg], u: i64) -> Result<heapless::Vec<Run, MAX_RUNS>, AlarmKind> {
         let f = &self.frame;
         let uf = u as f64;
         let mut out: heapless::Vec<Run, MAX_RUNS> = heapless::Vec::new();
@@ -314,8 +315,12 @@ impl RoughGen {
             }
             out.push(Run { w0, w1 }).map_err(|_| AlarmKind::TooManyPockets)
         };
-        // Before B' there is no part.
-        if let Some(s0) = shape.first() {
+        // Type I: before B' there is no part. Type II: the ns move A'→B' bounds the
+        // cuts too ("the first cut need not be vertical", figure 2.35).
+        let shape = if self.type2 { full } else { &full[1..] };
+        if !self.type2
+            && let Some(s0) = shape.first()
+        {
             let wb = f.norm(s0.a).1 as f64;
             if wb > wa {
                 add(wa, wb)?;
