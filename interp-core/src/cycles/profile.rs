@@ -188,7 +188,9 @@ pub struct ShapeSource<'a> {
 
 /// The cursor of block ns (alarm 0063 if missing).
 pub fn start_of(src: &ShapeSource<'_>) -> Result<Cursor, AlarmKind> {
-    find_sequence(src.text, 0, src.ns).ok_or(AlarmKind::SequenceNotFound { n: src.ns })
+    let start = find_sequence(src.text, 0, src.ns).ok_or(AlarmKind::SequenceNotFound { n: src.ns })?;
+    find_sequence(src.text, 0, src.nf).ok_or(AlarmKind::SequenceNotFound { n: src.nf })?;
+    Ok(start)
 }
 
 /// What reading one shape block gave.
@@ -267,6 +269,10 @@ pub fn run_shape_block<E: Environment + ?Sized>(
     env: &E,
     staged: &mut Staged<'_>,
 ) -> Result<crate::check::Command, AlarmKind> {
+    let units = |t: &u16| matches!(GCode::from_tenths(cfg.gcode_system, *t), Some(GCode::Inch | GCode::Metric));
+    if sb.block.g.iter().any(units) {
+        return Err(AlarmKind::ProfileForbiddenCode { what: "G20/G21" });
+    }
     let cmd = check(&sb.block, st, cfg)?;
     check_shape_command(&cmd, first)?;
     let mut next = *st;
