@@ -186,14 +186,6 @@ pub fn before_block(cmd: &Command, st: &mut State) -> Result<bool, AlarmKind> {
     if cmd.g.one_shot.is_some_and(|c| c != GCode::Dwell) || cmd.g.motion.is_some() {
         st.cycle.single = None;
     }
-    if cmd.g.motion.is_some() && cmd.g.drilling.is_none() {
-        st.modal.drilling = GCode::DrillCancel;
-        st.cycle.rigid = RigidTap::Off;
-    }
-    if cmd.g.drilling == Some(GCode::DrillCancel) {
-        st.cycle.hole = Default::default();
-        st.cycle.rigid = RigidTap::Off;
-    }
     let m29 = cmd.m.iter().any(|&(m, _)| m == 29);
     let taps = matches!(cmd.g.drilling, Some(GCode::FaceTap | GCode::SideTap))
         || (cmd.g.drilling.is_none() && matches!(st.modal.drilling, GCode::FaceTap | GCode::SideTap));
@@ -210,6 +202,14 @@ pub fn before_block(cmd: &Command, st: &mut State) -> Result<bool, AlarmKind> {
         if cmd.has_axes() {
             return Err(AlarmKind::RigidTapAxisMove);
         }
+    }
+    if cmd.g.motion.is_some() && cmd.g.drilling.is_none() {
+        st.modal.drilling = GCode::DrillCancel;
+        st.cycle.rigid = RigidTap::Off;
+    }
+    if cmd.g.drilling == Some(GCode::DrillCancel) {
+        st.cycle.hole = Default::default();
+        st.cycle.rigid = RigidTap::Off;
     }
     Ok(chained)
 }
