@@ -263,8 +263,9 @@ impl RoughGen {
         let u = self.level_u(k);
         let h = if safe == 0 { self.a.0 } else { self.level_u(safe) + self.retract };
         let (hu, hw) = f.norm(here);
-        let w0 = round(run.w0);
-        let w1 = round(run.w1);
+        // Rounded to whole nm away from the shape, so a cut never ends inside it.
+        let w0 = libm::ceil(run.w0 - 1e-6) as i64;
+        let w1 = libm::floor(run.w1 + 1e-6) as i64;
         if hu < h {
             push(out, Step::Rapid(f.work(h, hw)))?;
         }
