@@ -42,10 +42,14 @@ fn g83_deep_peck_program() {
     let m = moves(&r);
     assert_eq!(m[1..1 + hole.len()], hole[..]);
     // The C120 hole: the first move turns C only (X and Z stay).
-    let c: Vec<_> = r.actions.iter().filter_map(|a| match a.action {
-        Action::Rapid(mv) if a.line == 6 => Some(mv.to.work.0[3]),
-        _ => None,
-    }).collect();
+    let c: Vec<_> = r
+        .actions
+        .iter()
+        .filter_map(|a| match a.action {
+            Action::Rapid(mv) if a.line == 6 => Some(mv.to.work.0[3]),
+            _ => None,
+        })
+        .collect();
     assert!(c.iter().all(|&v| v == 120_000_000), "{c:?}");
     assert_eq!(kind_names(&r).iter().filter(|k| *k == "dwell 3").count(), 3);
     assert_eq!(kind_names(&r).last().map(String::as_str), Some("end true"));
@@ -57,10 +61,35 @@ fn g83_deep_peck_program() {
 #[test]
 fn g83_high_speed_peck_g85_and_g87() {
     let r = run("M3 S1000\nG0 X20 Z5\nG83 Z-12 R-3 Q5 F100\nG80\nM30\n", &[]);
-    assert_eq!(moves(&r)[1..], [('r', 20.0, 2.0), ('l', 20.0, -3.0), ('r', 20.0, -2.5), ('l', 20.0, -8.0), ('r', 20.0, -7.5), ('l', 20.0, -12.0), ('r', 20.0, 2.0), ('r', 20.0, 5.0)]);
+    assert_eq!(
+        moves(&r)[1..],
+        [
+            ('r', 20.0, 2.0),
+            ('l', 20.0, -3.0),
+            ('r', 20.0, -2.5),
+            ('l', 20.0, -8.0),
+            ('r', 20.0, -7.5),
+            ('l', 20.0, -12.0),
+            ('r', 20.0, 2.0),
+            ('r', 20.0, 5.0)
+        ]
+    );
     let r = run("M3 S1000\nG0 X20 Z5\nG83 U10 Z-12 R-3 F100 K2\nG80\nM30\n", &[]);
-    assert_eq!(moves(&r)[1..], [('r', 30.0, 5.0), ('r', 30.0, 2.0), ('l', 30.0, -12.0), ('r', 30.0, 2.0), ('r', 30.0, 5.0),
-        ('r', 40.0, 5.0), ('r', 40.0, 2.0), ('l', 40.0, -12.0), ('r', 40.0, 2.0), ('r', 40.0, 5.0)]);
+    assert_eq!(
+        moves(&r)[1..],
+        [
+            ('r', 30.0, 5.0),
+            ('r', 30.0, 2.0),
+            ('l', 30.0, -12.0),
+            ('r', 30.0, 2.0),
+            ('r', 30.0, 5.0),
+            ('r', 40.0, 5.0),
+            ('r', 40.0, 2.0),
+            ('l', 40.0, -12.0),
+            ('r', 40.0, 2.0),
+            ('r', 40.0, 5.0)
+        ]
+    );
     let r = run("M3 S1000\nG0 X20 Z5\nG85 Z-12 R-3 P100 F100\nG80\nM30\n", &[]);
     assert_eq!(moves(&r)[1..], [('r', 20.0, 2.0), ('l', 20.0, -12.0), ('l', 20.0, 2.0), ('r', 20.0, 5.0)]);
     assert!(kind_names(&r).contains(&"dwell 100".to_string()));
@@ -75,18 +104,32 @@ fn g83_high_speed_peck_g85_and_g87() {
 fn g84_rigid_program_and_reverse_option() {
     let r = run("G98\nG0 X50 Z0\nM29 S1000\nG84 Z-50 P3000 F2000\nG80\nM30\n", &[(Param::TapDwellAtR, 200)]);
     assert!(r.alarms.is_empty(), "{:?}", r.alarms);
-    let taps: Vec<_> = r.actions.iter().filter_map(|c| match c.action {
-        Action::Tap(t) => Some((t.lead, t.dir, t.spindle.rpm, t.to.work.0[2])),
-        _ => None,
-    }).collect();
-    assert_eq!(taps, vec![(2_000_000, SpindleDir::Cw, Some(1000), -50_000_000), (2_000_000, SpindleDir::Ccw, Some(1000), 0)]);
-    assert_eq!(kind_names(&r), vec!["rapid", "M29", "tap", "dwell 3000", "tap", "dwell 200", "spindle Cw Some(1000)", "end true"]);
+    let taps: Vec<_> = r
+        .actions
+        .iter()
+        .filter_map(|c| match c.action {
+            Action::Tap(t) => Some((t.lead, t.dir, t.spindle.rpm, t.to.work.0[2])),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(
+        taps,
+        vec![(2_000_000, SpindleDir::Cw, Some(1000), -50_000_000), (2_000_000, SpindleDir::Ccw, Some(1000), 0)]
+    );
+    assert_eq!(
+        kind_names(&r),
+        vec!["rapid", "M29", "tap", "dwell 3000", "tap", "dwell 200", "spindle Cw Some(1000)", "end true"]
+    );
     // NO.5170 = 1: in with M04, out with M03; G99: lead = F.
     let r = run("G99\nG0 X50 Z0\nM29 S500\nG84 Z-20 F1.5\nG80\nM30\n", &[(Param::ReverseTapping, 1)]);
-    let taps: Vec<_> = r.actions.iter().filter_map(|c| match c.action {
-        Action::Tap(t) => Some((t.lead, t.dir)),
-        _ => None,
-    }).collect();
+    let taps: Vec<_> = r
+        .actions
+        .iter()
+        .filter_map(|c| match c.action {
+            Action::Tap(t) => Some((t.lead, t.dir)),
+            _ => None,
+        })
+        .collect();
     assert_eq!(taps, vec![(1_500_000, SpindleDir::Ccw), (1_500_000, SpindleDir::Cw)]);
     // Peck rigid tapping: high-speed (NO.5102 = 0) backs off d = NO.5114 locked to the spindle.
     let r = run("G99\nG0 X50 Z0\nM29 S500\nG84 Z-10 Q4 F1\nG80\nM30\n", &[]);
@@ -115,11 +158,35 @@ fn rigid_tapping_alarms() {
 fn g84_floating_program() {
     let r = run("G98\nG0 X0 Z200\nM3 S800\nG84 Z160 P1 F1600\nG80\nM30\n", &[]);
     assert!(r.alarms.is_empty(), "{:?}", r.alarms);
-    assert_eq!(kind_names(&r), vec!["rapid", "spindle Cw Some(800)", "linear", "spindle Stop None", "dwell 1", "spindle Ccw Some(800)", "linear", "spindle Stop None", "end true"]);
+    assert_eq!(
+        kind_names(&r),
+        vec![
+            "rapid",
+            "spindle Cw Some(800)",
+            "linear",
+            "spindle Stop None",
+            "dwell 1",
+            "spindle Ccw Some(800)",
+            "linear",
+            "spindle Stop None",
+            "end true"
+        ]
+    );
     let Action::Linear(m) = r.actions[2].action else { panic!() };
     assert_eq!((m.feed.mode, m.feed.value), (interp_core::canon::FeedMode::PerRev, 2_000_000));
     let r = run("G98\nG0 X0 Z200\nM4 S800\nG84 Z160 F1600\nU10\nG80\nM30\n", &[]);
     let sp: Vec<_> = kind_names(&r).into_iter().filter(|k| k.starts_with("spindle")).collect();
-    assert_eq!(sp, vec!["spindle Ccw Some(800)", "spindle Stop None", "spindle Cw Some(800)", "spindle Stop None",
-        "spindle Ccw Some(800)", "spindle Stop None", "spindle Cw Some(800)", "spindle Stop None"]);
+    assert_eq!(
+        sp,
+        vec![
+            "spindle Ccw Some(800)",
+            "spindle Stop None",
+            "spindle Cw Some(800)",
+            "spindle Stop None",
+            "spindle Ccw Some(800)",
+            "spindle Stop None",
+            "spindle Cw Some(800)",
+            "spindle Stop None"
+        ]
+    );
 }

@@ -60,14 +60,25 @@ fn figure_2_32_g71_and_g70() {
     want.extend([('r', 40.5, 12.0), ('l', 40.5, -28.0), ('l', 60.5, -58.0), ('l', 60.5, -78.0), ('l', 100.5, -88.0)]);
     want.extend([('r', 200.0, -88.0), ('r', 200.0, 10.0)]);
     // G70.
-    want.extend([('r', 40.0, 10.0), ('l', 40.0, -30.0), ('l', 60.0, -60.0), ('l', 60.0, -80.0), ('l', 100.0, -90.0), ('r', 200.0, 10.0)]);
+    want.extend([
+        ('r', 40.0, 10.0),
+        ('l', 40.0, -30.0),
+        ('l', 60.0, -60.0),
+        ('l', 60.0, -80.0),
+        ('l', 100.0, -90.0),
+        ('r', 200.0, 10.0),
+    ]);
     assert_eq!(moves(&r), want);
     // Every roughing action carries the G71 line; G70's carry line 9.
     assert!(r.actions.iter().filter(|c| matches!(c.action, Action::Linear(_))).all(|c| c.line == 3 || c.line == 9));
-    let feeds: Vec<_> = r.actions.iter().filter_map(|c| match c.action {
-        Action::Linear(m) => Some((c.line, m.feed.value / 1_000_000)),
-        _ => None,
-    }).collect();
+    let feeds: Vec<_> = r
+        .actions
+        .iter()
+        .filter_map(|c| match c.action {
+            Action::Linear(m) => Some((c.line, m.feed.value / 1_000_000)),
+            _ => None,
+        })
+        .collect();
     assert!(feeds.iter().all(|&(l, f)| (l == 3 && f == 200) || (l == 9 && f == 100)), "{feeds:?}");
     // U2 R1 went into parameters 5147/5148.
     let p = &r.interp.config().params;
@@ -133,7 +144,14 @@ fn figure_2_41_g72() {
     want.extend([('r', 176.2, -53.5), ('r', 176.2, -54.9)]);
     want.extend([('l', 160.2, -54.9), ('l', 80.2, -34.9), ('l', 80.2, -19.9), ('l', 40.2, 0.1)]);
     want.extend([('r', 40.2, 10.0), ('r', 176.0, 10.0)]);
-    want.extend([('r', 176.0, -55.0), ('l', 160.0, -55.0), ('l', 80.0, -35.0), ('l', 80.0, -20.0), ('l', 40.0, 0.0), ('r', 176.0, 10.0)]);
+    want.extend([
+        ('r', 176.0, -55.0),
+        ('l', 160.0, -55.0),
+        ('l', 80.0, -35.0),
+        ('l', 80.0, -20.0),
+        ('l', 40.0, 0.0),
+        ('r', 176.0, 10.0),
+    ]);
     assert_eq!(moves(&r), want);
 }
 
@@ -146,7 +164,14 @@ fn figure_2_44_g73() {
     let r = run("G99 G00 X200 Z10 M3 S500\nG73 U15 W15 R3\nG73 P1 Q2 U2 W1 F0.3\nN1 G0 X80 Z0\nG01 W-20 F0.15 S600\n\
         X120 W-10\nW-20\nG02 X160 W-20 R20\nN2 G01 X180 W-10\nG70 P1 Q2\nM30\n");
     ok(&r);
-    let shape = [('r', 80.0, 0.0), ('l', 80.0, -20.0), ('l', 120.0, -30.0), ('l', 120.0, -50.0), ('a', 160.0, -70.0), ('l', 180.0, -80.0)];
+    let shape = [
+        ('r', 80.0, 0.0),
+        ('l', 80.0, -20.0),
+        ('l', 120.0, -30.0),
+        ('l', 120.0, -50.0),
+        ('a', 160.0, -70.0),
+        ('l', 180.0, -80.0),
+    ];
     let mut want = vec![('r', 200.0, 10.0)];
     for (dx, dz) in [(32.0, 16.0), (17.0, 8.5), (2.0, 1.0)] {
         want.push(('r', 200.0 + dx, 10.0 + dz));
@@ -157,12 +182,21 @@ fn figure_2_44_g73() {
     want.push(('r', 200.0, 10.0));
     assert_eq!(moves(&r), want);
     let p = &r.interp.config().params;
-    assert_eq!((p.get(Param::PatternReliefX), p.get(Param::PatternReliefZ), p.get(Param::PatternDivisions)), (15_000_000, 15_000_000, 3));
+    assert_eq!(
+        (p.get(Param::PatternReliefX), p.get(Param::PatternReliefZ), p.get(Param::PatternDivisions)),
+        (15_000_000, 15_000_000, 3)
+    );
     // The arc keeps its centre relative to the pass: R20 centre 20 mm (radius) off.
-    let arcs: Vec<_> = r.actions.iter().filter_map(|c| match c.action {
-        Action::Arc(a) => Some((round3(2.0 * a.center.work.0[0] as f64 / 1e6), round3(a.center.work.0[2] as f64 / 1e6), a.cw)),
-        _ => None,
-    }).collect();
+    let arcs: Vec<_> = r
+        .actions
+        .iter()
+        .filter_map(|c| match c.action {
+            Action::Arc(a) => {
+                Some((round3(2.0 * a.center.work.0[0] as f64 / 1e6), round3(a.center.work.0[2] as f64 / 1e6), a.cw))
+            }
+            _ => None,
+        })
+        .collect();
     assert_eq!(arcs, vec![(192.0, -34.0, true), (177.0, -41.5, true), (162.0, -49.0, true), (160.0, -50.0, true)]);
 }
 
@@ -180,7 +214,14 @@ fn figure_2_46_g74() {
         if i > 0 {
             want.push(('r', *x, 5.0));
         }
-        want.extend([('l', *x, 0.0), ('r', *x, 0.5), ('l', *x, -5.0), ('r', *x, -4.5), ('l', *x, -10.0), ('r', *x, -9.5)]);
+        want.extend([
+            ('l', *x, 0.0),
+            ('r', *x, 0.5),
+            ('l', *x, -5.0),
+            ('r', *x, -4.5),
+            ('l', *x, -10.0),
+            ('r', *x, -9.5),
+        ]);
         want.extend([('l', *x, -15.0), ('r', *x, -14.5), ('l', *x, -20.0), ('r', *x, 5.0)]);
     }
     want.push(('r', 40.0, 5.0));
@@ -227,26 +268,43 @@ fn figure_2_60_g76() {
     let r = run("G00 X100 Z50\nG50 X100 Z50 M3 S300\nS300\nG00 X80 Z10\nG76 P020560 Q0.15 R0.1\n\
         G76 X60.64 Z-62 P3.68 Q1.8 F6\nG00 X100 Z50\nM30\n");
     ok(&r);
-    let starts: Vec<_> = r.actions.windows(2).filter_map(|w| match (w[0].action, w[1].action) {
-        (Action::Rapid(m), Action::Thread(t)) if t.sync == ThreadSync::Index => {
-            Some((round3(2.0 * m.to.work.0[0] as f64 / 1e6), round3(m.to.work.0[2] as f64 / 1e6), t.lead))
-        }
-        _ => None,
-    }).collect();
+    let starts: Vec<_> = r
+        .actions
+        .windows(2)
+        .filter_map(|w| match (w[0].action, w[1].action) {
+            (Action::Rapid(m), Action::Thread(t)) if t.sync == ThreadSync::Index => {
+                Some((round3(2.0 * m.to.work.0[0] as f64 / 1e6), round3(m.to.work.0[2] as f64 / 1e6), t.lead))
+            }
+            _ => None,
+        })
+        .collect();
     let k = 3.68;
     let tan30 = (30.0f64).to_radians().tan();
     let depths = [1.8, (2.0f64).sqrt() * 1.8, (3.0f64).sqrt() * 1.8, 3.58, k, k];
-    let want: Vec<_> = depths.iter().map(|d| {
-        let d = (d * 1e6f64).round() / 1e6;
-        (round3(68.0 - 2.0 * d), round3(10.0 - d * tan30), 6_000_000)
-    }).collect();
+    let want: Vec<_> = depths
+        .iter()
+        .map(|d| {
+            let d = (d * 1e6f64).round() / 1e6;
+            (round3(68.0 - 2.0 * d), round3(10.0 - d * tan30), 6_000_000)
+        })
+        .collect();
     assert_eq!(starts, want);
     // Each pass: thread to Z-59 (3 mm pull-out), pull-out 3 mm at 45°, X to 80, Z to 10.
     let m = moves(&r);
-    assert_eq!(m[2..7], [('r', 64.4, 8.961), ('t', 64.4, -59.0), ('t', 70.4, -62.0), ('r', 80.0, -62.0), ('r', 80.0, 10.0)]);
+    assert_eq!(
+        m[2..7],
+        [('r', 64.4, 8.961), ('t', 64.4, -59.0), ('t', 70.4, -62.0), ('r', 80.0, -62.0), ('r', 80.0, 10.0)]
+    );
     let p = &r.interp.config().params;
     assert_eq!(
-        [Param::ThreadFinishCount, Param::ThreadChamfer, Param::ThreadToolAngle, Param::ThreadMinDepth, Param::ThreadFinishAllowance].map(|q| p.get(q)),
+        [
+            Param::ThreadFinishCount,
+            Param::ThreadChamfer,
+            Param::ThreadToolAngle,
+            Param::ThreadMinDepth,
+            Param::ThreadFinishAllowance
+        ]
+        .map(|q| p.get(q)),
         [2, 5, 60, 150_000, 100_000]
     );
 }
@@ -283,15 +341,30 @@ fn g76_notes_and_quadrants() {
 /// point C' (X122) lies beyond the start X120: the contour pass ends in air.
 #[test]
 fn seed_003_g71() {
-    let r = run_with("O0001\nN10 G50 X200 Z140 T0101\nN20 G40 G97 G99 S240 M03\nN30 G00 X120 Z12 M08\nN40 G96 S120\n\
+    let r = run_with(
+        "O0001\nN10 G50 X200 Z140 T0101\nN20 G40 G97 G99 S240 M03\nN30 G00 X120 Z12 M08\nN40 G96 S120\n\
         N50 G71 U2 R0.1\nN60 G71 P70 Q130 U2 W2 F0.3\nN70 G00 X40\nN80 G01 Z-30 F0.15 S150\nN90 X60 Z-60\n\
-        N100 Z-80\nN110 X100 Z-90\nN120 Z-110\nN130 X120 Z-130\nN140 G00 X125\nN150 X200 Z140\nN160 M02\n", wide(), Panel::default());
+        N100 Z-80\nN110 X100 Z-90\nN120 Z-110\nN130 X120 Z-130\nN140 G00 X125\nN150 X200 Z140\nN160 M02\n",
+        wide(),
+        Panel::default(),
+    );
     ok(&r);
     let m = moves(&r);
     assert_eq!(m[1], ('r', 116.0, 12.0));
     assert_eq!(m[2], ('l', 116.0, -122.0), "X116 meets the last shifted segment (X102 Z-108)-(X122 Z-128)");
     let contour: Vec<_> = m.iter().rev().skip(4).take(7).rev().copied().collect();
-    assert_eq!(contour, vec![('r', 42.0, 14.0), ('l', 42.0, -28.0), ('l', 62.0, -58.0), ('l', 62.0, -78.0), ('l', 102.0, -88.0), ('l', 102.0, -108.0), ('l', 122.0, -128.0)]);
+    assert_eq!(
+        contour,
+        vec![
+            ('r', 42.0, 14.0),
+            ('l', 42.0, -28.0),
+            ('l', 62.0, -58.0),
+            ('l', 62.0, -78.0),
+            ('l', 102.0, -88.0),
+            ('l', 102.0, -108.0),
+            ('l', 122.0, -128.0)
+        ]
+    );
     assert_eq!(m[m.len() - 4..], [('r', 122.0, 12.0), ('r', 120.0, 12.0), ('r', 125.0, 12.0), ('r', 200.0, 140.0)]);
 }
 
@@ -299,10 +372,14 @@ fn seed_003_g71() {
 /// one (G90 and G42/G40 dropped).
 #[test]
 fn seed_003_g73_g70() {
-    let r = run_with("N10 G50 X200 Z200 T0101\nN20 G97 G40 S200 M03\nN30 G00 X140 Z40 M08\nN40 G96 S120\n\
+    let r = run_with(
+        "N10 G50 X200 Z200 T0101\nN20 G97 G40 S200 M03\nN30 G00 X140 Z40 M08\nN40 G96 S120\n\
         N50 G73 U9.5 W9.5 R3\nN60 G73 P70 Q130 U1.0 W0.5 F0.3\nN70 G00 X20 Z0\nN80 G01 Z-20 F0.15 S150\n\
         N90 X40 Z-30\nN100 Z-50\nN110 G02 X80 Z-70 R20\nN120 G01 X100 Z-80\nN130 X105\nN140 G70 P70 Q130\n\
-        N150 G00 X200 Z200\nN160 M02\n", wide(), Panel::default());
+        N150 G00 X200 Z200\nN160 M02\n",
+        wide(),
+        Panel::default(),
+    );
     ok(&r);
     let m = moves(&r);
     // Pass 1 from A + (19 + 1, 9.5 + 0.5), pass 3 from A + (1, 0.5).
@@ -316,18 +393,38 @@ fn seed_003_g73_g70() {
 /// as 5 mm per the book, written P5000), e = 1, G20-free metric.
 #[test]
 fn seed_003_g75() {
-    let r = run_with("N10 G50 X200 Z200 T0505\nN20 G97 S700 M03\nN30 G00 G40 X35 Z-50 M08\nN40 G96 S80\nN50 G75 R1\n\
-        N60 G75 X-1 P5000 F0.15\nN70 G00 X200 Z200 T0500\nN80 M02\n", wide(), Panel::default());
+    let r = run_with(
+        "N10 G50 X200 Z200 T0505\nN20 G97 S700 M03\nN30 G00 G40 X35 Z-50 M08\nN40 G96 S80\nN50 G75 R1\n\
+        N60 G75 X-1 P5000 F0.15\nN70 G00 X200 Z200 T0500\nN80 M02\n",
+        wide(),
+        Panel::default(),
+    );
     ok(&r);
     let m = moves(&r);
-    assert_eq!(m[1..9], [('l', 25.0, -50.0), ('r', 27.0, -50.0), ('l', 15.0, -50.0), ('r', 17.0, -50.0), ('l', 5.0, -50.0), ('r', 7.0, -50.0), ('l', -1.0, -50.0), ('r', 35.0, -50.0)]);
+    assert_eq!(
+        m[1..9],
+        [
+            ('l', 25.0, -50.0),
+            ('r', 27.0, -50.0),
+            ('l', 15.0, -50.0),
+            ('r', 17.0, -50.0),
+            ('l', 5.0, -50.0),
+            ('r', 7.0, -50.0),
+            ('l', -1.0, -50.0),
+            ('r', 35.0, -50.0)
+        ]
+    );
 }
 
 /// Seed 003's G92 program (system B's G90 dropped): Φ30 M30×1.5, four passes.
 #[test]
 fn seed_003_g92() {
-    let r = run_with("N50 G50 X270 Z260\nN60 G97 S300\nN70 T0101 M03\nN80 G00 X35 Z104\nN90 G92 X29.2 Z56 F1.5\n\
-        N100 X28.6\nN110 X28.2\nN120 X28.04\nN130 G00 X270 Z260 T0100 M05\nN140 M02\n", wide(), Panel::default());
+    let r = run_with(
+        "N50 G50 X270 Z260\nN60 G97 S300\nN70 T0101 M03\nN80 G00 X35 Z104\nN90 G92 X29.2 Z56 F1.5\n\
+        N100 X28.6\nN110 X28.2\nN120 X28.04\nN130 G00 X270 Z260 T0100 M05\nN140 M02\n",
+        wide(),
+        Panel::default(),
+    );
     ok(&r);
     let xs: Vec<_> = moves(&r).iter().filter(|m| m.0 == 't').map(|m| (m.1, m.2)).step_by(2).collect();
     assert_eq!(xs, vec![(29.2, 57.5), (28.6, 57.5), (28.2, 57.5), (28.04, 57.5)]);
@@ -356,15 +453,24 @@ fn shape_alarms() {
     assert_eq!(al2("M30"), (3, 66));
     // Not monotone: Z goes back (0064); X goes back in type I (0329).
     assert_eq!(run(&format!("{pre}G71 P10 Q30\nN10 G00 X40\nG01 Z-10\nZ-5\nN30 X80\nM30\n")).alarm_codes()[0], (3, 64));
-    assert_eq!(run(&format!("{pre}G71 P10 Q30\nN10 G00 X40\nG01 Z-10\nX30 Z-15\nN30 X80\nM30\n")).alarm_codes()[0], (3, 329));
+    assert_eq!(
+        run(&format!("{pre}G71 P10 Q30\nN10 G00 X40\nG01 Z-10\nX30 Z-15\nN30 X80\nM30\n")).alarm_codes()[0],
+        (3, 329)
+    );
     // Depth of cut zero.
-    assert_eq!(run("G00 X100 Z5 M3 S500\nG71 U0 R0.5 F100\nG71 P10 Q30\nN10 G00 X40\nN30 G01 Z-5\nM30\n").alarm_codes()[0], (3, 62));
+    assert_eq!(
+        run("G00 X100 Z5 M3 S500\nG71 U0 R0.5 F100\nG71 P10 Q30\nN10 G00 X40\nN30 G01 Z-5\nM30\n").alarm_codes()[0],
+        (3, 62)
+    );
     // Not in the ZX plane.
     assert_eq!(run(&format!("G17\n{pre}G71 P10 Q30\nN10 G00 X40\n{body}")).alarm_codes()[0], (3, 4031));
     // A G71 U R block that alarms leaves 5147/5148 alone.
     let r = run("G71 U3 R0.7 F100 Q5\nM30\n");
     assert_eq!(r.alarm_codes(), vec![(1, 61)]);
-    assert_eq!(r.interp.config().params.get(Param::RoughingDepth), MachineConfig::default().params.get(Param::RoughingDepth));
+    assert_eq!(
+        r.interp.config().params.get(Param::RoughingDepth),
+        MachineConfig::default().params.get(Param::RoughingDepth)
+    );
     // Soft limits of every pass, before any motion: a contour beyond the X travel.
     let r = run(&format!("{pre}G71 P10 Q30 U0.5\nN10 G00 X40\nG01 Z-20\nN30 X400\nM30\n"));
     assert_eq!(r.alarm_codes()[0], (3, 500));

@@ -13,8 +13,11 @@ fn f(um: i64) -> String {
     format!("{s}{}.{:03}", um.abs() / 1000, um.abs() % 1000)
 }
 
+/// A motion of a block: kind, start and end (X dia, Z).
+type Segment = (char, (f64, f64), (f64, f64));
+
 /// (X dia, Z) of every motion end of the block on `line`, with the point before it.
-fn segments(r: &Run, line: u32, from: (f64, f64)) -> Vec<(char, (f64, f64), (f64, f64))> {
+fn segments(r: &Run, line: u32, from: (f64, f64)) -> Vec<Segment> {
     let mut prev = from;
     let mut out = vec![];
     for c in &r.actions {
@@ -43,11 +46,7 @@ fn shape() -> impl Strategy<Value = (i64, Vec<(i64, i64)>)> {
 fn x_at(pts: &[(f64, f64)], z: f64) -> Option<f64> {
     pts.windows(2).find_map(|w| {
         let ((x0, z0), (x1, z1)) = (w[0], w[1]);
-        if z <= z0 + 1e-9 && z >= z1 - 1e-9 && z0 != z1 {
-            Some(x0 + (x1 - x0) * (z0 - z) / (z0 - z1))
-        } else {
-            None
-        }
+        if z <= z0 + 1e-9 && z >= z1 - 1e-9 && z0 != z1 { Some(x0 + (x1 - x0) * (z0 - z) / (z0 - z1)) } else { None }
     })
 }
 

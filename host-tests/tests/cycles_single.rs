@@ -17,7 +17,8 @@ fn figure_2_25_g90_straight_and_taper() {
     let r = run("M03 S300\nG00 X130 Z3\nG90 X120 Z-110 F200\nX110 Z-30\nX100\nX90\nX80\nX70\nX60\n\
          G00 X120 Z-30\nG90 X120 Z-44 R-7.5 F150\nZ-56 R-15\nZ-68 R-22.5\nZ-80 R-30\nM30\n");
     assert!(r.alarms.is_empty(), "{:?}", r.alarms);
-    let mut want = vec![('r', 130.0, 3.0), ('r', 120.0, 3.0), ('l', 120.0, -110.0), ('l', 130.0, -110.0), ('r', 130.0, 3.0)];
+    let mut want =
+        vec![('r', 130.0, 3.0), ('r', 120.0, 3.0), ('l', 120.0, -110.0), ('l', 130.0, -110.0), ('r', 130.0, 3.0)];
     for x in [110.0, 100.0, 90.0, 80.0, 70.0, 60.0] {
         want.extend([('r', x, 3.0), ('l', x, -30.0), ('l', 130.0, -30.0), ('r', 130.0, 3.0)]);
     }
@@ -37,9 +38,15 @@ fn figure_2_25_g90_straight_and_taper() {
 fn figure_2_24_g90_sign_cases() {
     let case = |body: &str| moves(&run(&format!("G00 X100 Z10\n{body} F100\nM30\n")))[1..].to_vec();
     // 1) U>0 W<0 R>0: boring from X100 to X120, cut starts at X120+2R.
-    assert_eq!(case("G90 U20 W-30 R5"), vec![('r', 130.0, 10.0), ('l', 120.0, -20.0), ('l', 100.0, -20.0), ('r', 100.0, 10.0)]);
+    assert_eq!(
+        case("G90 U20 W-30 R5"),
+        vec![('r', 130.0, 10.0), ('l', 120.0, -20.0), ('l', 100.0, -20.0), ('r', 100.0, 10.0)]
+    );
     // 2) U<0 W<0 R<0.
-    assert_eq!(case("G90 U-40 W-30 R-5"), vec![('r', 50.0, 10.0), ('l', 60.0, -20.0), ('l', 100.0, -20.0), ('r', 100.0, 10.0)]);
+    assert_eq!(
+        case("G90 U-40 W-30 R-5"),
+        vec![('r', 50.0, 10.0), ('l', 60.0, -20.0), ('l', 100.0, -20.0), ('r', 100.0, 10.0)]
+    );
     // 3) U>0 W<0 R<0, |R| <= |U/2| (here equal: the cut starts at the start point, ① is no move).
     assert_eq!(case("G90 U20 W-30 R-10"), vec![('l', 120.0, -20.0), ('l', 100.0, -20.0), ('r', 100.0, 10.0)]);
     // 4) U<0 W<0 R>0, |R| <= |U/2|.
@@ -71,8 +78,14 @@ fn figure_2_29_g94() {
 #[test]
 fn figure_2_28_g94_sign_cases() {
     let case = |body: &str| moves(&run(&format!("G00 X100 Z10\n{body} F100\nM30\n")))[1..].to_vec();
-    assert_eq!(case("G94 U-60 W-20 R-5"), vec![('r', 100.0, -15.0), ('l', 40.0, -10.0), ('l', 40.0, 10.0), ('r', 100.0, 10.0)]);
-    assert_eq!(case("G94 U20 W-20 R-5"), vec![('r', 100.0, -15.0), ('l', 120.0, -10.0), ('l', 120.0, 10.0), ('r', 100.0, 10.0)]);
+    assert_eq!(
+        case("G94 U-60 W-20 R-5"),
+        vec![('r', 100.0, -15.0), ('l', 40.0, -10.0), ('l', 40.0, 10.0), ('r', 100.0, 10.0)]
+    );
+    assert_eq!(
+        case("G94 U20 W-20 R-5"),
+        vec![('r', 100.0, -15.0), ('l', 120.0, -10.0), ('l', 120.0, 10.0), ('r', 100.0, 10.0)]
+    );
     assert_eq!(case("G94 U-60 W-20 R20"), vec![('l', 40.0, -10.0), ('l', 40.0, 10.0), ('r', 100.0, 10.0)]);
     assert_eq!(run("G00 X100 Z10\nG94 U-60 W-20 R21 F100\nM30\n").alarm_codes(), vec![(2, 4030)]);
 }
@@ -103,13 +116,23 @@ fn figure_2_57_g92() {
     assert!(r.alarms.is_empty(), "{:?}", r.alarms);
     let mut want = vec![('r', 150.0, 50.0), ('r', 65.0, 5.0)];
     for x in [58.7, 57.7, 57.0, 56.9] {
-        want.extend([('r', x, 5.0), ('t', x, -25.0), ('t', host_tests::round3(x + 6.0), -28.0), ('r', 65.0, -28.0), ('r', 65.0, 5.0)]);
+        want.extend([
+            ('r', x, 5.0),
+            ('t', x, -25.0),
+            ('t', host_tests::round3(x + 6.0), -28.0),
+            ('r', 65.0, -28.0),
+            ('r', 65.0, 5.0),
+        ]);
     }
     assert_eq!(moves(&r), want);
-    let threads: Vec<_> = r.actions.iter().filter_map(|c| match c.action {
-        Action::Thread(t) => Some((t.lead, t.sync, t.start_udeg, c.line)),
-        _ => None,
-    }).collect();
+    let threads: Vec<_> = r
+        .actions
+        .iter()
+        .filter_map(|c| match c.action {
+            Action::Thread(t) => Some((t.lead, t.sync, t.start_udeg, c.line)),
+            _ => None,
+        })
+        .collect();
     assert_eq!(threads[0], (mm(3.0), ThreadSync::Index, 0, 3));
     assert_eq!(threads[1], (mm(3.0), ThreadSync::Continue, 0, 3));
     assert_eq!(threads[7].3, 6);
@@ -121,10 +144,14 @@ fn figure_2_57_g92() {
 #[test]
 fn g92_starts_inch_leads_and_pullout_notes() {
     let r = run("M3 S300\nG0 X40 Z5\nG92 X30 Z-20 F2 H3\nM30\n");
-    let t: Vec<_> = r.actions.iter().filter_map(|c| match c.action {
-        Action::Thread(t) if t.sync == ThreadSync::Index => Some((t.lead, t.start_udeg)),
-        _ => None,
-    }).collect();
+    let t: Vec<_> = r
+        .actions
+        .iter()
+        .filter_map(|c| match c.action {
+            Action::Thread(t) if t.sync == ThreadSync::Index => Some((t.lead, t.start_udeg)),
+            _ => None,
+        })
+        .collect();
     assert_eq!(t, vec![(mm(6.0), 0), (mm(6.0), 120_000_000), (mm(6.0), 240_000_000)]);
     let r = run("M3 S300\nG0 X40 Z5\nG92 X30 Z-20 E8\nM30\n");
     let Action::Thread(t) = r.actions[3].action else { panic!("{:?}", kind_names(&r)) };
@@ -163,15 +190,34 @@ fn figure_2_52_g32() {
     assert!(r.alarms.is_empty(), "{:?}", r.alarms);
     assert_eq!(
         moves(&r),
-        vec![('r', 28.0, 3.0), ('t', 51.0, -72.0), ('r', 55.0, -72.0), ('r', 55.0, 3.0), ('r', 27.0, 3.0),
-             ('t', 50.0, -72.0), ('r', 55.0, -72.0), ('r', 55.0, 3.0)]
+        vec![
+            ('r', 28.0, 3.0),
+            ('t', 51.0, -72.0),
+            ('r', 55.0, -72.0),
+            ('r', 55.0, 3.0),
+            ('r', 27.0, 3.0),
+            ('t', 50.0, -72.0),
+            ('r', 55.0, -72.0),
+            ('r', 55.0, 3.0)
+        ]
     );
     let r = run("M3 S500\nG00 X28 Z3\nG32 W-30 F2 Q180\nG32 X40 W-10 Q90\nG32 X50 Z-50\nG00 X60\nM30\n");
-    let t: Vec<_> = r.actions.iter().filter_map(|c| match c.action {
-        Action::Thread(t) => Some((t.start_udeg, t.sync, t.lead)),
-        _ => None,
-    }).collect();
-    assert_eq!(t, vec![(180_000_000, ThreadSync::Index, mm(2.0)), (0, ThreadSync::Continue, mm(2.0)), (0, ThreadSync::Continue, mm(2.0))]);
+    let t: Vec<_> = r
+        .actions
+        .iter()
+        .filter_map(|c| match c.action {
+            Action::Thread(t) => Some((t.start_udeg, t.sync, t.lead)),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(
+        t,
+        vec![
+            (180_000_000, ThreadSync::Index, mm(2.0)),
+            (0, ThreadSync::Continue, mm(2.0)),
+            (0, ThreadSync::Continue, mm(2.0))
+        ]
+    );
     assert_eq!(run("M3 S500\nG32 W-30 F2 Q361\nM30\n").alarm_codes(), vec![(2, 4033)]);
     assert_eq!(run("M3 S500\nG32 W-30 F2 Q-1\nM30\n").alarm_codes(), vec![(2, 4033)]);
     // Spindle stopped: the pass would wait for the index for ever.
@@ -183,7 +229,9 @@ fn figure_2_52_g32() {
 /// X124 Z3 (δ1 = 3 before the thread), so U-62 reaches X62 and U-64 X60.
 #[test]
 fn seed_003_g32_program() {
-    let r = run("M3 S300\nG00 X124 Z3\nN100 G00 U-62\nN110 G32 W-74.5 F4\nN130 G00 U62\nN140 W74.5\nN150 U-64\nN160 G32 W-74.5\nN170 G00 U64\nN180 W74.5\nM30\n");
+    let r = run(
+        "M3 S300\nG00 X124 Z3\nN100 G00 U-62\nN110 G32 W-74.5 F4\nN130 G00 U62\nN140 W74.5\nN150 U-64\nN160 G32 W-74.5\nN170 G00 U64\nN180 W74.5\nM30\n",
+    );
     assert!(r.alarms.is_empty(), "{:?}", r.alarms);
     assert_eq!(moves(&r)[2], ('t', 62.0, -71.5));
     assert_eq!(moves(&r)[6], ('t', 60.0, -71.5), "lead F4 kept for the second pass");
@@ -197,10 +245,14 @@ fn figure_2_54_g34() {
     let r = run("G00 X60 Z4 M03 S500\nG00 U-10\nG00 U-0.7\nG34 W-78 F4 K0.2\nG00 U10\nZ4\nG00 X50\nG00 U-1.0\n\
          G34 W-78 F4 K0.2\nG00 U10\nZ4\nM30\n");
     assert!(r.alarms.is_empty(), "{:?}", r.alarms);
-    let t: Vec<_> = r.actions.iter().filter_map(|c| match c.action {
-        Action::Thread(t) => Some((t.lead, t.lead_delta, t.sync)),
-        _ => None,
-    }).collect();
+    let t: Vec<_> = r
+        .actions
+        .iter()
+        .filter_map(|c| match c.action {
+            Action::Thread(t) => Some((t.lead, t.lead_delta, t.sync)),
+            _ => None,
+        })
+        .collect();
     assert_eq!(t, vec![(mm(4.0), 200_000, ThreadSync::Index); 2]);
     assert_eq!(moves(&r)[3], ('t', 49.3, -74.0));
     assert_eq!(moves(&r)[8], ('t', 49.0, -74.0));

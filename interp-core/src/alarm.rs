@@ -330,7 +330,10 @@ impl fmt::Display for AlarmKind {
             RigidTapSequence => write!(f, "S or a repeated M29 between M29 and G84/G88"),
             RigidTapAxisMove => write!(f, "axis motion between M29 and G84/G88"),
             ProfileNotMonotoneInfeed => {
-                write!(f, "type I finishing shape is not monotone along the infeed axis (use X and Z in ns for type II)")
+                write!(
+                    f,
+                    "type I finishing shape is not monotone along the infeed axis (use X and Z in ns for type II)"
+                )
             }
             CycleTaperTooLarge => write!(f, "taper R larger than the cut depth with opposite sign"),
             CycleNotInZxPlane => write!(f, "turning and threading cycles work in the ZX plane (G18) only"),
@@ -384,7 +387,11 @@ pub const CATALOG: &[CatalogEntry] = &[
         when: "G code not in table 1.1 for the configured system A/B/C",
     },
     CatalogEntry { code: 11, title: "feed zero", when: "G01/G02/G03 with F zero or never commanded" },
-    CatalogEntry { code: 14, title: "illegal lead", when: "thread lead F/E zero or beyond 500 mm; G34 K beyond +-499.99 or a lead that becomes zero, negative or too large (2.17.2)" },
+    CatalogEntry {
+        code: 14,
+        title: "illegal lead",
+        when: "thread lead F/E zero or beyond 500 mm; G34 K beyond +-499.99 or a lead that becomes zero, negative or too large (2.17.2)",
+    },
     CatalogEntry {
         code: 20,
         title: "arc radius out of tolerance",
@@ -407,21 +414,53 @@ pub const CATALOG: &[CatalogEntry] = &[
         when: "T word selects a tool or offset outside the tool table",
     },
     CatalogEntry { code: 46, title: "illegal reference number", when: "G30 P other than 1-4 (2.11.2)" },
-    CatalogEntry { code: 61, title: "P/Q missing in G70-G73", when: "G70 without P and Q, G71-G73 P without Q (2.16.7 note 1)" },
-    CatalogEntry { code: 62, title: "illegal cycle value", when: "G71/G72 depth or retract, G73 count, G74/G75 step, G76 height, first depth, minimum depth, allowance, angle, finish count (2.16, 2.17.4 notes 6-7)" },
-    CatalogEntry { code: 63, title: "sequence number not found", when: "ns or nf of G70-G73 not in the current program" },
-    CatalogEntry { code: 64, title: "shape not monotone", when: "G71/G72 finishing shape goes back along the cutting axis (Z for G71; 2.16.1 note 4)" },
-    CatalogEntry { code: 65, title: "bad first block of shape", when: "ns block of G71-G73 without G00/G01, or a type I G71 ns block that moves Z (2.16.7 note 2)" },
-    CatalogEntry { code: 66, title: "code not allowed in shape", when: "group 00 code other than G04, group 01 other than G00-G03, G20/G21, M98/M99, M00/M01/M02/M30 between ns and nf (2.16.7 note 3)" },
+    CatalogEntry {
+        code: 61,
+        title: "P/Q missing in G70-G73",
+        when: "G70 without P and Q, G71-G73 P without Q (2.16.7 note 1)",
+    },
+    CatalogEntry {
+        code: 62,
+        title: "illegal cycle value",
+        when: "G71/G72 depth or retract, G73 count, G74/G75 step, G76 height, first depth, minimum depth, allowance, angle, finish count (2.16, 2.17.4 notes 6-7)",
+    },
+    CatalogEntry {
+        code: 63,
+        title: "sequence number not found",
+        when: "ns or nf of G70-G73 not in the current program",
+    },
+    CatalogEntry {
+        code: 64,
+        title: "shape not monotone",
+        when: "G71/G72 finishing shape goes back along the cutting axis (Z for G71; 2.16.1 note 4)",
+    },
+    CatalogEntry {
+        code: 65,
+        title: "bad first block of shape",
+        when: "ns block of G71-G73 without G00/G01, or a type I G71 ns block that moves Z (2.16.7 note 2)",
+    },
+    CatalogEntry {
+        code: 66,
+        title: "code not allowed in shape",
+        when: "group 00 code other than G04, group 01 other than G00-G03, G20/G21, M98/M99, M00/M01/M02/M30 between ns and nf (2.16.7 note 3)",
+    },
     CatalogEntry { code: 200, title: "rigid tap S missing", when: "M29 without S or with S0 (2.22.1)" },
-    CatalogEntry { code: 203, title: "rigid tap sequence", when: "S between M29 and G84/G88, or M29 repeated in rigid tapping (2.22.1)" },
+    CatalogEntry {
+        code: 203,
+        title: "rigid tap sequence",
+        when: "S between M29 and G84/G88, or M29 repeated in rigid tapping (2.22.1)",
+    },
     CatalogEntry { code: 204, title: "axis move in rigid tap", when: "axis motion between M29 and G84/G88 (2.22.1)" },
     CatalogEntry {
         code: 224,
         title: "reference not established",
         when: "G28/G30 on an axis that has not been homed (2.11.2 note 2)",
     },
-    CatalogEntry { code: 329, title: "shape not monotone (infeed axis)", when: "type I G71/G72 finishing shape goes back along the infeed axis (2.16.1)" },
+    CatalogEntry {
+        code: 329,
+        title: "shape not monotone (infeed axis)",
+        when: "type I G71/G72 finishing shape goes back along the infeed axis (2.16.1)",
+    },
     CatalogEntry {
         code: 500,
         title: "+ overtravel (soft)",
@@ -512,13 +551,37 @@ pub const CATALOG: &[CatalogEntry] = &[
         title: "axis given twice",
         when: "absolute and incremental address of one axis in a block (X with U, Z with W; 2.17.1 note 7)",
     },
-    CatalogEntry { code: 4030, title: "taper too large", when: "G90/G92 |R| > |U/2| or G94 |R| > |W| with R and U/W of opposite sign (2.15, figures 2.24/2.28)" },
-    CatalogEntry { code: 4031, title: "cycle outside ZX plane", when: "G70-G76, G90, G92, G94 in G17/G19 (2.13 note 4)" },
-    CatalogEntry { code: 4032, title: "other axis in cycle", when: "a G70-G76/G90/G92/G94 block moves Y or C (2.15 note 1)" },
+    CatalogEntry {
+        code: 4030,
+        title: "taper too large",
+        when: "G90/G92 |R| > |U/2| or G94 |R| > |W| with R and U/W of opposite sign (2.15, figures 2.24/2.28)",
+    },
+    CatalogEntry {
+        code: 4031,
+        title: "cycle outside ZX plane",
+        when: "G70-G76, G90, G92, G94 in G17/G19 (2.13 note 4)",
+    },
+    CatalogEntry {
+        code: 4032,
+        title: "other axis in cycle",
+        when: "a G70-G76/G90/G92/G94 block moves Y or C (2.15 note 1)",
+    },
     CatalogEntry { code: 4033, title: "thread start angle", when: "G32/G34 Q outside 0-360 degrees (2.17.1)" },
-    CatalogEntry { code: 4034, title: "pull-out too long", when: "G92/G76 pull-out (NO.5130 x 0.1 lead) longer than the thread (2.17.3 note 5, 2.17.4 note 8)" },
-    CatalogEntry { code: 4035, title: "shape too long", when: "finishing shape ns-nf with more segments than the controller holds (48)" },
-    CatalogEntry { code: 4036, title: "too many pockets", when: "type II G71/G72 shape with more than 10 pockets (2.16.1)" },
+    CatalogEntry {
+        code: 4034,
+        title: "pull-out too long",
+        when: "G92/G76 pull-out (NO.5130 x 0.1 lead) longer than the thread (2.17.3 note 5, 2.17.4 note 8)",
+    },
+    CatalogEntry {
+        code: 4035,
+        title: "shape too long",
+        when: "finishing shape ns-nf with more segments than the controller holds (48)",
+    },
+    CatalogEntry {
+        code: 4036,
+        title: "too many pockets",
+        when: "type II G71/G72 shape with more than 10 pockets (2.16.1)",
+    },
     CatalogEntry { code: 5010, title: "end of record", when: "program text ends without M02, M30 or M99" },
 ];
 

@@ -133,7 +133,13 @@ pub fn is_multiple(code: GCode) -> bool {
     use GCode::*;
     matches!(
         code,
-        FinishCycle | RoughTurnCycle | RoughFaceCycle | PatternCycle | FacePeckCycle | GroovePeckCycle | MultiThreadCycle
+        FinishCycle
+            | RoughTurnCycle
+            | RoughFaceCycle
+            | PatternCycle
+            | FacePeckCycle
+            | GroovePeckCycle
+            | MultiThreadCycle
     )
 }
 
@@ -181,11 +187,9 @@ pub fn read(code: GCode, block: &Block, fmt: &NumberFormat, diameter_x: bool) ->
             depth: r.unsigned(if code == RoughTurnCycle { b'U' } else { b'W' }, "depth of cut")?,
             retract: r.unsigned(b'R', "retract")?,
         },
-        PatternCycle if !r.has_shape() => CycleArgs::PatternSetup {
-            di: r.length(b'U')?,
-            dk: r.length(b'W')?,
-            count: r.count(b'R')?,
-        },
+        PatternCycle if !r.has_shape() => {
+            CycleArgs::PatternSetup { di: r.length(b'U')?, dk: r.length(b'W')?, count: r.count(b'R')? }
+        }
         RoughTurnCycle | RoughFaceCycle | PatternCycle => r.shape()?,
         FinishCycle => {
             let (ns, nf) = r.sequence_pair()?;
@@ -437,7 +441,12 @@ mod tests {
         assert!(matches!(read_of(GCode::MultiThreadCycle, "G76 P1231060"), Err(AlarmKind::CycleValueIllegal { .. })));
         assert_eq!(
             read_of(GCode::MultiThreadCycle, "G76 X60.64 Z-62 P3680 Q1800 F6"),
-            Ok(CycleArgs::MultiThread { taper: 0, height: Some(3_680_000), first: Some(1_800_000), lead: Some(6_000_000) })
+            Ok(CycleArgs::MultiThread {
+                taper: 0,
+                height: Some(3_680_000),
+                first: Some(1_800_000),
+                lead: Some(6_000_000)
+            })
         );
     }
 

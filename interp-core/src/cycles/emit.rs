@@ -264,7 +264,16 @@ impl Emitter {
         motion::check_limits(&hi.with_others(&self.st.pos), cfg)?;
         let spindle = self.speed(cfg, to);
         let exact_stop = self.st.modal.exact_stop_mode;
-        Ok(Action::Arc(ArcMove { to: end, center: c, plane: Plane::Zx, cw, full_circle: false, feed, spindle, exact_stop }))
+        Ok(Action::Arc(ArcMove {
+            to: end,
+            center: c,
+            plane: Plane::Zx,
+            cw,
+            full_circle: false,
+            feed,
+            spindle,
+            exact_stop,
+        }))
     }
 }
 

@@ -39,8 +39,7 @@ impl GrooveGen {
     /// G75 (`face` false) or G74 from `start` to `end`. P/Q as written: `p` is Δi
     /// (X, radius), `q` is Δk (Z).
     pub fn new(face: bool, start: Pt, end: Pt, p: i64, q: i64, relief: i64, retract: i64) -> Result<Self, AlarmKind> {
-        let (peck, step, peck_depth, column) =
-            if face { (Axis::Z, Axis::X, q, p) } else { (Axis::X, Axis::Z, p, q) };
+        let (peck, step, peck_depth, column) = if face { (Axis::Z, Axis::X, q, p) } else { (Axis::X, Axis::Z, p, q) };
         if column == 0 && end.get(step) != start.get(step) {
             return Err(AlarmKind::CycleValueIllegal { what: "G74/G75 step P/Q is zero with a width to cut" });
         }

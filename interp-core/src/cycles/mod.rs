@@ -268,7 +268,7 @@ pub fn execute(cmd: &Command, st: &mut State, ctx: &mut Ctx<'_, '_>, chained: bo
 
 /// G70–G76.
 fn multiple(code: GCode, cmd: &Command, st: &mut State, ctx: &mut Ctx<'_, '_>) -> Result<Option<Expansion>, AlarmKind> {
-    use CycleArgs::{Finish, GrooveSetup, Groove, MultiThread, PatternSetup, RoughSetup, Shape, ThreadSetup};
+    use CycleArgs::{Finish, Groove, GrooveSetup, MultiThread, PatternSetup, RoughSetup, Shape, ThreadSetup};
     let cfg = ctx.cfg;
     let p = |id| cfg.params.get(id);
     let em = Emitter::new(*st, cmd.line);
@@ -390,4 +390,19 @@ fn start(exp: Expansion, st: &mut State, ctx: &mut Ctx<'_, '_>) -> Result<(), Al
 /// Whether M code `m` in this block is handled by the cycles (M29).
 pub fn is_cycle_m(m: u16, _f: MFunction) -> bool {
     m == 29
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The expansion lives in the interpreter on a 128 KB board: keep it small.
+    #[test]
+    fn expansion_size_is_bounded() {
+        let exp = core::mem::size_of::<Expansion>();
+        let interp = core::mem::size_of::<crate::Interpreter>();
+        assert!(exp < 6 * 1024, "Expansion is {exp} bytes");
+
+        assert!(interp < 16 * 1024, "Interpreter is {interp} bytes");
+    }
 }

@@ -77,7 +77,13 @@ impl Seg {
     fn sweep(&self, center: Pt, cw: bool) -> f64 {
         let tau = core::f64::consts::TAU;
         let d = wrap(angle(center, self.b) - angle(center, self.a));
-        if cw { if d == 0.0 { -tau } else { d - tau } } else if d == 0.0 { tau } else { d }
+        if cw {
+            if d == 0.0 { -tau } else { d - tau }
+        } else if d == 0.0 {
+            tau
+        } else {
+            d
+        }
     }
 
     /// The point at parameter `t` ∈ [0, 1] (by length for lines, by angle for arcs), f64 nm.
@@ -249,9 +255,11 @@ pub fn check_shape_command(cmd: &crate::check::Command, first: bool) -> Result<(
     if cmd.g.drilling.is_some_and(|d| d != DrillCancel) {
         return Err(AlarmKind::ProfileForbiddenCode { what: "a drilling cycle" });
     }
-    if cmd.m.iter().any(|&(_, f)| {
-        matches!(f, MFunction::Stop | MFunction::OptionalStop | MFunction::End | MFunction::EndRewind)
-    }) {
+    if cmd
+        .m
+        .iter()
+        .any(|&(_, f)| matches!(f, MFunction::Stop | MFunction::OptionalStop | MFunction::End | MFunction::EndRewind))
+    {
         return Err(AlarmKind::ProfileForbiddenCode { what: "M00/M01/M02/M30" });
     }
     if first && !matches!(cmd.g.motion, Some(Rapid | Linear)) {

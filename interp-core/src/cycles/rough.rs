@@ -142,11 +142,7 @@ impl RoughGen {
         check_monotone(&frame, if type2 { &profile.segs[..] } else { shape }, type2)?;
         let bottom = shape.iter().map(|s| lowest(&frame, s)).min().unwrap_or(frame.norm(b).0).min(frame.norm(b).0);
         let a_n = frame.norm(a);
-        let return_u = if type2 {
-            a_n.0 + spec.allowance.get(level).abs() + spec.depth
-        } else {
-            a_n.0
-        };
+        let return_u = if type2 { a_n.0 + spec.allowance.get(level).abs() + spec.depth } else { a_n.0 };
         let generator = RoughGen {
             frame,
             a: a_n,
@@ -240,7 +236,11 @@ impl RoughGen {
         let mut lv = k;
         let mut cur = self.run;
         while lv >= 1 {
-            let parent = if lv == 1 { None } else { self.runs(shape, self.level_u(lv - 1))?.into_iter().find(|p| inside(&cur, p)) };
+            let parent = if lv == 1 {
+                None
+            } else {
+                self.runs(shape, self.level_u(lv - 1))?.into_iter().find(|p| inside(&cur, p))
+            };
             let runs = self.runs(shape, self.level_u(lv))?;
             let sibling = runs.iter().find(|r| r.w0 > cur.w1 && parent.is_none_or(|p| inside(r, &p)));
             if let Some(r) = sibling {
@@ -400,10 +400,6 @@ fn inside(r: &Run, p: &Run) -> bool {
 
 fn sign(v: i64) -> i64 {
     v.signum()
-}
-
-fn round(v: f64) -> i64 {
-    libm::round(v) as i64
 }
 
 /// The contour pass move of a shape segment (the shape's G00 stays a rapid).

@@ -16,7 +16,12 @@ use crate::exec::{RigidTap, SingleMemory, State, motion};
 
 /// G90/G94/G92: the end point and taper, completed from the retained values when
 /// the block does not repeat the cycle code (2.15 note 2); `None` without axis words.
-fn end_and_taper(cmd: &Command, st: &mut State, cfg: &MachineConfig, taper: Option<i64>) -> Result<Option<(Pt, i64)>, AlarmKind> {
+fn end_and_taper(
+    cmd: &Command,
+    st: &mut State,
+    cfg: &MachineConfig,
+    taper: Option<i64>,
+) -> Result<Option<(Pt, i64)>, AlarmKind> {
     if !cmd.has_axes() {
         return Ok(None);
     }
@@ -128,7 +133,12 @@ pub fn thread_block(cmd: &Command, st: &mut State, ctx: &mut Ctx<'_, '_>, chaine
 /// G83–G89 blocks: hole data completed from the retained values, rigid or floating
 /// tapping, the lead of tapping. `None` when the block drills nothing (no hole
 /// position and not the cycle's own block, or K0).
-pub fn hole_block(code: GCode, cmd: &Command, st: &mut State, cfg: &MachineConfig) -> Result<Option<HoleGen>, AlarmKind> {
+pub fn hole_block(
+    code: GCode,
+    cmd: &Command,
+    st: &mut State,
+    cfg: &MachineConfig,
+) -> Result<Option<HoleGen>, AlarmKind> {
     use GCode::*;
     if st.modal.plane != crate::canon::Plane::Zx {
         return Err(AlarmKind::CycleNotInZxPlane);

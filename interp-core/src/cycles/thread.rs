@@ -48,7 +48,8 @@ impl Pullout {
             return Err(AlarmKind::ThreadPulloutTooLong);
         }
         let t = (run - len) as f64 / run as f64;
-        let p = Pt::new(lerp(b.x, c.x, t), lerp(b.z, c.z, t)).with(long, c.get(long) - (c.get(long) - b.get(long)).signum() * len);
+        let p = Pt::new(lerp(b.x, c.x, t), lerp(b.z, c.z, t))
+            .with(long, c.get(long) - (c.get(long) - b.get(long)).signum() * len);
         let deg = if self.angle_deg == 0 { 45.0 } else { self.angle_deg as f64 };
         let pull = libm::round(len as f64 * libm::tan(deg.to_radians())) as i64;
         let room = (retract_to - c.get(short)).abs();
@@ -182,7 +183,9 @@ impl MultiThreadGen {
             return Err(AlarmKind::CycleValueIllegal { what: "G76 needs thread height P(k) and first depth Q(d) > 0" });
         }
         if spec.min_depth > spec.height || spec.allowance > spec.height {
-            return Err(AlarmKind::CycleValueIllegal { what: "G76 minimum depth or finishing allowance above the height" });
+            return Err(AlarmKind::CycleValueIllegal {
+                what: "G76 minimum depth or finishing allowance above the height",
+            });
         }
         if spec.end.x == spec.start.x {
             return Err(AlarmKind::CycleValueIllegal { what: "G76 end point X equals the start point X" });

@@ -8,7 +8,9 @@ mod spindle;
 mod state;
 
 pub use spindle::spindle_speed;
-pub use state::{CycleMemory, FeedMemory, Frames, HoleMemory, Modal, RigidTap, SingleMemory, SpindleState, State, ToolState};
+pub use state::{
+    CycleMemory, FeedMemory, Frames, HoleMemory, Modal, RigidTap, SingleMemory, SpindleState, State, ToolState,
+};
 
 use crate::alarm::AlarmKind;
 use crate::axis::Pos;
