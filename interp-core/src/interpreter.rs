@@ -8,16 +8,13 @@
 
 use crate::alarm::{Alarm, AlarmKind};
 use crate::axis::Pos;
-use crate::canon::{Canon, CanonSink};
+use crate::canon::CanonSink;
 use crate::check::check;
 use crate::config::{MachineConfig, Param};
 use crate::env::Environment;
-use crate::exec::{Flow, STAGE, Staged, State, execute};
-use crate::parse::read_block;
+use crate::exec::{Flow, Outbox, Staged, State, execute};
+use crate::parse::{Block, read_block_into};
 use crate::program::{Cursor, ProgramStore, next_block};
-
-/// Actions waiting for the sink.
-pub const OUTBOX: usize = STAGE;
 
 /// What a step did.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -56,7 +53,10 @@ pub struct Interpreter {
     cfg: MachineConfig,
     state: State,
     cursor: Cursor,
-    outbox: heapless::Deque<Canon, OUTBOX>,
+    /// Actions waiting for the sink; also where a block stages its actions.
+    outbox: Outbox,
+    /// The block being read, reused from block to block.
+    block: Block,
     phase: Phase,
     /// A block other than `%`/`O` has been executed (a later `%` ends the record).
     started: bool,
@@ -71,6 +71,7 @@ impl Interpreter {
             state,
             cursor: Cursor::start(0),
             outbox: heapless::Deque::new(),
+            block: Block::default(),
             phase: Phase::Running,
             started: false,
         }
@@ -152,7 +153,8 @@ impl Interpreter {
         if raw.percent {
             return if self.started { Err(self.end_of_record(line)) } else { Ok(Progress::Skipped { line }) };
         }
-        let block = read_block(raw.text, line).map_err(|k| Alarm::new(line, k))?;
+        read_block_into(raw.text, line, &mut self.block).map_err(|k| Alarm::new(line, k))?;
+        let block = &self.block;
         if block.program.is_some() && self.started {
             // The next program of a multi-program text: this one ran off its end.
             return Err(self.end_of_record(line));
@@ -162,7 +164,8 @@ impl Interpreter {
             return Ok(Progress::Skipped { line });
         }
         self.started = true;
-        let flow = self.run_block(&block, env).map_err(|k| Alarm::new(line, k))?;
+        let flow =
+            run_block(block, &mut self.state, &self.cfg, env, &mut self.outbox).map_err(|k| Alarm::new(line, k))?;
         self.phase = match flow {
             Flow::Continue => Phase::Running,
             Flow::Stop => Phase::Paused,
@@ -170,20 +173,6 @@ impl Interpreter {
         };
         self.deliver(sink);
         Ok(Progress::Executed { line })
-    }
-
-    /// Check and execute one block on a copy of the state; commit on success.
-    fn run_block<E: Environment>(&mut self, block: &crate::parse::Block, env: &E) -> Result<Flow, AlarmKind> {
-        let cmd = check(block, &self.state, &self.cfg)?;
-        let mut next = self.state;
-        let mut staged = Staged::new(block.line);
-        let flow = execute(&cmd, &mut next, &self.cfg, env, &mut staged)?;
-        self.state = next;
-        for c in staged.actions {
-            // The outbox was empty before the block and holds as many as a stage.
-            let _ = self.outbox.push_back(c);
-        }
-        Ok(flow)
     }
 
     /// Offers waiting actions to the sink; true when the outbox is empty.
@@ -200,5 +189,29 @@ impl Interpreter {
     fn end_of_record(&mut self, line: u32) -> Alarm {
         self.phase = Phase::Ended;
         Alarm::new(line, AlarmKind::EndOfRecord)
+    }
+}
+
+/// Checks and executes one block on a copy of the state and commits it on success.
+/// The block's actions are staged in the (empty) outbox and dropped on failure.
+fn run_block<E: Environment>(
+    block: &Block,
+    state: &mut State,
+    cfg: &MachineConfig,
+    env: &E,
+    outbox: &mut Outbox,
+) -> Result<Flow, AlarmKind> {
+    let cmd = check(block, state, cfg)?;
+    let mut next = *state;
+    let mut staged = Staged::new(block.line, outbox);
+    match execute(&cmd, &mut next, cfg, env, &mut staged) {
+        Ok(flow) => {
+            *state = next;
+            Ok(flow)
+        }
+        Err(e) => {
+            outbox.clear();
+            Err(e)
+        }
     }
 }

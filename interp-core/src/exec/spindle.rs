@@ -34,13 +34,16 @@ pub fn spindle_speed(st: &State, cfg: &MachineConfig, x: i64) -> SpindleSpeed {
 
 /// rev/min for surface speed `css` (mm/min) at radius `x` (nm), rounded;
 /// at the centre the speed is unbounded (2.19 note 7: the cap applies).
+///
+/// f32 (hardware on the Cortex-M4F) is plenty: a speed, not a position, and its 24-bit
+/// mantissa puts the rounding error far below one rev/min.
 fn css_rpm(css: u32, x: i64) -> u32 {
-    let d_mm = 2.0 * (x.unsigned_abs() as f64) / 1e6;
+    let d_mm = 2.0 * (x.unsigned_abs() as f32) / 1e6;
     if d_mm == 0.0 {
         return u32::MAX;
     }
-    let rpm = f64::from(css) / (core::f64::consts::PI * d_mm);
-    libm::round(rpm.min(f64::from(u32::MAX))) as u32
+    let rpm = css as f32 / (core::f32::consts::PI * d_mm);
+    libm::roundf(rpm.min(u32::MAX as f32)) as u32
 }
 
 /// S, G96/G97, G50 S, gears and M03/M04 before the block's motion.
@@ -48,7 +51,7 @@ pub(super) fn before_motion(
     cmd: &Command,
     st: &mut State,
     cfg: &MachineConfig,
-    out: &mut Staged,
+    out: &mut Staged<'_>,
 ) -> Result<(), AlarmKind> {
     let x = st.work_axis(cfg, Axis::X);
     let before = spindle_speed(st, cfg, x);
@@ -85,7 +88,7 @@ pub(super) fn before_motion(
 }
 
 /// M05 after the block's motion.
-pub(super) fn after_motion(cmd: &Command, st: &mut State, out: &mut Staged) -> Result<(), AlarmKind> {
+pub(super) fn after_motion(cmd: &Command, st: &mut State, out: &mut Staged<'_>) -> Result<(), AlarmKind> {
     if cmd.m.iter().any(|&(_, f)| spindle_dir(f) == Some(SpindleDir::Stop)) {
         st.spindle.dir = SpindleDir::Stop;
         let css = if st.modal.css { st.spindle.css } else { None };
