@@ -43,8 +43,10 @@ fn word() -> impl Strategy<Value = String> {
 }
 
 fn machine(system: u8, calculator: bool) -> MachineConfig {
-    let mut cfg = MachineConfig::default();
-    cfg.gcode_system = [GCodeSystem::A, GCodeSystem::B, GCodeSystem::C][usize::from(system % 3)];
+    let mut cfg = MachineConfig {
+        gcode_system: [GCodeSystem::A, GCodeSystem::B, GCodeSystem::C][usize::from(system % 3)],
+        ..MachineConfig::default()
+    };
     cfg.params.set(Param::CalculatorInput, i64::from(calculator));
     cfg
 }
