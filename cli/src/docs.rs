@@ -5,7 +5,7 @@
 use std::fmt::Write;
 
 use interp_core::alarm::CATALOG;
-use interp_core::config::{PARAMS, ParamUnit};
+use interp_core::config::PARAMS;
 
 /// docs/ALARMS.md: a header and one row per alarm code.
 pub fn alarms_markdown() -> String {
@@ -41,22 +41,9 @@ pub fn params_markdown() -> String {
          | ---: | --- | ---: | --- |\n",
     );
     for p in PARAMS {
-        let _ = writeln!(s, "| {} | {} | {} | {} |", p.number, unit_name(p.unit), p.default, cell(p.meaning));
+        let _ = writeln!(s, "| {} | {} | {} | {} |", p.number, p.unit.name(), p.default, cell(p.meaning));
     }
     s
-}
-
-/// How a parameter unit is written in the docs and machine files.
-pub fn unit_name(unit: ParamUnit) -> &'static str {
-    match unit {
-        ParamUnit::Bool => "0/1",
-        ParamUnit::Count => "count",
-        ParamUnit::Mm => "mm",
-        ParamUnit::MmPerMin => "mm/min",
-        ParamUnit::Ms => "ms",
-        ParamUnit::Deg => "degrees",
-        ParamUnit::TenthLead => "0.1 x lead",
-    }
 }
 
 /// Text safe inside a Markdown table cell.

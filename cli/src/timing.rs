@@ -2,8 +2,6 @@
 //! at their feed (per revolution: times the spindle speed, which under G96 follows
 //! |X| along the move), capped by the maximum cutting feed (parameter 6023).
 
-use std::f64::consts::PI;
-
 use interp_core::canon::{FeedMode, SpindleSpeed};
 use interp_core::config::Param;
 use interp_core::{Axis, MachineConfig};
@@ -69,11 +67,9 @@ fn minutes(len: f64, speed: f64) -> f64 {
 }
 
 /// Spindle speed under G96 for surface speed `css` (mm/min) at radius `x` (nm),
-/// capped at `max_rpm`, as the interpreter computes it.
+/// capped at `max_rpm`: the interpreter's own formula.
 fn css_rpm(css: u32, x: i64, max_rpm: u32) -> f64 {
-    let d_mm = 2.0 * x.unsigned_abs() as f64 / 1e6;
-    let rpm = if d_mm > 0.0 { f64::from(css) / (PI * d_mm) } else { f64::INFINITY };
-    rpm.min(f64::from(max_rpm))
+    f64::from(interp_core::canon::css_rpm(css, x).min(max_rpm))
 }
 
 /// A thread move: revolutions needed along the long axis at `lead` (growing by

@@ -3,10 +3,8 @@
 
 use std::collections::BTreeMap;
 
-use interp_core::codes::m_function;
-use interp_core::config::params::ParamDef;
 use interp_core::config::{
-    AxisConfig, GCodeSystem, MAX_OFFSETS, MAX_USER_M, MTiming, Param, ParamUnit, Parameters, UserMCode,
+    AxisConfig, GCodeSystem, MAX_OFFSETS, MAX_USER_M, MTiming, Param, ParamError, Parameters, UserMCode,
 };
 use interp_core::units::IncrementSystem;
 use interp_core::{Axis, MachineConfig, Pos};
@@ -60,7 +58,7 @@ pub(super) fn apply(file: &MachineFile, cfg: &mut MachineConfig) -> Result<(), S
         apply_parameters(p, &mut cfg.params)?;
     }
     apply_input(file, &mut cfg.params)?;
-    Axis::ALL.into_iter().try_for_each(|a| validate_axis(a, cfg.axis(a)))
+    cfg.validate().map_err(|e| e.to_string())
 }
 
 /// G-code system, increments, diameter programming, rapid mode, tool count.
@@ -127,23 +125,6 @@ fn apply_axis(a: Axis, f: &AxisFile, ax: &mut AxisConfig) -> Result<(), String> 
     set(&mut ax.rapid_per_min, f.rapid, RATE_SCALE, &field("rapid"))?;
     set(&mut ax.max_feed_per_min, f.max_feed, RATE_SCALE, &field("max_feed"))?;
     set(&mut ax.accel_per_s2, f.accel, RATE_SCALE, &field("accel"))
-}
-
-/// A present axis needs travel and positive rates (Y and C have no built-in values).
-fn validate_axis(a: Axis, ax: &AxisConfig) -> Result<(), String> {
-    if !ax.present {
-        return Ok(());
-    }
-    let name = axis_name(a);
-    if !a.is_rotary() && ax.min >= ax.max {
-        return Err(format!("axes.{name}: min must be below max"));
-    }
-    for (key, v) in [("rapid", ax.rapid_per_min), ("max_feed", ax.max_feed_per_min), ("accel", ax.accel_per_s2)] {
-        if v <= 0 {
-            return Err(format!("axes.{name}.{key} must be positive"));
-        }
-    }
-    Ok(())
 }
 
 /// `base` with the coordinates given in `p` replaced.
@@ -214,17 +195,10 @@ fn apply_spindle(s: &Spindle, cfg: &mut MachineConfig) {
     sp.gear_max_rpm = s.gear_max_rpm.unwrap_or(sp.gear_max_rpm);
 }
 
-/// User M codes: new numbers only (a standard M code keeps its meaning), each once.
+/// User M codes (checked with the whole machine by `MachineConfig::validate`).
 fn apply_user_m_codes(list: &[UserM], cfg: &mut MachineConfig) -> Result<(), String> {
-    let standard = MachineConfig::default();
     cfg.user_m_codes.clear();
     for u in list {
-        if m_function(u.m, &standard).is_some() {
-            return Err(format!("user_m_codes: M{:02} is a standard M code", u.m));
-        }
-        if cfg.user_m(u.m).is_some() {
-            return Err(format!("user_m_codes: M{:02} given twice", u.m));
-        }
         let timing = match u.timing {
             TimingName::Before => MTiming::Before,
             TimingName::After => MTiming::After,
@@ -240,11 +214,11 @@ fn apply_user_m_codes(list: &[UserM], cfg: &mut MachineConfig) -> Result<(), Str
 fn apply_parameters(map: &BTreeMap<ParamKey, f64>, params: &mut Parameters) -> Result<(), String> {
     let mut unknown = Vec::new();
     for (key, &v) in map {
-        match key.0.parse::<u16>().ok().and_then(Param::by_number) {
-            Some(p) => {
-                check_param_value(p.def(), v)?;
-                params.set_from_file(p.def().number, v);
-            }
+        match key.0.parse::<u16>().ok().filter(|n| Param::by_number(*n).is_some()) {
+            Some(n) => params.set_from_file(n, v).map_err(|e| match e {
+                ParamError::BadValue { problem, .. } => format!("parameters.{n} = {v} {problem}"),
+                ParamError::Unknown { .. } => e.to_string(),
+            })?,
             None => unknown.push(key.0.as_str()),
         }
     }
@@ -252,18 +226,5 @@ fn apply_parameters(map: &BTreeMap<ParamKey, f64>, params: &mut Parameters) -> R
         Ok(())
     } else {
         Err(format!("unknown parameter number(s) {} (docs/PARAMETERS.md lists them all)", unknown.join(", ")))
-    }
-}
-
-/// A parameter value must suit its unit: 0/1 flags, whole counts, sensible sizes.
-fn check_param_value(d: &ParamDef, v: f64) -> Result<(), String> {
-    let field = format!("parameters.{}", d.number);
-    internal(v, 1e6, &field)?;
-    match d.unit {
-        ParamUnit::Bool if v != 0.0 && v != 1.0 => Err(format!("{field} = {v} must be 0 or 1")),
-        ParamUnit::Count | ParamUnit::Ms | ParamUnit::Deg | ParamUnit::TenthLead if v.fract() != 0.0 || v < 0.0 => {
-            Err(format!("{field} = {v} must be a whole number, 0 or more"))
-        }
-        _ => Ok(()),
     }
 }

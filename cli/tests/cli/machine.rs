@@ -174,7 +174,7 @@ fn mistakes_are_named() {
         error("input = \"calculator\"\n[parameters]\n3401 = 1\n"),
         "`input` and parameter 3401 set the same thing; give one of them"
     );
-    assert_eq!(error("[axes.y]\nmin = -50\nmax = 50\n"), "axes.y.rapid must be positive");
+    assert_eq!(error("[axes.y]\nmin = -50\nmax = 50\n"), "axes.y: rapid, max_feed and accel must be positive");
     assert_eq!(error("[axes.x]\nmin = 400\n"), "axes.x: min must be below max");
     assert_eq!(error("[axes.z]\nmax = 1e300\n"), "axes.z.max = 1e300 is out of range");
     assert_eq!(error("reference = []\n"), "reference: give 1 to 4 positions, not 0");

@@ -62,13 +62,15 @@ fn cutting_seconds(program: &str) -> f64 {
 #[test]
 fn feed_per_revolution_under_css_follows_the_diameter() {
     // G96 300 m/min, 0.2 mm/rev. Turning at X100: n = 300000 / (pi 100), so
-    // 50 mm take 50 pi 100 / (0.2 * 300000) min.
+    // 50 mm take 50 pi 100 / (0.2 * 300000) min. The control commands whole
+    // rev/min (955, not 954.93), which moves the time by less than 0.1 %.
+    let close = |t: f64, exact: f64| (t - exact).abs() < 1e-3 * exact;
     let t = cutting_seconds("M3 G96 S300 G99\nG0 X100 Z100\nG1 Z50 F0.2\nM30\n");
-    assert!((t - 50.0 * std::f64::consts::PI * 100.0 / 60_000.0 * 60.0).abs() < 1e-9, "{t}");
+    assert!(close(t, 50.0 * std::f64::consts::PI * 100.0 / 60_000.0 * 60.0), "{t}");
     // Facing from radius 50 to 30: dt = 2 pi r dr / (f css), t = pi (50² - 30²) / (f css).
     let t = cutting_seconds("M3 G96 S300 G99\nG0 X100 Z0\nG1 X60 F0.2\nM30\n");
     let exact = std::f64::consts::PI * (2500.0 - 900.0) / 60_000.0 * 60.0;
-    assert!((t - exact).abs() < 1e-9, "{t} vs {exact}");
+    assert!(close(t, exact), "{t} vs {exact}");
 }
 
 #[test]

@@ -4,7 +4,7 @@
 use super::{Staged, State, spindle_dir};
 use crate::alarm::AlarmKind;
 use crate::axis::Axis;
-use crate::canon::{Action, SpindleCommand, SpindleDir, SpindleSpeed};
+use crate::canon::{Action, SpindleCommand, SpindleDir, SpindleSpeed, css_rpm};
 use crate::check::Command;
 use crate::codes::GCode;
 use crate::config::MachineConfig;
@@ -30,20 +30,6 @@ pub fn spindle_speed(st: &State, cfg: &MachineConfig, x: i64) -> SpindleSpeed {
         None => cfg.spindle.css_min_rpm.min(cap),
     };
     SpindleSpeed { rpm: (sp.dir != SpindleDir::Stop).then_some(rpm), css: sp.css, max_rpm: cap }
-}
-
-/// rev/min for surface speed `css` (mm/min) at radius `x` (nm), rounded;
-/// at the centre the speed is unbounded (2.19 note 7: the cap applies).
-///
-/// f32 (hardware on the Cortex-M4F) is plenty: a speed, not a position, and its 24-bit
-/// mantissa puts the rounding error far below one rev/min.
-fn css_rpm(css: u32, x: i64) -> u32 {
-    let d_mm = 2.0 * (x.unsigned_abs() as f32) / 1e6;
-    if d_mm == 0.0 {
-        return u32::MAX;
-    }
-    let rpm = css as f32 / (core::f32::consts::PI * d_mm);
-    libm::roundf(rpm.min(u32::MAX as f32)) as u32
 }
 
 /// S, G96/G97, G50 S, gears and M03/M04 before the block's motion.
