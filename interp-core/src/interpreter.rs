@@ -8,17 +8,14 @@
 
 use crate::alarm::{Alarm, AlarmKind};
 use crate::axis::Pos;
-use crate::canon::{Canon, CanonSink};
+use crate::canon::CanonSink;
 use crate::check::check;
 use crate::config::{MachineConfig, Param};
 use crate::cycles::Expansion;
 use crate::env::Environment;
-use crate::exec::{Flow, STAGE, Staged, State, execute};
-use crate::parse::read_block;
+use crate::exec::{Flow, Outbox, Staged, State, execute};
+use crate::parse::{Block, read_block_into};
 use crate::program::{Cursor, ProgramStore, next_block};
-
-/// Actions waiting for the sink.
-pub const OUTBOX: usize = STAGE;
 
 /// What a step did.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -57,7 +54,10 @@ pub struct Interpreter {
     cfg: MachineConfig,
     state: State,
     cursor: Cursor,
-    outbox: heapless::Deque<Canon, OUTBOX>,
+    /// Actions waiting for the sink; also where a block stages its actions.
+    outbox: Outbox,
+    /// The block being read, reused from block to block.
+    block: Block,
     phase: Phase,
     /// A block other than `%`/`O` has been executed (a later `%` ends the record).
     started: bool,
@@ -74,6 +74,7 @@ impl Interpreter {
             state,
             cursor: Cursor::start(0),
             outbox: heapless::Deque::new(),
+            block: Block::default(),
             phase: Phase::Running,
             started: false,
             cycle: None,
@@ -161,7 +162,8 @@ impl Interpreter {
         if raw.percent {
             return if self.started { Err(self.end_of_record(line)) } else { Ok(Progress::Skipped { line }) };
         }
-        let block = read_block(raw.text, line).map_err(|k| Alarm::new(line, k))?;
+        read_block_into(raw.text, line, &mut self.block).map_err(|k| Alarm::new(line, k))?;
+        let block = &self.block;
         if block.program.is_some() && self.started {
             // The next program of a multi-program text: this one ran off its end.
             return Err(self.end_of_record(line));
@@ -171,7 +173,10 @@ impl Interpreter {
             return Ok(Progress::Skipped { line });
         }
         self.started = true;
-        let flow = self.run_block(&block, text, env).map_err(|k| Alarm::new(line, k))?;
+        let mut cycle = BlockCycle::default();
+        let flow = run_block(block, &mut self.state, &self.cfg, env, &mut self.outbox, text, &mut cycle)
+            .map_err(|k| Alarm::new(line, k))?;
+        self.commit_cycle(cycle);
         self.phase = match flow {
             Flow::Continue => Phase::Running,
             Flow::Stop => Phase::Paused,
@@ -181,41 +186,33 @@ impl Interpreter {
         Ok(Progress::Executed { line })
     }
 
-    /// Check and execute one block on a copy of the state; commit on success.
-    fn run_block<E: Environment>(
-        &mut self,
-        block: &crate::parse::Block,
-        text: &[u8],
-        env: &E,
-    ) -> Result<Flow, AlarmKind> {
-        let cmd = check(block, &self.state, &self.cfg)?;
-        let mut next = self.state;
-        // ---- canned cycles (branch `cycles`): the block may start an expansion and
-        // write parameters; both are committed only if the block succeeds.
-        let mut slot = None;
-        let mut staged = Staged::in_program(block.line, text, &mut slot);
-        let flow = execute(&cmd, &mut next, &self.cfg, env, &mut staged)?;
-        let split = staged.split.unwrap_or(staged.actions.len());
-        let (actions, params, resume) = (staged.actions, staged.params, staged.resume);
-        if let Some(mut exp) = slot {
-            exp.set_tail(actions.get(split..).unwrap_or(&[]))?;
+    /// Offers waiting actions to the sink; true when the outbox is empty.
+    fn deliver<S: CanonSink + ?Sized>(&mut self, sink: &mut S) -> bool {
+        while let Some(c) = self.outbox.front() {
+            if sink.push(*c).is_err() {
+                return false;
+            }
+            self.outbox.pop_front();
+        }
+        true
+    }
+
+    /// ---- canned cycles (branch `cycles`): what a successful block hands over —
+    /// its expansion (taking the actions staged after the cycle's place as its
+    /// tail), parameter writes (G71 U → 5147 …) and, after G71–G73, the place after
+    /// the shape's nf block (a shape after the cycle block is skipped; one before
+    /// it leaves the program where it is).
+    fn commit_cycle(&mut self, c: BlockCycle) {
+        if let Some(mut exp) = c.exp {
+            exp.take_tail(&mut self.outbox, c.split);
             self.cycle = Some(exp);
         }
-        for (p, v) in params {
+        for (p, v) in c.params {
             self.cfg.params.set(p, v);
         }
-        // A shape after the cycle block is skipped; one before it (reached by a
-        // search backwards) leaves the program where it is.
-        if let Some(r) = resume.filter(|r| r.offset > self.cursor.offset) {
+        if let Some(r) = c.resume.filter(|r| r.offset > self.cursor.offset) {
             self.cursor = Cursor { program: self.cursor.program, ..r };
         }
-        // ---- end canned cycles
-        self.state = next;
-        for c in actions.iter().take(split) {
-            // The outbox was empty before the block and holds as many as a stage.
-            let _ = self.outbox.push_back(*c);
-        }
-        Ok(flow)
     }
 
     /// ---- canned cycles (branch `cycles`): lets the cycle in progress refill the
@@ -241,19 +238,49 @@ impl Interpreter {
         Ok(Some(line))
     }
 
-    /// Offers waiting actions to the sink; true when the outbox is empty.
-    fn deliver<S: CanonSink + ?Sized>(&mut self, sink: &mut S) -> bool {
-        while let Some(c) = self.outbox.front() {
-            if sink.push(*c).is_err() {
-                return false;
-            }
-            self.outbox.pop_front();
-        }
-        true
-    }
-
     fn end_of_record(&mut self, line: u32) -> Alarm {
         self.phase = Phase::Ended;
         Alarm::new(line, AlarmKind::EndOfRecord)
+    }
+}
+
+/// ---- canned cycles (branch `cycles`): what a cycle block hands the interpreter.
+#[derive(Debug, Default)]
+struct BlockCycle {
+    exp: Option<Expansion>,
+    split: usize,
+    params: heapless::Vec<(Param, i64), 8>,
+    resume: Option<Cursor>,
+}
+
+/// Checks and executes one block on a copy of the state and commits it on success.
+/// The block's actions are staged in the (empty) outbox and dropped on failure; a
+/// cycle it starts goes into `cycle` only on success.
+fn run_block<E: Environment>(
+    block: &Block,
+    state: &mut State,
+    cfg: &MachineConfig,
+    env: &E,
+    outbox: &mut Outbox,
+    text: &[u8],
+    cycle: &mut BlockCycle,
+) -> Result<Flow, AlarmKind> {
+    let cmd = check(block, state, cfg)?;
+    let mut next = *state;
+    let mut slot = None;
+    let mut staged = Staged::in_program(block.line, outbox, text, &mut slot);
+    match execute(&cmd, &mut next, cfg, env, &mut staged) {
+        Ok(flow) => {
+            *state = next;
+            cycle.split = staged.split.unwrap_or(staged.actions.len());
+            cycle.params = core::mem::take(&mut staged.params);
+            cycle.resume = staged.resume;
+            cycle.exp = slot;
+            Ok(flow)
+        }
+        Err(e) => {
+            outbox.clear();
+            Err(e)
+        }
     }
 }

@@ -125,7 +125,7 @@ impl Out for Dry {
 
 impl Out for crate::exec::Staged<'_> {
     fn put(&mut self, c: Canon) -> Result<(), AlarmKind> {
-        self.actions.push(c).map_err(|_| AlarmKind::Overflow)
+        self.actions.push_back(c).map_err(|_| AlarmKind::Overflow)
     }
     fn room(&self) -> usize {
         crate::exec::STAGE - self.actions.len()

@@ -46,10 +46,11 @@ impl FinishGen {
         let Some(sb) = next_shape_block(&src, &mut self.cur, env)? else {
             return Err(AlarmKind::SequenceNotFound { n: self.nf });
         };
-        let mut staged = Staged::new(em.line);
+        let mut outbox = crate::exec::Outbox::new();
+        let mut staged = Staged::new(em.line, &mut outbox);
         run_shape_block(&sb, self.first, &mut em.st, cfg, env, &mut staged)?;
         self.first = false;
-        for c in staged.actions {
+        while let Some(c) = outbox.pop_front() {
             out.put(c)?;
         }
         if sb.last {

@@ -104,10 +104,19 @@ impl Expansion {
         self.em.line
     }
 
-    /// Keeps the block's actions after the cycle's motion, to deliver at its end.
-    pub fn set_tail(&mut self, actions: &[Canon]) -> Result<(), AlarmKind> {
-        self.tail = heapless::Vec::from_slice(actions).map_err(|_| AlarmKind::Overflow)?;
-        Ok(())
+    /// Moves the block's actions staged after the cycle's place (`split`) out of
+    /// `outbox`, to deliver them after the cycle's last move.
+    pub fn take_tail(&mut self, outbox: &mut crate::exec::Outbox, split: usize) {
+        let mut tail: heapless::Vec<Canon, TAIL> = heapless::Vec::new();
+        while outbox.len() > split {
+            // At most the block's after-motion actions (M codes, M05, M30): they fit.
+            if let Some(c) = outbox.pop_back() {
+                let _ = tail.push(c);
+            }
+        }
+        tail.reverse();
+        self.tail = tail;
+        self.tail_at = 0;
     }
 
     /// Emits actions into `out` while it has room. `text` is the program the cycle

@@ -331,7 +331,8 @@ pub fn read_profile<E: Environment + ?Sized>(
     let mut first = true;
     loop {
         let Some(sb) = next_shape_block(src, &mut cur, env)? else { break };
-        let mut staged = Staged::new(sb.block.line);
+        let mut outbox = crate::exec::Outbox::new();
+        let mut staged = Staged::new(sb.block.line, &mut outbox);
         let here = scratch.work_pos(cfg);
         let cmd = run_shape_block(&sb, first, &mut scratch, cfg, env, &mut staged)?;
         if first {
@@ -340,7 +341,7 @@ pub fn read_profile<E: Environment + ?Sized>(
             profile.ns_rapid = cmd.g.motion == Some(GCode::Rapid);
         }
         let mut a = Pt::new(here[Axis::X], here[Axis::Z]);
-        for c in &staged.actions {
+        for c in staged.actions.iter() {
             let (kind, to) = match c.action {
                 Action::Rapid(m) => (SegKind::Rapid, m.to.work),
                 Action::Linear(m) => (SegKind::Line, m.to.work),

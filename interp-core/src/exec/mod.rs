@@ -24,12 +24,18 @@ use crate::env::Environment;
 /// Most actions one block produces.
 pub const STAGE: usize = 16;
 
-/// Actions of the block being executed, delivered only if the block succeeds.
-#[derive(Debug, Default)]
+/// The queue a block's actions are staged in. The interpreter runs a block only
+/// when its outbox is empty and empties it again if the block fails, so staged
+/// actions reach the sink only when the whole block succeeded.
+pub type Outbox = heapless::Deque<Canon, STAGE>;
+
+/// Actions of the block being executed, staged in the (empty) outbox, and what a
+/// cycle block hands to the interpreter.
+#[derive(Debug)]
 pub struct Staged<'a> {
     line: u32,
     /// The staged actions, in order.
-    pub actions: heapless::Vec<Canon, STAGE>,
+    pub actions: &'a mut Outbox,
     /// Text of the program the block is in: G70–G73 read their ns–nf blocks from it.
     pub program: &'a [u8],
     /// Where a cycle started by this block goes (the interpreter's expansion slot);
@@ -45,17 +51,23 @@ pub struct Staged<'a> {
     pub resume: Option<crate::program::Cursor>,
 }
 
-impl Staged<'static> {
-    /// An empty stage for the block on `line`, outside any program (no cycles).
-    pub fn new(line: u32) -> Self {
-        Staged { line, ..Staged::default() }
-    }
-}
-
 impl<'a> Staged<'a> {
+    /// Stages the actions of the block on `line` in `outbox` (no cycle may start).
+    pub fn new(line: u32, outbox: &'a mut Outbox) -> Self {
+        Staged {
+            line,
+            actions: outbox,
+            program: &[],
+            slot: None,
+            split: None,
+            params: heapless::Vec::new(),
+            resume: None,
+        }
+    }
+
     /// A stage for a block of `program` that may start a cycle into `slot`.
-    pub fn in_program(line: u32, program: &'a [u8], slot: &'a mut Option<Expansion>) -> Self {
-        Staged { line, program, slot: Some(slot), ..Staged::default() }
+    pub fn in_program(line: u32, outbox: &'a mut Outbox, program: &'a [u8], slot: &'a mut Option<Expansion>) -> Self {
+        Staged { program, slot: Some(slot), ..Staged::new(line, outbox) }
     }
 
     /// Hands the block's cycle to the interpreter; its moves come after the actions
@@ -69,7 +81,7 @@ impl<'a> Staged<'a> {
 
     /// Stages one action.
     pub fn emit(&mut self, action: Action) -> Result<(), AlarmKind> {
-        self.actions.push(Canon { line: self.line, action }).map_err(|_| AlarmKind::Overflow)
+        self.actions.push_back(Canon { line: self.line, action }).map_err(|_| AlarmKind::Overflow)
     }
 }
 
