@@ -176,6 +176,8 @@ pub enum AlarmKind {
     ProfileTooLong,
     /// 4036: a type II finishing shape with more than 10 pockets (2.16.1).
     TooManyPockets,
+    /// 4037: a cycle that would plan more than a million moves.
+    CycleTooLong,
     /// 3576: reversing G41/G42 directly while compensating (2.18.4).
     NoseCompReversed,
     /// 3577: T code while nose compensation is active (2.18.4).
@@ -247,6 +249,7 @@ impl AlarmKind {
             ThreadPulloutTooLong => 4034,
             ProfileTooLong => 4035,
             TooManyPockets => 4036,
+            CycleTooLong => 4037,
             NoseCompReversed => 3576,
             ToolChangeInNoseComp => 3577,
             NoseCompGouge => 3605,
@@ -342,6 +345,9 @@ impl fmt::Display for AlarmKind {
             ThreadPulloutTooLong => write!(f, "thread pull-out is longer than the thread"),
             ProfileTooLong => write!(f, "finishing shape has too many segments"),
             TooManyPockets => write!(f, "finishing shape has more than 10 pockets"),
+            CycleTooLong => {
+                write!(f, "cycle would make more than a million moves (P/Q without a point are least increments)")
+            }
             NoseCompReversed => write!(f, "G41/G42 reversed while nose compensation is active"),
             ToolChangeInNoseComp => write!(f, "T code while nose compensation is active"),
             NoseCompGouge => write!(f, "nose compensation would gouge the part"),
@@ -585,6 +591,11 @@ pub const CATALOG: &[CatalogEntry] = &[
         code: 4036,
         title: "too many pockets",
         when: "type II G71/G72 shape with more than 10 pockets (2.16.1)",
+    },
+    CatalogEntry {
+        code: 4037,
+        title: "cycle too long",
+        when: "a cycle would plan more than 1,000,000 moves (G74/G75 P3 is 0.003 mm; 2.16.5)",
     },
     CatalogEntry { code: 5010, title: "end of record", when: "program text ends without M02, M30 or M99" },
 ];

@@ -40,7 +40,7 @@ pub use emit::{Emitter, Out, Pt, Step};
 use crate::alarm::AlarmKind;
 use crate::canon::{Canon, Plane, SpindleDir};
 use crate::check::Command;
-use crate::codes::{GCode, MFunction};
+use crate::codes::GCode;
 use crate::config::{MachineConfig, Param};
 use crate::env::Environment;
 use crate::exec::{RigidTap, Staged, State};
@@ -58,6 +58,11 @@ pub type StepQueue = heapless::Deque<Step, 8>;
 
 /// Actions of the cycle block that follow its motion (M05, M09, M30 …).
 const TAIL: usize = 6;
+
+/// Most planned steps one cycle may have (alarm 4037 beyond): a cycle whose P/Q
+/// were written as least increments by mistake (P3 = 0.003 mm) would otherwise
+/// expand to millions of pecks.
+pub const MAX_CYCLE_STEPS: u32 = 1_000_000;
 
 /// The generator of one cycle.
 #[derive(Clone, Debug, PartialEq)]
@@ -84,6 +89,8 @@ pub struct Expansion {
     gen_done: bool,
     tail: heapless::Vec<Canon, TAIL>,
     tail_at: usize,
+    /// Steps planned so far.
+    steps: u32,
 }
 
 impl Expansion {
@@ -96,6 +103,7 @@ impl Expansion {
             gen_done: false,
             tail: heapless::Vec::new(),
             tail_at: 0,
+            steps: 0,
         }
     }
 
@@ -133,6 +141,10 @@ impl Expansion {
                 return Ok(false);
             }
             if let Some(step) = self.queue.pop_front() {
+                self.steps += 1;
+                if self.steps > MAX_CYCLE_STEPS {
+                    return Err(AlarmKind::CycleTooLong);
+                }
                 self.em.emit(step, cfg, out)?;
                 continue;
             }
@@ -394,11 +406,6 @@ fn start(exp: Expansion, st: &mut State, ctx: &mut Ctx<'_, '_>) -> Result<(), Al
     // Floating tapping leaves the spindle stopped (2.22.3 note 2); rigid restores it.
     st.spindle.dir = end.spindle.dir;
     ctx.out.start_cycle(exp)
-}
-
-/// Whether M code `m` in this block is handled by the cycles (M29).
-pub fn is_cycle_m(m: u16, _f: MFunction) -> bool {
-    m == 29
 }
 
 #[cfg(test)]

@@ -32,17 +32,18 @@ pub struct PatternGen {
 impl PatternGen {
     /// G73 from `start` with relief Δi/Δk, `count` passes and the allowances.
     pub fn new(start: Pt, relief: Pt, count: u32, allowance: Pt) -> Result<Self, AlarmKind> {
-        if count == 0 {
-            return Err(AlarmKind::CycleValueIllegal { what: "G73 number of passes must be at least 1" });
+        if count == 0 || count > 9_999 {
+            return Err(AlarmKind::CycleValueIllegal { what: "G73 number of passes must be 1-9999" });
         }
         Ok(PatternGen { start, relief, allowance, count, pass: 1, seg: 0 })
     }
 
     /// The offset of pass `n` from the shape.
     pub fn offset(&self, n: u32) -> Pt {
-        let left = i64::from(self.count - n);
+        let left = i64::from(self.count.saturating_sub(n));
         let div = i64::from(self.count.max(2) - 1);
-        let part = |v: i64| if self.count == 1 { 0 } else { crate::units::div_round(v * left, div) };
+        // |v| < 1e15 nm (nine digits of mm) and left < 10⁴: the product fits.
+        let part = |v: i64| if self.count == 1 { 0 } else { crate::units::div_round(v.saturating_mul(left), div) };
         Pt::new(part(self.relief.x) + self.allowance.x, part(self.relief.z) + self.allowance.z)
     }
 

@@ -3,7 +3,7 @@
 //! with the values these blocks keep for the next ones.
 
 use super::emit::{Emitter, Pt, Step};
-use super::hole::{HoleGen, HoleSpec, HoleWork, reverse};
+use super::hole::{HoleGen, HoleSpec, HoleWork};
 use super::thread::{Pullout, ThreadCycleGen, check_variable_lead, long_axis};
 use super::{Ctx, CycleArgs, Gen, args};
 use crate::alarm::AlarmKind;
@@ -243,7 +243,6 @@ fn tap_work(st: &mut State, cfg: &MachineConfig, q: i64) -> Result<HoleWork, Ala
             };
             let turning = st.spindle.dir == dir;
             st.cycle.tap_dir = dir;
-            let _ = reverse;
             Ok(HoleWork::FloatTap { lead: lead_of(st.spindle.rpm)?, dir, turning })
         }
     }
