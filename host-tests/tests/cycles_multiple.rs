@@ -328,6 +328,18 @@ fn g76_notes_and_quadrants() {
     let r = run("M3 S300\nG00 X20 Z5\nG76 P010000 Q0.1 R0\nG76 X30 Z-20 P1000 Q500 F2\nM30\n");
     ok(&r);
     assert_eq!(moves(&r)[1..4], [('r', 29.0, 5.0), ('t', 29.0, -20.0), ('r', 20.0, -20.0)]);
+    // Towards +Z (W > 0): the flank shift follows A→D, so the start moves to +Z.
+    let r = run("M3 S300\nG00 X80 Z-40\nG76 P010060 Q0.1 R0\nG76 X60 Z0 P1000 Q500 F2\nM30\n");
+    ok(&r);
+    let tan30 = 30f64.to_radians().tan();
+    assert_eq!(moves(&r)[1], ('r', 61.0, round3(-40.0 + 0.5 * tan30)));
+    assert_eq!(moves(&r)[2], ('t', 61.0, 0.0), "r = 00: no pull-out");
+    // Internal G92 (U > 0): thread at X30 from X20, pull-out and retract towards X20.
+    let r = run("M3 S300\nG00 X20 Z5\nG92 X30 Z-20 F2\nM30\n");
+    assert_eq!(
+        moves(&r)[1..],
+        [('r', 30.0, 5.0), ('t', 30.0, -18.0), ('t', 26.0, -20.0), ('r', 20.0, -20.0), ('r', 20.0, 5.0)]
+    );
     // Taper R(i) = -1: passes start 2 mm (dia) smaller and are parallel to C→D.
     let r = run("M3 S300\nG00 X80 Z10\nG76 P010000 Q0.1 R0\nG76 X60 Z-30 R-1 P1000 Q1000 F2\nM30\n");
     ok(&r);

@@ -197,9 +197,11 @@ proptest! {
         x in 20_000i64..100_000,
         z in -5_000i64..20_000,
         u in -18_000i64..18_000,
-        w in -40_000i64..-1_000,
+        w in 1_000i64..40_000,
+        towards_chuck in any::<bool>(),
         code in 0usize..5,
     ) {
+        let w = if towards_chuck { -w } else { w };
         let (xe, ze) = (x + u, z + w);
         prop_assume!(xe > 2_000);
         let block = match code {
