@@ -264,3 +264,31 @@ fn back_pressure_gives_the_same_actions_with_bounded_work_per_step() {
     assert_eq!(sink.got, want);
     assert!(want.len() > 200, "a long expansion: {}", want.len());
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    /// Whatever the words of a cycle block, the interpreter raises alarms and never
+    /// panics (debug builds check every overflow).
+    #[test]
+    fn random_cycle_words_never_panic(
+        code in prop::sample::select(vec!["G90", "G92", "G94", "G32", "G34", "G71", "G72", "G73", "G74", "G75", "G76", "G83", "G84", "G85", "G87", "G70"]),
+        words in prop::collection::vec(
+            (prop::sample::select(vec!['X', 'Z', 'U', 'W', 'R', 'P', 'Q', 'F', 'E', 'H', 'K', 'I', 'C']),
+             prop::sample::select(vec![0i64, 1, -1, 3, 250, -3_000, 999_999_999, -999_999_999, 123_456])),
+            0..6),
+        point in any::<bool>(),
+    ) {
+        let mut block = String::from(code);
+        let mut seen = std::collections::BTreeSet::new();
+        for (l, v) in words {
+            if seen.insert(l) {
+                block += &format!(" {l}{v}{}", if point { "." } else { "" });
+            }
+        }
+        let prog = format!("G00 X80 Z10 M3 S500\nG71 U1 R0.5\n{block}\nN10 G00 X40\nG01 Z-20 F0.2\nN20 X90\nM30\n");
+        let mut cfg = interp_core::MachineConfig::default();
+        cfg.axes[3] = interp_core::config::AxisConfig { min: -1, max: 1, ..interp_core::config::AxisConfig::linear(0, 0, 6_000) };
+        let _ = host_tests::run_with(&prog, cfg, interp_core::Panel::default());
+    }
+}

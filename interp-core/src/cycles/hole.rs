@@ -138,7 +138,8 @@ impl HoleGen {
     fn here_pos(&self) -> Pos {
         let mut p = self.position;
         for a in Axis::ALL {
-            p[a] += self.step[a] * i64::from(self.hole);
+            // Saturating: C has no travel limit to stop a huge K × H first.
+            p[a] = p[a].saturating_add(self.step[a].saturating_mul(i64::from(self.hole)));
         }
         p
     }

@@ -167,7 +167,7 @@ pub fn hole_block(
         }
         if let Some(w) = cmd.axes[a.index()] {
             if w.incremental {
-                position[a] += w.value;
+                position[a] = position[a].saturating_add(w.value);
                 step[a] = w.value;
             } else {
                 position[a] = w.value;
