@@ -169,13 +169,13 @@ proptest! {
         prop_assert!(r.alarms.is_empty(), "{:?}", r.alarms);
         let segs = segments(&r, 4, (80.0, 10.0));
         prop_assert_eq!(segs.last().map(|s| s.2), Some((80.0, 10.0)));
-        // Depth of a pass: from the crest X (60 + 2k) to the pass's start X, radius, µm.
-        let crest = 60.0 + 2.0 * k as f64 / 1000.0;
+        // Depth of a pass in nm: from the crest (radius 30 mm + k) to the pass's start X.
+        let crest = 30_000_000 + k * 1000;
         let depths: Vec<i64> = r.actions.windows(2).filter_map(|w| match (w[0].action, w[1].action) {
-            (Action::Rapid(mv), Action::Thread(t)) if t.sync == ThreadSync::Index =>
-                Some(((crest - 2.0 * mv.to.work.0[0] as f64 / 1e6) / 2.0 * 1000.0).round() as i64),
+            (Action::Rapid(mv), Action::Thread(t)) if t.sync == ThreadSync::Index => Some(crest - mv.to.work.0[0]),
             _ => None,
         }).collect();
+        let (k, first, dmin, d) = (k * 1000, first * 1000, dmin * 1000, d * 1000);
         let mut want = vec![];
         let mut prev = 0i64;
         for n in 1.. {
