@@ -11,6 +11,7 @@ use crate::axis::Pos;
 use crate::canon::CanonSink;
 use crate::check::check;
 use crate::config::{MachineConfig, Param};
+use crate::cycles::Expansion;
 use crate::env::Environment;
 use crate::exec::{Flow, Outbox, Staged, State, execute};
 use crate::parse::{Block, read_block_into};
@@ -60,6 +61,8 @@ pub struct Interpreter {
     phase: Phase,
     /// A block other than `%`/`O` has been executed (a later `%` ends the record).
     started: bool,
+    /// The canned cycle being delivered (see [`crate::cycles`]).
+    cycle: Option<Expansion>,
 }
 
 impl Interpreter {
@@ -74,6 +77,7 @@ impl Interpreter {
             block: Block::default(),
             phase: Phase::Running,
             started: false,
+            cycle: None,
         }
     }
 
@@ -116,6 +120,7 @@ impl Interpreter {
     pub fn rewind(&mut self) {
         self.cursor = Cursor::start(0);
         self.outbox.clear();
+        self.cycle = None;
         self.phase = Phase::Running;
         self.started = false;
         self.state.moved = false;
@@ -139,6 +144,10 @@ impl Interpreter {
     {
         if !self.deliver(sink) {
             return Ok(Progress::Blocked);
+        }
+        if let Some(line) = self.run_cycle(programs, env)? {
+            self.deliver(sink);
+            return Ok(Progress::Executed { line });
         }
         match self.phase {
             Phase::Paused => return Ok(Progress::Paused),
@@ -164,8 +173,10 @@ impl Interpreter {
             return Ok(Progress::Skipped { line });
         }
         self.started = true;
-        let flow =
-            run_block(block, &mut self.state, &self.cfg, env, &mut self.outbox).map_err(|k| Alarm::new(line, k))?;
+        let mut cycle = BlockCycle::default();
+        let flow = run_block(block, &mut self.state, &self.cfg, env, &mut self.outbox, text, &mut cycle)
+            .map_err(|k| Alarm::new(line, k))?;
+        self.commit_cycle(cycle);
         self.phase = match flow {
             Flow::Continue => Phase::Running,
             Flow::Stop => Phase::Paused,
@@ -186,27 +197,85 @@ impl Interpreter {
         true
     }
 
+    /// ---- canned cycles (branch `cycles`): what a successful block hands over —
+    /// its expansion (taking the actions staged after the cycle's place as its
+    /// tail), parameter writes (G71 U → 5147 …) and, after G71–G73, the place after
+    /// the shape's nf block (a shape after the cycle block is skipped; one before
+    /// it leaves the program where it is).
+    fn commit_cycle(&mut self, c: BlockCycle) {
+        if let Some(mut exp) = c.exp {
+            exp.take_tail(&mut self.outbox, c.split);
+            self.cycle = Some(exp);
+        }
+        for (p, v) in c.params {
+            self.cfg.params.set(p, v);
+        }
+        if let Some(r) = c.resume.filter(|r| r.offset > self.cursor.offset) {
+            self.cursor = Cursor { program: self.cursor.program, ..r };
+        }
+    }
+
+    /// ---- canned cycles (branch `cycles`): lets the cycle in progress refill the
+    /// outbox (bounded work: until the outbox is full). `Some(line of the cycle
+    /// block)` while a cycle is being delivered.
+    fn run_cycle<P, E>(&mut self, programs: &P, env: &E) -> Result<Option<u32>, Alarm>
+    where
+        P: ProgramStore + ?Sized,
+        E: Environment,
+    {
+        let Some(exp) = self.cycle.as_mut() else { return Ok(None) };
+        let line = exp.line();
+        let text = programs.text(self.cursor.program).unwrap_or(&[]);
+        match exp.run(&self.cfg, text, env, &mut self.outbox) {
+            Ok(false) => {}
+            Ok(true) => self.cycle = None,
+            Err(k) => {
+                // Cannot happen after the dry run; stop the cycle rather than loop.
+                self.cycle = None;
+                return Err(Alarm::new(line, k));
+            }
+        }
+        Ok(Some(line))
+    }
+
     fn end_of_record(&mut self, line: u32) -> Alarm {
         self.phase = Phase::Ended;
         Alarm::new(line, AlarmKind::EndOfRecord)
     }
 }
 
+/// ---- canned cycles (branch `cycles`): what a cycle block hands the interpreter.
+#[derive(Debug, Default)]
+struct BlockCycle {
+    exp: Option<Expansion>,
+    split: usize,
+    params: heapless::Vec<(Param, i64), 8>,
+    resume: Option<Cursor>,
+}
+
 /// Checks and executes one block on a copy of the state and commits it on success.
-/// The block's actions are staged in the (empty) outbox and dropped on failure.
+/// The block's actions are staged in the (empty) outbox and dropped on failure; a
+/// cycle it starts goes into `cycle` only on success.
 fn run_block<E: Environment>(
     block: &Block,
     state: &mut State,
     cfg: &MachineConfig,
     env: &E,
     outbox: &mut Outbox,
+    text: &[u8],
+    cycle: &mut BlockCycle,
 ) -> Result<Flow, AlarmKind> {
     let cmd = check(block, state, cfg)?;
     let mut next = *state;
-    let mut staged = Staged::new(block.line, outbox);
+    let mut slot = None;
+    let mut staged = Staged::in_program(block.line, outbox, text, &mut slot);
     match execute(&cmd, &mut next, cfg, env, &mut staged) {
         Ok(flow) => {
             *state = next;
+            cycle.split = staged.split.unwrap_or(staged.actions.len());
+            cycle.params = core::mem::take(&mut staged.params);
+            cycle.resume = staged.resume;
+            cycle.exp = slot;
             Ok(flow)
         }
         Err(e) => {
