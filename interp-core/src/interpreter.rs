@@ -8,16 +8,14 @@
 
 use crate::alarm::{Alarm, AlarmKind};
 use crate::axis::Pos;
-use crate::canon::{Canon, CanonSink};
+use crate::canon::CanonSink;
 use crate::check::check;
 use crate::config::{MachineConfig, Param};
+use crate::cycles::Expansion;
 use crate::env::Environment;
-use crate::exec::{Flow, STAGE, Staged, State, execute};
-use crate::parse::read_block;
+use crate::exec::{Flow, Outbox, Staged, State, execute};
+use crate::parse::{Block, read_block_into};
 use crate::program::{Cursor, ProgramStore, next_block};
-
-/// Actions waiting for the sink.
-pub const OUTBOX: usize = STAGE;
 
 /// What a step did.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -56,10 +54,15 @@ pub struct Interpreter {
     cfg: MachineConfig,
     state: State,
     cursor: Cursor,
-    outbox: heapless::Deque<Canon, OUTBOX>,
+    /// Actions waiting for the sink; also where a block stages its actions.
+    outbox: Outbox,
+    /// The block being read, reused from block to block.
+    block: Block,
     phase: Phase,
     /// A block other than `%`/`O` has been executed (a later `%` ends the record).
     started: bool,
+    /// The canned cycle being delivered (see [`crate::cycles`]).
+    cycle: Option<Expansion>,
 }
 
 impl Interpreter {
@@ -71,8 +74,10 @@ impl Interpreter {
             state,
             cursor: Cursor::start(0),
             outbox: heapless::Deque::new(),
+            block: Block::default(),
             phase: Phase::Running,
             started: false,
+            cycle: None,
         }
     }
 
@@ -115,6 +120,7 @@ impl Interpreter {
     pub fn rewind(&mut self) {
         self.cursor = Cursor::start(0);
         self.outbox.clear();
+        self.cycle = None;
         self.phase = Phase::Running;
         self.started = false;
         self.state.moved = false;
@@ -139,6 +145,10 @@ impl Interpreter {
         if !self.deliver(sink) {
             return Ok(Progress::Blocked);
         }
+        if let Some(line) = self.run_cycle(programs, env)? {
+            self.deliver(sink);
+            return Ok(Progress::Executed { line });
+        }
         match self.phase {
             Phase::Paused => return Ok(Progress::Paused),
             Phase::Ended => return Ok(Progress::Ended),
@@ -152,7 +162,8 @@ impl Interpreter {
         if raw.percent {
             return if self.started { Err(self.end_of_record(line)) } else { Ok(Progress::Skipped { line }) };
         }
-        let block = read_block(raw.text, line).map_err(|k| Alarm::new(line, k))?;
+        read_block_into(raw.text, line, &mut self.block).map_err(|k| Alarm::new(line, k))?;
+        let block = &self.block;
         if block.program.is_some() && self.started {
             // The next program of a multi-program text: this one ran off its end.
             return Err(self.end_of_record(line));
@@ -162,7 +173,10 @@ impl Interpreter {
             return Ok(Progress::Skipped { line });
         }
         self.started = true;
-        let flow = self.run_block(&block, env).map_err(|k| Alarm::new(line, k))?;
+        let mut cycle = BlockCycle::default();
+        let flow = run_block(block, &mut self.state, &self.cfg, env, &mut self.outbox, text, &mut cycle)
+            .map_err(|k| Alarm::new(line, k))?;
+        self.commit_cycle(cycle);
         self.phase = match flow {
             Flow::Continue => Phase::Running,
             Flow::Stop => Phase::Paused,
@@ -170,20 +184,6 @@ impl Interpreter {
         };
         self.deliver(sink);
         Ok(Progress::Executed { line })
-    }
-
-    /// Check and execute one block on a copy of the state; commit on success.
-    fn run_block<E: Environment>(&mut self, block: &crate::parse::Block, env: &E) -> Result<Flow, AlarmKind> {
-        let cmd = check(block, &self.state, &self.cfg)?;
-        let mut next = self.state;
-        let mut staged = Staged::new(block.line);
-        let flow = execute(&cmd, &mut next, &self.cfg, env, &mut staged)?;
-        self.state = next;
-        for c in staged.actions {
-            // The outbox was empty before the block and holds as many as a stage.
-            let _ = self.outbox.push_back(c);
-        }
-        Ok(flow)
     }
 
     /// Offers waiting actions to the sink; true when the outbox is empty.
@@ -197,8 +197,90 @@ impl Interpreter {
         true
     }
 
+    /// ---- canned cycles (branch `cycles`): what a successful block hands over —
+    /// its expansion (taking the actions staged after the cycle's place as its
+    /// tail), parameter writes (G71 U → 5147 …) and, after G71–G73, the place after
+    /// the shape's nf block (a shape after the cycle block is skipped; one before
+    /// it leaves the program where it is).
+    fn commit_cycle(&mut self, c: BlockCycle) {
+        if let Some(mut exp) = c.exp {
+            exp.take_tail(&mut self.outbox, c.split);
+            self.cycle = Some(exp);
+        }
+        for (p, v) in c.params {
+            self.cfg.params.set(p, v);
+        }
+        if let Some(r) = c.resume.filter(|r| r.offset > self.cursor.offset) {
+            self.cursor = Cursor { program: self.cursor.program, ..r };
+        }
+    }
+
+    /// ---- canned cycles (branch `cycles`): lets the cycle in progress refill the
+    /// outbox (bounded work: until the outbox is full). `Some(line of the cycle
+    /// block)` while a cycle is being delivered.
+    fn run_cycle<P, E>(&mut self, programs: &P, env: &E) -> Result<Option<u32>, Alarm>
+    where
+        P: ProgramStore + ?Sized,
+        E: Environment,
+    {
+        let Some(exp) = self.cycle.as_mut() else { return Ok(None) };
+        let line = exp.line();
+        let text = programs.text(self.cursor.program).unwrap_or(&[]);
+        match exp.run(&self.cfg, text, env, &mut self.outbox) {
+            Ok(false) => {}
+            Ok(true) => self.cycle = None,
+            Err(k) => {
+                // Cannot happen after the dry run; stop the cycle rather than loop.
+                self.cycle = None;
+                return Err(Alarm::new(line, k));
+            }
+        }
+        Ok(Some(line))
+    }
+
     fn end_of_record(&mut self, line: u32) -> Alarm {
         self.phase = Phase::Ended;
         Alarm::new(line, AlarmKind::EndOfRecord)
+    }
+}
+
+/// ---- canned cycles (branch `cycles`): what a cycle block hands the interpreter.
+#[derive(Debug, Default)]
+struct BlockCycle {
+    exp: Option<Expansion>,
+    split: usize,
+    params: heapless::Vec<(Param, i64), 8>,
+    resume: Option<Cursor>,
+}
+
+/// Checks and executes one block on a copy of the state and commits it on success.
+/// The block's actions are staged in the (empty) outbox and dropped on failure; a
+/// cycle it starts goes into `cycle` only on success.
+fn run_block<E: Environment>(
+    block: &Block,
+    state: &mut State,
+    cfg: &MachineConfig,
+    env: &E,
+    outbox: &mut Outbox,
+    text: &[u8],
+    cycle: &mut BlockCycle,
+) -> Result<Flow, AlarmKind> {
+    let cmd = check(block, state, cfg)?;
+    let mut next = *state;
+    let mut slot = None;
+    let mut staged = Staged::in_program(block.line, outbox, text, &mut slot);
+    match execute(&cmd, &mut next, cfg, env, &mut staged) {
+        Ok(flow) => {
+            *state = next;
+            cycle.split = staged.split.unwrap_or(staged.actions.len());
+            cycle.params = core::mem::take(&mut staged.params);
+            cycle.resume = staged.resume;
+            cycle.exp = slot;
+            Ok(flow)
+        }
+        Err(e) => {
+            outbox.clear();
+            Err(e)
+        }
     }
 }

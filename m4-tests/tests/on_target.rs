@@ -9,11 +9,21 @@ use core::hint::black_box;
 
 use cortex_m_rt::entry;
 use heapless::Vec;
+use interp_core::canon::{Action, Canon, CanonSink, Full, RecordingSink, ThreadSync};
+use interp_core::{Alarm, Axis, Interpreter, MachineConfig, Panel, Progress, SingleProgram};
 use m4_tests::{TestFn, run_tests, tests};
 
 /// Every on-target test, run in this order.
-const TESTS: &[(&str, TestFn)] =
-    &tests![i64_arithmetic, f64_software_float_is_exact, f32_hardware_float, heapless_vec_reports_full,];
+const TESTS: &[(&str, TestFn)] = &tests![
+    i64_arithmetic,
+    f64_software_float_is_exact,
+    f32_hardware_float,
+    heapless_vec_reports_full,
+    interpreter_figure_2_6_arcs,
+    interpreter_figure_2_73_surface_speed,
+    interpreter_alarm_changes_nothing,
+    interpreter_figure_2_60_g76,
+];
 
 #[entry]
 fn main() -> ! {
@@ -61,4 +71,102 @@ fn heapless_vec_reports_full() -> Result<(), &'static str> {
     }
     check(v.push(4) == Err(4), "push at capacity returns the element")?;
     check(v.len() == 4 && v.is_full(), "length stays at capacity")
+}
+
+/// Runs `text` to its end on the default machine; returns the actions and the first alarm.
+fn interpret(text: &[u8]) -> (Vec<Canon, 32>, Option<Alarm>, Interpreter) {
+    let mut interp = Interpreter::new(MachineConfig::default());
+    let mut sink = RecordingSink::<32>::new();
+    let mut alarm = None;
+    for _ in 0..200 {
+        match interp.step(&SingleProgram(text), &Panel::default(), &mut sink) {
+            Ok(Progress::Ended) => break,
+            Ok(_) => {}
+            Err(a) => {
+                alarm.get_or_insert(a);
+            }
+        }
+    }
+    (sink.actions, alarm, interp)
+}
+
+/// Manual figure 2.6 on the M4: end points and the two arc centres (R15 ball end on
+/// the axis at Z-15; R5 fillet at X32 Z-27), exact to the nanometre.
+fn interpreter_figure_2_6_arcs() -> Result<(), &'static str> {
+    let (actions, alarm, _) = interpret(
+        b"N001 G0 X40 Z5\nN002 M03 S200\nN003 G01 X0 Z0 F900\nN005 G03 U24 W-24 R15\n\
+          N006 G02 X26 Z-31 R5\nN007 G01 Z-40\nN008 X40 Z5\nN009 M30\n",
+    );
+    check(alarm.is_none(), "no alarm")?;
+    let mut centers = actions.iter().filter_map(|c| match c.action {
+        Action::Arc(a) => Some((a.center.work[Axis::X], a.center.work[Axis::Z], a.to.work[Axis::Z])),
+        _ => None,
+    });
+    check(centers.next() == Some((0, -15_000_000, -24_000_000)), "R15 centre and end")?;
+    check(centers.next() == Some((16_000_000, -27_000_000, -31_000_000)), "R5 centre and end")?;
+    check(matches!(actions.last().map(|c| c.action), Some(Action::End { rewind: true })), "ends with M30")
+}
+
+/// Manual figure 2.73 on the M4: 955, 1910, 1910, 1194, 955 r/min under G96 S300.
+fn interpreter_figure_2_73_surface_speed() -> Result<(), &'static str> {
+    let (actions, alarm, _) =
+        interpret(b"M3 G96 S300\nG0 X100 Z100\nG0 X50 Z0\nG1 W-30 F200\nX80 W-20 F150\nG0 X100 Z100\nM30\n");
+    check(alarm.is_none(), "no alarm")?;
+    let rpms: Vec<u32, 8> = actions
+        .iter()
+        .filter_map(|c| match c.action {
+            Action::Rapid(m) | Action::Linear(m) => m.spindle.rpm,
+            _ => None,
+        })
+        .collect();
+    check(rpms.as_slice() == [955, 1910, 1910, 1194, 955], "speeds of figure 2.73")
+}
+
+/// A block with one wrong word raises its alarm on the M4 and changes nothing.
+fn interpreter_alarm_changes_nothing() -> Result<(), &'static str> {
+    let (_, _, good) = interpret(b"G00 X10 Z10\nM30\n");
+    let (_, alarm, bad) = interpret(b"G00 X10 Z10\nG99 G55 G01 X40 F0.3 S900 Q5\nM30\n");
+    check(alarm.map(|a| (a.line, a.code())) == Some((2, 4005)), "alarm 4005 on line 2")?;
+    check(good.state() == bad.state(), "state unchanged")
+}
+
+/// Records where each index-synchronised thread pass starts (the X of the rapid
+/// before it) and counts all actions.
+struct Passes {
+    last_x: i64,
+    starts: Vec<i64, 8>,
+    count: u32,
+}
+
+impl CanonSink for Passes {
+    fn push(&mut self, c: Canon) -> Result<(), Full> {
+        self.count += 1;
+        match c.action {
+            Action::Rapid(m) => self.last_x = m.to.work[Axis::X],
+            Action::Thread(t) if t.sync == ThreadSync::Index => self.starts.push(self.last_x).map_err(|_| Full)?,
+            _ => {}
+        }
+        Ok(())
+    }
+}
+
+/// Manual figure 2.60 (G76 M68x6) on the M4: the cycle refills the outbox step by
+/// step; pass depths 1.8, 1.8*sqrt(2), 1.8*sqrt(3), k-d = 3.58, then k = 3.68 twice
+/// (radius from the crest X68), to the nanometre as on the host.
+fn interpreter_figure_2_60_g76() -> Result<(), &'static str> {
+    let text = b"M3 S300\nG00 X80 Z10\nG76 P020560 Q0.15 R0.1\nG76 X60.64 Z-62 P3.68 Q1.8 F6\nM30\n";
+    let mut interp = Interpreter::new(MachineConfig::default());
+    let mut sink = Passes { last_x: 0, starts: Vec::new(), count: 0 };
+    for _ in 0..200 {
+        match interp.step(&SingleProgram(text), &Panel::default(), &mut sink) {
+            Ok(Progress::Ended) => break,
+            Ok(_) => {}
+            Err(_) => return Err("alarm"),
+        }
+    }
+    check(
+        sink.starts.as_slice() == [32_200_000, 31_454_416, 30_882_309, 30_420_000, 30_320_000, 30_320_000],
+        "pass depths",
+    )?;
+    check(sink.count == 33, "actions: spindle, rapid, 6 passes of 5, end")
 }

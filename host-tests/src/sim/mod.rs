@@ -145,6 +145,8 @@ pub struct SimOptions {
     pub auto_cycle_start: bool,
     /// Spindle model time step, s.
     pub spindle_dt: f64,
+    /// Where the axes stand at the start (machine, nm).
+    pub start: Pos,
 }
 
 impl Default for SimOptions {
@@ -156,6 +158,7 @@ impl Default for SimOptions {
             max_time_s: 600.0,
             auto_cycle_start: true,
             spindle_dt: 1e-4,
+            start: Pos::ZERO,
         }
     }
 }
@@ -171,6 +174,8 @@ pub struct Report {
     pub max_dev_steps: f64,
     /// Line where the largest deviation happened.
     pub max_dev_line: u32,
+    /// When it happened, s, and where the axes were (machine, nm).
+    pub max_dev_at: (f64, Pos),
     /// Step events.
     pub steps: u64,
     /// Driver timing violations seen by the simulated drivers.
@@ -217,11 +222,16 @@ pub struct Sim {
     pub events: Vec<Event>,
     /// Switches.
     pub panel: Panel,
+    /// Where trace rows are written as they happen (`lathe sim --trace`).
+    trace_out: Option<Box<dyn Write>>,
+    trace_error: Option<std::io::Error>,
     opts: SimOptions,
     report: Report,
     /// End point of the last action handed to the core.
     planned: Pos,
     count: i64,
+    /// The motion core answered M00/M01 with cycle start: so must the interpreter.
+    resume_program: bool,
     edges: Vec<Edge>,
     step_buf: Vec<(u64, usize, EdgeKind)>,
 }
@@ -255,11 +265,11 @@ fn rotation(d: SpindleDir) -> Rotation {
 impl Sim {
     /// A machine `cfg` at machine zero with the spindle stopped.
     pub fn new(cfg: MachineConfig, opts: SimOptions) -> Result<Self, interp_core::AlarmKind> {
-        let core = Box::new(MotionCore::new(&cfg, Pos::ZERO)?);
+        let core = Box::new(MotionCore::new(&cfg, opts.start)?);
         let p = *core.params();
         let spindle = SimSpindle::new(SpindleModel { cpr: cfg.spindle.encoder_cpr, ..opts.spindle });
         Ok(Sim {
-            axes: core::array::from_fn(|i| SimAxis::new(p.timing[i], 0)),
+            axes: core::array::from_fn(|i| SimAxis::new(p.timing[i], core.steps()[i])),
             cfg,
             core,
             spindle,
@@ -270,10 +280,13 @@ impl Sim {
             samples: Vec::new(),
             events: Vec::new(),
             panel: Panel::default(),
+            trace_out: None,
+            trace_error: None,
             opts,
             report: Report::default(),
-            planned: Pos::ZERO,
+            planned: opts.start,
             count: 0,
+            resume_program: false,
             edges: Vec::new(),
             step_buf: Vec::new(),
         })
@@ -286,7 +299,8 @@ impl Sim {
 
     /// Runs program `text`, calling `hook` before every period (operator actions).
     pub fn run_program_with(&mut self, text: &str, hook: impl FnMut(&mut Sim)) -> Report {
-        let interp = Box::new(Interpreter::new(self.cfg.clone()));
+        let mut interp = Box::new(Interpreter::new(self.cfg.clone()));
+        interp.set_machine_position(self.opts.start);
         self.run(Source::Program { text, interp, done: false }, hook)
     }
 
@@ -366,7 +380,7 @@ impl Sim {
                         }
                     }
                 }
-                if self.core.state() == State::Stopped && self.opts.auto_cycle_start {
+                if std::mem::take(&mut self.resume_program) {
                     interp.cycle_start();
                 }
                 *done
@@ -397,13 +411,21 @@ impl Sim {
         let mut edges = std::mem::take(&mut self.edges);
         edges.clear();
         self.spindle.advance((t + period) as f64 / 1e9, self.opts.spindle_dt, &mut edges);
-        for e in &edges {
-            self.drain_steps(e.t);
+        if self.core.wants_encoder_edges() {
+            // Locked to the spindle: every count may move an axis at its own time.
+            for e in &edges {
+                self.drain_steps(e.t, &[]);
+                self.count = e.count;
+                self.core.on_encoder(e.t, e.count);
+            }
+            self.drain_steps(t + period, &[]);
+        } else {
+            self.drain_steps(t + period, &edges);
+        }
+        if let Some(e) = edges.last() {
             self.count = e.count;
-            self.core.on_encoder(e.t, e.count);
         }
         self.edges = edges;
-        self.drain_steps(t + period);
         self.clock.0 = t + period;
     }
 
@@ -412,15 +434,19 @@ impl Sim {
             self.io.now = e.t;
             match e.kind {
                 EventKind::Aux { m } => self.io.set_output(m, true),
-                EventKind::Stop { .. } if self.opts.auto_cycle_start => self.core.cycle_start(),
+                EventKind::Stop { .. } if self.opts.auto_cycle_start => {
+                    self.core.cycle_start();
+                    self.resume_program = true;
+                }
                 _ => {}
             }
             self.events.push(e);
         }
     }
 
-    /// Applies every step event before `until` to the drivers, in time order.
-    fn drain_steps(&mut self, until: u64) {
+    /// Applies every step event before `until` to the drivers, in time order; the
+    /// encoder `edges` of the period (if given) say what the encoder showed at each.
+    fn drain_steps(&mut self, until: u64, edges: &[Edge]) {
         let mut buf = std::mem::take(&mut self.step_buf);
         buf.clear();
         for axis in 0..AXIS_COUNT {
@@ -429,7 +455,12 @@ impl Sim {
             }
         }
         buf.sort_by_key(|e| e.0);
+        let mut next_edge = 0;
         for &(t, axis, kind) in &buf {
+            while let Some(e) = edges.get(next_edge).filter(|e| e.t <= t) {
+                self.count = e.count;
+                next_edge += 1;
+            }
             let drv = &mut self.axes[axis];
             drv.now = t;
             match kind {
@@ -451,7 +482,7 @@ impl Sim {
 
     fn after_step(&mut self, t: u64, axis: usize) {
         let pos = self.machine_pos();
-        let err = self.path.error(&pos);
+        let err = self.path.error(&pos, self.core.stats().blocks as usize);
         let p = self.core.params();
         let nm = err.iter().map(|e| e * e).sum::<f64>().sqrt();
         let steps = (0..AXIS_COUNT)
@@ -461,11 +492,12 @@ impl Sim {
         if nm > self.report.max_dev_nm {
             self.report.max_dev_nm = nm;
             self.report.max_dev_line = self.core.line();
+            self.report.max_dev_at = (t as f64 / 1e9, pos);
         }
         self.report.max_dev_steps = self.report.max_dev_steps.max(steps);
-        if self.opts.trace {
+        if self.opts.trace || self.trace_out.is_some() {
             let work = pos - self.core.work_offset();
-            self.trace.push(TraceRow {
+            let row = TraceRow {
                 t: t as f64 / 1e9,
                 x_mm: 2.0 * work[Axis::X] as f64 / 1e6,
                 z_mm: work[Axis::Z] as f64 / 1e6,
@@ -473,16 +505,47 @@ impl Sim {
                 axis: axis as u8,
                 count: self.count,
                 line: self.core.line(),
-            });
+            };
+            if let Some(out) = self.trace_out.as_mut()
+                && let Err(e) = write_row(out, &row)
+            {
+                self.trace_error.get_or_insert(e);
+            }
+            if self.opts.trace {
+                self.trace.push(row);
+            }
         }
     }
 
-    /// Writes the trace as CSV `t_s,x_mm,z_mm,spindle_deg`.
+    /// Streams trace rows to `out` from now on (the CSV header first).
+    pub fn trace_to(&mut self, mut out: Box<dyn Write>) -> std::io::Result<()> {
+        writeln!(out, "{TRACE_HEADER}")?;
+        self.trace_out = Some(out);
+        Ok(())
+    }
+
+    /// Flushes the streamed trace; the first write error, if any.
+    pub fn finish_trace(&mut self) -> std::io::Result<()> {
+        if let Some(e) = self.trace_error.take() {
+            return Err(e);
+        }
+        self.trace_out.as_mut().map_or(Ok(()), |o| o.flush())
+    }
+
+    /// Writes the kept trace as CSV `t_s,x_mm,z_mm,spindle_deg`.
     pub fn write_trace(&self, out: &mut impl Write) -> std::io::Result<()> {
-        writeln!(out, "t_s,x_mm,z_mm,spindle_deg")?;
+        writeln!(out, "{TRACE_HEADER}")?;
         for r in &self.trace {
-            writeln!(out, "{:.9},{:.6},{:.6},{:.4}", r.t, r.x_mm, r.z_mm, r.spindle_deg)?;
+            write_row(out, r)?;
         }
         Ok(())
     }
+}
+
+/// The trace's CSV header.
+pub const TRACE_HEADER: &str = "t_s,x_mm,z_mm,spindle_deg";
+
+/// One trace row: time to the ns, positions to the nm, angle to 0.0001°.
+fn write_row(out: &mut (impl Write + ?Sized), r: &TraceRow) -> std::io::Result<()> {
+    writeln!(out, "{:.9},{:.6},{:.6},{:.4}", r.t, r.x_mm, r.z_mm, r.spindle_deg)
 }

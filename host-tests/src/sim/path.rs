@@ -66,6 +66,11 @@ pub struct PathRef {
 impl PathRef {
     /// Adds the element of a motion action starting at `from` (machine, nm).
     pub fn add(&mut self, from: &Pos, action: &Action) {
+        // Like the planner: an action that does not move is no block.
+        let full = matches!(action, Action::Arc(a) if a.full_circle);
+        if action.endpoint().is_some_and(|e| e.machine == *from) && !full {
+            return;
+        }
         let a = pos(from);
         let element = match action {
             Action::Rapid(m) if m.independent => {
@@ -107,20 +112,28 @@ impl PathRef {
         self.elements.push(element);
     }
 
-    /// The error vector (nm per axis) from the path to `p` (machine, nm), looking a
-    /// few elements around the last match (the machine moves along the path).
-    pub fn error(&mut self, p: &Pos) -> P {
+    /// Elements recorded and the one the machine was last matched to.
+    pub fn progress(&self) -> (usize, usize) {
+        (self.elements.len(), self.cursor)
+    }
+
+    /// The error vector (nm per axis) from the path to `p` (machine, nm). The
+    /// machine is on one of the elements from the last match up to `started` (the
+    /// blocks the motion core has taken so far, plus one being taken); a later
+    /// element must be nearer by half a nanometre to take over, so a path that comes
+    /// back over itself is not skipped ahead on a tie.
+    pub fn error(&mut self, p: &Pos, started: usize) -> P {
         let p = pos(p);
         if self.elements.is_empty() {
             return [0.0; AXIS_COUNT];
         }
         let lo = self.cursor.saturating_sub(1);
-        let hi = (self.cursor + 32).min(self.elements.len());
+        let hi = (started + 1).clamp(lo + 1, self.elements.len());
         let mut best = (f64::MAX, self.cursor, [0.0; AXIS_COUNT]);
         for (k, e) in self.elements[lo..hi].iter().enumerate() {
             let q = e.nearest(&p);
-            let d = dist2(&p, &q);
-            if d < best.0 - 1e-6 {
+            let d = dist2(&p, &q).sqrt();
+            if d < best.0 - 0.5 {
                 best = (d, lo + k, q);
             }
         }

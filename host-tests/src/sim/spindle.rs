@@ -21,6 +21,8 @@ pub struct SpindleModel {
     pub cpr: u32,
     /// Angle of the index mark, revolutions.
     pub index_at: f64,
+    /// Whether the encoder has an index output at all.
+    pub index: bool,
     /// M03 makes the encoder count up (false: down).
     pub cw_counts_up: bool,
 }
@@ -35,6 +37,7 @@ impl Default for SpindleModel {
             seed: 1,
             cpr: 4_096,
             index_at: 0.3,
+            index: true,
             cw_counts_up: true,
         }
     }
@@ -193,7 +196,7 @@ impl SimSpindle {
         let cpr = i64::from(self.model.cpr);
         let mark = (self.model.index_at * cpr as f64).round() as i64;
         let at = |p: i64| (p - mark).rem_euclid(cpr) == 0;
-        if (to > from && at(to)) || (to < from && at(from)) {
+        if self.model.index && ((to > from && at(to)) || (to < from && at(from))) {
             self.index = Some(self.count);
         }
     }

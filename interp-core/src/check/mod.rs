@@ -52,14 +52,21 @@ pub struct Command {
     pub speed: Option<u32>,
     /// T: turret station and offset number.
     pub tool: Option<(u16, u16)>,
+    /// Cycle words (G70–G76, G90/G92/G94, G32/G34, G83–G89), internal units.
+    pub cycle: crate::cycles::CycleArgs,
 }
 
 impl Command {
     /// The code that consumes the block's axis words.
     pub fn axis_user(&self, state: &State) -> GCode {
+        use crate::cycles::args::{is_hole, is_multiple};
         match self.g.one_shot {
-            Some(c) if gset::uses_axes(c) => c,
-            _ => self.g.motion.unwrap_or(state.modal.motion),
+            Some(c) if gset::uses_axes(c) || is_multiple(c) => c,
+            _ => match self.g.drilling {
+                Some(d) if is_hole(d) => d,
+                None if self.g.motion.is_none() && is_hole(state.modal.drilling) => state.modal.drilling,
+                _ => self.g.motion.unwrap_or(state.modal.motion),
+            },
         }
     }
 
@@ -90,6 +97,7 @@ pub fn check(block: &Block, state: &State, cfg: &MachineConfig) -> Result<Comman
         feed: None,
         speed: None,
         tool: None,
+        cycle: crate::cycles::CycleArgs::None,
     };
     let user = cmd.axis_user(state);
     words::check_letters(block, user, cfg)?;

@@ -3,41 +3,85 @@
 //! the caller commits it only if the whole block succeeded.
 
 mod coords;
-mod motion;
+pub(crate) mod motion;
 mod spindle;
 mod state;
 
-pub use spindle::{css_rpm, spindle_speed};
-pub use state::{FeedMemory, Frames, Modal, SpindleState, State, ToolState};
+pub use spindle::spindle_speed;
+pub use state::{
+    CycleMemory, FeedMemory, Frames, HoleMemory, Modal, RigidTap, SingleMemory, SpindleState, State, ToolState,
+};
 
 use crate::alarm::AlarmKind;
 use crate::axis::Pos;
 use crate::canon::{Action, Canon, SpindleDir};
 use crate::check::Command;
 use crate::codes::{GCode, MFunction};
-use crate::config::{MTiming, MachineConfig, ToolOffset};
+use crate::config::{MTiming, MachineConfig, Param, ToolOffset};
+use crate::cycles::{self, Expansion};
 use crate::env::Environment;
 
 /// Most actions one block produces.
 pub const STAGE: usize = 16;
 
-/// Actions of the block being executed, delivered only if the block succeeds.
-#[derive(Debug, Default)]
-pub struct Staged {
+/// The queue a block's actions are staged in. The interpreter runs a block only
+/// when its outbox is empty and empties it again if the block fails, so staged
+/// actions reach the sink only when the whole block succeeded.
+pub type Outbox = heapless::Deque<Canon, STAGE>;
+
+/// Actions of the block being executed, staged in the (empty) outbox, and what a
+/// cycle block hands to the interpreter.
+#[derive(Debug)]
+pub struct Staged<'a> {
     line: u32,
     /// The staged actions, in order.
-    pub actions: heapless::Vec<Canon, STAGE>,
+    pub actions: &'a mut Outbox,
+    /// Text of the program the block is in: G70–G73 read their ns–nf blocks from it.
+    pub program: &'a [u8],
+    /// Where a cycle started by this block goes (the interpreter's expansion slot);
+    /// `None` where no cycle may start (inside a cycle's own blocks).
+    slot: Option<&'a mut Option<Expansion>>,
+    /// Index in `actions` where the cycle's moves belong: actions staged after it
+    /// (M05, M30 …) are delivered after the cycle.
+    pub split: Option<usize>,
+    /// Parameters the block sets (G71 U(Δd) → 5147 …), written only if it succeeds.
+    pub params: heapless::Vec<(Param, i64), 8>,
+    /// Where the program goes on after the block if not with the next block: after
+    /// the nf block of G71–G73 (the shape's blocks are not executed).
+    pub resume: Option<crate::program::Cursor>,
 }
 
-impl Staged {
-    /// An empty stage for the block on `line`.
-    pub fn new(line: u32) -> Self {
-        Staged { line, actions: heapless::Vec::new() }
+impl<'a> Staged<'a> {
+    /// Stages the actions of the block on `line` in `outbox` (no cycle may start).
+    pub fn new(line: u32, outbox: &'a mut Outbox) -> Self {
+        Staged {
+            line,
+            actions: outbox,
+            program: &[],
+            slot: None,
+            split: None,
+            params: heapless::Vec::new(),
+            resume: None,
+        }
+    }
+
+    /// A stage for a block of `program` that may start a cycle into `slot`.
+    pub fn in_program(line: u32, outbox: &'a mut Outbox, program: &'a [u8], slot: &'a mut Option<Expansion>) -> Self {
+        Staged { program, slot: Some(slot), ..Staged::new(line, outbox) }
+    }
+
+    /// Hands the block's cycle to the interpreter; its moves come after the actions
+    /// staged so far.
+    pub fn start_cycle(&mut self, exp: Expansion) -> Result<(), AlarmKind> {
+        let slot = self.slot.as_mut().ok_or(AlarmKind::ProfileForbiddenCode { what: "a cycle" })?;
+        **slot = Some(exp);
+        self.split = Some(self.actions.len());
+        Ok(())
     }
 
     /// Stages one action.
     pub fn emit(&mut self, action: Action) -> Result<(), AlarmKind> {
-        self.actions.push(Canon { line: self.line, action }).map_err(|_| AlarmKind::Overflow)
+        self.actions.push_back(Canon { line: self.line, action }).map_err(|_| AlarmKind::Overflow)
     }
 }
 
@@ -59,10 +103,12 @@ pub fn execute(
     st: &mut State,
     cfg: &MachineConfig,
     env: &dyn Environment,
-    out: &mut Staged,
+    out: &mut Staged<'_>,
 ) -> Result<Flow, AlarmKind> {
+    let chained = cycles::before_block(cmd, st)?;
     apply_modal(cmd, st);
     spindle::before_motion(cmd, st, cfg, out)?;
+    cycles::after_spindle(cmd, st, out)?;
     tool_change(cmd, st, cfg, out)?;
     aux(cmd, MTiming::Before, out)?;
     match cmd.g.one_shot {
@@ -71,7 +117,12 @@ pub fn execute(
         Some(GCode::LocalFrame) => coords::local_frame(cmd, st),
         Some(GCode::MachineCoordinates) => coords::machine_move(cmd, st, cfg, out)?,
         Some(GCode::ReferenceReturn | GCode::ReferenceReturnN) => coords::reference_return(cmd, st, cfg, env, out)?,
-        _ => motion::execute(cmd, st, cfg, out)?,
+        _ => {
+            let mut ctx = cycles::Ctx { cfg, env, out };
+            if !cycles::execute(cmd, st, &mut ctx, chained)? {
+                motion::execute(cmd, st, cfg, ctx.out)?;
+            }
+        }
     }
     // 2.14 item 5: G61/G64 take effect from the next block.
     if let Some(e) = cmd.g.exact_stop_mode {
@@ -120,7 +171,7 @@ fn apply_modal(cmd: &Command, st: &mut State) {
 
 /// T: index the turret and put the offset in force; the axes pick the offset up
 /// with their next move.
-fn tool_change(cmd: &Command, st: &mut State, cfg: &MachineConfig, out: &mut Staged) -> Result<(), AlarmKind> {
+fn tool_change(cmd: &Command, st: &mut State, cfg: &MachineConfig, out: &mut Staged<'_>) -> Result<(), AlarmKind> {
     let Some((tool, offset_number)) = cmd.tool else { return Ok(()) };
     let row = match offset_number {
         0 => ToolOffset::default(),
@@ -137,7 +188,7 @@ fn tool_change(cmd: &Command, st: &mut State, cfg: &MachineConfig, out: &mut Sta
 }
 
 /// Machine outputs switched by M codes at `timing`.
-fn aux(cmd: &Command, timing: MTiming, out: &mut Staged) -> Result<(), AlarmKind> {
+fn aux(cmd: &Command, timing: MTiming, out: &mut Staged<'_>) -> Result<(), AlarmKind> {
     for &(m, f) in &cmd.m {
         if f == MFunction::Aux(timing) {
             out.emit(Action::Aux { m })?;
@@ -147,7 +198,7 @@ fn aux(cmd: &Command, timing: MTiming, out: &mut Staged) -> Result<(), AlarmKind
 }
 
 /// M00, M01, M02, M30 after the block's motion.
-fn program_flow(cmd: &Command, env: &dyn Environment, out: &mut Staged) -> Result<Flow, AlarmKind> {
+fn program_flow(cmd: &Command, env: &dyn Environment, out: &mut Staged<'_>) -> Result<Flow, AlarmKind> {
     for &(_, f) in &cmd.m {
         match f {
             MFunction::Stop => {

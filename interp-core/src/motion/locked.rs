@@ -127,11 +127,12 @@ impl<const N: usize> MotionCore<N> {
     /// A spindle-locked block runs (Locked): continuing legs are announced to the
     /// gearbox and taken from the queue as it reaches them; the end lets go.
     pub(super) fn run_locked(&mut self) -> bool {
-        self.announce_next_leg();
         let Some(g) = self.gear else {
             self.state = State::Idle;
             return true;
         };
+        // Legs the gearbox has moved on to since the last period leave the queue
+        // first: what is left at its front is what may follow.
         while self.legs_taken < g.legs_done() {
             self.legs_taken += 1;
             if let Some(Item::Motion(b)) = self.planner.pop() {
@@ -140,6 +141,8 @@ impl<const N: usize> MotionCore<N> {
                 self.locked = Some(b);
             }
         }
+        self.announce_next_leg();
+        let Some(g) = self.gear else { return true };
         if !g.finished() {
             return false;
         }
@@ -168,7 +171,10 @@ impl<const N: usize> MotionCore<N> {
             return;
         }
         let leg = self.leg_to(&g.leg().end, b, t.long);
-        let result = self.ratio(t.lead, t.long).and_then(|r| self.gear.as_mut().map_or(Ok(()), |g| g.set_next(leg, r)));
+        let last = !matches!(self.planner.second(),
+            Some(Item::Motion(n)) if matches!(n.kind, BlockKind::Thread(nt) if nt.sync == ThreadSync::Continue));
+        let result =
+            self.ratio(t.lead, t.long).and_then(|r| self.gear.as_mut().map_or(Ok(()), |g| g.set_next(leg, r, last)));
         if let Err(kind) = result {
             self.raise(kind);
         }

@@ -29,7 +29,7 @@ use crate::alarm::{Alarm, AlarmKind};
 use crate::axis::{AXIS_COUNT, Axis, Pos};
 use crate::canon::{Canon, CanonSink, Full, SpindleDir};
 use crate::config::{MachineConfig, MotionConfig};
-use crate::exec::css_rpm;
+
 use crate::fixed::{STEP_FRAC, round_steps};
 use crate::interpolator::{Interpolator, Live, Status};
 use crate::planner::{Block, BlockKind, Command, FeedSpec, Item, MotionParams, Planner, PushError};
@@ -371,6 +371,13 @@ impl<const N: usize> MotionCore<N> {
         self.feed_steppers(now);
     }
 
+    /// Whether encoder counts must come one by one with their times
+    /// ([`MotionCore::on_encoder`]): while axes are locked to the spindle or a thread
+    /// pass waits for its start count. Otherwise the count of each period is enough.
+    pub fn wants_encoder_edges(&self) -> bool {
+        self.gear.is_some() || matches!(self.state, State::SyncWait { .. })
+    }
+
     /// An encoder count at time `now`: while axes are locked to the spindle they
     /// move to the gearbox's position for it at once.
     pub fn on_encoder(&mut self, now: u64, count: i64) {
@@ -544,12 +551,11 @@ impl<const N: usize> MotionCore<N> {
         if self.spindle.dir == SpindleDir::Stop {
             return;
         }
-        let rpm = match (b.spindle.css, b.feed) {
-            (Some(css), FeedSpec::PerMin(_) | FeedSpec::PerRev(_)) => {
-                let x = self.work_x(self.interp.position()[Axis::X.index()], &b.offset);
-                Some(css_rpm(css, x).min(b.spindle.max_rpm))
+        let rpm = match b.feed {
+            FeedSpec::PerMin(_) | FeedSpec::PerRev(_) => {
+                b.spindle.rpm_at(self.work_x(self.interp.position()[Axis::X.index()], &b.offset))
             }
-            _ => b.spindle.rpm,
+            FeedSpec::Rapid => b.spindle.rpm,
         };
         if let Some(rpm) = rpm {
             self.set_spindle(self.spindle.dir, rpm);
@@ -617,13 +623,13 @@ impl<const N: usize> MotionCore<N> {
         }
         self.css_phase = (self.css_phase + 1) % CSS_PERIODS;
         let Some(seg) = self.interp.segment() else { return };
-        let (Some(css), false, true) = (seg.spindle.css, seg.rapid, self.css_phase == 0) else { return };
-        if self.spindle.dir == SpindleDir::Stop {
+        if seg.spindle.css.is_none() || seg.rapid || self.css_phase != 0 || self.spindle.dir == SpindleDir::Stop {
             return;
         }
         let x = self.work_x(self.interp.position()[Axis::X.index()], &seg.offset);
-        let rpm = css_rpm(css, x).min(seg.spindle.max_rpm);
-        self.spindle.command(self.spindle.dir, rpm, 0);
+        if let Some(rpm) = seg.spindle.rpm_at(x) {
+            self.spindle.command(self.spindle.dir, rpm, 0);
+        }
     }
 
     /// Starts braking for a reset, e-stop or alarm.

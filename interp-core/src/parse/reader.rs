@@ -13,8 +13,16 @@ const MAX_FRAC_DIGITS: u8 = 9;
 
 /// Reads one block's text (without its end-of-block character).
 pub fn read_block(text: &[u8], line: u32) -> Result<Block, AlarmKind> {
+    let mut block = Block::default();
+    read_block_into(text, line, &mut block)?;
+    Ok(block)
+}
+
+/// Reads one block's text into `block`, reusing its storage (the interpreter's
+/// per-block path: nothing large is copied).
+pub fn read_block_into(text: &[u8], line: u32, block: &mut Block) -> Result<(), AlarmKind> {
+    block.clear(line);
     let mut r = Reader { text, pos: 0 };
-    let mut block = Block { line, ..Block::default() };
     r.skip_blanks_and_comments()?;
     if r.peek() == Some(b'/') {
         r.pos += 1;
@@ -28,10 +36,10 @@ pub fn read_block(text: &[u8], line: u32) -> Result<Block, AlarmKind> {
     }
     loop {
         r.skip_blanks_and_comments()?;
-        let Some(c) = r.next() else { return Ok(block) };
+        let Some(c) = r.next() else { return Ok(()) };
         match c.to_ascii_uppercase() {
-            letter @ b'A'..=b'Z' => r.word(letter, &mut block)?,
-            b',' => r.comma_word(&mut block)?,
+            letter @ b'A'..=b'Z' => r.word(letter, block)?,
+            b',' => r.comma_word(block)?,
             b'/' => return Err(AlarmKind::MisplacedBlockSkip),
             b'#' | b'[' | b'=' => {
                 return Err(AlarmKind::NotSupportedYet { what: "macro variables and expressions" });

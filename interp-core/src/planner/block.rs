@@ -312,8 +312,16 @@ fn check_speed(dir: &Dir, v: f32, p: &MotionParams) -> Result<(), Axis> {
 
 /// A thread pass from `start`. Checks at the commanded speed that lead × rpm fits the
 /// axes and that the acceleration ramp fits the thread (the pass re-checks at the
-/// measured speed before it moves).
-pub fn thread(start: &Pos, t: &ThreadMove, p: &MotionParams, line: u32) -> Result<Prepared, AlarmKind> {
+/// measured speed before it moves). A continuing block keeps the long axis `keep` of
+/// the block before it when it moves along it (a pull-out keeps the lead on the
+/// thread's axis while the other axis pulls out); otherwise its own longer axis.
+pub fn thread(
+    start: &Pos,
+    t: &ThreadMove,
+    keep: Option<Axis>,
+    p: &MotionParams,
+    line: u32,
+) -> Result<Prepared, AlarmKind> {
     if t.lead_delta != 0 {
         return Err(AlarmKind::NotSupportedYet { what: "variable-lead threads (G34) in the motion core" });
     }
@@ -321,7 +329,10 @@ pub fn thread(start: &Pos, t: &ThreadMove, p: &MotionParams, line: u32) -> Resul
         return Err(AlarmKind::FeedZero);
     }
     let (len, dir) = straight(start, &t.to.machine);
-    let long = long_axis(start, &t.to.machine);
+    let long = match keep {
+        Some(a) if t.sync == ThreadSync::Continue && t.to.machine[a] != start[a] => a,
+        _ => long_axis(start, &t.to.machine),
+    };
     let spec = ThreadSpec { lead: t.lead, start_udeg: t.start_udeg, sync: t.sync, long };
     let along = dir[long.index()].abs().max(1e-9);
     let rpm = t.spindle.rpm.unwrap_or(0) as f32 * p.thread_margin;

@@ -16,7 +16,7 @@ pub use block::{ArcGeom, Block, BlockKind, FeedSpec, TapSpec, ThreadSpec};
 pub use machine::{AxisLimits, AxisScale, MotionParams};
 
 use crate::alarm::AlarmKind;
-use crate::axis::{AXIS_COUNT, Pos};
+use crate::axis::{AXIS_COUNT, Axis, Pos};
 use crate::canon::{Action, Canon, SpindleCommand, ThreadSync};
 use block::{Dir, Prepared};
 
@@ -98,8 +98,8 @@ struct Tail {
     nominal: f32,
     /// Whether the next block may blend with it (G64 cutting move without exact stop).
     blend: bool,
-    /// Whether it is a thread block (a continuing thread may follow).
-    thread: bool,
+    /// The long axis of a thread block (a continuing thread may follow).
+    thread: Option<Axis>,
 }
 
 /// The look-ahead queue; `N` blocks and commands.
@@ -118,7 +118,7 @@ impl<const N: usize> Planner<N> {
     }
 
     fn rest(end: Pos) -> Tail {
-        Tail { end, dir: [0.0; AXIS_COUNT], nominal: 0.0, blend: false, thread: false }
+        Tail { end, dir: [0.0; AXIS_COUNT], nominal: 0.0, blend: false, thread: None }
     }
 
     /// Drops everything queued; the next block starts from `pos`.
@@ -197,10 +197,10 @@ impl<const N: usize> Planner<N> {
             Action::Thread(t) => {
                 let mut t = *t;
                 // A continuing thread needs a thread to continue (2.17.1 note 2).
-                if !self.tail.thread {
+                if self.tail.thread.is_none() {
                     t.sync = ThreadSync::Index;
                 }
-                block::thread(&start, &t, p, c.line)
+                block::thread(&start, &t, self.tail.thread, p, c.line)
             }
             Action::Tap(t) => block::tap(&start, t, p, c.line),
             other => return self.push_command(c.line, other),
@@ -221,7 +221,7 @@ impl<const N: usize> Planner<N> {
         };
         self.queue.push_back(Item::Command { line, cmd }).map_err(|_| PushError::Full)?;
         self.tail.blend = false;
-        self.tail.thread = false;
+        self.tail.thread = None;
         Ok(())
     }
 
@@ -240,7 +240,7 @@ impl<const N: usize> Planner<N> {
             dir: prep.dir_out,
             nominal: b.plan.nominal,
             blend: blends && !b.exact_stop,
-            thread: matches!(b.kind, BlockKind::Thread(_)),
+            thread: if let BlockKind::Thread(t) = b.kind { Some(t.long) } else { None },
         };
         // Never fails: fullness was checked before preparing.
         let _ = self.queue.push_back(Item::Motion(b));

@@ -154,8 +154,10 @@ pub struct Gear {
     leg: Leg,
     /// Legs completed in this sequence.
     legs_done: u32,
-    /// The leg that follows without re-synchronising, if known.
+    /// The leg that follows without re-synchronising, if known, and whether the
+    /// sequence ends with it.
     next: Option<(Leg, Ratio)>,
+    next_last: bool,
     /// The other moving axis (a taper), its direction and DDA.
     follower: Option<(usize, i64, Follower)>,
     /// Encoder direction of forward rotation (+1 counts up, −1 down).
@@ -190,6 +192,7 @@ impl Gear {
             leg,
             legs_done: 0,
             next: None,
+            next_last: true,
             follower: None,
             sigma: if sigma < 0 { -1 } else { 1 },
             origin,
@@ -231,17 +234,34 @@ impl Gear {
     }
 
     /// Announces the thread leg that continues this one without re-synchronising
-    /// (2.17.1 note 2); without one, the pass decelerates onto the current leg's end.
-    /// Alarm 4507 when the pass is already decelerating or done.
-    pub fn set_next(&mut self, leg: Leg, ratio: Ratio) -> Result<(), AlarmKind> {
-        if self.mode != Mode::Thread || matches!(self.phase, Phase::RampDown { .. } | Phase::Done) {
+    /// (2.17.1 note 2); `last` if the sequence ends with it. Without one, the pass
+    /// decelerates onto the current leg's end. A last leg on the same axis at the
+    /// same lead (a pull-out) shares the deceleration with the leg before it, so a
+    /// short pull-out still ends exactly on its end point. Alarm 4507 when the pass is
+    /// already decelerating or done, 4502 when what is left cannot hold the ramps.
+    pub fn set_next(&mut self, leg: Leg, ratio: Ratio, last: bool) -> Result<(), AlarmKind> {
+        if self.mode != Mode::Thread
+            || matches!(self.phase, Phase::RampDown { .. } | Phase::Done)
+            || leg.start != self.leg.end
+            || leg.end[leg.long] == leg.start[leg.long]
+        {
             return Err(AlarmKind::SyncSequenceBroken);
         }
         let unit = 2i64.checked_mul(self.ramp).and_then(|v| v.checked_mul(ratio.d)).ok_or(AlarmKind::Overflow)?;
         if unit > i64::MAX / 8 {
             return Err(AlarmKind::Overflow);
         }
+        let len = (leg.end[leg.long] - leg.start[leg.long]).abs();
+        let shares = ratio == self.ratio && leg.long == self.leg.long;
+        let ramp_steps = ratio.n.saturating_mul(self.ramp) / ratio.d.max(1) / 2 + 1;
+        let starting = matches!(self.phase, Phase::Waiting | Phase::RampUp { .. });
+        let room = if shares { len + self.delta - self.p } else { len };
+        let need = if shares && starting { 2 * ramp_steps } else { ramp_steps };
+        if last && room < need {
+            return Err(AlarmKind::ThreadRampTooLong);
+        }
         self.next = Some((leg, ratio));
+        self.next_last = last;
         Ok(())
     }
 
@@ -386,6 +406,11 @@ impl Gear {
             Phase::RampDown { u } => {
                 let moved = self.add(n * (2 * u - 1));
                 if u <= 1 {
+                    if let Some((leg, _)) = self.next.take() {
+                        // Rounding left the last leg's first step undone: finish on it.
+                        self.legs_done += 1;
+                        self.set_leg(leg);
+                    }
                     self.phase = Phase::Done;
                     self.p = self.delta;
                     self.acc = self.unit / 2;
@@ -401,11 +426,14 @@ impl Gear {
     /// On the last leg, the increment that lands exactly where the deceleration
     /// starts (`unit·Δ − N·R²` in accumulator terms) if this count gets there.
     fn ramp_down_jump(&self) -> Option<i64> {
-        if self.next.is_some() {
-            return None;
-        }
         let (n, r) = (self.ratio.n, self.ramp);
-        let left = self.delta - self.p;
+        let left = match self.next {
+            None => self.delta - self.p,
+            Some((leg, ratio)) if self.next_last && ratio == self.ratio && leg.long == self.leg.long => {
+                self.delta - self.p + (leg.end[leg.long] - leg.start[leg.long]).abs()
+            }
+            Some(_) => return None,
+        };
         // Far from the end the products below could overflow; the ramp is short.
         if left > n * r / self.ratio.d.max(1) + 4 {
             return None;
@@ -542,7 +570,7 @@ mod tests {
         let first = leg(3_200, 0);
         let second = Leg { start: first.end, end: [800, 0, -6_400, 0], long: 2 };
         let mut g = Gear::thread(first, ratio, 200, 1, 0).unwrap();
-        g.set_next(second, ratio).unwrap();
+        g.set_next(second, ratio, true).unwrap();
         let trace = run(&mut g, 0, 60_000);
         assert_eq!(g.legs_done(), 1);
         // The lead is continuous across the junction: Z keeps N/D per count.
@@ -551,6 +579,27 @@ mod tests {
             assert_eq!(-z, ideal, "count {c}");
         }
         assert_eq!(trace.last().map(|t| (t.1, t.2)), Some((-6_400, 800)));
+    }
+
+    #[test]
+    fn a_short_pull_out_shares_the_deceleration_and_ends_exactly() {
+        // Ramp of 4000 counts: 5/32 × 4000 / 2 = 312 steps to stop; the pull-out has 100.
+        let ratio = Ratio { n: 5, d: 32 };
+        let first = leg(400, 0);
+        let pull = Leg { start: first.end, end: [80, 0, -500, 0], long: 2 };
+        let mut g = Gear::thread(first, ratio, 4_000, 1, 0).unwrap();
+        assert_eq!(g.set_next(pull, ratio, true), Err(AlarmKind::ThreadRampTooLong), "ramps need 626 steps");
+        let first = leg(6_400, 0);
+        let pull = Leg { start: first.end, end: [80, 0, -6_500, 0], long: 2 };
+        let mut g = Gear::thread(first, ratio, 4_000, 1, 0).unwrap();
+        g.set_next(pull, ratio, true).unwrap();
+        let trace = run(&mut g, 0, 80_000);
+        assert_eq!(g.phase(), Phase::Done);
+        assert_eq!(trace.last().map(|t| (t.1, t.2)), Some((-6_500, 80)));
+        // It slowed down smoothly: never more than one step per count, never backwards.
+        for w in trace.windows(2) {
+            assert!((0..=1).contains(&(w[0].1 - w[1].1)), "{:?}", w);
+        }
     }
 
     #[test]
