@@ -34,6 +34,12 @@ pub fn mul_q32(a: i64, b: i64) -> i64 {
     mul_shr(a, b, 32)
 }
 
+/// `2^62 / len` (at least 1 for `len`): with it, the progress `s / len` in Q32 is
+/// `s × inverse >> 30`, one multiply per period instead of a division.
+pub fn inverse62(len: u64) -> i64 {
+    (1i64 << 62) / (len.clamp(1, i64::MAX as u64) as i64)
+}
+
 /// The nearest whole step of a Q16 position (halves round up).
 #[inline]
 pub const fn round_steps(q16: i64) -> i64 {

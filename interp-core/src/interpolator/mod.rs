@@ -116,30 +116,22 @@ pub struct Segment {
     exact_stop: bool,
 }
 
-/// `2^62 / len`: progress (Q32) = `s × inv >> 30`.
-fn inverse(len: u64) -> i64 {
-    (1i64 << 62) / (len.max(1) as i64)
-}
-
-fn q8(v: f32) -> u64 {
-    (v * (1u32 << PATH_FRAC) as f32) as u64
-}
-
 impl Segment {
-    /// Converts `b`, starting at whole steps `from`.
+    /// Starts `b` at whole steps `from` (its data was computed when it was queued:
+    /// nothing here divides).
     pub fn new(b: &Block, from: &[i64; AXIS_COUNT], p: &MotionParams) -> Self {
         let end_steps: [i64; AXIS_COUNT] =
-            core::array::from_fn(|i| if p.limits[i].present { p.scale[i].steps(b.end.0[i]) } else { from[i] });
+            core::array::from_fn(|i| if p.limits[i].present { b.exec.end_steps[i] } else { from[i] });
         let start = from.map(|s| s << STEP_FRAC);
         let delta: [i64; AXIS_COUNT] = core::array::from_fn(|i| (end_steps[i] - from[i]) << STEP_FRAC);
         let rate = match b.feed {
             FeedSpec::Rapid => Rate::Rapid,
-            FeedSpec::PerMin(f) => Rate::PerMin((f as f64 * f64::from(p.tick_ns) * 256.0 / 60e9) as u64),
-            FeedSpec::PerRev(f) => Rate::PerRev(f.saturating_mul(1 << PATH_FRAC)),
+            FeedSpec::PerMin(_) => Rate::PerMin(b.exec.rate_q8.max(0) as u64),
+            FeedSpec::PerRev(_) => Rate::PerRev(b.exec.rate_q8),
         };
         let path = match b.kind {
             BlockKind::Arc(g) => Path::Arc(arc_path(&g, p)),
-            BlockKind::Independent => Path::Independent(independent(from, &end_steps, p)),
+            BlockKind::Independent => Path::Independent(independent(from, &end_steps, &b.exec.axis_inv, p)),
             _ => Path::Line,
         };
         Segment {
@@ -153,9 +145,9 @@ impl Segment {
             delta,
             end_steps,
             len: b.plan.len_q8,
-            inv: inverse(b.plan.len_q8),
-            accel: q8(b.plan.accel).max(1),
-            cap: q8(b.plan.cap),
+            inv: b.exec.inv_len,
+            accel: b.exec.accel_q8,
+            cap: b.exec.cap_q8,
             exact_stop: b.exact_stop,
         }
     }
@@ -218,12 +210,16 @@ fn arc_path(g: &ArcGeom, p: &MotionParams) -> ArcPath {
     }
 }
 
-fn independent(from: &[i64; AXIS_COUNT], to: &[i64; AXIS_COUNT], p: &MotionParams) -> Independent {
-    let len: [u64; AXIS_COUNT] =
-        core::array::from_fn(|i| (from[i].abs_diff(to[i]) as f64 * p.scale[i].nm_per_step() * 256.0) as u64);
+fn independent(
+    from: &[i64; AXIS_COUNT],
+    to: &[i64; AXIS_COUNT],
+    inv: &[i64; AXIS_COUNT],
+    p: &MotionParams,
+) -> Independent {
+    let q8 = |v: f32| (v * (1u32 << PATH_FRAC) as f32) as u64;
     Independent {
-        len,
-        inv: len.map(inverse),
+        len: core::array::from_fn(|i| if inv[i] == 0 { 0 } else { p.scale[i].q8_nm(from[i].abs_diff(to[i])) }),
+        inv: *inv,
         accel: core::array::from_fn(|i| q8(p.limits[i].accel).max(1)),
         cap: core::array::from_fn(|i| q8(p.limits[i].rapid)),
         s: [0; AXIS_COUNT],
@@ -302,8 +298,9 @@ impl Interpolator {
                 d * d
             })
             .sum();
+        // A reset is no interpolation period: this one division is fine.
         seg.len = (libm::sqrt(len) * 256.0) as u64 + 1;
-        seg.inv = inverse(seg.len);
+        seg.inv = crate::fixed::inverse62(seg.len);
         seg.rate = Rate::Rapid;
         self.seg = Some(seg);
         self.steps = *from;

@@ -564,8 +564,7 @@ impl<const N: usize> MotionCore<N> {
 
     /// Work X (nm, radius) of a commanded X position (Q16 steps) under `offset`.
     fn work_x(&self, q16: i64, offset: &Pos) -> i64 {
-        let nm = q16 as f64 / f64::from(1u32 << STEP_FRAC) * self.p.scale[Axis::X.index()].nm_per_step();
-        nm as i64 - offset[Axis::X]
+        self.p.scale[Axis::X.index()].nm_of_q16(q16) - offset[Axis::X]
     }
 
     /// Whether a cutting block must wait for the spindle to reach its speed.

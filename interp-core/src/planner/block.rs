@@ -6,7 +6,7 @@ use super::machine::MotionParams;
 use crate::alarm::AlarmKind;
 use crate::axis::{AXIS_COUNT, Axis, Pos};
 use crate::canon::{ArcMove, FeedMode, Move, SpindleDir, SpindleSpeed, TapMove, ThreadMove, ThreadSync};
-use crate::fixed::PATH_FRAC;
+use crate::fixed::{PATH_FRAC, inverse62};
 
 /// Unit direction of a path, per axis.
 pub type Dir = [f32; AXIS_COUNT];
@@ -119,6 +119,54 @@ pub struct Block {
     pub exact_stop: bool,
     /// Look-ahead data.
     pub plan: Plan,
+    /// What the interpolator needs, ready to run.
+    pub exec: Exec,
+}
+
+/// What the interpolator needs of a block, computed when the block is queued so
+/// that starting it (possibly in the middle of an interpolation period, when it is
+/// blended into) divides nothing.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Exec {
+    /// End point, whole steps per axis (exact: from the nanometre end point).
+    pub end_steps: [i64; AXIS_COUNT],
+    /// `2^62 / length` (length in Q8 nm).
+    pub inv_len: i64,
+    /// The programmed speed: Q8 nm per period (feed per minute) or Q8 nm per
+    /// revolution (feed per revolution); 0 for rapids.
+    pub rate_q8: i64,
+    /// Path acceleration, Q8 nm per period².
+    pub accel_q8: u64,
+    /// Highest path speed the axes allow, Q8 nm per period.
+    pub cap_q8: u64,
+    /// Independent rapids: `2^62 / length` of each axis's own move.
+    pub axis_inv: [i64; AXIS_COUNT],
+}
+
+impl Exec {
+    /// The interpolator's data of `b`, which starts at `start` (machine, nm).
+    pub fn new(b: &Block, start: &Pos, p: &MotionParams) -> Self {
+        let present = |i: usize| p.limits[i].present;
+        let end_steps = core::array::from_fn(|i| if present(i) { p.scale[i].steps(b.end.0[i]) } else { 0 });
+        let q8 = |v: f32| (v * (1u32 << PATH_FRAC) as f32) as u64;
+        let rate_q8 = match b.feed {
+            FeedSpec::Rapid => 0,
+            FeedSpec::PerMin(f) => (f as f64 * f64::from(p.tick_ns) * 256.0 / 60e9) as i64,
+            FeedSpec::PerRev(f) => f.saturating_mul(1 << PATH_FRAC),
+        };
+        let axis_inv = core::array::from_fn(|i| {
+            let d = b.end.0[i].abs_diff(start.0[i]);
+            if b.kind == BlockKind::Independent && present(i) && d > 0 { inverse62(d << PATH_FRAC) } else { 0 }
+        });
+        Exec {
+            end_steps,
+            inv_len: inverse62(b.plan.len_q8),
+            rate_q8,
+            accel_q8: q8(b.plan.accel).max(1),
+            cap_q8: q8(b.plan.cap),
+            axis_inv,
+        }
+    }
 }
 
 /// A prepared block together with the directions it starts and ends in.
@@ -206,6 +254,7 @@ pub fn line(start: &Pos, m: &Move, rapid: bool, p: &MotionParams, line: u32) -> 
         spindle: m.spindle,
         exact_stop: m.exact_stop || rapid,
         plan: plan(len_q8(len)?, accel, cap, nominal(feed, &m.spindle, p, cap)),
+        exec: Exec::default(),
     };
     Ok(Prepared { block, dir_in: dir, dir_out: dir })
 }
@@ -280,6 +329,7 @@ pub fn arc(start: &Pos, a: &ArcMove, p: &MotionParams, line: u32) -> Result<Prep
         spindle: a.spindle,
         exact_stop: a.exact_stop,
         plan: plan(len_q8(len)?, accel, cap, nominal(feed, &a.spindle, p, cap)),
+        exec: Exec::default(),
     };
     let ccw = sweep > 0.0;
     Ok(Prepared { block, dir_in: tangent(axes, th0, ccw), dir_out: tangent(axes, th1, ccw) })
@@ -352,6 +402,7 @@ pub fn thread(
         spindle: t.spindle,
         exact_stop: true,
         plan: plan(len_q8(len)?, accel, v.max(1.0), v),
+        exec: Exec::default(),
     };
     Ok(Prepared { block, dir_in: dir, dir_out: dir })
 }
@@ -385,6 +436,7 @@ pub fn tap(start: &Pos, t: &TapMove, p: &MotionParams, line: u32) -> Result<Prep
         spindle: t.spindle,
         exact_stop: true,
         plan: plan(len_q8(len)?, accel, v.max(1.0), v),
+        exec: Exec::default(),
     };
     Ok(Prepared { block, dir_in: dir, dir_out: dir })
 }

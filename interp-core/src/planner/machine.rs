@@ -16,6 +16,8 @@ pub struct AxisScale {
     per_nm: i64,
     /// Steps per nanometre in Q48 (for interpolated points).
     spn_q48: i64,
+    /// Nanometres per step in Q32.
+    nm_q32: i64,
     /// Nanometres per step (display and measurement only).
     nm_per_step: f64,
 }
@@ -31,7 +33,9 @@ impl AxisScale {
         let spn = ((i128::from(steps) << 49) / i128::from(per_nm) + 1) / 2;
         let spn_q48 =
             i64::try_from(spn).map_err(|_| AlarmKind::MotionConfigInvalid { what: "more than 2^15 steps per nm" })?;
-        Ok(AxisScale { steps, per_nm, spn_q48, nm_per_step: per_nm as f64 / steps as f64 })
+        let nm_q32 = i64::try_from((i128::from(per_nm) << 32) / i128::from(steps))
+            .map_err(|_| AlarmKind::MotionConfigInvalid { what: "more than 2^31 nm per step" })?;
+        Ok(AxisScale { steps, per_nm, spn_q48, nm_q32, nm_per_step: per_nm as f64 / steps as f64 })
     }
 
     /// The whole step nearest to position `nm` (halves away from −∞): exact, no drift.
@@ -47,6 +51,16 @@ impl AxisScale {
     /// Position `nm` in Q16 steps, rounded (interpolated points).
     pub fn q16(&self, nm: i64) -> i64 {
         mul_shr(nm, self.spn_q48, 16).saturating_add(1 << 15) >> 16
+    }
+
+    /// `steps` as a length in Q8 nm (to 2^-24 nm per step), by one multiply.
+    pub fn q8_nm(&self, steps: u64) -> u64 {
+        (u128::from(steps) * self.nm_q32 as u128 >> 24) as u64
+    }
+
+    /// A Q16 step position as nanometres, by one multiply.
+    pub fn nm_of_q16(&self, q16: i64) -> i64 {
+        mul_shr(q16, self.nm_q32, 48)
     }
 
     /// Nanometres per step.

@@ -12,7 +12,7 @@ pub mod block;
 pub mod lookahead;
 pub mod machine;
 
-pub use block::{ArcGeom, Block, BlockKind, FeedSpec, TapSpec, ThreadSpec};
+pub use block::{ArcGeom, Block, BlockKind, Exec, FeedSpec, TapSpec, ThreadSpec};
 pub use machine::{AxisLimits, AxisScale, MotionParams};
 
 use crate::alarm::AlarmKind;
@@ -227,6 +227,7 @@ impl<const N: usize> Planner<N> {
 
     fn push_motion(&mut self, prep: Prepared, p: &MotionParams) {
         let mut b = prep.block;
+        b.exec = block::Exec::new(&b, &self.tail.end, p);
         let blends = matches!(b.kind, BlockKind::Line | BlockKind::Arc(_)) && b.feed != FeedSpec::Rapid;
         if self.tail.blend && blends {
             let v = lookahead::junction_speed(&self.tail.dir, &prep.dir_in, p)
