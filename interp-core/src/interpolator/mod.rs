@@ -116,6 +116,11 @@ pub struct Segment {
     exact_stop: bool,
 }
 
+/// A speed (or acceleration) per period as Q8.
+fn q8(v: f32) -> u64 {
+    (v * (1u32 << PATH_FRAC) as f32) as u64
+}
+
 impl Segment {
     /// Starts `b` at whole steps `from` (its data was computed when it was queued:
     /// nothing here divides).
@@ -146,8 +151,8 @@ impl Segment {
             end_steps,
             len: b.plan.len_q8,
             inv: b.exec.inv_len,
-            accel: b.exec.accel_q8,
-            cap: b.exec.cap_q8,
+            accel: q8(b.plan.accel).max(1),
+            cap: q8(b.plan.cap),
             exact_stop: b.exact_stop,
         }
     }
@@ -216,7 +221,6 @@ fn independent(
     inv: &[i64; AXIS_COUNT],
     p: &MotionParams,
 ) -> Independent {
-    let q8 = |v: f32| (v * (1u32 << PATH_FRAC) as f32) as u64;
     Independent {
         len: core::array::from_fn(|i| if inv[i] == 0 { 0 } else { p.scale[i].q8_nm(from[i].abs_diff(to[i])) }),
         inv: *inv,

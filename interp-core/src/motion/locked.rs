@@ -13,10 +13,7 @@ use crate::sync::{Gear, Leg, Ratio};
 impl<const N: usize> MotionCore<N> {
     /// The leg from the current position to `b`'s end.
     fn leg_to(&self, from: &[i64; AXIS_COUNT], b: &Block, long: Axis) -> Leg {
-        let end =
-            core::array::from_fn(
-                |i| if self.p.limits[i].present { self.p.scale[i].steps(b.end.0[i]) } else { from[i] },
-            );
+        let end = core::array::from_fn(|i| if self.p.limits[i].present { b.exec.end_steps[i] } else { from[i] });
         Leg { start: *from, end, long: long.index() }
     }
 

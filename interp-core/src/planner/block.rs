@@ -107,8 +107,6 @@ pub struct Block {
     pub line: u32,
     /// Path kind and its data.
     pub kind: BlockKind,
-    /// End point, machine coordinates, nm (X radius).
-    pub end: Pos,
     /// Machine minus work coordinates for this block (G96 and the trace use work X).
     pub offset: Pos,
     /// Speed command.
@@ -135,37 +133,25 @@ pub struct Exec {
     /// The programmed speed: Q8 nm per period (feed per minute) or Q8 nm per
     /// revolution (feed per revolution); 0 for rapids.
     pub rate_q8: i64,
-    /// Path acceleration, Q8 nm per period².
-    pub accel_q8: u64,
-    /// Highest path speed the axes allow, Q8 nm per period.
-    pub cap_q8: u64,
     /// Independent rapids: `2^62 / length` of each axis's own move.
     pub axis_inv: [i64; AXIS_COUNT],
 }
 
 impl Exec {
-    /// The interpolator's data of `b`, which starts at `start` (machine, nm).
-    pub fn new(b: &Block, start: &Pos, p: &MotionParams) -> Self {
+    /// The interpolator's data of `b`, which moves from `start` to `end` (machine, nm).
+    pub fn new(b: &Block, start: &Pos, end: &Pos, p: &MotionParams) -> Self {
         let present = |i: usize| p.limits[i].present;
-        let end_steps = core::array::from_fn(|i| if present(i) { p.scale[i].steps(b.end.0[i]) } else { 0 });
-        let q8 = |v: f32| (v * (1u32 << PATH_FRAC) as f32) as u64;
+        let end_steps = core::array::from_fn(|i| if present(i) { p.scale[i].steps(end.0[i]) } else { 0 });
         let rate_q8 = match b.feed {
             FeedSpec::Rapid => 0,
             FeedSpec::PerMin(f) => (f as f64 * f64::from(p.tick_ns) * 256.0 / 60e9) as i64,
             FeedSpec::PerRev(f) => f.saturating_mul(1 << PATH_FRAC),
         };
         let axis_inv = core::array::from_fn(|i| {
-            let d = b.end.0[i].abs_diff(start.0[i]);
+            let d = end.0[i].abs_diff(start.0[i]);
             if b.kind == BlockKind::Independent && present(i) && d > 0 { inverse62(d << PATH_FRAC) } else { 0 }
         });
-        Exec {
-            end_steps,
-            inv_len: inverse62(b.plan.len_q8),
-            rate_q8,
-            accel_q8: q8(b.plan.accel).max(1),
-            cap_q8: q8(b.plan.cap),
-            axis_inv,
-        }
+        Exec { end_steps, inv_len: inverse62(b.plan.len_q8), rate_q8, axis_inv }
     }
 }
 
@@ -178,6 +164,8 @@ pub struct Prepared {
     pub dir_in: Dir,
     /// Unit direction at the end.
     pub dir_out: Dir,
+    /// End point, machine coordinates, nm (X radius).
+    pub end: Pos,
 }
 
 /// Per-axis displacement and length of a straight move, and its unit direction.
@@ -248,7 +236,6 @@ pub fn line(start: &Pos, m: &Move, rapid: bool, p: &MotionParams, line: u32) -> 
     let block = Block {
         line,
         kind,
-        end: m.to.machine,
         offset: m.to.machine - m.to.work,
         feed,
         spindle: m.spindle,
@@ -256,7 +243,7 @@ pub fn line(start: &Pos, m: &Move, rapid: bool, p: &MotionParams, line: u32) -> 
         plan: plan(len_q8(len)?, accel, cap, nominal(feed, &m.spindle, p, cap)),
         exec: Exec::default(),
     };
-    Ok(Prepared { block, dir_in: dir, dir_out: dir })
+    Ok(Prepared { block, dir_in: dir, dir_out: dir, end: m.to.machine })
 }
 
 /// Turns × 2^32 of an angle in radians.
@@ -323,7 +310,6 @@ pub fn arc(start: &Pos, a: &ArcMove, p: &MotionParams, line: u32) -> Result<Prep
     let block = Block {
         line,
         kind: BlockKind::Arc(geom),
-        end: a.to.machine,
         offset: a.to.machine - a.to.work,
         feed,
         spindle: a.spindle,
@@ -332,7 +318,7 @@ pub fn arc(start: &Pos, a: &ArcMove, p: &MotionParams, line: u32) -> Result<Prep
         exec: Exec::default(),
     };
     let ccw = sweep > 0.0;
-    Ok(Prepared { block, dir_in: tangent(axes, th0, ccw), dir_out: tangent(axes, th1, ccw) })
+    Ok(Prepared { block, dir_in: tangent(axes, th0, ccw), dir_out: tangent(axes, th1, ccw), end: a.to.machine })
 }
 
 /// The axis that travels furthest (the thread's or tap's long axis).
@@ -396,7 +382,6 @@ pub fn thread(
     let block = Block {
         line,
         kind: BlockKind::Thread(spec),
-        end: t.to.machine,
         offset: t.to.machine - t.to.work,
         feed: FeedSpec::PerRev(t.lead),
         spindle: t.spindle,
@@ -404,7 +389,7 @@ pub fn thread(
         plan: plan(len_q8(len)?, accel, v.max(1.0), v),
         exec: Exec::default(),
     };
-    Ok(Prepared { block, dir_in: dir, dir_out: dir })
+    Ok(Prepared { block, dir_in: dir, dir_out: dir, end: t.to.machine })
 }
 
 /// A rigid-tapping move from `start`: lead × rpm and lead × the spindle's
@@ -430,7 +415,6 @@ pub fn tap(start: &Pos, t: &TapMove, p: &MotionParams, line: u32) -> Result<Prep
     let block = Block {
         line,
         kind: BlockKind::Tap(TapSpec { lead: t.lead, dir: t.dir, long }),
-        end: t.to.machine,
         offset: t.to.machine - t.to.work,
         feed: FeedSpec::PerRev(t.lead),
         spindle: t.spindle,
@@ -438,5 +422,5 @@ pub fn tap(start: &Pos, t: &TapMove, p: &MotionParams, line: u32) -> Result<Prep
         plan: plan(len_q8(len)?, accel, v.max(1.0), v),
         exec: Exec::default(),
     };
-    Ok(Prepared { block, dir_in: dir, dir_out: dir })
+    Ok(Prepared { block, dir_in: dir, dir_out: dir, end: t.to.machine })
 }

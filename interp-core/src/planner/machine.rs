@@ -55,7 +55,7 @@ impl AxisScale {
 
     /// `steps` as a length in Q8 nm (to 2^-24 nm per step), by one multiply.
     pub fn q8_nm(&self, steps: u64) -> u64 {
-        (u128::from(steps) * self.nm_q32 as u128 >> 24) as u64
+        ((u128::from(steps) * self.nm_q32 as u128) >> 24) as u64
     }
 
     /// A Q16 step position as nanometres, by one multiply.

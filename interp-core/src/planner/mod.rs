@@ -54,8 +54,10 @@ pub enum Command {
     },
 }
 
-/// One entry of the queue.
+/// One entry of the queue. Entries live inline in the fixed-capacity queue (no
+/// allocation), so a command takes a block's room; commands are few.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[allow(clippy::large_enum_variant)]
 pub enum Item {
     /// A motion block.
     Motion(Block),
@@ -227,7 +229,7 @@ impl<const N: usize> Planner<N> {
 
     fn push_motion(&mut self, prep: Prepared, p: &MotionParams) {
         let mut b = prep.block;
-        b.exec = block::Exec::new(&b, &self.tail.end, p);
+        b.exec = block::Exec::new(&b, &self.tail.end, &prep.end, p);
         let blends = matches!(b.kind, BlockKind::Line | BlockKind::Arc(_)) && b.feed != FeedSpec::Rapid;
         if self.tail.blend && blends {
             let v = lookahead::junction_speed(&self.tail.dir, &prep.dir_in, p)
@@ -237,7 +239,7 @@ impl<const N: usize> Planner<N> {
             b.plan.max_entry_sq = v * v;
         }
         self.tail = Tail {
-            end: b.end,
+            end: prep.end,
             dir: prep.dir_out,
             nominal: b.plan.nominal,
             blend: blends && !b.exact_stop,
