@@ -34,10 +34,74 @@ pub fn mul_q32(a: i64, b: i64) -> i64 {
     mul_shr(a, b, 32)
 }
 
-/// `2^62 / len` (at least 1 for `len`): with it, the progress `s / len` in Q32 is
-/// `s × inverse >> 30`, one multiply per period instead of a division.
+/// `2^62 / len` to within 2^-30 relative, for `len` in `[1, 2^61]`: with it the
+/// progress `s / len` in Q32 is `s × inverse >> 30`, one multiply per period. Taken
+/// from the top 32 bits of `len` by the multiply-only reciprocal (an error of 2^-30
+/// moves a million-step block by a thousandth of a step; its end point is exact).
 pub fn inverse62(len: u64) -> i64 {
-    (1i64 << 62) / (len.clamp(1, i64::MAX as u64) as i64)
+    let len = len.clamp(1, 1 << 61);
+    let z = len.leading_zeros();
+    let top = ((len << z) >> 32) as u32;
+    // 2^62 / len = (2^63 / top) · 2^(z − 33).
+    let x = recip_normalised(top);
+    (if z >= 33 { x << (z - 33) } else { x >> (33 - z) }) as i64
+}
+
+/// `√x` for finite `x ≥ 0` (0 for anything else) to within 2^-22 relative, by
+/// multiplications only: the reciprocal square root from the bit pattern, refined
+/// three times by Newton's method, times `x`. The planner's speeds and lengths need
+/// no more; libm's `sqrtf` is a bit-by-bit software loop on the Cortex-M4.
+pub fn sqrtf(x: f32) -> f32 {
+    if x.is_nan() || x <= 0.0 {
+        return 0.0;
+    }
+    if x.is_infinite() {
+        return x;
+    }
+    let mut y = f32::from_bits(0x5f37_5a86 - (x.to_bits() >> 1));
+    for _ in 0..3 {
+        y *= 1.5 - 0.5 * x * y * y;
+    }
+    x * y
+}
+
+/// A divisor with its reciprocal: `⌊n / d⌋` by one multiply and a correction.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Divisor {
+    d: u64,
+    /// `⌊2^64 / d⌋` (0 stands for 2^64 when `d` is 1).
+    m: u64,
+}
+
+impl Divisor {
+    /// `d` (at least 1) prepared for division.
+    pub const fn new(d: u64) -> Self {
+        let d = if d == 0 { 1 } else { d };
+        let m = if d == 1 { 0 } else { ((1u128 << 64) / d as u128) as u64 };
+        Divisor { d, m }
+    }
+
+    /// The divisor.
+    pub const fn get(&self) -> u64 {
+        self.d
+    }
+
+    /// `⌊n / d⌋` exactly, for any `n`.
+    pub fn div_floor(&self, n: i64) -> i64 {
+        if self.d == 1 {
+            return n;
+        }
+        let a = n.unsigned_abs();
+        let mut q = ((u128::from(a) * u128::from(self.m)) >> 64) as u64;
+        // The estimate is low by at most one or two.
+        let mut r = a - q * self.d;
+        while r >= self.d {
+            q += 1;
+            r -= self.d;
+        }
+        if n >= 0 { q as i64 } else { -(q as i64) - i64::from(r != 0) }
+    }
 }
 
 /// The nearest whole step of a Q16 position (halves round up).
@@ -86,6 +150,32 @@ mod tests {
         assert_eq!(round_steps(STEP_ONE / 2 - 1), 0);
         assert_eq!(round_steps(-STEP_ONE / 2), 0);
         assert_eq!(round_steps(-STEP_ONE / 2 - 1), -1);
+    }
+
+    #[test]
+    fn exact_division_by_reciprocal() {
+        for d in [1u64, 2, 3, 7, 3_125, 1_000_000, 999_999_937, 1 << 40] {
+            let div = Divisor::new(d);
+            for n in [0i64, 1, -1, 5, -5, 3_124, 3_125, -3_125, -3_126, 123_456_789_012, -987_654_321_098, i64::MAX / 4]
+            {
+                assert_eq!(div.div_floor(n), n.div_euclid(d as i64), "{n} / {d}");
+            }
+        }
+    }
+
+    #[test]
+    fn multiply_only_square_root_and_inverse() {
+        for x in [1e-6f32, 0.5, 1.0, 2.0, 3.0, 1e4, 1.234e10, 3.0e30] {
+            let r = sqrtf(x);
+            assert!((r / x.sqrt() - 1.0).abs() < 3e-7, "{x}: {r}");
+        }
+        assert_eq!(sqrtf(0.0), 0.0);
+        assert_eq!(sqrtf(-1.0), 0.0);
+        for len in [1u64, 2, 3, 255, 1 << 20, 123_456_789, 1 << 40, (1 << 50) + 12_345] {
+            let exact = (1u128 << 62) / u128::from(len);
+            let got = inverse62(len) as u128;
+            assert!(exact.abs_diff(got) <= (exact >> 29) + 1, "{len}: {got} vs {exact}");
+        }
     }
 
     #[test]

@@ -6,7 +6,7 @@ use super::machine::MotionParams;
 use crate::alarm::AlarmKind;
 use crate::axis::{AXIS_COUNT, Axis, Pos};
 use crate::canon::{ArcMove, FeedMode, Move, SpindleDir, SpindleSpeed, TapMove, ThreadMove, ThreadSync};
-use crate::fixed::{PATH_FRAC, inverse62};
+use crate::fixed::{PATH_FRAC, inverse62, sqrtf};
 
 /// Unit direction of a path, per axis.
 pub type Dir = [f32; AXIS_COUNT];
@@ -144,7 +144,7 @@ impl Exec {
         let end_steps = core::array::from_fn(|i| if present(i) { p.scale[i].steps(end.0[i]) } else { 0 });
         let rate_q8 = match b.feed {
             FeedSpec::Rapid => 0,
-            FeedSpec::PerMin(f) => (f as f64 * f64::from(p.tick_ns) * 256.0 / 60e9) as i64,
+            FeedSpec::PerMin(f) => p.rate_q8(f),
             FeedSpec::PerRev(f) => f.saturating_mul(1 << PATH_FRAC),
         };
         let axis_inv = core::array::from_fn(|i| {
@@ -168,12 +168,13 @@ pub struct Prepared {
     pub end: Pos,
 }
 
-/// Per-axis displacement and length of a straight move, and its unit direction.
-fn straight(start: &Pos, end: &Pos) -> (f64, Dir) {
-    let d: [f64; AXIS_COUNT] = core::array::from_fn(|i| (end.0[i] - start.0[i]) as f64);
-    let len = libm::sqrt(d.iter().map(|v| v * v).sum());
-    let dir = if len > 0.0 { core::array::from_fn(|i| (d[i] / len) as f32) } else { [0.0; AXIS_COUNT] };
-    (len, dir)
+/// Length (nm) and unit direction of a straight move. f32 on the FPU: the length
+/// only times the move (to 1e-7), the end point comes from the exact nanometres.
+fn straight(start: &Pos, end: &Pos) -> (f32, Dir) {
+    let d: [f32; AXIS_COUNT] = core::array::from_fn(|i| end.0[i].wrapping_sub(start.0[i]) as f32);
+    let len = sqrtf(d.iter().map(|v| v * v).sum());
+    let inv = if len > 0.0 { 1.0 / len } else { 0.0 };
+    (len, d.map(|v| v * inv))
 }
 
 /// The fastest path speed and acceleration the axes allow along `dir`.
@@ -189,9 +190,9 @@ fn axis_caps(dir: &Dir, p: &MotionParams, rapid: bool) -> (f32, f32) {
     (cap, accel)
 }
 
-fn len_q8(len: f64) -> Result<u64, AlarmKind> {
-    let q = libm::round(len * f64::from(1u32 << PATH_FRAC));
-    if !(q >= 1.0 && q < (1u64 << 50) as f64) {
+fn len_q8(len: f32) -> Result<u64, AlarmKind> {
+    let q = len * (1u32 << PATH_FRAC) as f32 + 0.5;
+    if !(q >= 1.0 && q < (1u64 << 50) as f32) {
         return Err(AlarmKind::Overflow);
     }
     Ok(q as u64)
@@ -215,8 +216,8 @@ fn plan(len: u64, accel: f32, cap: f32, nominal: f32) -> Plan {
 fn nominal(feed: FeedSpec, spindle: &SpindleSpeed, p: &MotionParams, cap: f32) -> f32 {
     match feed {
         FeedSpec::Rapid => cap,
-        FeedSpec::PerMin(f) => p.per_tick(f as f64),
-        FeedSpec::PerRev(f) => p.per_tick(f as f64 * f64::from(spindle.rpm.unwrap_or(0))),
+        FeedSpec::PerMin(f) => p.per_tick(f as f32),
+        FeedSpec::PerRev(f) => p.per_tick(f as f32 * spindle.rpm.unwrap_or(0) as f32),
     }
 }
 
@@ -286,7 +287,7 @@ pub fn arc(start: &Pos, a: &ArcMove, p: &MotionParams, line: u32) -> Result<Prep
             sweep = tau;
         }
     }
-    let len = sweep.abs() * (r0 + r1) / 2.0;
+    let len = (sweep.abs() * (r0 + r1) / 2.0) as f32;
     let feed = match a.feed.mode {
         FeedMode::PerMin => FeedSpec::PerMin(a.feed.value),
         FeedMode::PerRev => FeedSpec::PerRev(a.feed.value),
@@ -296,8 +297,8 @@ pub fn arc(start: &Pos, a: &ArcMove, p: &MotionParams, line: u32) -> Result<Prep
     // one period may stray from the arc by at most the chord tolerance.
     let accel = la.accel.min(lb.accel) / 2.0;
     let r = r0.min(r1) as f32;
-    let centripetal = libm::sqrtf(accel * r);
-    let chord = libm::sqrtf(8.0 * r * p.chord_tolerance);
+    let centripetal = sqrtf(accel * r);
+    let chord = sqrtf(8.0 * r * p.chord_tolerance);
     let cap = la.feed.min(lb.feed).min(p.path_feed).min(centripetal).min(chord);
     let geom = ArcGeom {
         axes,
@@ -373,10 +374,10 @@ pub fn thread(
     let along = dir[long.index()].abs().max(1e-9);
     let rpm = t.spindle.rpm.unwrap_or(0) as f32 * p.thread_margin;
     // Path speed whose long-axis part is lead × rpm.
-    let v = p.per_tick(f64::from(rpm) * t.lead as f64) / along;
+    let v = p.per_tick(rpm * t.lead as f32) / along;
     check_speed(&dir, v, p).map_err(|a| AlarmKind::ThreadTooFast { letter: a.letter() })?;
     let (_, accel) = axis_caps(&dir, p, false);
-    if t.sync == ThreadSync::Index && v * v / (2.0 * accel) > len as f32 {
+    if t.sync == ThreadSync::Index && v * v / (2.0 * accel) > len {
         return Err(AlarmKind::ThreadRampTooLong);
     }
     let block = Block {
@@ -403,7 +404,7 @@ pub fn tap(start: &Pos, t: &TapMove, p: &MotionParams, line: u32) -> Result<Prep
     let along = dir[long.index()].abs().max(1e-9);
     let too_fast = |a: Axis| AlarmKind::TapTooFast { letter: a.letter() };
     let rpm = t.spindle.rpm.unwrap_or(0) as f32;
-    let v = p.per_tick(f64::from(rpm) * t.lead as f64) / along;
+    let v = p.per_tick(rpm * t.lead as f32) / along;
     check_speed(&dir, v, p).map_err(too_fast)?;
     // The axis follows the spindle's own acceleration: lead × rev/period².
     let period_s = p.tick_ns as f32 / 1e9;

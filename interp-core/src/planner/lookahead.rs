@@ -16,7 +16,7 @@
 
 use super::block::{Block, Dir, Plan};
 use super::machine::MotionParams;
-use crate::fixed::PATH_FRAC;
+use crate::fixed::{PATH_FRAC, sqrtf};
 
 /// Highest speed (nm/period) through the junction from direction `a` into `b`.
 pub fn junction_speed(a: &Dir, b: &Dir, p: &MotionParams) -> f32 {
@@ -26,10 +26,10 @@ pub fn junction_speed(a: &Dir, b: &Dir, p: &MotionParams) -> f32 {
     }
     let mut v = f32::MAX;
     if cos_phi < 0.999_999 {
-        let cos_half = libm::sqrtf((1.0 + cos_phi) / 2.0);
-        let sin_half = libm::sqrtf((1.0 - cos_phi) / 2.0);
+        let cos_half = sqrtf((1.0 + cos_phi) / 2.0);
+        let sin_half = sqrtf((1.0 - cos_phi) / 2.0);
         let jd = p.accel_min * p.junction_deviation * cos_half / (1.0 - cos_half);
-        v = libm::sqrtf(jd).min(2.0 * p.chord_tolerance / sin_half);
+        v = sqrtf(jd).min(2.0 * p.chord_tolerance / sin_half);
     }
     for ((x, y), lim) in a.iter().zip(b).zip(&p.limits) {
         let jump = (y - x).abs();
@@ -46,11 +46,8 @@ pub fn junction_speed(a: &Dir, b: &Dir, p: &MotionParams) -> f32 {
 /// Returns whether the entry changed.
 fn set_entry(plan: &mut Plan, exit_sq: f32) -> bool {
     let reach = exit_sq + plan.two_a_len;
-    let entry = if reach >= plan.max_entry_sq {
-        libm::sqrtf(plan.max_entry_sq)
-    } else {
-        (libm::sqrtf(reach) - plan.accel).max(0.0)
-    };
+    let entry =
+        if reach >= plan.max_entry_sq { sqrtf(plan.max_entry_sq) } else { (sqrtf(reach) - plan.accel).max(0.0) };
     let entry_sq = entry * entry;
     let changed = entry_sq != plan.entry_sq;
     plan.entry_sq = entry_sq;

@@ -5,7 +5,7 @@
 use crate::alarm::AlarmKind;
 use crate::axis::AXIS_COUNT;
 use crate::config::{Drive, MachineConfig, Param};
-use crate::fixed::{STEP_FRAC, mul_shr};
+use crate::fixed::{Divisor, STEP_FRAC, mul_shr};
 use crate::stepgen::DriverTiming;
 
 /// Exact conversion between nanometres (µdeg for C) and motor steps of one axis.
@@ -18,6 +18,8 @@ pub struct AxisScale {
     spn_q48: i64,
     /// Nanometres per step in Q32.
     nm_q32: i64,
+    /// `per_nm` prepared for division by multiplication.
+    div: Divisor,
     /// Nanometres per step (display and measurement only).
     nm_per_step: f64,
 }
@@ -35,12 +37,19 @@ impl AxisScale {
             i64::try_from(spn).map_err(|_| AlarmKind::MotionConfigInvalid { what: "more than 2^15 steps per nm" })?;
         let nm_q32 = i64::try_from((i128::from(per_nm) << 32) / i128::from(steps))
             .map_err(|_| AlarmKind::MotionConfigInvalid { what: "more than 2^31 nm per step" })?;
-        Ok(AxisScale { steps, per_nm, spn_q48, nm_q32, nm_per_step: per_nm as f64 / steps as f64 })
+        Ok(AxisScale {
+            steps,
+            per_nm,
+            spn_q48,
+            nm_q32,
+            div: Divisor::new(per_nm as u64),
+            nm_per_step: per_nm as f64 / steps as f64,
+        })
     }
 
     /// The whole step nearest to position `nm` (halves away from −∞): exact, no drift.
     pub fn steps(&self, nm: i64) -> i64 {
-        (nm.saturating_mul(self.steps) + self.per_nm / 2).div_euclid(self.per_nm)
+        self.div.div_floor(nm.saturating_mul(self.steps).saturating_add(self.per_nm / 2))
     }
 
     /// The nanometre nearest to whole step `s`.
@@ -127,6 +136,10 @@ pub struct MotionParams {
     pub spindle_accel_rpm_s: u32,
     /// Speed ripple margin of the thread checks (1.10 for 10 %).
     pub thread_margin: f32,
+    /// nm/min → nm per period.
+    per_min: f32,
+    /// nm/min → Q8 nm per period, in Q32.
+    rate_q32: i64,
 }
 
 impl MotionParams {
@@ -179,12 +192,19 @@ impl MotionParams {
             cpr: cfg.spindle.encoder_cpr,
             spindle_accel_rpm_s: cfg.spindle.accel_rpm_per_s.max(1),
             thread_margin: 1.0 + f32::from(m.thread_margin_pct) / 100.0,
+            per_min: per_min as f32,
+            rate_q32: libm::round(per_min * 256.0 * 4_294_967_296.0) as i64,
         })
     }
 
     /// A speed in nm/min as nm per interpolation period.
-    pub fn per_tick(&self, nm_per_min: f64) -> f32 {
-        (nm_per_min * f64::from(self.tick_ns) / 60e9) as f32
+    pub fn per_tick(&self, nm_per_min: f32) -> f32 {
+        nm_per_min * self.per_min
+    }
+
+    /// A feed in nm/min as Q8 nm per interpolation period (exact to 2^-32).
+    pub fn rate_q8(&self, nm_per_min: i64) -> i64 {
+        mul_shr(nm_per_min, self.rate_q32, 32)
     }
 
     /// Interpolation periods per second.

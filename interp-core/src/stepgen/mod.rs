@@ -81,6 +81,11 @@ pub struct AxisStepGen {
     t0: u64,
     /// ns per Q16 position unit of the current ramp, Q32 (0: a jump).
     rate: u64,
+    /// Ideal time of the next step after `t0`, ns in Q32, and the time between two
+    /// steps of the ramp; `fresh` until the first step of a command computes it.
+    next_q32: u64,
+    interval_q32: u64,
+    fresh: bool,
     /// No step edge before this (step rate, direction set-up).
     earliest: u64,
     /// No direction change before this (pulse hold).
@@ -102,6 +107,9 @@ impl AxisStepGen {
             target: pos,
             t0: 0,
             rate: 0,
+            next_q32: 0,
+            interval_q32: 0,
+            fresh: true,
             earliest: 0,
             dir_free: 0,
             delayed: 0,
@@ -142,6 +150,8 @@ impl AxisStepGen {
         self.target = round_steps(p1);
         let dp = p1.abs_diff(self.p0);
         self.rate = if dp == 0 { 0 } else { scaled_reciprocal(period_ns, dp.min(u64::from(u32::MAX)) as u32) };
+        self.interval_q32 = self.rate.saturating_mul(STEP_ONE as u64);
+        self.fresh = true;
     }
 
     /// Commands position `p` (Q16 steps) from time `t` on (the gearbox's output):
@@ -152,6 +162,8 @@ impl AxisStepGen {
         self.t0 = t;
         self.target = round_steps(p);
         self.rate = 0;
+        self.interval_q32 = 0;
+        self.fresh = true;
     }
 
     /// The next pin event of the current command if it falls before `until`, and
@@ -168,10 +180,15 @@ impl AxisStepGen {
                 return None;
             }
             self.positive = up;
+            self.fresh = true;
             self.earliest = self.earliest.max(t + u64::from(self.timing.dir_setup_ns));
             return Some(StepEvent { t, kind: EdgeKind::Dir(up) });
         }
-        let ideal = self.crossing(up);
+        if self.fresh {
+            self.next_q32 = self.crossing(up);
+            self.fresh = false;
+        }
+        let ideal = self.t0 + (self.next_q32 >> 32);
         let t = ideal.max(self.earliest);
         if t >= until {
             return None;
@@ -179,21 +196,24 @@ impl AxisStepGen {
         if t > ideal {
             self.delayed += 1;
         }
+        // The next half-step boundary is one step further along the ramp.
+        self.next_q32 = self.next_q32.saturating_add(self.interval_q32);
         self.pos += if up { 1 } else { -1 };
         self.dir_free = t + u64::from(self.timing.pulse_ns);
         self.earliest = t + u64::from(self.timing.min_period_ns);
         Some(StepEvent { t, kind: EdgeKind::Step(up) })
     }
 
-    /// When the command crosses the half-step boundary towards the next step.
+    /// When, after `t0` (ns, Q32), the command crosses the half-step boundary
+    /// towards the next step.
     fn crossing(&self, up: bool) -> u64 {
         let half = STEP_ONE >> 1;
         let boundary = (self.pos << STEP_FRAC) + if up { half } else { -half };
         let ahead = if up { boundary - self.p0 } else { self.p0 - boundary };
         if ahead <= 0 || self.rate == 0 {
-            return self.t0;
+            return 0;
         }
-        self.t0 + ((ahead as u64).saturating_mul(self.rate) >> 32)
+        (ahead as u64).saturating_mul(self.rate)
     }
 }
 

@@ -102,6 +102,12 @@ impl Follower {
     }
 }
 
+/// Long-axis steps the deceleration of a ramp of `ramp` counts may need, doubled,
+/// plus a margin (computed once: no division per count).
+fn ramp_zone(ratio: Ratio, ramp: i64) -> i64 {
+    ratio.n.saturating_mul(ramp) / ratio.d.max(1) + 4
+}
+
 /// Where a thread pass is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -145,6 +151,9 @@ pub struct Gear {
     ramp: i64,
     /// Accumulator unit: one long-axis step is `unit` (2RD, or 2D for taps).
     unit: i64,
+    /// Long-axis steps from the end within which the deceleration may start (twice
+    /// the ramp's N·R/2D, plus a margin): below it the exact test runs.
+    ramp_zone: i64,
     /// Remainder of the long axis's exact position, `[0, unit)` (rounded: starts at half).
     acc: i64,
     /// Long-axis steps from the leg's start, and the leg's length and direction.
@@ -185,6 +194,7 @@ impl Gear {
             ratio,
             ramp,
             unit,
+            ramp_zone: ramp_zone(ratio, ramp),
             acc: unit / 2,
             p: 0,
             delta: 0,
@@ -435,7 +445,7 @@ impl Gear {
             Some(_) => return None,
         };
         // Far from the end the products below could overflow; the ramp is short.
-        if left > n * r / self.ratio.d.max(1) + 4 {
+        if left > self.ramp_zone {
             return None;
         }
         let now = self.acc - self.unit / 2; // position within the step, in units
@@ -476,6 +486,7 @@ impl Gear {
                 self.unit = 2 * self.ramp * ratio.d;
                 self.acc = self.unit / 2;
                 self.ratio = ratio;
+                self.ramp_zone = ramp_zone(ratio, self.ramp);
             }
             self.set_leg(leg);
         }
