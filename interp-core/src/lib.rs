@@ -23,6 +23,7 @@ pub mod env;
 pub mod exec;
 pub mod geom;
 pub mod interpreter;
+pub mod macros;
 pub mod parse;
 pub mod program;
 pub mod units;

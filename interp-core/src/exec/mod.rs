@@ -13,7 +13,7 @@ pub use state::{FeedMemory, Frames, Modal, SpindleState, State, ToolState};
 use crate::alarm::AlarmKind;
 use crate::axis::Pos;
 use crate::canon::{Action, Canon, SpindleDir};
-use crate::check::Command;
+use crate::check::{Command, FlowWord};
 use crate::codes::{GCode, MFunction};
 use crate::config::{MTiming, MachineConfig, ToolOffset};
 use crate::env::Environment;
@@ -51,6 +51,23 @@ pub enum Flow {
     Stop,
     /// M02/M30.
     End,
+    /// M98: call subprogram `program` `repeats` times, after the block's other codes.
+    Call {
+        /// O number.
+        program: u32,
+        /// Repetitions.
+        repeats: u16,
+    },
+    /// M99: return to the caller (at sequence `seq`), or restart a main program.
+    Return {
+        /// Sequence number in the caller.
+        seq: Option<u32>,
+    },
+    /// M91/M92 whose input condition held: go to sequence `seq`.
+    Jump {
+        /// Sequence number in this program.
+        seq: u32,
+    },
 }
 
 /// Executes `cmd` on `st`, staging the actions in `out`.
@@ -79,7 +96,7 @@ pub fn execute(
     }
     aux(cmd, MTiming::After, out)?;
     spindle::after_motion(cmd, st, out)?;
-    program_flow(cmd, env, out)
+    program_flow(cmd, cfg, env, out)
 }
 
 /// Modal codes that govern how the rest of the block is read.
@@ -146,8 +163,14 @@ fn aux(cmd: &Command, timing: MTiming, out: &mut Staged) -> Result<(), AlarmKind
     Ok(())
 }
 
-/// M00, M01, M02, M30 after the block's motion.
-fn program_flow(cmd: &Command, env: &dyn Environment, out: &mut Staged) -> Result<Flow, AlarmKind> {
+/// M00, M01, M02, M30, M98, M99, M91, M92 after the block's other codes (3.1.3–3.1.7:
+/// "当前程序段的其它代码执行完成后").
+fn program_flow(
+    cmd: &Command,
+    cfg: &MachineConfig,
+    env: &dyn Environment,
+    out: &mut Staged,
+) -> Result<Flow, AlarmKind> {
     for &(_, f) in &cmd.m {
         match f {
             MFunction::Stop => {
@@ -165,7 +188,16 @@ fn program_flow(cmd: &Command, env: &dyn Environment, out: &mut Staged) -> Resul
             _ => {}
         }
     }
-    Ok(Flow::Continue)
+    Ok(match cmd.flow {
+        None => Flow::Continue,
+        Some(FlowWord::Call { program, repeats }) => Flow::Call { program, repeats },
+        Some(FlowWord::Return { seq }) => Flow::Return { seq },
+        Some(FlowWord::Jump { seq, high }) => {
+            let input = cfg.jump_input;
+            let level = env.input(input).ok_or(AlarmKind::InputNotAvailable { input })?;
+            if level == high { Flow::Jump { seq } } else { Flow::Continue }
+        }
+    })
 }
 
 /// Direction a spindle M code commands, if it is one.

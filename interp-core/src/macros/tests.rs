@@ -1,0 +1,1 @@
+//! Expression and statement tests.
