@@ -112,7 +112,7 @@ fn m99_in_a_main_program_repeats_it_ignoring_p() {
 #[test]
 fn m99_must_be_alone() {
     for block in ["G00 X1 M99", "M99 M08", "G00 M99", "M99 X1"] {
-        let r = run_lib(&format!("M98 P12\nM30\n"), &[&format!("O0012\n{block}\n")]);
+        let r = run_lib("M98 P12\nM30\n", &[&format!("O0012\n{block}\n")]);
         assert_eq!(r.alarms[0].code(), 4032, "{block}");
     }
     let r = clean("M98 P12\nM30\n", &["O0012\nN10 M99\n"]);
