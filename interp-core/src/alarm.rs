@@ -601,6 +601,100 @@ mod tests {
         }
     }
 
+    /// One of every kind (a new variant must be added here and to CATALOG).
+    const EVERY_KIND: &[AlarmKind] = {
+        use AlarmKind::*;
+        &[
+            TooManyDigits { letter: b'X' },
+            AddressNotFound { found: b'1' },
+            NoDataAfterAddress { letter: b'X' },
+            IllegalMinusSign { letter: b'M' },
+            IllegalDecimalPoint { letter: b'N' },
+            ImproperAddress { letter: b'D' },
+            AxisNotConfigured { letter: b'Y' },
+            ImproperGCode { code: GNum(910) },
+            FeedZero,
+            ArcRadiusTolerance { excess_nm: 1 },
+            ArcAxisOutsidePlane { letter: b'Y' },
+            ArcCenterMissing,
+            ArcRadiusZero,
+            IllegalOffsetNumber { number: 99 },
+            IllegalToolNumber { number: 99 },
+            IllegalReferenceNumber,
+            ProgramNotFound { program: 12 },
+            SubprogramNumberMissing,
+            CallNestingTooDeep,
+            SequenceNotFound { seq: 10 },
+            MacroOverflow,
+            DivideByZero,
+            MacroFormat { what: "x" },
+            VariableNumberOutOfRange { number: 1000 },
+            WriteProtectedVariable { number: 0 },
+            TooManyBrackets,
+            ArgumentOutOfRange { function: "SQRT" },
+            ControlInMdi,
+            MissingEnd { label: 1 },
+            EndWithoutDo { label: 1 },
+            LoopsCrossed { label: 1 },
+            IllegalLoopNumber { label: 4 },
+            MacroAndNcInOneBlock,
+            SequenceOutOfRange,
+            ReferenceNotEstablished { letter: b'X' },
+            OvertravelPositive { letter: b'X' },
+            OvertravelNegative { letter: b'X' },
+            EndOfRecord,
+            UnitsNotAlone,
+            UnitsNotAtStart,
+            DuplicateGroup { first: GNum(0), second: GNum(10) },
+            DuplicateAddress { letter: b'X' },
+            WordNotAllowed { letter: b'P', context: "G00" },
+            MissingWord { letter: b'X', context: "G28" },
+            NotSupportedYet { what: "x" },
+            UnknownMCode { m: 77 },
+            ConflictingMCodes { first: 3, second: 4 },
+            TooManyMCodes,
+            ValueOutOfRange { letter: b'S' },
+            CoordinateSettingDisabled,
+            FeedPerRevSpindleStopped,
+            CommentNotClosed,
+            MachineCoordinatesIncremental,
+            CodeMustBeAlone { code: GNum(40) },
+            Overflow,
+            MisplacedBlockSkip,
+            IllegalCharacter { found: b'?' },
+            AxisTwice { absolute: b'X', incremental: b'U' },
+            SelfCall { program: 12 },
+            FlowInMdi { m: 98 },
+            M99NotAlone,
+            InputNotAvailable { input: 40 },
+            NoseCompReversed,
+            ToolChangeInNoseComp,
+            NoseCompGouge,
+            NoseCompCornerAngle,
+        ]
+    };
+
+    #[test]
+    fn every_kind_is_in_the_catalog() {
+        for k in EVERY_KIND {
+            assert!(CATALOG.iter().any(|e| e.code == k.code()), "{k:?} ({}) missing from CATALOG", k.code());
+        }
+        for e in CATALOG {
+            assert!(EVERY_KIND.iter().any(|k| k.code() == e.code), "CATALOG row {} has no kind", e.code);
+        }
+    }
+
+    #[test]
+    fn alarms_in_subprograms_name_the_program() {
+        use core::fmt::Write;
+        let mut s = heapless::String::<96>::new();
+        write!(s, "{}", Alarm::in_program(12, 3, AlarmKind::SequenceNotFound { seq: 40 })).unwrap();
+        assert_eq!(s.as_str(), "O0012 line 3: alarm 0078: sequence number N40 not found");
+        s.clear();
+        write!(s, "{}", Alarm::new(3, AlarmKind::TooManyBrackets)).unwrap();
+        assert_eq!(s.as_str(), "line 3: alarm 0118: brackets nested deeper than 5 levels");
+    }
+
     #[test]
     fn gnum_formats_like_the_manual() {
         use core::fmt::Write;
