@@ -74,53 +74,60 @@ impl fmt::Display for LoadError {
     }
 }
 
-/// Programs in memory: `TEXT` bytes of program text, up to `PROGRAMS` programs and
-/// `SEQUENCES` indexed sequence numbers. Size: `TEXT + 28·PROGRAMS + 12·SEQUENCES`
-/// bytes plus three lengths.
+/// The index of the programs in a text space: where each program begins and ends,
+/// and its sequence numbers sorted for binary search. Up to `PROGRAMS` programs and
+/// `SEQUENCES` sequence numbers; `28·PROGRAMS + 12·SEQUENCES` bytes.
+///
+/// The text itself lives elsewhere — in a [`ProgramMemory`] (RAM), or in a slice
+/// of memory-mapped flash or a host buffer ([`ProgramArea`]).
 #[derive(Clone, Debug)]
-pub struct ProgramMemory<const TEXT: usize, const PROGRAMS: usize, const SEQUENCES: usize> {
-    text: heapless::Vec<u8, TEXT>,
+pub struct ProgramIndex<const PROGRAMS: usize, const SEQUENCES: usize> {
     /// Sorted by O number.
     programs: heapless::Vec<Stored, PROGRAMS>,
     sequences: heapless::Vec<SeqEntry, SEQUENCES>,
 }
 
-impl<const T: usize, const P: usize, const S: usize> Default for ProgramMemory<T, P, S> {
+impl<const P: usize, const S: usize> Default for ProgramIndex<P, S> {
     fn default() -> Self {
         Self::new()
     }
 }
 
-impl<const T: usize, const P: usize, const S: usize> ProgramMemory<T, P, S> {
-    /// Empty program memory.
+impl<const P: usize, const S: usize> ProgramIndex<P, S> {
+    /// An empty index.
     pub const fn new() -> Self {
-        ProgramMemory { text: heapless::Vec::new(), programs: heapless::Vec::new(), sequences: heapless::Vec::new() }
+        ProgramIndex { programs: heapless::Vec::new(), sequences: heapless::Vec::new() }
     }
 
-    /// Loads a text holding one or more programs, each starting at its `O` block and
-    /// ending before the next `O` block or `%`. Blocks before the first `O` (other
-    /// than blanks, comments and `%`) form program `unnamed` — a main program file
-    /// without an O number — or are an error if `unnamed` is `None`.
+    /// Indexes the file `space[file..end]`: one or more programs, each starting at
+    /// its `O` block and ending before the next `O` block or `%`. Blocks before
+    /// the first `O` (other than blanks, comments and `%`) form program `unnamed` —
+    /// a main program file without an O number — or are an error if `unnamed` is
+    /// `None`. Line numbers count from the start of the file.
     ///
-    /// Returns the number of the first program of the text. All or nothing: on an
-    /// error the memory is as before.
-    pub fn load(&mut self, text: &[u8], unnamed: Option<ProgramId>) -> Result<ProgramId, LoadError> {
-        let (t, p, s) = (self.text.len(), self.programs.len(), self.sequences.len());
-        let r = self.load_all(text, unnamed);
+    /// Returns the number of the file's first program. All or nothing: on an error
+    /// the index is as before.
+    pub fn add_file(
+        &mut self,
+        space: &[u8],
+        file: usize,
+        end: usize,
+        unnamed: Option<ProgramId>,
+    ) -> Result<ProgramId, LoadError> {
+        let (p, s) = (self.programs.len(), self.sequences.len());
+        let text = space.get(file..end).ok_or(LoadError::TextFull)?;
+        if u32::try_from(end).is_err() {
+            return Err(LoadError::TextFull);
+        }
+        let r = self.add_programs(text, file, unnamed);
         if r.is_err() {
-            self.text.truncate(t);
             self.programs.truncate(p);
             self.sequences.truncate(s);
         }
         r
     }
 
-    fn load_all(&mut self, text: &[u8], unnamed: Option<ProgramId>) -> Result<ProgramId, LoadError> {
-        let file = self.text.len();
-        if u32::try_from(file + text.len()).is_err() {
-            return Err(LoadError::TextFull);
-        }
-        self.text.extend_from_slice(text).map_err(|_| LoadError::TextFull)?;
+    fn add_programs(&mut self, text: &[u8], file: usize, unnamed: Option<ProgramId>) -> Result<ProgramId, LoadError> {
         let mut first = None;
         let mut cur = Cursor::start(0);
         // The program being collected: number and start cursor.
@@ -129,8 +136,9 @@ impl<const T: usize, const P: usize, const S: usize> ProgramMemory<T, P, S> {
             let at = cur;
             let Some(block) = next_block(text, &mut cur) else { break };
             let starts = starts_program(block.text);
-            if open.is_some() && (starts || block.percent) {
-                let (n, c) = open.take().unwrap_or((0, at));
+            if (starts || block.percent)
+                && let Some((n, c)) = open.take()
+            {
                 self.add(n, file, c, at.offset, text)?;
             }
             if starts {
@@ -139,8 +147,7 @@ impl<const T: usize, const P: usize, const S: usize> ProgramMemory<T, P, S> {
                 first.get_or_insert(n);
             } else if open.is_none() && !block.percent && !is_blank(block.text) {
                 if first.is_some() {
-                    // Text after a `%` that ended a program: a new unnamed part is
-                    // not a program of its own.
+                    // Text after a `%` that ended a program is no program of its own.
                     return Err(LoadError::NoProgramNumber { line: block.line });
                 }
                 let n = unnamed.ok_or(LoadError::NoProgramNumber { line: block.line })?;
@@ -154,8 +161,8 @@ impl<const T: usize, const P: usize, const S: usize> ProgramMemory<T, P, S> {
         first.ok_or(LoadError::NoProgramNumber { line: 1 })
     }
 
-    /// Registers program `n` spanning `start..end` of `text` (loaded at `file`) and
-    /// indexes its sequence numbers.
+    /// Registers program `n` spanning `start..end` of `text` (the file at `file`)
+    /// and indexes its sequence numbers.
     fn add(&mut self, n: ProgramId, file: usize, start: Cursor, end: usize, text: &[u8]) -> Result<(), LoadError> {
         let slot = match self.programs.binary_search_by_key(&n, |p| p.number) {
             Ok(_) => return Err(LoadError::Duplicate { program: n }),
@@ -185,42 +192,37 @@ impl<const T: usize, const P: usize, const S: usize> ProgramMemory<T, P, S> {
         self.programs.insert(slot, stored).map_err(|_| LoadError::TooManyPrograms)
     }
 
-    /// Removes every program.
+    /// Forgets every program.
     pub fn clear(&mut self) {
-        self.text.clear();
         self.programs.clear();
         self.sequences.clear();
     }
 
-    /// The O numbers stored, ascending.
+    /// The O numbers indexed, ascending.
     pub fn numbers(&self) -> impl Iterator<Item = ProgramId> + '_ {
         self.programs.iter().map(|p| p.number)
-    }
-
-    /// Bytes of text stored.
-    pub fn text_used(&self) -> usize {
-        self.text.len()
     }
 
     fn program(&self, id: ProgramId) -> Option<&Stored> {
         let i = self.programs.binary_search_by_key(&id, |p| p.number).ok()?;
         self.programs.get(i)
     }
-}
 
-impl<const T: usize, const P: usize, const S: usize> ProgramStore for ProgramMemory<T, P, S> {
-    fn text(&self, id: ProgramId) -> Option<&[u8]> {
+    /// The text of program `id` in `space`: from the start of its file to the end
+    /// of the program (cursors index into it).
+    pub fn text<'a>(&self, space: &'a [u8], id: ProgramId) -> Option<&'a [u8]> {
         let p = self.program(id)?;
-        self.text.get(p.file as usize..(p.file + p.end) as usize)
+        space.get(p.file as usize..(p.file + p.end) as usize)
     }
 
-    fn start(&self, id: ProgramId) -> Option<Cursor> {
+    /// Where program `id` begins.
+    pub fn start(&self, id: ProgramId) -> Option<Cursor> {
         let p = self.program(id)?;
         Some(Cursor { program: id, offset: p.start as usize, line: p.line })
     }
 
-    /// Binary search in the program's index: O(log n).
-    fn find_sequence(&self, n: u32, from: Cursor) -> Option<Cursor> {
+    /// [`ProgramStore::find_sequence`] by binary search: O(log n).
+    pub fn find_sequence(&self, n: u32, from: Cursor) -> Option<Cursor> {
         let p = self.program(from.program)?;
         let all = self.sequences.get(p.seq_first as usize..(p.seq_first + p.seq_count) as usize)?;
         let lo = all.partition_point(|e| e.n < n);
@@ -228,6 +230,110 @@ impl<const T: usize, const P: usize, const S: usize> ProgramStore for ProgramMem
         let same = all.get(lo..hi)?;
         let e = same.iter().find(|e| e.offset as usize >= from.offset).or(same.first())?;
         Some(Cursor { program: from.program, offset: e.offset as usize, line: e.line })
+    }
+}
+
+/// Programs in RAM: `TEXT` bytes of program text, up to `PROGRAMS` programs and
+/// `SEQUENCES` indexed sequence numbers. Size: `TEXT + 28·PROGRAMS + 12·SEQUENCES`
+/// bytes plus three lengths.
+#[derive(Clone, Debug)]
+pub struct ProgramMemory<const TEXT: usize, const PROGRAMS: usize, const SEQUENCES: usize> {
+    text: heapless::Vec<u8, TEXT>,
+    index: ProgramIndex<PROGRAMS, SEQUENCES>,
+}
+
+impl<const T: usize, const P: usize, const S: usize> Default for ProgramMemory<T, P, S> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<const T: usize, const P: usize, const S: usize> ProgramMemory<T, P, S> {
+    /// Empty program memory.
+    pub const fn new() -> Self {
+        ProgramMemory { text: heapless::Vec::new(), index: ProgramIndex::new() }
+    }
+
+    /// Copies in a text (a file) holding one or more programs and indexes them, as
+    /// [`ProgramIndex::add_file`] describes. All or nothing.
+    pub fn load(&mut self, text: &[u8], unnamed: Option<ProgramId>) -> Result<ProgramId, LoadError> {
+        let file = self.text.len();
+        self.text.extend_from_slice(text).map_err(|_| LoadError::TextFull)?;
+        let r = self.index.add_file(&self.text, file, self.text.len(), unnamed);
+        if r.is_err() {
+            self.text.truncate(file);
+        }
+        r
+    }
+
+    /// Removes every program.
+    pub fn clear(&mut self) {
+        self.text.clear();
+        self.index.clear();
+    }
+
+    /// The O numbers stored, ascending.
+    pub fn numbers(&self) -> impl Iterator<Item = ProgramId> + '_ {
+        self.index.numbers()
+    }
+
+    /// Bytes of text stored.
+    pub fn text_used(&self) -> usize {
+        self.text.len()
+    }
+}
+
+impl<const T: usize, const P: usize, const S: usize> ProgramStore for ProgramMemory<T, P, S> {
+    fn text(&self, id: ProgramId) -> Option<&[u8]> {
+        self.index.text(&self.text, id)
+    }
+
+    fn start(&self, id: ProgramId) -> Option<Cursor> {
+        self.index.start(id)
+    }
+
+    fn find_sequence(&self, n: u32, from: Cursor) -> Option<Cursor> {
+        self.index.find_sequence(n, from)
+    }
+}
+
+/// Programs in text that stays where it is — memory-mapped flash on the board, a
+/// buffer of files on the host — with an index in `28·PROGRAMS + 12·SEQUENCES`
+/// bytes: nothing is copied.
+#[derive(Clone, Debug)]
+pub struct ProgramArea<'a, const PROGRAMS: usize, const SEQUENCES: usize> {
+    space: &'a [u8],
+    index: ProgramIndex<PROGRAMS, SEQUENCES>,
+}
+
+impl<'a, const P: usize, const S: usize> ProgramArea<'a, P, S> {
+    /// An area over `space` with nothing indexed yet.
+    pub const fn new(space: &'a [u8]) -> Self {
+        ProgramArea { space, index: ProgramIndex::new() }
+    }
+
+    /// Indexes the file at `space[file..end]` ([`ProgramIndex::add_file`]).
+    pub fn add_file(&mut self, file: usize, end: usize, unnamed: Option<ProgramId>) -> Result<ProgramId, LoadError> {
+        self.index.add_file(self.space, file, end, unnamed)
+    }
+
+    /// The O numbers indexed, ascending.
+    pub fn numbers(&self) -> impl Iterator<Item = ProgramId> + '_ {
+        self.index.numbers()
+    }
+}
+
+impl<const P: usize, const S: usize> ProgramStore for ProgramArea<'_, P, S> {
+    fn text(&self, id: ProgramId) -> Option<&[u8]> {
+        self.index.text(self.space, id)
+    }
+
+    fn start(&self, id: ProgramId) -> Option<Cursor> {
+        self.index.start(id)
+    }
+
+    fn find_sequence(&self, n: u32, from: Cursor) -> Option<Cursor> {
+        self.index.find_sequence(n, from)
     }
 }
 
@@ -326,5 +432,20 @@ mod tests {
         assert_eq!(tiny.load(b"O1\nO2\n", None), Err(LoadError::TooManyPrograms));
         assert_eq!(tiny.load(b"O1\nG00 X100 Z200\n", None), Err(LoadError::TextFull));
         assert_eq!(tiny.text_used(), 0);
+    }
+
+    #[test]
+    fn an_area_indexes_files_in_place() {
+        // Two files side by side in one buffer (flash, or files read on the host).
+        let space = b"O0001\nN1 M98 P2\nM30\nO0002\nN1 M99\n";
+        let mut a = ProgramArea::<4, 8>::new(space);
+        assert_eq!(a.add_file(0, 20, None), Ok(1));
+        assert_eq!(a.add_file(20, space.len(), None), Ok(2));
+        assert_eq!(a.start(2), Some(Cursor { program: 2, offset: 0, line: 1 }), "lines of its own file");
+        assert_eq!(a.text(2), Some(&b"O0002\nN1 M99\n"[..]));
+        assert_eq!(a.find_sequence(1, a.start(2).unwrap()).map(|c| (c.offset, c.line)), Some((6, 2)));
+        assert_eq!(a.add_file(0, 20, None), Err(LoadError::Duplicate { program: 1 }));
+        assert_eq!(a.add_file(0, 99, None), Err(LoadError::TextFull));
+        assert_eq!(a.numbers().count(), 2);
     }
 }

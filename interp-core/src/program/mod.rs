@@ -2,13 +2,14 @@
 //!
 //! Programs live in memory as text (on the board, memory-mapped flash or the DNC
 //! buffer; on the host, files). A [`ProgramStore`] hands out program texts and
-//! finds sequence numbers in them; [`ProgramMemory`] is the store with a sequence
-//! index; a [`Cursor`] is a position in a program; [`next_block`] cuts out the next
-//! block.
+//! finds sequence numbers in them; [`ProgramIndex`] knows where programs and their
+//! sequence numbers are, over text in RAM ([`ProgramMemory`]) or left in place
+//! ([`ProgramArea`]: flash, host buffers); a [`Cursor`] is a position in a
+//! program; [`next_block`] cuts out the next block.
 
 mod memory;
 
-pub use memory::{LoadError, ProgramMemory};
+pub use memory::{LoadError, ProgramArea, ProgramIndex, ProgramMemory};
 
 use crate::alarm::AlarmKind;
 use crate::macros::{LoopMark, loop_mark};
