@@ -100,6 +100,29 @@ fn m99_p_returns_to_the_first_such_sequence_number_of_the_caller() {
 }
 
 #[test]
+fn m99_p_takes_effect_after_the_last_repetition() {
+    let main = "M98 P12 L2\nG00 X10 Z10\nN5 G00 X20 Z20\nM30\n";
+    let r = clean(main, &["O0012\nG00 U1\nM99 P5\n"]);
+    assert_eq!(path(&r), vec![(1.0, 0.0), (2.0, 0.0), (20.0, 20.0)]);
+}
+
+#[test]
+fn a_missing_main_program_is_an_alarm() {
+    let (store, _) = memory("M30\n", &[]);
+    let mut interp = Interpreter::new(MachineConfig::default());
+    interp.select_main(5);
+    let r = run_interp(interp, &*store, &Panel::default(), 10);
+    assert_eq!(r.alarms[0].kind, AlarmKind::ProgramNotFound { program: 5 });
+    assert_eq!(r.alarms.len(), 1, "then the run has ended");
+}
+
+#[test]
+fn running_off_the_end_of_a_subprogram_is_end_of_record() {
+    let r = run_lib("M98 P12\nM30\n", &["O0012\nG00 X1 Z1\n"]);
+    assert_eq!((r.alarms[0].program, r.alarms[0].code()), (12, 5010));
+}
+
+#[test]
 fn m99_in_a_main_program_repeats_it_ignoring_p() {
     let (store, id) = memory("G00 U2\nM99 P5\nN5 G00 X99\n", &[]);
     let mut interp = Interpreter::new(MachineConfig::default());
@@ -197,5 +220,9 @@ fn mdi_runs_one_block_and_refuses_calls_and_jumps() {
     assert_eq!(code(interp.mdi(b"GOTO 5", &panel, &mut sink)), 123);
     assert_eq!(code(interp.mdi(b"WHILE [1 EQ 1] DO1", &panel, &mut sink)), 123);
     assert_eq!(code(interp.mdi(b"G00 X1;G00 X2", &panel, &mut sink)), 4019);
+    assert_eq!(code(interp.mdi(b"G00 X1\nG00 X2\n", &panel, &mut sink)), 4019);
     assert_eq!(sink.0.len(), 1, "nothing else moved");
+    assert_eq!(interp.mdi(b"G00 X3 ;\n", &panel, &mut sink), Ok(Progress::Executed { line: 0 }));
+    assert_eq!(interp.mdi(b"(nothing)\n", &panel, &mut sink), Ok(Progress::Skipped { line: 0 }));
+    assert_eq!(host_tests::xz(&sink.0[1]), Some((3.0, 1.0)));
 }

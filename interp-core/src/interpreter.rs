@@ -321,7 +321,8 @@ impl Interpreter {
         }
     }
 
-    /// Executes one block typed in MDI (one block: no `;` or line break). Macro
+    /// Executes one block typed in MDI (one block: a `;` or line break may end it,
+    /// nothing may follow). Macro
     /// assignments work; GOTO/WHILE/DO/END raise alarm 0123, M98/M99/M91/M92 alarm
     /// 4031 (3.1.6 note 2). Alarms and actions carry line 0. The program's run
     /// (cursor, calls, M00 pause) is not touched.
@@ -336,7 +337,9 @@ impl Interpreter {
         let alarm = |kind| Alarm::new(0, kind);
         let mut cur = Cursor::start(0);
         let raw = next_block(text, &mut cur).map(|b| b.text).unwrap_or(&[]);
-        if let Some(&c) = text.get(raw.len()) {
+        // One end-of-block character may close the block; a second block may not follow.
+        let rest = text.get(raw.len() + 1..).unwrap_or(&[]);
+        if let Some(&c) = rest.iter().find(|c| !c.is_ascii_whitespace()) {
             return Err(alarm(AlarmKind::IllegalCharacter { found: c }));
         }
         let fmt = self.number_format();
