@@ -1,23 +1,61 @@
-//! The macro part-family programs in `examples/` run without alarms and cut what
-//! they say.
+//! Every program in `examples/` runs on the default machine without an alarm (with
+//! the subprograms of `examples/lib` in program memory), and the macro part-family
+//! programs cut what they say.
 
 use std::fs;
 use std::path::PathBuf;
 
-use host_tests::{Run, run_lib};
+use host_tests::{Run, kind_names, run_lib};
 use interp_core::canon::Action;
 
-/// A file of the repository's `examples/`.
+/// The repository's `examples/` directory.
+fn dir() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../examples")
+}
+
+/// A file of `examples/`.
 fn example(name: &str) -> String {
-    let p = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../examples").join(name);
+    let p = dir().join(name);
     fs::read_to_string(&p).unwrap_or_else(|e| panic!("{}: {e}", p.display()))
+}
+
+/// The texts of the `.nc` files in `examples/<sub>`.
+fn programs_in(sub: &str) -> Vec<(PathBuf, String)> {
+    let mut v: Vec<(PathBuf, String)> = fs::read_dir(dir().join(sub))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "nc"))
+        .map(|p| {
+            let text = fs::read_to_string(&p).unwrap();
+            (p, text)
+        })
+        .collect();
+    v.sort();
+    v
+}
+
+/// Runs `main` with every subprogram of `examples/lib`.
+fn with_library(main: &str) -> Run {
+    let lib: Vec<String> = programs_in("lib").into_iter().map(|(_, t)| t).collect();
+    let refs: Vec<&str> = lib.iter().map(String::as_str).collect();
+    run_lib(main, &refs)
+}
+
+#[test]
+fn example_programs_run_without_alarms() {
+    let mut count = 0;
+    for (path, text) in programs_in("") {
+        let r = with_library(&text);
+        assert!(r.alarms.is_empty(), "{}: {:?}", path.display(), r.alarms);
+        assert_eq!(kind_names(&r).last().map(String::as_str), Some("end true"), "{}", path.display());
+        count += 1;
+    }
+    assert!(count >= 7, "found {count} examples");
 }
 
 /// Runs an example with the subprograms of `examples/lib`.
 fn run_example(name: &str) -> Run {
-    let lib = [example("lib/O0201.nc")];
-    let refs: Vec<&str> = lib.iter().map(String::as_str).collect();
-    let r = run_lib(&example(name), &refs);
+    let r = with_library(&example(name));
     assert!(r.alarms.is_empty(), "{name}: {:?}", r.alarms);
     assert!(matches!(r.actions.last().map(|c| c.action), Some(Action::End { rewind: true })), "{name} ends with M30");
     r

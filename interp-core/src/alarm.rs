@@ -494,18 +494,22 @@ pub const CATALOG: &[CatalogEntry] = &[
     CatalogEntry {
         code: 3576,
         title: "nose compensation reversed",
-        when: "G41 to G42 or back directly while compensating (2.18.4)",
+        when: "G41 to G42 or back directly while compensating (2.18.4); reserved until G41/G42 are supported",
     },
-    CatalogEntry { code: 3577, title: "tool change in nose compensation", when: "T code in G41/G42 (2.18.4)" },
+    CatalogEntry {
+        code: 3577,
+        title: "tool change in nose compensation",
+        when: "T code in G41/G42 (2.18.4); reserved until G41/G42 are supported",
+    },
     CatalogEntry {
         code: 3605,
         title: "nose compensation gouge",
-        when: "interference check finds overcutting (2.18.4)",
+        when: "interference check finds overcutting (2.18.4); reserved until G41/G42 are supported",
     },
     CatalogEntry {
         code: 3607,
         title: "compensation corner angle",
-        when: "corner between two paths under 0.1 degrees (2.18.4)",
+        when: "corner between two paths under 0.1 degrees (2.18.4); reserved until G41/G42 are supported",
     },
     CatalogEntry {
         code: 4001,

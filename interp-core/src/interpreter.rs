@@ -15,18 +15,15 @@
 
 use crate::alarm::{Alarm, AlarmKind};
 use crate::axis::Pos;
-use crate::canon::{Canon, CanonSink};
+use crate::canon::CanonSink;
 use crate::check::check;
 use crate::config::{MachineConfig, Param};
 use crate::env::Environment;
-use crate::exec::{Flow, STAGE, Staged, State, execute};
+use crate::exec::{Flow, Outbox, Staged, State, execute};
 use crate::macros::{MacroStatement, Variables};
-use crate::parse::{Block, MacroBlock, Statement, read_statement, skip_level};
+use crate::parse::{Block, MacroBlock, Read, read_statement_into, skip_level};
 use crate::program::{Cursor, ProgramId, ProgramStore, find_loop_end, next_block};
 use crate::units::NumberFormat;
-
-/// Actions waiting for the sink.
-pub const OUTBOX: usize = STAGE;
 
 /// Subprogram nesting: the main program may call 12 levels deep (3.1.6).
 pub const MAX_CALL_DEPTH: usize = 12;
@@ -134,7 +131,10 @@ pub struct Interpreter {
     positioned: bool,
     /// The program a run starts with.
     main: ProgramId,
-    outbox: heapless::Deque<Canon, OUTBOX>,
+    /// Actions waiting for the sink; also where a block stages its actions.
+    outbox: Outbox,
+    /// The block being read, reused from block to block.
+    block: Block,
     phase: Phase,
     /// A block other than `%`/`O` has been executed in the current program level
     /// (a later `%` or `O` ends the record).
@@ -157,6 +157,7 @@ impl Interpreter {
             positioned: false,
             main: 0,
             outbox: heapless::Deque::new(),
+            block: Block::default(),
             phase: Phase::Running,
             started: false,
             vars: Variables::new(),
@@ -307,9 +308,10 @@ impl Interpreter {
                 return Ok(Progress::Skipped { line });
             }
             let fmt = self.number_format();
-            match read_statement(raw.text, line, &self.vars, &fmt).map_err(|k| alarm(line, k))? {
-                Statement::Nc(block) => return self.nc_block(&block, at, programs, env, sink),
-                Statement::Macro(m) => {
+            let read = read_statement_into(raw.text, line, &self.vars, &fmt, &mut self.block);
+            match read.map_err(|k| alarm(line, k))? {
+                Read::Nc => return self.nc_block(at, programs, env, sink),
+                Read::Macro(m) => {
                     self.started = true;
                     self.macro_statement(&m, at, programs).map_err(|k| alarm(line, k))?;
                 }
@@ -343,75 +345,72 @@ impl Interpreter {
             return Err(alarm(AlarmKind::IllegalCharacter { found: c }));
         }
         let fmt = self.number_format();
-        match read_statement(raw, 0, &self.vars, &fmt).map_err(alarm)? {
-            Statement::Macro(m) => match m.statement {
+        match read_statement_into(raw, 0, &self.vars, &fmt, &mut self.block).map_err(alarm)? {
+            Read::Macro(m) => match m.statement {
                 MacroStatement::Assign { var, value } => self.vars.set(var, value).map_err(alarm)?,
                 MacroStatement::Nop => {}
                 _ => return Err(alarm(AlarmKind::ControlInMdi)),
             },
-            Statement::Nc(block) => {
-                if block.is_empty() {
+            Read::Nc => {
+                if self.block.is_empty() {
                     return Ok(Progress::Skipped { line: 0 });
                 }
-                self.run_block(&block, env, true, |_, _| Ok(Next::Go)).map_err(alarm)?;
+                self.run_block(env, true, |_, _| Ok(Next::Go)).map_err(alarm)?;
             }
         }
         self.deliver(sink);
         Ok(Progress::Executed { line: 0 })
     }
 
-    /// An NC block read by [`Interpreter::step`].
-    fn nc_block<P, E, S>(
-        &mut self,
-        block: &Block,
-        at: Cursor,
-        programs: &P,
-        env: &E,
-        sink: &mut S,
-    ) -> Result<Progress, Alarm>
+    /// The NC block just read into `self.block` by [`Interpreter::step`].
+    fn nc_block<P, E, S>(&mut self, at: Cursor, programs: &P, env: &E, sink: &mut S) -> Result<Progress, Alarm>
     where
         P: ProgramStore + ?Sized,
         E: Environment,
         S: CanonSink + ?Sized,
     {
-        let line = block.line;
-        if block.program.is_some() && self.started {
+        let line = self.block.line;
+        if self.block.program.is_some() && self.started {
             // The next program of a multi-program text: this one ran off its end.
             return Err(self.end_of_record(at));
         }
-        if block.is_empty() {
+        if self.block.is_empty() {
             return Ok(Progress::Skipped { line });
         }
         self.started = true;
         let next = self
-            .run_block(block, env, false, |me, flow| me.route(flow, programs))
+            .run_block(env, false, |me, flow| me.route(flow, programs))
             .map_err(|k| Alarm::in_program(at.program, line, k))?;
         self.go(next);
         self.deliver(sink);
         Ok(Progress::Executed { line })
     }
 
-    /// Check and execute one block on a copy of the state; `route` decides (and
-    /// checks) where the program goes next; commit only if all succeeded.
-    fn run_block<E, R>(&mut self, block: &Block, env: &E, mdi: bool, route: R) -> Result<Next, AlarmKind>
+    /// Checks and executes `self.block` on a copy of the state; `route` decides (and
+    /// checks) where the program goes next; commits only if all succeeded. The
+    /// block's actions are staged in the (empty) outbox and dropped on failure.
+    fn run_block<E, R>(&mut self, env: &E, mdi: bool, route: R) -> Result<Next, AlarmKind>
     where
         E: Environment,
         R: FnOnce(&Self, Flow) -> Result<Next, AlarmKind>,
     {
-        let cmd = check(block, &self.state, &self.cfg)?;
+        let cmd = check(&self.block, &self.state, &self.cfg)?;
         if mdi && let Some(&(m, _)) = cmd.m.iter().find(|(_, f)| f.is_flow()) {
             return Err(AlarmKind::FlowInMdi { m });
         }
         let mut next = self.state;
-        let mut staged = Staged::new(block.line);
-        let flow = execute(&cmd, &mut next, &self.cfg, env, &mut staged)?;
-        let go = route(self, flow)?;
-        self.state = next;
-        for c in staged.actions {
-            // The outbox was empty before the block and holds as many as a stage.
-            let _ = self.outbox.push_back(c);
+        let mut staged = Staged::new(self.block.line, &mut self.outbox);
+        let go = execute(&cmd, &mut next, &self.cfg, env, &mut staged).and_then(|flow| route(self, flow));
+        match go {
+            Ok(go) => {
+                self.state = next;
+                Ok(go)
+            }
+            Err(e) => {
+                self.outbox.clear();
+                Err(e)
+            }
         }
-        Ok(go)
     }
 
     /// Where `flow` leads, with every target looked up and checked.

@@ -82,24 +82,26 @@ impl Number {
     }
 }
 
-/// `10^n` as an `i64`, `None` above `10^18`.
-pub const fn pow10(n: u8) -> Option<i64> {
-    if n > 18 {
-        return None;
-    }
-    let mut r = 1i64;
-    let mut i = 0;
-    while i < n {
-        r *= 10;
+/// Powers of ten that fit an `i64`.
+const POW10: [i64; 19] = {
+    let mut t = [1i64; 19];
+    let mut i = 1;
+    while i < 19 {
+        t[i] = t[i - 1] * 10;
         i += 1;
     }
-    Some(r)
+    t
+};
+
+/// `10^n` as an `i64`, `None` above `10^18`.
+pub const fn pow10(n: u8) -> Option<i64> {
+    if n > 18 { None } else { Some(POW10[n as usize]) }
 }
 
 /// Integer division rounding half away from zero (`d > 0`).
 pub const fn div_round(n: i64, d: i64) -> i64 {
     let q = n / d;
-    let r = n % d;
+    let r = n - q * d;
     if 2 * r.abs() >= d { if n < 0 { q - 1 } else { q + 1 } } else { q }
 }
 
@@ -126,7 +128,27 @@ impl Units {
             Units::Inch => NM_PER_INCH,
         }
     }
+
+    /// One program unit as a [`Scale`] of nanometres.
+    const fn scale(self) -> Scale {
+        match self {
+            Units::Metric => Scale { factor: 1, exp: 6 },
+            Units::Inch => Scale { factor: 254, exp: 5 },
+        }
+    }
 }
+
+/// An internal-unit multiple `factor × 10^exp` (1 mm = 1·10⁶ nm, 1 in = 254·10⁵ nm),
+/// so conversions multiply or divide by table powers of ten instead of dividing
+/// 128-bit products (a library call costing ~2000 instructions on the Cortex-M4).
+#[derive(Clone, Copy)]
+struct Scale {
+    factor: i64,
+    exp: u8,
+}
+
+/// Micro-degrees in one degree.
+const DEGREES: Scale = Scale { factor: 1, exp: 6 };
 
 /// How a number without a decimal point is read (FANUC parameter DPI, No.3401#0).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -149,6 +171,16 @@ pub enum IncrementSystem {
 }
 
 impl IncrementSystem {
+    /// Fraction digits a value may have and still be a whole number of increments
+    /// (IS-B metric: 3, i.e. 0.001 mm).
+    const fn linear_digits(self, units: Units) -> u8 {
+        match (self, units) {
+            (IncrementSystem::IsB, Units::Metric) => 3,
+            (IncrementSystem::IsC, Units::Metric) | (IncrementSystem::IsB, Units::Inch) => 4,
+            (IncrementSystem::IsC, Units::Inch) => 5,
+        }
+    }
+
     /// Least input increment of a linear word, in nanometres.
     pub const fn linear_nm(self, units: Units) -> i64 {
         match (self, units) {
@@ -184,19 +216,19 @@ impl NumberFormat {
     /// increment as the manual requires for macro values (2.24.1). `None` on overflow.
     pub fn length_nm(&self, n: &Number) -> Option<i64> {
         let inc = self.increments.linear_nm(self.units);
-        let nm = if n.has_point || self.input == InputMode::Calculator {
-            scale_to(n, self.units.nm_per_unit())?
-        } else {
-            n.mantissa.checked_mul(inc)?
-        };
-        Some(round_to(nm, inc))
+        if !n.has_point && self.input == InputMode::LeastIncrement {
+            return n.mantissa.checked_mul(inc);
+        }
+        let nm = scale_to(n, self.units.scale())?;
+        // A value with no more fraction digits than the increment is already whole.
+        Some(if n.frac_digits <= self.increments.linear_digits(self.units) { nm } else { round_to(nm, inc) })
     }
 
     /// An angle word (`C`, degrees) in micro-degrees, rounded to the least increment.
     pub fn angle_udeg(&self, n: &Number) -> Option<i64> {
         let inc = self.increments.angle_udeg();
         let u = if n.has_point || self.input == InputMode::Calculator {
-            scale_to(n, UDEG_PER_DEG)?
+            scale_to(n, DEGREES)?
         } else {
             n.mantissa.checked_mul(inc)?
         };
@@ -211,18 +243,18 @@ impl NumberFormat {
     /// A feed value (`F`) in nanometres per minute or per revolution. F is always read
     /// as written (F500 = 500 mm/min, F0.15 = 0.15 mm/rev) in both input modes.
     pub fn feed_nm(&self, n: &Number) -> Option<i64> {
-        scale_to(n, self.units.nm_per_unit())
+        scale_to(n, self.units.scale())
     }
 }
 
-/// `n × per_unit`, with `n` a decimal number and `per_unit` an integer, rounded.
-fn scale_to(n: &Number, per_unit: i64) -> Option<i64> {
-    let p = pow10(n.frac_digits)?;
-    let v = i128::from(n.mantissa) * i128::from(per_unit);
-    let q = v / i128::from(p);
-    let r = v % i128::from(p);
-    let q = if 2 * r.abs() >= i128::from(p) { q + v.signum() } else { q };
-    i64::try_from(q).ok()
+/// `n × scale`, rounded half away from zero; `None` on overflow.
+fn scale_to(n: &Number, s: Scale) -> Option<i64> {
+    let m = n.mantissa.checked_mul(s.factor)?;
+    if n.frac_digits <= s.exp {
+        m.checked_mul(POW10[usize::from(s.exp - n.frac_digits)])
+    } else {
+        Some(div_round(m, pow10(n.frac_digits - s.exp)?))
+    }
 }
 
 /// Internal nanometres to millimetres, for presentation only.
@@ -265,6 +297,26 @@ mod tests {
         let inch = NumberFormat { units: Units::Inch, ..METRIC_CALC };
         assert_eq!(inch.length_nm(&num(1, 0, true)), Some(25_400_000));
         assert_eq!(inch.length_nm(&num(12345, 4, true)), Some(31_356_300));
+    }
+
+    #[test]
+    fn scaling_matches_exact_rational_arithmetic() {
+        // Reference: i128 product and rounded division.
+        let exact = |m: i64, f: u8, per: i128| {
+            let v = i128::from(m) * per;
+            let d = 10i128.pow(u32::from(f));
+            let q = v / d;
+            let r = v % d;
+            i64::try_from(if 2 * r.abs() >= d { q + v.signum() } else { q }).ok()
+        };
+        for m in [0, 1, -1, 5, -5, 15, 123_456_789, -987_654_321, 999_999_999_999_999] {
+            for f in 0..=9u8 {
+                let n = num(m, f, true);
+                assert_eq!(scale_to(&n, Units::Metric.scale()), exact(m, f, 1_000_000), "{m}e-{f} mm");
+                assert_eq!(scale_to(&n, Units::Inch.scale()), exact(m, f, 25_400_000), "{m}e-{f} in");
+            }
+        }
+        assert_eq!(scale_to(&num(999_999_999_999_999_999, 0, true), Units::Metric.scale()), None);
     }
 
     #[test]

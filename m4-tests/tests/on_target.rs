@@ -9,10 +9,10 @@ use core::hint::black_box;
 
 use cortex_m_rt::entry;
 use heapless::Vec;
-use interp_core::canon::RecordingSink;
+use interp_core::canon::{Action, Canon, RecordingSink};
 use interp_core::macros::{MacroStatement, Variables};
 use interp_core::parse::{Statement, read_statement};
-use interp_core::{Interpreter, MachineConfig, Panel, Progress, SingleProgram};
+use interp_core::{Alarm, Axis, Interpreter, MachineConfig, Panel, Progress, SingleProgram};
 use m4_tests::{TestFn, run_tests, tests};
 
 /// Every on-target test, run in this order.
@@ -21,6 +21,9 @@ const TESTS: &[(&str, TestFn)] = &tests![
     f64_software_float_is_exact,
     f32_hardware_float,
     heapless_vec_reports_full,
+    interpreter_figure_2_6_arcs,
+    interpreter_figure_2_73_surface_speed,
+    interpreter_alarm_changes_nothing,
     macro_functions_match_the_host_bit_for_bit,
     macro_loop_through_the_interpreter,
 ];
@@ -71,6 +74,63 @@ fn heapless_vec_reports_full() -> Result<(), &'static str> {
     }
     check(v.push(4) == Err(4), "push at capacity returns the element")?;
     check(v.len() == 4 && v.is_full(), "length stays at capacity")
+}
+
+/// Runs `text` to its end on the default machine; returns the actions and the first alarm.
+fn interpret(text: &[u8]) -> (Vec<Canon, 32>, Option<Alarm>, Interpreter) {
+    let mut interp = Interpreter::new(MachineConfig::default());
+    let mut sink = RecordingSink::<32>::new();
+    let mut alarm = None;
+    for _ in 0..200 {
+        match interp.step(&SingleProgram(text), &Panel::default(), &mut sink) {
+            Ok(Progress::Ended) => break,
+            Ok(_) => {}
+            Err(a) => {
+                alarm.get_or_insert(a);
+            }
+        }
+    }
+    (sink.actions, alarm, interp)
+}
+
+/// Manual figure 2.6 on the M4: end points and the two arc centres (R15 ball end on
+/// the axis at Z-15; R5 fillet at X32 Z-27), exact to the nanometre.
+fn interpreter_figure_2_6_arcs() -> Result<(), &'static str> {
+    let (actions, alarm, _) = interpret(
+        b"N001 G0 X40 Z5\nN002 M03 S200\nN003 G01 X0 Z0 F900\nN005 G03 U24 W-24 R15\n\
+          N006 G02 X26 Z-31 R5\nN007 G01 Z-40\nN008 X40 Z5\nN009 M30\n",
+    );
+    check(alarm.is_none(), "no alarm")?;
+    let mut centers = actions.iter().filter_map(|c| match c.action {
+        Action::Arc(a) => Some((a.center.work[Axis::X], a.center.work[Axis::Z], a.to.work[Axis::Z])),
+        _ => None,
+    });
+    check(centers.next() == Some((0, -15_000_000, -24_000_000)), "R15 centre and end")?;
+    check(centers.next() == Some((16_000_000, -27_000_000, -31_000_000)), "R5 centre and end")?;
+    check(matches!(actions.last().map(|c| c.action), Some(Action::End { rewind: true })), "ends with M30")
+}
+
+/// Manual figure 2.73 on the M4: 955, 1910, 1910, 1194, 955 r/min under G96 S300.
+fn interpreter_figure_2_73_surface_speed() -> Result<(), &'static str> {
+    let (actions, alarm, _) =
+        interpret(b"M3 G96 S300\nG0 X100 Z100\nG0 X50 Z0\nG1 W-30 F200\nX80 W-20 F150\nG0 X100 Z100\nM30\n");
+    check(alarm.is_none(), "no alarm")?;
+    let rpms: Vec<u32, 8> = actions
+        .iter()
+        .filter_map(|c| match c.action {
+            Action::Rapid(m) | Action::Linear(m) => m.spindle.rpm,
+            _ => None,
+        })
+        .collect();
+    check(rpms.as_slice() == [955, 1910, 1910, 1194, 955], "speeds of figure 2.73")
+}
+
+/// A block with one wrong word raises its alarm on the M4 and changes nothing.
+fn interpreter_alarm_changes_nothing() -> Result<(), &'static str> {
+    let (_, _, good) = interpret(b"G00 X10 Z10\nM30\n");
+    let (_, alarm, bad) = interpret(b"G00 X10 Z10\nG99 G55 G01 X40 F0.3 S900 Q5\nM30\n");
+    check(alarm.map(|a| (a.line, a.code())) == Some((2, 4005)), "alarm 4005 on line 2")?;
+    check(good.state() == bad.state(), "state unchanged")
 }
 
 /// Macro expressions give the same f64 bits on the M4 (software float) as on the

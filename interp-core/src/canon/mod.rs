@@ -110,6 +110,33 @@ pub struct SpindleSpeed {
     pub max_rpm: u32,
 }
 
+impl SpindleSpeed {
+    /// The speed commanded with the tool at work X radius `x` (nm): under G96 the
+    /// surface speed over π·|X| capped at `max_rpm`, otherwise the fixed speed.
+    /// The interpreter, the planner and the simulator all use this one formula.
+    pub fn rpm_at(&self, x: i64) -> Option<u32> {
+        match (self.rpm, self.css) {
+            (Some(_), Some(css)) => Some(css_rpm(css, x).min(self.max_rpm)),
+            (rpm, _) => rpm,
+        }
+    }
+}
+
+/// rev/min for surface speed `css` (mm/min) at radius `x` (nm), rounded (2.19:
+/// surface speed = rpm × π × |X| / 1000 with X a diameter); at the centre the speed
+/// is unbounded (`u32::MAX`) and the caller's cap applies (2.19 note 7).
+///
+/// f32 (hardware on the Cortex-M4F) is plenty: a speed, not a position, and its
+/// 24-bit mantissa keeps the rounding error far below one rev/min.
+pub fn css_rpm(css: u32, x: i64) -> u32 {
+    let d_mm = 2.0 * (x.unsigned_abs() as f32) / 1e6;
+    if d_mm == 0.0 {
+        return u32::MAX;
+    }
+    let rpm = css as f32 / (core::f32::consts::PI * d_mm);
+    libm::roundf(rpm.min(u32::MAX as f32)) as u32
+}
+
 /// A straight move (rapid or cutting).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]

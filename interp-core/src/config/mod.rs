@@ -6,7 +6,7 @@
 pub mod params;
 pub mod tools;
 
-pub use params::{PARAMS, Param, ParamUnit, Parameters};
+pub use params::{PARAMS, Param, ParamDef, ParamError, ParamUnit, Parameters};
 pub use tools::{MAX_OFFSETS, ToolOffset, ToolTable};
 
 use crate::axis::{AXIS_COUNT, Axis, Pos};
@@ -165,5 +165,110 @@ impl MachineConfig {
     /// The user M code `m`, if configured.
     pub fn user_m(&self, m: u16) -> Option<UserMCode> {
         self.user_m_codes.iter().copied().find(|u| u.m == m)
+    }
+
+    /// Checks what the interpreter and the planner rely on: X and Z present, every
+    /// present linear axis with travel (min below max) and positive rates, spindle
+    /// speeds set, user M codes new and unique.
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        for a in [Axis::X, Axis::Z] {
+            if !self.axis(a).present {
+                return Err(ConfigError::AxisMissing { axis: a });
+            }
+        }
+        for a in Axis::ALL {
+            let ax = self.axis(a);
+            if !ax.present {
+                continue;
+            }
+            if !a.is_rotary() && ax.min >= ax.max {
+                return Err(ConfigError::NoTravel { axis: a });
+            }
+            if ax.rapid_per_min <= 0 || ax.max_feed_per_min <= 0 || ax.accel_per_s2 <= 0 {
+                return Err(ConfigError::RateNotPositive { axis: a });
+            }
+        }
+        if self.spindle.max_rpm == 0 {
+            return Err(ConfigError::SpindleMaxZero);
+        }
+        for (i, u) in self.user_m_codes.iter().enumerate() {
+            if crate::codes::m_function(u.m, &MachineConfig::default()).is_some() {
+                return Err(ConfigError::UserMStandard { m: u.m });
+            }
+            if self.user_m_codes[..i].iter().any(|o| o.m == u.m) {
+                return Err(ConfigError::UserMTwice { m: u.m });
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A machine description the controller cannot run with.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ConfigError {
+    /// X or Z is missing: every lathe has both.
+    AxisMissing {
+        /// The axis.
+        axis: Axis,
+    },
+    /// An axis's negative limit is not below its positive limit.
+    NoTravel {
+        /// The axis.
+        axis: Axis,
+    },
+    /// An axis's rapid rate, maximum feed or acceleration is not positive.
+    RateNotPositive {
+        /// The axis.
+        axis: Axis,
+    },
+    /// The spindle's top speed is zero.
+    SpindleMaxZero,
+    /// A user M code that the manual's tables already define.
+    UserMStandard {
+        /// The M number.
+        m: u16,
+    },
+    /// A user M code listed twice.
+    UserMTwice {
+        /// The M number.
+        m: u16,
+    },
+}
+
+impl core::fmt::Display for ConfigError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        let name = |a: &Axis| (a.letter() as char).to_ascii_lowercase();
+        match self {
+            ConfigError::AxisMissing { axis } => write!(f, "axes.{}: a lathe needs this axis", name(axis)),
+            ConfigError::NoTravel { axis } => write!(f, "axes.{}: min must be below max", name(axis)),
+            ConfigError::RateNotPositive { axis } => {
+                write!(f, "axes.{}: rapid, max_feed and accel must be positive", name(axis))
+            }
+            ConfigError::SpindleMaxZero => write!(f, "spindle.max_rpm must be positive"),
+            ConfigError::UserMStandard { m } => write!(f, "user_m_codes: M{m:02} is a standard M code"),
+            ConfigError::UserMTwice { m } => write!(f, "user_m_codes: M{m:02} given twice"),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_default_machine_is_valid_and_mistakes_are_named() {
+        assert_eq!(MachineConfig::default().validate(), Ok(()));
+        let mut c = MachineConfig::default();
+        c.axes[Axis::Z.index()].max = c.axes[Axis::Z.index()].min;
+        assert_eq!(c.validate(), Err(ConfigError::NoTravel { axis: Axis::Z }));
+        let mut c = MachineConfig::default();
+        c.axes[Axis::X.index()].rapid_per_min = 0;
+        assert_eq!(c.validate(), Err(ConfigError::RateNotPositive { axis: Axis::X }));
+        let mut c = MachineConfig::default();
+        c.user_m_codes.push(UserMCode { m: 8, timing: MTiming::After }).unwrap();
+        assert_eq!(c.validate(), Err(ConfigError::UserMStandard { m: 8 }));
+        let mut c = MachineConfig::default();
+        c.axes[Axis::Z.index()] = AxisConfig::ABSENT;
+        assert_eq!(c.validate(), Err(ConfigError::AxisMissing { axis: Axis::Z }));
     }
 }

@@ -199,15 +199,66 @@ impl Parameters {
         self.values[p as usize] = internal;
     }
 
-    /// Sets parameter number `n` from a machine-file value in file units.
-    /// Returns false if there is no parameter with that number.
-    pub fn set_from_file(&mut self, n: u16, value: f64) -> bool {
-        match Param::by_number(n) {
-            Some(p) => {
-                self.set(p, to_internal(p.def().unit, value));
-                true
+    /// Sets parameter number `n` from a machine-file value in file units, after
+    /// checking that the value suits the parameter's unit.
+    pub fn set_from_file(&mut self, n: u16, value: f64) -> Result<(), ParamError> {
+        let p = Param::by_number(n).ok_or(ParamError::Unknown { number: n })?;
+        let def = p.def();
+        let bad = |problem| Err(ParamError::BadValue { number: n, problem });
+        if !value.is_finite() || value.abs() > 9.0e12 {
+            return bad("is out of range");
+        }
+        match def.unit {
+            ParamUnit::Bool if value != 0.0 && value != 1.0 => return bad("must be 0 or 1"),
+            ParamUnit::Count | ParamUnit::Ms | ParamUnit::Deg | ParamUnit::TenthLead
+                if value < 0.0 || value != libm::trunc(value) =>
+            {
+                return bad("must be a whole number, 0 or more");
             }
-            None => false,
+            _ => {}
+        }
+        self.set(p, to_internal(def.unit, value));
+        Ok(())
+    }
+}
+
+impl ParamUnit {
+    /// How the unit is written in tables and machine files.
+    pub const fn name(self) -> &'static str {
+        match self {
+            ParamUnit::Bool => "0/1",
+            ParamUnit::Count => "count",
+            ParamUnit::Mm => "mm",
+            ParamUnit::MmPerMin => "mm/min",
+            ParamUnit::Ms => "ms",
+            ParamUnit::Deg => "degrees",
+            ParamUnit::TenthLead => "0.1 x lead",
+        }
+    }
+}
+
+/// A parameter that cannot be set from a machine file.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ParamError {
+    /// No parameter has this number.
+    Unknown {
+        /// The number given.
+        number: u16,
+    },
+    /// The value does not suit the parameter.
+    BadValue {
+        /// The parameter.
+        number: u16,
+        /// What is wrong with the value.
+        problem: &'static str,
+    },
+}
+
+impl core::fmt::Display for ParamError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            ParamError::Unknown { number } => write!(f, "there is no parameter {number}"),
+            ParamError::BadValue { number, problem } => write!(f, "parameter {number} {problem}"),
         }
     }
 }
@@ -227,9 +278,14 @@ mod tests {
     fn defaults_and_file_values_convert_to_internal_units() {
         let mut p = Parameters::default();
         assert_eq!(p.get(Param::ArcRadiusTolerance), 10_000);
-        assert!(p.set_from_file(5147, 2.5));
+        assert_eq!(p.set_from_file(5147, 2.5), Ok(()));
         assert_eq!(p.get(Param::RoughingDepth), 2_500_000);
-        assert!(!p.set_from_file(9999, 1.0));
+        assert_eq!(p.set_from_file(9999, 1.0), Err(ParamError::Unknown { number: 9999 }));
+        assert!(p.set_from_file(5152, 2.0).is_err());
+        assert!(p.set_from_file(5142, 1.5).is_err());
+        assert!(p.set_from_file(5142, -1.0).is_err());
+        assert!(p.set_from_file(5147, f64::NAN).is_err());
+        assert_eq!(p.get(Param::RoughingDepth), 2_500_000, "rejected values change nothing");
         assert_eq!(Param::by_number(5152), Some(Param::DisableCoordinateSetting));
     }
 }

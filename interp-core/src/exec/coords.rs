@@ -50,7 +50,7 @@ pub(super) fn machine_move(
     cmd: &Command,
     st: &mut State,
     cfg: &MachineConfig,
-    out: &mut Staged,
+    out: &mut Staged<'_>,
 ) -> Result<(), AlarmKind> {
     let mut machine = st.pos;
     for a in Axis::ALL {
@@ -70,7 +70,7 @@ pub(super) fn reference_return(
     st: &mut State,
     cfg: &MachineConfig,
     env: &dyn Environment,
-    out: &mut Staged,
+    out: &mut Staged<'_>,
 ) -> Result<(), AlarmKind> {
     for a in Axis::ALL {
         if cmd.axes[a.index()].is_some() && !env.referenced(a) {

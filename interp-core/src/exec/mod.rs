@@ -21,23 +21,28 @@ use crate::env::Environment;
 /// Most actions one block produces.
 pub const STAGE: usize = 16;
 
-/// Actions of the block being executed, delivered only if the block succeeds.
-#[derive(Debug, Default)]
-pub struct Staged {
+/// The queue a block's actions are staged in. The interpreter runs a block only
+/// when its outbox is empty and empties it again if the block fails, so staged
+/// actions reach the sink only when the whole block succeeded.
+pub type Outbox = heapless::Deque<Canon, STAGE>;
+
+/// Actions of the block being executed, staged in the (empty) outbox.
+#[derive(Debug)]
+pub struct Staged<'a> {
     line: u32,
     /// The staged actions, in order.
-    pub actions: heapless::Vec<Canon, STAGE>,
+    pub actions: &'a mut Outbox,
 }
 
-impl Staged {
-    /// An empty stage for the block on `line`.
-    pub fn new(line: u32) -> Self {
-        Staged { line, actions: heapless::Vec::new() }
+impl<'a> Staged<'a> {
+    /// Stages the actions of the block on `line` in `outbox`.
+    pub fn new(line: u32, outbox: &'a mut Outbox) -> Self {
+        Staged { line, actions: outbox }
     }
 
     /// Stages one action.
     pub fn emit(&mut self, action: Action) -> Result<(), AlarmKind> {
-        self.actions.push(Canon { line: self.line, action }).map_err(|_| AlarmKind::Overflow)
+        self.actions.push_back(Canon { line: self.line, action }).map_err(|_| AlarmKind::Overflow)
     }
 }
 
@@ -76,7 +81,7 @@ pub fn execute(
     st: &mut State,
     cfg: &MachineConfig,
     env: &dyn Environment,
-    out: &mut Staged,
+    out: &mut Staged<'_>,
 ) -> Result<Flow, AlarmKind> {
     apply_modal(cmd, st);
     spindle::before_motion(cmd, st, cfg, out)?;
@@ -137,7 +142,7 @@ fn apply_modal(cmd: &Command, st: &mut State) {
 
 /// T: index the turret and put the offset in force; the axes pick the offset up
 /// with their next move.
-fn tool_change(cmd: &Command, st: &mut State, cfg: &MachineConfig, out: &mut Staged) -> Result<(), AlarmKind> {
+fn tool_change(cmd: &Command, st: &mut State, cfg: &MachineConfig, out: &mut Staged<'_>) -> Result<(), AlarmKind> {
     let Some((tool, offset_number)) = cmd.tool else { return Ok(()) };
     let row = match offset_number {
         0 => ToolOffset::default(),
@@ -154,7 +159,7 @@ fn tool_change(cmd: &Command, st: &mut State, cfg: &MachineConfig, out: &mut Sta
 }
 
 /// Machine outputs switched by M codes at `timing`.
-fn aux(cmd: &Command, timing: MTiming, out: &mut Staged) -> Result<(), AlarmKind> {
+fn aux(cmd: &Command, timing: MTiming, out: &mut Staged<'_>) -> Result<(), AlarmKind> {
     for &(m, f) in &cmd.m {
         if f == MFunction::Aux(timing) {
             out.emit(Action::Aux { m })?;
@@ -169,7 +174,7 @@ fn program_flow(
     cmd: &Command,
     cfg: &MachineConfig,
     env: &dyn Environment,
-    out: &mut Staged,
+    out: &mut Staged<'_>,
 ) -> Result<Flow, AlarmKind> {
     for &(_, f) in &cmd.m {
         match f {

@@ -11,7 +11,12 @@ use crate::geom::{P2, arc_extents, center_from_offsets, center_from_radius};
 
 /// Executes the block's motion in the modal motion mode, if it has axis words
 /// (or is an arc, which may omit them: 2.3 note 1).
-pub(super) fn execute(cmd: &Command, st: &mut State, cfg: &MachineConfig, out: &mut Staged) -> Result<(), AlarmKind> {
+pub(super) fn execute(
+    cmd: &Command,
+    st: &mut State,
+    cfg: &MachineConfig,
+    out: &mut Staged<'_>,
+) -> Result<(), AlarmKind> {
     let code = st.modal.motion;
     let is_arc = matches!(code, GCode::ArcCw | GCode::ArcCcw);
     let arc_words = cmd.radius.is_some() || cmd.center.iter().any(Option::is_some);
@@ -73,7 +78,7 @@ pub(super) fn rapid(
     work: Pos,
     st: &mut State,
     cfg: &MachineConfig,
-    out: &mut Staged,
+    out: &mut Staged<'_>,
     independent: bool,
 ) -> Result<(), AlarmKind> {
     let to = endpoint(work, st, cfg)?;
@@ -85,7 +90,7 @@ pub(super) fn rapid_to(
     to: Endpoint,
     st: &mut State,
     cfg: &MachineConfig,
-    out: &mut Staged,
+    out: &mut Staged<'_>,
     independent: bool,
 ) -> Result<(), AlarmKind> {
     check_limits(&to.machine, cfg)?;
@@ -100,7 +105,13 @@ pub(super) fn rapid_to(
     Ok(())
 }
 
-fn linear(work: Pos, st: &mut State, cfg: &MachineConfig, out: &mut Staged, exact_stop: bool) -> Result<(), AlarmKind> {
+fn linear(
+    work: Pos,
+    st: &mut State,
+    cfg: &MachineConfig,
+    out: &mut Staged<'_>,
+    exact_stop: bool,
+) -> Result<(), AlarmKind> {
     let to = endpoint(work, st, cfg)?;
     check_limits(&to.machine, cfg)?;
     let feed = cutting_feed(st, cfg)?;
@@ -140,7 +151,7 @@ fn arc(
     work: Pos,
     st: &mut State,
     cfg: &MachineConfig,
-    out: &mut Staged,
+    out: &mut Staged<'_>,
     exact_stop: bool,
 ) -> Result<(), AlarmKind> {
     let plane = st.modal.plane;

@@ -4,7 +4,7 @@
 use super::{Staged, State, spindle_dir};
 use crate::alarm::AlarmKind;
 use crate::axis::Axis;
-use crate::canon::{Action, SpindleCommand, SpindleDir, SpindleSpeed};
+use crate::canon::{Action, SpindleCommand, SpindleDir, SpindleSpeed, css_rpm};
 use crate::check::Command;
 use crate::codes::GCode;
 use crate::config::MachineConfig;
@@ -32,23 +32,12 @@ pub fn spindle_speed(st: &State, cfg: &MachineConfig, x: i64) -> SpindleSpeed {
     SpindleSpeed { rpm: (sp.dir != SpindleDir::Stop).then_some(rpm), css: sp.css, max_rpm: cap }
 }
 
-/// rev/min for surface speed `css` (mm/min) at radius `x` (nm), rounded;
-/// at the centre the speed is unbounded (2.19 note 7: the cap applies).
-fn css_rpm(css: u32, x: i64) -> u32 {
-    let d_mm = 2.0 * (x.unsigned_abs() as f64) / 1e6;
-    if d_mm == 0.0 {
-        return u32::MAX;
-    }
-    let rpm = f64::from(css) / (core::f64::consts::PI * d_mm);
-    libm::round(rpm.min(f64::from(u32::MAX))) as u32
-}
-
 /// S, G96/G97, G50 S, gears and M03/M04 before the block's motion.
 pub(super) fn before_motion(
     cmd: &Command,
     st: &mut State,
     cfg: &MachineConfig,
-    out: &mut Staged,
+    out: &mut Staged<'_>,
 ) -> Result<(), AlarmKind> {
     let x = st.work_axis(cfg, Axis::X);
     let before = spindle_speed(st, cfg, x);
@@ -85,7 +74,7 @@ pub(super) fn before_motion(
 }
 
 /// M05 after the block's motion.
-pub(super) fn after_motion(cmd: &Command, st: &mut State, out: &mut Staged) -> Result<(), AlarmKind> {
+pub(super) fn after_motion(cmd: &Command, st: &mut State, out: &mut Staged<'_>) -> Result<(), AlarmKind> {
     if cmd.m.iter().any(|&(_, f)| spindle_dir(f) == Some(SpindleDir::Stop)) {
         st.spindle.dir = SpindleDir::Stop;
         let css = if st.modal.css { st.spindle.css } else { None };

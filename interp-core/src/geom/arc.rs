@@ -60,18 +60,17 @@ pub struct Extents {
 pub fn arc_extents(start: P2, end: P2, center: P2, cw: bool, full: bool) -> Extents {
     let r = libm::round(dist(start, center)) as i64;
     let mut e = Extents { a: (start.0.min(end.0), start.0.max(end.0)), b: (start.1.min(end.1), start.1.max(end.1)) };
-    let ang = |p: P2| libm::atan2((p.1 - center.1) as f64, (p.0 - center.0) as f64);
-    let (s, t) = (ang(start), ang(end));
-    // Sweep counter-clockwise from `from` to `to`.
+    let rel = |p: P2| (p.0 - center.0, p.1 - center.1);
+    let (s, t) = (pseudo_angle(rel(start)), pseudo_angle(rel(end)));
+    // Sweep counter-clockwise from `from` to `to`, in quarter turns.
     let (from, to) = if cw { (t, s) } else { (s, t) };
-    let tau = core::f64::consts::TAU;
-    let mut sweep = wrap(to - from);
+    let mut sweep = wrap4(to - from);
     if full || sweep == 0.0 {
-        sweep = tau;
+        sweep = 4.0;
     }
-    let quads = [(0.0, (r, 0)), (tau / 4.0, (0, r)), (tau / 2.0, (-r, 0)), (3.0 * tau / 4.0, (0, -r))];
-    for (q, (da, db)) in quads {
-        if wrap(q - from) <= sweep {
+    let quads = [(r, 0), (0, r), (-r, 0), (0, -r)];
+    for (q, (da, db)) in quads.into_iter().enumerate() {
+        if wrap4(q as f32 - from) <= sweep {
             let (pa, pb) = (center.0 + da, center.1 + db);
             e.a = (e.a.0.min(pa), e.a.1.max(pa));
             e.b = (e.b.0.min(pb), e.b.1.max(pb));
@@ -80,11 +79,33 @@ pub fn arc_extents(start: P2, end: P2, center: P2, cw: bool, full: bool) -> Exte
     e
 }
 
-/// An angle in radians wrapped into `[0, 2π)`.
-fn wrap(x: f64) -> f64 {
-    let tau = core::f64::consts::TAU;
-    let r = libm::fmod(x, tau);
-    if r < 0.0 { r + tau } else { r }
+/// A monotonic stand-in for the angle of `v` in quarter turns, `[0, 4)`: exact at
+/// the four axis directions, which is all the extents need. f32 is enough (it only
+/// classifies directions) and is hardware on the Cortex-M4F.
+fn pseudo_angle(v: P2) -> f32 {
+    let (x, y) = (v.0 as f32, v.1 as f32);
+    let (ax, ay) = (x.abs(), y.abs());
+    if ax + ay == 0.0 {
+        return 0.0;
+    }
+    let f = ay / (ax + ay);
+    match (x >= 0.0, y >= 0.0) {
+        (true, true) => f,
+        (false, true) => 2.0 - f,
+        (false, false) => 2.0 + f,
+        (true, false) => 4.0 - f,
+    }
+}
+
+/// `x` wrapped into `[0, 4)`.
+fn wrap4(x: f32) -> f32 {
+    if x < 0.0 {
+        x + 4.0
+    } else if x >= 4.0 {
+        x - 4.0
+    } else {
+        x
+    }
 }
 
 #[cfg(test)]

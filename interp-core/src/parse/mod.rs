@@ -4,7 +4,7 @@
 
 mod reader;
 
-pub use reader::{read_block, read_statement};
+pub use reader::{read_block, read_block_into, read_statement, read_statement_into};
 
 use crate::macros::MacroStatement;
 use crate::units::Number;
@@ -30,6 +30,15 @@ impl Statement {
             Statement::Macro(m) => m.line,
         }
     }
+}
+
+/// What [`read_statement_into`] found in a block's text.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Read {
+    /// An NC statement: its words are in the block.
+    Nc,
+    /// A macro statement, evaluated (the block is left empty).
+    Macro(MacroBlock),
 }
 
 /// A macro statement with what may stand before it: a skip mark and a sequence
@@ -65,7 +74,11 @@ pub const MAX_G: usize = 8;
 pub const MAX_M: usize = 3;
 
 /// The words of one block, as written.
-#[derive(Clone, Debug, Default, PartialEq)]
+///
+/// Kept in place and reused block after block: the address words sit in a fixed
+/// array with a bit per letter saying which are present, so clearing a block is a
+/// few stores and nothing large is copied per block.
+#[derive(Clone, Debug, PartialEq)]
 pub struct Block {
     /// 1-based source line.
     pub line: u32,
@@ -79,18 +92,51 @@ pub struct Block {
     pub g: heapless::Vec<u16, MAX_G>,
     /// M codes, in order of appearance.
     pub m: heapless::Vec<u16, MAX_M>,
-    /// Every other address A–Z, indexed by letter.
-    words: [Option<Number>; 26],
+    /// Bit `letter - 'A'` set when that address is given.
+    present: u32,
+    /// Values of the other addresses A–Z, meaningful where `present` says so.
+    values: [Number; 26],
     /// `,C` chamfer.
     pub chamfer: Option<Number>,
     /// `,R` corner radius.
     pub corner: Option<Number>,
 }
 
+impl Default for Block {
+    fn default() -> Self {
+        Block {
+            line: 0,
+            skip_level: None,
+            seq: None,
+            program: None,
+            g: heapless::Vec::new(),
+            m: heapless::Vec::new(),
+            present: 0,
+            values: [Number::int(0); 26],
+            chamfer: None,
+            corner: None,
+        }
+    }
+}
+
 impl Block {
+    /// Empties the block for reuse with the text of `line`.
+    pub fn clear(&mut self, line: u32) {
+        self.line = line;
+        self.skip_level = None;
+        self.seq = None;
+        self.program = None;
+        self.g.clear();
+        self.m.clear();
+        self.present = 0;
+        self.chamfer = None;
+        self.corner = None;
+    }
+
     /// The value of address `letter` (uppercase ASCII), if given.
     pub fn get(&self, letter: u8) -> Option<Number> {
-        self.words.get(usize::from(letter.wrapping_sub(b'A'))).copied().flatten()
+        let i = letter.wrapping_sub(b'A');
+        (i < 26 && self.present & (1 << i) != 0).then(|| self.values[usize::from(i)])
     }
 
     /// Whether address `letter` is given.
@@ -103,22 +149,19 @@ impl Block {
         (b'A'..=b'Z').filter(|l| self.has(*l))
     }
 
-    /// Sets address `letter`; false if it was already set.
+    /// Sets address `letter` (uppercase ASCII); false if it was already set.
     pub(crate) fn set(&mut self, letter: u8, n: Number) -> bool {
-        let slot = &mut self.words[usize::from(letter - b'A')];
-        if slot.is_some() {
+        let i = letter - b'A';
+        if self.present & (1 << i) != 0 {
             return false;
         }
-        *slot = Some(n);
+        self.present |= 1 << i;
+        self.values[usize::from(i)] = n;
         true
     }
 
     /// True if the block commands nothing (blank, comment only, or only N/O).
     pub fn is_empty(&self) -> bool {
-        self.g.is_empty()
-            && self.m.is_empty()
-            && self.words.iter().all(Option::is_none)
-            && self.chamfer.is_none()
-            && self.corner.is_none()
+        self.g.is_empty() && self.m.is_empty() && self.present == 0 && self.chamfer.is_none() && self.corner.is_none()
     }
 }

@@ -3,7 +3,7 @@
 //! `/n`, a sequence number before a macro statement (2.24.2 note 10), and macro
 //! values in words: `F#203`, `Z-#210`, `G#230`, `X[#1*2]`, `F[25.4/10]` (2.24.1).
 
-use super::{Block, MacroBlock, Statement};
+use super::{Block, MacroBlock, Read, Statement};
 use crate::alarm::AlarmKind;
 use crate::alarm::GNum;
 use crate::macros::{Eval, Rounding, Variables, format, nullable, starts_statement, statement};
@@ -20,18 +20,41 @@ const MAX_WHOLE_VALUE: f64 = 99_999_999.0;
 /// expression against `vars`. `fmt` is the number format in force: ROUND in a word
 /// rounds to its least input increment (2.24.2 (7)).
 ///
-/// This is the reader every consumer of program text uses — the interpreter, and
-/// the canned cycles reading their profile blocks.
+/// This is the reader every consumer of program text uses — the interpreter (through
+/// [`read_statement_into`]), and the canned cycles reading their profile blocks.
 pub fn read_statement(text: &[u8], line: u32, vars: &Variables, fmt: &NumberFormat) -> Result<Statement, AlarmKind> {
-    Reader { text, pos: 0, vars: Some(vars), fmt: Some(*fmt) }.statement(line)
+    let mut block = Block::default();
+    Ok(match read_statement_into(text, line, vars, fmt, &mut block)? {
+        Read::Nc => Statement::Nc(block),
+        Read::Macro(m) => Statement::Macro(m),
+    })
+}
+
+/// [`read_statement`] into `block`, reusing its storage (the interpreter's per-block
+/// path: nothing large is copied). An NC statement's words end up in `block`.
+pub fn read_statement_into(
+    text: &[u8],
+    line: u32,
+    vars: &Variables,
+    fmt: &NumberFormat,
+    block: &mut Block,
+) -> Result<Read, AlarmKind> {
+    Reader { text, pos: 0, vars: Some(vars), fmt: Some(*fmt) }.statement(line, block)
 }
 
 /// Reads an NC block that uses no variables (tools and tests). A `#`, a ROUND in a
 /// word or a macro statement raise alarm 0114: use [`read_statement`] for those.
 pub fn read_block(text: &[u8], line: u32) -> Result<Block, AlarmKind> {
-    match (Reader { text, pos: 0, vars: None, fmt: None }).statement(line)? {
-        Statement::Nc(b) => Ok(b),
-        Statement::Macro(_) => Err(format("macro statement (use read_statement)")),
+    let mut block = Block::default();
+    read_block_into(text, line, &mut block)?;
+    Ok(block)
+}
+
+/// [`read_block`] into `block`, reusing its storage.
+pub fn read_block_into(text: &[u8], line: u32, block: &mut Block) -> Result<(), AlarmKind> {
+    match (Reader { text, pos: 0, vars: None, fmt: None }).statement(line, block)? {
+        Read::Nc => Ok(()),
+        Read::Macro(_) => Err(format("macro statement (use read_statement)")),
     }
 }
 
@@ -44,8 +67,8 @@ struct Reader<'a, 'v> {
 
 impl Reader<'_, '_> {
     /// The whole block: skip mark, sequence number, then a macro statement or words.
-    fn statement(&mut self, line: u32) -> Result<Statement, AlarmKind> {
-        let mut block = Block { line, ..Block::default() };
+    fn statement(&mut self, line: u32, block: &mut Block) -> Result<Read, AlarmKind> {
+        block.clear(line);
         self.skip_blanks_and_comments()?;
         if self.peek() == Some(b'/') {
             self.pos += 1;
@@ -60,16 +83,17 @@ impl Reader<'_, '_> {
         self.skip_blanks_and_comments()?;
         if matches!(self.peek(), Some(b'N' | b'n')) {
             self.pos += 1;
-            self.word(b'N', &mut block)?;
+            self.word(b'N', block)?;
             self.skip_blanks_and_comments()?;
         }
         if starts_statement(self.text, self.pos) {
             let statement = self.macro_statement()?;
             let (skip_level, seq) = (block.skip_level, block.seq);
-            return Ok(Statement::Macro(MacroBlock { line, skip_level, seq, statement }));
+            block.clear(line);
+            return Ok(Read::Macro(MacroBlock { line, skip_level, seq, statement }));
         }
-        self.words(&mut block)?;
-        Ok(Statement::Nc(block))
+        self.words(block)?;
+        Ok(Read::Nc)
     }
 
     /// A macro statement, and nothing but comments after it (note 7).

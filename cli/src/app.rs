@@ -1,0 +1,247 @@
+//! The command line: arguments (clap), the commands, and exit statuses.
+//!
+//! Exit status 0: done, no alarms; 1: the program raised an alarm; 2: an error
+//! (bad arguments, unreadable file, bad machine file, output not writable).
+
+use std::ffi::OsString;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use clap::{Args, Parser, Subcommand, ValueEnum};
+use interp_core::{MachineConfig, Panel};
+
+use crate::error::Error;
+use crate::program::{OnAlarm, Run, alarm_line, read_program, run};
+use crate::summary::Summary;
+use crate::{docs, jsonl, machine, svg};
+
+/// Exit status: done, no alarms.
+pub const EXIT_OK: u8 = 0;
+/// Exit status: a program raised an alarm.
+pub const EXIT_ALARM: u8 = 1;
+/// Exit status: the command could not do its work.
+pub const EXIT_ERROR: u8 = 2;
+
+/// Check and simulate lathe part programs (FANUC-style, G-code systems A/B/C).
+#[derive(Debug, Parser)]
+#[command(name = "lathe", version, max_term_width = 100)]
+#[command(after_help = "Exit status: 0 no alarms, 1 alarm, 2 error.")]
+pub struct Cli {
+    /// What to do.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// The subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Interpret programs without motion and report every alarm as PROGRAM:LINE: alarm CODE: message
+    ///
+    /// A block with an alarm is passed over (it changes nothing) and checking goes on with
+    /// the next one. Alarms go to standard output, followed by one line per program:
+    /// `PROGRAM: N blocks, no alarms` (or `K alarms`). The axes start at reference position 1.
+    Check {
+        /// Program files.
+        #[arg(required = true, value_name = "PROGRAM")]
+        programs: Vec<PathBuf>,
+        /// Machine description (TOML); the built-in machine without it.
+        #[arg(long, value_name = "FILE")]
+        machine: Option<PathBuf>,
+    },
+    /// Run a program as the control would, stopping at the first alarm
+    ///
+    /// The axes start at reference position 1, where a homed machine stands. M00, and M01
+    /// with --optional-stop, are answered with cycle start. An alarm is printed to standard
+    /// error as `lathe check` prints it (exit status 1); the output up to it is still written.
+    Sim(SimArgs),
+    /// Print the alarm catalog as Markdown (docs/ALARMS.md)
+    Alarms,
+    /// Print the parameter table as Markdown (docs/PARAMETERS.md)
+    Params,
+    /// Print the machine description in force as TOML (the built-in one without --machine)
+    Machine {
+        /// Machine description (TOML) to read and print back complete.
+        #[arg(long, value_name = "FILE")]
+        machine: Option<PathBuf>,
+    },
+}
+
+/// Options of `lathe sim`.
+#[derive(Debug, Args)]
+pub struct SimArgs {
+    /// Program file.
+    #[arg(value_name = "PROGRAM")]
+    pub program: PathBuf,
+    /// Machine description (TOML); the built-in machine without it.
+    #[arg(long, value_name = "FILE")]
+    pub machine: Option<PathBuf>,
+    /// Output: summary, one JSON object per action, or an X-Z drawing.
+    #[arg(long, value_enum, default_value_t = Format::Summary)]
+    pub format: Format,
+    /// Write the output to FILE instead of standard output.
+    #[arg(long, value_name = "FILE")]
+    pub out: Option<PathBuf>,
+    /// Block skip switches on: `/` and `/1` without LEVELS, else e.g. --block-skip=1,3.
+    #[arg(
+        long,
+        value_name = "LEVELS",
+        num_args = 0..=1,
+        require_equals = true,
+        default_missing_value = "1",
+        value_delimiter = ',',
+        value_parser = clap::value_parser!(u8).range(1..=9)
+    )]
+    pub block_skip: Option<Vec<u8>>,
+    /// Optional-stop switch on: M01 stops (and is answered with cycle start).
+    #[arg(long)]
+    pub optional_stop: bool,
+}
+
+/// Output format of `lathe sim`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Format {
+    /// Counts, path lengths, extents and cycle time.
+    Summary,
+    /// One JSON object per canonical action.
+    Jsonl,
+    /// The X-Z tool path as SVG.
+    Svg,
+}
+
+/// Runs the command line `args` (program name first), writing to `out` and
+/// `err`; returns the exit status.
+pub fn main<I, T>(args: I, out: &mut dyn Write, err: &mut dyn Write) -> u8
+where
+    I: IntoIterator<Item = T>,
+    T: Into<OsString> + Clone,
+{
+    let cli = match Cli::try_parse_from(args) {
+        Ok(cli) => cli,
+        Err(e) => {
+            let text = e.render().to_string();
+            let _ = if e.use_stderr() { err.write_all(text.as_bytes()) } else { out.write_all(text.as_bytes()) };
+            return u8::try_from(e.exit_code()).unwrap_or(EXIT_ERROR);
+        }
+    };
+    match execute(cli.command, out, err) {
+        Ok(status) => status,
+        Err(e) => {
+            let _ = writeln!(err, "lathe: {e}");
+            EXIT_ERROR
+        }
+    }
+}
+
+/// Runs one command.
+fn execute(command: Command, out: &mut dyn Write, err: &mut dyn Write) -> Result<u8, Error> {
+    match command {
+        Command::Check { programs, machine } => check(&programs, machine.as_deref(), out, err),
+        Command::Sim(args) => sim(&args, out, err),
+        Command::Alarms => print(out, &docs::alarms_markdown()),
+        Command::Params => print(out, &docs::params_markdown()),
+        Command::Machine { machine } => {
+            let cfg = machine::load_or_default(machine.as_deref())?;
+            let text = machine::to_toml(&cfg)
+                .map_err(|e| Error::Write { target: STDOUT.into(), source: std::io::Error::other(e) })?;
+            print(out, &text)
+        }
+    }
+}
+
+/// Writes `text` to standard output.
+fn print(out: &mut dyn Write, text: &str) -> Result<u8, Error> {
+    out.write_all(text.as_bytes()).map_err(stream_error(STDOUT))?;
+    Ok(EXIT_OK)
+}
+
+/// An error writing to the standard stream `target` ("standard output" or "standard error").
+fn stream_error(target: &'static str) -> impl Fn(std::io::Error) -> Error {
+    move |source| Error::Write { target: target.into(), source }
+}
+
+/// The name of standard output in messages.
+const STDOUT: &str = "standard output";
+/// The name of standard error in messages.
+const STDERR: &str = "standard error";
+
+/// `lathe check`: every program, every alarm; a file that cannot be read is
+/// reported and the others are still checked.
+fn check(programs: &[PathBuf], machine: Option<&Path>, out: &mut dyn Write, err: &mut dyn Write) -> Result<u8, Error> {
+    let cfg = machine::load_or_default(machine)?;
+    let mut status = EXIT_OK;
+    for path in programs {
+        match check_one(path, &cfg, out) {
+            Ok(alarms) if alarms > 0 => status = status.max(EXIT_ALARM),
+            Ok(_) => {}
+            Err(e @ Error::Write { .. }) => return Err(e),
+            Err(e) => {
+                writeln!(err, "lathe: {e}").map_err(stream_error(STDERR))?;
+                status = EXIT_ERROR;
+            }
+        }
+    }
+    Ok(status)
+}
+
+/// Checks one program, printing its alarms and a closing line; returns the number of alarms.
+fn check_one(path: &Path, cfg: &MachineConfig, out: &mut dyn Write) -> Result<usize, Error> {
+    let text = read_program(path)?;
+    let name = path.display().to_string();
+    let r =
+        run(&text, cfg, &Panel::default(), OnAlarm::Continue).map_err(|_| Error::Runaway { path: path.to_owned() })?;
+    let mut report = String::new();
+    for a in &r.alarms {
+        report.push_str(&alarm_line(&name, a));
+        report.push('\n');
+    }
+    let verdict = match r.alarms.len() {
+        0 => "no alarms".to_owned(),
+        1 => "1 alarm".to_owned(),
+        n => format!("{n} alarms"),
+    };
+    report.push_str(&format!("{name}: {} blocks, {verdict}\n", r.blocks));
+    out.write_all(report.as_bytes()).map_err(stream_error(STDOUT))?;
+    Ok(r.alarms.len())
+}
+
+/// `lathe sim`: run, write the output (also what was produced before an alarm),
+/// then report the alarm.
+fn sim(args: &SimArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result<u8, Error> {
+    let cfg = machine::load_or_default(args.machine.as_deref())?;
+    let text = read_program(&args.program)?;
+    let name = args.program.display().to_string();
+    let r = run(&text, &cfg, &panel(args), OnAlarm::Stop).map_err(|_| Error::Runaway { path: args.program.clone() })?;
+    let output = render(args.format, &name, &r, &cfg).map_err(stream_error(STDOUT))?;
+    match &args.out {
+        Some(path) => std::fs::write(path, output)
+            .map_err(|source| Error::Write { target: path.display().to_string(), source })?,
+        None => out.write_all(&output).map_err(stream_error(STDOUT))?,
+    }
+    for a in &r.alarms {
+        writeln!(err, "{}", alarm_line(&name, a)).map_err(stream_error(STDERR))?;
+    }
+    Ok(if r.alarms.is_empty() { EXIT_OK } else { EXIT_ALARM })
+}
+
+/// The operator's switches from the options.
+fn panel(args: &SimArgs) -> Panel {
+    let levels = args.block_skip.iter().flatten();
+    Panel {
+        block_skip: levels.fold(0, |mask, &l| mask | 1 << (l - 1)),
+        optional_stop: args.optional_stop,
+        ..Panel::default()
+    }
+}
+
+/// The output of `lathe sim` in `format`.
+fn render(format: Format, name: &str, r: &Run, cfg: &MachineConfig) -> std::io::Result<Vec<u8>> {
+    Ok(match format {
+        Format::Summary => Summary::new(name, r, cfg).to_string().into_bytes(),
+        Format::Svg => svg::render(name, r, cfg).into_bytes(),
+        Format::Jsonl => {
+            let mut buf = Vec::new();
+            jsonl::write(&r.actions, cfg, &mut buf)?;
+            buf
+        }
+    })
+}

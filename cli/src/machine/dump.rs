@@ -1,0 +1,122 @@
+//! A [`MachineConfig`] as a machine file: the inverse of [`super::apply`], for
+//! `lathe machine` (show the machine in force) and the round-trip tests.
+
+use std::collections::BTreeMap;
+
+use interp_core::config::{AxisConfig, GCodeSystem, MTiming, PARAMS, Param, ParamUnit, ToolOffset};
+use interp_core::units::IncrementSystem;
+use interp_core::{Axis, MachineConfig, Pos};
+
+use super::apply::position_scale;
+use super::file::{
+    Axes, AxisFile, GCodeSystemName, IncrementName, InputName, MachineFile, Offset, ParamKey, Point, Spindle,
+    TimingName, UserM, WorkOffsets,
+};
+
+/// Every setting of `cfg` as a machine file (offset rows that are all zero left out).
+pub(super) fn file_of(cfg: &MachineConfig) -> MachineFile {
+    MachineFile {
+        gcode_system: Some(match cfg.gcode_system {
+            GCodeSystem::A => GCodeSystemName::A,
+            GCodeSystem::B => GCodeSystemName::B,
+            GCodeSystem::C => GCodeSystemName::C,
+        }),
+        increment_system: Some(match cfg.increments {
+            IncrementSystem::IsB => IncrementName::IsB,
+            IncrementSystem::IsC => IncrementName::IsC,
+        }),
+        input: Some(if cfg.params.flag(Param::CalculatorInput) {
+            InputName::Calculator
+        } else {
+            InputName::LeastIncrement
+        }),
+        diameter_programming: Some(cfg.diameter_x),
+        rapid_independent: Some(cfg.rapid_independent),
+        tool_count: Some(cfg.tool_count),
+        reference: Some(cfg.reference.iter().map(|p| point(cfg, *p)).collect()),
+        axes: Some(axes(cfg)),
+        work_offsets: Some(work_offsets(cfg)),
+        offsets: Some(offsets(cfg)),
+        spindle: Some(Spindle {
+            max_rpm: Some(cfg.spindle.max_rpm),
+            css_min_rpm: Some(cfg.spindle.css_min_rpm),
+            gear_max_rpm: Some(cfg.spindle.gear_max_rpm),
+        }),
+        user_m_codes: Some(cfg.user_m_codes.iter().map(|u| UserM { m: u.m, timing: timing(u.timing) }).collect()),
+        parameters: Some(parameters(cfg)),
+    }
+}
+
+/// A file value from internal units.
+fn external(v: i64, scale: f64) -> f64 {
+    v as f64 / scale
+}
+
+/// A position with the machine's axes (Y and C only if present).
+fn point(cfg: &MachineConfig, p: Pos) -> Point {
+    let coord = |a: Axis| cfg.axis(a).present.then(|| external(p[a], position_scale(a)));
+    Point { x: coord(Axis::X), y: coord(Axis::Y), z: coord(Axis::Z), c: coord(Axis::C) }
+}
+
+fn axes(cfg: &MachineConfig) -> Axes {
+    let axis = |a: Axis| {
+        let ax: &AxisConfig = cfg.axis(a);
+        ax.present.then(|| AxisFile {
+            min: Some(external(ax.min, position_scale(a))),
+            max: Some(external(ax.max, position_scale(a))),
+            rapid: Some(external(ax.rapid_per_min, 1e6)),
+            max_feed: Some(external(ax.max_feed_per_min, 1e6)),
+            accel: Some(external(ax.accel_per_s2, 1e6)),
+        })
+    };
+    Axes { x: axis(Axis::X), y: axis(Axis::Y), z: axis(Axis::Z), c: axis(Axis::C) }
+}
+
+fn work_offsets(cfg: &MachineConfig) -> WorkOffsets {
+    let w = |i: usize| Some(point(cfg, cfg.work_offsets[i]));
+    WorkOffsets {
+        g54: w(0),
+        g55: w(1),
+        g56: w(2),
+        g57: w(3),
+        g58: w(4),
+        g59: w(5),
+        external: Some(point(cfg, cfg.external_offset)),
+    }
+}
+
+/// The offset rows that are not all zero.
+fn offsets(cfg: &MachineConfig) -> Vec<Offset> {
+    (1..=interp_core::config::MAX_OFFSETS as u16)
+        .filter_map(|n| cfg.tools.get(n).filter(|r| **r != ToolOffset::default()).map(|r| (n, r)))
+        .map(|(number, r)| Offset {
+            number,
+            x: Some(external(r.x, position_scale(Axis::X))),
+            z: Some(external(r.z, 1e6)),
+            x_wear: Some(external(r.x_wear, position_scale(Axis::X))),
+            z_wear: Some(external(r.z_wear, 1e6)),
+            radius: Some(external(r.radius, 1e6)),
+            tip: Some(r.tip),
+        })
+        .collect()
+}
+
+fn timing(t: MTiming) -> TimingName {
+    match t {
+        MTiming::Before => TimingName::Before,
+        MTiming::After => TimingName::After,
+    }
+}
+
+/// Every parameter in file units, except 3401, which `input` carries.
+fn parameters(cfg: &MachineConfig) -> BTreeMap<ParamKey, f64> {
+    PARAMS
+        .iter()
+        .filter(|d| d.id != Param::CalculatorInput)
+        .map(|d| {
+            let v = cfg.params.get(d.id);
+            let scale = if matches!(d.unit, ParamUnit::Mm | ParamUnit::MmPerMin) { 1e6 } else { 1.0 };
+            (ParamKey(d.number.to_string()), external(v, scale))
+        })
+        .collect()
+}

@@ -1,0 +1,208 @@
+//! The TOML machine file as serde types. Every field is optional (a missing one
+//! keeps the built-in value) and unknown fields are errors, so a typo cannot pass
+//! unnoticed. Values are what a machinist reads on the control: mm, mm/min,
+//! degrees, and X positions as diameters.
+
+use std::cmp::Ordering;
+use std::collections::BTreeMap;
+
+use serde::{Deserialize, Serialize};
+
+/// A whole machine file.
+#[derive(Clone, Debug, Default, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct MachineFile {
+    /// `A`, `B` or `C`.
+    pub gcode_system: Option<GCodeSystemName>,
+    /// `IS-B` or `IS-C`.
+    pub increment_system: Option<IncrementName>,
+    /// `calculator` or `least_increment` (parameter 3401).
+    pub input: Option<InputName>,
+    /// X programmed as a diameter.
+    pub diameter_programming: Option<bool>,
+    /// G00 moves each axis at its own rate.
+    pub rapid_independent: Option<bool>,
+    /// Highest turret station.
+    pub tool_count: Option<u16>,
+    /// Reference positions 1–4, machine coordinates; fewer than 4: the rest equal the first.
+    pub reference: Option<Vec<Point>>,
+    /// Travel and rates per axis.
+    pub axes: Option<Axes>,
+    /// G54–G59 and the external offset.
+    pub work_offsets: Option<WorkOffsets>,
+    /// Tool offset rows.
+    pub offsets: Option<Vec<Offset>>,
+    /// Spindle limits.
+    pub spindle: Option<Spindle>,
+    /// M codes wired to machine outputs.
+    pub user_m_codes: Option<Vec<UserM>>,
+    /// Numbered parameters by number, in file units.
+    pub parameters: Option<BTreeMap<ParamKey, f64>>,
+}
+
+/// A `[parameters]` key: the number as written, ordered as a number (so a
+/// written file lists 405 before 3401).
+#[derive(Clone, Debug, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(transparent)]
+pub struct ParamKey(pub String);
+
+impl Ord for ParamKey {
+    fn cmp(&self, other: &Self) -> Ordering {
+        (self.0.len(), &self.0).cmp(&(other.0.len(), &other.0))
+    }
+}
+
+impl PartialOrd for ParamKey {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+/// G-code system.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+pub enum GCodeSystemName {
+    /// System A.
+    A,
+    /// System B.
+    B,
+    /// System C.
+    C,
+}
+
+/// Increment system.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+pub enum IncrementName {
+    /// 0.001 mm.
+    #[serde(rename = "IS-B")]
+    IsB,
+    /// 0.0001 mm.
+    #[serde(rename = "IS-C")]
+    IsC,
+}
+
+/// How numbers without a decimal point are read.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum InputName {
+    /// `X60` is 60 mm.
+    Calculator,
+    /// `X60` is 60 least increments.
+    LeastIncrement,
+}
+
+/// A position: X as a diameter (mm), Y and Z in mm, C in degrees.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Point {
+    /// X, diameter mm.
+    pub x: Option<f64>,
+    /// Y, mm.
+    pub y: Option<f64>,
+    /// Z, mm.
+    pub z: Option<f64>,
+    /// C, degrees.
+    pub c: Option<f64>,
+}
+
+/// The axes' tables; Y and C exist when their table is given.
+#[derive(Clone, Debug, Default, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Axes {
+    /// Cross slide.
+    pub x: Option<AxisFile>,
+    /// Y axis.
+    pub y: Option<AxisFile>,
+    /// Carriage.
+    pub z: Option<AxisFile>,
+    /// Spindle as a rotary axis.
+    pub c: Option<AxisFile>,
+}
+
+/// One axis: soft limits in machine coordinates (X as a diameter), rates of the
+/// slide (X not doubled), C in degrees.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct AxisFile {
+    /// Negative soft limit.
+    pub min: Option<f64>,
+    /// Positive soft limit.
+    pub max: Option<f64>,
+    /// Rapid rate, mm/min (C: deg/min).
+    pub rapid: Option<f64>,
+    /// Maximum cutting feed, mm/min.
+    pub max_feed: Option<f64>,
+    /// Acceleration, mm/s².
+    pub accel: Option<f64>,
+}
+
+/// Work offsets: machine coordinates of each work zero.
+#[derive(Clone, Debug, Default, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct WorkOffsets {
+    /// G54.
+    pub g54: Option<Point>,
+    /// G55.
+    pub g55: Option<Point>,
+    /// G56.
+    pub g56: Option<Point>,
+    /// G57.
+    pub g57: Option<Point>,
+    /// G58.
+    pub g58: Option<Point>,
+    /// G59.
+    pub g59: Option<Point>,
+    /// Added to all six.
+    pub external: Option<Point>,
+}
+
+/// One row of the tool offset page.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Offset {
+    /// Offset number.
+    pub number: u16,
+    /// X geometry, diameter mm.
+    pub x: Option<f64>,
+    /// Z geometry, mm.
+    pub z: Option<f64>,
+    /// X wear, diameter mm.
+    pub x_wear: Option<f64>,
+    /// Z wear, mm.
+    pub z_wear: Option<f64>,
+    /// Nose radius, mm.
+    pub radius: Option<f64>,
+    /// Imaginary tip direction 0–9.
+    pub tip: Option<u8>,
+}
+
+/// Spindle limits.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Spindle {
+    /// Speed at full output, rev/min.
+    pub max_rpm: Option<u32>,
+    /// G96 speed before any surface speed was given, rev/min.
+    pub css_min_rpm: Option<u32>,
+    /// Top speed of gears M41–M44, rev/min (0 = no limit).
+    pub gear_max_rpm: Option<[u32; 4]>,
+}
+
+/// A user M code.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct UserM {
+    /// The M number.
+    pub m: u16,
+    /// `before` or `after` the block's motion.
+    pub timing: TimingName,
+}
+
+/// When a user M code acts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TimingName {
+    /// Before the motion.
+    Before,
+    /// After the motion.
+    After,
+}

@@ -1,0 +1,11 @@
+%
+O0206 (MANUAL FIGURE 2.6: R15 BALL END AND R5 FILLET)
+N001 G0 X40 Z5                   (RAPID TO START)
+N002 M03 S200                    (SPINDLE ON)
+N003 G01 X0 Z0 F900              (APPROACH THE FACE)
+N005 G03 U24 W-24 R15            (R15 ARC)
+N006 G02 X26 Z-31 R5             (R5 ARC)
+N007 G01 Z-40                    (DIAMETER 26)
+N008 X40 Z5                      (BACK TO START)
+N009 M30
+%
