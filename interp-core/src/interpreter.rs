@@ -219,6 +219,15 @@ impl Interpreter {
         self.cursor
     }
 
+    /// The program the next block will be read from (the main program before the
+    /// first step). A step reads all its blocks from one program — calls and
+    /// returns end a step — so this, asked before a step, tells which program the
+    /// actions delivered during that step come from (with a sink that never
+    /// refuses, which gets every action in the step that made it).
+    pub fn program(&self) -> ProgramId {
+        if self.positioned { self.cursor.program } else { self.main }
+    }
+
     /// Tells the interpreter where the axes really are (after homing, jogging, or
     /// an aborted motion), in machine coordinates.
     pub fn set_machine_position(&mut self, pos: Pos) {

@@ -100,10 +100,11 @@ impl<const P: usize, const S: usize> ProgramIndex<P, S> {
     }
 
     /// Indexes the file `space[file..end]`: one or more programs, each starting at
-    /// its `O` block and ending before the next `O` block or `%`. Blocks before
-    /// the first `O` (other than blanks, comments and `%`) form program `unnamed` —
-    /// a main program file without an O number — or are an error if `unnamed` is
-    /// `None`. Line numbers count from the start of the file.
+    /// its `O` block and ending before the next `O` block or the closing `%` (after
+    /// which nothing is read). Blocks before the first `O` (other than blanks,
+    /// comments and a leading `%`) form program `unnamed` — a main program file
+    /// without an O number; an empty file is an empty program `unnamed` — or are an
+    /// error if `unnamed` is `None`. Line numbers count from the start of the file.
     ///
     /// Returns the number of the file's first program. All or nothing: on an error
     /// the index is as before.
@@ -141,15 +142,15 @@ impl<const P: usize, const S: usize> ProgramIndex<P, S> {
             {
                 self.add(n, file, c, at.offset, text)?;
             }
+            if block.percent && first.is_some() {
+                // The closing record mark: what follows is not read (end of tape).
+                break;
+            }
             if starts {
                 let n = program_number(block.text).ok_or(LoadError::BadProgramNumber { line: block.line })?;
                 open = Some((n, at));
                 first.get_or_insert(n);
             } else if open.is_none() && !block.percent && !is_blank(block.text) {
-                if first.is_some() {
-                    // Text after a `%` that ended a program is no program of its own.
-                    return Err(LoadError::NoProgramNumber { line: block.line });
-                }
                 let n = unnamed.ok_or(LoadError::NoProgramNumber { line: block.line })?;
                 open = Some((n, Cursor::start(n)));
                 first = Some(n);
@@ -158,7 +159,12 @@ impl<const P: usize, const S: usize> ProgramIndex<P, S> {
         if let Some((n, c)) = open {
             self.add(n, file, c, text.len(), text)?;
         }
-        first.ok_or(LoadError::NoProgramNumber { line: 1 })
+        match (first, unnamed) {
+            (Some(n), _) => Ok(n),
+            // A main program file with nothing in it is an empty program.
+            (None, Some(n)) => self.add(n, file, Cursor::start(n), text.len(), text).map(|()| n),
+            (None, None) => Err(LoadError::NoProgramNumber { line: 1 }),
+        }
     }
 
     /// Registers program `n` spanning `start..end` of `text` (the file at `file`)
@@ -423,6 +429,7 @@ mod tests {
         let used = m.text_used();
         assert_eq!(m.load(b"O0012\nM99\n", None), Err(LoadError::Duplicate { program: 12 }));
         assert_eq!(m.load(b"G00 X1\n", None), Err(LoadError::NoProgramNumber { line: 1 }));
+        assert_eq!(m.load(b"(only a comment)\n", None), Err(LoadError::NoProgramNumber { line: 1 }));
         assert_eq!(m.load(b"O0000\n", None), Err(LoadError::BadProgramNumber { line: 1 }));
         assert_eq!(m.load(b"O7\nM99\nO7\nM99\n", None), Err(LoadError::Duplicate { program: 7 }));
         assert_eq!(m.text_used(), used);
@@ -432,6 +439,15 @@ mod tests {
         assert_eq!(tiny.load(b"O1\nO2\n", None), Err(LoadError::TooManyPrograms));
         assert_eq!(tiny.load(b"O1\nG00 X100 Z200\n", None), Err(LoadError::TextFull));
         assert_eq!(tiny.text_used(), 0);
+    }
+
+    #[test]
+    fn the_closing_percent_ends_the_file_and_an_empty_main_is_a_program() {
+        let mut m = Small::new();
+        assert_eq!(m.load(b"%\nO0005\nM30\n%\nanything (not read)\nO0006\n", None), Ok(5));
+        assert_eq!(m.numbers().collect::<heapless::Vec<_, 4>>().as_slice(), &[5]);
+        assert_eq!(m.load(b"%\n(nothing)\n%\n", Some(0)), Ok(0));
+        assert_eq!(m.start(0), Some(Cursor::start(0)));
     }
 
     #[test]
