@@ -142,3 +142,33 @@ pub fn kind_names(r: &Run) -> Vec<String> {
         })
         .collect()
 }
+
+/// Motion actions as (kind, X diameter mm, Z mm) with kind `r` rapid, `l` linear,
+/// `a` arc, `t` thread, `p` tap, rounded to 0.001 mm.
+pub fn moves(r: &Run) -> Vec<(char, f64, f64)> {
+    r.actions
+        .iter()
+        .filter_map(|c| {
+            let k = match c.action {
+                Action::Rapid(_) => 'r',
+                Action::Linear(_) => 'l',
+                Action::Arc(_) => 'a',
+                Action::Thread(_) => 't',
+                Action::Tap(_) => 'p',
+                _ => return None,
+            };
+            let (x, z) = xz(c)?;
+            Some((k, round3(x), round3(z)))
+        })
+        .collect()
+}
+
+/// Rounds to 0.001.
+pub fn round3(v: f64) -> f64 {
+    (v * 1000.0).round() / 1000.0
+}
+
+/// The actions produced by the block on `line`.
+pub fn on_line(r: &Run, line: u32) -> Vec<Canon> {
+    r.actions.iter().filter(|c| c.line == line).copied().collect()
+}

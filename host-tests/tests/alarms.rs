@@ -66,7 +66,23 @@ const CASES: &[(&str, u32, u16)] = &[
     ("DO4\nM30\n", 1, 126),
     ("#1=1 G00\nM30\n", 1, 127),
     ("GOTO 0\nM30\n", 1, 128),
-    ("M99 X1\nM30\n", 1, 4032),
+    ("M99 X1\nM30\n", 1, 4042),
+    ("M3 S500\nG34 W-78 F4 K-0.2\nM30\n", 2, 14),
+    ("G71 P10 U1\nM30\n", 1, 61),
+    ("G71 U-1\nM30\n", 1, 62),
+    ("G70 P10 Q20\nM30\n", 1, 63),
+    ("G00 X100 Z5\nG71 P10 Q30 F100\nN10 G00 X40\nG01 Z-10\nN30 Z-5\nM30\n", 2, 64),
+    ("G00 X100 Z5\nG71 P10 Q30 F100\nN10 X40\nN30 G01 Z-5\nM30\n", 2, 65),
+    ("G00 X100 Z5\nG71 P10 Q30 F100\nN10 G00 X40\nG28 U0\nN30 G01 Z-5\nM30\n", 2, 66),
+    ("M29\nM30\n", 1, 200),
+    ("M29 S100\nS200\nM30\n", 2, 203),
+    ("M29 S100\nG00 X10\nM30\n", 2, 204),
+    ("G00 X100 Z5\nG71 P10 Q30 F100\nN10 G00 X40\nG01 Z-10\nN30 X30 Z-15\nM30\n", 2, 329),
+    ("G00 X100 Z10\nG90 U-40 W-30 R21 F100\nM30\n", 2, 4030),
+    ("G17\nG90 X10 Z-5 F100\nM30\n", 2, 4031),
+    ("M3 S500\nG32 W-30 F2 Q361\nM30\n", 2, 4033),
+    ("M3 S500\nG00 X40 Z5\nG76 P011060\nG76 X30 Z-20 P1.0 Q0.5 F50\nM30\n", 4, 4034),
+    ("G0 X40 Z5 M3 S500\nG74 R0.5\nG74 X20 Z-20 P3 Q5 F50\nM30\n", 3, 4037),
 ];
 
 #[test]
@@ -104,19 +120,35 @@ fn alarms_of_subprograms_mdi_and_inputs() {
     let r = run_lib("M98 P1\nM30\n", &["O0001\nM98 P2\nM99\n", "O0002\nM98 P1\nM99\n"]);
     assert_eq!((r.alarms[0].program, r.alarms[0].line, r.alarms[0].code()), (2, 2, 77));
     let r = run_lib("M98 P1\nM30\n", &["O0001\nM98 P1\nM99\n"]);
-    assert_eq!((r.alarms[0].program, r.alarms[0].line, r.alarms[0].code()), (1, 2, 4030));
+    assert_eq!((r.alarms[0].program, r.alarms[0].line, r.alarms[0].code()), (1, 2, 4040));
     let mut interp = Interpreter::new(MachineConfig::default());
     let mut sink = VecSink::default();
     assert_eq!(interp.mdi(b"GOTO 1", &Panel::default(), &mut sink).map_err(|a| a.code()), Err(123));
-    assert_eq!(interp.mdi(b"M98 P1", &Panel::default(), &mut sink).map_err(|a| a.code()), Err(4031));
+    assert_eq!(interp.mdi(b"M98 P1", &Panel::default(), &mut sink).map_err(|a| a.code()), Err(4041));
     let cfg = MachineConfig { jump_input: 40, ..MachineConfig::default() };
-    assert_eq!(run_with("M92 P1\nN1 M30\n", cfg, Panel::default()).alarm_codes(), vec![(1, 4033)]);
+    assert_eq!(run_with("M92 P1\nN1 M30\n", cfg, Panel::default()).alarm_codes(), vec![(1, 4043)]);
+}
+
+#[test]
+fn cycle_alarms_needing_a_machine_or_a_long_program() {
+    let mut cfg = MachineConfig::default();
+    cfg.axes[Axis::C.index()] = interp_core::config::AxisConfig::linear(-1, 1, 3000);
+    let r = run_with("G00 X20 Z5\nG90 X10 C5 Z-5 F100\nM30\n", cfg, Panel::default());
+    assert_eq!(r.alarm_codes(), vec![(2, 4032)]);
+    // 49 segments in a shape (48 is the most).
+    let steps: String = (1..=48).map(|i| format!("Z-{i}\n")).collect();
+    let r = run(&format!("G00 X100 Z5\nG71 P10 Q20 F100\nN10 G00 X40\nG01\n{steps}N20 X50\nM30\n"));
+    assert_eq!(r.alarm_codes()[0], (2, 4035));
+    // Eleven pockets in a type II shape.
+    let zig: String = (0..11).map(|i| format!("X60 Z-{}\nX40 Z-{}\n", 4 * i + 2, 4 * i + 4)).collect();
+    let r = run(&format!("G00 X100 Z5\nG71 U1 R0.5 F100\nG71 P10 Q20\nN10 G00 X40 Z0\nG01\n{zig}N20 X80\nM30\n"));
+    assert_eq!(r.alarm_codes()[0], (3, 4036));
 }
 
 #[test]
 fn every_catalog_code_has_a_triggering_program() {
     let mut covered: BTreeSet<u16> = CASES.iter().map(|c| c.2).collect();
-    covered.extend([4012, 224, 21, 4017, 77, 123, 4030, 4031, 4033]);
+    covered.extend([4012, 224, 21, 4017, 4032, 4035, 4036, 77, 123, 4040, 4041, 4043]);
     for entry in CATALOG {
         assert!(
             covered.contains(&entry.code) || RESERVED.contains(&entry.code),

@@ -117,7 +117,7 @@ fn m00_m01_m02_m30_and_the_optional_stop_switch() {
 
 #[test]
 fn aux_codes_of_tables_1_2_and_3_1() {
-    let r = run("M07 M08\nM09\nM10\nM11\nM12\nM13\nM19\nM20\nM29\nM31\nM32\nM33\nM41\nM45\nM63\nM64\nM65\nM30\n");
+    let r = run("M07 M08\nM09\nM10\nM11\nM12\nM13\nM19\nM20\nM29 S500\nM31\nM32\nM33\nM41\nM45\nM63\nM64\nM65\nM30\n");
     assert!(r.alarms.is_empty(), "{:?}", r.alarms);
     let ms: Vec<_> = r
         .actions

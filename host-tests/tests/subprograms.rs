@@ -75,7 +75,7 @@ fn call_alarms() {
     assert_eq!(r.alarm_codes(), vec![(1, 4011)]);
     let r = run_lib("M98 P12\nM30\n", &["O0012\nM98 P12\nM99\n"]);
     assert_eq!(r.alarms[0].kind, AlarmKind::SelfCall { program: 12 });
-    assert_eq!(r.alarms[0].to_string(), "O0012 line 2: alarm 4030: O0012 calls itself with M98");
+    assert_eq!(r.alarms[0].to_string(), "O0012 line 2: alarm 4040: O0012 calls itself with M98");
     // A single program text has no subprograms.
     let r = run("M98 P12\nM30\n");
     assert_eq!(r.alarm_codes(), vec![(1, 76)]);
@@ -95,7 +95,7 @@ fn m99_p_returns_to_the_first_such_sequence_number_of_the_caller() {
     let r = clean(main, &["O0012\nM99 P200\n"]);
     assert_eq!(path(&r), vec![(30.0, 30.0)], "back to the N200 on line 2, not line 6");
     let r = run_lib("M98 P12\nM30\n", &["O0012\nM99 P9\n"]);
-    assert_eq!(r.alarms[0].kind, AlarmKind::SequenceNotFound { seq: 9 });
+    assert_eq!(r.alarms[0].kind, AlarmKind::JumpTargetNotFound { seq: 9 });
     assert_eq!(r.alarms[0].program, 12);
 }
 
@@ -136,7 +136,7 @@ fn m99_in_a_main_program_repeats_it_ignoring_p() {
 fn m99_must_be_alone() {
     for block in ["G00 X1 M99", "M99 M08", "G00 M99", "M99 X1"] {
         let r = run_lib("M98 P12\nM30\n", &[&format!("O0012\n{block}\n")]);
-        assert_eq!(r.alarms[0].code(), 4032, "{block}");
+        assert_eq!(r.alarms[0].code(), 4042, "{block}");
     }
     let r = clean("M98 P12\nM30\n", &["O0012\nN10 M99\n"]);
     assert!(r.alarms.is_empty());
@@ -214,9 +214,9 @@ fn mdi_runs_one_block_and_refuses_calls_and_jumps() {
     assert_eq!(interp.mdi(b"G00 X#500 Z1", &panel, &mut sink), Ok(Progress::Executed { line: 0 }));
     assert_eq!(host_tests::xz(&sink.0[0]), Some((7.0, 1.0)));
     let code = |r: Result<Progress, interp_core::Alarm>| r.unwrap_err().code();
-    assert_eq!(code(interp.mdi(b"M98 P12", &panel, &mut sink)), 4031, "3.1.6 note 2");
-    assert_eq!(code(interp.mdi(b"M99", &panel, &mut sink)), 4031);
-    assert_eq!(code(interp.mdi(b"M91 P5", &panel, &mut sink)), 4031);
+    assert_eq!(code(interp.mdi(b"M98 P12", &panel, &mut sink)), 4041, "3.1.6 note 2");
+    assert_eq!(code(interp.mdi(b"M99", &panel, &mut sink)), 4041);
+    assert_eq!(code(interp.mdi(b"M91 P5", &panel, &mut sink)), 4041);
     assert_eq!(code(interp.mdi(b"GOTO 5", &panel, &mut sink)), 123);
     assert_eq!(code(interp.mdi(b"WHILE [1 EQ 1] DO1", &panel, &mut sink)), 123);
     assert_eq!(code(interp.mdi(b"G00 X1;G00 X2", &panel, &mut sink)), 4019);

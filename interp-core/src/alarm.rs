@@ -109,7 +109,7 @@ pub enum AlarmKind {
     /// 0077: a subprogram call deeper than 12 levels (3.1.6).
     CallNestingTooDeep,
     /// 0078: GOTO, M99 P or M91/M92 P names a sequence number the program lacks.
-    SequenceNotFound { seq: u32 },
+    JumpTargetNotFound { seq: u32 },
     /// 0111: a macro calculation overflowed the number range.
     MacroOverflow,
     /// 0112: division by zero in a macro expression (`/`, MOD, TAN[90]).
@@ -186,14 +186,53 @@ pub enum AlarmKind {
     IllegalCharacter { found: u8 },
     /// 4020: an axis given both absolute and incremental (X with U, Z with W).
     AxisTwice { absolute: Letter, incremental: Letter },
-    /// 4030: M98 calls the program it is in (3.1.6 note 3).
+    /// 4040: M98 calls the program it is in (3.1.6 note 3).
     SelfCall { program: u32 },
-    /// 4031: M98/M99/M91/M92 in MDI (3.1.6 note 2).
+    /// 4041: M98/M99/M91/M92 in MDI (3.1.6 note 2).
     FlowInMdi { m: u16 },
-    /// 4032: M99 shares its block with other codes (3.1.7 note 1).
+    /// 4042: M99 shares its block with other codes (3.1.7 note 1).
     M99NotAlone,
-    /// 4033: the external input M91/M92 test does not exist on this machine.
+    /// 4043: the external input M91/M92 test does not exist on this machine.
     InputNotAvailable { input: u16 },
+    /// 0014: thread lead zero or out of range, G34 K out of range, or a G34 lead that
+    /// would become zero, negative or exceed the maximum (2.17.2).
+    IllegalLead,
+    /// 0061: a G70–G73 block without P or Q (2.16.7 note 1).
+    CycleAddressMissing { letter: Letter },
+    /// 0062: an illegal value in a G71–G76 block (depth, count, angle, relief …).
+    CycleValueIllegal { what: &'static str },
+    /// 0063: the sequence number named by P or Q of G70–G73 is not in the program.
+    SequenceNotFound { n: u32 },
+    /// 0064: the finishing shape of G71/G72 is not monotone along the cutting axis.
+    ProfileNotMonotone,
+    /// 0065: the ns block of G71–G73 lacks G00/G01, or moves the wrong axis (2.16.7 note 2).
+    ProfileFirstBlock,
+    /// 0066: a code not allowed between ns and nf of G71–G73 (2.16.7 note 3).
+    ProfileForbiddenCode { what: &'static str },
+    /// 0200: rigid tapping without a spindle speed S in the M29 block (2.22.1).
+    RigidTapSpeed,
+    /// 0203: S between M29 and G84/G88, or M29 repeated (2.22.1).
+    RigidTapSequence,
+    /// 0204: axis motion between M29 and G84/G88 (2.22.1).
+    RigidTapAxisMove,
+    /// 0329: the type I finishing shape of G71/G72 is not monotone along the infeed axis.
+    ProfileNotMonotoneInfeed,
+    /// 4030: single cycle taper |R| larger than |U/2| (G90/G92) or |W| (G94) with opposite signs (2.15).
+    CycleTaperTooLarge,
+    /// 4031: G70–G76, G90/G92/G94 outside the ZX plane (2.13 note 4).
+    CycleNotInZxPlane,
+    /// 4032: a cycle block moves an axis other than X/Z (2.15 note 1).
+    CycleOtherAxis { letter: Letter },
+    /// 4033: thread start angle Q outside 0–360° (2.17.1).
+    ThreadStartAngle,
+    /// 4034: thread pull-out longer than the thread along its long axis (2.17.3 note 5, 2.17.4 note 8).
+    ThreadPulloutTooLong,
+    /// 4035: the finishing shape of G70–G73 has more segments than the controller holds.
+    ProfileTooLong,
+    /// 4036: a type II finishing shape with more than 10 pockets (2.16.1).
+    TooManyPockets,
+    /// 4037: a cycle that would plan more than a million moves.
+    CycleTooLong,
     /// 3576: reversing G41/G42 directly while compensating (2.18.4).
     NoseCompReversed,
     /// 3577: T code while nose compensation is active (2.18.4).
@@ -225,7 +264,7 @@ impl AlarmKind {
             IllegalReferenceNumber => 46,
             ProgramNotFound { .. } | SubprogramNumberMissing => 76,
             CallNestingTooDeep => 77,
-            SequenceNotFound { .. } => 78,
+            JumpTargetNotFound { .. } => 78,
             MacroOverflow => 111,
             DivideByZero => 112,
             MacroFormat { .. } => 114,
@@ -262,10 +301,29 @@ impl AlarmKind {
             MisplacedBlockSkip => 4018,
             IllegalCharacter { .. } => 4019,
             AxisTwice { .. } => 4020,
-            SelfCall { .. } => 4030,
-            FlowInMdi { .. } => 4031,
-            M99NotAlone => 4032,
-            InputNotAvailable { .. } => 4033,
+            SelfCall { .. } => 4040,
+            FlowInMdi { .. } => 4041,
+            M99NotAlone => 4042,
+            InputNotAvailable { .. } => 4043,
+            IllegalLead => 14,
+            CycleAddressMissing { .. } => 61,
+            CycleValueIllegal { .. } => 62,
+            SequenceNotFound { .. } => 63,
+            ProfileNotMonotone => 64,
+            ProfileFirstBlock => 65,
+            ProfileForbiddenCode { .. } => 66,
+            RigidTapSpeed => 200,
+            RigidTapSequence => 203,
+            RigidTapAxisMove => 204,
+            ProfileNotMonotoneInfeed => 329,
+            CycleTaperTooLarge => 4030,
+            CycleNotInZxPlane => 4031,
+            CycleOtherAxis { .. } => 4032,
+            ThreadStartAngle => 4033,
+            ThreadPulloutTooLong => 4034,
+            ProfileTooLong => 4035,
+            TooManyPockets => 4036,
+            CycleTooLong => 4037,
             NoseCompReversed => 3576,
             ToolChangeInNoseComp => 3577,
             NoseCompGouge => 3605,
@@ -311,7 +369,7 @@ impl fmt::Display for AlarmKind {
             ProgramNotFound { program } => write!(f, "program O{program:04} not found"),
             SubprogramNumberMissing => write!(f, "M98 needs P with the program number"),
             CallNestingTooDeep => write!(f, "subprograms nested deeper than 12 levels"),
-            SequenceNotFound { seq } => write!(f, "sequence number N{seq} not found"),
+            JumpTargetNotFound { seq } => write!(f, "sequence number N{seq} not found"),
             MacroOverflow => write!(f, "macro calculation out of the number range"),
             DivideByZero => write!(f, "division by zero (/, MOD or TAN of 90 degrees)"),
             MacroFormat { what } => write!(f, "macro format error: {what}"),
@@ -358,6 +416,34 @@ impl fmt::Display for AlarmKind {
             FlowInMdi { m } => write!(f, "M{m:02} cannot be used in MDI"),
             M99NotAlone => write!(f, "M99 must be alone in its block (N and P only)"),
             InputNotAvailable { input } => write!(f, "external input {input} for M91/M92 does not exist"),
+            IllegalLead => write!(f, "thread lead zero, out of range or becoming negative (G34 K)"),
+            CycleAddressMissing { letter } => write!(f, "G70-G73 needs address {}", Ch(letter)),
+            CycleValueIllegal { what } => write!(f, "illegal value in cycle: {what}"),
+            SequenceNotFound { n } => write!(f, "sequence number N{n} of the cycle not found in the program"),
+            ProfileNotMonotone => write!(f, "finishing shape is not monotone along the cutting axis"),
+            ProfileFirstBlock => {
+                write!(f, "first block of the finishing shape must be G00/G01 moving the infeed axis")
+            }
+            ProfileForbiddenCode { what } => write!(f, "{what} is not allowed in the finishing shape (ns-nf)"),
+            RigidTapSpeed => write!(f, "rigid tapping needs S in the M29 block"),
+            RigidTapSequence => write!(f, "S or a repeated M29 between M29 and G84/G88"),
+            RigidTapAxisMove => write!(f, "axis motion between M29 and G84/G88"),
+            ProfileNotMonotoneInfeed => {
+                write!(
+                    f,
+                    "type I finishing shape is not monotone along the infeed axis (use X and Z in ns for type II)"
+                )
+            }
+            CycleTaperTooLarge => write!(f, "taper R larger than the cut depth with opposite sign"),
+            CycleNotInZxPlane => write!(f, "turning and threading cycles work in the ZX plane (G18) only"),
+            CycleOtherAxis { letter } => write!(f, "axis {} cannot move in a turning cycle block", Ch(letter)),
+            ThreadStartAngle => write!(f, "thread start angle Q must be 0 to 360 degrees"),
+            ThreadPulloutTooLong => write!(f, "thread pull-out is longer than the thread"),
+            ProfileTooLong => write!(f, "finishing shape has too many segments"),
+            TooManyPockets => write!(f, "finishing shape has more than 10 pockets"),
+            CycleTooLong => {
+                write!(f, "cycle would make more than a million moves (P/Q without a point are least increments)")
+            }
             NoseCompReversed => write!(f, "G41/G42 reversed while nose compensation is active"),
             ToolChangeInNoseComp => write!(f, "T code while nose compensation is active"),
             NoseCompGouge => write!(f, "nose compensation would gouge the part"),
@@ -404,6 +490,11 @@ pub const CATALOG: &[CatalogEntry] = &[
     },
     CatalogEntry { code: 11, title: "feed zero", when: "G01/G02/G03 with F zero or never commanded" },
     CatalogEntry {
+        code: 14,
+        title: "illegal lead",
+        when: "thread lead F/E zero or beyond 500 mm; G34 K beyond +-499.99 or a lead that becomes zero, negative or too large (2.17.2)",
+    },
+    CatalogEntry {
         code: 20,
         title: "arc radius out of tolerance",
         when: "R shorter than half the chord, or I/K end point off the circle by more than parameter 3410",
@@ -425,6 +516,36 @@ pub const CATALOG: &[CatalogEntry] = &[
         when: "T word selects a tool or offset outside the tool table",
     },
     CatalogEntry { code: 46, title: "illegal reference number", when: "G30 P other than 1-4 (2.11.2)" },
+    CatalogEntry {
+        code: 61,
+        title: "P/Q missing in G70-G73",
+        when: "G70 without P and Q, G71-G73 P without Q (2.16.7 note 1)",
+    },
+    CatalogEntry {
+        code: 62,
+        title: "illegal cycle value",
+        when: "G71/G72 depth or retract, G73 count, G74/G75 step, G76 height, first depth, minimum depth, allowance, angle, finish count (2.16, 2.17.4 notes 6-7)",
+    },
+    CatalogEntry {
+        code: 63,
+        title: "sequence number not found",
+        when: "ns or nf of G70-G73 not in the current program",
+    },
+    CatalogEntry {
+        code: 64,
+        title: "shape not monotone",
+        when: "G71/G72 finishing shape goes back along the cutting axis (Z for G71; 2.16.1 note 4)",
+    },
+    CatalogEntry {
+        code: 65,
+        title: "bad first block of shape",
+        when: "ns block of G71-G73 without G00/G01, or a type I G71 ns block that moves Z (2.16.7 note 2)",
+    },
+    CatalogEntry {
+        code: 66,
+        title: "code not allowed in shape",
+        when: "group 00 code other than G04, group 01 other than G00-G03, G20/G21, M98/M99, M00/M01/M02/M30 between ns and nf (2.16.7 note 3)",
+    },
     CatalogEntry {
         code: 76,
         title: "program not found",
@@ -476,10 +597,22 @@ pub const CATALOG: &[CatalogEntry] = &[
         title: "illegal sequence number",
         when: "GOTO target not a whole number 1-99999 (2.24.2 note 1)",
     },
+    CatalogEntry { code: 200, title: "rigid tap S missing", when: "M29 without S or with S0 (2.22.1)" },
+    CatalogEntry {
+        code: 203,
+        title: "rigid tap sequence",
+        when: "S between M29 and G84/G88, or M29 repeated in rigid tapping (2.22.1)",
+    },
+    CatalogEntry { code: 204, title: "axis move in rigid tap", when: "axis motion between M29 and G84/G88 (2.22.1)" },
     CatalogEntry {
         code: 224,
         title: "reference not established",
         when: "G28/G30 on an axis that has not been homed (2.11.2 note 2)",
+    },
+    CatalogEntry {
+        code: 329,
+        title: "shape not monotone (infeed axis)",
+        when: "type I G71/G72 finishing shape goes back along the infeed axis (2.16.1)",
     },
     CatalogEntry {
         code: 500,
@@ -575,19 +708,55 @@ pub const CATALOG: &[CatalogEntry] = &[
         title: "axis given twice",
         when: "absolute and incremental address of one axis in a block (X with U, Z with W; 2.17.1 note 7)",
     },
-    CatalogEntry { code: 4030, title: "subprogram calls itself", when: "M98 P names its own program (3.1.6 note 3)" },
+    CatalogEntry {
+        code: 4030,
+        title: "taper too large",
+        when: "G90/G92 |R| > |U/2| or G94 |R| > |W| with R and U/W of opposite sign (2.15, figures 2.24/2.28)",
+    },
     CatalogEntry {
         code: 4031,
+        title: "cycle outside ZX plane",
+        when: "G70-G76, G90, G92, G94 in G17/G19 (2.13 note 4)",
+    },
+    CatalogEntry {
+        code: 4032,
+        title: "other axis in cycle",
+        when: "a G70-G76/G90/G92/G94 block moves Y or C (2.15 note 1)",
+    },
+    CatalogEntry { code: 4033, title: "thread start angle", when: "G32/G34 Q outside 0-360 degrees (2.17.1)" },
+    CatalogEntry {
+        code: 4034,
+        title: "pull-out too long",
+        when: "G92/G76 pull-out (NO.5130 x 0.1 lead) longer than the thread (2.17.3 note 5, 2.17.4 note 8)",
+    },
+    CatalogEntry {
+        code: 4035,
+        title: "shape too long",
+        when: "finishing shape ns-nf with more segments than the controller holds (48)",
+    },
+    CatalogEntry {
+        code: 4036,
+        title: "too many pockets",
+        when: "type II G71/G72 shape with more than 10 pockets (2.16.1)",
+    },
+    CatalogEntry {
+        code: 4037,
+        title: "cycle too long",
+        when: "a cycle would plan more than 1,000,000 moves (G74/G75 P3 is 0.003 mm; 2.16.5)",
+    },
+    CatalogEntry { code: 4040, title: "subprogram calls itself", when: "M98 P names its own program (3.1.6 note 3)" },
+    CatalogEntry {
+        code: 4041,
         title: "M98/M99/M91/M92 in MDI",
         when: "subprogram call or jump entered in MDI (3.1.6 note 2)",
     },
     CatalogEntry {
-        code: 4032,
+        code: 4042,
         title: "M99 not alone",
         when: "M99 shares its block with G, M or other words besides N and P (3.1.7 note 1)",
     },
     CatalogEntry {
-        code: 4033,
+        code: 4043,
         title: "jump input missing",
         when: "M91/M92 test an external input the machine does not have (3.1.5)",
     },
@@ -628,7 +797,7 @@ mod tests {
             ProgramNotFound { program: 12 },
             SubprogramNumberMissing,
             CallNestingTooDeep,
-            SequenceNotFound { seq: 10 },
+            JumpTargetNotFound { seq: 10 },
             MacroOverflow,
             DivideByZero,
             MacroFormat { what: "x" },
@@ -667,6 +836,25 @@ mod tests {
             MisplacedBlockSkip,
             IllegalCharacter { found: b'?' },
             AxisTwice { absolute: b'X', incremental: b'U' },
+            IllegalLead,
+            CycleAddressMissing { letter: b'P' },
+            CycleValueIllegal { what: "x" },
+            SequenceNotFound { n: 10 },
+            ProfileNotMonotone,
+            ProfileFirstBlock,
+            ProfileForbiddenCode { what: "x" },
+            RigidTapSpeed,
+            RigidTapSequence,
+            RigidTapAxisMove,
+            ProfileNotMonotoneInfeed,
+            CycleTaperTooLarge,
+            CycleNotInZxPlane,
+            CycleOtherAxis { letter: b'Y' },
+            ThreadStartAngle,
+            ThreadPulloutTooLong,
+            ProfileTooLong,
+            TooManyPockets,
+            CycleTooLong,
             SelfCall { program: 12 },
             FlowInMdi { m: 98 },
             M99NotAlone,
@@ -692,7 +880,7 @@ mod tests {
     fn alarms_in_subprograms_name_the_program() {
         use core::fmt::Write;
         let mut s = heapless::String::<96>::new();
-        write!(s, "{}", Alarm::in_program(12, 3, AlarmKind::SequenceNotFound { seq: 40 })).unwrap();
+        write!(s, "{}", Alarm::in_program(12, 3, AlarmKind::JumpTargetNotFound { seq: 40 })).unwrap();
         assert_eq!(s.as_str(), "O0012 line 3: alarm 0078: sequence number N40 not found");
         s.clear();
         write!(s, "{}", Alarm::new(3, AlarmKind::TooManyBrackets)).unwrap();

@@ -18,11 +18,12 @@ use crate::axis::Pos;
 use crate::canon::CanonSink;
 use crate::check::check;
 use crate::config::{MachineConfig, Param};
+use crate::cycles::Expansion;
 use crate::env::Environment;
 use crate::exec::{Flow, Outbox, Staged, State, execute};
 use crate::macros::{MacroStatement, Variables};
 use crate::parse::{Block, MacroBlock, Read, read_statement_into, skip_level};
-use crate::program::{Cursor, ProgramId, ProgramStore, find_loop_end, next_block};
+use crate::program::{Cursor, ProgramId, ProgramStore, ProgramText, find_loop_end, next_block};
 use crate::units::NumberFormat;
 
 /// Subprogram nesting: the main program may call 12 levels deep (3.1.6).
@@ -107,6 +108,15 @@ struct Frame {
     repeats_left: u16,
 }
 
+/// What a cycle block hands the interpreter (see [`Interpreter::commit_cycle`]).
+#[derive(Debug, Default)]
+struct BlockCycle {
+    exp: Option<Expansion>,
+    split: usize,
+    params: heapless::Vec<(Param, i64), 8>,
+    resume: Option<Cursor>,
+}
+
 /// Where the program goes after a block, decided (and checked) before the block
 /// is committed, so a failed call or jump leaves everything as it was.
 #[derive(Clone, Copy, Debug)]
@@ -143,6 +153,8 @@ pub struct Interpreter {
     calls: heapless::Vec<Frame, MAX_CALL_DEPTH>,
     loops: Loops,
     budget: u16,
+    /// The canned cycle being delivered (see [`crate::cycles`]).
+    cycle: Option<Expansion>,
 }
 
 impl Interpreter {
@@ -164,6 +176,7 @@ impl Interpreter {
             calls: heapless::Vec::new(),
             loops: heapless::Vec::new(),
             budget: DEFAULT_STEP_BUDGET,
+            cycle: None,
         }
     }
 
@@ -261,6 +274,7 @@ impl Interpreter {
     pub fn rewind(&mut self) {
         self.positioned = false;
         self.outbox.clear();
+        self.cycle = None;
         self.phase = Phase::Running;
         self.started = false;
         self.state.moved = false;
@@ -287,6 +301,10 @@ impl Interpreter {
     {
         if !self.deliver(sink) {
             return Ok(Progress::Blocked);
+        }
+        if let Some(line) = self.run_cycle(programs, env)? {
+            self.deliver(sink);
+            return Ok(Progress::Executed { line });
         }
         match self.phase {
             Phase::Paused => return Ok(Progress::Paused),
@@ -364,7 +382,7 @@ impl Interpreter {
                 if self.block.is_empty() {
                     return Ok(Progress::Skipped { line: 0 });
                 }
-                self.run_block(env, true, |_, _| Ok(Next::Go)).map_err(alarm)?;
+                self.run_block(env, None, |_, _| Ok(Next::Go)).map_err(alarm)?;
             }
         }
         self.deliver(sink);
@@ -387,8 +405,15 @@ impl Interpreter {
             return Ok(Progress::Skipped { line });
         }
         self.started = true;
+        let here = self.cursor.program;
+        let program = ProgramText {
+            text: programs.text(here).unwrap_or(&[]),
+            start: programs.start(here).unwrap_or(Cursor::start(here)),
+            vars: None,
+            fmt: Some(self.number_format()),
+        };
         let next = self
-            .run_block(env, false, |me, flow| me.route(flow, programs))
+            .run_block(env, Some(program), |me, flow| me.route(flow, programs))
             .map_err(|k| Alarm::in_program(at.program, line, k))?;
         self.go(next);
         self.deliver(sink);
@@ -398,21 +423,41 @@ impl Interpreter {
     /// Checks and executes `self.block` on a copy of the state; `route` decides (and
     /// checks) where the program goes next; commits only if all succeeded. The
     /// block's actions are staged in the (empty) outbox and dropped on failure.
-    fn run_block<E, R>(&mut self, env: &E, mdi: bool, route: R) -> Result<Next, AlarmKind>
+    /// `program` is the program the block is in (its variables are filled in
+    /// here); `None` in MDI, where calls, jumps and canned cycles are refused.
+    fn run_block<E, R>(&mut self, env: &E, program: Option<ProgramText<'_>>, route: R) -> Result<Next, AlarmKind>
     where
         E: Environment,
         R: FnOnce(&Self, Flow) -> Result<Next, AlarmKind>,
     {
         let cmd = check(&self.block, &self.state, &self.cfg)?;
-        if mdi && let Some(&(m, _)) = cmd.m.iter().find(|(_, f)| f.is_flow()) {
-            return Err(AlarmKind::FlowInMdi { m });
+        if program.is_none() {
+            if let Some(&(m, _)) = cmd.m.iter().find(|(_, f)| f.is_flow()) {
+                return Err(AlarmKind::FlowInMdi { m });
+            }
+            if crate::cycles::cycle_of(&cmd, &self.state).is_some() {
+                return Err(AlarmKind::NotSupportedYet { what: "canned cycles in MDI" });
+            }
         }
         let mut next = self.state;
-        let mut staged = Staged::new(self.block.line, &mut self.outbox);
-        let go = execute(&cmd, &mut next, &self.cfg, env, &mut staged).and_then(|flow| route(self, flow));
-        match go {
+        let mut slot = None;
+        let mut cycle = BlockCycle::default();
+        let program = program.map(|p| ProgramText { vars: Some(&self.vars), ..p });
+        let mut staged = match program {
+            Some(p) => Staged::in_program(self.block.line, &mut self.outbox, p, &mut slot),
+            None => Staged::new(self.block.line, &mut self.outbox),
+        };
+        let done = execute(&cmd, &mut next, &self.cfg, env, &mut staged);
+        if done.is_ok() {
+            cycle.split = staged.split.unwrap_or(staged.actions.len());
+            cycle.params = core::mem::take(&mut staged.params);
+            cycle.resume = staged.resume;
+        }
+        cycle.exp = slot;
+        match done.and_then(|flow| route(self, flow)) {
             Ok(go) => {
                 self.state = next;
+                self.commit_cycle(cycle);
                 Ok(go)
             }
             Err(e) => {
@@ -420,6 +465,55 @@ impl Interpreter {
                 Err(e)
             }
         }
+    }
+
+    /// What a successful cycle block hands over: its expansion (taking the actions
+    /// staged after the cycle's place as its tail), parameter writes (G71 U → 5147
+    /// …) and, after G71–G73, the place after the shape's nf block (a shape after
+    /// the cycle block is skipped; one before it leaves the program where it is).
+    fn commit_cycle(&mut self, c: BlockCycle) {
+        if let Some(mut exp) = c.exp {
+            exp.take_tail(&mut self.outbox, c.split);
+            self.cycle = Some(exp);
+        }
+        for (p, v) in c.params {
+            self.cfg.params.set(p, v);
+        }
+        if let Some(r) = c.resume.filter(|r| r.offset > self.cursor.offset) {
+            self.jump(Cursor { program: self.cursor.program, ..r });
+        }
+    }
+
+    /// Lets the cycle in progress refill the outbox (bounded work: until the outbox
+    /// is full). `Some(line of the cycle block)` while a cycle is being delivered.
+    fn run_cycle<P, E>(&mut self, programs: &P, env: &E) -> Result<Option<u32>, Alarm>
+    where
+        P: ProgramStore + ?Sized,
+        E: Environment,
+    {
+        let Some(exp) = self.cycle.as_mut() else { return Ok(None) };
+        let line = exp.line();
+        let here = self.cursor.program;
+        let program = ProgramText {
+            text: programs.text(here).unwrap_or(&[]),
+            start: programs.start(here).unwrap_or(Cursor::start(here)),
+            vars: Some(&self.vars),
+            fmt: Some(NumberFormat {
+                units: self.state.modal.units,
+                input: self.cfg.input_mode(),
+                increments: self.cfg.increments,
+            }),
+        };
+        match exp.run(&self.cfg, program, env, &mut self.outbox) {
+            Ok(false) => {}
+            Ok(true) => self.cycle = None,
+            Err(k) => {
+                // Cannot happen after the dry run; stop the cycle rather than loop.
+                self.cycle = None;
+                return Err(Alarm::in_program(here, line, k));
+            }
+        }
+        Ok(Some(line))
     }
 
     /// Where `flow` leads, with every target looked up and checked.
@@ -448,15 +542,15 @@ impl Interpreter {
                         None => None,
                         Some(n) => {
                             let caller = start_of(f.ret.program)?;
-                            Some(programs.find_sequence(n, caller).ok_or(AlarmKind::SequenceNotFound { seq: n })?)
+                            Some(programs.find_sequence(n, caller).ok_or(AlarmKind::JumpTargetNotFound { seq: n })?)
                         }
                     };
                     Next::Return { to }
                 }
             },
-            Flow::Jump { seq } => {
-                Next::Jump { to: programs.find_sequence(seq, self.cursor).ok_or(AlarmKind::SequenceNotFound { seq })? }
-            }
+            Flow::Jump { seq } => Next::Jump {
+                to: programs.find_sequence(seq, self.cursor).ok_or(AlarmKind::JumpTargetNotFound { seq })?,
+            },
         })
     }
 
@@ -525,7 +619,7 @@ impl Interpreter {
             MacroStatement::Assign { var, value } => self.vars.set(var, value),
             MacroStatement::Nop => Ok(()),
             MacroStatement::Goto { seq } => {
-                let to = programs.find_sequence(seq, self.cursor).ok_or(AlarmKind::SequenceNotFound { seq })?;
+                let to = programs.find_sequence(seq, self.cursor).ok_or(AlarmKind::JumpTargetNotFound { seq })?;
                 self.jump(to);
                 Ok(())
             }

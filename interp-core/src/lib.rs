@@ -19,6 +19,7 @@ pub mod canon;
 pub mod check;
 pub mod codes;
 pub mod config;
+pub mod cycles;
 pub mod env;
 pub mod exec;
 pub mod geom;

@@ -9,7 +9,7 @@ use core::hint::black_box;
 
 use cortex_m_rt::entry;
 use heapless::Vec;
-use interp_core::canon::{Action, Canon, RecordingSink};
+use interp_core::canon::{Action, Canon, CanonSink, Full, RecordingSink, ThreadSync};
 use interp_core::macros::{MacroStatement, Variables};
 use interp_core::parse::{Statement, read_statement};
 use interp_core::{Alarm, Axis, Interpreter, MachineConfig, Panel, Progress, SingleProgram};
@@ -24,6 +24,7 @@ const TESTS: &[(&str, TestFn)] = &tests![
     interpreter_figure_2_6_arcs,
     interpreter_figure_2_73_surface_speed,
     interpreter_alarm_changes_nothing,
+    interpreter_figure_2_60_g76,
     macro_functions_match_the_host_bit_for_bit,
     macro_loop_through_the_interpreter,
 ];
@@ -131,6 +132,47 @@ fn interpreter_alarm_changes_nothing() -> Result<(), &'static str> {
     let (_, alarm, bad) = interpret(b"G00 X10 Z10\nG99 G55 G01 X40 F0.3 S900 Q5\nM30\n");
     check(alarm.map(|a| (a.line, a.code())) == Some((2, 4005)), "alarm 4005 on line 2")?;
     check(good.state() == bad.state(), "state unchanged")
+}
+
+/// Records where each index-synchronised thread pass starts (the X of the rapid
+/// before it) and counts all actions.
+struct Passes {
+    last_x: i64,
+    starts: Vec<i64, 8>,
+    count: u32,
+}
+
+impl CanonSink for Passes {
+    fn push(&mut self, c: Canon) -> Result<(), Full> {
+        self.count += 1;
+        match c.action {
+            Action::Rapid(m) => self.last_x = m.to.work[Axis::X],
+            Action::Thread(t) if t.sync == ThreadSync::Index => self.starts.push(self.last_x).map_err(|_| Full)?,
+            _ => {}
+        }
+        Ok(())
+    }
+}
+
+/// Manual figure 2.60 (G76 M68x6) on the M4: the cycle refills the outbox step by
+/// step; pass depths 1.8, 1.8*sqrt(2), 1.8*sqrt(3), k-d = 3.58, then k = 3.68 twice
+/// (radius from the crest X68), to the nanometre as on the host.
+fn interpreter_figure_2_60_g76() -> Result<(), &'static str> {
+    let text = b"M3 S300\nG00 X80 Z10\nG76 P020560 Q0.15 R0.1\nG76 X60.64 Z-62 P3.68 Q1.8 F6\nM30\n";
+    let mut interp = Interpreter::new(MachineConfig::default());
+    let mut sink = Passes { last_x: 0, starts: Vec::new(), count: 0 };
+    for _ in 0..200 {
+        match interp.step(&SingleProgram(text), &Panel::default(), &mut sink) {
+            Ok(Progress::Ended) => break,
+            Ok(_) => {}
+            Err(_) => return Err("alarm"),
+        }
+    }
+    check(
+        sink.starts.as_slice() == [32_200_000, 31_454_416, 30_882_309, 30_420_000, 30_320_000, 30_320_000],
+        "pass depths",
+    )?;
+    check(sink.count == 33, "actions: spindle, rapid, 6 passes of 5, end")
 }
 
 /// Macro expressions give the same f64 bits on the M4 (software float) as on the

@@ -216,17 +216,27 @@ pub enum ThreadSync {
     Continue,
 }
 
-/// A spindle-synchronised thread move.
+/// A spindle-synchronised thread move (G32/G34 blocks, G92 and G76 passes).
+///
+/// The start is where the previous motion ended. The long axis is Z when the move
+/// travels further in Z than in X (radius), else X; `lead` is along it and the
+/// other axis follows proportionally (tapers). A G92/G76 pass with a pull-out
+/// (chamfer, parameters 5130/5131) is two thread moves: the thread to where the
+/// pull-out starts (`Index`), then the pull-out to the end point with the same lead
+/// (`Continue`): the long axis keeps its lead while the short axis pulls out.
+/// Multi-start threads (G92 H) are passes with `start_udeg` 360°/H apart.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct ThreadMove {
     /// End point.
     pub to: Endpoint,
-    /// Lead in nm per spindle revolution along the long axis.
+    /// Lead in nm per spindle revolution along the long axis (X as a radius).
     pub lead: i64,
-    /// Lead change per revolution (G34 K), nm/rev per rev.
+    /// Lead change per revolution (G34 K), nm/rev per rev; the lead after n
+    /// revolutions is `lead + n·lead_delta`.
     pub lead_delta: i64,
-    /// Spindle angle after the index where the pass starts, micro-degrees.
+    /// Spindle angle after the index where the pass starts, micro-degrees (G32 Q,
+    /// G92 H offsets); meaningless for `Continue`.
     pub start_udeg: u32,
     /// Index-synchronised or continuing.
     pub sync: ThreadSync,
@@ -246,7 +256,10 @@ pub enum SpindleDir {
     Stop,
 }
 
-/// A rigid-tapping move: the tapping axis locked to the spindle position.
+/// A rigid-tapping move (M29 G84/G88): the tapping axis locked to the spindle
+/// position, `lead` per revolution, into the hole and out of it (the spindle
+/// reverses: `dir` is the direction during this move). Floating tapping is not a
+/// tap move: it is feed-per-revolution linear moves between spindle commands.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct TapMove {

@@ -43,6 +43,7 @@ pub struct GSet {
 pub(crate) fn uses_axes(c: GCode) -> bool {
     use GCode::*;
     matches!(c, Dwell | ReferenceReturn | ReferenceReturnN | SetCoordinates | LocalFrame | MachineCoordinates)
+        || crate::cycles::args::is_multiple(c)
 }
 
 impl GSet {
@@ -118,7 +119,7 @@ impl GSet {
 }
 
 /// Rejects codes this build does not implement with a clear alarm; accepts the
-/// cancel codes of modes that can never be on (G13.1, G50.2, G23, G80, G40).
+/// cancel codes of modes that can never be on (G13.1, G50.2, G23, G40).
 fn supported(code: GCode) -> Result<(), AlarmKind> {
     use GCode::*;
     let what = match code {
@@ -128,11 +129,6 @@ fn supported(code: GCode) -> Result<(), AlarmKind> {
         PolygonOn => "polygon turning G51.2",
         StrokeCheckOn => "stored stroke check 2 (G22)",
         NoseCompLeft | NoseCompRight => "tool nose radius compensation G41/G42",
-        TurningCycle | ThreadCycle | FacingCycle => "single cycles G90/G92/G94",
-        Thread | VariableLeadThread => "threading G32/G34",
-        FinishCycle | RoughTurnCycle | RoughFaceCycle | PatternCycle | FacePeckCycle | GroovePeckCycle
-        | MultiThreadCycle => "multiple repetitive cycles G70-G76",
-        FaceDrill | FaceTap | FaceBore | SideDrill | SideTap | SideBore => "drilling and tapping cycles G83-G89",
         _ => return Ok(()),
     };
     Err(AlarmKind::NotSupportedYet { what })

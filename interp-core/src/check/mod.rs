@@ -79,14 +79,21 @@ pub struct Command {
     pub tool: Option<(u16, u16)>,
     /// M98/M99/M91/M92 with their words.
     pub flow: Option<FlowWord>,
+    /// Cycle words (G70–G76, G90/G92/G94, G32/G34, G83–G89), internal units.
+    pub cycle: crate::cycles::CycleArgs,
 }
 
 impl Command {
     /// The code that consumes the block's axis words.
     pub fn axis_user(&self, state: &State) -> GCode {
+        use crate::cycles::args::{is_hole, is_multiple};
         match self.g.one_shot {
-            Some(c) if gset::uses_axes(c) => c,
-            _ => self.g.motion.unwrap_or(state.modal.motion),
+            Some(c) if gset::uses_axes(c) || is_multiple(c) => c,
+            _ => match self.g.drilling {
+                Some(d) if is_hole(d) => d,
+                None if self.g.motion.is_none() && is_hole(state.modal.drilling) => state.modal.drilling,
+                _ => self.g.motion.unwrap_or(state.modal.motion),
+            },
         }
     }
 
@@ -118,6 +125,7 @@ pub fn check(block: &Block, state: &State, cfg: &MachineConfig) -> Result<Comman
         speed: None,
         tool: None,
         flow: None,
+        cycle: crate::cycles::CycleArgs::None,
     };
     let flow_m = cmd.m.iter().map(|&(_, f)| f).find(|f| f.is_flow());
     let user = cmd.axis_user(state);

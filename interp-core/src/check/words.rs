@@ -66,10 +66,16 @@ pub(super) fn check_letters(
     flow: Option<MFunction>,
     cfg: &MachineConfig,
 ) -> Result<(), AlarmKind> {
-    let (mut allowed, name) = words_of(user);
+    let (mut allowed, name) = match crate::cycles::args::letters_of(user) {
+        Some((l, name)) => (Letters::of(l), name),
+        None => words_of(user),
+    };
     if let Some(f) = flow {
         if allowed.contains(b'P') && block.has(b'P') {
-            return Err(AlarmKind::WordNotAllowed { letter: b'P', context: "G04/G30 together with M98/M99/M91/M92" });
+            return Err(AlarmKind::WordNotAllowed {
+                letter: b'P',
+                context: "a code with P together with M98/M99/M91/M92",
+            });
         }
         allowed = allowed.with(if f == MFunction::Call { Letters::of(b"PL") } else { Letters::of(b"P") });
     }
@@ -81,6 +87,8 @@ pub(super) fn check_letters(
             return Err(AlarmKind::WordNotAllowed { letter, context: name });
         }
         if user != GCode::Dwell
+            && !(user == GCode::ThreadCycle && letter == b'H')
+            && crate::cycles::args::axes_are_points(user)
             && let Some((axis, _)) = axis_of(letter)
             && !cfg.axis(axis).present
         {
@@ -102,10 +110,14 @@ pub(super) fn convert(
     fmt: &NumberFormat,
     cmd: &mut Command,
 ) -> Result<(), AlarmKind> {
+    use crate::cycles::args;
     if user == GCode::Dwell {
         cmd.dwell_ms = Some(dwell_ms(block, fmt)?);
-    } else {
-        convert_axes(block, state, cfg, fmt, cmd)?;
+    } else if args::axes_are_points(user) {
+        convert_axes(block, state, cfg, fmt, cmd, user == GCode::ThreadCycle)?;
+    }
+    if args::is_cycle(user) {
+        cmd.cycle = args::read(user, block, fmt, cfg.diameter_x)?;
     }
     if matches!(user, GCode::ArcCw | GCode::ArcCcw) {
         convert_arc_words(block, fmt, cmd)?;
@@ -119,7 +131,7 @@ pub(super) fn convert(
             },
         };
     }
-    if let Some(f) = block.get(b'F') {
+    if let Some(f) = block.get(b'F').filter(|_| !args::f_is_lead(user)) {
         if f.is_negative() {
             return Err(AlarmKind::IllegalMinusSign { letter: b'F' });
         }
@@ -141,9 +153,14 @@ fn convert_axes(
     cfg: &MachineConfig,
     fmt: &NumberFormat,
     cmd: &mut Command,
+    h_is_count: bool,
 ) -> Result<(), AlarmKind> {
     let g91 = cmd.g.incremental.unwrap_or(state.modal.incremental);
     for axis in Axis::ALL {
+        if h_is_count && axis == Axis::C {
+            // G92 H is the number of starts, not the C axis.
+            continue;
+        }
         let abs = block.get(axis.letter());
         let inc = block.get(axis.incremental_letter());
         let (n, incremental) = match (abs, inc) {

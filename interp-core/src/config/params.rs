@@ -49,7 +49,8 @@ pub enum Param {
     PeckTapClearance,
     /// No.5130: thread pull-out (chamfer) in 0.1 × lead (2.17.3, 2.17.4).
     ThreadChamfer,
-    /// No.5131: thread pull-out angle, degrees; 0 = 45° (2.17.3).
+    /// No.5131: thread pull-out angle of G92 and G76, degrees; 0 = 45° (2.17.3). The
+    /// manual's G76 table says P(a) writes 5131; its note 4 and FANUC say 5143.
     ThreadChamferAngle,
     /// No.5139: retract e of G74/G75 (2.16.5).
     GrooveRetract,
@@ -118,29 +119,29 @@ defs! {
     ArcWithoutCenterIsLine 3403 Bool 0.0 "G02/G03 without R and I/J/K: 1 = straight line, 0 = alarm 0022 (2.3 note 2)";
     ArcRadiusTolerance 3410 Mm 0.01 "allowed difference of start and end radius of an arc (2.3)";
     OffsetDigits 5002 Count 2.0 "digits of the offset number at the end of T (T0101: 2)";
-    DeepPeckDrilling 5101 Bool 0.0 "G83/G87 with Q: 0 = high-speed peck, 1 = deep peck (2.21.1)";
-    DeepPeckTapping 5102 Bool 0.0 "G84/G88 with Q: 0 = high-speed peck, 1 = deep peck tapping (2.22.2)";
-    PeckDrillClearance 5113 Mm 0.5 "return/clearance d of peck drilling (2.21.1)";
-    PeckTapClearance 5114 Mm 0.5 "return/clearance d of peck tapping (2.22.2)";
-    ThreadChamfer 5130 TenthLead 10.0 "thread pull-out length in 0.1 x lead (2.17.3 note 1, 2.17.4)";
-    ThreadChamferAngle 5131 Deg 0.0 "thread pull-out angle in degrees, 0 = 45 (2.17.3 note 1)";
-    GrooveRetract 5139 Mm 0.1 "retract e of G74/G75 (2.16.5, 2.16.6)";
-    ThreadMinDepth 5140 Mm 0.1 "minimum cut depth dmin of G76 (2.17.4)";
-    ThreadFinishAllowance 5141 Mm 0.05 "finishing allowance d of G76 (2.17.4)";
-    ThreadFinishCount 5142 Count 1.0 "finishing passes m of G76 (2.17.4)";
-    ThreadToolAngle 5143 Deg 60.0 "tool nose angle a of G76 (2.17.4)";
-    PatternReliefX 5144 Mm 0.0 "relief di in X (radius) of G73 (2.16.3)";
-    PatternReliefZ 5145 Mm 0.0 "relief dk in Z of G73 (2.16.3)";
-    PatternDivisions 5146 Count 1.0 "number of passes d of G73 (2.16.3)";
-    RoughingDepth 5147 Mm 1.0 "depth of cut dd of G71/G72 (2.16.1, 2.16.2)";
-    RoughingRetract 5148 Mm 0.5 "retract e of G71/G72 (2.16.1, 2.16.2)";
+    DeepPeckDrilling 5101 Bool 0.0 "G83/G87 with Q: 0 = high-speed peck (back d of 5113), 1 = deep peck (back to R each peck) (2.21.1)";
+    DeepPeckTapping 5102 Bool 0.0 "rigid G84/G88 with Q: 0 = high-speed peck (back d of 5114), 1 = deep peck (back to R) (2.22.2)";
+    PeckDrillClearance 5113 Mm 0.5 "G83/G87 peck: return d (high-speed) or clearance above the last depth (deep), mm (2.21.1)";
+    PeckTapClearance 5114 Mm 0.5 "rigid tapping peck: return d of the high-speed peck, mm (2.22.2)";
+    ThreadChamfer 5130 TenthLead 10.0 "G92/G76 pull-out along the long axis in 0.1 x lead (10 = one lead); G76 P(r) sets it (2.17.3 note 1, 2.17.4)";
+    ThreadChamferAngle 5131 Deg 0.0 "G92/G76 pull-out angle from the long axis, degrees; 0 = 45 (2.17.3 note 1)";
+    GrooveRetract 5139 Mm 0.1 "G74/G75 retract e after each peck, mm; G74/G75 R(e) sets it (2.16.5, 2.16.6)";
+    ThreadMinDepth 5140 Mm 0.1 "G76 minimum depth of cut dmin, mm radius; G76 Q(dmin) sets it (2.17.4)";
+    ThreadFinishAllowance 5141 Mm 0.05 "G76 finishing allowance d, mm radius; G76 R(d) sets it (2.17.4)";
+    ThreadFinishCount 5142 Count 1.0 "G76 finishing passes m (1-99); G76 P(m) sets it (2.17.4)";
+    ThreadToolAngle 5143 Deg 60.0 "G76 tool angle a, degrees (0-99); G76 P(a) sets it (2.17.4 note 4)";
+    PatternReliefX 5144 Mm 0.0 "G73 relief di in X, mm radius, signed; G73 U(di) sets it (2.16.3)";
+    PatternReliefZ 5145 Mm 0.0 "G73 relief dk in Z, mm, signed; G73 W(dk) sets it (2.16.3)";
+    PatternDivisions 5146 Count 1.0 "G73 number of passes d; G73 R(d) sets it (2.16.3)";
+    RoughingDepth 5147 Mm 1.0 "depth of cut dd of G71/G72, mm (G71: radius); G71 U(dd) / G72 W(dd) set it (2.16.1, 2.16.2)";
+    RoughingRetract 5148 Mm 0.5 "G71/G72 retract e (45 degrees), mm; G71/G72 R(e) sets it (2.16.1, 2.16.2)";
     DisableCoordinateSetting 5152 Bool 0.0 "1 = G50 X/Z coordinate setting disabled (2.12.1 note 3)";
     InitialLinear 5153 Bool 0.0 "motion mode at power-on: 0 = G00, 1 = G01 (2.1 note 2)";
     InitialPerRev 5154 Bool 0.0 "feed mode at power-on: 0 = G98 per minute, 1 = G99 per revolution (2.20 note 1)";
     ResetCancelsLocal 5160 Bool 0.0 "1 = reset cancels the G52 local coordinate system (2.12.3 note 5)";
-    ReverseTapping 5170 Bool 0.0 "1 = reverse-thread rigid tapping option (2.22.2)";
+    ReverseTapping 5170 Bool 0.0 "rigid tapping spindle direction: 0 = M03 in, M04 out; 1 = M04 in, M03 out (2.22.2 note 7)";
     MaxCuttingFeed 6023 MmPerMin 5000.0 "maximum cutting feed along the path (2.2 note 3)";
-    TapDwellAtR 7013 Ms 0.0 "dwell at the R point in rigid tapping (2.22.2)";
+    TapDwellAtR 7013 Ms 0.0 "rigid tapping dwell at the R level after tapping, ms (2.22.2 step 6, default 0 ms)";
 }
 
 /// Number of parameters.

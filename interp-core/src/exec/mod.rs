@@ -3,19 +3,22 @@
 //! the caller commits it only if the whole block succeeded.
 
 mod coords;
-mod motion;
+pub(crate) mod motion;
 mod spindle;
 mod state;
 
 pub use spindle::spindle_speed;
-pub use state::{FeedMemory, Frames, Modal, SpindleState, State, ToolState};
+pub use state::{
+    CycleMemory, FeedMemory, Frames, HoleMemory, Modal, RigidTap, SingleMemory, SpindleState, State, ToolState,
+};
 
 use crate::alarm::AlarmKind;
 use crate::axis::Pos;
 use crate::canon::{Action, Canon, SpindleDir};
 use crate::check::{Command, FlowWord};
 use crate::codes::{GCode, MFunction};
-use crate::config::{MTiming, MachineConfig, ToolOffset};
+use crate::config::{MTiming, MachineConfig, Param, ToolOffset};
+use crate::cycles::{self, Expansion};
 use crate::env::Environment;
 
 /// Most actions one block produces.
@@ -26,18 +29,59 @@ pub const STAGE: usize = 16;
 /// actions reach the sink only when the whole block succeeded.
 pub type Outbox = heapless::Deque<Canon, STAGE>;
 
-/// Actions of the block being executed, staged in the (empty) outbox.
+/// Actions of the block being executed, staged in the (empty) outbox, and what a
+/// cycle block hands to the interpreter.
 #[derive(Debug)]
 pub struct Staged<'a> {
     line: u32,
     /// The staged actions, in order.
     pub actions: &'a mut Outbox,
+    /// The program the block is in: G70–G73 read their ns–nf blocks from it.
+    pub program: crate::program::ProgramText<'a>,
+    /// Where a cycle started by this block goes (the interpreter's expansion slot);
+    /// `None` where no cycle may start (inside a cycle's own blocks).
+    slot: Option<&'a mut Option<Expansion>>,
+    /// Index in `actions` where the cycle's moves belong: actions staged after it
+    /// (M05, M30 …) are delivered after the cycle.
+    pub split: Option<usize>,
+    /// Parameters the block sets (G71 U(Δd) → 5147 …), written only if it succeeds.
+    pub params: heapless::Vec<(Param, i64), 8>,
+    /// Where the program goes on after the block if not with the next block: after
+    /// the nf block of G71–G73 (the shape's blocks are not executed).
+    pub resume: Option<crate::program::Cursor>,
 }
 
 impl<'a> Staged<'a> {
-    /// Stages the actions of the block on `line` in `outbox`.
+    /// Stages the actions of the block on `line` in `outbox` (no cycle may start).
     pub fn new(line: u32, outbox: &'a mut Outbox) -> Self {
-        Staged { line, actions: outbox }
+        Staged {
+            line,
+            actions: outbox,
+            program: crate::program::ProgramText::NONE,
+            slot: None,
+            split: None,
+            params: heapless::Vec::new(),
+            resume: None,
+        }
+    }
+
+    /// A stage for a block of `program` that may start a cycle into `slot`.
+    pub fn in_program(
+        line: u32,
+        outbox: &'a mut Outbox,
+        program: crate::program::ProgramText<'a>,
+        slot: &'a mut Option<Expansion>,
+    ) -> Self {
+        Staged { program, slot: Some(slot), ..Staged::new(line, outbox) }
+    }
+
+    /// Hands the block's cycle to the interpreter; its moves come after the actions
+    /// staged so far.
+    pub fn start_cycle(&mut self, exp: Expansion) -> Result<(), AlarmKind> {
+        let slot = self.slot.as_mut().ok_or(AlarmKind::ProfileForbiddenCode { what: "a cycle" })?;
+        **slot = Some(exp);
+        self.split = Some(self.actions.len());
+        Ok(())
     }
 
     /// Stages one action.
@@ -83,8 +127,10 @@ pub fn execute(
     env: &dyn Environment,
     out: &mut Staged<'_>,
 ) -> Result<Flow, AlarmKind> {
+    let chained = cycles::before_block(cmd, st)?;
     apply_modal(cmd, st);
     spindle::before_motion(cmd, st, cfg, out)?;
+    cycles::after_spindle(cmd, st, out)?;
     tool_change(cmd, st, cfg, out)?;
     aux(cmd, MTiming::Before, out)?;
     match cmd.g.one_shot {
@@ -93,7 +139,12 @@ pub fn execute(
         Some(GCode::LocalFrame) => coords::local_frame(cmd, st),
         Some(GCode::MachineCoordinates) => coords::machine_move(cmd, st, cfg, out)?,
         Some(GCode::ReferenceReturn | GCode::ReferenceReturnN) => coords::reference_return(cmd, st, cfg, env, out)?,
-        _ => motion::execute(cmd, st, cfg, out)?,
+        _ => {
+            let mut ctx = cycles::Ctx { cfg, env, out };
+            if !cycles::execute(cmd, st, &mut ctx, chained)? {
+                motion::execute(cmd, st, cfg, ctx.out)?;
+            }
+        }
     }
     // 2.14 item 5: G61/G64 take effect from the next block.
     if let Some(e) = cmd.g.exact_stop_mode {

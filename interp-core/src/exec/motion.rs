@@ -34,7 +34,7 @@ pub(super) fn execute(
 
 /// Work-coordinate target of the block: commanded axes absolute or incremental,
 /// the others where they are.
-pub(super) fn target(cmd: &Command, st: &State, cfg: &MachineConfig) -> Result<Pos, AlarmKind> {
+pub(crate) fn target(cmd: &Command, st: &State, cfg: &MachineConfig) -> Result<Pos, AlarmKind> {
     let mut work = st.work_pos(cfg);
     for axis in Axis::ALL {
         if let Some(w) = cmd.axes[axis.index()] {
@@ -46,13 +46,13 @@ pub(super) fn target(cmd: &Command, st: &State, cfg: &MachineConfig) -> Result<P
 }
 
 /// Both coordinates of a work target.
-pub(super) fn endpoint(work: Pos, st: &State, cfg: &MachineConfig) -> Result<Endpoint, AlarmKind> {
+pub(crate) fn endpoint(work: Pos, st: &State, cfg: &MachineConfig) -> Result<Endpoint, AlarmKind> {
     let machine = work.checked_add(st.work_to_machine(cfg)).ok_or(AlarmKind::Overflow)?;
     Ok(Endpoint { machine, work })
 }
 
 /// Alarm 0500/0501 if `machine` is outside an axis's travel.
-pub(super) fn check_limits(machine: &Pos, cfg: &MachineConfig) -> Result<(), AlarmKind> {
+pub(crate) fn check_limits(machine: &Pos, cfg: &MachineConfig) -> Result<(), AlarmKind> {
     for a in Axis::ALL {
         check_axis_range(a, machine[a], machine[a], cfg)?;
     }

@@ -105,6 +105,89 @@ impl FeedMemory {
     }
 }
 
+/// X/Z end point and taper R of a G90/G92/G94 cycle, kept for the following blocks
+/// of the same cycle until another code clears them (2.15 note 2). Work
+/// coordinates, X as a radius.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct SingleMemory {
+    /// End point X (radius).
+    pub x: i64,
+    /// End point Z.
+    pub z: i64,
+    /// Taper R (radius for G90/G92, Z for G94).
+    pub r: i64,
+}
+
+/// Hole data of G83–G89 kept until G80 (2.21.3).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct HoleMemory {
+    /// Hole bottom along the drilling axis (work, absolute); `None` until given.
+    pub bottom: Option<i64>,
+    /// Signed distance initial level → R level (radius value).
+    pub r: i64,
+    /// Peck depth Q (0 = no pecking).
+    pub q: i64,
+    /// Dwell at the bottom, ms.
+    pub dwell_ms: u32,
+}
+
+/// Rigid tapping mode (2.22.1).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum RigidTap {
+    /// Not selected: G84/G88 tap floating.
+    #[default]
+    Off,
+    /// M29 S given; the next G84/G88 taps rigidly.
+    Pending {
+        /// S of the M29 block.
+        rpm: u32,
+        /// Spindle direction before M29, restored after each hole.
+        before: SpindleDir,
+    },
+    /// A rigid G84/G88 is in force until G80.
+    Active {
+        /// S of the M29 block.
+        rpm: u32,
+        /// Spindle direction before M29.
+        before: SpindleDir,
+    },
+}
+
+/// What the canned cycles remember from one block to the next.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct CycleMemory {
+    /// Retained X/Z/R of G90/G92/G94 (2.15 note 2).
+    pub single: Option<SingleMemory>,
+    /// Thread lead in force for G32/G34/G92/G76, nm per revolution (2.17.1: F is kept).
+    pub lead: i64,
+    /// The last block was a thread block: the next thread block continues without
+    /// waiting for the spindle index (2.17.1 note 2).
+    pub thread_chain: bool,
+    /// Drilling and tapping data (G83–G89).
+    pub hole: HoleMemory,
+    /// Rigid tapping (M29).
+    pub rigid: RigidTap,
+    /// Direction floating tapping turns the spindle into the hole (2.22.3 note 2).
+    pub tap_dir: SpindleDir,
+}
+
+impl Default for CycleMemory {
+    fn default() -> Self {
+        CycleMemory {
+            single: None,
+            lead: 0,
+            thread_chain: false,
+            hole: HoleMemory::default(),
+            rigid: RigidTap::Off,
+            tap_dir: SpindleDir::Stop,
+        }
+    }
+}
+
 /// Everything that persists from one block to the next.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -123,6 +206,8 @@ pub struct State {
     pub spindle: SpindleState,
     /// Whether any axis has moved since the program started (G20/G21 rule, 2.9 note 2).
     pub moved: bool,
+    /// Canned cycle memory.
+    pub cycle: CycleMemory,
 }
 
 impl State {
@@ -150,6 +235,7 @@ impl State {
             feed: FeedMemory { per_min: f0 * NM_PER_MM, per_rev: f0 * NM_PER_MM },
             spindle: SpindleState { dir: SpindleDir::Stop, rpm: 0, css: None, clamp: None, gear: 0 },
             moved: false,
+            cycle: CycleMemory::default(),
         }
     }
 

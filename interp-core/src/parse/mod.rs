@@ -4,7 +4,7 @@
 
 mod reader;
 
-pub use reader::{read_block, read_block_into, read_statement, read_statement_into};
+pub use reader::{read_block, read_block_into, read_statement, read_statement_into, read_with};
 
 use crate::macros::MacroStatement;
 use crate::units::Number;

@@ -42,6 +42,18 @@ pub fn read_statement_into(
     Reader { text, pos: 0, vars: Some(vars), fmt: Some(*fmt) }.statement(line, block)
 }
 
+/// [`read_statement_into`] with what is available: without `vars` a `#` raises
+/// alarm 0114, without `fmt` a ROUND in a word does (the cycles' shape blocks).
+pub fn read_with(
+    text: &[u8],
+    line: u32,
+    vars: Option<&Variables>,
+    fmt: Option<NumberFormat>,
+    block: &mut Block,
+) -> Result<Read, AlarmKind> {
+    Reader { text, pos: 0, vars, fmt }.statement(line, block)
+}
+
 /// Reads an NC block that uses no variables (tools and tests). A `#`, a ROUND in a
 /// word or a macro statement raise alarm 0114: use [`read_statement`] for those.
 pub fn read_block(text: &[u8], line: u32) -> Result<Block, AlarmKind> {

@@ -12,7 +12,8 @@ mod memory;
 pub use memory::{LoadError, ProgramArea, ProgramIndex, ProgramMemory};
 
 use crate::alarm::AlarmKind;
-use crate::macros::{LoopMark, loop_mark};
+use crate::macros::{LoopMark, Variables, loop_mark};
+use crate::units::NumberFormat;
 
 /// Identifies a program in a store: its O number (0 = a main program without one).
 pub type ProgramId = u32;
@@ -52,6 +53,30 @@ pub struct SingleProgram<'a>(pub &'a [u8]);
 impl ProgramStore for SingleProgram<'_> {
     fn text(&self, id: ProgramId) -> Option<&[u8]> {
         (id == 0).then_some(self.0)
+    }
+}
+
+/// A program as the blocks of a canned cycle's shape (G70–G73 ns–nf) are read from
+/// it: the text, where the program begins, and what the words are evaluated against.
+#[derive(Clone, Copy, Debug)]
+pub struct ProgramText<'a> {
+    /// The text; cursors of the program index into it.
+    pub text: &'a [u8],
+    /// Where the program begins: sequence numbers are searched from here.
+    pub start: Cursor,
+    /// The variables `#i` in words stand for (`None`: words may not use variables).
+    pub vars: Option<&'a Variables>,
+    /// The number format in force (ROUND in words); `None` outside a program.
+    pub fmt: Option<NumberFormat>,
+}
+
+impl ProgramText<'_> {
+    /// No program (MDI, tests): no blocks, no variables.
+    pub const NONE: ProgramText<'static> = ProgramText { text: &[], start: Cursor::start(0), vars: None, fmt: None };
+
+    /// Program text without variables, starting at its beginning (tests, tools).
+    pub const fn plain(text: &[u8]) -> ProgramText<'_> {
+        ProgramText { text, start: Cursor::start(0), vars: None, fmt: None }
     }
 }
 
@@ -121,6 +146,12 @@ pub fn next_block<'a>(text: &'a [u8], cur: &mut Cursor) -> Option<RawBlock<'a>> 
 /// (after an optional `/` skip mark and blanks), as FANUC searches it.
 pub fn find_sequence(text: &[u8], program: ProgramId, n: u32) -> Option<Cursor> {
     scan_sequence(text, Cursor::start(program), None, n)
+}
+
+/// The first block of the program beginning at `start` in `text` whose sequence
+/// number is `n` (a linear scan).
+pub fn find_sequence_from(text: &[u8], start: Cursor, n: u32) -> Option<Cursor> {
+    scan_sequence(text, start, None, n)
 }
 
 /// The first block from `cur` (up to byte `until`) whose sequence number is `n`.

@@ -1,0 +1,292 @@
+//! Turning the moves a cycle plans (work coordinates, X as radius) into canonical
+//! actions: end points in both coordinate systems, soft limits, feed, spindle.
+//! One emitter serves the dry run that validates a cycle and the real run that
+//! delivers it, so both produce the same actions.
+
+use crate::alarm::AlarmKind;
+use crate::axis::{Axis, Pos};
+use crate::canon::{
+    Action, ArcMove, Canon, Feed, FeedMode, Move, Plane, SpindleCommand, SpindleDir, TapMove, ThreadMove, ThreadSync,
+};
+use crate::config::MachineConfig;
+use crate::exec::{State, motion, spindle_speed};
+
+/// A point of the ZX plane in work coordinates: X as a radius, nm.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Pt {
+    /// X (radius).
+    pub x: i64,
+    /// Z.
+    pub z: i64,
+}
+
+impl Pt {
+    /// A point.
+    pub const fn new(x: i64, z: i64) -> Self {
+        Pt { x, z }
+    }
+
+    /// Coordinate of `axis` (X or Z).
+    pub fn get(self, axis: Axis) -> i64 {
+        if axis == Axis::X { self.x } else { self.z }
+    }
+
+    /// The point with `axis` set to `v`.
+    pub fn with(mut self, axis: Axis, v: i64) -> Self {
+        if axis == Axis::X {
+            self.x = v;
+        } else {
+            self.z = v;
+        }
+        self
+    }
+}
+
+/// One move (or other action) a cycle plans.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Step {
+    /// Rapid to a point.
+    Rapid(Pt),
+    /// Rapid to a work position of all axes (hole positions with C).
+    RapidTo(Pos),
+    /// Cutting feed to a point at the cycle's feed.
+    Feed(Pt),
+    /// Cutting feed to a point at a feed per revolution (floating tapping follows the spindle).
+    FeedPerRev(Pt, i64),
+    /// Arc at the cycle's feed.
+    Arc {
+        /// End point.
+        to: Pt,
+        /// Centre.
+        center: Pt,
+        /// G02.
+        cw: bool,
+    },
+    /// Spindle-synchronised thread move.
+    Thread {
+        /// End point.
+        to: Pt,
+        /// Lead along the long axis, nm/rev.
+        lead: i64,
+        /// Lead change per revolution (G34).
+        delta: i64,
+        /// Start angle after the index, µdeg.
+        start_udeg: u32,
+        /// Index or continue.
+        sync: ThreadSync,
+    },
+    /// Rigid tapping move along one axis.
+    Tap {
+        /// End point.
+        to: Pt,
+        /// Lead, nm/rev.
+        lead: i64,
+        /// Spindle direction during the move.
+        dir: SpindleDir,
+    },
+    /// Dwell.
+    Dwell(u32),
+    /// Spindle direction change at the remembered speed.
+    Spindle(SpindleDir),
+}
+
+/// Where emitted actions go: the block's stage, the interpreter's outbox, or
+/// nowhere (dry run).
+pub trait Out {
+    /// Takes one action; an error if it has no room (a bug: callers check first).
+    fn put(&mut self, c: Canon) -> Result<(), AlarmKind>;
+    /// How many more actions it takes now.
+    fn room(&self) -> usize {
+        usize::MAX
+    }
+}
+
+impl<const N: usize> Out for heapless::Deque<Canon, N> {
+    fn put(&mut self, c: Canon) -> Result<(), AlarmKind> {
+        self.push_back(c).map_err(|_| AlarmKind::Overflow)
+    }
+    fn room(&self) -> usize {
+        N - self.len()
+    }
+}
+
+/// The dry-run sink: counts and forgets.
+#[derive(Debug, Default)]
+pub struct Dry(pub u32);
+
+impl Out for Dry {
+    fn put(&mut self, _: Canon) -> Result<(), AlarmKind> {
+        self.0 = self.0.saturating_add(1);
+        Ok(())
+    }
+}
+
+impl Out for crate::exec::Staged<'_> {
+    fn put(&mut self, c: Canon) -> Result<(), AlarmKind> {
+        self.actions.push_back(c).map_err(|_| AlarmKind::Overflow)
+    }
+    fn room(&self) -> usize {
+        crate::exec::STAGE - self.actions.len()
+    }
+}
+
+/// Emits planned steps as canonical actions, tracking the position on its own
+/// copy of the state.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Emitter {
+    /// The state as the cycle runs (position, spindle).
+    pub st: State,
+    /// Line of the cycle block: every action carries it.
+    pub line: u32,
+    /// The cycle's cutting feed.
+    pub feed: Feed,
+}
+
+impl Emitter {
+    /// An emitter for the cycle block on `line`, cutting at the feed in force.
+    pub fn new(st: State, line: u32) -> Self {
+        let feed = Feed { mode: st.modal.feed_mode, value: st.feed.get(st.modal.feed_mode) };
+        Emitter { st, line, feed }
+    }
+
+    /// The current work position in the ZX plane.
+    pub fn here(&self, cfg: &MachineConfig) -> Pt {
+        let w = self.st.work_pos(cfg);
+        Pt::new(w[Axis::X], w[Axis::Z])
+    }
+
+    /// Emits one step (nothing for a move that goes nowhere).
+    pub fn emit(&mut self, step: Step, cfg: &MachineConfig, out: &mut dyn Out) -> Result<(), AlarmKind> {
+        let action = match step {
+            Step::Rapid(p) => {
+                let Some(to) = self.target(p, cfg)? else { return Ok(()) };
+                let m = Move { to, feed: self.feed, spindle: self.speed(cfg, p), exact_stop: true, independent: false };
+                Action::Rapid(m)
+            }
+            Step::RapidTo(w) => {
+                let to = motion::endpoint(w, &self.st, cfg)?;
+                motion::check_limits(&to.machine, cfg)?;
+                if to.machine == self.st.pos {
+                    return Ok(());
+                }
+                let spindle = spindle_speed(&self.st, cfg, w[Axis::X]);
+                Action::Rapid(Move { to, feed: self.feed, spindle, exact_stop: true, independent: false })
+            }
+            Step::Feed(p) => {
+                let feed = self.cutting_feed(cfg)?;
+                let Some(to) = self.target(p, cfg)? else { return Ok(()) };
+                let exact_stop = self.st.modal.exact_stop_mode;
+                Action::Linear(Move { to, feed, spindle: self.speed(cfg, p), exact_stop, independent: false })
+            }
+            Step::FeedPerRev(p, value) => {
+                let Some(to) = self.target(p, cfg)? else { return Ok(()) };
+                let feed = Feed { mode: FeedMode::PerRev, value };
+                Action::Linear(Move { to, feed, spindle: self.speed(cfg, p), exact_stop: true, independent: false })
+            }
+            Step::Arc { to, center, cw } => self.arc(to, center, cw, cfg)?,
+            Step::Thread { to: p, lead, delta, start_udeg, sync } => {
+                let Some(to) = self.target(p, cfg)? else { return Ok(()) };
+                let spindle = self.speed(cfg, p);
+                // A thread waits for the spindle index: with the spindle stopped it
+                // would wait for ever.
+                if spindle.rpm.is_none_or(|r| r == 0) {
+                    return Err(AlarmKind::FeedPerRevSpindleStopped);
+                }
+                Action::Thread(ThreadMove { to, lead, lead_delta: delta, start_udeg, sync, spindle })
+            }
+            Step::Tap { to: p, lead, dir } => {
+                let Some(to) = self.target(p, cfg)? else { return Ok(()) };
+                // The spindle is position-controlled in the tapping direction at the M29 speed.
+                let mut locked = self.st;
+                locked.spindle.dir = dir;
+                let spindle = spindle_speed(&locked, cfg, p.x);
+                Action::Tap(TapMove { to, lead, dir, spindle })
+            }
+            Step::Dwell(ms) => Action::Dwell { ms },
+            Step::Spindle(dir) => {
+                self.st.spindle.dir = dir;
+                let x = self.st.work_axis(cfg, Axis::X);
+                let s = spindle_speed(&self.st, cfg, x);
+                let css = if self.st.modal.css { self.st.spindle.css } else { None };
+                Action::Spindle(SpindleCommand { dir, rpm: s.rpm, css: s.css.or(css) })
+            }
+        };
+        if let Some(e) = action.endpoint() {
+            self.st.pos = e.machine;
+            self.st.moved = true;
+        }
+        out.put(Canon { line: self.line, action })
+    }
+
+    /// The end point of a move to `p`, soft limits checked; `None` if already there.
+    fn target(&self, p: Pt, cfg: &MachineConfig) -> Result<Option<crate::canon::Endpoint>, AlarmKind> {
+        let mut w: Pos = self.st.work_pos(cfg);
+        w[Axis::X] = p.x;
+        w[Axis::Z] = p.z;
+        let to = motion::endpoint(w, &self.st, cfg)?;
+        motion::check_limits(&to.machine, cfg)?;
+        Ok((to.machine != self.st.pos).then_some(to))
+    }
+
+    fn speed(&self, cfg: &MachineConfig, p: Pt) -> crate::canon::SpindleSpeed {
+        spindle_speed(&self.st, cfg, p.x)
+    }
+
+    /// The cycle's feed, with the alarms of a cutting move (F0, G99 without spindle).
+    fn cutting_feed(&self, cfg: &MachineConfig) -> Result<Feed, AlarmKind> {
+        if self.feed.value <= 0 {
+            return Err(AlarmKind::FeedZero);
+        }
+        if self.feed.mode == FeedMode::PerRev {
+            let x = self.st.work_axis(cfg, Axis::X);
+            if self.st.spindle.dir == SpindleDir::Stop || spindle_speed(&self.st, cfg, x).rpm == Some(0) {
+                return Err(AlarmKind::FeedPerRevSpindleStopped);
+            }
+        }
+        Ok(self.feed)
+    }
+
+    fn arc(&self, to: Pt, center: Pt, cw: bool, cfg: &MachineConfig) -> Result<Action, AlarmKind> {
+        let feed = self.cutting_feed(cfg)?;
+        let here = self.here(cfg);
+        let end = self.target(to, cfg)?.ok_or(AlarmKind::Overflow)?;
+        let mut cw_pos = self.st.work_pos(cfg);
+        cw_pos[Axis::X] = center.x;
+        cw_pos[Axis::Z] = center.z;
+        let c = motion::endpoint(cw_pos, &self.st, cfg)?;
+        let ext = crate::geom::arc_extents((here.z, here.x), (to.z, to.x), (center.z, center.x), cw, false);
+        let shift = self.st.work_to_machine(cfg);
+        let lo = Pos::xz(ext.b.0 + shift[Axis::X], ext.a.0 + shift[Axis::Z]);
+        let hi = Pos::xz(ext.b.1 + shift[Axis::X], ext.a.1 + shift[Axis::Z]);
+        motion::check_limits(&lo.with_others(&self.st.pos), cfg)?;
+        motion::check_limits(&hi.with_others(&self.st.pos), cfg)?;
+        let spindle = self.speed(cfg, to);
+        let exact_stop = self.st.modal.exact_stop_mode;
+        Ok(Action::Arc(ArcMove {
+            to: end,
+            center: c,
+            plane: Plane::Zx,
+            cw,
+            full_circle: false,
+            feed,
+            spindle,
+            exact_stop,
+        }))
+    }
+}
+
+trait WithOthers {
+    fn with_others(self, from: &Pos) -> Pos;
+}
+
+impl WithOthers for Pos {
+    /// X and Z of `self`, the other axes from `from`.
+    fn with_others(self, from: &Pos) -> Pos {
+        let mut p = *from;
+        p[Axis::X] = self[Axis::X];
+        p[Axis::Z] = self[Axis::Z];
+        p
+    }
+}

@@ -1,0 +1,62 @@
+//! G70 finishing (2.16.4): the blocks ns–nf run as written — their F, S and T take
+//! effect — one block per refill through the normal check/exec pipeline, then a
+//! rapid back to the start point.
+
+use super::StepQueue;
+use super::emit::{Emitter, Out, Pt, Step};
+use super::profile::{ShapeSource, next_shape_block, run_shape_block};
+use crate::alarm::AlarmKind;
+use crate::config::MachineConfig;
+use crate::env::Environment;
+use crate::exec::Staged;
+use crate::program::Cursor;
+
+/// Where G70 is in its blocks.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FinishGen {
+    cur: Cursor,
+    ns: u32,
+    nf: u32,
+    first: bool,
+    start: Pt,
+    done: bool,
+}
+
+impl FinishGen {
+    /// G70 reading from block ns at `cur`, returning to `start`.
+    pub fn new(cur: Cursor, ns: u32, nf: u32, start: Pt) -> Self {
+        FinishGen { cur, ns, nf, first: true, start, done: false }
+    }
+
+    /// Runs the next block into `out` (which has room for a whole block); after nf
+    /// queues the return to the start. False when finished.
+    pub fn step<E: Environment + ?Sized>(
+        &mut self,
+        em: &mut Emitter,
+        cfg: &MachineConfig,
+        program: crate::program::ProgramText<'_>,
+        env: &E,
+        out: &mut dyn Out,
+        queue: &mut StepQueue,
+    ) -> Result<bool, AlarmKind> {
+        if self.done {
+            return Ok(false);
+        }
+        let src = ShapeSource { program, ns: self.ns, nf: self.nf };
+        let Some(sb) = next_shape_block(&src, &mut self.cur, env)? else {
+            return Err(AlarmKind::SequenceNotFound { n: self.nf });
+        };
+        let mut outbox = crate::exec::Outbox::new();
+        let mut staged = Staged::new(em.line, &mut outbox);
+        run_shape_block(&sb, self.first, &mut em.st, cfg, env, &mut staged)?;
+        self.first = false;
+        while let Some(c) = outbox.pop_front() {
+            out.put(c)?;
+        }
+        if sb.last {
+            queue.push_back(Step::Rapid(self.start)).map_err(|_| AlarmKind::Overflow)?;
+            self.done = true;
+        }
+        Ok(true)
+    }
+}

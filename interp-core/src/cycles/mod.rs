@@ -1,0 +1,426 @@
+//! Canned cycles (2.15–2.17, 2.21–2.22): G90/G92/G94 single cycles, G32/G34
+//! threading, G70–G76 multiple repetitive cycles, G83–G89 hole cycles and M29
+//! rigid tapping, as expansions into the canonical actions.
+//!
+//! # Expansion design
+//! A cycle may produce hundreds of moves while the interpreter's outbox holds 16
+//! and the board has 128 KB of RAM, so a cycle never materialises its passes. It is
+//! an [`Expansion`]: a small state machine (a generator per cycle family plus, for
+//! G71–G73, the finishing shape as at most [`profile::PROFILE_MAX`] segments) kept
+//! in the interpreter. Every `step()` lets it plan its next few moves into an
+//! 8-step queue and emit them until the outbox is full: bounded work per step.
+//!
+//! All-or-nothing still holds: when the cycle block executes, a copy of the
+//! expansion is run to the end against a sink that only counts (the *dry run*).
+//! Every alarm the cycle can raise — the notes' value checks, the shape's codes and
+//! monotony, soft limits of every pass, feeds — is raised then, before the first
+//! action is delivered, and the state the dry run ends in (position back at the
+//! start point, modal changes of G70's blocks) is what the block commits. The real
+//! run then replays the same deterministic generator from the start. Generators
+//! are pure functions of their inputs, so the real run cannot alarm.
+//!
+//! Actions of the cycle block itself (spindle, tool, M codes before the motion) go
+//! first; the ones after the motion (M05, M09, M30 …) are kept in the expansion
+//! and delivered after its last move. Every action carries the cycle block's line.
+
+pub mod args;
+mod emit;
+mod finish;
+mod groove;
+mod hole;
+mod pattern;
+pub mod profile;
+mod rough;
+mod single;
+mod thread;
+
+pub use args::CycleArgs;
+pub use emit::{Emitter, Out, Pt, Step};
+
+use crate::alarm::AlarmKind;
+use crate::canon::{Canon, Plane, SpindleDir};
+use crate::check::Command;
+use crate::codes::GCode;
+use crate::config::{MachineConfig, Param};
+use crate::env::Environment;
+use crate::exec::{RigidTap, Staged, State};
+use emit::Dry;
+use finish::FinishGen;
+use groove::GrooveGen;
+use hole::HoleGen;
+use pattern::PatternGen;
+use profile::{Profile, ShapeSource};
+use rough::RoughGen;
+use thread::{MultiThreadGen, ThreadCycleGen};
+
+/// Steps planned and not yet emitted.
+pub type StepQueue = heapless::Deque<Step, 8>;
+
+/// Actions of the cycle block that follow its motion (M05, M09, M30 …).
+const TAIL: usize = 6;
+
+/// Most planned steps one cycle may have (alarm 4037 beyond): a cycle whose P/Q
+/// were written as least increments by mistake (P3 = 0.003 mm) would otherwise
+/// expand to millions of pecks.
+pub const MAX_CYCLE_STEPS: u32 = 1_000_000;
+
+/// The generator of one cycle.
+#[derive(Clone, Debug, PartialEq)]
+enum Gen {
+    /// A fixed handful of steps (G90/G94).
+    Plan(heapless::Vec<Step, 8>),
+    ThreadCycle(ThreadCycleGen),
+    Rough(RoughGen),
+    Pattern(PatternGen),
+    Finish(FinishGen),
+    Groove(GrooveGen),
+    MultiThread(MultiThreadGen),
+    Hole(HoleGen),
+}
+
+/// A cycle being delivered: its generator, its copy of the state and what is
+/// left to emit.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Expansion {
+    em: Emitter,
+    generator: Gen,
+    profile: Profile,
+    queue: StepQueue,
+    gen_done: bool,
+    tail: heapless::Vec<Canon, TAIL>,
+    tail_at: usize,
+    /// Steps planned so far.
+    steps: u32,
+}
+
+impl Expansion {
+    fn new(em: Emitter, generator: Gen, profile: Profile) -> Self {
+        Expansion {
+            em,
+            generator,
+            profile,
+            queue: StepQueue::new(),
+            gen_done: false,
+            tail: heapless::Vec::new(),
+            tail_at: 0,
+            steps: 0,
+        }
+    }
+
+    /// Line of the cycle block.
+    pub fn line(&self) -> u32 {
+        self.em.line
+    }
+
+    /// Moves the block's actions staged after the cycle's place (`split`) out of
+    /// `outbox`, to deliver them after the cycle's last move.
+    pub fn take_tail(&mut self, outbox: &mut crate::exec::Outbox, split: usize) {
+        let mut tail: heapless::Vec<Canon, TAIL> = heapless::Vec::new();
+        while outbox.len() > split {
+            // At most the block's after-motion actions (M codes, M05, M30): they fit.
+            if let Some(c) = outbox.pop_back() {
+                let _ = tail.push(c);
+            }
+        }
+        tail.reverse();
+        self.tail = tail;
+        self.tail_at = 0;
+    }
+
+    /// Emits actions into `out` while it has room. `program` is the program the
+    /// cycle block is in (G70 reads its blocks as it goes). True when finished.
+    pub fn run<E: Environment + ?Sized>(
+        &mut self,
+        cfg: &MachineConfig,
+        program: crate::program::ProgramText<'_>,
+        env: &E,
+        out: &mut dyn Out,
+    ) -> Result<bool, AlarmKind> {
+        loop {
+            if out.room() == 0 {
+                return Ok(false);
+            }
+            if let Some(step) = self.queue.pop_front() {
+                self.steps += 1;
+                if self.steps > MAX_CYCLE_STEPS {
+                    return Err(AlarmKind::CycleTooLong);
+                }
+                self.em.emit(step, cfg, out)?;
+                continue;
+            }
+            if !self.gen_done {
+                let here = self.em.here(cfg);
+                let more = match &mut self.generator {
+                    Gen::Plan(steps) => {
+                        for s in steps.iter() {
+                            self.queue.push_back(*s).map_err(|_| AlarmKind::Overflow)?;
+                        }
+                        false
+                    }
+                    Gen::Finish(f) => {
+                        if out.room() < crate::exec::STAGE {
+                            return Ok(false);
+                        }
+                        f.step(&mut self.em, cfg, program, env, out, &mut self.queue)?
+                    }
+                    Gen::ThreadCycle(g) => g.fill(&mut self.queue)?,
+                    Gen::Rough(g) => g.fill(&self.profile, here, &mut self.queue)?,
+                    Gen::Pattern(g) => g.fill(&self.profile, &mut self.queue)?,
+                    Gen::Groove(g) => g.fill(&mut self.queue)?,
+                    Gen::MultiThread(g) => g.fill(&mut self.queue)?,
+                    Gen::Hole(g) => g.fill(&mut self.queue)?,
+                };
+                self.gen_done = !more;
+                continue;
+            }
+            if let Some(c) = self.tail.get(self.tail_at) {
+                out.put(*c)?;
+                self.tail_at += 1;
+                continue;
+            }
+            return Ok(true);
+        }
+    }
+
+    /// The state after the cycle (for the dry run).
+    fn final_state(&self) -> State {
+        self.em.st
+    }
+}
+
+/// What exec tells a cycle about the block.
+pub struct Ctx<'a, 'b> {
+    /// Machine.
+    pub cfg: &'a MachineConfig,
+    /// Switches.
+    pub env: &'a dyn Environment,
+    /// The block's stage (program text, expansion slot, parameter writes).
+    pub out: &'a mut Staged<'b>,
+}
+
+/// Bookkeeping before a block runs: the thread chain, the clearing of retained
+/// cycle data (2.15 note 2), G80 and group-01 codes cancelling hole cycles and rigid
+/// tapping, and the M29 rules (2.22.1). Returns whether the previous block was a
+/// thread block.
+pub fn before_block(cmd: &Command, st: &mut State) -> Result<bool, AlarmKind> {
+    let chained = core::mem::replace(&mut st.cycle.thread_chain, false);
+    if cmd.g.one_shot.is_some_and(|c| c != GCode::Dwell) || cmd.g.motion.is_some() {
+        st.cycle.single = None;
+    }
+    let m29 = cmd.m.iter().any(|&(m, _)| m == 29);
+    let taps = matches!(cmd.g.drilling, Some(GCode::FaceTap | GCode::SideTap))
+        || (cmd.g.drilling.is_none() && matches!(st.modal.drilling, GCode::FaceTap | GCode::SideTap));
+    if m29 {
+        if st.cycle.rigid != RigidTap::Off {
+            return Err(AlarmKind::RigidTapSequence);
+        }
+        let rpm = cmd.speed.filter(|s| *s > 0).ok_or(AlarmKind::RigidTapSpeed)?;
+        st.cycle.rigid = RigidTap::Pending { rpm, before: st.spindle.dir };
+    } else if matches!(st.cycle.rigid, RigidTap::Pending { .. }) && !taps {
+        if cmd.speed.is_some() {
+            return Err(AlarmKind::RigidTapSequence);
+        }
+        if cmd.has_axes() {
+            return Err(AlarmKind::RigidTapAxisMove);
+        }
+    }
+    if cmd.g.motion.is_some() && cmd.g.drilling.is_none() {
+        st.modal.drilling = GCode::DrillCancel;
+        st.cycle.rigid = RigidTap::Off;
+    }
+    if cmd.g.drilling == Some(GCode::DrillCancel) {
+        st.cycle.hole = Default::default();
+        st.cycle.rigid = RigidTap::Off;
+    }
+    Ok(chained)
+}
+
+/// M29 stops the spindle ("in the M29 block the spindle output is S0", 2.22.1).
+pub fn after_spindle(cmd: &Command, st: &mut State, out: &mut Staged<'_>) -> Result<(), AlarmKind> {
+    if cmd.m.iter().any(|&(m, _)| m == 29) && st.spindle.dir != SpindleDir::Stop {
+        st.spindle.dir = SpindleDir::Stop;
+        out.emit(crate::canon::Action::Spindle(crate::canon::SpindleCommand {
+            dir: SpindleDir::Stop,
+            rpm: None,
+            css: None,
+        }))?;
+    }
+    Ok(())
+}
+
+/// The cycle code that takes the block's motion, if any.
+pub fn cycle_of(cmd: &Command, st: &State) -> Option<GCode> {
+    let user = cmd.axis_user(st);
+    args::is_cycle(user).then_some(user)
+}
+
+/// Executes the block's cycle, if it has one; false if the block is not a cycle
+/// block (plain motion goes on as usual).
+pub fn execute(cmd: &Command, st: &mut State, ctx: &mut Ctx<'_, '_>, chained: bool) -> Result<bool, AlarmKind> {
+    let Some(code) = cycle_of(cmd, st) else { return Ok(false) };
+    if args::is_thread(code) {
+        single::thread_block(cmd, st, ctx, chained)?;
+        return Ok(true);
+    }
+    if args::is_hole(code) {
+        if let Some(generator) = single::hole_block(code, cmd, st, ctx.cfg)? {
+            start(Expansion::new(Emitter::new(*st, cmd.line), Gen::Hole(generator), Profile::default()), st, ctx)?;
+        }
+        return Ok(true);
+    }
+    if st.modal.plane != Plane::Zx {
+        return Err(AlarmKind::CycleNotInZxPlane);
+    }
+    for a in [crate::axis::Axis::Y, crate::axis::Axis::C] {
+        if cmd.axes[a.index()].is_some() && !(code == GCode::ThreadCycle && a == crate::axis::Axis::C) {
+            return Err(AlarmKind::CycleOtherAxis { letter: a.letter() });
+        }
+    }
+    let exp = match code {
+        GCode::TurningCycle | GCode::FacingCycle | GCode::ThreadCycle => single::single_block(code, cmd, st, ctx.cfg)?
+            .map(|generator| Expansion::new(Emitter::new(*st, cmd.line), generator, Profile::default())),
+        _ => multiple(code, cmd, st, ctx)?,
+    };
+    if let Some(exp) = exp {
+        start(exp, st, ctx)?;
+    }
+    Ok(true)
+}
+
+/// G70–G76.
+fn multiple(code: GCode, cmd: &Command, st: &mut State, ctx: &mut Ctx<'_, '_>) -> Result<Option<Expansion>, AlarmKind> {
+    use CycleArgs::{Finish, Groove, GrooveSetup, MultiThread, PatternSetup, RoughSetup, Shape, ThreadSetup};
+    let cfg = ctx.cfg;
+    let p = |id| cfg.params.get(id);
+    let em = Emitter::new(*st, cmd.line);
+    let here = em.here(cfg);
+    let generator = match cmd.cycle {
+        RoughSetup { depth, retract } => {
+            write(ctx, Param::RoughingDepth, depth)?;
+            write(ctx, Param::RoughingRetract, retract)?;
+            return Ok(None);
+        }
+        PatternSetup { di, dk, count } => {
+            write(ctx, Param::PatternReliefX, di)?;
+            write(ctx, Param::PatternReliefZ, dk)?;
+            write(ctx, Param::PatternDivisions, count.map(i64::from))?;
+            return Ok(None);
+        }
+        GrooveSetup { retract } => {
+            write(ctx, Param::GrooveRetract, retract)?;
+            return Ok(None);
+        }
+        ThreadSetup { packed, min_depth, allowance } => {
+            if let Some((m, r, a)) = packed {
+                write(ctx, Param::ThreadFinishCount, Some(i64::from(m)))?;
+                write(ctx, Param::ThreadChamfer, Some(i64::from(r)))?;
+                write(ctx, Param::ThreadToolAngle, Some(i64::from(a)))?;
+            }
+            write(ctx, Param::ThreadMinDepth, min_depth)?;
+            write(ctx, Param::ThreadFinishAllowance, allowance)?;
+            return Ok(None);
+        }
+        Finish { ns, nf } => {
+            let src = ShapeSource { program: ctx.out.program, ns, nf };
+            Gen::Finish(FinishGen::new(profile::start_of(&src)?, ns, nf, here))
+        }
+        Shape { ns, nf, du, dw } => {
+            let src = ShapeSource { program: ctx.out.program, ns, nf };
+            let mut shape = profile::read_profile(&src, st, cfg, ctx.env)?;
+            // The shape's blocks only describe it: the program goes on after nf.
+            ctx.out.resume = Some(shape.resume);
+            let allowance = Pt::new(du, dw);
+            let generator = if code == GCode::PatternCycle {
+                let count = u32::try_from(p(Param::PatternDivisions)).unwrap_or(0);
+                let relief = Pt::new(p(Param::PatternReliefX), p(Param::PatternReliefZ));
+                Gen::Pattern(PatternGen::new(here, relief, count, allowance)?)
+            } else {
+                let spec = rough::RoughSpec {
+                    facing: code == GCode::RoughFaceCycle,
+                    start: here,
+                    depth: p(Param::RoughingDepth),
+                    retract: p(Param::RoughingRetract),
+                    allowance,
+                };
+                Gen::Rough(RoughGen::new(&spec, &mut shape)?)
+            };
+            return Ok(Some(Expansion::new(em, generator, shape)));
+        }
+        Groove { p: di, q: dk, relief } => {
+            let end = target(cmd, st, cfg)?;
+            let face = code == GCode::FacePeckCycle;
+            Gen::Groove(GrooveGen::new(face, here, end, di, dk, relief, p(Param::GrooveRetract))?)
+        }
+        MultiThread { taper, height, first, lead } => {
+            let lead = lead.unwrap_or(st.cycle.lead);
+            args::check_lead(lead, st.modal.units)?;
+            st.cycle.lead = lead;
+            let spec = thread::MultiThreadSpec {
+                start: here,
+                end: target(cmd, st, cfg)?,
+                taper,
+                height: height.unwrap_or(0),
+                first: first.unwrap_or(0),
+                min_depth: p(Param::ThreadMinDepth),
+                allowance: p(Param::ThreadFinishAllowance),
+                finish: u32::try_from(p(Param::ThreadFinishCount)).unwrap_or(0),
+                angle_deg: u32::try_from(p(Param::ThreadToolAngle)).unwrap_or(0),
+                lead,
+                pull: thread::Pullout { tenths: p(Param::ThreadChamfer), angle_deg: p(Param::ThreadChamferAngle) },
+            };
+            Gen::MultiThread(MultiThreadGen::new(spec)?)
+        }
+        _ => return Ok(None),
+    };
+    Ok(Some(Expansion::new(em, generator, Profile::default())))
+}
+
+/// The block's X/Z target in work coordinates.
+fn target(cmd: &Command, st: &State, cfg: &MachineConfig) -> Result<Pt, AlarmKind> {
+    let w = crate::exec::motion::target(cmd, st, cfg)?;
+    Ok(Pt::new(w[crate::axis::Axis::X], w[crate::axis::Axis::Z]))
+}
+
+/// Stages a parameter write (applied only if the block succeeds).
+fn write(ctx: &mut Ctx<'_, '_>, id: Param, v: Option<i64>) -> Result<(), AlarmKind> {
+    if let Some(v) = v {
+        ctx.out.params.push((id, v)).map_err(|_| AlarmKind::Overflow)?;
+    }
+    Ok(())
+}
+
+/// Dry-runs `exp` to the end (raising every alarm now) and hands it to the
+/// interpreter; the block commits the state the dry run ends in.
+fn start(exp: Expansion, st: &mut State, ctx: &mut Ctx<'_, '_>) -> Result<(), AlarmKind> {
+    let mut dry = exp.clone();
+    dry.run(ctx.cfg, ctx.out.program, ctx.env, &mut Dry::default())?;
+    let end = dry.final_state();
+    st.pos = end.pos;
+    st.moved |= end.moved;
+    // G70's blocks may change modal state (F, S, T, G01 …) like the program would.
+    if matches!(exp.generator, Gen::Finish(_)) {
+        let cycle = st.cycle;
+        *st = end;
+        st.cycle.single = cycle.single;
+    }
+    // Floating tapping leaves the spindle stopped (2.22.3 note 2); rigid restores it.
+    st.spindle.dir = end.spindle.dir;
+    ctx.out.start_cycle(exp)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The expansion lives in the interpreter on a 128 KB board: keep it small.
+    #[test]
+    fn expansion_size_is_bounded() {
+        let exp = core::mem::size_of::<Expansion>();
+        let interp = core::mem::size_of::<crate::Interpreter>();
+        assert!(exp < 6 * 1024, "Expansion is {exp} bytes");
+        // The macro variables (999 × 8 B, 2.24.1) and the 12-level call stack live
+        // in the interpreter too: ~20.5 KB on a 64-bit host, less on the M4.
+        let vars = core::mem::size_of::<crate::macros::Variables>();
+        assert!(interp < 16 * 1024 + vars, "Interpreter is {interp} bytes");
+    }
+}

@@ -1,0 +1,249 @@
+//! Blocks of the modal cycles: G90/G94 turning and facing (2.15), G92 threading
+//! (2.17.3), G32/G34 thread blocks (2.17.1–2) and the hole cycles G83–G89 (2.21–2.22),
+//! with the values these blocks keep for the next ones.
+
+use super::emit::{Emitter, Pt, Step};
+use super::hole::{HoleGen, HoleSpec, HoleWork};
+use super::thread::{Pullout, ThreadCycleGen, check_variable_lead, long_axis};
+use super::{Ctx, CycleArgs, Gen, args};
+use crate::alarm::AlarmKind;
+use crate::axis::{Axis, Pos};
+use crate::canon::{FeedMode, SpindleDir};
+use crate::check::Command;
+use crate::codes::GCode;
+use crate::config::{MachineConfig, Param};
+use crate::exec::{RigidTap, SingleMemory, State, motion};
+
+/// G90/G94/G92: the end point and taper, completed from the retained values when
+/// the block does not repeat the cycle code (2.15 note 2); `None` without axis words.
+fn end_and_taper(
+    cmd: &Command,
+    st: &mut State,
+    cfg: &MachineConfig,
+    taper: Option<i64>,
+) -> Result<Option<(Pt, i64)>, AlarmKind> {
+    if !cmd.has_axes() {
+        return Ok(None);
+    }
+    let w = motion::target(cmd, st, cfg)?;
+    let mut end = Pt::new(w[Axis::X], w[Axis::Z]);
+    let mut r = taper.unwrap_or(0);
+    if cmd.g.motion.is_none()
+        && let Some(m) = st.cycle.single
+    {
+        if cmd.axes[Axis::X.index()].is_none() {
+            end.x = m.x;
+        }
+        if cmd.axes[Axis::Z.index()].is_none() {
+            end.z = m.z;
+        }
+        r = taper.unwrap_or(m.r);
+    }
+    st.cycle.single = Some(SingleMemory { x: end.x, z: end.z, r });
+    Ok(Some((end, r)))
+}
+
+/// |R| ≤ |U/2| (|W| for G94) when R and U (W) have opposite signs (figures 2.24, 2.28).
+fn check_taper(r: i64, travel: i64) -> Result<(), AlarmKind> {
+    if r != 0 && travel != 0 && r.signum() != travel.signum() && r.abs() > travel.abs() {
+        return Err(AlarmKind::CycleTaperTooLarge);
+    }
+    Ok(())
+}
+
+/// G90, G94, G92 blocks.
+pub fn single_block(code: GCode, cmd: &Command, st: &mut State, cfg: &MachineConfig) -> Result<Option<Gen>, AlarmKind> {
+    let here = Emitter::new(*st, cmd.line).here(cfg);
+    let (taper, lead, starts) = match cmd.cycle {
+        CycleArgs::Single { taper } => (taper, None, 1),
+        CycleArgs::ThreadCycle { taper, lead, starts } => (taper, lead, starts),
+        _ => (None, None, 1),
+    };
+    if code == GCode::ThreadCycle
+        && let Some(l) = lead
+    {
+        st.cycle.lead = l;
+    }
+    let Some((c, r)) = end_and_taper(cmd, st, cfg, taper)? else { return Ok(None) };
+    let a = here;
+    let mut plan = heapless::Vec::new();
+    let mut add = |s| plan.push(s).map_err(|_| AlarmKind::Overflow);
+    match code {
+        GCode::TurningCycle => {
+            // ① X rapid to B, ② cut to C, ③ X feed back to D, ④ Z rapid to A.
+            check_taper(r, c.x - a.x)?;
+            add(Step::Rapid(Pt::new(c.x + r, a.z)))?;
+            add(Step::Feed(c))?;
+            add(Step::Feed(Pt::new(a.x, c.z)))?;
+            add(Step::Rapid(a))?;
+        }
+        GCode::FacingCycle => {
+            // ① Z rapid to B, ② cut to C, ③ Z feed back to D, ④ X rapid to A.
+            check_taper(r, c.z - a.z)?;
+            add(Step::Rapid(Pt::new(a.x, c.z + r)))?;
+            add(Step::Feed(c))?;
+            add(Step::Feed(Pt::new(c.x, a.z)))?;
+            add(Step::Rapid(a))?;
+        }
+        _ => {
+            check_taper(r, c.x - a.x)?;
+            let pitch = st.cycle.lead;
+            args::check_lead(pitch, st.modal.units)?;
+            let pull = Pullout {
+                tenths: cfg.params.get(Param::ThreadChamfer),
+                angle_deg: cfg.params.get(Param::ThreadChamferAngle),
+            };
+            return Ok(Some(Gen::ThreadCycle(ThreadCycleGen::new(a, c, r, pitch, starts, pull)?)));
+        }
+    }
+    Ok(Some(Gen::Plan(plan)))
+}
+
+/// G32/G34: one thread move, emitted with the block. Q counts only on the first of
+/// consecutive thread blocks; the others continue without the index (note 2).
+pub fn thread_block(cmd: &Command, st: &mut State, ctx: &mut Ctx<'_, '_>, chained: bool) -> Result<(), AlarmKind> {
+    let CycleArgs::Thread { lead, start_udeg, delta } = cmd.cycle else { return Ok(()) };
+    if let Some(l) = lead {
+        st.cycle.lead = l;
+    }
+    if !cmd.has_axes() {
+        return Ok(());
+    }
+    let lead = st.cycle.lead;
+    args::check_lead(lead, st.modal.units)?;
+    let mut em = Emitter::new(*st, cmd.line);
+    let from = em.here(ctx.cfg);
+    let w = motion::target(cmd, st, ctx.cfg)?;
+    let to = Pt::new(w[Axis::X], w[Axis::Z]);
+    let long = long_axis(from, to);
+    if delta != 0 {
+        let max = match st.modal.units {
+            crate::units::Units::Metric => 500_000_000,
+            crate::units::Units::Inch => 19_685 * crate::units::NM_PER_INCH / 1_000,
+        };
+        check_variable_lead(lead, delta, to.get(long) - from.get(long), max)?;
+    }
+    let angle = if chained { 0 } else { start_udeg.unwrap_or(0) };
+    em.emit(super::thread::single(to, lead, delta, angle, chained), ctx.cfg, ctx.out)?;
+    *st = State { cycle: st.cycle, ..em.st };
+    st.cycle.thread_chain = true;
+    Ok(())
+}
+
+/// G83–G89 blocks: hole data completed from the retained values, rigid or floating
+/// tapping, the lead of tapping. `None` when the block drills nothing (no hole
+/// position and not the cycle's own block, or K0).
+pub fn hole_block(
+    code: GCode,
+    cmd: &Command,
+    st: &mut State,
+    cfg: &MachineConfig,
+) -> Result<Option<HoleGen>, AlarmKind> {
+    use GCode::*;
+    if st.modal.plane != crate::canon::Plane::Zx {
+        return Err(AlarmKind::CycleNotInZxPlane);
+    }
+    let CycleArgs::Hole { r, dwell_ms, q, repeat } = cmd.cycle else { return Ok(None) };
+    let mem = &mut st.cycle.hole;
+    if let Some(r) = r {
+        mem.r = r;
+    }
+    if let Some(q) = q {
+        mem.q = q;
+    }
+    if let Some(p) = dwell_ms {
+        mem.dwell_ms = p;
+    }
+    if cmd.g.drilling.is_none() && !cmd.has_axes() {
+        return Ok(None);
+    }
+    let axis = if matches!(code, FaceDrill | FaceTap | FaceBore) { Axis::Z } else { Axis::X };
+    let here = st.work_pos(cfg);
+    let mut position = here;
+    let mut step = Pos::ZERO;
+    for a in Axis::ALL {
+        if a == axis {
+            continue;
+        }
+        if let Some(w) = cmd.axes[a.index()] {
+            if w.incremental {
+                position[a] = position[a].saturating_add(w.value);
+                step[a] = w.value;
+            } else {
+                position[a] = w.value;
+            }
+        }
+    }
+    let r_level = here[axis] + st.cycle.hole.r;
+    let bottom = match cmd.axes[axis.index()] {
+        Some(w) if w.incremental => r_level + w.value,
+        Some(w) => w.value,
+        None => st.cycle.hole.bottom.ok_or(AlarmKind::MissingWord { letter: axis.letter(), context: "hole cycle" })?,
+    };
+    st.cycle.hole.bottom = Some(bottom);
+    let mem = st.cycle.hole;
+    let work = match code {
+        FaceDrill | SideDrill => HoleWork::Drill {
+            q: mem.q,
+            deep: cfg.params.flag(Param::DeepPeckDrilling),
+            d: cfg.params.get(Param::PeckDrillClearance),
+        },
+        FaceBore | SideBore => HoleWork::Bore,
+        _ => tap_work(st, cfg, mem.q)?,
+    };
+    let spec = HoleSpec {
+        work,
+        axis,
+        position,
+        step,
+        r_level,
+        bottom,
+        dwell_ms: mem.dwell_ms,
+        stay_at_r: st.modal.return_to_r,
+        repeat: repeat.unwrap_or(1),
+    };
+    Ok(Some(HoleGen::new(spec)))
+}
+
+/// Rigid (after M29) or floating tapping, with the lead F/S (G98) or F (G99).
+fn tap_work(st: &mut State, cfg: &MachineConfig, q: i64) -> Result<HoleWork, AlarmKind> {
+    let mode = st.modal.feed_mode;
+    let f = st.feed.get(mode);
+    if f <= 0 {
+        return Err(AlarmKind::FeedZero);
+    }
+    let lead_of = |rpm: u32| -> Result<i64, AlarmKind> {
+        match mode {
+            FeedMode::PerRev => Ok(f),
+            FeedMode::PerMin if rpm > 0 => Ok(crate::units::div_round(f, i64::from(rpm))),
+            FeedMode::PerMin => Err(AlarmKind::FeedPerRevSpindleStopped),
+        }
+    };
+    match st.cycle.rigid {
+        RigidTap::Pending { rpm, before } | RigidTap::Active { rpm, before } => {
+            st.cycle.rigid = RigidTap::Active { rpm, before };
+            let dir = if cfg.params.flag(Param::ReverseTapping) { SpindleDir::Ccw } else { SpindleDir::Cw };
+            Ok(HoleWork::RigidTap {
+                lead: lead_of(rpm)?,
+                q,
+                deep: cfg.params.flag(Param::DeepPeckTapping),
+                d: cfg.params.get(Param::PeckTapClearance),
+                dir,
+                dwell_r_ms: u32::try_from(cfg.params.get(Param::TapDwellAtR)).unwrap_or(0),
+                restore: if before == SpindleDir::Stop { SpindleDir::Cw } else { before },
+            })
+        }
+        RigidTap::Off => {
+            // The direction before the first tapping block, else the one remembered,
+            // else M03 (2.22.3 note 2).
+            let dir = match (st.spindle.dir, st.cycle.tap_dir) {
+                (SpindleDir::Stop, SpindleDir::Stop) => SpindleDir::Cw,
+                (SpindleDir::Stop, d) => d,
+                (d, _) => d,
+            };
+            let turning = st.spindle.dir == dir;
+            st.cycle.tap_dir = dir;
+            Ok(HoleWork::FloatTap { lead: lead_of(st.spindle.rpm)?, dir, turning })
+        }
+    }
+}
