@@ -108,10 +108,10 @@ struct Frame {
     repeats_left: u16,
 }
 
-/// What a cycle block hands the interpreter (see [`Interpreter::commit_cycle`]).
+/// What a cycle block hands the interpreter besides its expansion (see
+/// [`Interpreter::commit_cycle`]).
 #[derive(Debug, Default)]
 struct BlockCycle {
-    exp: Option<Expansion>,
     split: usize,
     params: heapless::Vec<(Param, i64), 8>,
     resume: Option<Cursor>,
@@ -337,7 +337,7 @@ impl Interpreter {
             let fmt = self.number_format();
             let read = read_statement_into(raw.text, line, &self.vars, &fmt, &mut self.block);
             match read.map_err(|k| alarm(line, k))? {
-                Read::Nc => return self.nc_block(at, programs, env, sink),
+                Read::Nc => return self.nc_block(at, fmt, programs, env, sink),
                 Read::Macro(m) => {
                     self.started = true;
                     self.macro_statement(&m, at, programs).map_err(|k| alarm(line, k))?;
@@ -390,7 +390,14 @@ impl Interpreter {
     }
 
     /// The NC block just read into `self.block` by [`Interpreter::step`].
-    fn nc_block<P, E, S>(&mut self, at: Cursor, programs: &P, env: &E, sink: &mut S) -> Result<Progress, Alarm>
+    fn nc_block<P, E, S>(
+        &mut self,
+        at: Cursor,
+        fmt: NumberFormat,
+        programs: &P,
+        env: &E,
+        sink: &mut S,
+    ) -> Result<Progress, Alarm>
     where
         P: ProgramStore + ?Sized,
         E: Environment,
@@ -410,7 +417,7 @@ impl Interpreter {
             text: programs.text(here).unwrap_or(&[]),
             start: programs.start(here).unwrap_or(Cursor::start(here)),
             vars: None,
-            fmt: Some(self.number_format()),
+            fmt: Some(fmt),
         };
         let next = self
             .run_block(env, Some(program), |me, flow| me.route(flow, programs))
@@ -440,11 +447,13 @@ impl Interpreter {
             }
         }
         let mut next = self.state;
-        let mut slot = None;
         let mut cycle = BlockCycle::default();
         let program = program.map(|p| ProgramText { vars: Some(&self.vars), ..p });
+        // A cycle the block starts goes straight into `self.cycle` (empty here: a
+        // cycle is delivered completely before the next block is read), so the
+        // expansion is never moved.
         let mut staged = match program {
-            Some(p) => Staged::in_program(self.block.line, &mut self.outbox, p, &mut slot),
+            Some(p) => Staged::in_program(self.block.line, &mut self.outbox, p, &mut self.cycle),
             None => Staged::new(self.block.line, &mut self.outbox),
         };
         let done = execute(&cmd, &mut next, &self.cfg, env, &mut staged);
@@ -453,15 +462,15 @@ impl Interpreter {
             cycle.params = core::mem::take(&mut staged.params);
             cycle.resume = staged.resume;
         }
-        cycle.exp = slot;
         match done.and_then(|flow| route(self, flow)) {
             Ok(go) => {
                 self.state = next;
-                self.commit_cycle(cycle);
+                self.commit_cycle(&cycle);
                 Ok(go)
             }
             Err(e) => {
                 self.outbox.clear();
+                self.cycle = None;
                 Err(e)
             }
         }
@@ -471,12 +480,11 @@ impl Interpreter {
     /// staged after the cycle's place as its tail), parameter writes (G71 U → 5147
     /// …) and, after G71–G73, the place after the shape's nf block (a shape after
     /// the cycle block is skipped; one before it leaves the program where it is).
-    fn commit_cycle(&mut self, c: BlockCycle) {
-        if let Some(mut exp) = c.exp {
+    fn commit_cycle(&mut self, c: &BlockCycle) {
+        if let Some(exp) = self.cycle.as_mut() {
             exp.take_tail(&mut self.outbox, c.split);
-            self.cycle = Some(exp);
         }
-        for (p, v) in c.params {
+        for &(p, v) in &c.params {
             self.cfg.params.set(p, v);
         }
         if let Some(r) = c.resume.filter(|r| r.offset > self.cursor.offset) {

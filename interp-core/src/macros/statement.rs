@@ -70,8 +70,11 @@ const KEYWORDS: &[(&[u8], Keyword)] = &[
 /// statement keyword followed by something that is not a letter.
 pub(crate) fn starts_statement(text: &[u8], pos: usize) -> bool {
     let rest = text.get(pos..).unwrap_or(&[]);
-    if rest.first() == Some(&b'#') {
-        return true;
+    match rest {
+        [b'#', ..] => return true,
+        // Every keyword starts with two letters; an NC word with a letter and a value.
+        [a, b, ..] if a.is_ascii_alphabetic() && b.is_ascii_alphabetic() => {}
+        _ => return false,
     }
     KEYWORDS.iter().any(|(w, _)| {
         rest.len() >= w.len()
