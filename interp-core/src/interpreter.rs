@@ -37,11 +37,11 @@ pub const MAX_LOOP_DEPTH: usize = 3;
 ///
 /// Measured (read + evaluate + execute, text parsed every time): on the host
 /// 0.2–0.5 µs a statement (`cargo run --release -p host-tests --example
-/// macro_bench`); on the Cortex-M4 with software f64, 1 500 instructions for
-/// `#2=#1+1` up to 13 000 for `IF [#1 GT 5] THEN #[10+[#1 MOD 5]]=ATAN[#1]/[3]`
+/// macro_bench`); on the Cortex-M4 with software f64, 1 600 instructions to read
+/// `#2=#1+1` up to 13 300 for `IF [#1 GT 5] THEN #[10+[#1 MOD 5]]=ATAN[#1]/[3]`
 /// (`m4-tests/bench.sh bench_macro`). A step of 32 counter-loop statements is
-/// ~68 000 instructions (≈0.4 ms at 168 MHz), 32 function-heavy ones at most
-/// ~0.45 M (≈2.5 ms): a firmware task regains control within milliseconds even in
+/// ~56 000 instructions (≈0.35 ms at 168 MHz), 32 function-heavy ones at most
+/// ~0.45 M (≈2.7 ms): a firmware task regains control within milliseconds even in
 /// an endless `DO1 … END1`.
 pub const DEFAULT_STEP_BUDGET: u16 = 32;
 
