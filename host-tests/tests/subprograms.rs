@@ -219,6 +219,7 @@ fn mdi_runs_one_block_and_refuses_calls_and_jumps() {
     assert_eq!(code(interp.mdi(b"M91 P5", &panel, &mut sink)), 4041);
     assert_eq!(code(interp.mdi(b"GOTO 5", &panel, &mut sink)), 123);
     assert_eq!(code(interp.mdi(b"WHILE [1 EQ 1] DO1", &panel, &mut sink)), 123);
+    assert_eq!(code(interp.mdi(b"G90 X10 Z-5 F100", &panel, &mut sink)), 4007, "no canned cycles in MDI");
     assert_eq!(code(interp.mdi(b"G00 X1;G00 X2", &panel, &mut sink)), 4019);
     assert_eq!(code(interp.mdi(b"G00 X1\nG00 X2\n", &panel, &mut sink)), 4019);
     assert_eq!(sink.0.len(), 1, "nothing else moved");

@@ -112,7 +112,7 @@ pub enum AlarmKind {
     JumpTargetNotFound { seq: u32 },
     /// 0111: a macro calculation overflowed the number range.
     MacroOverflow,
-    /// 0112: division by zero in a macro expression (`/`, MOD, TAN[90]).
+    /// 0112: division by zero in a macro expression (`/`, MOD, TAN of 90°).
     DivideByZero,
     /// 0114: a malformed macro expression or statement.
     MacroFormat { what: &'static str },

@@ -9,8 +9,8 @@
 //! it was.
 //!
 //! Control flow: GOTO, IF…GOTO, M91/M92 and M99 P move the cursor within a program;
-//! M98 pushes a [`Frame`] (12 levels, 3.1.6) holding the return cursor and the
-//! caller's open loops; WHILE/DO push a [`Loop`] (3 per level) whose END is found
+//! M98 pushes a frame (12 levels, 3.1.6) holding the return cursor and the
+//! caller's open loops; WHILE/DO push a loop entry (3 per level) whose END is found
 //! when the loop is entered, so a jump out of the range closes it.
 
 use crate::alarm::{Alarm, AlarmKind};
@@ -206,7 +206,7 @@ impl Interpreter {
         &mut self.vars
     }
 
-    /// How program numbers are read now (for [`read_statement`] outside the
+    /// How program numbers are read now (for [`read_statement`](crate::parse::read_statement) outside the
     /// interpreter, e.g. a cycle reading its profile blocks).
     pub fn number_format(&self) -> NumberFormat {
         NumberFormat { units: self.state.modal.units, input: self.cfg.input_mode(), increments: self.cfg.increments }
