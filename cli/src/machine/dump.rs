@@ -43,6 +43,7 @@ pub(super) fn file_of(cfg: &MachineConfig) -> MachineFile {
             gear_max_rpm: Some(cfg.spindle.gear_max_rpm),
         }),
         user_m_codes: Some(cfg.user_m_codes.iter().map(|u| UserM { m: u.m, timing: timing(u.timing) }).collect()),
+        jump_input: Some(cfg.jump_input),
         parameters: Some(parameters(cfg)),
     }
 }
