@@ -110,11 +110,28 @@ struct Frame {
 
 /// What a cycle block hands the interpreter besides its expansion (see
 /// [`Interpreter::commit_cycle`]).
-#[derive(Debug, Default)]
+#[derive(Clone, Debug, Default)]
 struct BlockCycle {
     split: usize,
     params: heapless::Vec<(Param, i64), 8>,
     resume: Option<Cursor>,
+}
+
+/// A cycle block executed but not yet committed: its dry run goes on a chunk per
+/// step ([`Expansion::dry_run`]); the block commits when it ends without an alarm.
+#[derive(Clone, Debug)]
+struct Validating {
+    /// The block's state, to be settled by the dry run's end.
+    state: State,
+    /// What else the block hands over.
+    block: BlockCycle,
+    /// Where the program goes after the block.
+    next: Next,
+    /// The dry-run copy of the expansion.
+    dry: Expansion,
+    /// Program and line of the cycle block, for alarms.
+    at: Cursor,
+    line: u32,
 }
 
 /// Where the program goes after a block, decided (and checked) before the block
@@ -155,6 +172,8 @@ pub struct Interpreter {
     budget: u16,
     /// The canned cycle being delivered (see [`crate::cycles`]).
     cycle: Option<Expansion>,
+    /// A cycle block whose dry run is still going on.
+    validating: Option<Validating>,
 }
 
 impl Interpreter {
@@ -177,6 +196,7 @@ impl Interpreter {
             loops: heapless::Vec::new(),
             budget: DEFAULT_STEP_BUDGET,
             cycle: None,
+            validating: None,
         }
     }
 
@@ -275,6 +295,7 @@ impl Interpreter {
         self.positioned = false;
         self.outbox.clear();
         self.cycle = None;
+        self.validating = None;
         self.phase = Phase::Running;
         self.started = false;
         self.state.moved = false;
@@ -299,6 +320,9 @@ impl Interpreter {
         E: Environment,
         S: CanonSink + ?Sized,
     {
+        if self.validating.is_some() {
+            return self.validate(programs, env, sink);
+        }
         if !self.deliver(sink) {
             return Ok(Progress::Blocked);
         }
@@ -422,9 +446,50 @@ impl Interpreter {
         let next = self
             .run_block(env, Some(program), |me, flow| me.route(flow, programs))
             .map_err(|k| Alarm::in_program(at.program, line, k))?;
-        self.go(next);
+        match next {
+            Some(next) => self.go(next),
+            None => {
+                // A canned cycle: its dry run goes on in the next steps.
+                if let Some(v) = self.validating.as_mut() {
+                    v.at = at;
+                }
+                return Ok(Progress::Yielded { line });
+            }
+        }
         self.deliver(sink);
         Ok(Progress::Executed { line })
+    }
+
+    /// Runs a chunk of the pending cycle block's dry run; when it has ended, the
+    /// block commits and its first actions go out. An alarm drops the block.
+    fn validate<P, E, S>(&mut self, programs: &P, env: &E, sink: &mut S) -> Result<Progress, Alarm>
+    where
+        P: ProgramStore + ?Sized,
+        E: Environment,
+        S: CanonSink + ?Sized,
+    {
+        let program = program_text(programs, self.cursor.program, &self.vars, self.number_format());
+        let Some(v) = self.validating.as_mut() else { return Ok(Progress::Blocked) };
+        let (at, line) = (v.at, v.line);
+        match v.dry.dry_run(&self.cfg, program, env) {
+            Ok(false) => Ok(Progress::Yielded { line }),
+            Ok(true) => {
+                if let Some(mut v) = self.validating.take() {
+                    v.dry.settle(&mut v.state);
+                    self.state = v.state;
+                    self.commit_cycle(&v.block);
+                    self.go(v.next);
+                }
+                self.deliver(sink);
+                Ok(Progress::Executed { line })
+            }
+            Err(k) => {
+                self.validating = None;
+                self.outbox.clear();
+                self.cycle = None;
+                Err(Alarm::in_program(at.program, line, k))
+            }
+        }
     }
 
     /// Checks and executes `self.block` on a copy of the state; `route` decides (and
@@ -432,7 +497,15 @@ impl Interpreter {
     /// block's actions are staged in the (empty) outbox and dropped on failure.
     /// `program` is the program the block is in (its variables are filled in
     /// here); `None` in MDI, where calls, jumps and canned cycles are refused.
-    fn run_block<E, R>(&mut self, env: &E, program: Option<ProgramText<'_>>, route: R) -> Result<Next, AlarmKind>
+    ///
+    /// A block that starts a canned cycle is not committed yet: it waits in
+    /// `validating` for its dry run (`None` is returned), which later steps run.
+    fn run_block<E, R>(
+        &mut self,
+        env: &E,
+        program: Option<ProgramText<'_>>,
+        route: R,
+    ) -> Result<Option<Next>, AlarmKind>
     where
         E: Environment,
         R: FnOnce(&Self, Flow) -> Result<Next, AlarmKind>,
@@ -464,9 +537,15 @@ impl Interpreter {
         }
         match done.and_then(|flow| route(self, flow)) {
             Ok(go) => {
+                if let Some(exp) = &self.cycle {
+                    let (at, line) = (self.cursor, self.block.line);
+                    let dry = exp.clone();
+                    self.validating = Some(Validating { state: next, block: cycle, next: go, dry, at, line });
+                    return Ok(None);
+                }
                 self.state = next;
                 self.commit_cycle(&cycle);
-                Ok(go)
+                Ok(Some(go))
             }
             Err(e) => {
                 self.outbox.clear();
@@ -499,19 +578,10 @@ impl Interpreter {
         P: ProgramStore + ?Sized,
         E: Environment,
     {
+        let here = self.cursor.program;
+        let program = program_text(programs, here, &self.vars, self.number_format());
         let Some(exp) = self.cycle.as_mut() else { return Ok(None) };
         let line = exp.line();
-        let here = self.cursor.program;
-        let program = ProgramText {
-            text: programs.text(here).unwrap_or(&[]),
-            start: programs.start(here).unwrap_or(Cursor::start(here)),
-            vars: Some(&self.vars),
-            fmt: Some(NumberFormat {
-                units: self.state.modal.units,
-                input: self.cfg.input_mode(),
-                increments: self.cfg.increments,
-            }),
-        };
         match exp.run(&self.cfg, program, env, &mut self.outbox) {
             Ok(false) => {}
             Ok(true) => self.cycle = None,
@@ -690,5 +760,21 @@ impl Interpreter {
     fn end_of_record(&mut self, at: Cursor) -> Alarm {
         self.phase = Phase::Ended;
         Alarm::in_program(at.program, at.line, AlarmKind::EndOfRecord)
+    }
+}
+
+/// The text of program `here` with the variables and number format a cycle needs
+/// to read its shape blocks.
+fn program_text<'a, P: ProgramStore + ?Sized>(
+    programs: &'a P,
+    here: ProgramId,
+    vars: &'a Variables,
+    fmt: NumberFormat,
+) -> ProgramText<'a> {
+    ProgramText {
+        text: programs.text(here).unwrap_or(&[]),
+        start: programs.start(here).unwrap_or(Cursor::start(here)),
+        vars: Some(vars),
+        fmt: Some(fmt),
     }
 }

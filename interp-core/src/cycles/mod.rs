@@ -264,7 +264,7 @@ pub fn execute(cmd: &Command, st: &mut State, ctx: &mut Ctx<'_, '_>, chained: bo
     }
     if args::is_hole(code) {
         if let Some(generator) = single::hole_block(code, cmd, st, ctx.cfg)? {
-            start(Expansion::new(Emitter::new(*st, cmd.line), Gen::Hole(generator), Profile::default()), st, ctx)?;
+            start(Expansion::new(Emitter::new(*st, cmd.line), Gen::Hole(generator), Profile::default()), ctx)?;
         }
         return Ok(true);
     }
@@ -282,7 +282,7 @@ pub fn execute(cmd: &Command, st: &mut State, ctx: &mut Ctx<'_, '_>, chained: bo
         _ => multiple(code, cmd, st, ctx)?,
     };
     if let Some(exp) = exp {
-        start(exp, st, ctx)?;
+        start(exp, ctx)?;
     }
     Ok(true)
 }
@@ -389,23 +389,43 @@ fn write(ctx: &mut Ctx<'_, '_>, id: Param, v: Option<i64>) -> Result<(), AlarmKi
     Ok(())
 }
 
-/// Dry-runs `exp` to the end (raising every alarm now) and hands it to the
-/// interpreter; the block commits the state the dry run ends in.
-fn start(exp: Expansion, st: &mut State, ctx: &mut Ctx<'_, '_>) -> Result<(), AlarmKind> {
-    let mut dry = exp.clone();
-    dry.run(ctx.cfg, ctx.out.program, ctx.env, &mut Dry::default())?;
-    let end = dry.final_state();
-    st.pos = end.pos;
-    st.moved |= end.moved;
-    // G70's blocks may change modal state (F, S, T, G01 …) like the program would.
-    if matches!(exp.generator, Gen::Finish(_)) {
-        let cycle = st.cycle;
-        *st = end;
-        st.cycle.single = cycle.single;
-    }
-    // Floating tapping leaves the spindle stopped (2.22.3 note 2); rigid restores it.
-    st.spindle.dir = end.spindle.dir;
+/// Hands `exp` to the interpreter, which dry-runs it ([`Expansion::dry_run`]) before
+/// the block commits.
+fn start(exp: Expansion, ctx: &mut Ctx<'_, '_>) -> Result<(), AlarmKind> {
     ctx.out.start_cycle(exp)
+}
+
+/// Actions one dry-run chunk covers: a step of the interpreter validates at most
+/// this many (about 0.2 M instructions on the Cortex-M4) before returning.
+pub const DRY_RUN_CHUNK: u32 = 128;
+
+impl Expansion {
+    /// Runs the dry-run copy of a cycle for at most [`DRY_RUN_CHUNK`] actions,
+    /// raising any alarm the cycle would raise; true when it has run to the end.
+    pub fn dry_run<E: Environment + ?Sized>(
+        &mut self,
+        cfg: &MachineConfig,
+        program: crate::program::ProgramText<'_>,
+        env: &E,
+    ) -> Result<bool, AlarmKind> {
+        self.run(cfg, program, env, &mut Dry(DRY_RUN_CHUNK))
+    }
+
+    /// Once the dry run (`self`) has ended: the state the cycle block commits,
+    /// from the block's state `st` — the position back at the start point, the
+    /// spindle as the cycle leaves it (floating tapping stops it, 2.22.3 note 2;
+    /// rigid tapping restores it) and, after G70, the modal changes of its blocks.
+    pub fn settle(&self, st: &mut State) {
+        let end = self.final_state();
+        st.pos = end.pos;
+        st.moved |= end.moved;
+        if matches!(self.generator, Gen::Finish(_)) {
+            let cycle = st.cycle;
+            *st = end;
+            st.cycle.single = cycle.single;
+        }
+        st.spindle.dir = end.spindle.dir;
+    }
 }
 
 #[cfg(test)]
@@ -418,9 +438,10 @@ mod tests {
         let exp = core::mem::size_of::<Expansion>();
         let interp = core::mem::size_of::<crate::Interpreter>();
         assert!(exp < 6 * 1024, "Expansion is {exp} bytes");
-        // The macro variables (999 × 8 B, 2.24.1) and the 12-level call stack live
-        // in the interpreter too: ~20.5 KB on a 64-bit host, less on the M4.
+        // The macro variables (999 × 8 B, 2.24.1), the 12-level call stack and a
+        // second expansion (the dry-run copy of a cycle block being validated)
+        // live in the interpreter too: ~26 KB on a 64-bit host, less on the M4.
         let vars = core::mem::size_of::<crate::macros::Variables>();
-        assert!(interp < 16 * 1024 + vars, "Interpreter is {interp} bytes");
+        assert!(interp < 16 * 1024 + vars + exp, "Interpreter is {interp} bytes");
     }
 }
