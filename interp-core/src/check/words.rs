@@ -242,16 +242,7 @@ fn required_words(user: GCode, cmd: &Command) -> Result<(), AlarmKind> {
     Ok(())
 }
 
-/// A whole number without sign or decimal point, at most `max`.
-pub(super) fn whole(letter: u8, n: &Number, max: u32) -> Result<u32, AlarmKind> {
-    if n.has_point {
-        return Err(AlarmKind::IllegalDecimalPoint { letter });
-    }
-    if n.is_negative() {
-        return Err(AlarmKind::IllegalMinusSign { letter });
-    }
-    u32::try_from(n.mantissa).ok().filter(|v| *v <= max).ok_or(AlarmKind::ValueOutOfRange { letter })
-}
+pub(super) use crate::parse::whole;
 
 /// T: turret station and offset number (the last 1 or 2 digits, parameter 5002).
 fn tool_word(t: &Number, cfg: &MachineConfig) -> Result<(u16, u16), AlarmKind> {

@@ -165,3 +165,16 @@ impl Block {
         self.g.is_empty() && self.m.is_empty() && self.present == 0 && self.chamfer.is_none() && self.corner.is_none()
     }
 }
+
+/// A whole number written without sign or decimal point, at most `max` (N, O, M,
+/// S, T, G04 P …); the alarm names the address.
+pub(crate) fn whole(letter: u8, n: &Number, max: u32) -> Result<u32, crate::alarm::AlarmKind> {
+    use crate::alarm::AlarmKind;
+    if n.has_point {
+        return Err(AlarmKind::IllegalDecimalPoint { letter });
+    }
+    if n.is_negative() {
+        return Err(AlarmKind::IllegalMinusSign { letter });
+    }
+    u32::try_from(n.mantissa).ok().filter(|v| *v <= max).ok_or(AlarmKind::ValueOutOfRange { letter })
+}

@@ -3,7 +3,7 @@
 //! `/n`, a sequence number before a macro statement (2.24.2 note 10), and macro
 //! values in words: `F#203`, `Z-#210`, `G#230`, `X[#1*2]`, `F[25.4/10]` (2.24.1).
 
-use super::{Block, MacroBlock, Read, Statement};
+use super::{Block, MacroBlock, Read, Statement, whole};
 use crate::alarm::AlarmKind;
 use crate::alarm::GNum;
 use crate::macros::{Eval, Rounding, Variables, format, nullable, starts_statement, statement};
@@ -331,17 +331,6 @@ fn macro_number(letter: u8, v: f64) -> Result<Number, AlarmKind> {
 
 fn set_once(slot: &mut Option<u32>, letter: u8, v: u32) -> Result<(), AlarmKind> {
     if slot.replace(v).is_some() { Err(AlarmKind::DuplicateAddress { letter }) } else { Ok(()) }
-}
-
-/// A non-negative whole number without decimal point, at most `max`.
-fn whole(letter: u8, n: &Number, max: u32) -> Result<u32, AlarmKind> {
-    if n.has_point {
-        return Err(AlarmKind::IllegalDecimalPoint { letter });
-    }
-    if n.is_negative() {
-        return Err(AlarmKind::IllegalMinusSign { letter });
-    }
-    u32::try_from(n.mantissa).ok().filter(|v| *v <= max).ok_or(AlarmKind::ValueOutOfRange { letter })
 }
 
 /// A G number in tenths: G1 → 10, G02.1 → 21, G12.1 → 121.
