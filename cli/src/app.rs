@@ -12,9 +12,9 @@ use interp_core::{MachineConfig, Panel};
 
 use crate::error::Error;
 use crate::motion::{self, Motion};
-use crate::program::{OnAlarm, Run, alarm_line, read_program, run};
+use crate::program::{OnAlarm, Programs, Run, Runaway, run_programs};
 use crate::summary::Summary;
-use crate::{docs, jsonl, machine, svg};
+use crate::{docs, jsonl, machine, svg, vars};
 
 /// Exit status: done, no alarms.
 pub const EXIT_OK: u8 = 0;
@@ -48,6 +48,9 @@ pub enum Command {
         /// Machine description (TOML); the built-in machine without it.
         #[arg(long, value_name = "FILE")]
         machine: Option<PathBuf>,
+        /// Subprograms, macro variables and inputs.
+        #[command(flatten)]
+        run: RunArgs,
     },
     /// Run a program as the control would, stopping at the first alarm
     ///
@@ -68,6 +71,50 @@ pub enum Command {
         #[arg(long, value_name = "FILE")]
         machine: Option<PathBuf>,
     },
+}
+
+/// What programs run with besides their own text: subprograms, the common
+/// variables and the external inputs (`lathe check` and `lathe sim`).
+#[derive(Debug, Default, Args)]
+pub struct RunArgs {
+    /// Subprograms for M98: every .nc file of a directory, or one program file (a file
+    /// may hold several O programs). May be given several times.
+    #[arg(long, value_name = "DIR|FILE")]
+    pub lib: Vec<PathBuf>,
+    /// Common variables #401-#600 kept through power-off, as `#n = value` lines: `sim`
+    /// reads FILE and writes it back after the run (creating it), `check` only reads it.
+    #[arg(long, value_name = "FILE")]
+    pub vars: Option<PathBuf>,
+    /// External input N (0-31) at 0 or 1, e.g. --input 0=1 for M91/M92 (the machine's
+    /// jump_input); inputs not given are 0. May be given several times.
+    #[arg(long, value_name = "N=0|1", value_parser = parse_input)]
+    pub input: Vec<(u8, bool)>,
+}
+
+/// `N=0` or `N=1` with N in 0–31.
+fn parse_input(s: &str) -> Result<(u8, bool), String> {
+    let (n, v) = s.split_once('=').ok_or("expected N=0 or N=1")?;
+    let n: u8 = n.trim().parse().ok().filter(|n| *n < 32).ok_or("input number must be 0-31")?;
+    match v.trim() {
+        "0" => Ok((n, false)),
+        "1" => Ok((n, true)),
+        _ => Err("input value must be 0 or 1".into()),
+    }
+}
+
+impl RunArgs {
+    /// The input bits of [`Panel::inputs`].
+    fn inputs(&self) -> u32 {
+        self.input.iter().fold(0, |bits, &(n, on)| if on { bits | 1 << n } else { bits & !(1 << n) })
+    }
+
+    /// The macro variables a run starts with: the commons of `--vars`.
+    fn variables(&self) -> Result<interp_core::macros::Variables, Error> {
+        match &self.vars {
+            Some(path) => vars::read(path),
+            None => Ok(interp_core::macros::Variables::new()),
+        }
+    }
 }
 
 /// Options of `lathe sim`.
@@ -99,6 +146,9 @@ pub struct SimArgs {
     /// Optional-stop switch on: M01 stops (and is answered with cycle start).
     #[arg(long)]
     pub optional_stop: bool,
+    /// Subprograms, macro variables and inputs.
+    #[command(flatten)]
+    pub run: RunArgs,
     /// Write the simulated step events to FILE as CSV `t_s,x_mm,z_mm,spindle_deg`, one row
     /// per step (work coordinates, X as a diameter, the encoder's cumulative angle).
     #[arg(long, value_name = "FILE")]
@@ -143,7 +193,7 @@ where
 /// Runs one command.
 fn execute(command: Command, out: &mut dyn Write, err: &mut dyn Write) -> Result<u8, Error> {
     match command {
-        Command::Check { programs, machine } => check(&programs, machine.as_deref(), out, err),
+        Command::Check { programs, machine, run } => check(&programs, machine.as_deref(), &run, out, err),
         Command::Sim(args) => sim(&args, out, err),
         Command::Alarms => print(out, &docs::alarms_markdown()),
         Command::Params => print(out, &docs::params_markdown()),
@@ -174,11 +224,19 @@ const STDERR: &str = "standard error";
 
 /// `lathe check`: every program, every alarm; a file that cannot be read is
 /// reported and the others are still checked.
-fn check(programs: &[PathBuf], machine: Option<&Path>, out: &mut dyn Write, err: &mut dyn Write) -> Result<u8, Error> {
+fn check(
+    programs: &[PathBuf],
+    machine: Option<&Path>,
+    args: &RunArgs,
+    out: &mut dyn Write,
+    err: &mut dyn Write,
+) -> Result<u8, Error> {
     let cfg = machine::load_or_default(machine)?;
+    let variables = args.variables()?;
+    let panel = Panel { inputs: args.inputs(), ..Panel::default() };
     let mut status = EXIT_OK;
     for path in programs {
-        match check_one(path, &cfg, out) {
+        match check_one(path, &cfg, args, &panel, &variables, out) {
             Ok(alarms) if alarms > 0 => status = status.max(EXIT_ALARM),
             Ok(_) => {}
             Err(e @ Error::Write { .. }) => return Err(e),
@@ -191,42 +249,59 @@ fn check(programs: &[PathBuf], machine: Option<&Path>, out: &mut dyn Write, err:
     Ok(status)
 }
 
-/// Checks one program, printing its alarms and a closing line; returns the number of alarms.
-fn check_one(path: &Path, cfg: &MachineConfig, out: &mut dyn Write) -> Result<usize, Error> {
-    let text = read_program(path)?;
+/// Checks one program, printing its alarms and a closing line; returns the number
+/// of alarms. A program that never ends gets its alarms printed, then the error.
+fn check_one(
+    path: &Path,
+    cfg: &MachineConfig,
+    args: &RunArgs,
+    panel: &Panel,
+    variables: &interp_core::macros::Variables,
+    out: &mut dyn Write,
+) -> Result<usize, Error> {
+    let programs = Programs::load(path, &args.lib)?;
     let name = path.display().to_string();
-    let r =
-        run(&text, cfg, &Panel::default(), OnAlarm::Continue).map_err(|_| Error::Runaway { path: path.to_owned() })?;
+    let (r, runaway) = match run_programs(&programs, cfg, panel, OnAlarm::Continue, variables) {
+        Ok(r) => (r, false),
+        Err(Runaway(r)) => (*r, true),
+    };
     let mut report = String::new();
     for a in &r.alarms {
-        report.push_str(&alarm_line(&name, a));
+        report.push_str(&r.alarm_line(&name, a));
         report.push('\n');
     }
-    let verdict = match r.alarms.len() {
-        0 => "no alarms".to_owned(),
-        1 => "1 alarm".to_owned(),
-        n => format!("{n} alarms"),
-    };
-    report.push_str(&format!("{name}: {} blocks, {verdict}\n", r.blocks));
+    if !runaway {
+        let verdict = match r.alarms.len() {
+            0 => "no alarms".to_owned(),
+            1 => "1 alarm".to_owned(),
+            n => format!("{n} alarms"),
+        };
+        report.push_str(&format!("{name}: {} blocks, {verdict}\n", r.blocks));
+    }
     out.write_all(report.as_bytes()).map_err(stream_error(STDOUT))?;
+    if runaway {
+        return Err(Error::Runaway { path: path.to_owned() });
+    }
     Ok(r.alarms.len())
 }
 
 /// `lathe sim`: run, write the output (also what was produced before an alarm),
-/// then report the alarm.
+/// then report the alarm; with --vars, write the common variables back.
 fn sim(args: &SimArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result<u8, Error> {
     let cfg = machine::load_or_default(args.machine.as_deref())?;
-    let text = read_program(&args.program)?;
+    let programs = Programs::load(&args.program, &args.run.lib)?;
+    let variables = args.run.variables()?;
     let name = args.program.display().to_string();
-    let mut r =
-        run(&text, &cfg, &panel(args), OnAlarm::Stop).map_err(|_| Error::Runaway { path: args.program.clone() })?;
+    let mut r = run_programs(&programs, &cfg, &panel(args), OnAlarm::Stop, &variables)
+        .map_err(|_| Error::Runaway { path: args.program.clone() })?;
+    if let Some(path) = &args.run.vars {
+        vars::write(path, &r.variables)?;
+    }
     let motion = if args.format == Format::Summary || args.trace.is_some() {
-        // `run` made sure the text is UTF-8.
-        let text = String::from_utf8_lossy(&text);
-        let m = motion::simulate(&text, &cfg, &panel(args), args.trace.as_deref())?;
+        let m = motion::simulate(&programs, &cfg, &panel(args), &variables, args.trace.as_deref())?;
         // A motion alarm stops the machine where the program was then.
         r.alarms.extend(m.alarm);
-        r.alarms.sort_by_key(|a| a.line);
+        r.alarms.sort_by_key(|a| (a.program, a.line));
         Some(m)
     } else {
         None
@@ -238,7 +313,7 @@ fn sim(args: &SimArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result<u8, E
         None => out.write_all(&output).map_err(stream_error(STDOUT))?,
     }
     for a in &r.alarms {
-        writeln!(err, "{}", alarm_line(&name, a)).map_err(stream_error(STDERR))?;
+        writeln!(err, "{}", r.alarm_line(&name, a)).map_err(stream_error(STDERR))?;
     }
     Ok(if r.alarms.is_empty() { EXIT_OK } else { EXIT_ALARM })
 }
@@ -249,6 +324,7 @@ fn panel(args: &SimArgs) -> Panel {
     Panel {
         block_skip: levels.fold(0, |mask, &l| mask | 1 << (l - 1)),
         optional_stop: args.optional_stop,
+        inputs: args.run.inputs(),
         ..Panel::default()
     }
 }
@@ -260,7 +336,7 @@ fn render(format: Format, name: &str, r: &Run, cfg: &MachineConfig, m: Option<&M
         Format::Svg => svg::render(name, r, cfg).into_bytes(),
         Format::Jsonl => {
             let mut buf = Vec::new();
-            jsonl::write(&r.actions, cfg, &mut buf)?;
+            jsonl::write(r, cfg, &mut buf)?;
             buf
         }
     })

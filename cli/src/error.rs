@@ -41,6 +41,23 @@ pub enum Error {
         /// What the operating system said.
         source: io::Error,
     },
+    /// A program file or library file cannot be put into program memory (a
+    /// program number twice, blocks before the first O of a library file …).
+    Library {
+        /// The file.
+        path: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// A variables file (`--vars`) is not `#n = value` lines of common variables.
+    Vars {
+        /// The file.
+        path: PathBuf,
+        /// 1-based line.
+        line: usize,
+        /// What is wrong.
+        message: &'static str,
+    },
     /// A program was still running after [`crate::program::MAX_STEPS`] steps.
     Runaway {
         /// The program.
@@ -59,6 +76,8 @@ impl fmt::Display for Error {
             ),
             Error::Machine { path, message } => write!(f, "machine file {}: {message}", path.display()),
             Error::Write { target, source } => write!(f, "cannot write {target}: {source}"),
+            Error::Library { path, message } => write!(f, "{path}: {message}"),
+            Error::Vars { path, line, message } => write!(f, "{}:{line}: {message}", path.display()),
             Error::Runaway { path } => write!(
                 f,
                 "{}: still running after {} steps; the program loops",

@@ -1,6 +1,8 @@
 //! `lathe sim --format jsonl`: one JSON object per canonical action, in order.
 //!
-//! Every object starts with `line` (1-based source line) and `kind`; positions are
+//! Every object starts with `line` (1-based source line), then `program` for an
+//! action of a subprogram (its O number; `line` is then a line of the file it came
+//! from; absent for the main program), and `kind`; positions are
 //! work coordinates in mm with X as a diameter (`mx`/`mz`: machine coordinates),
 //! feeds in mm/min or mm/rev, surface speeds in m/min, angles in degrees. Key
 //! order is the field order of the record types below and never changes.
@@ -14,6 +16,7 @@ use interp_core::canon::{
 use interp_core::{Axis, MachineConfig};
 use serde::Serialize;
 
+use crate::program::Run;
 use crate::units::{deg, dia, m_per_min, mm};
 
 /// One line of output.
@@ -21,6 +24,9 @@ use crate::units::{deg, dia, m_per_min, mm};
 pub struct Record {
     /// Source line.
     pub line: u32,
+    /// O number of the subprogram the action comes from; `None` for the main program.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub program: Option<u32>,
     /// `kind` and the fields of that kind.
     #[serde(flatten)]
     pub body: Body,
@@ -208,13 +214,15 @@ pub fn record(c: &Canon, cfg: &MachineConfig) -> Record {
         Action::Stop { optional } => Body::Stop { optional: *optional },
         Action::End { rewind } => Body::End { rewind: *rewind },
     };
-    Record { line: c.line, body }
+    Record { line: c.line, program: None, body }
 }
 
-/// Writes one line per action.
-pub fn write(actions: &[Canon], cfg: &MachineConfig, out: &mut dyn Write) -> io::Result<()> {
-    for c in actions {
-        serde_json::to_writer(&mut *out, &record(c, cfg))?;
+/// Writes one line per action of the run.
+pub fn write(run: &Run, cfg: &MachineConfig, out: &mut dyn Write) -> io::Result<()> {
+    for (i, c) in run.actions.iter().enumerate() {
+        let mut r = record(c, cfg);
+        r.program = run.origins.get(i).copied().filter(|p| *p != run.main);
+        serde_json::to_writer(&mut *out, &r)?;
         out.write_all(b"\n")?;
     }
     Ok(())

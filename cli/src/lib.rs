@@ -19,6 +19,7 @@ pub mod summary;
 pub mod svg;
 pub mod timing;
 pub mod units;
+pub mod vars;
 
 pub use error::Error;
 pub use program::{OnAlarm, Run};

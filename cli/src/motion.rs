@@ -9,9 +9,11 @@ use std::io::BufWriter;
 use std::path::Path;
 
 use host_tests::sim::{Sim, SimOptions, SpindleModel};
+use interp_core::macros::Variables;
 use interp_core::{Alarm, MachineConfig, Panel};
 
 use crate::error::Error;
+use crate::program::Programs;
 
 /// What the simulated machine did.
 #[derive(Clone, Debug, PartialEq)]
@@ -33,9 +35,16 @@ pub struct Motion {
 /// Simulated time after which a run is given up (a day: no part program runs longer).
 const MAX_SIM_S: f64 = 86_400.0;
 
-/// Runs `text` on the simulated machine `cfg` from reference position 1 with the
-/// switches `panel`, writing the step trace to `trace` if given.
-pub fn simulate(text: &str, cfg: &MachineConfig, panel: &Panel, trace: Option<&Path>) -> Result<Motion, Error> {
+/// Runs the main program of `programs` on the simulated machine `cfg` from
+/// reference position 1 with the switches `panel` and the macro variables
+/// `variables`, writing the step trace to `trace` if given.
+pub fn simulate(
+    programs: &Programs,
+    cfg: &MachineConfig,
+    panel: &Panel,
+    variables: &Variables,
+    trace: Option<&Path>,
+) -> Result<Motion, Error> {
     let spindle = SpindleModel {
         // The drive is a little quicker than the acceleration the core plans taps with.
         accel_rpm_s: f64::from(cfg.spindle.accel_rpm_per_s) * 1.25,
@@ -52,7 +61,7 @@ pub fn simulate(text: &str, cfg: &MachineConfig, panel: &Panel, trace: Option<&P
         let file = File::create(path).map_err(|source| Error::Write { target: target(path), source })?;
         sim.trace_to(Box::new(BufWriter::new(file))).map_err(|source| Error::Write { target: target(path), source })?;
     }
-    let r = sim.run_program(text);
+    let r = sim.run_store(programs, programs.main, variables, |_| {});
     if let Some(path) = trace {
         sim.finish_trace().map_err(|source| Error::Write { target: target(path), source })?;
     }

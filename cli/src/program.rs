@@ -1,16 +1,114 @@
-//! Reading a program file and running it through the interpreter, the way
+//! Reading program files and running them through the interpreter, the way
 //! `lathe check` (report every alarm) and `lathe sim` (stop at the first) do.
+//!
+//! The main program and the library (`--lib`: subprograms for M98) are read into
+//! one buffer and indexed in place ([`Programs`]); an alarm or action of a
+//! subprogram is reported with the file and line it comes from.
 
-use std::path::Path;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
 
 use interp_core::canon::{Canon, CanonSink, Full};
+use interp_core::macros::Variables;
+use interp_core::program::{Cursor, ProgramId, ProgramIndex, ProgramStore};
 use interp_core::{Alarm, Interpreter, MachineConfig, Panel, Pos, Progress, SingleProgram};
 
 use crate::error::Error;
 
-/// Most interpreter steps of one run: far beyond any real program, it ends a
-/// program that loops forever instead of hanging the command.
+/// Most interpreter work of one run, in blocks and macro statements: far beyond
+/// any real program, it ends a program that loops forever instead of hanging the
+/// command (about 10 million statements take a few seconds).
 pub const MAX_STEPS: usize = 10_000_000;
+
+/// Most programs the main file and the library may hold together.
+pub const MAX_PROGRAMS: usize = 512;
+/// Most sequence numbers they may hold together.
+pub const MAX_SEQUENCES: usize = 16_384;
+
+/// The programs of a run: the main program's file and the library files, read
+/// into one buffer and indexed in place.
+pub struct Programs {
+    space: Vec<u8>,
+    index: Box<ProgramIndex<MAX_PROGRAMS, MAX_SEQUENCES>>,
+    /// The file each program came from, as named in messages.
+    sources: BTreeMap<ProgramId, String>,
+    /// The program a run starts with: the first of the main file.
+    pub main: ProgramId,
+}
+
+impl Programs {
+    /// The program file `path` (its first program is the main program; one without
+    /// an O number is program 0) and the library: every `.nc` file of each
+    /// directory in `library`, and each file named there. The main file is not
+    /// read twice when it lies in a library directory.
+    pub fn load(path: &Path, library: &[PathBuf]) -> Result<Programs, Error> {
+        let mut p =
+            Programs { space: Vec::new(), index: Box::new(ProgramIndex::new()), sources: BTreeMap::new(), main: 0 };
+        p.main = p.add(path, Some(0))?;
+        let main_file = path.canonicalize().ok();
+        for lib in library {
+            for file in library_files(lib)? {
+                if file.canonicalize().ok() != main_file {
+                    p.add(&file, None)?;
+                }
+            }
+        }
+        Ok(p)
+    }
+
+    /// Reads and indexes one file.
+    fn add(&mut self, path: &Path, unnamed: Option<ProgramId>) -> Result<ProgramId, Error> {
+        let bytes = read_program(path)?;
+        let name = path.display().to_string();
+        let start = self.space.len();
+        self.space.extend_from_slice(&bytes);
+        let first = self
+            .index
+            .add_file(&self.space, start, self.space.len(), unnamed)
+            .map_err(|e| Error::Library { path: name.clone(), message: e.to_string() })?;
+        for n in self.index.numbers() {
+            self.sources.entry(n).or_insert_with(|| name.clone());
+        }
+        Ok(first)
+    }
+
+    /// The file program `id` came from.
+    pub fn source(&self, id: ProgramId) -> Option<&str> {
+        self.sources.get(&id).map(String::as_str)
+    }
+}
+
+impl ProgramStore for Programs {
+    fn text(&self, id: ProgramId) -> Option<&[u8]> {
+        self.index.text(&self.space, id)
+    }
+
+    fn start(&self, id: ProgramId) -> Option<Cursor> {
+        self.index.start(id)
+    }
+
+    fn find_sequence(&self, n: u32, from: Cursor) -> Option<Cursor> {
+        self.index.find_sequence(n, from)
+    }
+}
+
+/// The program files of a `--lib` argument: the `.nc` files of a directory
+/// (sorted), or the file itself.
+fn library_files(lib: &Path) -> Result<Vec<PathBuf>, Error> {
+    if !lib.is_dir() {
+        return Ok(vec![lib.to_owned()]);
+    }
+    let read_error = |source| Error::Read { path: lib.to_owned(), source };
+    let mut files = Vec::new();
+    for entry in std::fs::read_dir(lib).map_err(read_error)? {
+        let path = entry.map_err(read_error)?.path();
+        if path.is_file() && path.extension().is_some_and(|e| e.eq_ignore_ascii_case("nc")) {
+            files.push(path);
+        }
+    }
+    files.sort();
+    Ok(files)
+}
 
 /// Reads a program file as bytes and makes sure it is UTF-8 text.
 pub fn read_program(path: &Path) -> Result<Vec<u8>, Error> {
@@ -47,13 +145,31 @@ pub struct Run {
     pub actions: Vec<Canon>,
     /// The alarms, in order (at most one with [`OnAlarm::Stop`]).
     pub alarms: Vec<Alarm>,
-    /// Number of blocks executed (blank, comment and skipped blocks not counted).
+    /// Number of blocks executed (blank, comment, skipped blocks and macro
+    /// statements not counted).
     pub blocks: usize,
+    /// The program each action comes from (same length as `actions`).
+    pub origins: Vec<ProgramId>,
+    /// The program the run started with.
+    pub main: ProgramId,
+    /// The file each program came from, when the run had several files.
+    pub sources: BTreeMap<ProgramId, String>,
+    /// The macro variables at the end.
+    pub variables: Variables,
 }
 
-/// The program did not end within [`MAX_STEPS`] steps.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Runaway;
+impl Run {
+    /// An alarm as reported, named after the file of the program it happened in
+    /// (`main_name` for the main program).
+    pub fn alarm_line(&self, main_name: &str, alarm: &Alarm) -> String {
+        let name = if alarm.program == self.main { None } else { self.sources.get(&alarm.program) };
+        alarm_line(name.map_or(main_name, String::as_str), alarm)
+    }
+}
+
+/// The program did not end within [`MAX_STEPS`] steps; what it did until then.
+#[derive(Debug)]
+pub struct Runaway(pub Box<Run>);
 
 /// A sink that keeps every action.
 struct Recorder(Vec<Canon>);
@@ -68,31 +184,78 @@ impl CanonSink for Recorder {
 /// Runs `text` on machine `cfg` with the operator's switches `panel`, starting at
 /// reference position 1. Every M00/M01 is answered with cycle start.
 pub fn run(text: &[u8], cfg: &MachineConfig, panel: &Panel, on_alarm: OnAlarm) -> Result<Run, Runaway> {
+    run_store(&SingleProgram(text), 0, cfg, panel, on_alarm, &Variables::new())
+}
+
+/// Runs the main program of `programs` as [`run`] does, with the macro variables
+/// `variables` (the commons as the machine keeps them).
+pub fn run_programs(
+    programs: &Programs,
+    cfg: &MachineConfig,
+    panel: &Panel,
+    on_alarm: OnAlarm,
+    variables: &Variables,
+) -> Result<Run, Runaway> {
+    let with_sources = |mut r: Run| {
+        r.sources = programs.sources.clone();
+        r
+    };
+    run_store(programs, programs.main, cfg, panel, on_alarm, variables)
+        .map(with_sources)
+        .map_err(|Runaway(r)| Runaway(Box::new(with_sources(*r))))
+}
+
+/// Runs program `main` of `store`.
+fn run_store<P: ProgramStore + ?Sized>(
+    store: &P,
+    main: ProgramId,
+    cfg: &MachineConfig,
+    panel: &Panel,
+    on_alarm: OnAlarm,
+    variables: &Variables,
+) -> Result<Run, Runaway> {
     let start = cfg.reference[0];
     let mut interp = Interpreter::new(cfg.clone());
     interp.set_machine_position(start);
-    let store = SingleProgram(text);
+    interp.select_main(main);
+    *interp.variables_mut() = variables.clone();
     let mut sink = Recorder(Vec::new());
-    let mut run = Run { start, actions: Vec::new(), alarms: Vec::new(), blocks: 0 };
-    for _ in 0..MAX_STEPS {
-        match interp.step(&store, panel, &mut sink) {
-            Ok(Progress::Ended) => {
-                run.actions = sink.0;
-                return Ok(run);
-            }
+    let mut run = Run {
+        start,
+        actions: Vec::new(),
+        alarms: Vec::new(),
+        blocks: 0,
+        origins: Vec::new(),
+        main,
+        sources: BTreeMap::new(),
+        variables: Variables::new(),
+    };
+    let mut work = 0;
+    while work < MAX_STEPS {
+        let program = interp.program();
+        let step = interp.step(store, panel, &mut sink);
+        run.origins.resize(sink.0.len(), program);
+        work += 1;
+        match step {
+            Ok(Progress::Ended) => break,
             Ok(Progress::Paused) => interp.cycle_start(),
             Ok(Progress::Executed { .. }) => run.blocks += 1,
+            Ok(Progress::Yielded { .. }) => work += usize::from(interp.step_budget()),
             Ok(Progress::Skipped { .. } | Progress::Blocked) => {}
             Err(alarm) => {
                 run.alarms.push(alarm);
                 if on_alarm == OnAlarm::Stop {
-                    run.actions = sink.0;
-                    return Ok(run);
+                    break;
                 }
             }
         }
     }
-    Err(Runaway)
+    run.actions = sink.0;
+    run.variables = interp.variables().clone();
+    if work >= MAX_STEPS {
+        return Err(Runaway(Box::new(run)));
+    }
+    Ok(run)
 }
 
 /// An alarm as `lathe check` and `lathe sim` report it: `PROGRAM:LINE: alarm CODE: message`.

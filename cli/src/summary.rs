@@ -8,7 +8,7 @@ use interp_core::{Alarm, MachineConfig};
 
 use crate::motion::Motion;
 use crate::path::{Bounds, Motion as PathMotion, Segment, segments};
-use crate::program::{Run, alarm_line};
+use crate::program::Run;
 use crate::timing;
 use crate::units::{dia, fixed3, mm};
 
@@ -96,7 +96,7 @@ impl Summary {
             extents: Bounds::of(&segs).map(|b| Extents { x: (dia(b.x.0), dia(b.x.1)), z: (mm(b.z.0), mm(b.z.1)) }),
             tools: Vec::new(),
             stops: 0,
-            alarms: run.alarms.iter().map(|a: &Alarm| alarm_line(program, a)).collect(),
+            alarms: run.alarms.iter().map(|a: &Alarm| run.alarm_line(program, a)).collect(),
             end: None,
             time: Times::default(),
             motion: None,

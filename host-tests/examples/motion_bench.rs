@@ -11,13 +11,13 @@ use std::hint::black_box;
 use std::time::Instant;
 
 use host_tests::sim::{Sim, SimOptions};
+use interp_core::MachineConfig;
 use interp_core::axis::{AXIS_COUNT, Pos};
 use interp_core::canon::{Action, Canon, CanonSink, Endpoint, Feed, FeedMode, Move, SpindleSpeed};
 use interp_core::fixed::STEP_ONE;
 use interp_core::motion::{Feedback, MotionCore, QUEUE};
 use interp_core::planner::{Item, MotionParams, Planner};
 use interp_core::stepgen::AxisStepGen;
-use interp_core::MachineConfig;
 
 const MM: i64 = 1_000_000;
 

@@ -5,6 +5,7 @@
 pub mod sim;
 
 use interp_core::canon::{Action, Canon, CanonSink, Full};
+use interp_core::program::{ProgramId, ProgramMemory, ProgramStore};
 use interp_core::{Alarm, Interpreter, MachineConfig, Panel, Progress, SingleProgram};
 
 /// A sink that records every action (never full).
@@ -44,12 +45,21 @@ impl Run {
 /// Runs `text` on machine `cfg` with switches `panel` until it ends, collecting
 /// actions and alarms; M00/M01 are answered with cycle start.
 pub fn run_with(text: &str, cfg: MachineConfig, panel: Panel) -> Run {
-    let mut interp = Interpreter::new(cfg);
+    run_interp(Interpreter::new(cfg), &SingleProgram(text.as_bytes()), &panel, 1_000_000)
+}
+
+/// Steps `interp` through the programs of `store` until the program ends or
+/// `max_steps` steps have run.
+pub fn run_interp<P: ProgramStore + ?Sized>(
+    mut interp: Interpreter,
+    store: &P,
+    panel: &Panel,
+    max_steps: usize,
+) -> Run {
     let mut sink = VecSink::default();
     let mut alarms = Vec::new();
-    let store = SingleProgram(text.as_bytes());
-    for _ in 0..1_000_000 {
-        match interp.step(&store, &panel, &mut sink) {
+    for _ in 0..max_steps {
+        match interp.step(store, panel, &mut sink) {
             Ok(Progress::Ended) => break,
             Ok(Progress::Paused) => interp.cycle_start(),
             Ok(_) => {}
@@ -57,6 +67,33 @@ pub fn run_with(text: &str, cfg: MachineConfig, panel: Panel) -> Run {
         }
     }
     Run { actions: sink.0, alarms, interp }
+}
+
+/// Program memory of the size the tests use.
+pub type Memory = ProgramMemory<65_536, 64, 4_096>;
+
+/// Program memory holding `main` (program 0 unless it has an O number) and the
+/// `library` texts; returns it with the number of the main program.
+pub fn memory(main: &str, library: &[&str]) -> (Box<Memory>, ProgramId) {
+    let mut m = Box::new(Memory::new());
+    let id = m.load(main.as_bytes(), Some(0)).expect("main program loads");
+    for text in library {
+        m.load(text.as_bytes(), None).expect("library program loads");
+    }
+    (m, id)
+}
+
+/// Runs `main` with subprograms `library` on machine `cfg` with `panel`.
+pub fn run_programs(main: &str, library: &[&str], cfg: MachineConfig, panel: Panel) -> Run {
+    let (store, id) = memory(main, library);
+    let mut interp = Interpreter::new(cfg);
+    interp.select_main(id);
+    run_interp(interp, &*store, &panel, 1_000_000)
+}
+
+/// Runs `main` with subprograms `library` on the default machine.
+pub fn run_lib(main: &str, library: &[&str]) -> Run {
+    run_programs(main, library, MachineConfig::default(), Panel::default())
 }
 
 /// Runs `text` on the default machine.

@@ -4,12 +4,12 @@
 use std::collections::BTreeSet;
 
 use host_tests::sim::{Sim, SimOptions, SpindleModel};
-use host_tests::{run, run_with};
+use host_tests::{VecSink, run, run_lib, run_with};
 use interp_core::alarm::CATALOG;
 use interp_core::canon::{Action, Canon, ThreadSync};
 use interp_core::config::Param;
 use interp_core::motion::{MotionCore, QUEUE};
-use interp_core::{Axis, MachineConfig, Panel, Pos};
+use interp_core::{Axis, Interpreter, MachineConfig, Panel, Pos};
 
 /// Codes documented but raised only by features still to come.
 const RESERVED: &[u16] = &[3576, 3577, 3605, 3607];
@@ -53,6 +53,23 @@ const CASES: &[(&str, u32, u16)] = &[
     ("G00 X1 / Z1\nM30\n", 1, 4018),
     ("G00 X1 $\nM30\n", 1, 4019),
     ("G00 X1 U1\nM30\n", 1, 4020),
+    ("M98 P12\nM30\n", 1, 76),
+    ("M98\nM30\n", 1, 76),
+    ("GOTO 5\nM30\n", 1, 78),
+    ("#1=EXP[80]\n#2=#1*#1*#1*#1*#1*#1*#1*#1*#1*#1\nM30\n", 2, 111),
+    ("#1=1/0\nM30\n", 1, 112),
+    ("G00 X[TAN[90]]\nM30\n", 1, 112),
+    ("#1=[1\nM30\n", 1, 114),
+    ("#1=#1000\nM30\n", 1, 115),
+    ("#0=1\nM30\n", 1, 116),
+    ("#1=[[[[[[1]]]]]]\nM30\n", 1, 118),
+    ("#1=SQRT[-1]\nM30\n", 1, 119),
+    ("END1\nM30\n", 1, 124),
+    ("WHILE [1 EQ 1] DO1\nM30\n", 1, 124),
+    ("DO4\nM30\n", 1, 126),
+    ("#1=1 G00\nM30\n", 1, 127),
+    ("GOTO 0\nM30\n", 1, 128),
+    ("M99 X1\nM30\n", 1, 4042),
     ("M3 S500\nG34 W-78 F4 K-0.2\nM30\n", 2, 14),
     ("G71 P10 U1\nM30\n", 1, 61),
     ("G71 U-1\nM30\n", 1, 62),
@@ -98,6 +115,21 @@ fn alarms_needing_a_machine_setting() {
     let far = "W-999999999\n".repeat(400);
     let r = run_with(&format!("G20\n{far}M30\n"), cfg, Panel::default());
     assert!(r.alarm_codes().iter().any(|a| a.1 == 4017), "{:?}", r.alarm_codes());
+}
+
+#[test]
+fn alarms_of_subprograms_mdi_and_inputs() {
+    // Two programs calling each other nest until the 13th level (3.1.6).
+    let r = run_lib("M98 P1\nM30\n", &["O0001\nM98 P2\nM99\n", "O0002\nM98 P1\nM99\n"]);
+    assert_eq!((r.alarms[0].program, r.alarms[0].line, r.alarms[0].code()), (2, 2, 77));
+    let r = run_lib("M98 P1\nM30\n", &["O0001\nM98 P1\nM99\n"]);
+    assert_eq!((r.alarms[0].program, r.alarms[0].line, r.alarms[0].code()), (1, 2, 4040));
+    let mut interp = Interpreter::new(MachineConfig::default());
+    let mut sink = VecSink::default();
+    assert_eq!(interp.mdi(b"GOTO 1", &Panel::default(), &mut sink).map_err(|a| a.code()), Err(123));
+    assert_eq!(interp.mdi(b"M98 P1", &Panel::default(), &mut sink).map_err(|a| a.code()), Err(4041));
+    let cfg = MachineConfig { jump_input: 40, ..MachineConfig::default() };
+    assert_eq!(run_with("M92 P1\nN1 M30\n", cfg, Panel::default()).alarm_codes(), vec![(1, 4043)]);
 }
 
 #[test]
@@ -183,7 +215,7 @@ fn motion_alarms_are_raised_with_their_line() {
 #[test]
 fn every_catalog_code_has_a_triggering_program() {
     let mut covered: BTreeSet<u16> = CASES.iter().map(|c| c.2).collect();
-    covered.extend([4012, 224, 21, 4017, 4032, 4035, 4036]);
+    covered.extend([4012, 224, 21, 4017, 4032, 4035, 4036, 77, 123, 4040, 4041, 4043]);
     // motion_alarms_are_raised_with_their_line
     covered.extend(MOTION_CASES.iter().map(|c| c.2));
     covered.extend([4503, 4504, 4506, 4507, 4508, 4509]);

@@ -509,3 +509,12 @@ fn g71_type_ii_pockets() {
     assert_eq!(m[m.len() - 3..], [('r', 104.4, -60.0), ('r', 104.4, 5.0), ('r', 100.0, 5.0)]);
     assert!(m.contains(&('l', 60.4, -20.0)) && m.contains(&('l', 60.4, -50.0)));
 }
+
+#[test]
+fn g71_allowance_longer_than_the_shape_is_alarm_0062() {
+    // The shape runs 0.502 mm along Z; W0.503 shifts its end C' behind the start point.
+    let r = run("G00 X12 Z1 M3 S500\nG71 U0.3 R0.1 F100\nG71 P10 Q20 U0 W0.503\nN10 G00 X10\nG01 X10 Z0.498\n\
+         N20 G01 Z0.498\nM30\n");
+    assert_eq!(r.alarm_codes(), vec![(3, 62)]);
+    assert!(r.alarms[0].to_string().contains("ends before the start point"), "{}", r.alarms[0]);
+}

@@ -6,6 +6,7 @@ use host_tests::sim::{Report, Sim, SimOptions, SpindleModel, TraceRow};
 use interp_core::axis::{AXIS_COUNT, Pos};
 use interp_core::canon::{Action, Canon, CanonSink as _, Endpoint, Feed, FeedMode, Move, SpindleSpeed};
 use interp_core::fixed::round_steps;
+use interp_core::macros::Variables;
 use interp_core::motion::{Feedback, MotionCore, QUEUE, State};
 use interp_core::{Axis, MachineConfig};
 
@@ -25,19 +26,29 @@ fn assert_clean(name: &str, r: &Report) {
     assert!(r.max_dev_nm <= 4_125.0, "{name}: {} nm from the path on line {}", r.max_dev_nm, r.max_dev_line);
 }
 
-#[test]
-fn every_example_program_runs_on_the_path() {
-    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../examples");
-    let mut programs: Vec<_> = std::fs::read_dir(dir)
+/// The `.nc` files of `examples/<sub>`, sorted.
+fn nc_files(sub: &str) -> Vec<std::path::PathBuf> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples").join(sub);
+    let mut v: Vec<_> = std::fs::read_dir(dir)
         .unwrap()
         .map(|e| e.unwrap().path())
         .filter(|p| p.extension().is_some_and(|x| x == "nc"))
         .collect();
-    programs.sort();
+    v.sort();
+    v
+}
+
+#[test]
+fn every_example_program_runs_on_the_path() {
+    let read = |p: &std::path::PathBuf| std::fs::read_to_string(p).unwrap();
+    let library: Vec<String> = nc_files("lib").iter().map(read).collect();
+    let library: Vec<&str> = library.iter().map(String::as_str).collect();
+    let programs = nc_files("");
     assert!(programs.len() >= 10);
     for p in &programs {
-        let text = std::fs::read_to_string(p).unwrap();
-        let r = sim(SpindleModel::default(), false).run_program(&text);
+        // The subprograms of examples/lib are in program memory, as on the machine.
+        let (store, main) = host_tests::memory(&read(p), &library);
+        let r = sim(SpindleModel::default(), false).run_store(&*store, main, &Variables::new(), |_| {});
         assert_clean(&p.display().to_string(), &r);
     }
 }

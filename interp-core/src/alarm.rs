@@ -12,7 +12,10 @@ use core::fmt;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Alarm {
-    /// 1-based source line of the block that raised the alarm (0 when unknown).
+    /// O number of the program the block is in (0 = the main program as loaded,
+    /// or MDI).
+    pub program: u32,
+    /// 1-based source line of the block that raised the alarm (0 when unknown or MDI).
     pub line: u32,
     /// What is wrong.
     pub kind: AlarmKind,
@@ -21,7 +24,12 @@ pub struct Alarm {
 impl Alarm {
     /// An alarm of `kind` raised by the block on `line`.
     pub const fn new(line: u32, kind: AlarmKind) -> Self {
-        Alarm { line, kind }
+        Alarm { program: 0, line, kind }
+    }
+
+    /// An alarm of `kind` raised by the block on `line` of program O`program`.
+    pub const fn in_program(program: u32, line: u32, kind: AlarmKind) -> Self {
+        Alarm { program, line, kind }
     }
 
     /// The alarm number shown to the operator.
@@ -32,6 +40,9 @@ impl Alarm {
 
 impl fmt::Display for Alarm {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.program != 0 {
+            write!(f, "O{:04} ", self.program)?;
+        }
         write!(f, "line {}: alarm {:04}: {}", self.line, self.code(), self.kind)
     }
 }
@@ -91,6 +102,42 @@ pub enum AlarmKind {
     IllegalToolNumber { number: u16 },
     /// 0046: G30 with P other than 1–4.
     IllegalReferenceNumber,
+    /// 0076: M98 names a program that is not in program memory (3.1.6 note 1).
+    ProgramNotFound { program: u32 },
+    /// 0076: M98 without P (3.1.6 note 4).
+    SubprogramNumberMissing,
+    /// 0077: a subprogram call deeper than 12 levels (3.1.6).
+    CallNestingTooDeep,
+    /// 0078: GOTO, M99 P or M91/M92 P names a sequence number the program lacks.
+    JumpTargetNotFound { seq: u32 },
+    /// 0111: a macro calculation overflowed the number range.
+    MacroOverflow,
+    /// 0112: division by zero in a macro expression (`/`, MOD, TAN of 90°).
+    DivideByZero,
+    /// 0114: a malformed macro expression or statement.
+    MacroFormat { what: &'static str },
+    /// 0115: a variable number outside 0–999.
+    VariableNumberOutOfRange { number: i32 },
+    /// 0116: assignment to #0, which is always null (2.24.1).
+    WriteProtectedVariable { number: u16 },
+    /// 0118: brackets nested deeper than 5 levels.
+    TooManyBrackets,
+    /// 0119: a function argument outside its domain (ASIN/ACOS, SQRT, EXP …).
+    ArgumentOutOfRange { function: &'static str },
+    /// 0123: GOTO, WHILE, DO or END in MDI.
+    ControlInMdi,
+    /// 0124: WHILE/DO without a matching END (2.24.2).
+    MissingEnd { label: u8 },
+    /// 0124: END without a DO of the same number open.
+    EndWithoutDo { label: u8 },
+    /// 0124: DO ranges that overlap (note 4) or the same number nested.
+    LoopsCrossed { label: u8 },
+    /// 0126: a DO/END number other than 1, 2, 3 (note 3).
+    IllegalLoopNumber { label: u32 },
+    /// 0127: a macro statement and NC words in one block (note 7).
+    MacroAndNcInOneBlock,
+    /// 0128: a GOTO target that is not a whole number 1–99999 (note 1).
+    SequenceOutOfRange,
     /// 0224: G28/G30 before the axis has been referenced (2.11.2 note 2).
     ReferenceNotEstablished { letter: Letter },
     /// 0500: the move would pass the positive soft limit.
@@ -139,6 +186,14 @@ pub enum AlarmKind {
     IllegalCharacter { found: u8 },
     /// 4020: an axis given both absolute and incremental (X with U, Z with W).
     AxisTwice { absolute: Letter, incremental: Letter },
+    /// 4040: M98 calls the program it is in (3.1.6 note 3).
+    SelfCall { program: u32 },
+    /// 4041: M98/M99/M91/M92 in MDI (3.1.6 note 2).
+    FlowInMdi { m: u16 },
+    /// 4042: M99 shares its block with other codes (3.1.7 note 1).
+    M99NotAlone,
+    /// 4043: the external input M91/M92 test does not exist on this machine.
+    InputNotAvailable { input: u16 },
     /// 0014: thread lead zero or out of range, G34 K out of range, or a G34 lead that
     /// would become zero, negative or exceed the maximum (2.17.2).
     IllegalLead,
@@ -226,6 +281,21 @@ impl AlarmKind {
             ArcRadiusZero => 23,
             IllegalOffsetNumber { .. } | IllegalToolNumber { .. } => 30,
             IllegalReferenceNumber => 46,
+            ProgramNotFound { .. } | SubprogramNumberMissing => 76,
+            CallNestingTooDeep => 77,
+            JumpTargetNotFound { .. } => 78,
+            MacroOverflow => 111,
+            DivideByZero => 112,
+            MacroFormat { .. } => 114,
+            VariableNumberOutOfRange { .. } => 115,
+            WriteProtectedVariable { .. } => 116,
+            TooManyBrackets => 118,
+            ArgumentOutOfRange { .. } => 119,
+            ControlInMdi => 123,
+            MissingEnd { .. } | EndWithoutDo { .. } | LoopsCrossed { .. } => 124,
+            IllegalLoopNumber { .. } => 126,
+            MacroAndNcInOneBlock => 127,
+            SequenceOutOfRange => 128,
             ReferenceNotEstablished { .. } => 224,
             OvertravelPositive { .. } => 500,
             OvertravelNegative { .. } => 501,
@@ -250,6 +320,10 @@ impl AlarmKind {
             MisplacedBlockSkip => 4018,
             IllegalCharacter { .. } => 4019,
             AxisTwice { .. } => 4020,
+            SelfCall { .. } => 4040,
+            FlowInMdi { .. } => 4041,
+            M99NotAlone => 4042,
+            InputNotAvailable { .. } => 4043,
             IllegalLead => 14,
             CycleAddressMissing { .. } => 61,
             CycleValueIllegal { .. } => 62,
@@ -320,6 +394,24 @@ impl fmt::Display for AlarmKind {
             IllegalOffsetNumber { number } => write!(f, "tool offset number {number} is not in the offset table"),
             IllegalToolNumber { number } => write!(f, "tool number {number} is not on the turret"),
             IllegalReferenceNumber => write!(f, "G30 P must be 1, 2, 3 or 4"),
+            ProgramNotFound { program } => write!(f, "program O{program:04} not found"),
+            SubprogramNumberMissing => write!(f, "M98 needs P with the program number"),
+            CallNestingTooDeep => write!(f, "subprograms nested deeper than 12 levels"),
+            JumpTargetNotFound { seq } => write!(f, "sequence number N{seq} not found"),
+            MacroOverflow => write!(f, "macro calculation out of the number range"),
+            DivideByZero => write!(f, "division by zero (/, MOD or TAN of 90 degrees)"),
+            MacroFormat { what } => write!(f, "macro format error: {what}"),
+            VariableNumberOutOfRange { number } => write!(f, "variable #{number} does not exist (0-999)"),
+            WriteProtectedVariable { number } => write!(f, "variable #{number} cannot be assigned"),
+            TooManyBrackets => write!(f, "brackets nested deeper than 5 levels"),
+            ArgumentOutOfRange { function } => write!(f, "argument of {function} out of range"),
+            ControlInMdi => write!(f, "GOTO, WHILE, DO and END cannot be used in MDI"),
+            MissingEnd { label } => write!(f, "DO{label} has no matching END{label}"),
+            EndWithoutDo { label } => write!(f, "END{label} without DO{label}"),
+            LoopsCrossed { label } => write!(f, "loop {label} overlaps another DO-END range"),
+            IllegalLoopNumber { label } => write!(f, "loop number {label} is not 1, 2 or 3"),
+            MacroAndNcInOneBlock => write!(f, "macro statement and NC words in one block"),
+            SequenceOutOfRange => write!(f, "jump target is not a sequence number 1-99999"),
             ReferenceNotEstablished { letter } => {
                 write!(f, "axis {} has not been referenced (home it before G28/G30)", Ch(letter))
             }
@@ -348,6 +440,10 @@ impl fmt::Display for AlarmKind {
             AxisTwice { absolute, incremental } => {
                 write!(f, "{} and {} address the same axis in one block", Ch(absolute), Ch(incremental))
             }
+            SelfCall { program } => write!(f, "O{program:04} calls itself with M98"),
+            FlowInMdi { m } => write!(f, "M{m:02} cannot be used in MDI"),
+            M99NotAlone => write!(f, "M99 must be alone in its block (N and P only)"),
+            InputNotAvailable { input } => write!(f, "external input {input} for M91/M92 does not exist"),
             IllegalLead => write!(f, "thread lead zero, out of range or becoming negative (G34 K)"),
             CycleAddressMissing { letter } => write!(f, "G70-G73 needs address {}", Ch(letter)),
             CycleValueIllegal { what } => write!(f, "illegal value in cycle: {what}"),
@@ -494,6 +590,57 @@ pub const CATALOG: &[CatalogEntry] = &[
         code: 66,
         title: "code not allowed in shape",
         when: "group 00 code other than G04, group 01 other than G00-G03, G20/G21, M98/M99, M00/M01/M02/M30 between ns and nf (2.16.7 note 3)",
+    },
+    CatalogEntry {
+        code: 76,
+        title: "program not found",
+        when: "M98 P names a program not in memory (3.1.6 note 1), or M98 has no P (note 4)",
+    },
+    CatalogEntry { code: 77, title: "subprogram nesting too deep", when: "a 13th nested M98 call (3.1.6: 12 levels)" },
+    CatalogEntry {
+        code: 78,
+        title: "sequence number not found",
+        when: "GOTO n, M99 P n (3.1.7 note 2) or M91/M92 P n names an N the program lacks",
+    },
+    CatalogEntry { code: 111, title: "macro overflow", when: "a macro calculation leaves the f64 number range" },
+    CatalogEntry {
+        code: 112,
+        title: "division by zero",
+        when: "divisor 0 in / or MOD, or TAN of an odd multiple of 90 degrees (2.24.2)",
+    },
+    CatalogEntry {
+        code: 114,
+        title: "macro format error",
+        when: "malformed expression or statement: missing ']' or operand, unknown function, IF without a comparison",
+    },
+    CatalogEntry { code: 115, title: "variable number out of range", when: "#i with i outside 0-999 (2.24.1)" },
+    CatalogEntry { code: 116, title: "write-protected variable", when: "assignment to #0 (2.24.1)" },
+    CatalogEntry {
+        code: 118,
+        title: "too many brackets",
+        when: "more than 5 nested bracket levels, function brackets included",
+    },
+    CatalogEntry {
+        code: 119,
+        title: "argument out of range",
+        when: "ASIN/ACOS outside -1..1, SQRT < 0, EXP beyond +-80, ATAN[0]/[0], AND/OR/XOR not on 0..2^32-1 integers",
+    },
+    CatalogEntry { code: 123, title: "control statement in MDI", when: "GOTO, WHILE, DO or END entered in MDI" },
+    CatalogEntry {
+        code: 124,
+        title: "DO-END mismatch",
+        when: "WHILE/DO without END, END without DO, overlapping ranges (2.24.2 note 4)",
+    },
+    CatalogEntry { code: 126, title: "illegal loop number", when: "DO/END number other than 1, 2, 3 (2.24.2 note 3)" },
+    CatalogEntry {
+        code: 127,
+        title: "macro and NC statement in one block",
+        when: "a macro statement shares its block with NC words (2.24.2 note 7)",
+    },
+    CatalogEntry {
+        code: 128,
+        title: "illegal sequence number",
+        when: "GOTO target not a whole number 1-99999 (2.24.2 note 1)",
     },
     CatalogEntry { code: 200, title: "rigid tap S missing", when: "M29 without S or with S0 (2.22.1)" },
     CatalogEntry {
@@ -642,6 +789,22 @@ pub const CATALOG: &[CatalogEntry] = &[
         title: "cycle too long",
         when: "a cycle would plan more than 1,000,000 moves (G74/G75 P3 is 0.003 mm; 2.16.5)",
     },
+    CatalogEntry { code: 4040, title: "subprogram calls itself", when: "M98 P names its own program (3.1.6 note 3)" },
+    CatalogEntry {
+        code: 4041,
+        title: "M98/M99/M91/M92 in MDI",
+        when: "subprogram call or jump entered in MDI (3.1.6 note 2)",
+    },
+    CatalogEntry {
+        code: 4042,
+        title: "M99 not alone",
+        when: "M99 shares its block with G, M or other words besides N and P (3.1.7 note 1)",
+    },
+    CatalogEntry {
+        code: 4043,
+        title: "jump input missing",
+        when: "M91/M92 test an external input the machine does not have (3.1.5)",
+    },
     CatalogEntry {
         code: 4501,
         title: "thread too fast",
@@ -700,6 +863,128 @@ mod tests {
         for w in CATALOG.windows(2) {
             assert!(w[0].code < w[1].code, "{} before {}", w[0].code, w[1].code);
         }
+    }
+
+    /// One of every kind (a new variant must be added here and to CATALOG).
+    const EVERY_KIND: &[AlarmKind] = {
+        use AlarmKind::*;
+        &[
+            TooManyDigits { letter: b'X' },
+            AddressNotFound { found: b'1' },
+            NoDataAfterAddress { letter: b'X' },
+            IllegalMinusSign { letter: b'M' },
+            IllegalDecimalPoint { letter: b'N' },
+            ImproperAddress { letter: b'D' },
+            AxisNotConfigured { letter: b'Y' },
+            ImproperGCode { code: GNum(910) },
+            FeedZero,
+            ArcRadiusTolerance { excess_nm: 1 },
+            ArcAxisOutsidePlane { letter: b'Y' },
+            ArcCenterMissing,
+            ArcRadiusZero,
+            IllegalOffsetNumber { number: 99 },
+            IllegalToolNumber { number: 99 },
+            IllegalReferenceNumber,
+            ProgramNotFound { program: 12 },
+            SubprogramNumberMissing,
+            CallNestingTooDeep,
+            JumpTargetNotFound { seq: 10 },
+            MacroOverflow,
+            DivideByZero,
+            MacroFormat { what: "x" },
+            VariableNumberOutOfRange { number: 1000 },
+            WriteProtectedVariable { number: 0 },
+            TooManyBrackets,
+            ArgumentOutOfRange { function: "SQRT" },
+            ControlInMdi,
+            MissingEnd { label: 1 },
+            EndWithoutDo { label: 1 },
+            LoopsCrossed { label: 1 },
+            IllegalLoopNumber { label: 4 },
+            MacroAndNcInOneBlock,
+            SequenceOutOfRange,
+            ReferenceNotEstablished { letter: b'X' },
+            OvertravelPositive { letter: b'X' },
+            OvertravelNegative { letter: b'X' },
+            EndOfRecord,
+            UnitsNotAlone,
+            UnitsNotAtStart,
+            DuplicateGroup { first: GNum(0), second: GNum(10) },
+            DuplicateAddress { letter: b'X' },
+            WordNotAllowed { letter: b'P', context: "G00" },
+            MissingWord { letter: b'X', context: "G28" },
+            NotSupportedYet { what: "x" },
+            UnknownMCode { m: 77 },
+            ConflictingMCodes { first: 3, second: 4 },
+            TooManyMCodes,
+            ValueOutOfRange { letter: b'S' },
+            CoordinateSettingDisabled,
+            FeedPerRevSpindleStopped,
+            CommentNotClosed,
+            MachineCoordinatesIncremental,
+            CodeMustBeAlone { code: GNum(40) },
+            Overflow,
+            MisplacedBlockSkip,
+            IllegalCharacter { found: b'?' },
+            AxisTwice { absolute: b'X', incremental: b'U' },
+            IllegalLead,
+            CycleAddressMissing { letter: b'P' },
+            CycleValueIllegal { what: "x" },
+            SequenceNotFound { n: 10 },
+            ProfileNotMonotone,
+            ProfileFirstBlock,
+            ProfileForbiddenCode { what: "x" },
+            RigidTapSpeed,
+            RigidTapSequence,
+            RigidTapAxisMove,
+            ProfileNotMonotoneInfeed,
+            CycleTaperTooLarge,
+            CycleNotInZxPlane,
+            CycleOtherAxis { letter: b'Y' },
+            ThreadStartAngle,
+            ThreadPulloutTooLong,
+            ProfileTooLong,
+            TooManyPockets,
+            CycleTooLong,
+            SelfCall { program: 12 },
+            FlowInMdi { m: 98 },
+            M99NotAlone,
+            InputNotAvailable { input: 40 },
+            ThreadTooFast { letter: b'Z' },
+            ThreadRampTooLong,
+            SpindleNotTurning,
+            SpindleNotAtSpeed,
+            TapTooFast { letter: b'Z' },
+            SpindleIndexMissing,
+            SyncSequenceBroken,
+            MotionConfigInvalid { what: "x" },
+            EmergencyStop,
+            NoseCompReversed,
+            ToolChangeInNoseComp,
+            NoseCompGouge,
+            NoseCompCornerAngle,
+        ]
+    };
+
+    #[test]
+    fn every_kind_is_in_the_catalog() {
+        for k in EVERY_KIND {
+            assert!(CATALOG.iter().any(|e| e.code == k.code()), "{k:?} ({}) missing from CATALOG", k.code());
+        }
+        for e in CATALOG {
+            assert!(EVERY_KIND.iter().any(|k| k.code() == e.code), "CATALOG row {} has no kind", e.code);
+        }
+    }
+
+    #[test]
+    fn alarms_in_subprograms_name_the_program() {
+        use core::fmt::Write;
+        let mut s = heapless::String::<96>::new();
+        write!(s, "{}", Alarm::in_program(12, 3, AlarmKind::JumpTargetNotFound { seq: 40 })).unwrap();
+        assert_eq!(s.as_str(), "O0012 line 3: alarm 0078: sequence number N40 not found");
+        s.clear();
+        write!(s, "{}", Alarm::new(3, AlarmKind::TooManyBrackets)).unwrap();
+        assert_eq!(s.as_str(), "line 3: alarm 0118: brackets nested deeper than 5 levels");
     }
 
     #[test]

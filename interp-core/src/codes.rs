@@ -232,15 +232,31 @@ pub enum MFunction {
     SpindleCcw,
     /// M05: spindle stop.
     SpindleStop,
+    /// M98: call a subprogram (3.1.6).
+    Call,
+    /// M99: return from a subprogram, or restart the main program (3.1.7).
+    Return,
+    /// M91: jump when the external input is 0 (3.1.5).
+    JumpIfLow,
+    /// M92: jump when the external input is 1 (3.1.5).
+    JumpIfHigh,
     /// Any other M code: a machine output switched before or after the motion.
     Aux(MTiming),
+}
+
+impl MFunction {
+    /// Whether the code changes where the program goes on (M98, M99, M91, M92).
+    pub fn is_flow(self) -> bool {
+        matches!(self, MFunction::Call | MFunction::Return | MFunction::JumpIfLow | MFunction::JumpIfHigh)
+    }
 }
 
 /// Conflict class of an M code: two codes of one class in a block contradict
 /// each other (M07 and M08 may be on together, so coolant-on codes have none).
 fn m_class(m: u16) -> Option<u8> {
     Some(match m {
-        0 | 1 | 2 | 30 => 0,
+        // Stops, ends, calls, returns and jumps: at most one per block.
+        0 | 1 | 2 | 30 | 91 | 92 | 98 | 99 => 0,
         3..=5 => 1,
         9 => 2,
         10 | 11 => 3,
@@ -278,6 +294,10 @@ pub fn m_function(m: u16, cfg: &MachineConfig) -> Option<MFunction> {
         1 => MFunction::OptionalStop,
         2 => MFunction::End,
         30 => MFunction::EndRewind,
+        91 => MFunction::JumpIfLow,
+        92 => MFunction::JumpIfHigh,
+        98 => MFunction::Call,
+        99 => MFunction::Return,
         3 => MFunction::SpindleCw,
         4 => MFunction::SpindleCcw,
         5 => MFunction::SpindleStop,
@@ -318,5 +338,8 @@ mod tests {
         assert!(!m_codes_conflict(3, 8));
         assert!(m_codes_conflict(41, 42));
         assert!(m_codes_conflict(0, 30));
+        assert!(m_codes_conflict(98, 30));
+        assert!(m_codes_conflict(91, 99));
+        assert!(!m_codes_conflict(98, 8));
     }
 }

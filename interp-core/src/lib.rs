@@ -4,10 +4,12 @@
 //!
 //! Layers, one module each:
 //! - [`program`]: program text and the cursor that cuts blocks out of it;
-//! - [`parse`]: one block of text into words (syntax);
+//! - [`parse`]: one block of text into words (syntax), or an evaluated macro
+//!   statement ([`macros`]: variables, expressions, GOTO/IF/WHILE);
 //! - [`check`]: words into a validated command in internal units (meaning);
 //! - [`exec`]: the command applied to the modal state, emitting [`canon`] actions;
-//! - [`interpreter`]: the incremental driver, one block per step.
+//! - [`interpreter`]: the incremental driver, one NC block (and a bounded number of
+//!   macro statements) per step, with the subprogram and loop stacks.
 //!
 //! Units: lengths in nanometres, angles in micro-degrees, X as a radius (see [`units`]).
 #![no_std]
@@ -29,6 +31,7 @@ pub mod fixed;
 pub mod geom;
 pub mod interpolator;
 pub mod interpreter;
+pub mod macros;
 pub mod motion;
 pub mod parse;
 pub mod planner;

@@ -10,6 +10,8 @@ use core::hint::black_box;
 use cortex_m_rt::entry;
 use heapless::Vec;
 use interp_core::canon::{Action, Canon, CanonSink, Full, RecordingSink, ThreadSync};
+use interp_core::macros::{MacroStatement, Variables};
+use interp_core::parse::{Statement, read_statement};
 use interp_core::{Alarm, Axis, Interpreter, MachineConfig, Panel, Progress, SingleProgram};
 use m4_tests::{TestFn, run_tests, tests};
 
@@ -23,6 +25,8 @@ const TESTS: &[(&str, TestFn)] = &tests![
     interpreter_figure_2_73_surface_speed,
     interpreter_alarm_changes_nothing,
     interpreter_figure_2_60_g76,
+    macro_functions_match_the_host_bit_for_bit,
+    macro_loop_through_the_interpreter,
     motion_core_runs_a_contour_to_its_exact_end,
     motion_thread_gearbox_counts_exactly,
 ];
@@ -171,6 +175,51 @@ fn interpreter_figure_2_60_g76() -> Result<(), &'static str> {
         "pass depths",
     )?;
     check(sink.count == 33, "actions: spindle, rapid, 6 passes of 5, end")
+}
+
+/// Macro expressions give the same f64 bits on the M4 (software float) as on the
+/// host: the values were printed by the host build of the same code.
+fn macro_functions_match_the_host_bit_for_bit() -> Result<(), &'static str> {
+    const CASES: &[(&str, u64)] = &[
+        ("#1=SIN[30]*2+SQRT[16]", 0x4014_0000_0000_0000), // 5.0 exactly
+        ("#1=SIN[12.3456]", 0x3fcb_5e0e_d446_7e91),
+        ("#1=COS[33.3]", 0x3fea_beef_145a_a617),
+        ("#1=TAN[71.5]", 0x4007_e8d3_a968_38bd),
+        ("#1=ASIN[0.3]", 0x4031_7525_7a72_ef10),
+        ("#1=ATAN[1]/[3]", 0x4032_6f58_ce59_e23c),
+        ("#1=EXP[2.5]", 0x4028_5d6f_d931_e0bb),
+        ("#1=SQRT[2]*SQRT[3]", 0x4003_988e_1409_212f),
+        ("#1=1/3", 0x3fd5_5555_5555_5555),
+    ];
+    let vars = Variables::new();
+    let fmt = Interpreter::new(MachineConfig::default()).number_format();
+    for &(text, bits) in CASES {
+        let Ok(Statement::Macro(m)) = read_statement(black_box(text.as_bytes()), 1, &vars, &fmt) else {
+            return Err("not read as a macro statement");
+        };
+        let MacroStatement::Assign { value: Some(x), .. } = m.statement else { return Err("not an assignment") };
+        check(x.to_bits() == bits, text)?;
+    }
+    Ok(())
+}
+
+/// A WHILE loop run by the interpreter on the M4: the sum of 1..10 becomes a move.
+fn macro_loop_through_the_interpreter() -> Result<(), &'static str> {
+    let text = b"#1=0\n#2=1\nWHILE [#2 LE 10] DO1\n#1=#1+#2\n#2=#2+1\nEND1\nG00 X#1 Z[SIN[30]]\nM30\n";
+    let store = SingleProgram(black_box(text));
+    let mut interp = Interpreter::new(MachineConfig::default());
+    let mut sink = RecordingSink::<8>::new();
+    let panel = Panel::default();
+    for _ in 0..100 {
+        match interp.step(&store, &panel, &mut sink) {
+            Ok(Progress::Ended) => break,
+            Ok(_) => {}
+            Err(_) => return Err("alarm"),
+        }
+    }
+    check(interp.variables().get(1) == Ok(Some(55.0)), "sum of 1..10")?;
+    let to = sink.actions.first().and_then(|c| c.action.endpoint()).ok_or("no move")?;
+    check(to.work.0[0] == 27_500_000 && to.work.0[2] == 500_000, "X55 (radius 27.5 mm), Z0.5")
 }
 
 /// The motion core on the target: the program of figure 2.6 (lines and arcs)

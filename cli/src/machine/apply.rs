@@ -88,6 +88,9 @@ fn apply_modes(file: &MachineFile, cfg: &mut MachineConfig) {
     if let Some(t) = file.tool_count {
         cfg.tool_count = t;
     }
+    if let Some(i) = file.jump_input {
+        cfg.jump_input = i;
+    }
 }
 
 /// `input` sets parameter 3401; giving both would leave one of them ignored.

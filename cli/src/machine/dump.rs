@@ -45,6 +45,7 @@ pub(super) fn file_of(cfg: &MachineConfig) -> MachineFile {
             accel: Some(cfg.spindle.accel_rpm_per_s),
         }),
         user_m_codes: Some(cfg.user_m_codes.iter().map(|u| UserM { m: u.m, timing: timing(u.timing) }).collect()),
+        jump_input: Some(cfg.jump_input),
         parameters: Some(parameters(cfg)),
         motion: Some(motion(&cfg.motion)),
     }

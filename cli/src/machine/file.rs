@@ -36,6 +36,8 @@ pub struct MachineFile {
     pub spindle: Option<Spindle>,
     /// M codes wired to machine outputs.
     pub user_m_codes: Option<Vec<UserM>>,
+    /// The external input M91/M92 test (3.1.5).
+    pub jump_input: Option<u16>,
     /// Numbered parameters by number, in file units.
     pub parameters: Option<BTreeMap<ParamKey, f64>>,
     /// Motion core settings.

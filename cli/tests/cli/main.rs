@@ -5,6 +5,7 @@ mod check;
 mod docs;
 mod jsonl;
 mod machine;
+mod macros;
 mod sim;
 mod svg;
 

@@ -117,17 +117,18 @@ fn every_example_program_simulates_in_every_format() {
         .collect();
     programs.sort();
     assert!(!programs.is_empty());
+    let lib = concat!(env!("CARGO_MANIFEST_DIR"), "/../examples/lib");
     for p in &programs {
         let p = p.to_str().unwrap();
-        let jsonl = lathe(&["sim", p, "--format", "jsonl"]);
+        let jsonl = lathe(&["sim", p, "--format", "jsonl", "--lib", lib]);
         assert_eq!(status(&jsonl), 0, "{p}: {}", stderr(&jsonl));
         for line in stdout(&jsonl).lines() {
             let v: serde_json::Value = serde_json::from_str(line).unwrap();
             assert!(v["line"].as_u64().is_some() && v["kind"].is_string(), "{p}: {line}");
         }
-        let svg = lathe(&["sim", p, "--format", "svg"]);
+        let svg = lathe(&["sim", p, "--format", "svg", "--lib", lib]);
         assert!(roxmltree::Document::parse(&stdout(&svg)).is_ok(), "{p}");
-        let summary = stdout(&lathe(&["sim", p]));
+        let summary = stdout(&lathe(&["sim", p, "--lib", lib]));
         assert!(summary.contains("alarms      none\n") && summary.contains("end         M30\n"), "{p}: {summary}");
     }
 }

@@ -21,7 +21,9 @@ use std::io::Write;
 use hal::{DigitalOutputs, MonotonicClock, Rotation, SpindleDrive, SpindleEncoder, StepDir};
 use interp_core::axis::{AXIS_COUNT, Axis, Pos};
 use interp_core::canon::{Canon, CanonSink, Full, SpindleDir};
+use interp_core::macros::Variables;
 use interp_core::motion::{Event, EventKind, Feedback, MotionCore, QUEUE, State};
+use interp_core::program::{ProgramId, ProgramStore};
 use interp_core::stepgen::{DriverTiming, EdgeKind};
 use interp_core::{Alarm, Interpreter, MachineConfig, Panel, Progress, SingleProgram};
 
@@ -194,7 +196,7 @@ pub struct Report {
 
 /// Where actions come from.
 enum Source<'a> {
-    Program { text: &'a str, interp: Box<Interpreter>, done: bool },
+    Program { store: &'a dyn ProgramStore, interp: Box<Interpreter>, done: bool },
     Actions { list: &'a [Canon], next: usize },
 }
 
@@ -299,9 +301,23 @@ impl Sim {
 
     /// Runs program `text`, calling `hook` before every period (operator actions).
     pub fn run_program_with(&mut self, text: &str, hook: impl FnMut(&mut Sim)) -> Report {
+        self.run_store(&SingleProgram(text.as_bytes()), 0, &Variables::new(), hook)
+    }
+
+    /// Runs program `main` of `store` (subprograms for M98 in the same store), the
+    /// macro variables starting as `variables`, calling `hook` before every period.
+    pub fn run_store(
+        &mut self,
+        store: &dyn ProgramStore,
+        main: ProgramId,
+        variables: &Variables,
+        hook: impl FnMut(&mut Sim),
+    ) -> Report {
         let mut interp = Box::new(Interpreter::new(self.cfg.clone()));
         interp.set_machine_position(self.opts.start);
-        self.run(Source::Program { text, interp, done: false }, hook)
+        interp.select_main(main);
+        *interp.variables_mut() = variables.clone();
+        self.run(Source::Program { store, interp, done: false }, hook)
     }
 
     /// Runs canonical actions (as the interpreter would deliver them) to the end.
@@ -364,13 +380,12 @@ impl Sim {
                 }
                 true
             }
-            Source::Program { text, interp, done } => {
-                let store = SingleProgram(text.as_bytes());
+            Source::Program { store, interp, done } => {
                 for _ in 0..4 * QUEUE {
                     if *done {
                         break;
                     }
-                    match interp.step(&store, &self.panel, &mut sink) {
+                    match interp.step(*store, &self.panel, &mut sink) {
                         Ok(Progress::Blocked | Progress::Paused) => break,
                         Ok(Progress::Ended) => *done = true,
                         Ok(_) => {}

@@ -25,6 +25,31 @@ pub struct AxisWord {
     pub incremental: bool,
 }
 
+/// What an M98, M99, M91 or M92 of the block asks for, with its P (and L).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum FlowWord {
+    /// M98 P… [L…]: run subprogram `program` `repeats` times (3.1.6, seed 003 2.5.1).
+    Call {
+        /// O number, 1–9999.
+        program: u32,
+        /// Repetitions, 1–9999 (`L`, or the digits before the last four of P).
+        repeats: u16,
+    },
+    /// M99 [P…]: return to the caller, at sequence `seq` if given (3.1.7).
+    Return {
+        /// Sequence number to go on at in the caller.
+        seq: Option<u32>,
+    },
+    /// M91/M92 P…: jump to `seq` when the external input is 1 (`high`) or 0 (3.1.5).
+    Jump {
+        /// Target sequence number, 1–99999.
+        seq: u32,
+        /// True for M92 (jump on 1), false for M91 (jump on 0).
+        high: bool,
+    },
+}
+
 /// A checked block: everything execution needs, in internal units.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Command {
@@ -52,6 +77,8 @@ pub struct Command {
     pub speed: Option<u32>,
     /// T: turret station and offset number.
     pub tool: Option<(u16, u16)>,
+    /// M98/M99/M91/M92 with their words.
+    pub flow: Option<FlowWord>,
     /// Cycle words (G70–G76, G90/G92/G94, G32/G34, G83–G89), internal units.
     pub cycle: crate::cycles::CycleArgs,
 }
@@ -97,21 +124,62 @@ pub fn check(block: &Block, state: &State, cfg: &MachineConfig) -> Result<Comman
         feed: None,
         speed: None,
         tool: None,
+        flow: None,
         cycle: crate::cycles::CycleArgs::None,
     };
+    let flow_m = cmd.m.iter().map(|&(_, f)| f).find(|f| f.is_flow());
     let user = cmd.axis_user(state);
-    words::check_letters(block, user, cfg)?;
+    words::check_letters(block, user, flow_m, cfg)?;
     words::convert(block, user, state, cfg, &fmt, &mut cmd)?;
+    cmd.flow = flow_m.map(|f| flow_word(block, f)).transpose()?;
     Ok(cmd)
+}
+
+/// The P (and L) of M98, M99, M91, M92.
+fn flow_word(block: &Block, f: MFunction) -> Result<FlowWord, AlarmKind> {
+    let p = |max| block.get(b'P').map(|n| words::whole(b'P', &n, max)).transpose();
+    match f {
+        MFunction::Call => {
+            let p = p(99_999_999)?.ok_or(AlarmKind::SubprogramNumberMissing)?;
+            let (program, repeats) = match block.get(b'L') {
+                Some(l) => (p, words::whole(b'L', &l, 9_999)?),
+                // FANUC's packed form: P30012 = 3 times O0012.
+                None if p > 9_999 => (p % 10_000, p / 10_000),
+                None => (p, 1),
+            };
+            if !(1..=9_999).contains(&program) {
+                return Err(AlarmKind::ValueOutOfRange { letter: b'P' });
+            }
+            if !(1..=9_999).contains(&repeats) {
+                return Err(AlarmKind::ValueOutOfRange { letter: b'L' });
+            }
+            Ok(FlowWord::Call { program, repeats: repeats as u16 })
+        }
+        MFunction::Return => {
+            let alone = block.g.is_empty()
+                && block.m.len() == 1
+                && block.letters().all(|l| l == b'P')
+                && block.chamfer.is_none()
+                && block.corner.is_none();
+            if !alone {
+                return Err(AlarmKind::M99NotAlone);
+            }
+            Ok(FlowWord::Return { seq: p(99_999)? })
+        }
+        _ => {
+            let seq = p(99_999)?.ok_or(AlarmKind::MissingWord { letter: b'P', context: "M91/M92" })?;
+            if seq == 0 {
+                return Err(AlarmKind::ValueOutOfRange { letter: b'P' });
+            }
+            Ok(FlowWord::Jump { seq, high: f == MFunction::JumpIfHigh })
+        }
+    }
 }
 
 /// Looks up every M code and rejects contradicting pairs.
 fn resolve_m(block: &Block, cfg: &MachineConfig) -> Result<heapless::Vec<(u16, MFunction), MAX_M>, AlarmKind> {
     let mut out = heapless::Vec::new();
     for (i, &m) in block.m.iter().enumerate() {
-        if matches!(m, 91 | 92 | 98 | 99) {
-            return Err(AlarmKind::NotSupportedYet { what: "subprograms and jumps (M98/M99/M91/M92)" });
-        }
         let f = m_function(m, cfg).ok_or(AlarmKind::UnknownMCode { m })?;
         if let Some(&other) = block.m[..i].iter().find(|&&o| m_codes_conflict(o, m)) {
             return Err(AlarmKind::ConflictingMCodes { first: other, second: m });

@@ -3,7 +3,7 @@
 use super::{AxisWord, Command, axis_of};
 use crate::alarm::AlarmKind;
 use crate::axis::Axis;
-use crate::codes::GCode;
+use crate::codes::{GCode, MFunction};
 use crate::config::{MAX_OFFSETS, MachineConfig, Param};
 use crate::exec::State;
 use crate::parse::Block;
@@ -57,13 +57,28 @@ fn words_of(code: GCode) -> (Letters, &'static str) {
     }
 }
 
-/// Every letter of the block must belong to the code that uses the axis words,
-/// and every axis word must name an axis the machine has.
-pub(super) fn check_letters(block: &Block, user: GCode, cfg: &MachineConfig) -> Result<(), AlarmKind> {
-    let (allowed, name) = match crate::cycles::args::letters_of(user) {
+/// Every letter of the block must belong to the code that uses the axis words (or
+/// to the block's M98/M99/M91/M92: P, and L for M98), and every axis word must name
+/// an axis the machine has.
+pub(super) fn check_letters(
+    block: &Block,
+    user: GCode,
+    flow: Option<MFunction>,
+    cfg: &MachineConfig,
+) -> Result<(), AlarmKind> {
+    let (mut allowed, name) = match crate::cycles::args::letters_of(user) {
         Some((l, name)) => (Letters::of(l), name),
         None => words_of(user),
     };
+    if let Some(f) = flow {
+        if allowed.contains(b'P') && block.has(b'P') {
+            return Err(AlarmKind::WordNotAllowed {
+                letter: b'P',
+                context: "a code with P together with M98/M99/M91/M92",
+            });
+        }
+        allowed = allowed.with(if f == MFunction::Call { Letters::of(b"PL") } else { Letters::of(b"P") });
+    }
     for letter in block.letters() {
         if UNUSED.contains(letter) {
             return Err(AlarmKind::ImproperAddress { letter });
@@ -227,16 +242,7 @@ fn required_words(user: GCode, cmd: &Command) -> Result<(), AlarmKind> {
     Ok(())
 }
 
-/// A whole number without sign or decimal point, at most `max`.
-fn whole(letter: u8, n: &Number, max: u32) -> Result<u32, AlarmKind> {
-    if n.has_point {
-        return Err(AlarmKind::IllegalDecimalPoint { letter });
-    }
-    if n.is_negative() {
-        return Err(AlarmKind::IllegalMinusSign { letter });
-    }
-    u32::try_from(n.mantissa).ok().filter(|v| *v <= max).ok_or(AlarmKind::ValueOutOfRange { letter })
-}
+pub(super) use crate::parse::whole;
 
 /// T: turret station and offset number (the last 1 or 2 digits, parameter 5002).
 fn tool_word(t: &Number, cfg: &MachineConfig) -> Result<(u16, u16), AlarmKind> {

@@ -142,6 +142,10 @@ pub struct MachineConfig {
     pub spindle: SpindleConfig,
     /// M codes configured as user outputs.
     pub user_m_codes: heapless::Vec<UserMCode, MAX_USER_M>,
+    /// The external input M91/M92 test (3.1.5 speaks of "the input signal" without
+    /// naming one; this machine wires it to [`crate::Environment::input`] number
+    /// `jump_input`, 0 by default).
+    pub jump_input: u16,
     /// Numbered parameters.
     pub params: Parameters,
     /// Motion core settings: interpolation period, junctions, tolerances.
@@ -172,6 +176,7 @@ impl Default for MachineConfig {
                 accel_rpm_per_s: 2_000,
             },
             user_m_codes: heapless::Vec::new(),
+            jump_input: 0,
             params: Parameters::default(),
             motion: MotionConfig::default(),
         }

@@ -112,14 +112,19 @@ impl<const N: usize> Out for heapless::Deque<Canon, N> {
     }
 }
 
-/// The dry-run sink: counts and forgets.
+/// The dry-run sink: takes up to the number of actions it holds and forgets them.
 #[derive(Debug, Default)]
 pub struct Dry(pub u32);
 
 impl Out for Dry {
     fn put(&mut self, _: Canon) -> Result<(), AlarmKind> {
-        self.0 = self.0.saturating_add(1);
+        self.0 = self.0.saturating_sub(1);
         Ok(())
+    }
+
+    /// Takes as many actions as it has left: the dry run goes in bounded chunks.
+    fn room(&self) -> usize {
+        self.0 as usize
     }
 }
 

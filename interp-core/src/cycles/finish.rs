@@ -34,7 +34,7 @@ impl FinishGen {
         &mut self,
         em: &mut Emitter,
         cfg: &MachineConfig,
-        text: &[u8],
+        program: crate::program::ProgramText<'_>,
         env: &E,
         out: &mut dyn Out,
         queue: &mut StepQueue,
@@ -42,7 +42,7 @@ impl FinishGen {
         if self.done {
             return Ok(false);
         }
-        let src = ShapeSource { text, ns: self.ns, nf: self.nf };
+        let src = ShapeSource { program, ns: self.ns, nf: self.nf };
         let Some(sb) = next_shape_block(&src, &mut self.cur, env)? else {
             return Err(AlarmKind::SequenceNotFound { n: self.nf });
         };

@@ -12,8 +12,8 @@ use crate::codes::{GCode, MFunction};
 use crate::config::MachineConfig;
 use crate::env::Environment;
 use crate::exec::{Flow, Staged, State, execute};
-use crate::parse::{Block, read_block};
-use crate::program::{Cursor, find_sequence, next_block};
+use crate::parse::{Block, Read, read_with};
+use crate::program::{Cursor, ProgramText, find_sequence_from, next_block};
 
 /// Most segments a finishing shape may have (alarm 4035 beyond).
 pub const PROFILE_MAX: usize = 48;
@@ -184,8 +184,8 @@ fn wrap(x: f64) -> f64 {
 
 /// Where the blocks ns–nf are and how to run them.
 pub struct ShapeSource<'a> {
-    /// The current program's text.
-    pub text: &'a [u8],
+    /// The current program (text, start, variables for the words).
+    pub program: ProgramText<'a>,
     /// First block's sequence number.
     pub ns: u32,
     /// Last block's sequence number.
@@ -194,8 +194,9 @@ pub struct ShapeSource<'a> {
 
 /// The cursor of block ns (alarm 0063 if missing).
 pub fn start_of(src: &ShapeSource<'_>) -> Result<Cursor, AlarmKind> {
-    let start = find_sequence(src.text, 0, src.ns).ok_or(AlarmKind::SequenceNotFound { n: src.ns })?;
-    find_sequence(src.text, 0, src.nf).ok_or(AlarmKind::SequenceNotFound { n: src.nf })?;
+    let (text, from) = (src.program.text, src.program.start);
+    let start = find_sequence_from(text, from, src.ns).ok_or(AlarmKind::SequenceNotFound { n: src.ns })?;
+    find_sequence_from(text, from, src.nf).ok_or(AlarmKind::SequenceNotFound { n: src.nf })?;
     Ok(start)
 }
 
@@ -216,13 +217,18 @@ pub fn next_shape_block<E: Environment + ?Sized>(
     env: &E,
 ) -> Result<Option<ShapeBlock>, AlarmKind> {
     loop {
-        let Some(raw) = next_block(src.text, cur) else {
+        let Some(raw) = next_block(src.program.text, cur) else {
             return Err(AlarmKind::SequenceNotFound { n: src.nf });
         };
         if raw.percent {
             return Err(AlarmKind::SequenceNotFound { n: src.nf });
         }
-        let block = read_block(raw.text, raw.line)?;
+        // Words may use variables (read as the cycle block saw them); a macro
+        // statement cannot be part of a shape.
+        let mut block = Block::default();
+        if let Read::Macro(_) = read_with(raw.text, raw.line, src.program.vars, src.program.fmt, &mut block)? {
+            return Err(AlarmKind::ProfileForbiddenCode { what: "a macro statement" });
+        }
         let last = block.seq == Some(src.nf);
         // Note 4: block skip as the switch stands when the block is read.
         let skipped = block.skip_level.is_some_and(|l| env.block_skip(l));

@@ -138,6 +138,13 @@ impl RoughGen {
             return Err(AlarmKind::ProfileNotMonotone);
         }
         let frame = Frame { level, cut, out, dir };
+        if frame.norm(c).1 <= frame.norm(a).1 {
+            // The allowance pushed C' back past the start point: there is nothing to
+            // rough, and a "cut" would run backwards, away from the part.
+            return Err(AlarmKind::CycleValueIllegal {
+                what: "the shape shifted by the allowances ends before the start point",
+            });
+        }
         let shape = &profile.segs[1..];
         check_monotone(&frame, if type2 { &profile.segs[..] } else { shape }, type2)?;
         let bottom = shape.iter().map(|s| lowest(&frame, s)).min().unwrap_or(frame.norm(b).0).min(frame.norm(b).0);

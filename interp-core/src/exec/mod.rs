@@ -15,7 +15,7 @@ pub use state::{
 use crate::alarm::AlarmKind;
 use crate::axis::Pos;
 use crate::canon::{Action, Canon, SpindleDir};
-use crate::check::Command;
+use crate::check::{Command, FlowWord};
 use crate::codes::{GCode, MFunction};
 use crate::config::{MTiming, MachineConfig, Param, ToolOffset};
 use crate::cycles::{self, Expansion};
@@ -36,8 +36,8 @@ pub struct Staged<'a> {
     line: u32,
     /// The staged actions, in order.
     pub actions: &'a mut Outbox,
-    /// Text of the program the block is in: G70–G73 read their ns–nf blocks from it.
-    pub program: &'a [u8],
+    /// The program the block is in: G70–G73 read their ns–nf blocks from it.
+    pub program: crate::program::ProgramText<'a>,
     /// Where a cycle started by this block goes (the interpreter's expansion slot);
     /// `None` where no cycle may start (inside a cycle's own blocks).
     slot: Option<&'a mut Option<Expansion>>,
@@ -57,7 +57,7 @@ impl<'a> Staged<'a> {
         Staged {
             line,
             actions: outbox,
-            program: &[],
+            program: crate::program::ProgramText::NONE,
             slot: None,
             split: None,
             params: heapless::Vec::new(),
@@ -66,7 +66,12 @@ impl<'a> Staged<'a> {
     }
 
     /// A stage for a block of `program` that may start a cycle into `slot`.
-    pub fn in_program(line: u32, outbox: &'a mut Outbox, program: &'a [u8], slot: &'a mut Option<Expansion>) -> Self {
+    pub fn in_program(
+        line: u32,
+        outbox: &'a mut Outbox,
+        program: crate::program::ProgramText<'a>,
+        slot: &'a mut Option<Expansion>,
+    ) -> Self {
         Staged { program, slot: Some(slot), ..Staged::new(line, outbox) }
     }
 
@@ -95,6 +100,23 @@ pub enum Flow {
     Stop,
     /// M02/M30.
     End,
+    /// M98: call subprogram `program` `repeats` times, after the block's other codes.
+    Call {
+        /// O number.
+        program: u32,
+        /// Repetitions.
+        repeats: u16,
+    },
+    /// M99: return to the caller (at sequence `seq`), or restart a main program.
+    Return {
+        /// Sequence number in the caller.
+        seq: Option<u32>,
+    },
+    /// M91/M92 whose input condition held: go to sequence `seq`.
+    Jump {
+        /// Sequence number in this program.
+        seq: u32,
+    },
 }
 
 /// Executes `cmd` on `st`, staging the actions in `out`.
@@ -130,7 +152,7 @@ pub fn execute(
     }
     aux(cmd, MTiming::After, out)?;
     spindle::after_motion(cmd, st, out)?;
-    program_flow(cmd, env, out)
+    program_flow(cmd, cfg, env, out)
 }
 
 /// Modal codes that govern how the rest of the block is read.
@@ -197,8 +219,14 @@ fn aux(cmd: &Command, timing: MTiming, out: &mut Staged<'_>) -> Result<(), Alarm
     Ok(())
 }
 
-/// M00, M01, M02, M30 after the block's motion.
-fn program_flow(cmd: &Command, env: &dyn Environment, out: &mut Staged<'_>) -> Result<Flow, AlarmKind> {
+/// M00, M01, M02, M30, M98, M99, M91, M92 after the block's other codes (3.1.3–3.1.7:
+/// "当前程序段的其它代码执行完成后").
+fn program_flow(
+    cmd: &Command,
+    cfg: &MachineConfig,
+    env: &dyn Environment,
+    out: &mut Staged<'_>,
+) -> Result<Flow, AlarmKind> {
     for &(_, f) in &cmd.m {
         match f {
             MFunction::Stop => {
@@ -216,7 +244,16 @@ fn program_flow(cmd: &Command, env: &dyn Environment, out: &mut Staged<'_>) -> R
             _ => {}
         }
     }
-    Ok(Flow::Continue)
+    Ok(match cmd.flow {
+        None => Flow::Continue,
+        Some(FlowWord::Call { program, repeats }) => Flow::Call { program, repeats },
+        Some(FlowWord::Return { seq }) => Flow::Return { seq },
+        Some(FlowWord::Jump { seq, high }) => {
+            let input = cfg.jump_input;
+            let level = env.input(input).ok_or(AlarmKind::InputNotAvailable { input })?;
+            if level == high { Flow::Jump { seq } } else { Flow::Continue }
+        }
+    })
 }
 
 /// Direction a spindle M code commands, if it is one.

@@ -1,11 +1,72 @@
-//! Reading: one block of program text into a [`Block`] of words. Syntax only —
-//! what the words mean and whether they belong together is checked later.
+//! Reading: one block of program text into a [`Statement`]: either a [`Block`] of
+//! NC words (macro values already substituted) or an evaluated macro statement.
+//! What the words mean and whether they belong together is checked later.
 
 mod reader;
 
-pub use reader::{read_block, read_block_into};
+pub use reader::{read_block, read_block_into, read_statement, read_statement_into, read_with};
 
+use crate::macros::MacroStatement;
 use crate::units::Number;
+
+/// What one block of program text is (2.24.2 notes 7 and 8).
+///
+/// The NC variant is large (a [`Block`] holds every address); without an allocator
+/// there is nothing to box it into, and a statement lives only while its block runs.
+#[derive(Clone, Debug, PartialEq)]
+#[allow(clippy::large_enum_variant)]
+pub enum Statement {
+    /// An NC statement: words with plain values.
+    Nc(Block),
+    /// A macro statement, evaluated.
+    Macro(MacroBlock),
+}
+
+impl Statement {
+    /// The source line.
+    pub fn line(&self) -> u32 {
+        match self {
+            Statement::Nc(b) => b.line,
+            Statement::Macro(m) => m.line,
+        }
+    }
+}
+
+/// What [`read_statement_into`] found in a block's text.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Read {
+    /// An NC statement: its words are in the block.
+    Nc,
+    /// A macro statement, evaluated (the block is left empty).
+    Macro(MacroBlock),
+}
+
+/// A macro statement with what may stand before it: a skip mark and a sequence
+/// number (note 10).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MacroBlock {
+    /// 1-based source line.
+    pub line: u32,
+    /// Optional block skip level.
+    pub skip_level: Option<u8>,
+    /// Sequence number `N`.
+    pub seq: Option<u32>,
+    /// The statement.
+    pub statement: MacroStatement,
+}
+
+/// The optional block skip level a block's text starts with (`/` = 1, `/2`…`/9`),
+/// read without evaluating anything, so a skipped block is never evaluated.
+pub fn skip_level(text: &[u8]) -> Option<u8> {
+    let i = text.iter().position(|c| !matches!(c, b' ' | b'\t' | b'\r'))?;
+    if text[i] != b'/' {
+        return None;
+    }
+    Some(match text.get(i + 1) {
+        Some(d @ b'1'..=b'9') => d - b'0',
+        _ => 1,
+    })
+}
 
 /// Most G codes one block may hold.
 pub const MAX_G: usize = 8;
@@ -103,4 +164,17 @@ impl Block {
     pub fn is_empty(&self) -> bool {
         self.g.is_empty() && self.m.is_empty() && self.present == 0 && self.chamfer.is_none() && self.corner.is_none()
     }
+}
+
+/// A whole number written without sign or decimal point, at most `max` (N, O, M,
+/// S, T, G04 P …); the alarm names the address.
+pub(crate) fn whole(letter: u8, n: &Number, max: u32) -> Result<u32, crate::alarm::AlarmKind> {
+    use crate::alarm::AlarmKind;
+    if n.has_point {
+        return Err(AlarmKind::IllegalDecimalPoint { letter });
+    }
+    if n.is_negative() {
+        return Err(AlarmKind::IllegalMinusSign { letter });
+    }
+    u32::try_from(n.mantissa).ok().filter(|v| *v <= max).ok_or(AlarmKind::ValueOutOfRange { letter })
 }

@@ -1,69 +1,153 @@
-//! The block reader: bytes → words. Accepts lowercase, blanks between and inside
-//! words (between address and value), comments in parentheses, a leading `/n`.
+//! The block reader: bytes → a [`Statement`]. Accepts lowercase, blanks between and
+//! inside words (between address and value), comments in parentheses, a leading
+//! `/n`, a sequence number before a macro statement (2.24.2 note 10), and macro
+//! values in words: `F#203`, `Z-#210`, `G#230`, `X[#1*2]`, `F[25.4/10]` (2.24.1).
 
-use super::Block;
+use super::{Block, MacroBlock, Read, Statement, whole};
 use crate::alarm::AlarmKind;
 use crate::alarm::GNum;
-use crate::units::{Number, pow10};
+use crate::macros::{Eval, Rounding, Variables, format, nullable, starts_statement, statement};
+use crate::units::{Number, NumberFormat, pow10};
 
 /// Most digits before the decimal point.
 const MAX_INT_DIGITS: u8 = 9;
 /// Most digits after it (nanometres of a millimetre).
 const MAX_FRAC_DIGITS: u8 = 9;
+/// Largest whole number a macro value may give an integer address (8 digits).
+const MAX_WHOLE_VALUE: f64 = 99_999_999.0;
 
-/// Reads one block's text (without its end-of-block character).
+/// Reads one block's text (without its end-of-block character), evaluating every
+/// expression against `vars`. `fmt` is the number format in force: ROUND in a word
+/// rounds to its least input increment (2.24.2 (7)).
+///
+/// This is the reader every consumer of program text uses — the interpreter (through
+/// [`read_statement_into`]), and the canned cycles reading their profile blocks.
+pub fn read_statement(text: &[u8], line: u32, vars: &Variables, fmt: &NumberFormat) -> Result<Statement, AlarmKind> {
+    let mut block = Block::default();
+    Ok(match read_statement_into(text, line, vars, fmt, &mut block)? {
+        Read::Nc => Statement::Nc(block),
+        Read::Macro(m) => Statement::Macro(m),
+    })
+}
+
+/// [`read_statement`] into `block`, reusing its storage (the interpreter's per-block
+/// path: nothing large is copied). An NC statement's words end up in `block`.
+pub fn read_statement_into(
+    text: &[u8],
+    line: u32,
+    vars: &Variables,
+    fmt: &NumberFormat,
+    block: &mut Block,
+) -> Result<Read, AlarmKind> {
+    Reader { text, pos: 0, vars: Some(vars), fmt: Some(*fmt) }.statement(line, block)
+}
+
+/// [`read_statement_into`] with what is available: without `vars` a `#` raises
+/// alarm 0114, without `fmt` a ROUND in a word does (the cycles' shape blocks).
+pub fn read_with(
+    text: &[u8],
+    line: u32,
+    vars: Option<&Variables>,
+    fmt: Option<NumberFormat>,
+    block: &mut Block,
+) -> Result<Read, AlarmKind> {
+    Reader { text, pos: 0, vars, fmt }.statement(line, block)
+}
+
+/// Reads an NC block that uses no variables (tools and tests). A `#`, a ROUND in a
+/// word or a macro statement raise alarm 0114: use [`read_statement`] for those.
 pub fn read_block(text: &[u8], line: u32) -> Result<Block, AlarmKind> {
     let mut block = Block::default();
     read_block_into(text, line, &mut block)?;
     Ok(block)
 }
 
-/// Reads one block's text into `block`, reusing its storage (the interpreter's
-/// per-block path: nothing large is copied).
+/// [`read_block`] into `block`, reusing its storage.
 pub fn read_block_into(text: &[u8], line: u32, block: &mut Block) -> Result<(), AlarmKind> {
-    block.clear(line);
-    let mut r = Reader { text, pos: 0 };
-    r.skip_blanks_and_comments()?;
-    if r.peek() == Some(b'/') {
-        r.pos += 1;
-        block.skip_level = Some(match r.peek() {
-            Some(d @ b'1'..=b'9') => {
-                r.pos += 1;
-                d - b'0'
-            }
-            _ => 1,
-        });
-    }
-    loop {
-        r.skip_blanks_and_comments()?;
-        let Some(c) = r.next() else { return Ok(()) };
-        match c.to_ascii_uppercase() {
-            letter @ b'A'..=b'Z' => r.word(letter, block)?,
-            b',' => r.comma_word(block)?,
-            b'/' => return Err(AlarmKind::MisplacedBlockSkip),
-            b'#' | b'[' | b'=' => {
-                return Err(AlarmKind::NotSupportedYet { what: "macro variables and expressions" });
-            }
-            c @ (b'0'..=b'9' | b'+' | b'-' | b'.') => return Err(AlarmKind::AddressNotFound { found: c }),
-            other => return Err(AlarmKind::IllegalCharacter { found: other }),
-        }
+    match (Reader { text, pos: 0, vars: None, fmt: None }).statement(line, block)? {
+        Read::Nc => Ok(()),
+        Read::Macro(_) => Err(format("macro statement (use read_statement)")),
     }
 }
 
-struct Reader<'a> {
+struct Reader<'a, 'v> {
     text: &'a [u8],
     pos: usize,
+    vars: Option<&'v Variables>,
+    fmt: Option<NumberFormat>,
 }
 
-impl Reader<'_> {
-    fn peek(&self) -> Option<u8> {
-        self.text.get(self.pos).copied()
+impl Reader<'_, '_> {
+    /// The whole block: skip mark, sequence number, then a macro statement or words.
+    fn statement(&mut self, line: u32, block: &mut Block) -> Result<Read, AlarmKind> {
+        block.clear(line);
+        self.skip_blanks_and_comments()?;
+        if self.peek() == Some(b'/') {
+            self.pos += 1;
+            block.skip_level = Some(match self.peek() {
+                Some(d @ b'1'..=b'9') => {
+                    self.pos += 1;
+                    d - b'0'
+                }
+                _ => 1,
+            });
+        }
+        self.skip_blanks_and_comments()?;
+        if matches!(self.peek(), Some(b'N' | b'n')) {
+            self.pos += 1;
+            self.word(b'N', block)?;
+            self.skip_blanks_and_comments()?;
+        }
+        if starts_statement(self.text, self.pos) {
+            let statement = self.macro_statement()?;
+            let (skip_level, seq) = (block.skip_level, block.seq);
+            block.clear(line);
+            return Ok(Read::Macro(MacroBlock { line, skip_level, seq, statement }));
+        }
+        self.words(block)?;
+        Ok(Read::Nc)
     }
 
-    fn next(&mut self) -> Option<u8> {
-        let c = self.peek()?;
-        self.pos += 1;
-        Some(c)
+    /// A macro statement, and nothing but comments after it (note 7).
+    fn macro_statement(&mut self) -> Result<crate::macros::MacroStatement, AlarmKind> {
+        let Some(vars) = self.vars else {
+            return Err(format("macro statement (use read_statement)"));
+        };
+        let mut e = Eval::new(self.text, self.pos, Some(vars), Rounding::Macro);
+        let s = statement(&mut e)?;
+        self.pos = e.pos;
+        self.skip_blanks_and_comments()?;
+        match self.peek() {
+            None => Ok(s),
+            Some(c) if c.is_ascii_alphabetic() || c == b'/' => Err(AlarmKind::MacroAndNcInOneBlock),
+            Some(_) => Err(format("unexpected text after the statement")),
+        }
+    }
+
+    /// The words of an NC block.
+    fn words(&mut self, block: &mut Block) -> Result<(), AlarmKind> {
+        loop {
+            self.skip_blanks_and_comments()?;
+            let Some(c) = self.peek() else { return Ok(()) };
+            if c == b'#' || c.is_ascii_alphabetic() && starts_statement(self.text, self.pos) {
+                // A macro statement after NC words (2.24.2 note 7).
+                return Err(AlarmKind::MacroAndNcInOneBlock);
+            }
+            self.pos += 1;
+            match c.to_ascii_uppercase() {
+                letter @ b'A'..=b'Z' => self.word(letter, block)?,
+                b',' => self.comma_word(block)?,
+                b'/' => return Err(AlarmKind::MisplacedBlockSkip),
+                c @ (b'0'..=b'9' | b'+' | b'-' | b'.' | b'[' | b'=' | b']') => {
+                    return Err(AlarmKind::AddressNotFound { found: c });
+                }
+                other => return Err(AlarmKind::IllegalCharacter { found: other }),
+            }
+        }
+    }
+
+    fn peek(&self) -> Option<u8> {
+        self.text.get(self.pos).copied()
     }
 
     fn skip_blanks(&mut self) {
@@ -85,9 +169,10 @@ impl Reader<'_> {
         }
     }
 
-    /// Reads the value of `letter` and stores it in the block.
+    /// Reads the value of `letter` and stores it in the block. A word whose value
+    /// is a null variable is ignored with its address (2.24.1).
     fn word(&mut self, letter: u8, block: &mut Block) -> Result<(), AlarmKind> {
-        let n = self.number(letter)?;
+        let Some(n) = self.value(letter)? else { return Ok(()) };
         match letter {
             b'G' => {
                 let tenths = g_tenths(&n)?;
@@ -112,8 +197,9 @@ impl Reader<'_> {
     fn comma_word(&mut self, block: &mut Block) -> Result<(), AlarmKind> {
         self.skip_blanks();
         let letter =
-            self.next().map(|c| c.to_ascii_uppercase()).ok_or(AlarmKind::NoDataAfterAddress { letter: b',' })?;
-        let n = self.number(letter)?;
+            self.peek().map(|c| c.to_ascii_uppercase()).ok_or(AlarmKind::NoDataAfterAddress { letter: b',' })?;
+        self.pos += 1;
+        let Some(n) = self.value(letter)? else { return Ok(()) };
         let slot = match letter {
             b'C' => &mut block.chamfer,
             b'R' => &mut block.corner,
@@ -124,12 +210,51 @@ impl Reader<'_> {
         Ok(())
     }
 
+    /// The value after an address: a number as written, or a macro value
+    /// (`#i`, `-#i`, `[expr]`, `-[expr]`); `None` for a null variable.
+    fn value(&mut self, letter: u8) -> Result<Option<Number>, AlarmKind> {
+        self.skip_blanks();
+        let mut at = self.pos;
+        let negative = match self.peek() {
+            Some(s @ (b'+' | b'-')) => {
+                at += 1;
+                while matches!(self.text.get(at), Some(b' ' | b'\t' | b'\r')) {
+                    at += 1;
+                }
+                s == b'-'
+            }
+            _ => false,
+        };
+        if !matches!(self.text.get(at), Some(b'#' | b'[')) {
+            return self.number(letter).map(Some);
+        }
+        if matches!(letter, b'N' | b'O') {
+            return Err(format("N and O take no variables"));
+        }
+        let mut e = Eval::new(self.text, at, self.vars, self.rounding(letter));
+        let v = nullable(e.primary()?)?;
+        self.pos = e.pos;
+        match v {
+            None => Ok(None),
+            Some(x) => macro_number(letter, if negative { -x } else { x }).map(Some),
+        }
+    }
+
+    /// How ROUND rounds in a word of `letter`: to the least input increment of the
+    /// address (angles for C/H, lengths for every other address).
+    fn rounding(&self, letter: u8) -> Rounding {
+        let Some(f) = self.fmt else { return Rounding::Unknown };
+        let step_e9 = if matches!(letter, b'C' | b'H') {
+            f.increments.angle_udeg() * 1_000
+        } else {
+            f.increments.linear_nm(f.units) * 1_000_000_000 / f.units.nm_per_unit()
+        };
+        Rounding::Nc { step_e9 }
+    }
+
     /// A signed decimal number after an address letter.
     fn number(&mut self, letter: u8) -> Result<Number, AlarmKind> {
         self.skip_blanks();
-        if matches!(self.peek(), Some(b'#' | b'[')) {
-            return Err(AlarmKind::NotSupportedYet { what: "macro variables and expressions" });
-        }
         let negative = match self.peek() {
             Some(b'-') => {
                 self.pos += 1;
@@ -179,19 +304,33 @@ impl Reader<'_> {
     }
 }
 
-fn set_once(slot: &mut Option<u32>, letter: u8, v: u32) -> Result<(), AlarmKind> {
-    if slot.replace(v).is_some() { Err(AlarmKind::DuplicateAddress { letter }) } else { Ok(()) }
+/// A macro value as the word of `letter`. Addresses that take whole numbers
+/// (M S T L P Q) get the value rounded to a whole number, G to one decimal; every
+/// other address gets a real number (decimal point set, 9 decimals), which checking
+/// rounds to the least input increment (2.24.1: #1=1.23456, X#1 → 1.235).
+fn macro_number(letter: u8, v: f64) -> Result<Number, AlarmKind> {
+    let too_big = AlarmKind::TooManyDigits { letter };
+    match letter {
+        b'G' => {
+            let tenths = libm::round(v * 10.0);
+            if tenths.abs() > MAX_WHOLE_VALUE {
+                return Err(too_big);
+            }
+            Ok(Number { mantissa: tenths as i64, frac_digits: 1, has_point: true })
+        }
+        b'M' | b'S' | b'T' | b'L' | b'P' | b'Q' => {
+            let w = libm::round(v);
+            if w.abs() > MAX_WHOLE_VALUE {
+                return Err(too_big);
+            }
+            Ok(Number::int(w as i64))
+        }
+        _ => Number::from_f64(v).ok_or(too_big),
+    }
 }
 
-/// A non-negative whole number without decimal point, at most `max`.
-fn whole(letter: u8, n: &Number, max: u32) -> Result<u32, AlarmKind> {
-    if n.has_point {
-        return Err(AlarmKind::IllegalDecimalPoint { letter });
-    }
-    if n.is_negative() {
-        return Err(AlarmKind::IllegalMinusSign { letter });
-    }
-    u32::try_from(n.mantissa).ok().filter(|v| *v <= max).ok_or(AlarmKind::ValueOutOfRange { letter })
+fn set_once(slot: &mut Option<u32>, letter: u8, v: u32) -> Result<(), AlarmKind> {
+    if slot.replace(v).is_some() { Err(AlarmKind::DuplicateAddress { letter }) } else { Ok(()) }
 }
 
 /// A G number in tenths: G1 → 10, G02.1 → 21, G12.1 → 121.

@@ -1,16 +1,49 @@
 //! Program text: where blocks come from, and how a cursor walks through them.
 //!
 //! Programs live in memory as text (on the board, memory-mapped flash or the DNC
-//! buffer; on the host, files). A [`ProgramStore`] hands out program texts; a
-//! [`Cursor`] is a position in one of them; [`next_block`] cuts out the next block.
+//! buffer; on the host, files). A [`ProgramStore`] hands out program texts and
+//! finds sequence numbers in them; [`ProgramIndex`] knows where programs and their
+//! sequence numbers are, over text in RAM ([`ProgramMemory`]) or left in place
+//! ([`ProgramArea`]: flash, host buffers); a [`Cursor`] is a position in a
+//! program; [`next_block`] cuts out the next block.
 
-/// Identifies a program in a store: its O number (0 = the main program as loaded).
+mod memory;
+
+pub use memory::{LoadError, ProgramArea, ProgramIndex, ProgramMemory};
+
+use crate::alarm::AlarmKind;
+use crate::macros::{LoopMark, Variables, loop_mark};
+use crate::units::NumberFormat;
+
+/// Identifies a program in a store: its O number (0 = a main program without one).
 pub type ProgramId = u32;
 
 /// Where the interpreter gets program text from.
+///
+/// Cursors of program `id` index into `text(id)`. The text may begin before the
+/// program (several programs loaded from one file share the file's text, so line
+/// numbers stay those of the file): [`ProgramStore::start`] says where the program
+/// begins, and the text ends where the program ends.
 pub trait ProgramStore {
     /// The text of program `id`, if stored.
     fn text(&self, id: ProgramId) -> Option<&[u8]>;
+
+    /// Where program `id` begins, if stored.
+    fn start(&self, id: ProgramId) -> Option<Cursor> {
+        self.text(id).map(|_| Cursor::start(id))
+    }
+
+    /// The first block with sequence number `n` in program `from.program`, searching
+    /// forward from `from` to the end of the program and then from its start (as
+    /// FANUC searches a GOTO target). Pass the program's start to get the first `N n`
+    /// of the program (M99 P, 3.1.7 note 3).
+    ///
+    /// The default scans the text; [`ProgramMemory`] looks it up in an index.
+    fn find_sequence(&self, n: u32, from: Cursor) -> Option<Cursor> {
+        let text = self.text(from.program)?;
+        let start = self.start(from.program)?;
+        scan_sequence(text, from, None, n).or_else(|| scan_sequence(text, start, Some(from.offset), n))
+    }
 }
 
 /// A store holding a single main program (id 0).
@@ -20,6 +53,30 @@ pub struct SingleProgram<'a>(pub &'a [u8]);
 impl ProgramStore for SingleProgram<'_> {
     fn text(&self, id: ProgramId) -> Option<&[u8]> {
         (id == 0).then_some(self.0)
+    }
+}
+
+/// A program as the blocks of a canned cycle's shape (G70–G73 ns–nf) are read from
+/// it: the text, where the program begins, and what the words are evaluated against.
+#[derive(Clone, Copy, Debug)]
+pub struct ProgramText<'a> {
+    /// The text; cursors of the program index into it.
+    pub text: &'a [u8],
+    /// Where the program begins: sequence numbers are searched from here.
+    pub start: Cursor,
+    /// The variables `#i` in words stand for (`None`: words may not use variables).
+    pub vars: Option<&'a Variables>,
+    /// The number format in force (ROUND in words); `None` outside a program.
+    pub fmt: Option<NumberFormat>,
+}
+
+impl ProgramText<'_> {
+    /// No program (MDI, tests): no blocks, no variables.
+    pub const NONE: ProgramText<'static> = ProgramText { text: &[], start: Cursor::start(0), vars: None, fmt: None };
+
+    /// Program text without variables, starting at its beginning (tests, tools).
+    pub const fn plain(text: &[u8]) -> ProgramText<'_> {
+        ProgramText { text, start: Cursor::start(0), vars: None, fmt: None }
     }
 }
 
@@ -88,9 +145,22 @@ pub fn next_block<'a>(text: &'a [u8], cur: &mut Cursor) -> Option<RawBlock<'a>> 
 /// from the start. A sequence number counts only as the first word of a block
 /// (after an optional `/` skip mark and blanks), as FANUC searches it.
 pub fn find_sequence(text: &[u8], program: ProgramId, n: u32) -> Option<Cursor> {
-    let mut cur = Cursor::start(program);
+    scan_sequence(text, Cursor::start(program), None, n)
+}
+
+/// The first block of the program beginning at `start` in `text` whose sequence
+/// number is `n` (a linear scan).
+pub fn find_sequence_from(text: &[u8], start: Cursor, n: u32) -> Option<Cursor> {
+    scan_sequence(text, start, None, n)
+}
+
+/// The first block from `cur` (up to byte `until`) whose sequence number is `n`.
+fn scan_sequence(text: &[u8], mut cur: Cursor, until: Option<usize>, n: u32) -> Option<Cursor> {
     loop {
         let at = cur;
+        if until.is_some_and(|u| at.offset >= u) {
+            return None;
+        }
         let block = next_block(text, &mut cur)?;
         if leading_sequence(block.text) == Some(n) {
             return Some(at);
@@ -98,12 +168,72 @@ pub fn find_sequence(text: &[u8], program: ProgramId, n: u32) -> Option<Cursor> 
     }
 }
 
-/// The N number a block starts with, if any.
-fn leading_sequence(text: &[u8]) -> Option<u32> {
+/// The cursor just after the `END label` that closes the loop whose range starts at
+/// `from` (the block after its WHILE/DO), skipping inner DO–END pairs. Alarm 0124
+/// if the END is missing (the program ends first) or the ranges overlap (note 4).
+///
+/// The work is bounded by the length of the loop's range; the interpreter does it
+/// when it enters the loop, so it knows the range for jumps out of it.
+pub fn find_loop_end(text: &[u8], from: Cursor, label: u8) -> Result<Cursor, AlarmKind> {
+    let mut cur = from;
+    let mut inner: heapless::Vec<u8, 8> = heapless::Vec::new();
+    while let Some(block) = next_block(text, &mut cur) {
+        if block.percent || starts_program(block.text) {
+            break;
+        }
+        match loop_mark(block.text) {
+            Some(LoopMark::Do(m)) if m == label || inner.contains(&m) => {
+                return Err(AlarmKind::LoopsCrossed { label });
+            }
+            Some(LoopMark::Do(m)) => inner.push(m).map_err(|_| AlarmKind::LoopsCrossed { label })?,
+            Some(LoopMark::End(m)) => match inner.last() {
+                Some(&top) if top == m => {
+                    inner.pop();
+                }
+                None if m == label => return Ok(cur),
+                _ => return Err(AlarmKind::LoopsCrossed { label }),
+            },
+            None => {}
+        }
+    }
+    Err(AlarmKind::MissingEnd { label })
+}
+
+/// Whether a block is an `O` program number block.
+pub(crate) fn starts_program(text: &[u8]) -> bool {
+    let i = text.iter().position(|c| !matches!(c, b' ' | b'\t' | b'\r')).unwrap_or(text.len());
+    matches!(text.get(i), Some(b'O' | b'o'))
+        && text.get(i + 1..).is_some_and(|r| r.iter().find(|c| **c != b' ').is_some_and(u8::is_ascii_digit))
+}
+
+/// Where the statement of a block begins: after blanks, comments, a `/n` skip mark
+/// and a sequence number.
+pub(crate) fn statement_start(text: &[u8]) -> usize {
+    block_head(text).1
+}
+
+/// The N number a block starts with, if any (after blanks, comments and a `/n`
+/// skip mark, as FANUC searches it).
+pub(crate) fn leading_sequence(text: &[u8]) -> Option<u32> {
+    block_head(text).0
+}
+
+/// Reads the head of a block — blanks, comments, a `/n` skip mark, `N` and its
+/// digits — and returns the sequence number and where the statement begins.
+fn block_head(text: &[u8]) -> (Option<u32>, usize) {
     let mut i = 0;
     let skip = |i: &mut usize| {
-        while *i < text.len() && matches!(text[*i], b' ' | b'\t' | b'\r') {
-            *i += 1;
+        loop {
+            while matches!(text.get(*i), Some(b' ' | b'\t' | b'\r')) {
+                *i += 1;
+            }
+            if text.get(*i) != Some(&b'(') {
+                return;
+            }
+            match text[*i..].iter().position(|&c| c == b')') {
+                Some(n) => *i += n + 1,
+                None => return,
+            }
         }
     };
     skip(&mut i);
@@ -114,19 +244,23 @@ fn leading_sequence(text: &[u8]) -> Option<u32> {
         }
         skip(&mut i);
     }
-    if !matches!(text.get(i), Some(b'N' | b'n')) {
-        return None;
+    let mut seq = None;
+    if matches!(text.get(i), Some(b'N' | b'n')) {
+        i += 1;
+        skip(&mut i);
+        let mut v: u32 = 0;
+        let mut digits = 0;
+        while let Some(d) = text.get(i).filter(|c| c.is_ascii_digit()) {
+            if digits < 6 {
+                v = v * 10 + u32::from(d - b'0');
+            }
+            digits += 1;
+            i += 1;
+        }
+        seq = (digits > 0).then_some(v);
+        skip(&mut i);
     }
-    i += 1;
-    skip(&mut i);
-    let digits = text[i..].iter().take_while(|c| c.is_ascii_digit()).take(6);
-    let mut v: u32 = 0;
-    let mut any = false;
-    for d in digits {
-        v = v * 10 + u32::from(d - b'0');
-        any = true;
-    }
-    any.then_some(v)
+    (seq, i)
 }
 
 #[cfg(test)]
