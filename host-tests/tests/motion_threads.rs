@@ -177,6 +177,26 @@ fn a_continuing_thread_block_does_not_resynchronise() {
 }
 
 #[test]
+fn a_straight_thread_after_a_taper_keeps_the_taper_end() {
+    let actions = vec![
+        spindle(1, SpindleDir::Cw, 400),
+        rapid(2, 30.0, 20.0),
+        thread(3, 34.0, -10.0, 1.5, 0, ThreadSync::Index, 400),
+        thread(4, 34.0, -30.0, 1.5, 0, ThreadSync::Continue, 400),
+        rapid(5, 50.0, -30.0),
+        end(6),
+    ];
+    let mut s = sim(SpindleModel::default());
+    let r = s.run_actions(&actions);
+    assert_clean(&r);
+    // On the straight block X stays at the taper's end (34), never back at 30.
+    let straight: Vec<_> = s.trace.iter().filter(|t| t.line == 4).collect();
+    assert!(!straight.is_empty());
+    assert!(straight.iter().all(|t| t.x_mm == 34.0), "{:?}", straight.iter().find(|t| t.x_mm != 34.0));
+    assert_eq!(straight.last().map(|t| t.z_mm), Some(-30.0));
+}
+
+#[test]
 fn too_fast_a_thread_is_alarm_4501_before_it_moves() {
     // 10 mm lead at 2000 rev/min is 20 m/min; Z cuts at 5 m/min at most.
     let mut actions = pass(1, 40.0, 2_000, 0);

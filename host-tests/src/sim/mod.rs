@@ -18,7 +18,7 @@ pub use spindle::{Edge, SimSpindle, SpindleModel};
 
 use std::io::Write;
 
-use hal::{DigitalOutputs, MonotonicClock, Rotation, SpindleDrive, SpindleEncoder, StepDir};
+use hal::{DigitalInputs, DigitalOutputs, MonotonicClock, Rotation, SpindleDrive, SpindleEncoder, StepDir};
 use interp_core::axis::{AXIS_COUNT, Axis, Pos};
 use interp_core::canon::{Canon, CanonSink, Full, SpindleDir};
 use interp_core::macros::Variables;
@@ -70,17 +70,26 @@ impl StepDir for SimAxis {
     }
 }
 
-/// Simulated digital outputs: the M-code outputs and when they switched.
+/// Simulated digital I/O: the M-code outputs and when they switched, and input
+/// levels (the interpreter's M91/M92 inputs read through [`DigitalInputs`]).
 #[derive(Clone, Debug, Default)]
 pub struct SimIo {
     /// (time ns, output, level) in order.
     pub log: Vec<(u64, u16, bool)>,
+    /// Input levels, bit n for input n (0–31).
+    pub inputs: u32,
     now: u64,
 }
 
 impl DigitalOutputs for SimIo {
     fn set_output(&mut self, n: u16, on: bool) {
         self.log.push((self.now, n, on));
+    }
+}
+
+impl DigitalInputs for SimIo {
+    fn input(&self, n: u16) -> bool {
+        n < 32 && self.inputs & (1 << n) != 0
     }
 }
 
@@ -343,10 +352,13 @@ impl Sim {
 
     fn run(&mut self, mut source: Source<'_>, mut hook: impl FnMut(&mut Sim)) -> Report {
         let period = u64::from(self.core.params().tick_ns);
+        self.io.inputs = self.panel.inputs;
         let limit = (self.opts.max_time_s * 1e9) as u64;
         let mut end_time = None;
         while self.clock.0 < limit {
             hook(self);
+            // The interpreter reads the machine's inputs through the panel.
+            self.panel.inputs = (0..32).filter(|&n| self.io.input(n)).fold(0, |bits, n| bits | 1 << n);
             let fed_all = self.feed(&mut source);
             self.period(period);
             let finished = self.core.is_idle() && (self.core.ended() || fed_all || self.core.alarm().is_some());

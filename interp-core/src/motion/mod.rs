@@ -393,15 +393,17 @@ impl<const N: usize> MotionCore<N> {
         }
     }
 
-    /// Gives the stepper of every axis not locked to the spindle this period's ramp.
+    /// Gives every stepper this period's ramp, unless the axes are locked to the
+    /// spindle (then the gearbox moves them, leg after leg, at encoder counts).
     fn feed_steppers(&mut self, now: u64) {
-        let locked = self.gear.as_ref().map(Gear::axes);
+        if self.gear.is_some() {
+            return;
+        }
         let pos = *self.interp.position();
         for (i, st) in self.steppers.iter_mut().enumerate() {
-            if !self.p.limits[i].present || locked.is_some_and(|(l, f)| l == i || f == Some(i)) {
-                continue;
+            if self.p.limits[i].present {
+                st.ramp(now, self.p.tick_ns, pos[i]);
             }
-            st.ramp(now, self.p.tick_ns, pos[i]);
         }
     }
 

@@ -362,9 +362,11 @@ impl Gear {
         if self.way_out { self.p } else { self.delta - self.p }
     }
 
-    /// Whole-step position of the axes the gearbox drives (others unchanged).
+    /// Whole-step position of every axis: the leg's start, with the long axis and
+    /// the taper's follower where the spindle has taken them.
     pub fn positions(&self, out: &mut [i64; AXIS_COUNT]) {
         let leg = &self.leg;
+        *out = leg.start;
         out[leg.long] = leg.start[leg.long] + self.long_sign * self.p;
         if let Some((i, sign, f)) = &self.follower {
             out[*i] = leg.start[*i] + sign * f.pos;
