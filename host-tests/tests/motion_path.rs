@@ -160,6 +160,22 @@ fn moving_min_speed(samples: &[TickSample]) -> f64 {
 }
 
 #[test]
+fn independent_rapids_move_each_axis_at_its_own_rate() {
+    // Dog-leg G00 (and G28/G30 always): X (radius 50 mm at 6 m/min, 0.2 s to get to
+    // speed) arrives after 0.7 s, Z (200 mm at 8 m/min, 0.27 s) after 1.77 s.
+    let mut cfg = MachineConfig::default();
+    cfg.rapid_independent = true;
+    let mut s = sim(cfg.clone());
+    let r = s.run_program("G0 X100 Z-200\nM30\n");
+    assert_clean(&r);
+    assert_eq!(r.end, Pos::xz(50_000_000, -200_000_000));
+    let done = |axis: usize, end: i64| s.samples.iter().position(|t| t.commanded[axis] == end * STEP_ONE).unwrap();
+    let (x_at, z_at) = (done(0, 20_000), done(2, -64_000));
+    assert!((690..720).contains(&x_at) && (1_760..1_790).contains(&z_at), "X at {x_at} ms, Z at {z_at} ms");
+    assert_kinematics(&cfg, &s.samples, 1.0);
+}
+
+#[test]
 fn a_right_angle_corner_is_taken_at_the_junction_speed() {
     let (s, r) = run("G0 X0 Z0\nG1 Z-10 F2000\nX20\nM30\n");
     assert_clean(&r);

@@ -389,9 +389,10 @@ fn tick_independent(
         let rem = ind.len[i] - ind.s[i];
         ind.v[i] = next_speed(ind.v[i], cap, 0, ind.accel[i], rem);
         ind.s[i] = (ind.s[i] + ind.v[i]).min(ind.len[i]);
-        let f = mul_shr(ind.s[i] as i64, ind.inv[i], 30).min(1 << FRAC_BITS);
+        let arrived = ind.s[i] == ind.len[i];
+        let f = if arrived { 1 << FRAC_BITS } else { mul_shr(ind.s[i] as i64, ind.inv[i], 30).min(1 << FRAC_BITS) };
         pos[i] = start[i] + mul_q32(delta[i], f);
-        done &= ind.s[i] == ind.len[i];
+        done &= arrived;
     }
     done
 }
