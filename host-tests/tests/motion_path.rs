@@ -163,8 +163,7 @@ fn moving_min_speed(samples: &[TickSample]) -> f64 {
 fn independent_rapids_move_each_axis_at_its_own_rate() {
     // Dog-leg G00 (and G28/G30 always): X (radius 50 mm at 6 m/min, 0.2 s to get to
     // speed) arrives after 0.7 s, Z (200 mm at 8 m/min, 0.27 s) after 1.77 s.
-    let mut cfg = MachineConfig::default();
-    cfg.rapid_independent = true;
+    let cfg = MachineConfig { rapid_independent: true, ..MachineConfig::default() };
     let mut s = sim(cfg.clone());
     let r = s.run_program("G0 X100 Z-200\nM30\n");
     assert_clean(&r);
