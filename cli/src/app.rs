@@ -11,6 +11,7 @@ use clap::{Args, Parser, Subcommand, ValueEnum};
 use interp_core::{MachineConfig, Panel};
 
 use crate::error::Error;
+use crate::motion::{self, Motion};
 use crate::program::{OnAlarm, Programs, Run, Runaway, run_programs};
 use crate::summary::Summary;
 use crate::{docs, jsonl, machine, svg, vars};
@@ -54,8 +55,11 @@ pub enum Command {
     /// Run a program as the control would, stopping at the first alarm
     ///
     /// The axes start at reference position 1, where a homed machine stands. M00, and M01
-    /// with --optional-stop, are answered with cycle start. An alarm is printed to standard
-    /// error as `lathe check` prints it (exit status 1); the output up to it is still written.
+    /// with --optional-stop, are answered with cycle start. The summary (and --trace) come
+    /// from running the motion core on a simulated machine: cycle time with acceleration,
+    /// and how far the stepped axes strayed from the programmed path. An alarm is printed
+    /// to standard error as `lathe check` prints it (exit status 1); the output up to it is
+    /// still written.
     Sim(SimArgs),
     /// Print the alarm catalog as Markdown (docs/ALARMS.md)
     Alarms,
@@ -145,6 +149,10 @@ pub struct SimArgs {
     /// Subprograms, macro variables and inputs.
     #[command(flatten)]
     pub run: RunArgs,
+    /// Write the simulated step events to FILE as CSV `t_s,x_mm,z_mm,spindle_deg`, one row
+    /// per step (work coordinates, X as a diameter, the encoder's cumulative angle).
+    #[arg(long, value_name = "FILE")]
+    pub trace: Option<PathBuf>,
 }
 
 /// Output format of `lathe sim`.
@@ -284,12 +292,21 @@ fn sim(args: &SimArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result<u8, E
     let programs = Programs::load(&args.program, &args.run.lib)?;
     let variables = args.run.variables()?;
     let name = args.program.display().to_string();
-    let r = run_programs(&programs, &cfg, &panel(args), OnAlarm::Stop, &variables)
+    let mut r = run_programs(&programs, &cfg, &panel(args), OnAlarm::Stop, &variables)
         .map_err(|_| Error::Runaway { path: args.program.clone() })?;
     if let Some(path) = &args.run.vars {
         vars::write(path, &r.variables)?;
     }
-    let output = render(args.format, &name, &r, &cfg).map_err(stream_error(STDOUT))?;
+    let motion = if args.format == Format::Summary || args.trace.is_some() {
+        let m = motion::simulate(&programs, &cfg, &panel(args), &variables, args.trace.as_deref())?;
+        // A motion alarm stops the machine where the program was then.
+        r.alarms.extend(m.alarm);
+        r.alarms.sort_by_key(|a| (a.program, a.line));
+        Some(m)
+    } else {
+        None
+    };
+    let output = render(args.format, &name, &r, &cfg, motion.as_ref()).map_err(stream_error(STDOUT))?;
     match &args.out {
         Some(path) => std::fs::write(path, output)
             .map_err(|source| Error::Write { target: path.display().to_string(), source })?,
@@ -313,9 +330,9 @@ fn panel(args: &SimArgs) -> Panel {
 }
 
 /// The output of `lathe sim` in `format`.
-fn render(format: Format, name: &str, r: &Run, cfg: &MachineConfig) -> std::io::Result<Vec<u8>> {
+fn render(format: Format, name: &str, r: &Run, cfg: &MachineConfig, m: Option<&Motion>) -> std::io::Result<Vec<u8>> {
     Ok(match format {
-        Format::Summary => Summary::new(name, r, cfg).to_string().into_bytes(),
+        Format::Summary => Summary::new(name, r, cfg).with_motion(m.cloned()).to_string().into_bytes(),
         Format::Svg => svg::render(name, r, cfg).into_bytes(),
         Format::Jsonl => {
             let mut buf = Vec::new();

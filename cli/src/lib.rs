@@ -12,6 +12,7 @@ pub mod docs;
 pub mod error;
 pub mod jsonl;
 pub mod machine;
+pub mod motion;
 pub mod path;
 pub mod program;
 pub mod summary;

@@ -6,7 +6,8 @@ use std::fmt;
 use interp_core::canon::Action;
 use interp_core::{Alarm, MachineConfig};
 
-use crate::path::{Bounds, Motion, Segment, segments};
+use crate::motion::Motion;
+use crate::path::{Bounds, Motion as PathMotion, Segment, segments};
 use crate::program::Run;
 use crate::timing;
 use crate::units::{dia, fixed3, mm};
@@ -36,6 +37,8 @@ pub struct Summary {
     pub end: Option<&'static str>,
     /// Estimated cycle time.
     pub time: Times,
+    /// What the simulated machine did (cycle time with acceleration, path deviation).
+    pub motion: Option<Motion>,
 }
 
 /// Moves by kind.
@@ -96,10 +99,17 @@ impl Summary {
             alarms: run.alarms.iter().map(|a: &Alarm| run.alarm_line(program, a)).collect(),
             end: None,
             time: Times::default(),
+            motion: None,
         };
         segs.iter().for_each(|seg| s.add_motion(seg, cfg));
         run.actions.iter().for_each(|c| s.add_other(&c.action));
         s
+    }
+
+    /// Adds the simulated machine's results.
+    pub fn with_motion(mut self, m: Option<Motion>) -> Self {
+        self.motion = m;
+        self
     }
 
     /// Counts a move, its length and its time.
@@ -107,14 +117,14 @@ impl Summary {
         let len = seg.length(cfg) / 1e6;
         let t = timing::seconds(seg, cfg);
         let counter = match seg.motion {
-            Motion::Rapid(_) => &mut self.moves.rapid,
-            Motion::Linear(_) => &mut self.moves.linear,
-            Motion::Arc(_) => &mut self.moves.arc,
-            Motion::Thread(_) => &mut self.moves.thread,
-            Motion::Tap(_) => &mut self.moves.tap,
+            PathMotion::Rapid(_) => &mut self.moves.rapid,
+            PathMotion::Linear(_) => &mut self.moves.linear,
+            PathMotion::Arc(_) => &mut self.moves.arc,
+            PathMotion::Thread(_) => &mut self.moves.thread,
+            PathMotion::Tap(_) => &mut self.moves.tap,
         };
         *counter += 1;
-        if let Motion::Rapid(_) = seg.motion {
+        if let PathMotion::Rapid(_) = seg.motion {
             self.rapid_mm += len;
             self.time.rapid += t;
         } else {
@@ -158,14 +168,22 @@ impl fmt::Display for Summary {
         }
         row(f, "end", self.end.unwrap_or("not reached"))?;
         let t = &self.time;
-        let time = format!(
+        let estimate = format!(
             "{} ({} s rapid, {} s cutting, {} s dwell; no acceleration)",
             clock(t.total()),
             tenths(t.rapid),
             tenths(t.cutting),
             tenths(t.dwell)
         );
-        row(f, "cycle time", &time)
+        let Some(m) = &self.motion else { return row(f, "cycle time", &estimate) };
+        row(f, "cycle time", &format!("{} simulated (acceleration, spindle starts, dwells)", clock(m.cycle_s)))?;
+        row(f, "estimate", &estimate)?;
+        let deviation = format!(
+            "{:.4} mm = {:.2} steps at most from the programmed path (line {})",
+            m.deviation_mm, m.deviation_steps, m.deviation_line
+        );
+        row(f, "deviation", &deviation)?;
+        row(f, "steps", &format!("{} step events", m.steps))
     }
 }
 

@@ -1,5 +1,8 @@
 //! Helpers shared by the host tests: a growable recording sink, a runner that
-//! drives the interpreter over a whole program, and compact action formatting.
+//! drives the interpreter over a whole program, compact action formatting, and
+//! the simulated machine ([`sim`]) that runs the motion core.
+
+pub mod sim;
 
 use interp_core::canon::{Action, Canon, CanonSink, Full};
 use interp_core::program::{ProgramId, ProgramMemory, ProgramStore};

@@ -3,10 +3,13 @@
 
 use std::collections::BTreeSet;
 
+use host_tests::sim::{Sim, SimOptions, SpindleModel};
 use host_tests::{VecSink, run, run_lib, run_with};
 use interp_core::alarm::CATALOG;
+use interp_core::canon::{Action, Canon, ThreadSync};
 use interp_core::config::Param;
-use interp_core::{Axis, Interpreter, MachineConfig, Panel};
+use interp_core::motion::{MotionCore, QUEUE};
+use interp_core::{Axis, Interpreter, MachineConfig, Panel, Pos};
 
 /// Codes documented but raised only by features still to come.
 const RESERVED: &[u16] = &[3576, 3577, 3605, 3607];
@@ -145,10 +148,77 @@ fn cycle_alarms_needing_a_machine_or_a_long_program() {
     assert_eq!(r.alarm_codes()[0], (3, 4036));
 }
 
+/// Motion alarms on the simulated machine: (program, line, code, spindle drive).
+const MOTION_CASES: &[(&str, u32, u16)] = &[
+    // 10 mm lead at 2000 rev/min is 20 m/min: Z cuts at 5 m/min at most.
+    ("M3 S2000\nG0 X40 Z5\nG32 W-40 F10\nM30\n", 3, 4501),
+    // The ramps at 2000 rev/min need 4.4 mm each; the thread is 6 mm long.
+    ("M3 S2000\nG0 X40 Z2\nG32 W-6 F2\nM30\n", 3, 4502),
+    // Rigid tap: lead F/S = 10 mm at 3000 rev/min.
+    ("G98 G0 X0 Z5\nM29 S3000\nG84 Z-20 R-2 F30000\nG80\nM30\n", 3, 4505),
+];
+
+/// Runs `text` on the simulated machine; (line, code) of its alarms.
+fn motion_alarms(text: &str, cfg: MachineConfig, model: SpindleModel) -> Vec<(u32, u16)> {
+    let mut sim = Sim::new(cfg, SimOptions { spindle: model, ..SimOptions::default() }).unwrap();
+    let r = sim.run_program(text);
+    r.alarms.iter().map(|a| (a.line, a.code())).collect()
+}
+
+#[test]
+fn motion_alarms_are_raised_with_their_line() {
+    for &(text, line, code) in MOTION_CASES {
+        let got = motion_alarms(text, MachineConfig::default(), SpindleModel::default());
+        assert_eq!(got, vec![(line, code)], "{text:?}");
+    }
+    let mut quick = MachineConfig::default();
+    quick.motion.at_speed_timeout_ms = 300;
+    // The drive does not turn the spindle (accel 0): a thread cannot start.
+    let dead = SpindleModel { accel_rpm_s: 0.0, ..SpindleModel::default() };
+    let got = motion_alarms("M3 S500\nG0 X40 Z5\nG32 W-20 F1\nM30\n", quick.clone(), dead);
+    assert_eq!(got, vec![(3, 4503)]);
+    // It turns too slowly to get to speed in time.
+    let slow = SpindleModel { accel_rpm_s: 100.0, ..SpindleModel::default() };
+    assert_eq!(motion_alarms("M3 S2000\nG1 W-2 F100\nM30\n", quick.clone(), slow), vec![(2, 4504)]);
+    // No index pulse comes.
+    let blind = SpindleModel { index: false, ..SpindleModel::default() };
+    let got = motion_alarms("M3 S500\nG0 X40 Z5\nG32 W-20 F1\nM30\n", quick, blind);
+    assert_eq!(got, vec![(3, 4506)]);
+    // A continuing thread block arriving after its pass ended.
+    let mut sim = Sim::new(MachineConfig::default(), SimOptions::default()).unwrap();
+    let text = "M3 S500\nG0 X40 Z5\nG32 W-20 F1\n";
+    let first = host_tests::run(&format!("{text}M30\n")).actions;
+    let (pass, rest) = first.split_at(2);
+    let mut cont = rest[0];
+    if let Action::Thread(t) = &mut cont.action {
+        t.sync = ThreadSync::Continue;
+        t.to.machine.0[Axis::Z.index()] -= 5_000_000;
+        t.to.work.0[Axis::Z.index()] -= 5_000_000;
+    }
+    sim.run_actions(&[pass, &rest[..1]].concat());
+    let r = sim.run_actions(&[Canon { line: 4, ..cont }]);
+    assert_eq!(r.alarms.iter().map(|a| (a.line, a.code())).collect::<Vec<_>>(), vec![(4, 4507)]);
+    // An unusable drive setting.
+    let mut bad = MachineConfig::default();
+    bad.axes[Axis::Z.index()].drive.steps = 0;
+    assert_eq!(MotionCore::<QUEUE>::new(&bad, Pos::ZERO).err().map(|k| k.code()), Some(4508));
+    // Emergency stop while moving.
+    let mut sim = Sim::new(MachineConfig::default(), SimOptions::default()).unwrap();
+    let r = sim.run_program_with("G0 X40 Z5\nG1 Z-50 F300\nM30\n", |s| {
+        if s.time_s() > 1.0 && s.core.alarm().is_none() {
+            s.core.emergency_stop();
+        }
+    });
+    assert_eq!(r.alarms.iter().map(|a| (a.line, a.code())).collect::<Vec<_>>(), vec![(2, 4509)]);
+}
+
 #[test]
 fn every_catalog_code_has_a_triggering_program() {
     let mut covered: BTreeSet<u16> = CASES.iter().map(|c| c.2).collect();
     covered.extend([4012, 224, 21, 4017, 4032, 4035, 4036, 77, 123, 4040, 4041, 4043]);
+    // motion_alarms_are_raised_with_their_line
+    covered.extend(MOTION_CASES.iter().map(|c| c.2));
+    covered.extend([4503, 4504, 4506, 4507, 4508, 4509]);
     for entry in CATALOG {
         assert!(
             covered.contains(&entry.code) || RESERVED.contains(&entry.code),

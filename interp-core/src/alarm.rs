@@ -233,6 +233,25 @@ pub enum AlarmKind {
     TooManyPockets,
     /// 4037: a cycle that would plan more than a million moves.
     CycleTooLong,
+    /// 4501: lead × spindle speed is faster than the thread axis may move.
+    ThreadTooFast { letter: Letter },
+    /// 4502: the thread's acceleration or deceleration ramp is longer than the thread block.
+    ThreadRampTooLong,
+    /// 4503: a spindle-synchronised move or feed per revolution with the spindle not turning.
+    SpindleNotTurning,
+    /// 4504: the spindle did not reach its commanded speed in time.
+    SpindleNotAtSpeed,
+    /// 4505: lead × spindle speed or acceleration is more than the tapping axis can follow.
+    TapTooFast { letter: Letter },
+    /// 4506: no spindle index pulse where a thread pass must synchronise.
+    SpindleIndexMissing,
+    /// 4507: a continuing thread or tap block whose locked predecessor is missing or has
+    /// ended, or a tap that does not return to where it started.
+    SyncSequenceBroken,
+    /// 4508: the machine's motion configuration is unusable (a zero step ratio …).
+    MotionConfigInvalid { what: &'static str },
+    /// 4509: emergency stop.
+    EmergencyStop,
     /// 3576: reversing G41/G42 directly while compensating (2.18.4).
     NoseCompReversed,
     /// 3577: T code while nose compensation is active (2.18.4).
@@ -324,6 +343,15 @@ impl AlarmKind {
             ProfileTooLong => 4035,
             TooManyPockets => 4036,
             CycleTooLong => 4037,
+            ThreadTooFast { .. } => 4501,
+            ThreadRampTooLong => 4502,
+            SpindleNotTurning => 4503,
+            SpindleNotAtSpeed => 4504,
+            TapTooFast { .. } => 4505,
+            SpindleIndexMissing => 4506,
+            SyncSequenceBroken => 4507,
+            MotionConfigInvalid { .. } => 4508,
+            EmergencyStop => 4509,
             NoseCompReversed => 3576,
             ToolChangeInNoseComp => 3577,
             NoseCompGouge => 3605,
@@ -444,6 +472,23 @@ impl fmt::Display for AlarmKind {
             CycleTooLong => {
                 write!(f, "cycle would make more than a million moves (P/Q without a point are least increments)")
             }
+            ThreadTooFast { letter } => {
+                write!(f, "thread lead x spindle speed exceeds the speed limit of axis {}", Ch(letter))
+            }
+            ThreadRampTooLong => {
+                write!(f, "thread acceleration ramp does not fit in the thread (lengthen lead-in/run-out)")
+            }
+            SpindleNotTurning => write!(f, "spindle is not turning (thread, tap or feed per revolution)"),
+            SpindleNotAtSpeed => write!(f, "spindle did not reach the commanded speed"),
+            TapTooFast { letter } => {
+                write!(f, "tap lead x spindle speed or acceleration exceeds the limits of axis {}", Ch(letter))
+            }
+            SpindleIndexMissing => write!(f, "no spindle index pulse to synchronise the thread"),
+            SyncSequenceBroken => {
+                write!(f, "spindle-locked sequence broken (continuing thread or tap without its start)")
+            }
+            MotionConfigInvalid { what } => write!(f, "motion configuration invalid: {what}"),
+            EmergencyStop => write!(f, "emergency stop"),
             NoseCompReversed => write!(f, "G41/G42 reversed while nose compensation is active"),
             ToolChangeInNoseComp => write!(f, "T code while nose compensation is active"),
             NoseCompGouge => write!(f, "nose compensation would gouge the part"),
@@ -760,6 +805,52 @@ pub const CATALOG: &[CatalogEntry] = &[
         title: "jump input missing",
         when: "M91/M92 test an external input the machine does not have (3.1.5)",
     },
+    CatalogEntry {
+        code: 4501,
+        title: "thread too fast",
+        when: "lead x spindle speed (with the ripple margin) above an axis's cutting feed or step-rate limit; \
+               raised before the pass moves (2.17)",
+    },
+    CatalogEntry {
+        code: 4502,
+        title: "thread ramp too long",
+        when: "the acceleration/deceleration ramp at the measured speed is longer than the thread block (2.17.1)",
+    },
+    CatalogEntry {
+        code: 4503,
+        title: "spindle not turning",
+        when: "thread, rigid tap or G99 feed started while the encoder shows no rotation",
+    },
+    CatalogEntry {
+        code: 4504,
+        title: "spindle not at speed",
+        when: "the spindle stayed outside the at-speed band longer than the configured timeout",
+    },
+    CatalogEntry {
+        code: 4505,
+        title: "tap too fast",
+        when: "rigid tap lead x spindle speed or acceleration above the tapping axis's limits (2.22.2)",
+    },
+    CatalogEntry {
+        code: 4506,
+        title: "spindle index missing",
+        when: "no encoder index pulse within two revolutions when a thread pass synchronises (2.17.1)",
+    },
+    CatalogEntry {
+        code: 4507,
+        title: "spindle-locked sequence broken",
+        when: "a continuing thread block after its predecessor ended, or a tap that does not return to its start",
+    },
+    CatalogEntry {
+        code: 4508,
+        title: "motion configuration invalid",
+        when: "zero step ratio, driver timing that cannot be met, zero encoder counts ...",
+    },
+    CatalogEntry {
+        code: 4509,
+        title: "emergency stop",
+        when: "e-stop input: axes decelerate, spindle stops, queue dropped",
+    },
     CatalogEntry { code: 5010, title: "end of record", when: "program text ends without M02, M30 or M99" },
 ];
 
@@ -859,6 +950,15 @@ mod tests {
             FlowInMdi { m: 98 },
             M99NotAlone,
             InputNotAvailable { input: 40 },
+            ThreadTooFast { letter: b'Z' },
+            ThreadRampTooLong,
+            SpindleNotTurning,
+            SpindleNotAtSpeed,
+            TapTooFast { letter: b'Z' },
+            SpindleIndexMissing,
+            SyncSequenceBroken,
+            MotionConfigInvalid { what: "x" },
+            EmergencyStop,
             NoseCompReversed,
             ToolChangeInNoseComp,
             NoseCompGouge,

@@ -15,6 +15,9 @@
 #![no_std]
 #![forbid(unsafe_code)]
 
+#[cfg(test)]
+extern crate std;
+
 pub mod alarm;
 pub mod axis;
 pub mod canon;
@@ -24,11 +27,17 @@ pub mod config;
 pub mod cycles;
 pub mod env;
 pub mod exec;
+pub mod fixed;
 pub mod geom;
+pub mod interpolator;
 pub mod interpreter;
 pub mod macros;
+pub mod motion;
 pub mod parse;
+pub mod planner;
 pub mod program;
+pub mod stepgen;
+pub mod sync;
 pub mod units;
 
 pub use alarm::{Alarm, AlarmKind};

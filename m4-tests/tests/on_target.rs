@@ -27,6 +27,8 @@ const TESTS: &[(&str, TestFn)] = &tests![
     interpreter_figure_2_60_g76,
     macro_functions_match_the_host_bit_for_bit,
     macro_loop_through_the_interpreter,
+    motion_core_runs_a_contour_to_its_exact_end,
+    motion_thread_gearbox_counts_exactly,
 ];
 
 #[entry]
@@ -218,4 +220,52 @@ fn macro_loop_through_the_interpreter() -> Result<(), &'static str> {
     check(interp.variables().get(1) == Ok(Some(55.0)), "sum of 1..10")?;
     let to = sink.actions.first().and_then(|c| c.action.endpoint()).ok_or("no move")?;
     check(to.work.0[0] == 27_500_000 && to.work.0[2] == 500_000, "X55 (radius 27.5 mm), Z0.5")
+}
+
+/// The motion core on the target: the program of figure 2.6 (lines and arcs)
+/// interpreted into the core, every period's steps issued, ends exactly on the
+/// programmed point with every step accounted for.
+fn motion_core_runs_a_contour_to_its_exact_end() -> Result<(), &'static str> {
+    use interp_core::motion::{Feedback, MotionCore, QUEUE};
+    let cfg = MachineConfig::default();
+    let text = b"G00 X0 Z0\nG01 X20 Z-10 F800\nG02 X40 Z-20 R10\nG03 X60 Z-30 I10 K0\nG01 Z-35\nM30\n";
+    let mut interp = Interpreter::new(cfg.clone());
+    let mut core: MotionCore<QUEUE> = MotionCore::new(&cfg, interp_core::Pos::ZERO).map_err(|_| "config")?;
+    let (mut now, mut steps) = (0u64, [0i64; 4]);
+    for _ in 0..200_000 {
+        let _ = interp.step(&SingleProgram(text), &Panel::default(), &mut core);
+        core.tick(now, Feedback::default());
+        now += 1_000_000;
+        for (axis, s) in steps.iter_mut().enumerate() {
+            while let Some(e) = core.next_step(axis, now) {
+                if let interp_core::stepgen::EdgeKind::Step(up) = e.kind {
+                    *s += if up { 1 } else { -1 };
+                }
+            }
+        }
+        if core.ended() && core.is_idle() {
+            break;
+        }
+    }
+    check(core.ended(), "program ended")?;
+    // X60 (radius 30 mm at 400 steps/mm), Z-35 (at 320 steps/mm).
+    check(steps[0] == 12_000 && steps[2] == -11_200, "steps issued to the end point")?;
+    check(core.steps() == steps, "step generator and issued steps agree")
+}
+
+/// The thread gearbox on the target: 2 mm lead at 5/32 step per count with a ramp;
+/// after it Z is exactly round((count − sync) × 5/32) and the pass ends on its end.
+fn motion_thread_gearbox_counts_exactly() -> Result<(), &'static str> {
+    use interp_core::sync::{Gear, Leg, Ratio};
+    let leg = Leg { start: [0; 4], end: [0, 0, -6_400, 0], long: 2 };
+    let mut g = Gear::thread(leg, Ratio { n: 5, d: 32 }, 1_000, 1, 0).map_err(|_| "gear")?;
+    let mut pos = [0i64; 4];
+    for c in 1..60_000i64 {
+        g.on_count(c);
+        g.positions(&mut pos);
+        if c > 1_000 && -pos[2] < 5_000 && -pos[2] != ((c - 500) * 5 + 16) / 32 {
+            return Err("Z off the lead after the ramp");
+        }
+    }
+    check(pos[2] == -6_400, "pass ends exactly on its end point")
 }

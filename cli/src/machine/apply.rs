@@ -4,14 +4,14 @@
 use std::collections::BTreeMap;
 
 use interp_core::config::{
-    AxisConfig, GCodeSystem, MAX_OFFSETS, MAX_USER_M, MTiming, Param, ParamError, Parameters, UserMCode,
+    AxisConfig, GCodeSystem, MAX_OFFSETS, MAX_USER_M, MTiming, MotionConfig, Param, ParamError, Parameters, UserMCode,
 };
 use interp_core::units::IncrementSystem;
 use interp_core::{Axis, MachineConfig, Pos};
 
 use super::file::{
-    AxisFile, GCodeSystemName, IncrementName, InputName, MachineFile, Offset, ParamKey, Point, Spindle, TimingName,
-    UserM, WorkOffsets,
+    AxisFile, GCodeSystemName, IncrementName, InputName, MachineFile, MotionFile, Offset, ParamKey, Point, Spindle,
+    TimingName, UserM, WorkOffsets,
 };
 
 /// Largest magnitude of an internal value from a file: 10⁹ mm, far beyond any machine.
@@ -56,6 +56,9 @@ pub(super) fn apply(file: &MachineFile, cfg: &mut MachineConfig) -> Result<(), S
     }
     if let Some(p) = &file.parameters {
         apply_parameters(p, &mut cfg.params)?;
+    }
+    if let Some(m) = &file.motion {
+        apply_motion(m, &mut cfg.motion)?;
     }
     apply_input(file, &mut cfg.params)?;
     cfg.validate().map_err(|e| e.to_string())
@@ -127,7 +130,38 @@ fn apply_axis(a: Axis, f: &AxisFile, ax: &mut AxisConfig) -> Result<(), String> 
     set(&mut ax.max, f.max, position_scale(a), &field("max"))?;
     set(&mut ax.rapid_per_min, f.rapid, RATE_SCALE, &field("rapid"))?;
     set(&mut ax.max_feed_per_min, f.max_feed, RATE_SCALE, &field("max_feed"))?;
-    set(&mut ax.accel_per_s2, f.accel, RATE_SCALE, &field("accel"))
+    set(&mut ax.accel_per_s2, f.accel, RATE_SCALE, &field("accel"))?;
+    set(&mut ax.max_jump_per_min, f.max_jump, RATE_SCALE, &field("max_jump"))?;
+    let d = &mut ax.drive;
+    d.steps = f.steps.unwrap_or(d.steps);
+    set(&mut d.per_nm, f.steps_travel, RATE_SCALE, &field("steps_travel"))?;
+    set_u32(&mut d.pulse_ns, f.pulse_us, 1e3, &field("pulse_us"))?;
+    set_u32(&mut d.dir_setup_ns, f.dir_setup_us, 1e3, &field("dir_setup_us"))?;
+    d.max_step_hz = f.max_step_rate.unwrap_or(d.max_step_hz);
+    Ok(())
+}
+
+/// Sets a `u32` target from an optional file value times `scale`.
+fn set_u32(target: &mut u32, v: Option<f64>, scale: f64, field: &str) -> Result<(), String> {
+    if let Some(v) = v {
+        let i = internal(v, scale, field)?;
+        *target = u32::try_from(i).map_err(|_| format!("{field} = {v:?} is out of range"))?;
+    }
+    Ok(())
+}
+
+/// The `[motion]` table.
+fn apply_motion(f: &MotionFile, m: &mut MotionConfig) -> Result<(), String> {
+    if let Some(p) = f.period_us {
+        m.tick_ns = p.checked_mul(1_000).ok_or_else(|| format!("motion.period_us = {p} is out of range"))?;
+    }
+    set(&mut m.junction_deviation, f.junction_deviation, 1e6, "motion.junction_deviation")?;
+    set(&mut m.chord_tolerance, f.chord_tolerance, 1e6, "motion.chord_tolerance")?;
+    m.speed_window_ticks = f.speed_window.unwrap_or(m.speed_window_ticks);
+    m.at_speed_pct = f.at_speed.unwrap_or(m.at_speed_pct);
+    set_u32(&mut m.at_speed_timeout_ms, f.at_speed_timeout, 1e3, "motion.at_speed_timeout")?;
+    m.thread_margin_pct = f.thread_margin.unwrap_or(m.thread_margin_pct);
+    Ok(())
 }
 
 /// `base` with the coordinates given in `p` replaced.
@@ -196,6 +230,8 @@ fn apply_spindle(s: &Spindle, cfg: &mut MachineConfig) {
     sp.max_rpm = s.max_rpm.unwrap_or(sp.max_rpm);
     sp.css_min_rpm = s.css_min_rpm.unwrap_or(sp.css_min_rpm);
     sp.gear_max_rpm = s.gear_max_rpm.unwrap_or(sp.gear_max_rpm);
+    sp.encoder_cpr = s.encoder_counts.unwrap_or(sp.encoder_cpr);
+    sp.accel_rpm_per_s = s.accel.unwrap_or(sp.accel_rpm_per_s);
 }
 
 /// User M codes (checked with the whole machine by `MachineConfig::validate`).

@@ -3,14 +3,14 @@
 
 use std::collections::BTreeMap;
 
-use interp_core::config::{AxisConfig, GCodeSystem, MTiming, PARAMS, Param, ParamUnit, ToolOffset};
+use interp_core::config::{AxisConfig, GCodeSystem, MTiming, MotionConfig, PARAMS, Param, ParamUnit, ToolOffset};
 use interp_core::units::IncrementSystem;
 use interp_core::{Axis, MachineConfig, Pos};
 
 use super::apply::position_scale;
 use super::file::{
-    Axes, AxisFile, GCodeSystemName, IncrementName, InputName, MachineFile, Offset, ParamKey, Point, Spindle,
-    TimingName, UserM, WorkOffsets,
+    Axes, AxisFile, GCodeSystemName, IncrementName, InputName, MachineFile, MotionFile, Offset, ParamKey, Point,
+    Spindle, TimingName, UserM, WorkOffsets,
 };
 
 /// Every setting of `cfg` as a machine file (offset rows that are all zero left out).
@@ -41,10 +41,25 @@ pub(super) fn file_of(cfg: &MachineConfig) -> MachineFile {
             max_rpm: Some(cfg.spindle.max_rpm),
             css_min_rpm: Some(cfg.spindle.css_min_rpm),
             gear_max_rpm: Some(cfg.spindle.gear_max_rpm),
+            encoder_counts: Some(cfg.spindle.encoder_cpr),
+            accel: Some(cfg.spindle.accel_rpm_per_s),
         }),
         user_m_codes: Some(cfg.user_m_codes.iter().map(|u| UserM { m: u.m, timing: timing(u.timing) }).collect()),
         jump_input: Some(cfg.jump_input),
         parameters: Some(parameters(cfg)),
+        motion: Some(motion(&cfg.motion)),
+    }
+}
+
+fn motion(m: &MotionConfig) -> MotionFile {
+    MotionFile {
+        period_us: Some(m.tick_ns / 1_000),
+        junction_deviation: Some(external(m.junction_deviation, 1e6)),
+        chord_tolerance: Some(external(m.chord_tolerance, 1e6)),
+        speed_window: Some(m.speed_window_ticks),
+        at_speed: Some(m.at_speed_pct),
+        at_speed_timeout: Some(f64::from(m.at_speed_timeout_ms) / 1e3),
+        thread_margin: Some(m.thread_margin_pct),
     }
 }
 
@@ -68,6 +83,12 @@ fn axes(cfg: &MachineConfig) -> Axes {
             rapid: Some(external(ax.rapid_per_min, 1e6)),
             max_feed: Some(external(ax.max_feed_per_min, 1e6)),
             accel: Some(external(ax.accel_per_s2, 1e6)),
+            max_jump: Some(external(ax.max_jump_per_min, 1e6)),
+            steps: Some(ax.drive.steps),
+            steps_travel: Some(external(ax.drive.per_nm, 1e6)),
+            pulse_us: Some(f64::from(ax.drive.pulse_ns) / 1e3),
+            dir_setup_us: Some(f64::from(ax.drive.dir_setup_ns) / 1e3),
+            max_step_rate: Some(ax.drive.max_step_hz),
         })
     };
     Axes { x: axis(Axis::X), y: axis(Axis::Y), z: axis(Axis::Z), c: axis(Axis::C) }

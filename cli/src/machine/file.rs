@@ -40,6 +40,28 @@ pub struct MachineFile {
     pub jump_input: Option<u16>,
     /// Numbered parameters by number, in file units.
     pub parameters: Option<BTreeMap<ParamKey, f64>>,
+    /// Motion core settings.
+    pub motion: Option<MotionFile>,
+}
+
+/// The motion core's settings.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct MotionFile {
+    /// Interpolation period, µs.
+    pub period_us: Option<u32>,
+    /// Junction deviation of blended corners, mm.
+    pub junction_deviation: Option<f64>,
+    /// Chord tolerance of arcs and blended corners, mm.
+    pub chord_tolerance: Option<f64>,
+    /// Periods over which the spindle speed is measured.
+    pub speed_window: Option<u16>,
+    /// Spindle at-speed band, percent of the command.
+    pub at_speed: Option<u8>,
+    /// Longest wait for the spindle to reach speed, s.
+    pub at_speed_timeout: Option<f64>,
+    /// Spindle speed ripple margin of the thread checks, percent.
+    pub thread_margin: Option<u8>,
 }
 
 /// A `[parameters]` key: the number as written, ordered as a number (so a
@@ -135,6 +157,18 @@ pub struct AxisFile {
     pub max_feed: Option<f64>,
     /// Acceleration, mm/s².
     pub accel: Option<f64>,
+    /// Largest speed jump at a blended corner, mm/min.
+    pub max_jump: Option<f64>,
+    /// Motor steps for `steps_travel` of slide travel: an exact ratio.
+    pub steps: Option<i64>,
+    /// Slide travel of `steps` steps, mm (X: of the slide, a radius; C: degrees).
+    pub steps_travel: Option<f64>,
+    /// Shortest step pulse of the driver, µs.
+    pub pulse_us: Option<f64>,
+    /// Direction set-up time before a step, µs.
+    pub dir_setup_us: Option<f64>,
+    /// Highest step rate of the driver, steps per second.
+    pub max_step_rate: Option<u32>,
 }
 
 /// Work offsets: machine coordinates of each work zero.
@@ -187,6 +221,10 @@ pub struct Spindle {
     pub css_min_rpm: Option<u32>,
     /// Top speed of gears M41–M44, rev/min (0 = no limit).
     pub gear_max_rpm: Option<[u32; 4]>,
+    /// Encoder counts per revolution (four per line).
+    pub encoder_counts: Option<u32>,
+    /// Acceleration of the spindle drive, rev/min per second.
+    pub accel: Option<u32>,
 }
 
 /// A user M code.

@@ -3,9 +3,11 @@
 //! example of the manual; the host reads it from a TOML machine file, the firmware
 //! from flash.
 
+pub mod motion;
 pub mod params;
 pub mod tools;
 
+pub use motion::{Drive, MotionConfig};
 pub use params::{PARAMS, Param, ParamDef, ParamError, ParamUnit, Parameters};
 pub use tools::{MAX_OFFSETS, ToolOffset, ToolTable};
 
@@ -39,6 +41,11 @@ pub struct AxisConfig {
     pub max_feed_per_min: i64,
     /// Acceleration, internal units per second squared.
     pub accel_per_s2: i64,
+    /// Largest instantaneous change of this axis's speed at a junction between two
+    /// blended blocks (G64), units per minute.
+    pub max_jump_per_min: i64,
+    /// Motor drive: exact steps-per-length ratio and driver timing.
+    pub drive: Drive,
 }
 
 impl AxisConfig {
@@ -51,12 +58,22 @@ impl AxisConfig {
             rapid_per_min: rapid_mm_min * 1_000_000,
             max_feed_per_min: 5_000 * 1_000_000,
             accel_per_s2: 500 * 1_000_000,
+            max_jump_per_min: 300 * 1_000_000,
+            drive: Drive::per_mm(400),
         }
     }
 
     /// An axis the machine does not have.
-    pub const ABSENT: AxisConfig =
-        AxisConfig { present: false, min: 0, max: 0, rapid_per_min: 0, max_feed_per_min: 0, accel_per_s2: 0 };
+    pub const ABSENT: AxisConfig = AxisConfig {
+        present: false,
+        min: 0,
+        max: 0,
+        rapid_per_min: 0,
+        max_feed_per_min: 0,
+        accel_per_s2: 0,
+        max_jump_per_min: 300 * 1_000_000,
+        drive: Drive::per_mm(400),
+    };
 }
 
 /// Spindle limits.
@@ -68,6 +85,11 @@ pub struct SpindleConfig {
     pub css_min_rpm: u32,
     /// Top speed of gears 1–4 (M41–M44); 0 = no gear limit (2.19 note 5).
     pub gear_max_rpm: [u32; 4],
+    /// Spindle encoder counts per revolution after quadrature decoding (4 × lines).
+    pub encoder_cpr: u32,
+    /// How fast the spindle drive changes speed, rev/min per second (rigid tapping
+    /// plans its reversal with it).
+    pub accel_rpm_per_s: u32,
 }
 
 /// When an M code's action happens relative to the motion of its block.
@@ -126,12 +148,15 @@ pub struct MachineConfig {
     pub jump_input: u16,
     /// Numbered parameters.
     pub params: Parameters,
+    /// Motion core settings: interpolation period, junctions, tolerances.
+    pub motion: MotionConfig,
 }
 
 impl Default for MachineConfig {
     fn default() -> Self {
+        // X: 400 steps per mm of radius (2.5 um); Z: 320 steps per mm (5 mm screw, 1600 steps/rev).
         let x = AxisConfig::linear(-5, 160, 6_000);
-        let z = AxisConfig::linear(-600, 300, 8_000);
+        let z = AxisConfig { drive: Drive::per_mm(320), ..AxisConfig::linear(-600, 300, 8_000) };
         MachineConfig {
             gcode_system: GCodeSystem::A,
             increments: IncrementSystem::IsB,
@@ -143,10 +168,17 @@ impl Default for MachineConfig {
             external_offset: Pos::ZERO,
             tool_count: 12,
             tools: ToolTable::default(),
-            spindle: SpindleConfig { max_rpm: 3_000, css_min_rpm: 50, gear_max_rpm: [0; 4] },
+            spindle: SpindleConfig {
+                max_rpm: 3_000,
+                css_min_rpm: 50,
+                gear_max_rpm: [0; 4],
+                encoder_cpr: 4_096,
+                accel_rpm_per_s: 2_000,
+            },
             user_m_codes: heapless::Vec::new(),
             jump_input: 0,
             params: Parameters::default(),
+            motion: MotionConfig::default(),
         }
     }
 }
@@ -191,6 +223,9 @@ impl MachineConfig {
         if self.spindle.max_rpm == 0 {
             return Err(ConfigError::SpindleMaxZero);
         }
+        if let Err(crate::alarm::AlarmKind::MotionConfigInvalid { what }) = crate::planner::MotionParams::new(self) {
+            return Err(ConfigError::Motion { what });
+        }
         for (i, u) in self.user_m_codes.iter().enumerate() {
             if crate::codes::m_function(u.m, &MachineConfig::default()).is_some() {
                 return Err(ConfigError::UserMStandard { m: u.m });
@@ -233,6 +268,12 @@ pub enum ConfigError {
         /// The M number.
         m: u16,
     },
+    /// A motion setting the motion core cannot work with (step ratio, driver
+    /// timing, encoder, interpolation period).
+    Motion {
+        /// What is wrong.
+        what: &'static str,
+    },
 }
 
 impl core::fmt::Display for ConfigError {
@@ -247,6 +288,7 @@ impl core::fmt::Display for ConfigError {
             ConfigError::SpindleMaxZero => write!(f, "spindle.max_rpm must be positive"),
             ConfigError::UserMStandard { m } => write!(f, "user_m_codes: M{m:02} is a standard M code"),
             ConfigError::UserMTwice { m } => write!(f, "user_m_codes: M{m:02} given twice"),
+            ConfigError::Motion { what } => write!(f, "motion: {what}"),
         }
     }
 }

@@ -1,0 +1,705 @@
+//! The motion core: canonical actions in, timed step events and spindle commands
+//! out. It is the interpreter's [`CanonSink`] (a full look-ahead queue is
+//! back-pressure) and runs the layers below it:
+//! [`planner`](crate::planner) → [`interpolator`](crate::interpolator) →
+//! [`stepgen`](crate::stepgen), with [`sync`](crate::sync) driving the axes from
+//! the spindle encoder during threads and rigid taps.
+//!
+//! Time is always an argument: [`MotionCore::tick`] runs one interpolation period
+//! starting at `now`, [`MotionCore::on_encoder`] takes an encoder count with its
+//! time, [`MotionCore::next_step`] hands out the step events of the period. The
+//! firmware calls them from its timer interrupts, the simulator from its event
+//! loop; both run exactly this code.
+//!
+//! Commands between blocks run when the motion before them has finished (M03 before
+//! the cut starts, M05 after it ends); a cutting block starting from rest waits
+//! until the spindle is at its commanded speed. Feed hold brakes on the path and
+//! resumes from there; feed and rapid override apply per period; single block
+//! stops at the end of every block. Feed hold, override and single block do not act
+//! inside a locked thread or tap sequence (2.17.1 notes 3–4, 2.22.2 note 4).
+//! Reset and emergency stop brake the axes (a thread pass brakes along its line,
+//! 2.17.1 note 5) and drop the queue.
+
+mod locked;
+pub mod spindle;
+
+pub use spindle::Spindle;
+
+use crate::alarm::{Alarm, AlarmKind};
+use crate::axis::{AXIS_COUNT, Axis, Pos};
+use crate::canon::{Canon, CanonSink, Full, SpindleDir};
+use crate::config::{MachineConfig, MotionConfig};
+
+use crate::fixed::{STEP_FRAC, round_steps};
+use crate::interpolator::{Interpolator, Live, Status};
+use crate::planner::{Block, BlockKind, Command, FeedSpec, Item, MotionParams, Planner, PushError};
+use crate::stepgen::{AxisStepGen, StepEvent};
+use crate::sync::Gear;
+
+/// The look-ahead depth the firmware and the simulator use.
+pub const QUEUE: usize = 64;
+
+/// What the machine reports to the motion core each period.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Feedback {
+    /// Spindle encoder count (quadrature-decoded, cumulative).
+    pub count: i64,
+    /// The count latched at the last index pulse, if one has been seen.
+    pub index: Option<i64>,
+}
+
+/// Something the machine must do or know, in stream order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EventKind {
+    /// Spindle direction and commanded speed changed by a command.
+    Spindle {
+        /// Direction.
+        dir: SpindleDir,
+        /// rev/min.
+        rpm: u32,
+    },
+    /// Index the turret.
+    Tool {
+        /// Station.
+        tool: u16,
+        /// Offset number.
+        offset: u16,
+    },
+    /// Switch the output of an M code.
+    Aux {
+        /// M number.
+        m: u16,
+    },
+    /// M00/M01 reached: waiting for cycle start.
+    Stop {
+        /// M01.
+        optional: bool,
+    },
+    /// M02/M30 reached.
+    End {
+        /// M30.
+        rewind: bool,
+    },
+    /// The queue ran empty while the program was still streaming.
+    Starved,
+    /// A motion alarm; the axes are stopping.
+    Alarm(Alarm),
+}
+
+/// An event, when and from which line.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Event {
+    /// Time of the period it happened in, ns.
+    pub t: u64,
+    /// Source line.
+    pub line: u32,
+    /// What.
+    pub kind: EventKind,
+}
+
+/// Counters for reports and tests.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Stats {
+    /// Interpolation periods run.
+    pub ticks: u64,
+    /// Motion blocks taken from the queue.
+    pub blocks: u64,
+    /// Times the queue ran empty while streaming.
+    pub starvations: u32,
+    /// Most entries queued at once.
+    pub max_queued: usize,
+    /// Events dropped because nobody collected them.
+    pub lost_events: u32,
+}
+
+/// Where the core is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum State {
+    /// Between entries: takes the next one.
+    Idle,
+    /// The interpolator runs a block.
+    Moving,
+    /// Stopped on the path by feed hold; cycle start resumes.
+    Held,
+    /// A cutting block waits for the spindle to reach its speed.
+    WaitSpindle {
+        /// Since when.
+        since: u64,
+    },
+    /// Dwelling.
+    Dwell {
+        /// Until when.
+        until: u64,
+    },
+    /// M00/M01 or single block: waiting for cycle start.
+    Stopped,
+    /// A thread pass waits for the spindle index and its start count.
+    SyncWait {
+        /// Since when.
+        since: u64,
+    },
+    /// A thread or tap block runs locked to the spindle.
+    Locked,
+    /// Reset, emergency stop or alarm: braking, then the queue is dropped.
+    Stopping,
+    /// M02/M30 done.
+    Ended,
+}
+
+/// The motion core with a look-ahead queue of `N` entries.
+#[derive(Clone, Debug)]
+pub struct MotionCore<const N: usize> {
+    p: MotionParams,
+    mc: MotionConfig,
+    planner: Planner<N>,
+    interp: Interpolator,
+    steppers: [AxisStepGen; AXIS_COUNT],
+    spindle: Spindle,
+    /// The gearbox while axes are locked to the spindle.
+    gear: Option<Gear>,
+    /// The spindle-locked block running (or whose sequence is open, for taps).
+    locked: Option<Block>,
+    /// Thread legs taken from the queue since the pass started.
+    legs_taken: u32,
+    /// A block waiting for the spindle or the index.
+    pending: Option<Block>,
+    state: State,
+    /// A cutting block from rest must wait for the spindle.
+    spindle_wait: bool,
+    feed_ovr: u64,
+    rapid_ovr: u64,
+    hold: bool,
+    single_block: bool,
+    events: heapless::Deque<Event, 32>,
+    alarm: Option<Alarm>,
+    stats: Stats,
+    now: u64,
+    /// Actions have arrived and no M02/M30 ran since.
+    streaming: bool,
+    starved: bool,
+    line: u32,
+    /// Machine minus work coordinates of the block running or last run.
+    offset_memory: Pos,
+    css_phase: u8,
+}
+
+/// Periods between two G96 speed updates.
+const CSS_PERIODS: u8 = 4;
+
+impl<const N: usize> MotionCore<N> {
+    /// A core for machine `cfg` with the axes at `pos` (machine, nm).
+    pub fn new(cfg: &MachineConfig, pos: Pos) -> Result<Self, AlarmKind> {
+        let p = MotionParams::new(cfg)?;
+        let steps: [i64; AXIS_COUNT] = core::array::from_fn(|i| p.scale[i].steps(pos.0[i]));
+        Ok(MotionCore {
+            p,
+            mc: cfg.motion,
+            planner: Planner::new(pos),
+            interp: Interpolator::new(steps),
+            steppers: core::array::from_fn(|i| AxisStepGen::new(p.timing[i], steps[i])),
+            spindle: Spindle::new(&p, cfg.motion.speed_window_ticks),
+            gear: None,
+            locked: None,
+            legs_taken: 0,
+            pending: None,
+            state: State::Idle,
+            spindle_wait: false,
+            feed_ovr: 256,
+            rapid_ovr: 256,
+            hold: false,
+            single_block: false,
+            events: heapless::Deque::new(),
+            alarm: None,
+            stats: Stats::default(),
+            now: 0,
+            streaming: false,
+            starved: false,
+            line: 0,
+            offset_memory: Pos::ZERO,
+            css_phase: 0,
+        })
+    }
+
+    /// The machine in motion units.
+    pub fn params(&self) -> &MotionParams {
+        &self.p
+    }
+
+    /// Where the core is.
+    pub fn state(&self) -> State {
+        self.state
+    }
+
+    /// The alarm in force, if any (cleared by [`MotionCore::reset`]).
+    pub fn alarm(&self) -> Option<Alarm> {
+        self.alarm
+    }
+
+    /// Counters.
+    pub fn stats(&self) -> Stats {
+        Stats { blocks: self.planner.taken(), ..self.stats }
+    }
+
+    /// The interpolator's commanded position at the end of the last period, Q16
+    /// steps per axis (what the step generators follow).
+    pub fn commanded(&self) -> [i64; AXIS_COUNT] {
+        *self.interp.position()
+    }
+
+    /// Source line of the block running or last run.
+    pub fn line(&self) -> u32 {
+        self.line
+    }
+
+    /// Entries queued.
+    pub fn queued(&self) -> usize {
+        self.planner.len()
+    }
+
+    /// Nothing queued, nothing moving, every step issued.
+    pub fn is_idle(&self) -> bool {
+        matches!(self.state, State::Idle | State::Ended)
+            && self.planner.is_empty()
+            && self.gear.is_none()
+            && self.steppers.iter().all(AxisStepGen::settled)
+    }
+
+    /// M02/M30 has run.
+    pub fn ended(&self) -> bool {
+        self.state == State::Ended
+    }
+
+    /// Steps issued per axis (the axes' real positions).
+    pub fn steps(&self) -> [i64; AXIS_COUNT] {
+        self.steppers.each_ref().map(AxisStepGen::position)
+    }
+
+    /// Where the axes are, machine coordinates, nm.
+    pub fn position(&self) -> Pos {
+        let s = self.steps();
+        Pos(core::array::from_fn(|i| if self.p.limits[i].present { self.p.scale[i].nm(s[i]) } else { 0 }))
+    }
+
+    /// Machine minus work coordinates of the block running (or last run).
+    pub fn work_offset(&self) -> Pos {
+        self.offset_memory
+    }
+
+    /// Commanded spindle direction and speed (rev/min) for the spindle drive.
+    pub fn spindle_output(&self) -> (SpindleDir, u32) {
+        (self.spindle.dir, self.spindle.rpm)
+    }
+
+    /// The spindle as measured.
+    pub fn spindle(&self) -> &Spindle {
+        &self.spindle
+    }
+
+    /// The gearbox, while axes are locked to the spindle.
+    pub fn gear(&self) -> Option<&Gear> {
+        self.gear.as_ref()
+    }
+
+    /// The next event for the machine.
+    pub fn pop_event(&mut self) -> Option<Event> {
+        self.events.pop_front()
+    }
+
+    /// Feed hold: brake on the path (at the end of a locked sequence).
+    pub fn feed_hold(&mut self) {
+        self.hold = true;
+    }
+
+    /// Cycle start: resume after feed hold, M00/M01 or a single-block stop.
+    pub fn cycle_start(&mut self) {
+        self.hold = false;
+        if self.state == State::Stopped {
+            self.state = State::Idle;
+        }
+    }
+
+    /// Feed override, 0–200 %.
+    pub fn set_feed_override(&mut self, pct: u16) {
+        self.feed_ovr = u64::from(pct.min(200)) * 256 / 100;
+    }
+
+    /// Rapid override, 0–100 %.
+    pub fn set_rapid_override(&mut self, pct: u16) {
+        self.rapid_ovr = u64::from(pct.min(100)) * 256 / 100;
+    }
+
+    /// Single block on or off.
+    pub fn set_single_block(&mut self, on: bool) {
+        self.single_block = on;
+    }
+
+    /// Reset: clears the alarm, brakes the axes, stops the spindle, drops the queue.
+    pub fn reset(&mut self) {
+        self.alarm = None;
+        self.begin_stop();
+    }
+
+    /// Emergency stop: as reset, with alarm 4509.
+    pub fn emergency_stop(&mut self) {
+        self.raise(AlarmKind::EmergencyStop);
+    }
+
+    /// The next step or direction event of `axis` before `until`, if any.
+    pub fn next_step(&mut self, axis: usize, until: u64) -> Option<StepEvent> {
+        self.steppers.get_mut(axis)?.next_event(until)
+    }
+
+    /// The step generator of `axis`.
+    pub fn stepper(&self, axis: usize) -> Option<&AxisStepGen> {
+        self.steppers.get(axis)
+    }
+
+    /// One interpolation period starting at `now` (ns), with this period's encoder
+    /// reading. Afterwards the step events of `[now, now + period)` are ready.
+    pub fn tick(&mut self, now: u64, fb: Feedback) {
+        self.now = now;
+        self.stats.ticks += 1;
+        self.stats.max_queued = self.stats.max_queued.max(self.planner.len());
+        self.spindle.sample(fb.count, fb.index);
+        let mut ticked = false;
+        for _ in 0..8 {
+            if !self.advance(&mut ticked) {
+                break;
+            }
+        }
+        self.spindle_control();
+        self.feed_steppers(now);
+    }
+
+    /// Whether encoder counts must come one by one with their times
+    /// ([`MotionCore::on_encoder`]): while axes are locked to the spindle or a thread
+    /// pass waits for its start count. Otherwise the count of each period is enough.
+    pub fn wants_encoder_edges(&self) -> bool {
+        self.gear.is_some() || matches!(self.state, State::SyncWait { .. })
+    }
+
+    /// An encoder count at time `now`: while axes are locked to the spindle they
+    /// move to the gearbox's position for it at once.
+    pub fn on_encoder(&mut self, now: u64, count: i64) {
+        let Some(g) = self.gear.as_mut() else { return };
+        if g.on_count(count) {
+            let mut pos = *self.interp.start_steps();
+            g.positions(&mut pos);
+            let (long, follower) = g.axes();
+            self.steppers[long].jump(now, pos[long] << STEP_FRAC);
+            if let Some(f) = follower {
+                self.steppers[f].jump(now, pos[f] << STEP_FRAC);
+            }
+        }
+    }
+
+    /// Gives every stepper this period's ramp, unless the axes are locked to the
+    /// spindle (then the gearbox moves them, leg after leg, at encoder counts).
+    fn feed_steppers(&mut self, now: u64) {
+        if self.gear.is_some() {
+            return;
+        }
+        let pos = *self.interp.position();
+        for (i, st) in self.steppers.iter_mut().enumerate() {
+            if self.p.limits[i].present {
+                st.ramp(now, self.p.tick_ns, pos[i]);
+            }
+        }
+    }
+
+    fn emit(&mut self, line: u32, kind: EventKind) {
+        if self.events.push_back(Event { t: self.now, line, kind }).is_err() {
+            self.stats.lost_events += 1;
+        }
+    }
+
+    /// Raises a motion alarm: no further motion, the axes brake.
+    fn raise(&mut self, kind: AlarmKind) {
+        let alarm = Alarm::new(self.line, kind);
+        if self.alarm.is_none() {
+            self.alarm = Some(alarm);
+            self.emit(self.line, EventKind::Alarm(alarm));
+        }
+        self.begin_stop();
+    }
+
+    fn live(&self) -> Live {
+        Live {
+            feed_ovr: self.feed_ovr,
+            rapid_ovr: self.rapid_ovr,
+            hold: self.hold || self.state == State::Stopping,
+            stop_at_end: self.single_block,
+            rev_per_tick: self.spindle.rev_per_tick(),
+        }
+    }
+
+    /// One state step; true if another may follow in this period.
+    fn advance(&mut self, ticked: &mut bool) -> bool {
+        match self.state {
+            State::Idle => self.next_entry(),
+            State::Moving => {
+                if *ticked {
+                    return false;
+                }
+                *ticked = true;
+                self.run_interpolator()
+            }
+            State::Held => {
+                if self.hold {
+                    return false;
+                }
+                self.state = State::Moving;
+                true
+            }
+            State::WaitSpindle { since } => self.wait_spindle(since),
+            State::Dwell { until } => {
+                if self.now < until {
+                    return false;
+                }
+                self.state = State::Idle;
+                true
+            }
+            State::SyncWait { since } => self.sync_wait(since),
+            State::Locked => self.run_locked(),
+            State::Stopping => self.run_stopping(ticked),
+            State::Stopped | State::Ended => false,
+        }
+    }
+
+    /// Takes the next queue entry (Idle).
+    fn next_entry(&mut self) -> bool {
+        if self.hold && self.gear.is_none() {
+            self.state = State::Held;
+            return false;
+        }
+        let Some(item) = self.planner.front().copied() else {
+            if self.streaming && !self.starved && self.alarm.is_none() {
+                self.starved = true;
+                self.stats.starvations += 1;
+                self.emit(self.line, EventKind::Starved);
+            }
+            return false;
+        };
+        self.starved = false;
+        self.planner.pop();
+        self.line = item.line();
+        match item {
+            Item::Command { line, cmd } => self.command(line, cmd),
+            Item::Motion(b) => self.begin_block(b),
+        }
+        true
+    }
+
+    /// Runs a command whose motion before it has finished.
+    fn command(&mut self, line: u32, cmd: Command) {
+        match cmd {
+            Command::Spindle(s) => {
+                self.set_spindle(s.dir, s.rpm.unwrap_or(0));
+                self.emit(line, EventKind::Spindle { dir: s.dir, rpm: self.spindle.rpm });
+            }
+            Command::Tool { tool, offset } => self.emit(line, EventKind::Tool { tool, offset }),
+            Command::Aux { m } => self.emit(line, EventKind::Aux { m }),
+            Command::Dwell { ms } => {
+                if ms > 0 {
+                    self.state = State::Dwell { until: self.now + u64::from(ms) * 1_000_000 };
+                }
+            }
+            Command::Stop { optional } => {
+                self.emit(line, EventKind::Stop { optional });
+                self.state = State::Stopped;
+            }
+            Command::End { rewind } => {
+                self.set_spindle(SpindleDir::Stop, 0);
+                self.emit(line, EventKind::End { rewind });
+                self.streaming = false;
+                self.state = State::Ended;
+            }
+        }
+    }
+
+    /// Commands the spindle; a real change makes the next cut wait for it.
+    fn set_spindle(&mut self, dir: SpindleDir, rpm: u32) {
+        if self.spindle.command(dir, rpm, self.mc.at_speed_pct) && dir != SpindleDir::Stop {
+            self.spindle_wait = true;
+        }
+    }
+
+    /// Starts a motion block.
+    fn begin_block(&mut self, b: Block) {
+        self.offset_memory = b.offset;
+        match b.kind {
+            BlockKind::Thread(_) => {
+                self.pending = Some(b);
+                self.state = State::SyncWait { since: self.now };
+            }
+            BlockKind::Tap(_) => self.begin_tap(b),
+            _ => {
+                self.release_tap();
+                self.block_spindle(&b);
+                if b.feed != FeedSpec::Rapid && self.needs_spindle(&b) {
+                    self.pending = Some(b);
+                    self.state = State::WaitSpindle { since: self.now };
+                } else {
+                    self.interp.start(&b, &self.p);
+                    self.state = State::Moving;
+                }
+            }
+        }
+    }
+
+    /// The spindle speed a block starts with: a rapid's (and a G97 cut's) own, a G96
+    /// cut's from where it starts (it then follows X, 2.19).
+    fn block_spindle(&mut self, b: &Block) {
+        if self.spindle.dir == SpindleDir::Stop {
+            return;
+        }
+        let rpm = match b.feed {
+            FeedSpec::PerMin(_) | FeedSpec::PerRev(_) => {
+                b.spindle.rpm_at(self.work_x(self.interp.position()[Axis::X.index()], &b.offset))
+            }
+            FeedSpec::Rapid => b.spindle.rpm,
+        };
+        if let Some(rpm) = rpm {
+            self.set_spindle(self.spindle.dir, rpm);
+        }
+    }
+
+    /// Work X (nm, radius) of a commanded X position (Q16 steps) under `offset`.
+    fn work_x(&self, q16: i64, offset: &Pos) -> i64 {
+        self.p.scale[Axis::X.index()].nm_of_q16(q16) - offset[Axis::X]
+    }
+
+    /// Whether a cutting block must wait for the spindle to reach its speed.
+    fn needs_spindle(&self, b: &Block) -> bool {
+        let per_rev = matches!(b.feed, FeedSpec::PerRev(_));
+        (self.spindle_wait || per_rev) && !self.spindle.at_speed(self.mc.at_speed_pct)
+    }
+
+    fn wait_spindle(&mut self, since: u64) -> bool {
+        if self.spindle.at_speed(self.mc.at_speed_pct) {
+            self.spindle_wait = false;
+            if let Some(b) = self.pending.take() {
+                self.interp.start(&b, &self.p);
+                self.state = State::Moving;
+            }
+            return true;
+        }
+        if self.now.saturating_sub(since) > u64::from(self.mc.at_speed_timeout_ms) * 1_000_000 {
+            let kind = if self.spindle.rpm == 0 { AlarmKind::SpindleNotTurning } else { AlarmKind::SpindleNotAtSpeed };
+            self.raise(kind);
+            return true;
+        }
+        false
+    }
+
+    /// One period of the interpolator (Moving).
+    fn run_interpolator(&mut self) -> bool {
+        let live = self.live();
+        let status = self.interp.tick(&mut self.planner, &live, &self.p);
+        if let Some(s) = self.interp.segment() {
+            self.line = s.line;
+            self.offset_memory = s.offset;
+        }
+        match status {
+            Status::Moving => false,
+            Status::Held => {
+                if self.hold {
+                    self.state = State::Held;
+                }
+                false
+            }
+            Status::Finished | Status::Idle => {
+                self.state = if self.single_block { State::Stopped } else { State::Idle };
+                true
+            }
+        }
+    }
+
+    /// G96: the speed follows the work X of the cut (2.19); rapids keep the speed
+    /// of their end point. Taps: the spindle is run to stop where the tap ends.
+    fn spindle_control(&mut self) {
+        if self.gear.is_some() {
+            self.tap_spindle_control();
+            return;
+        }
+        self.css_phase = (self.css_phase + 1) % CSS_PERIODS;
+        let Some(seg) = self.interp.segment() else { return };
+        if seg.spindle.css.is_none() || seg.rapid || self.css_phase != 0 || self.spindle.dir == SpindleDir::Stop {
+            return;
+        }
+        let x = self.work_x(self.interp.position()[Axis::X.index()], &seg.offset);
+        if let Some(rpm) = seg.spindle.rpm_at(x) {
+            self.spindle.command(self.spindle.dir, rpm, 0);
+        }
+    }
+
+    /// Starts braking for a reset, e-stop or alarm.
+    fn begin_stop(&mut self) {
+        self.pending = None;
+        self.release_thread_for_stop();
+        if self.gear.is_none() {
+            self.spindle.command(SpindleDir::Stop, 0, 0);
+        } else {
+            self.spindle.command(self.spindle.dir, 0, 0);
+        }
+        self.state = State::Stopping;
+    }
+
+    /// Braking (Stopping): the interpolator runs with hold until the path speed is
+    /// zero; a tap stays locked until the spindle has stopped. Then the queue goes.
+    fn run_stopping(&mut self, ticked: &mut bool) -> bool {
+        if self.gear.is_some() {
+            if self.spindle.measured_rpm().abs() > 0.5 {
+                return false;
+            }
+            self.release_tap();
+        }
+        if self.interp.segment().is_some() && !*ticked {
+            *ticked = true;
+            let live = self.live();
+            if self.interp.tick(&mut self.planner, &live, &self.p) == Status::Moving {
+                return false;
+            }
+        }
+        self.interp.abandon();
+        self.planner.clear(self.commanded_position());
+        self.streaming = false;
+        self.starved = false;
+        self.hold = false;
+        self.state = State::Idle;
+        false
+    }
+
+    /// The commanded position, machine nm (where the planner continues from).
+    fn commanded_position(&self) -> Pos {
+        let s = self.interp.position().map(round_steps);
+        Pos(core::array::from_fn(|i| if self.p.limits[i].present { self.p.scale[i].nm(s[i]) } else { 0 }))
+    }
+}
+
+impl<const N: usize> CanonSink for MotionCore<N> {
+    /// Queues an action. A full queue is back-pressure; an action the motion core
+    /// cannot run raises its alarm (the action is consumed, nothing moves for it)
+    /// and every later action is refused until reset.
+    fn push(&mut self, action: Canon) -> Result<(), Full> {
+        if self.alarm.is_some() {
+            return Err(Full);
+        }
+        if self.state == State::Ended {
+            self.state = State::Idle;
+        }
+        match self.planner.push(&action, &self.p) {
+            Ok(()) => {
+                self.streaming = true;
+                Ok(())
+            }
+            Err(PushError::Full) => Err(Full),
+            Err(PushError::Alarm(kind)) => {
+                let alarm = Alarm::new(action.line, kind);
+                self.alarm = Some(alarm);
+                self.emit(action.line, EventKind::Alarm(alarm));
+                Ok(())
+            }
+        }
+    }
+}

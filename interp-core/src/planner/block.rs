@@ -1,0 +1,427 @@
+//! Block preparation: a canonical motion action becomes a queued [`Block`] with its
+//! length, speed limits and the directions it starts and ends in (per-block
+//! geometry in floating point, as the team rules allow; nothing here runs per tick).
+
+use super::machine::MotionParams;
+use crate::alarm::AlarmKind;
+use crate::axis::{AXIS_COUNT, Axis, Pos};
+use crate::canon::{ArcMove, FeedMode, Move, SpindleDir, SpindleSpeed, TapMove, ThreadMove, ThreadSync};
+use crate::fixed::{PATH_FRAC, inverse62, sqrtf};
+
+/// Unit direction of a path, per axis.
+pub type Dir = [f32; AXIS_COUNT];
+
+/// How a block's speed is commanded.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum FeedSpec {
+    /// At the axes' rapid rates (rapid override applies).
+    Rapid,
+    /// Feed per minute, nm/min (feed override applies).
+    PerMin(i64),
+    /// Feed per spindle revolution, nm/rev, following the measured spindle speed.
+    PerRev(i64),
+}
+
+/// An arc in its plane: centre, radii at both ends, start angle and sweep.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ArcGeom {
+    /// The plane's first and second axis (G18: Z, X).
+    pub axes: (Axis, Axis),
+    /// Centre in machine coordinates, nm.
+    pub center: (i64, i64),
+    /// Radius at the start, nm.
+    pub r0: i64,
+    /// Radius at the end (may differ from `r0` by the arc tolerance), nm.
+    pub r1: i64,
+    /// Start angle, turns × 2^32.
+    pub theta0: i64,
+    /// Signed sweep (negative = clockwise), turns × 2^32.
+    pub sweep: i64,
+}
+
+/// A spindle-synchronised thread pass block.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ThreadSpec {
+    /// Lead along the long axis, nm per revolution.
+    pub lead: i64,
+    /// Start angle after the index, µdeg.
+    pub start_udeg: u32,
+    /// Wait for the index, or continue from the previous thread block.
+    pub sync: ThreadSync,
+    /// The axis with the longer travel (the lead is measured along it).
+    pub long: Axis,
+}
+
+/// A rigid-tapping block.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TapSpec {
+    /// Lead, nm per revolution.
+    pub lead: i64,
+    /// Spindle direction during the block.
+    pub dir: SpindleDir,
+    /// The tapping axis.
+    pub long: Axis,
+}
+
+/// What kind of path a block is.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum BlockKind {
+    /// A straight line, all axes interpolated together.
+    Line,
+    /// A rapid with each axis at its own rate (dog-leg path, G28/G30).
+    Independent,
+    /// An arc in a plane.
+    Arc(ArcGeom),
+    /// A thread pass locked to the spindle.
+    Thread(ThreadSpec),
+    /// A rigid-tapping move locked to the spindle.
+    Tap(TapSpec),
+}
+
+/// Look-ahead state of a block (speeds in nm per interpolation period).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Plan {
+    /// Path length, Q8 nm.
+    pub len_q8: u64,
+    /// Path acceleration the axes allow along this block, nm/period².
+    pub accel: f32,
+    /// Highest path speed the axes allow (feed limits, arcs' normal acceleration
+    /// and chord tolerance), nm/period.
+    pub cap: f32,
+    /// The programmed speed at 100 % override (junction speeds stay below it).
+    pub nominal: f32,
+    /// Square of the highest entry speed the junction with the previous block allows.
+    pub max_entry_sq: f32,
+    /// Square of the planned entry speed.
+    pub entry_sq: f32,
+    /// The planned entry speed, Q8 nm/period (what the interpolator brakes to).
+    pub entry_q8: u64,
+    /// `2 · accel · length`, for the backward pass.
+    pub two_a_len: f32,
+}
+
+/// A block in the motion queue.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Block {
+    /// Source line.
+    pub line: u32,
+    /// Path kind and its data.
+    pub kind: BlockKind,
+    /// Machine minus work coordinates for this block (G96 and the trace use work X).
+    pub offset: Pos,
+    /// Speed command.
+    pub feed: FeedSpec,
+    /// Spindle during the block.
+    pub spindle: SpindleSpeed,
+    /// Stop exactly at the end.
+    pub exact_stop: bool,
+    /// Look-ahead data.
+    pub plan: Plan,
+    /// What the interpolator needs, ready to run.
+    pub exec: Exec,
+}
+
+/// What the interpolator needs of a block, computed when the block is queued so
+/// that starting it (possibly in the middle of an interpolation period, when it is
+/// blended into) divides nothing.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Exec {
+    /// End point, whole steps per axis (exact: from the nanometre end point).
+    pub end_steps: [i64; AXIS_COUNT],
+    /// `2^62 / length` (length in Q8 nm).
+    pub inv_len: i64,
+    /// The programmed speed: Q8 nm per period (feed per minute) or Q8 nm per
+    /// revolution (feed per revolution); 0 for rapids.
+    pub rate_q8: i64,
+    /// Independent rapids: `2^62 / length` of each axis's own move.
+    pub axis_inv: [i64; AXIS_COUNT],
+}
+
+impl Exec {
+    /// The interpolator's data of `b`, which moves from `start` to `end` (machine, nm).
+    pub fn new(b: &Block, start: &Pos, end: &Pos, p: &MotionParams) -> Self {
+        let present = |i: usize| p.limits[i].present;
+        let end_steps = core::array::from_fn(|i| if present(i) { p.scale[i].steps(end.0[i]) } else { 0 });
+        let rate_q8 = match b.feed {
+            FeedSpec::Rapid => 0,
+            FeedSpec::PerMin(f) => p.rate_q8(f),
+            FeedSpec::PerRev(f) => f.saturating_mul(1 << PATH_FRAC),
+        };
+        let axis_inv = core::array::from_fn(|i| {
+            let d = end.0[i].abs_diff(start.0[i]);
+            if b.kind == BlockKind::Independent && present(i) && d > 0 { inverse62(d << PATH_FRAC) } else { 0 }
+        });
+        Exec { end_steps, inv_len: inverse62(b.plan.len_q8), rate_q8, axis_inv }
+    }
+}
+
+/// A prepared block together with the directions it starts and ends in.
+#[derive(Clone, Copy, Debug)]
+pub struct Prepared {
+    /// The block (its entry speeds not planned yet).
+    pub block: Block,
+    /// Unit direction at the start.
+    pub dir_in: Dir,
+    /// Unit direction at the end.
+    pub dir_out: Dir,
+    /// End point, machine coordinates, nm (X radius).
+    pub end: Pos,
+}
+
+/// Length (nm) and unit direction of a straight move. f32 on the FPU: the length
+/// only times the move (to 1e-7), the end point comes from the exact nanometres.
+fn straight(start: &Pos, end: &Pos) -> (f32, Dir) {
+    let d: [f32; AXIS_COUNT] = core::array::from_fn(|i| end.0[i].wrapping_sub(start.0[i]) as f32);
+    let len = sqrtf(d.iter().map(|v| v * v).sum());
+    let inv = if len > 0.0 { 1.0 / len } else { 0.0 };
+    (len, d.map(|v| v * inv))
+}
+
+/// The fastest path speed and acceleration the axes allow along `dir`.
+fn axis_caps(dir: &Dir, p: &MotionParams, rapid: bool) -> (f32, f32) {
+    let (mut cap, mut accel) = (f32::MAX, f32::MAX);
+    for (u, lim) in dir.iter().zip(&p.limits) {
+        let u = u.abs();
+        if u > 1e-9 && lim.present {
+            cap = cap.min(if rapid { lim.rapid } else { lim.feed } / u);
+            accel = accel.min(lim.accel / u);
+        }
+    }
+    (cap, accel)
+}
+
+fn len_q8(len: f32) -> Result<u64, AlarmKind> {
+    let q = len * (1u32 << PATH_FRAC) as f32 + 0.5;
+    if !(q >= 1.0 && q < (1u64 << 50) as f32) {
+        return Err(AlarmKind::Overflow);
+    }
+    Ok(q as u64)
+}
+
+fn plan(len: u64, accel: f32, cap: f32, nominal: f32) -> Plan {
+    let len_nm = len as f32 / (1u32 << PATH_FRAC) as f32;
+    Plan {
+        len_q8: len,
+        accel,
+        cap,
+        nominal: nominal.min(cap),
+        max_entry_sq: 0.0,
+        entry_sq: 0.0,
+        entry_q8: 0,
+        two_a_len: 2.0 * accel * len_nm,
+    }
+}
+
+/// The speed a feed commands, nm/period, at 100 % (per rev: at the commanded rpm).
+fn nominal(feed: FeedSpec, spindle: &SpindleSpeed, p: &MotionParams, cap: f32) -> f32 {
+    match feed {
+        FeedSpec::Rapid => cap,
+        FeedSpec::PerMin(f) => p.per_tick(f as f32),
+        FeedSpec::PerRev(f) => p.per_tick(f as f32 * spindle.rpm.unwrap_or(0) as f32),
+    }
+}
+
+/// A straight move from `start` (rapid or cutting).
+pub fn line(start: &Pos, m: &Move, rapid: bool, p: &MotionParams, line: u32) -> Result<Prepared, AlarmKind> {
+    let (len, dir) = straight(start, &m.to.machine);
+    let feed = match (rapid, m.feed.mode) {
+        (true, _) => FeedSpec::Rapid,
+        (false, FeedMode::PerMin) => FeedSpec::PerMin(m.feed.value),
+        (false, FeedMode::PerRev) => FeedSpec::PerRev(m.feed.value),
+    };
+    let (mut cap, accel) = axis_caps(&dir, p, rapid);
+    if !rapid {
+        cap = cap.min(p.path_feed);
+    }
+    let kind = if rapid && m.independent { BlockKind::Independent } else { BlockKind::Line };
+    let block = Block {
+        line,
+        kind,
+        offset: m.to.machine - m.to.work,
+        feed,
+        spindle: m.spindle,
+        exact_stop: m.exact_stop || rapid,
+        plan: plan(len_q8(len)?, accel, cap, nominal(feed, &m.spindle, p, cap)),
+        exec: Exec::default(),
+    };
+    Ok(Prepared { block, dir_in: dir, dir_out: dir, end: m.to.machine })
+}
+
+/// Turns × 2^32 of an angle in radians.
+fn turns(rad: f64) -> i64 {
+    libm::round(rad / core::f64::consts::TAU * 4_294_967_296.0) as i64
+}
+
+/// Unit tangent of an arc at angle `th` in the direction of travel.
+fn tangent(axes: (Axis, Axis), th: f64, ccw: bool) -> Dir {
+    let mut d = [0.0; AXIS_COUNT];
+    let s = if ccw { 1.0 } else { -1.0 };
+    d[axes.0.index()] = (-s * libm::sin(th)) as f32;
+    d[axes.1.index()] = (s * libm::cos(th)) as f32;
+    d
+}
+
+/// A circular move from `start`.
+pub fn arc(start: &Pos, a: &ArcMove, p: &MotionParams, line: u32) -> Result<Prepared, AlarmKind> {
+    let axes = a.plane.axes();
+    let (ia, ib) = (axes.0.index(), axes.1.index());
+    let c = (a.center.machine.0[ia], a.center.machine.0[ib]);
+    let rel = |q: &Pos| ((q.0[ia] - c.0) as f64, (q.0[ib] - c.1) as f64);
+    let (s, e) = (rel(start), rel(&a.to.machine));
+    let (r0, r1) = (libm::hypot(s.0, s.1), libm::hypot(e.0, e.1));
+    let (th0, th1) = (libm::atan2(s.1, s.0), libm::atan2(e.1, e.0));
+    let tau = core::f64::consts::TAU;
+    let mut sweep = th1 - th0;
+    if a.cw {
+        while sweep >= 0.0 {
+            sweep -= tau;
+        }
+        if a.full_circle {
+            sweep = -tau;
+        }
+    } else {
+        while sweep <= 0.0 {
+            sweep += tau;
+        }
+        if a.full_circle {
+            sweep = tau;
+        }
+    }
+    let len = (sweep.abs() * (r0 + r1) / 2.0) as f32;
+    let feed = match a.feed.mode {
+        FeedMode::PerMin => FeedSpec::PerMin(a.feed.value),
+        FeedMode::PerRev => FeedSpec::PerRev(a.feed.value),
+    };
+    let (la, lb) = (&p.limits[ia], &p.limits[ib]);
+    // Half the acceleration for the normal (v²/r), half along the path; the chord of
+    // one period may stray from the arc by at most the chord tolerance.
+    let accel = la.accel.min(lb.accel) / 2.0;
+    let r = r0.min(r1) as f32;
+    let centripetal = sqrtf(accel * r);
+    let chord = sqrtf(8.0 * r * p.chord_tolerance);
+    let cap = la.feed.min(lb.feed).min(p.path_feed).min(centripetal).min(chord);
+    let geom = ArcGeom {
+        axes,
+        center: c,
+        r0: libm::round(r0) as i64,
+        r1: libm::round(r1) as i64,
+        theta0: turns(th0),
+        sweep: turns(sweep),
+    };
+    let block = Block {
+        line,
+        kind: BlockKind::Arc(geom),
+        offset: a.to.machine - a.to.work,
+        feed,
+        spindle: a.spindle,
+        exact_stop: a.exact_stop,
+        plan: plan(len_q8(len)?, accel, cap, nominal(feed, &a.spindle, p, cap)),
+        exec: Exec::default(),
+    };
+    let ccw = sweep > 0.0;
+    Ok(Prepared { block, dir_in: tangent(axes, th0, ccw), dir_out: tangent(axes, th1, ccw), end: a.to.machine })
+}
+
+/// The axis that travels furthest (the thread's or tap's long axis).
+fn long_axis(start: &Pos, end: &Pos) -> Axis {
+    let mut best = Axis::Z;
+    let mut far = -1i64;
+    for a in Axis::ALL {
+        let d = (end[a] - start[a]).saturating_abs();
+        if d > far {
+            (best, far) = (a, d);
+        }
+    }
+    best
+}
+
+/// Checks that the path speed `v` (nm/period) along `dir` is within every axis's
+/// feed limit; the first axis over it is named.
+fn check_speed(dir: &Dir, v: f32, p: &MotionParams) -> Result<(), Axis> {
+    for a in Axis::ALL {
+        let lim = &p.limits[a.index()];
+        if lim.present && v * dir[a.index()].abs() > lim.feed {
+            return Err(a);
+        }
+    }
+    Ok(())
+}
+
+/// A thread pass from `start`. Checks at the commanded speed that lead × rpm fits the
+/// axes and that the acceleration ramp fits the thread (the pass re-checks at the
+/// measured speed before it moves). A continuing block keeps the long axis `keep` of
+/// the block before it when it moves along it (a pull-out keeps the lead on the
+/// thread's axis while the other axis pulls out); otherwise its own longer axis.
+pub fn thread(
+    start: &Pos,
+    t: &ThreadMove,
+    keep: Option<Axis>,
+    p: &MotionParams,
+    line: u32,
+) -> Result<Prepared, AlarmKind> {
+    if t.lead_delta != 0 {
+        return Err(AlarmKind::NotSupportedYet { what: "variable-lead threads (G34) in the motion core" });
+    }
+    if t.lead <= 0 {
+        return Err(AlarmKind::FeedZero);
+    }
+    let (len, dir) = straight(start, &t.to.machine);
+    let long = match keep {
+        Some(a) if t.sync == ThreadSync::Continue && t.to.machine[a] != start[a] => a,
+        _ => long_axis(start, &t.to.machine),
+    };
+    let spec = ThreadSpec { lead: t.lead, start_udeg: t.start_udeg, sync: t.sync, long };
+    let along = dir[long.index()].abs().max(1e-9);
+    let rpm = t.spindle.rpm.unwrap_or(0) as f32 * p.thread_margin;
+    // Path speed whose long-axis part is lead × rpm.
+    let v = p.per_tick(rpm * t.lead as f32) / along;
+    check_speed(&dir, v, p).map_err(|a| AlarmKind::ThreadTooFast { letter: a.letter() })?;
+    let (_, accel) = axis_caps(&dir, p, false);
+    if t.sync == ThreadSync::Index && v * v / (2.0 * accel) > len {
+        return Err(AlarmKind::ThreadRampTooLong);
+    }
+    let block = Block {
+        line,
+        kind: BlockKind::Thread(spec),
+        offset: t.to.machine - t.to.work,
+        feed: FeedSpec::PerRev(t.lead),
+        spindle: t.spindle,
+        exact_stop: true,
+        plan: plan(len_q8(len)?, accel, v.max(1.0), v),
+        exec: Exec::default(),
+    };
+    Ok(Prepared { block, dir_in: dir, dir_out: dir, end: t.to.machine })
+}
+
+/// A rigid-tapping move from `start`: lead × rpm and lead × the spindle's
+/// acceleration must be within the tapping axis's limits.
+pub fn tap(start: &Pos, t: &TapMove, p: &MotionParams, line: u32) -> Result<Prepared, AlarmKind> {
+    if t.lead <= 0 {
+        return Err(AlarmKind::FeedZero);
+    }
+    let (len, dir) = straight(start, &t.to.machine);
+    let long = long_axis(start, &t.to.machine);
+    let along = dir[long.index()].abs().max(1e-9);
+    let too_fast = |a: Axis| AlarmKind::TapTooFast { letter: a.letter() };
+    let rpm = t.spindle.rpm.unwrap_or(0) as f32;
+    let v = p.per_tick(rpm * t.lead as f32) / along;
+    check_speed(&dir, v, p).map_err(too_fast)?;
+    // The axis follows the spindle's own acceleration: lead × rev/period².
+    let period_s = p.tick_ns as f32 / 1e9;
+    let rev_per_tick2 = p.spindle_accel_rpm_s as f32 / 60.0 * period_s * period_s;
+    let (_, accel) = axis_caps(&dir, p, false);
+    if t.lead as f32 * rev_per_tick2 / along > accel {
+        return Err(too_fast(long));
+    }
+    let block = Block {
+        line,
+        kind: BlockKind::Tap(TapSpec { lead: t.lead, dir: t.dir, long }),
+        offset: t.to.machine - t.to.work,
+        feed: FeedSpec::PerRev(t.lead),
+        spindle: t.spindle,
+        exact_stop: true,
+        plan: plan(len_q8(len)?, accel, v.max(1.0), v),
+        exec: Exec::default(),
+    };
+    Ok(Prepared { block, dir_in: dir, dir_out: dir, end: t.to.machine })
+}

@@ -1,0 +1,255 @@
+//! The motion planner: a fixed-capacity look-ahead queue holding prepared motion
+//! blocks and the non-motion commands between them, in stream order.
+//!
+//! Each canonical action is prepared once when it arrives ([`block`]), its entry
+//! speed is limited by the junction with the block before it, and the entry speeds
+//! of the queue are re-planned backwards ([`lookahead`]) so that the last block
+//! always ends at rest: whatever the interpreter has not delivered yet, the
+//! machine can stop in time. A command (spindle, coolant, dwell, stop …) is a
+//! barrier: the motion before it ends at rest and it runs when that motion has.
+
+pub mod block;
+pub mod lookahead;
+pub mod machine;
+
+pub use block::{ArcGeom, Block, BlockKind, Exec, FeedSpec, TapSpec, ThreadSpec};
+pub use machine::{AxisLimits, AxisScale, MotionParams};
+
+use crate::alarm::AlarmKind;
+use crate::axis::{AXIS_COUNT, Axis, Pos};
+use crate::canon::{Action, Canon, SpindleCommand, ThreadSync};
+use block::{Dir, Prepared};
+
+/// A non-motion action, run when the motion before it has finished.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Command {
+    /// Spindle direction and speed.
+    Spindle(SpindleCommand),
+    /// Turret index and offset.
+    Tool {
+        /// Station.
+        tool: u16,
+        /// Offset number.
+        offset: u16,
+    },
+    /// An M-code output.
+    Aux {
+        /// The M number.
+        m: u16,
+    },
+    /// Dwell (0 = exact stop only).
+    Dwell {
+        /// Milliseconds.
+        ms: u32,
+    },
+    /// M00/M01: wait for cycle start.
+    Stop {
+        /// M01.
+        optional: bool,
+    },
+    /// M02/M30.
+    End {
+        /// M30.
+        rewind: bool,
+    },
+}
+
+/// One entry of the queue. Entries live inline in the fixed-capacity queue (no
+/// allocation), so a command takes a block's room; commands are few.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[allow(clippy::large_enum_variant)]
+pub enum Item {
+    /// A motion block.
+    Motion(Block),
+    /// A command and its source line.
+    Command {
+        /// Source line.
+        line: u32,
+        /// The command.
+        cmd: Command,
+    },
+}
+
+impl Item {
+    /// Source line.
+    pub fn line(&self) -> u32 {
+        match self {
+            Item::Motion(b) => b.line,
+            Item::Command { line, .. } => *line,
+        }
+    }
+}
+
+/// Why a push was refused.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PushError {
+    /// The queue is full: offer the action again later.
+    Full,
+    /// The action is unusable; nothing was queued.
+    Alarm(AlarmKind),
+}
+
+/// How the next block may join the queue's last motion.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Tail {
+    /// Where the last motion ends (machine, nm).
+    end: Pos,
+    /// Direction at its end.
+    dir: Dir,
+    /// Its programmed speed.
+    nominal: f32,
+    /// Whether the next block may blend with it (G64 cutting move without exact stop).
+    blend: bool,
+    /// The long axis of a thread block (a continuing thread may follow).
+    thread: Option<Axis>,
+}
+
+/// The look-ahead queue; `N` blocks and commands.
+#[derive(Clone, Debug)]
+pub struct Planner<const N: usize> {
+    queue: heapless::Deque<Item, N>,
+    tail: Tail,
+    /// Motion blocks taken out so far.
+    taken: u64,
+}
+
+impl<const N: usize> Planner<N> {
+    /// An empty queue with the axes at `pos` (machine, nm).
+    pub fn new(pos: Pos) -> Self {
+        Planner { queue: heapless::Deque::new(), tail: Self::rest(pos), taken: 0 }
+    }
+
+    fn rest(end: Pos) -> Tail {
+        Tail { end, dir: [0.0; AXIS_COUNT], nominal: 0.0, blend: false, thread: None }
+    }
+
+    /// Drops everything queued; the next block starts from `pos`.
+    pub fn clear(&mut self, pos: Pos) {
+        self.queue.clear();
+        self.tail = Self::rest(pos);
+    }
+
+    /// Whether no more can be queued.
+    pub fn is_full(&self) -> bool {
+        self.queue.is_full()
+    }
+
+    /// Whether nothing is queued.
+    pub fn is_empty(&self) -> bool {
+        self.queue.is_empty()
+    }
+
+    /// Entries queued.
+    pub fn len(&self) -> usize {
+        self.queue.len()
+    }
+
+    /// Where the queued motion ends (machine, nm).
+    pub fn tail_end(&self) -> Pos {
+        self.tail.end
+    }
+
+    /// The next entry.
+    pub fn front(&self) -> Option<&Item> {
+        self.queue.front()
+    }
+
+    /// The entry after the next.
+    pub fn second(&self) -> Option<&Item> {
+        self.queue.get(1)
+    }
+
+    /// Takes the next entry.
+    pub fn pop(&mut self) -> Option<Item> {
+        let item = self.queue.pop_front();
+        if let Some(Item::Motion(_)) = item {
+            self.taken += 1;
+        }
+        item
+    }
+
+    /// Motion blocks taken out of the queue so far.
+    pub fn taken(&self) -> u64 {
+        self.taken
+    }
+
+    /// Planned entry speed of the next block, Q8 nm/period (0 if the next entry is
+    /// not a motion block the running one may blend into).
+    pub fn front_entry_q8(&self) -> u64 {
+        match self.queue.front() {
+            Some(Item::Motion(b)) => b.plan.entry_q8,
+            _ => 0,
+        }
+    }
+
+    /// Prepares `c` and queues it, re-planning the entry speeds.
+    pub fn push(&mut self, c: &Canon, p: &MotionParams) -> Result<(), PushError> {
+        if self.queue.is_full() {
+            return Err(PushError::Full);
+        }
+        let start = self.tail.end;
+        let full_circle = matches!(c.action, Action::Arc(a) if a.full_circle);
+        if c.action.endpoint().is_some_and(|e| e.machine == start) && !full_circle {
+            return Ok(()); // no motion
+        }
+        let prepared = match &c.action {
+            Action::Rapid(m) => block::line(&start, m, true, p, c.line),
+            Action::Linear(m) => block::line(&start, m, false, p, c.line),
+            Action::Arc(a) => block::arc(&start, a, p, c.line),
+            Action::Thread(t) => {
+                let mut t = *t;
+                // A continuing thread needs a thread to continue (2.17.1 note 2).
+                if self.tail.thread.is_none() {
+                    t.sync = ThreadSync::Index;
+                }
+                block::thread(&start, &t, self.tail.thread, p, c.line)
+            }
+            Action::Tap(t) => block::tap(&start, t, p, c.line),
+            other => return self.push_command(c.line, other),
+        };
+        self.push_motion(prepared.map_err(PushError::Alarm)?, p);
+        Ok(())
+    }
+
+    fn push_command(&mut self, line: u32, a: &Action) -> Result<(), PushError> {
+        let cmd = match *a {
+            Action::Dwell { ms } => Command::Dwell { ms },
+            Action::Spindle(s) => Command::Spindle(s),
+            Action::Tool { tool, offset } => Command::Tool { tool, offset },
+            Action::Aux { m } => Command::Aux { m },
+            Action::Stop { optional } => Command::Stop { optional },
+            Action::End { rewind } => Command::End { rewind },
+            _ => return Ok(()),
+        };
+        self.queue.push_back(Item::Command { line, cmd }).map_err(|_| PushError::Full)?;
+        self.tail.blend = false;
+        self.tail.thread = None;
+        Ok(())
+    }
+
+    fn push_motion(&mut self, prep: Prepared, p: &MotionParams) {
+        let mut b = prep.block;
+        b.exec = block::Exec::new(&b, &self.tail.end, &prep.end, p);
+        let blends = matches!(b.kind, BlockKind::Line | BlockKind::Arc(_)) && b.feed != FeedSpec::Rapid;
+        if self.tail.blend && blends {
+            let v = lookahead::junction_speed(&self.tail.dir, &prep.dir_in, p)
+                .min(self.tail.nominal)
+                .min(b.plan.nominal)
+                .min(b.plan.cap);
+            b.plan.max_entry_sq = v * v;
+        }
+        self.tail = Tail {
+            end: prep.end,
+            dir: prep.dir_out,
+            nominal: b.plan.nominal,
+            blend: blends && !b.exact_stop,
+            thread: if let BlockKind::Thread(t) = b.kind { Some(t.long) } else { None },
+        };
+        // Never fails: fullness was checked before preparing.
+        let _ = self.queue.push_back(Item::Motion(b));
+        lookahead::backward_pass(self.queue.iter_mut().rev().map(|item| match item {
+            Item::Motion(b) => Some(b),
+            Item::Command { .. } => None,
+        }));
+    }
+}
