@@ -161,6 +161,8 @@ pub struct MotionCore<const N: usize> {
     locked: Option<Block>,
     /// Thread legs taken from the queue since the pass started.
     legs_taken: u32,
+    /// The largest lead (nm/rev) the running pass's ramps were sized for.
+    ramp_lead: i64,
     /// A block waiting for the spindle or the index.
     pending: Option<Block>,
     state: State,
@@ -201,6 +203,7 @@ impl<const N: usize> MotionCore<N> {
             gear: None,
             locked: None,
             legs_taken: 0,
+            ramp_lead: 0,
             pending: None,
             state: State::Idle,
             spindle_wait: false,
