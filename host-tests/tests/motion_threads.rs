@@ -389,7 +389,7 @@ fn g34_passes_at_200_800_and_2000_rpm_follow_the_variable_lead_in_one_groove() {
         assert!(err <= 1.0, "pass {i} at {rpm} rpm: {err} steps from z(θ)");
         phases.push(phase(&rows, -10.0, index));
         // The end point is exact.
-        let last = s.trace.iter().filter(|t| t.line == line).next_back().unwrap();
+        let last = s.trace.iter().rfind(|t| t.line == line).unwrap();
         assert_eq!(last.z_mm, -40.0, "pass {i}");
     }
     let (lo, hi) = (phases.iter().min().unwrap(), phases.iter().max().unwrap());
@@ -418,7 +418,7 @@ fn a_g34_with_a_shrinking_lead_and_a_taper_ends_exactly() {
         let ideal_x = 30.0 + (10.0 - t.z_mm) / 50.0 * 6.0;
         assert!((t.x_mm - ideal_x).abs() <= 2.0 * 0.0025 + 1e-9, "x {} at z {}", t.x_mm, t.z_mm);
     }
-    let last = s.trace.iter().filter(|t| t.line == 3).next_back().unwrap();
+    let last = s.trace.iter().rfind(|t| t.line == 3).unwrap();
     let end_x = s.trace.iter().filter(|t| t.line == 3).map(|t| t.x_mm).fold(0.0, f64::max);
     assert_eq!((last.z_mm, end_x), (-40.0, 36.0));
 }
@@ -476,5 +476,5 @@ fn blocks_continuing_a_g34_keep_the_lead_it_reached() {
         s.trace.iter().filter(|t| t.line == 5 && t.axis == 2 && t.z_mm < -16.0 && t.z_mm > -25.0).copied().collect();
     let err = lead_error(&g32, lead_reached);
     assert!(err <= 1.0 + lead_reached * 1e6 / CPR as f64 / Z_STEP, "{err} steps from a {lead_reached} mm lead");
-    assert_eq!(s.trace.iter().filter(|t| t.line == 5 && t.axis == 2).next_back().unwrap().z_mm, -35.0);
+    assert_eq!(s.trace.iter().rfind(|t| t.line == 5 && t.axis == 2).unwrap().z_mm, -35.0);
 }
