@@ -260,11 +260,17 @@ pub struct Gear {
     ramp_zone: i64,
     /// Remainder of the long axis's exact position, `[0, unit)` (rounded: starts at half).
     acc: i64,
-    /// Locked: the next count's increment over `2R` (the first difference of
-    /// `n1·c + n2·c²`) and its change per count, `2·n2`. Decelerating: the `w` the
-    /// deceleration started from.
+    /// Ramping up: the next count's increment and its change per count. Locked: the
+    /// next count's increment over `2R` (the first difference of `n1·c + n2·c²`) and
+    /// its change per count, `2·n2`. Decelerating: the `w` the deceleration started
+    /// from.
     w: i64,
     dw: i64,
+    /// Within the ramp zone of the last leg: how far (units) the deceleration start
+    /// is, `unit·left − now − w·R²`, kept up to date by one subtraction of
+    /// `2R·w + dw·R²` a count (the second number); `None` until the exact test first
+    /// runs (or when the numbers do not fit: then the exact test runs every count).
+    to_start: Option<(i64, i64)>,
     /// Speed at the end of the running leg, steps per count (checks only).
     end_speed: f64,
     /// Long-axis steps from the leg's start, and the leg's length and direction.
@@ -347,7 +353,8 @@ impl Gear {
             ramp_zone: ramp_zone(v_max, ramp),
             acc: unit / 2,
             w: gearing.n1,
-            dw: 2 * gearing.n2,
+            dw: 2 * gearing.n1,
+            to_start: None,
             end_speed,
             p: 0,
             delta: 0,
@@ -465,6 +472,7 @@ impl Gear {
         }
         self.next = Some(Next { leg, gearing: next, scale, keep_lead, same_motion, len, ramp_zone: zone, end_speed });
         self.next_last = last;
+        self.to_start = None;
         Ok(())
     }
 
@@ -506,10 +514,7 @@ impl Gear {
         match (self.mode, self.phase) {
             (Mode::Tap, _) => g.steps_per_count(),
             (_, Phase::Waiting | Phase::Done) => 0.0,
-            (_, Phase::RampUp { k }) => {
-                let c = (k - self.ramp / 2).max(0) as f64;
-                (g.n1 as f64 * (2 * k) as f64 + self.two_r as f64 * g.n2 as f64 * 2.0 * c) / unit
-            }
+            (_, Phase::RampUp { .. }) => self.w as f64 / unit,
             (_, Phase::Locked) => self.w as f64 / g.den as f64,
             (_, Phase::RampDown { u }) => self.w as f64 * (2 * u) as f64 / unit,
         }
@@ -645,33 +650,51 @@ impl Gear {
         }
     }
 
-    /// One count of the ramp-up (count `k + 1` since the ramp started, `c` since the
-    /// synchronised start): the linear part's `n1·(2k + 1)`, and from the
-    /// synchronised start on the quadratic part's `2R·n2·(2c − 1)`. After the last
-    /// one the gearbox is locked with the next count's `w = n1 + n2·(2c + 1)`.
+    /// One count of the ramp-up, `m = k + 1` since the ramp started and `c = m − R/2`
+    /// since the synchronised start: the linear part's `n1·(2m − 1)` and, from the
+    /// synchronised start on, the quadratic part's `2R·n2·(2c − 1)`, both kept by
+    /// additions (`w` the increment, `dw` its change: `2·n1`, plus `4R·n2` from the
+    /// synchronised start on). After the last one the gearbox is locked with the next
+    /// count's `w = n1 + n2·(2c + 1)`.
     fn ramp_up_count(&mut self) -> bool {
         let k = if let Phase::RampUp { k } = self.phase { k } else { 0 };
-        let g = self.gearing;
-        let c = k + 1 - self.ramp / 2;
-        let mut inc = g.n1 * (2 * k + 1);
-        if c >= 1 {
-            inc += self.two_r * g.n2 * (2 * c - 1);
-        }
-        if k + 1 >= self.ramp {
+        let inc = self.w;
+        let m = k + 1;
+        if m >= self.ramp {
             self.phase = Phase::Locked;
-            self.w = g.n1 + g.n2 * (2 * c + 1);
-            self.dw = 2 * g.n2;
+            self.lock();
         } else {
-            self.phase = Phase::RampUp { k: k + 1 };
+            self.phase = Phase::RampUp { k: m };
+            self.w += self.dw;
+            if m == self.ramp / 2 {
+                self.start_quadratic();
+            }
         }
         self.add(inc)
     }
 
+    /// The synchronised count is reached: the quadratic part starts (its first
+    /// increment `2R·n2`, then `4R·n2` more each count).
+    #[inline(never)]
+    fn start_quadratic(&mut self) {
+        let q = self.two_r * self.gearing.n2;
+        self.w += q;
+        self.dw += 2 * q;
+    }
+
+    /// The ramp is over: the next count is `c = R/2 + 1` since the synchronised start.
+    #[inline(never)]
+    fn lock(&mut self) {
+        let g = self.gearing;
+        self.w = g.n1 + g.n2 * (self.ramp + 1);
+        self.dw = 2 * g.n2;
+    }
+
     /// Near the end of the last leg: the increment that lands exactly where the
-    /// deceleration from this count's speed must start (`unit·left − w·R²` in
+    /// deceleration from this count's speed must start (`unit·left − now − w·R²` in
     /// accumulator units), on the count where going on at `inc` would leave less
-    /// than the next count's speed needs to stop.
-    fn ramp_down_jump(&self, inc: i64) -> Option<i64> {
+    /// than the next count's speed needs to stop: `rem − inc ≤ (w + dw)·R²`.
+    fn ramp_down_jump(&mut self, inc: i64) -> Option<i64> {
         let left = match self.next {
             None => self.delta - self.p,
             Some(n) if self.next_last && n.same_motion => self.delta - self.p + n.len,
@@ -681,6 +704,47 @@ impl Gear {
         if left > self.ramp_zone {
             return None;
         }
+        self.near_end(left, inc)
+    }
+
+    /// [`Gear::ramp_down_jump`] in the ramp zone, `left` steps from the end. The
+    /// distance to the deceleration start is computed once, then follows by one
+    /// subtraction a count (`rem` drops by `inc`, `w·R²` grows by `dw·R²`). Out of
+    /// line: the locked count's fast path stays small.
+    #[inline(never)]
+    fn near_end(&mut self, left: i64, inc: i64) -> Option<i64> {
+        if self.to_start.is_none() {
+            self.to_start = self.exact_to_start(left);
+        }
+        let Some((x, step)) = self.to_start else { return self.exact_jump(left, inc) };
+        match x.checked_sub(inc).and_then(|v| v.checked_sub(step)) {
+            Some(after) if after > 0 => {
+                self.to_start = Some((after, step));
+                None
+            }
+            Some(_) => {
+                self.to_start = None;
+                Some(x.max(0))
+            }
+            None => {
+                self.to_start = None;
+                self.exact_jump(left, inc)
+            }
+        }
+    }
+
+    /// `unit·left − now − w·R²` and `dw·R²`, if they fit the fast test.
+    #[inline(never)]
+    fn exact_to_start(&self, left: i64) -> Option<(i64, i64)> {
+        let r2 = i128::from(self.ramp) * i128::from(self.ramp);
+        let now = i128::from(self.acc - self.unit / 2);
+        let x = i128::from(self.unit) * i128::from(left) - now - i128::from(self.w) * r2;
+        Some((i64::try_from(x).ok()?, i64::try_from(i128::from(self.dw) * r2).ok()?))
+    }
+
+    /// The deceleration test in 128 bits, from scratch.
+    #[inline(never)]
+    fn exact_jump(&self, left: i64, inc: i64) -> Option<i64> {
         let r2 = i128::from(self.ramp) * i128::from(self.ramp);
         let w = i128::from(self.w);
         let rem = i128::from(self.unit) * i128::from(left) - i128::from(self.acc - self.unit / 2);
@@ -723,6 +787,7 @@ impl Gear {
     fn take_next(&mut self) {
         let Some(n) = self.next.take() else { return };
         self.legs_done += 1;
+        self.to_start = None;
         let s = n.scale;
         if s != 1 {
             self.acc *= s;
