@@ -51,6 +51,7 @@ impl<const N: usize> MotionCore<N> {
     }
 
     /// A thread pass waits for the spindle and its synchronisation count (SyncWait).
+    #[inline(never)]
     pub(super) fn sync_wait(&mut self, since: u64) -> bool {
         let Some(b) = self.pending else {
             self.state = State::Idle;
@@ -151,6 +152,7 @@ impl<const N: usize> MotionCore<N> {
 
     /// A spindle-locked block runs (Locked): continuing legs are announced to the
     /// gearbox and taken from the queue as it reaches them; the end lets go.
+    #[inline(never)]
     pub(super) fn run_locked(&mut self) -> bool {
         let Some(g) = self.gear else {
             self.state = State::Idle;
@@ -278,6 +280,7 @@ impl<const N: usize> MotionCore<N> {
     /// While a tap runs, the spindle speed is cut so it can stop where the tap
     /// ends: `rpm ≤ 60·√(2·α·revolutions left)` with 80 % of the spindle's
     /// acceleration; at the end it is commanded to stop.
+    #[inline(never)]
     pub(super) fn tap_spindle_control(&mut self) {
         let (Some(g), Some(b)) = (self.gear, self.locked) else { return };
         let BlockKind::Tap(t) = b.kind else { return };

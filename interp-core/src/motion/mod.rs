@@ -470,6 +470,7 @@ impl<const N: usize> MotionCore<N> {
     }
 
     /// Takes the next queue entry (Idle).
+    #[inline(never)]
     fn next_entry(&mut self) -> bool {
         if self.hold && self.gear.is_none() {
             self.state = State::Held;
@@ -650,6 +651,7 @@ impl<const N: usize> MotionCore<N> {
 
     /// Braking (Stopping): the interpolator runs with hold until the path speed is
     /// zero; a tap stays locked until the spindle has stopped. Then the queue goes.
+    #[inline(never)]
     fn run_stopping(&mut self, ticked: &mut bool) -> bool {
         if self.gear.is_some() {
             if self.spindle.measured_rpm().abs() > 0.5 {
