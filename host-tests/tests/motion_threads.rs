@@ -478,3 +478,25 @@ fn blocks_continuing_a_g34_keep_the_lead_it_reached() {
     assert!(err <= 1.0 + lead_reached * 1e6 / CPR as f64 / Z_STEP, "{err} steps from a {lead_reached} mm lead");
     assert_eq!(s.trace.iter().rfind(|t| t.line == 5 && t.axis == 2).unwrap().z_mm, -35.0);
 }
+
+#[test]
+fn leads_the_interpreter_would_refuse_are_alarms_in_the_motion_core_never_panics() {
+    // Straight into the motion core: a lead shrinking to zero half way (0014), a zero
+    // or negative lead (0011), and numbers at the ends of the range.
+    let cases: [(f64, f64, u16); 4] = [(1.0, -0.05, 14), (0.0, 0.1, 11), (-2.0, 0.0, 11), (-1.0, 0.5, 11)];
+    for (lead, k, code) in cases {
+        let actions = [rapid(1, 40.0, 20.0), g34(2, 40.0, -20.0, lead, k, ThreadSync::Index, 500), end(3)];
+        let mut s = sim(SpindleModel::default());
+        let r = s.run_actions(&actions);
+        assert_eq!(r.alarms.iter().map(|a| (a.line, a.code())).collect::<Vec<_>>(), vec![(2, code)], "F{lead} K{k}");
+        assert_eq!(r.end, Pos::xz(20 * MM, 20 * MM), "F{lead} K{k}: no motion");
+    }
+    for (lead, delta) in [(i64::MAX, i64::MAX), (1, i64::MIN), (1, i64::MAX), (i64::MAX, 0), (1, 1)] {
+        let mut t = g34(2, 40.0, -20.0, 1.0, 0.0, ThreadSync::Index, 500);
+        if let Action::Thread(m) = &mut t.action {
+            (m.lead, m.lead_delta) = (lead, delta);
+        }
+        let r = sim(SpindleModel::default()).run_actions(&[rapid(1, 40.0, 20.0), t, end(3)]);
+        assert!(r.ended || !r.alarms.is_empty(), "F{lead} K{delta}");
+    }
+}
