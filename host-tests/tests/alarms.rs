@@ -154,6 +154,10 @@ const MOTION_CASES: &[(&str, u32, u16)] = &[
     ("M3 S2000\nG0 X40 Z5\nG32 W-40 F10\nM30\n", 3, 4501),
     // The ramps at 2000 rev/min need 4.4 mm each; the thread is 6 mm long.
     ("M3 S2000\nG0 X40 Z2\nG32 W-6 F2\nM30\n", 3, 4502),
+    // G34 F2 K0.2 over 60 mm ends at a lead of 5.3 mm: 5.8 m/min at 1000 rev/min + 10 %.
+    ("M3 S1000\nG0 X40 Z5\nG34 W-60 F2 K0.2\nM30\n", 3, 4501),
+    // K 0.5 mm at 1500 rev/min + 10 %: 378 mm/s² of the 500 Z may accelerate.
+    ("M3 S1500\nG0 X40 Z5\nG34 W-4 F0.5 K0.5\nM30\n", 3, 4510),
     // Rigid tap: lead F/S = 10 mm at 3000 rev/min.
     ("G98 G0 X0 Z5\nM29 S3000\nG84 Z-20 R-2 F30000\nG80\nM30\n", 3, 4505),
 ];

@@ -316,3 +316,187 @@ fn rigid_tapping_is_locked_to_the_spindle_both_ways() {
     let out: Vec<_> = rows.iter().filter(|t| t.line == 4).collect();
     assert_eq!(out.last().unwrap().z_mm, 5.0);
 }
+
+/// A G34 thread move: lead `lead_mm` at the start changing by `k_mm` per revolution.
+fn g34(line: u32, x: f64, z: f64, lead_mm: f64, k_mm: f64, sync: ThreadSync, rpm: u32) -> Canon {
+    let mut c = thread(line, x, z, lead_mm, 0, sync, rpm);
+    if let Action::Thread(t) = &mut c.action {
+        t.lead_delta = (k_mm * 1e6).round() as i64;
+    }
+    c
+}
+
+/// Runs `actions`; also returns the raw encoder count of each thread line's
+/// synchronised start (its ramp start + half the ramp), as the gearbox had it.
+fn run_recording_sync(s: &mut Sim, actions: &[Canon]) -> (Report, std::collections::BTreeMap<u32, i64>) {
+    let mut sync = std::collections::BTreeMap::new();
+    let r = s.run_actions_with(actions, |sim| {
+        if let Some(g) = sim.core.gear() {
+            sync.entry(sim.core.line()).or_insert(g.origin() + g.ramp() / 2);
+        }
+    });
+    (r, sync)
+}
+
+/// Largest distance in steps of the rows' Z from the ideal G34 thread from `z0_mm`:
+/// z(θ) = z0 − (F·θ + K·θ²/2), θ = revolutions since the synchronised count `sync`.
+fn g34_error(rows: &[TraceRow], z0_mm: f64, lead_mm: f64, k_mm: f64, sync: i64) -> f64 {
+    rows.iter()
+        .map(|r| {
+            let th = (r.count - sync) as f64 / CPR as f64;
+            let ideal = z0_mm - (lead_mm * th + k_mm * th * th / 2.0);
+            ((r.z_mm - ideal) * 1e6).abs() / Z_STEP
+        })
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn g34_passes_at_200_800_and_2000_rpm_follow_the_variable_lead_in_one_groove() {
+    // F 1 mm growing by K 0.03 mm per revolution from Z20 to Z-40: 38 revolutions,
+    // ending at a lead of 2.14 mm (4.7 m/min at 2000 rev/min + 10 %).
+    let (lead, k) = (1.0, 0.03);
+    let mut actions = Vec::new();
+    let speeds = [200, 800, 2_000, 800, 200];
+    for (i, &rpm) in speeds.iter().enumerate() {
+        let (l, x) = (10 * i as u32 + 1, 40.0 - 0.2 * i as f64);
+        actions.extend([
+            spindle(l, SpindleDir::Cw, rpm),
+            rapid(l + 1, x, 20.0),
+            g34(l + 2, x, -40.0, lead, k, ThreadSync::Index, rpm),
+            rapid(l + 3, x + 10.0, -40.0),
+            rapid(l + 4, x + 10.0, 20.0),
+        ]);
+    }
+    actions.push(end(99));
+    let mut s = sim(rippling(23));
+    let (r, sync) = run_recording_sync(&mut s, &actions);
+    assert_clean(&r);
+    let index = s.spindle_index();
+    let mut phases = Vec::new();
+    for (i, rpm) in speeds.iter().enumerate() {
+        let line = 10 * i as u32 + 3;
+        let c0 = sync[&line];
+        assert_eq!((c0 - index).rem_euclid(CPR), 0, "pass {i}: synchronised on the index (Q0)");
+        // Past the ramp-up (1.4 mm at 2000 rev/min) and before the deceleration (6.2 mm).
+        let rows: Vec<_> = s
+            .trace
+            .iter()
+            .filter(|t| t.line == line && t.axis == 2 && t.z_mm < 17.0 && t.z_mm > -32.0)
+            .copied()
+            .collect();
+        assert!(rows.len() > 15_000, "pass {i}: {} steps", rows.len());
+        let err = g34_error(&rows, 20.0, lead, k, c0);
+        assert!(err <= 1.0, "pass {i} at {rpm} rpm: {err} steps from z(θ)");
+        phases.push(phase(&rows, -10.0, index));
+        // The end point is exact.
+        let last = s.trace.iter().rfind(|t| t.line == line).unwrap();
+        assert_eq!(last.z_mm, -40.0, "pass {i}");
+    }
+    let (lo, hi) = (phases.iter().min().unwrap(), phases.iter().max().unwrap());
+    assert!(hi - lo <= 1, "start phase differs: {phases:?}");
+}
+
+#[test]
+fn a_g34_with_a_shrinking_lead_and_a_taper_ends_exactly() {
+    // F 3 mm shrinking by 0.05 mm per revolution over 50 mm of Z while X grows by
+    // 3 mm (radius): the lead ends at 2.0 mm; X follows Z.
+    let actions = vec![
+        spindle(1, SpindleDir::Cw, 600),
+        rapid(2, 30.0, 10.0),
+        g34(3, 36.0, -40.0, 3.0, -0.05, ThreadSync::Index, 600),
+        rapid(4, 50.0, -40.0),
+        end(5),
+    ];
+    let mut s = sim(rippling(4));
+    let (r, sync) = run_recording_sync(&mut s, &actions);
+    assert_clean(&r);
+    let rows: Vec<_> =
+        s.trace.iter().filter(|t| t.line == 3 && t.axis == 2 && t.z_mm < 8.0 && t.z_mm > -36.0).copied().collect();
+    let err = g34_error(&rows, 10.0, 3.0, -0.05, sync[&3]);
+    assert!(err <= 1.0, "{err} steps from z(θ)");
+    for t in s.trace.iter().filter(|t| t.line == 3) {
+        let ideal_x = 30.0 + (10.0 - t.z_mm) / 50.0 * 6.0;
+        assert!((t.x_mm - ideal_x).abs() <= 2.0 * 0.0025 + 1e-9, "x {} at z {}", t.x_mm, t.z_mm);
+    }
+    let last = s.trace.iter().rfind(|t| t.line == 3).unwrap();
+    let end_x = s.trace.iter().filter(|t| t.line == 3).map(|t| t.x_mm).fold(0.0, f64::max);
+    assert_eq!((last.z_mm, end_x), (-40.0, 36.0));
+}
+
+#[test]
+fn a_g34_too_fast_at_its_end_is_alarm_4501_before_it_moves() {
+    // 2 mm at the start (2.2 m/min at 1000 rev/min + 10 %) but 5.3 mm after 60 mm.
+    let actions = vec![
+        spindle(1, SpindleDir::Cw, 1_000),
+        rapid(2, 40.0, 20.0),
+        g34(3, 40.0, -40.0, 2.0, 0.2, ThreadSync::Index, 1_000),
+        rapid(4, 50.0, -40.0),
+        end(5),
+    ];
+    let mut s = sim(SpindleModel::default());
+    let r = s.run_actions(&actions);
+    assert_eq!(r.alarms.iter().map(|a| (a.line, a.code())).collect::<Vec<_>>(), vec![(3, 4501)]);
+    assert_eq!(r.end, Pos::xz(20 * MM, 20 * MM), "at the thread start, not a step further");
+    assert!(s.trace.iter().all(|t| t.line != 3));
+}
+
+#[test]
+fn blocks_continuing_a_g34_keep_the_lead_it_reached() {
+    // G34 F1.5 K0.1 over 20 mm (Z20 → Z0) reaches √(1.5² + 2·0.1·20) = 2.5 mm; a G34
+    // with the same K continues the same thread, then a G32 (F1.5 programmed) goes on
+    // at the lead reached, not at its own F.
+    let actions = vec![
+        spindle(1, SpindleDir::Cw, 500),
+        rapid(2, 30.0, 20.0),
+        g34(3, 30.0, 0.0, 1.5, 0.1, ThreadSync::Index, 500),
+        g34(4, 30.0, -15.0, 1.5, 0.1, ThreadSync::Continue, 500),
+        thread(5, 30.0, -35.0, 1.5, 0, ThreadSync::Continue, 500),
+        rapid(6, 50.0, -35.0),
+        end(7),
+    ];
+    let mut s = sim(rippling(8));
+    let (r, sync) = run_recording_sync(&mut s, &actions);
+    assert_clean(&r);
+    let c0 = sync[&3];
+    assert!(sync.values().all(|&c| c == c0), "one synchronisation for the sequence: {sync:?}");
+    // One parabola over both G34 blocks.
+    let rows: Vec<_> = s
+        .trace
+        .iter()
+        .filter(|t| (t.line == 3 || t.line == 4) && t.axis == 2 && t.z_mm < 18.0 && t.z_mm >= -15.0)
+        .copied()
+        .collect();
+    assert!(rows.iter().any(|t| t.line == 4));
+    let err = g34_error(&rows, 20.0, 1.5, 0.1, c0);
+    assert!(err <= 1.0, "{err} steps from z(θ) across the junction");
+    // z(θ) = 35 mm at θ: the lead reached is F + K·θ; the G32 goes on at it.
+    let th = (-1.5 + (1.5f64 * 1.5 + 2.0 * 0.1 * 35.0).sqrt()) / 0.1;
+    let lead_reached = 1.5 + 0.1 * th;
+    let g32: Vec<_> =
+        s.trace.iter().filter(|t| t.line == 5 && t.axis == 2 && t.z_mm < -16.0 && t.z_mm > -25.0).copied().collect();
+    let err = lead_error(&g32, lead_reached);
+    assert!(err <= 1.0 + lead_reached * 1e6 / CPR as f64 / Z_STEP, "{err} steps from a {lead_reached} mm lead");
+    assert_eq!(s.trace.iter().rfind(|t| t.line == 5 && t.axis == 2).unwrap().z_mm, -35.0);
+}
+
+#[test]
+fn leads_the_interpreter_would_refuse_are_alarms_in_the_motion_core_never_panics() {
+    // Straight into the motion core: a lead shrinking to zero half way (0014), a zero
+    // or negative lead (0011), and numbers at the ends of the range.
+    let cases: [(f64, f64, u16); 4] = [(1.0, -0.05, 14), (0.0, 0.1, 11), (-2.0, 0.0, 11), (-1.0, 0.5, 11)];
+    for (lead, k, code) in cases {
+        let actions = [rapid(1, 40.0, 20.0), g34(2, 40.0, -20.0, lead, k, ThreadSync::Index, 500), end(3)];
+        let mut s = sim(SpindleModel::default());
+        let r = s.run_actions(&actions);
+        assert_eq!(r.alarms.iter().map(|a| (a.line, a.code())).collect::<Vec<_>>(), vec![(2, code)], "F{lead} K{k}");
+        assert_eq!(r.end, Pos::xz(20 * MM, 20 * MM), "F{lead} K{k}: no motion");
+    }
+    for (lead, delta) in [(i64::MAX, i64::MAX), (1, i64::MIN), (1, i64::MAX), (i64::MAX, 0), (1, 1)] {
+        let mut t = g34(2, 40.0, -20.0, 1.0, 0.0, ThreadSync::Index, 500);
+        if let Action::Thread(m) = &mut t.action {
+            (m.lead, m.lead_delta) = (lead, delta);
+        }
+        let r = sim(SpindleModel::default()).run_actions(&[rapid(1, 40.0, 20.0), t, end(3)]);
+        assert!(r.ended || !r.alarms.is_empty(), "F{lead} K{delta}");
+    }
+}

@@ -252,6 +252,9 @@ pub enum AlarmKind {
     MotionConfigInvalid { what: &'static str },
     /// 4509: emergency stop.
     EmergencyStop,
+    /// 4510: a G34 lead change K × spindle speed² (the constant acceleration of a
+    /// variable-lead thread) takes more than half the long axis's acceleration.
+    ThreadLeadChangeTooFast { letter: Letter },
     /// 3576: reversing G41/G42 directly while compensating (2.18.4).
     NoseCompReversed,
     /// 3577: T code while nose compensation is active (2.18.4).
@@ -352,6 +355,7 @@ impl AlarmKind {
             SyncSequenceBroken => 4507,
             MotionConfigInvalid { .. } => 4508,
             EmergencyStop => 4509,
+            ThreadLeadChangeTooFast { .. } => 4510,
             NoseCompReversed => 3576,
             ToolChangeInNoseComp => 3577,
             NoseCompGouge => 3605,
@@ -489,6 +493,13 @@ impl fmt::Display for AlarmKind {
             }
             MotionConfigInvalid { what } => write!(f, "motion configuration invalid: {what}"),
             EmergencyStop => write!(f, "emergency stop"),
+            ThreadLeadChangeTooFast { letter } => {
+                write!(
+                    f,
+                    "G34 lead change K x spindle speed squared exceeds half the acceleration of axis {}",
+                    Ch(letter)
+                )
+            }
             NoseCompReversed => write!(f, "G41/G42 reversed while nose compensation is active"),
             ToolChangeInNoseComp => write!(f, "T code while nose compensation is active"),
             NoseCompGouge => write!(f, "nose compensation would gouge the part"),
@@ -808,8 +819,8 @@ pub const CATALOG: &[CatalogEntry] = &[
     CatalogEntry {
         code: 4501,
         title: "thread too fast",
-        when: "lead x spindle speed (with the ripple margin) above an axis's cutting feed or step-rate limit; \
-               raised before the pass moves (2.17)",
+        when: "lead x spindle speed (with the ripple margin) above an axis's cutting feed or step-rate limit, \
+               for G34 with the largest lead of the pass (at its end when K > 0); raised before the pass moves (2.17)",
     },
     CatalogEntry {
         code: 4502,
@@ -850,6 +861,12 @@ pub const CATALOG: &[CatalogEntry] = &[
         code: 4509,
         title: "emergency stop",
         when: "e-stop input: axes decelerate, spindle stops, queue dropped",
+    },
+    CatalogEntry {
+        code: 4510,
+        title: "G34 lead change too fast",
+        when: "G34 K x spindle speed squared (with the ripple margin), the constant acceleration of a \
+               variable-lead thread, above half the long axis's acceleration; raised before the pass moves (2.17.2)",
     },
     CatalogEntry { code: 5010, title: "end of record", when: "program text ends without M02, M30 or M99" },
 ];
@@ -959,6 +976,7 @@ mod tests {
             SyncSequenceBroken,
             MotionConfigInvalid { what: "x" },
             EmergencyStop,
+            ThreadLeadChangeTooFast { letter: b'Z' },
             NoseCompReversed,
             ToolChangeInNoseComp,
             NoseCompGouge,

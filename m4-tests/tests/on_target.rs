@@ -29,6 +29,7 @@ const TESTS: &[(&str, TestFn)] = &tests![
     macro_loop_through_the_interpreter,
     motion_core_runs_a_contour_to_its_exact_end,
     motion_thread_gearbox_counts_exactly,
+    motion_g34_gearbox_counts_exactly,
 ];
 
 #[entry]
@@ -268,4 +269,26 @@ fn motion_thread_gearbox_counts_exactly() -> Result<(), &'static str> {
         }
     }
     check(pos[2] == -6_400, "pass ends exactly on its end point")
+}
+
+/// The G34 gearbox on the target: F 2 mm growing by K 0.1 mm per revolution
+/// (`Gearing::new` reduces in 128 bits); after the ramp Z is exactly
+/// round((n1·c + n2·c²)/den) and the pass ends on its end point.
+fn motion_g34_gearbox_counts_exactly() -> Result<(), &'static str> {
+    use interp_core::sync::{Gear, Gearing, Leg};
+    let g = Gearing::new(2_000_000, 100_000, 1, 3_125, 4_096).map_err(|_| "gearing")?;
+    check(g == Gearing { n1: 163_840, n2: 1, den: 1_048_576 }, "F 2 K 0.1 on 3.125 um steps, 4096 counts")?;
+    let leg = Leg { start: [0; 4], end: [0, 0, -20_000, 0], long: 2 };
+    let mut gear = Gear::thread(leg, g, 1_000, 1, 0).map_err(|_| "gear")?;
+    let mut pos = [0i64; 4];
+    for m in 1..200_000i64 {
+        gear.on_count(m);
+        gear.positions(&mut pos);
+        let c = m - 500;
+        let ideal = (2 * (g.n1 * c + g.n2 * c * c) + g.den).div_euclid(2 * g.den);
+        if m > 1_000 && -pos[2] < 18_000 && -pos[2] != ideal {
+            return Err("Z off z(c) after the ramp");
+        }
+    }
+    check(pos[2] == -20_000, "pass ends exactly on its end point")
 }

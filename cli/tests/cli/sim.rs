@@ -166,3 +166,39 @@ fn a_motion_alarm_stops_the_run_with_its_line() {
         format!("{p}:3: alarm 4501: thread lead x spindle speed exceeds the speed limit of axis Z\n")
     );
 }
+
+#[test]
+fn a_g34_program_runs_end_to_end() {
+    // Fig. 2.54: lead 4 at the start growing by K 0.2 per revolution over 78 mm,
+    // two passes at 500 rev/min.
+    let p = scratch(
+        "sim-g34.nc",
+        "G00 X60 Z4 M03 S500\nG00 U-10\nG00 U-0.7\nG34 W-78 F4 K0.2\nG00 U10\nZ4\n\
+         G00 X50\nG00 U-1.0\nG34 W-78 F4 K0.2\nG00 U10\nZ4\nM30\n",
+    );
+    let csv = scratch("sim-g34.csv", "");
+    let o = lathe(&["sim", &p, "--trace", &csv]);
+    assert_eq!(status(&o), 0, "{}", stderr(&o));
+    let out = stdout(&o);
+    for expected in [
+        "moves       9 rapid, 0 linear, 0 arc, 2 thread\n",
+        "extents     X 49.000 .. 300.000 (diameter), Z -74.000 .. 250.000\n",
+        "alarms      none\n",
+        "end         M30\n",
+        // 4θ + 0.1θ² = 78: 14.35 revolutions, 1.72 s per pass.
+        "3.4 s cutting",
+    ] {
+        assert!(out.contains(expected), "{expected:?} in\n{out}");
+    }
+    // The spindle turns θ(s) = (√(F² + 2·K·s) − F)/K revolutions over the first s mm:
+    // from 10 mm (Z-6) to 70 mm (Z-66) into the first pass, 10.805 revolutions.
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let rows: Vec<Vec<f64>> =
+        text.lines().skip(1).map(|l| l.split(',').map(|v| v.parse().unwrap()).collect()).collect();
+    let pass: Vec<_> = rows.iter().filter(|r| r[1] == 49.3).collect();
+    let deg_at = |z: f64| pass.iter().find(|r| r[2] <= z).unwrap()[3];
+    let theta = |s: f64| ((16.0 + 0.4 * s).sqrt() - 4.0) / 0.2;
+    let turns = (deg_at(-66.0) - deg_at(-6.0)) / 360.0;
+    assert!((turns - (theta(70.0) - theta(10.0))).abs() < 0.002, "{turns} revolutions");
+    assert_eq!(pass.last().map(|r| r[2]), Some(-74.0));
+}

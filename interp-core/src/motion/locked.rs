@@ -7,8 +7,9 @@ use crate::alarm::AlarmKind;
 use crate::axis::{AXIS_COUNT, Axis};
 use crate::canon::{SpindleDir, ThreadSync};
 use crate::fixed::PATH_FRAC;
-use crate::planner::{Block, BlockKind, Item};
-use crate::sync::{Gear, Leg, Ratio};
+use crate::planner::block::thread_ramp;
+use crate::planner::{Block, BlockKind, Item, ThreadSpec};
+use crate::sync::{Gear, Gearing, Leg, Ratio, ramp_up_steps};
 
 impl<const N: usize> MotionCore<N> {
     /// The leg from the current position to `b`'s end.
@@ -23,12 +24,34 @@ impl<const N: usize> MotionCore<N> {
         Ratio::new(lead, steps, per_nm, self.p.cpr)
     }
 
+    /// The gearing of thread block `t` on its long axis.
+    fn gearing(&self, t: &ThreadSpec) -> Result<Gearing, AlarmKind> {
+        let (steps, per_nm) = self.p.scale[t.long.index()].ratio();
+        Gearing::new(t.lead, t.lead_delta, steps, per_nm, self.p.cpr)
+    }
+
+    /// The largest lead (nm/rev) at the end of `first` and the continuing thread
+    /// blocks queued after it: what the pass's deceleration is sized for.
+    fn sequence_lead(&self, first: &ThreadSpec) -> i64 {
+        self.planner
+            .iter()
+            .map_while(|item| match item {
+                Item::Motion(b) => match b.kind {
+                    BlockKind::Thread(t) if t.sync == ThreadSync::Continue => Some(t.lead.max(t.lead_end)),
+                    _ => None,
+                },
+                Item::Command { .. } => None,
+            })
+            .fold(first.lead_end.max(first.lead), i64::max)
+    }
+
     /// Length of a leg along each axis, nm.
     fn leg_nm(&self, leg: &Leg) -> [f32; AXIS_COUNT] {
         core::array::from_fn(|i| ((leg.end[i] - leg.start[i]) as f64 * self.p.scale[i].nm_per_step()) as f32)
     }
 
     /// A thread pass waits for the spindle and its synchronisation count (SyncWait).
+    #[inline(never)]
     pub(super) fn sync_wait(&mut self, since: u64) -> bool {
         let Some(b) = self.pending else {
             self.state = State::Idle;
@@ -55,8 +78,9 @@ impl<const N: usize> MotionCore<N> {
             return false;
         }
         match self.plan_pass(&b) {
-            Ok(Some(gear)) => {
+            Ok(Some((gear, ramp_lead))) => {
                 self.gear = Some(gear);
+                self.ramp_lead = ramp_lead;
                 self.locked = Some(b);
                 self.pending = None;
                 self.legs_taken = 0;
@@ -80,18 +104,22 @@ impl<const N: usize> MotionCore<N> {
     }
 
     /// Checks a thread pass at the measured speed and sets up its gearbox: the
-    /// ramp starts half a ramp before the first index + Q that leaves time to get
-    /// there. `None` while no index has been seen.
-    fn plan_pass(&self, b: &Block) -> Result<Option<Gear>, AlarmKind> {
+    /// largest lead of the block (at the end of a G34 whose lead grows) within every
+    /// axis's speed, a G34's K acceleration within half the long axis's, the ramps
+    /// (sized for the largest lead the queued sequence ends with) inside the thread.
+    /// The ramp starts half a ramp before the first index + Q that leaves time to get
+    /// there. `None` while no index has been seen. Returns the gearbox and the lead
+    /// its ramps were sized for.
+    fn plan_pass(&self, b: &Block) -> Result<Option<(Gear, i64)>, AlarmKind> {
         let BlockKind::Thread(t) = b.kind else { return Ok(None) };
         let leg = self.leg_to(self.interp.start_steps(), b, t.long);
-        let ratio = self.ratio(t.lead, t.long)?;
+        let gearing = self.gearing(&t)?;
         let cpt = self.spindle.counts_per_tick() * self.p.thread_margin;
         let cpr = self.p.cpr as f32;
         // Long-axis speed lead × rev/period, and what it means for every axis.
         let d = self.leg_nm(&leg);
         let long = d[leg.long].abs().max(1.0);
-        let v_long = t.lead as f32 * cpt / cpr;
+        let v_long = t.lead.max(t.lead_end) as f32 * cpt / cpr;
         for a in Axis::ALL {
             let lim = &self.p.limits[a.index()];
             if lim.present && v_long * d[a.index()].abs() / long > lim.feed {
@@ -101,13 +129,14 @@ impl<const N: usize> MotionCore<N> {
         // Ramp: R counts of constant acceleration, R = k·ω²/a along the long axis.
         let len: f32 = libm::sqrtf(d.iter().map(|x| x * x).sum());
         let a_long = b.plan.accel * long / len;
-        let k = t.lead as f32 / cpr;
-        let ramp = ((k * cpt * cpt / a_long) as i64 + 2) & !1;
-        let ramp_steps = ratio.steps_per_count() as f32 * ramp as f32 / 2.0;
         let continues = matches!(self.planner.front(),
             Some(Item::Motion(n)) if matches!(n.kind, BlockKind::Thread(nt) if nt.sync == ThreadSync::Continue));
-        let ramps = if continues { 1.0 } else { 2.0 };
-        if ramps * ramp_steps > (leg.end[leg.long] - leg.start[leg.long]).abs() as f32 {
+        let ramp_lead = if continues { self.sequence_lead(&t) } else { t.lead.max(t.lead_end) };
+        let ramp = thread_ramp(&t, ramp_lead, cpt, self.p.cpr, a_long)?;
+        let up = ramp_up_steps(&gearing, ramp);
+        let down = gearing.steps_per_count() * t.lead_end as f64 / t.lead as f64 * ramp as f64 / 2.0;
+        let need = if continues { up } else { up + down };
+        if need as f32 > (leg.end[leg.long] - leg.start[leg.long]).abs() as f32 {
             return Err(AlarmKind::ThreadRampTooLong);
         }
         let Some(index) = self.spindle.index else { return Ok(None) };
@@ -118,11 +147,12 @@ impl<const N: usize> MotionCore<N> {
         let earliest = sigma * self.spindle.count + (2.0 * cpt) as i64 + 4 + ramp / 2;
         let revs = if first >= earliest { 0 } else { (earliest - first + cpr - 1) / cpr };
         let sync = first + revs * cpr;
-        Gear::thread(leg, ratio, ramp, sigma, sigma * (sync - ramp / 2)).map(Some)
+        Gear::thread(leg, gearing, ramp, sigma, sigma * (sync - ramp / 2)).map(|g| Some((g, ramp_lead)))
     }
 
     /// A spindle-locked block runs (Locked): continuing legs are announced to the
     /// gearbox and taken from the queue as it reaches them; the end lets go.
+    #[inline(never)]
     pub(super) fn run_locked(&mut self) -> bool {
         let Some(g) = self.gear else {
             self.state = State::Idle;
@@ -156,7 +186,10 @@ impl<const N: usize> MotionCore<N> {
         true
     }
 
-    /// Tells the gearbox about a continuing thread block waiting in the queue.
+    /// Tells the gearbox about a continuing thread block waiting in the queue. It
+    /// starts at its own lead, or at the lead reached when the sequence has a G34 in
+    /// it. Alarm 4502 if its lead is larger than the one the running pass's ramps
+    /// were sized for (it arrived after the pass started).
     fn announce_next_leg(&mut self) {
         let Some(g) = self.gear else { return };
         if g.is_tap() || g.has_next() {
@@ -170,8 +203,11 @@ impl<const N: usize> MotionCore<N> {
         let leg = self.leg_to(&g.leg().end, b, t.long);
         let last = !matches!(self.planner.second(),
             Some(Item::Motion(n)) if matches!(n.kind, BlockKind::Thread(nt) if nt.sync == ThreadSync::Continue));
-        let result =
-            self.ratio(t.lead, t.long).and_then(|r| self.gear.as_mut().map_or(Ok(()), |g| g.set_next(leg, r, last)));
+        let result = if t.lead.max(t.lead_end) > self.ramp_lead {
+            Err(AlarmKind::ThreadRampTooLong)
+        } else {
+            self.gearing(&t).and_then(|r| self.gear.as_mut().map_or(Ok(()), |g| g.set_next(leg, r, last, t.keep_lead)))
+        };
         if let Err(kind) = result {
             self.raise(kind);
         }
@@ -228,12 +264,12 @@ impl<const N: usize> MotionCore<N> {
         }
         let mut pos = *self.interp.start_steps();
         g.positions(&mut pos);
-        let BlockKind::Thread(t) = b.kind else { return };
         let leg = g.leg();
         let d = self.leg_nm(leg);
         let len: f32 = libm::sqrtf(d.iter().map(|x| x * x).sum());
         let along = d[leg.long].abs().max(1.0) / len.max(1.0);
-        let v_long = t.lead as f32 * self.spindle.counts_per_tick() / self.p.cpr as f32;
+        let nm_per_count = g.steps_per_count() * self.p.scale[leg.long].nm_per_step();
+        let v_long = nm_per_count as f32 * self.spindle.counts_per_tick();
         let v = (v_long / along * (1u32 << PATH_FRAC) as f32) as u64;
         self.gear = None;
         self.locked = None;
@@ -244,6 +280,7 @@ impl<const N: usize> MotionCore<N> {
     /// While a tap runs, the spindle speed is cut so it can stop where the tap
     /// ends: `rpm ≤ 60·√(2·α·revolutions left)` with 80 % of the spindle's
     /// acceleration; at the end it is commanded to stop.
+    #[inline(never)]
     pub(super) fn tap_spindle_control(&mut self) {
         let (Some(g), Some(b)) = (self.gear, self.locked) else { return };
         let BlockKind::Tap(t) = b.kind else { return };
@@ -254,8 +291,7 @@ impl<const N: usize> MotionCore<N> {
             self.spindle.command(self.spindle.dir, 0, 0);
             return;
         }
-        let r = g.ratio();
-        let revs_left = g.remaining().max(0) as f32 * r.d as f32 / r.n as f32 / self.p.cpr as f32;
+        let revs_left = g.remaining().max(0) as f32 / g.steps_per_count() as f32 / self.p.cpr as f32;
         let accel = self.p.spindle_accel_rpm_s as f32 / 60.0 * 0.8;
         let stop_rpm = 60.0 * libm::sqrtf(2.0 * accel * revs_left);
         let rpm = b.spindle.rpm.unwrap_or(0);

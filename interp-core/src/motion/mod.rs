@@ -161,6 +161,8 @@ pub struct MotionCore<const N: usize> {
     locked: Option<Block>,
     /// Thread legs taken from the queue since the pass started.
     legs_taken: u32,
+    /// The largest lead (nm/rev) the running pass's ramps were sized for.
+    ramp_lead: i64,
     /// A block waiting for the spindle or the index.
     pending: Option<Block>,
     state: State,
@@ -201,6 +203,7 @@ impl<const N: usize> MotionCore<N> {
             gear: None,
             locked: None,
             legs_taken: 0,
+            ramp_lead: 0,
             pending: None,
             state: State::Idle,
             spindle_wait: false,
@@ -467,6 +470,7 @@ impl<const N: usize> MotionCore<N> {
     }
 
     /// Takes the next queue entry (Idle).
+    #[inline(never)]
     fn next_entry(&mut self) -> bool {
         if self.hold && self.gear.is_none() {
             self.state = State::Held;
@@ -647,6 +651,7 @@ impl<const N: usize> MotionCore<N> {
 
     /// Braking (Stopping): the interpolator runs with hold until the path speed is
     /// zero; a tap stays locked until the spindle has stopped. Then the queue goes.
+    #[inline(never)]
     fn run_stopping(&mut self, ticked: &mut bool) -> bool {
         if self.gear.is_some() {
             if self.spindle.measured_rpm().abs() > 0.5 {

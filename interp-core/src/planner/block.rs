@@ -7,6 +7,7 @@ use crate::alarm::AlarmKind;
 use crate::axis::{AXIS_COUNT, Axis, Pos};
 use crate::canon::{ArcMove, FeedMode, Move, SpindleDir, SpindleSpeed, TapMove, ThreadMove, ThreadSync};
 use crate::fixed::{PATH_FRAC, inverse62, sqrtf};
+use crate::sync::ramp_counts;
 
 /// Unit direction of a path, per axis.
 pub type Dir = [f32; AXIS_COUNT];
@@ -42,8 +43,17 @@ pub struct ArcGeom {
 /// A spindle-synchronised thread pass block.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct ThreadSpec {
-    /// Lead along the long axis, nm per revolution.
+    /// Lead along the long axis at the block's start, nm per revolution.
     pub lead: i64,
+    /// Lead change per revolution (G34 K), nm/rev per revolution; 0 for a constant lead.
+    pub lead_delta: i64,
+    /// Lead at the block's end, nm per revolution: `√(lead² + 2·K·length)` along the
+    /// long axis (the lead after θ revolutions is `lead + K·θ`); checks only.
+    pub lead_end: i64,
+    /// The block continues a sequence with a G34 in it: it starts at the lead the
+    /// thread has reached (`lead` is that lead, for checks; the gearbox keeps the exact
+    /// one), not at its own F.
+    pub keep_lead: bool,
     /// Start angle after the index, µdeg.
     pub start_udeg: u32,
     /// Wait for the index, or continue from the previous thread block.
@@ -347,50 +357,99 @@ fn check_speed(dir: &Dir, v: f32, p: &MotionParams) -> Result<(), Axis> {
     Ok(())
 }
 
-/// A thread pass from `start`. Checks at the commanded speed that lead × rpm fits the
-/// axes and that the acceleration ramp fits the thread (the pass re-checks at the
-/// measured speed before it moves). A continuing block keeps the long axis `keep` of
-/// the block before it when it moves along it (a pull-out keeps the lead on the
-/// thread's axis while the other axis pulls out); otherwise its own longer axis.
+/// A thread pass from `start`. Checks at the commanded speed that the largest lead
+/// (at the start, or at the end of a G34 whose lead grows) × rpm fits the axes, that
+/// a G34's constant acceleration K × speed² leaves room for the ramps and that the
+/// acceleration ramp fits the thread (the pass re-checks at the measured speed
+/// before it moves). A continuing block keeps the long axis `keep` of the block
+/// before it when it moves along it (a pull-out keeps the lead on the thread's axis
+/// while the other axis pulls out); otherwise its own longer axis. It continues from
+/// the lead `keep_lead` the sequence has reached when that has a G34 in it.
 pub fn thread(
     start: &Pos,
     t: &ThreadMove,
     keep: Option<Axis>,
+    keep_lead: Option<i64>,
     p: &MotionParams,
     line: u32,
 ) -> Result<Prepared, AlarmKind> {
-    if t.lead_delta != 0 {
-        return Err(AlarmKind::NotSupportedYet { what: "variable-lead threads (G34) in the motion core" });
-    }
-    if t.lead <= 0 {
+    let continues = t.sync == ThreadSync::Continue;
+    let keep_lead = keep_lead.filter(|_| continues);
+    let lead = keep_lead.unwrap_or(t.lead);
+    if lead <= 0 {
         return Err(AlarmKind::FeedZero);
     }
     let (len, dir) = straight(start, &t.to.machine);
     let long = match keep {
-        Some(a) if t.sync == ThreadSync::Continue && t.to.machine[a] != start[a] => a,
+        Some(a) if continues && t.to.machine[a] != start[a] => a,
         _ => long_axis(start, &t.to.machine),
     };
-    let spec = ThreadSpec { lead: t.lead, start_udeg: t.start_udeg, sync: t.sync, long };
+    let lead_end = lead_after(lead, t.lead_delta, t.to.machine[long].saturating_sub(start[long]))?;
+    let spec = ThreadSpec {
+        lead,
+        lead_delta: t.lead_delta,
+        lead_end,
+        keep_lead: keep_lead.is_some(),
+        start_udeg: t.start_udeg,
+        sync: t.sync,
+        long,
+    };
     let along = dir[long.index()].abs().max(1e-9);
     let rpm = t.spindle.rpm.unwrap_or(0) as f32 * p.thread_margin;
-    // Path speed whose long-axis part is lead × rpm.
-    let v = p.per_tick(rpm * t.lead as f32) / along;
+    // Path speed whose long-axis part is the largest lead × rpm.
+    let v = p.per_tick(rpm * lead.max(lead_end) as f32) / along;
     check_speed(&dir, v, p).map_err(|a| AlarmKind::ThreadTooFast { letter: a.letter() })?;
     let (_, accel) = axis_caps(&dir, p, false);
-    if t.sync == ThreadSync::Index && v * v / (2.0 * accel) > len {
+    let cpt = p.per_tick(rpm) * p.cpr as f32;
+    let ramp = thread_ramp(&spec, lead_end, cpt, p.cpr, accel * along)?;
+    if t.sync == ThreadSync::Index && ramp_up_nm(&spec, ramp, p.cpr) > len * along {
         return Err(AlarmKind::ThreadRampTooLong);
     }
     let block = Block {
         line,
         kind: BlockKind::Thread(spec),
         offset: t.to.machine - t.to.work,
-        feed: FeedSpec::PerRev(t.lead),
+        feed: FeedSpec::PerRev(lead),
         spindle: t.spindle,
         exact_stop: true,
         plan: plan(len_q8(len)?, accel, v.max(1.0), v),
         exec: Exec::default(),
     };
     Ok(Prepared { block, dir_in: dir, dir_out: dir, end: t.to.machine })
+}
+
+/// The lead after `length` nm along the long axis of a thread starting at `lead`
+/// with G34 K `delta`: z(θ) = F·θ + K·θ²/2 gives a lead F + K·θ = √(F² + 2·K·z).
+/// Alarm 0014 when it would reach zero before the end (the interpreter checks this
+/// too; the motion core never runs a lead that is not positive).
+pub fn lead_after(lead: i64, delta: i64, length: i64) -> Result<i64, AlarmKind> {
+    if delta == 0 {
+        return Ok(lead);
+    }
+    let sq = (lead as f64) * (lead as f64) + 2.0 * delta as f64 * length.unsigned_abs() as f64;
+    let end = libm::sqrt(sq.max(0.0));
+    if end.is_nan() || end < 1.0 || end >= i64::MAX as f64 {
+        return Err(AlarmKind::IllegalLead);
+    }
+    Ok(libm::round(end) as i64)
+}
+
+/// The ramp length in counts of a thread pass at `cpt` counts per period that
+/// decelerates from `lead_end` nm/rev at most, with `accel` nm per period² along
+/// the long axis ([`ramp_counts`]). Alarm 4510 when the G34 K × speed² alone takes
+/// more than half the acceleration.
+pub fn thread_ramp(t: &ThreadSpec, lead_end: i64, cpt: f32, cpr: u32, accel: f32) -> Result<i64, AlarmKind> {
+    let cpr = cpr as f32;
+    let k = t.lead_delta as f32 / (cpr * cpr);
+    ramp_counts(t.lead as f32 / cpr, lead_end.max(t.lead) as f32 / cpr, k, cpt, accel)
+        .ok_or(AlarmKind::ThreadLeadChangeTooFast { letter: t.long.letter() })
+}
+
+/// Length along the long axis (nm) of the ramp-up of `ramp` counts: `F·R/2` and, for
+/// a growing lead, `K·(R/2)²/2` (in counts).
+fn ramp_up_nm(t: &ThreadSpec, ramp: i64, cpr: u32) -> f32 {
+    let (r, cpr) = (ramp as f32, cpr as f32);
+    t.lead as f32 / cpr * r / 2.0 + (t.lead_delta.max(0) as f32 / (cpr * cpr)) * r * r / 8.0
 }
 
 /// A rigid-tapping move from `start`: lead × rpm and lead × the spindle's

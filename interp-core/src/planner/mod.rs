@@ -102,6 +102,9 @@ struct Tail {
     blend: bool,
     /// The long axis of a thread block (a continuing thread may follow).
     thread: Option<Axis>,
+    /// The lead a thread sequence with a G34 in it ends with, nm/rev: a block
+    /// continuing it starts there.
+    thread_lead: Option<i64>,
 }
 
 /// The look-ahead queue; `N` blocks and commands.
@@ -120,7 +123,7 @@ impl<const N: usize> Planner<N> {
     }
 
     fn rest(end: Pos) -> Tail {
-        Tail { end, dir: [0.0; AXIS_COUNT], nominal: 0.0, blend: false, thread: None }
+        Tail { end, dir: [0.0; AXIS_COUNT], nominal: 0.0, blend: false, thread: None, thread_lead: None }
     }
 
     /// Drops everything queued; the next block starts from `pos`.
@@ -157,6 +160,11 @@ impl<const N: usize> Planner<N> {
     /// The entry after the next.
     pub fn second(&self) -> Option<&Item> {
         self.queue.get(1)
+    }
+
+    /// The entries in queue order.
+    pub fn iter(&self) -> impl Iterator<Item = &Item> {
+        self.queue.iter()
     }
 
     /// Takes the next entry.
@@ -202,7 +210,7 @@ impl<const N: usize> Planner<N> {
                 if self.tail.thread.is_none() {
                     t.sync = ThreadSync::Index;
                 }
-                block::thread(&start, &t, self.tail.thread, p, c.line)
+                block::thread(&start, &t, self.tail.thread, self.tail.thread_lead, p, c.line)
             }
             Action::Tap(t) => block::tap(&start, t, p, c.line),
             other => return self.push_command(c.line, other),
@@ -224,6 +232,7 @@ impl<const N: usize> Planner<N> {
         self.queue.push_back(Item::Command { line, cmd }).map_err(|_| PushError::Full)?;
         self.tail.blend = false;
         self.tail.thread = None;
+        self.tail.thread_lead = None;
         Ok(())
     }
 
@@ -244,6 +253,10 @@ impl<const N: usize> Planner<N> {
             nominal: b.plan.nominal,
             blend: blends && !b.exact_stop,
             thread: if let BlockKind::Thread(t) = b.kind { Some(t.long) } else { None },
+            thread_lead: match b.kind {
+                BlockKind::Thread(t) if t.lead_delta != 0 || t.keep_lead => Some(t.lead_end),
+                _ => None,
+            },
         };
         // Never fails: fullness was checked before preparing.
         let _ = self.queue.push_back(Item::Motion(b));

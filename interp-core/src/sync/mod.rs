@@ -3,26 +3,39 @@
 //! the spindle encoder count — no speed estimate, no control loop — updated at
 //! every encoder count, so the axes lag the spindle by nothing but the interrupt.
 //!
-//! Long-axis steps per encoder count are the exact ratio `N/D` =
-//! `lead × steps / (travel per steps × counts per rev)`, reduced. The long axis
-//! follows the count through an integer accumulator (remainders carried exactly,
-//! rounded to the nearest step); the other axis of a taper follows the long axis
-//! by a rounding DDA.
+//! **The gearing.** After `c` counts from the synchronised start (index + Q) the
+//! long axis is at `(n1·c + n2·c²) / den` steps ([`Gearing`]). A constant lead (G32,
+//! G92, G76) has `n2 = 0` and `n1/den = N/D` = `lead × steps / (travel per steps ×
+//! counts per rev)`, reduced. A variable lead (G34, 2.17.2) is `z(θ) = F·θ + K·θ²/2`
+//! after θ revolutions: the lead `dz/dθ = F + K·θ` is F at the start and grows by K
+//! per revolution, so each revolution is K longer than the one before (the manual's
+//! `K = F2 − F1`). With `θ = c/CPR` and `s` steps per `p` nm this is
+//! `n1 = 2·F·CPR·s`, `n2 = K·s`, `den = 2·p·CPR²`, reduced. No count divides or
+//! multiplies out the square: the long axis follows the count through an integer
+//! accumulator that adds the first difference `n1 + n2·(2c − 1)` of the position,
+//! and that difference grows by the constant `2·n2` per count (a second-order DDA;
+//! remainders carried exactly, the position rounded to the nearest step). The other
+//! axis of a taper follows the long axis by a rounding DDA.
 //!
 //! **Thread ramp compensation.** A pass cannot start at full speed. With `m` the
 //! counts since the ramp started and `R` (even) the ramp length in counts, the
-//! long axis moves `N·m²/(2RD)` steps for `m ≤ R`, then `N·(m − R/2)/D`: the same
-//! line as a tool that started at full speed `R/2` counts after the ramp began.
-//! The ramp is started `R/2` counts before the synchronisation count (index + Q), so
-//! after it the tool is exactly where a tool started at full speed at the index + Q
-//! would be — at any speed, because nothing here depends on time. `R` only has to
-//! be long enough for the axis's acceleration at the measured speed. The end of the
-//! pass mirrors it: the deceleration starts `R/2` counts before the virtual end and
-//! ends exactly on the end point `R/2` counts after it.
+//! linear part moves `n1·m²/(2R·den)` steps for `m ≤ R`, then `n1·(m − R/2)/den`:
+//! the same line as a tool that started at full speed `R/2` counts after the ramp
+//! began. The quadratic part of a G34 starts at that count itself, where its speed is
+//! zero. The ramp is started `R/2` counts before the synchronisation count (index +
+//! Q), so after it the tool is exactly where a tool started at full speed at the
+//! index + Q would be — at any speed, because nothing here depends on time. `R` only
+//! has to be long enough for the axis's acceleration at the measured speed
+//! ([`ramp_counts`]). The end of the pass decelerates from the speed it has, `w` (in
+//! `1/den` step per count), evenly to rest over `R` counts (`w·R/2` steps, `w·R²` in
+//! accumulator units): it starts on the count where continuing would leave less than
+//! that, with the one increment that lands exactly where the deceleration must
+//! start, and ends exactly on the end point. For a constant lead that is `R/2` counts
+//! before and after the virtual end.
 //!
-//! Everything is integer in units of `1/(2RD)` step (threads) or `1/(2D)` step
-//! (taps): ramp increments `N·(2m+1)` change by `2N` per count, so a count costs a
-//! few additions and compares.
+//! Everything is integer in units of `1/(2R·den)` step (threads) or `1/(2·den)` step
+//! (taps): a locked count adds `2R·w` and `2·n2` to `w`, a ramp count a few products
+//! more; no division.
 
 use crate::alarm::AlarmKind;
 use crate::axis::AXIS_COUNT;
@@ -69,43 +82,111 @@ impl Ratio {
     }
 }
 
-/// A rounding DDA: `pos = round(p · num / den)` kept up to date as `p` steps ±1.
+/// Long-axis position as an exact function of the encoder count `c` since the
+/// synchronised start: `(n1·c + n2·c²) / den` steps (see the module documentation).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-struct Follower {
-    num2: i64,
-    den2: i64,
-    acc: i64,
-    pos: i64,
+pub struct Gearing {
+    /// Linear coefficient: the lead at the start.
+    pub n1: i64,
+    /// Quadratic coefficient: half the lead's change per count (0: constant lead).
+    pub n2: i64,
+    /// Denominator, positive.
+    pub den: i64,
 }
 
-impl Follower {
-    fn new(num: i64, den: i64) -> Self {
-        let den = den.max(1);
-        Follower { num2: 2 * num, den2: 2 * den, acc: den, pos: 0 }
+impl Gearing {
+    /// A lead of `lead` nm per revolution at the start changing by `delta` nm per
+    /// revolution per revolution (G34 K; 0 for a constant lead), on an axis of
+    /// `steps` steps per `per_nm` nm with `cpr` encoder counts per revolution.
+    /// Alarm 0011 for a lead that is not positive, 4017 for numbers out of range.
+    pub fn new(lead: i64, delta: i64, steps: i64, per_nm: i64, cpr: u32) -> Result<Self, AlarmKind> {
+        if lead <= 0 || steps <= 0 || per_nm <= 0 || cpr == 0 {
+            return Err(AlarmKind::FeedZero);
+        }
+        let mul = |a: i128, b: i128| a.checked_mul(b).ok_or(AlarmKind::Overflow);
+        let cpr = i128::from(cpr);
+        let n1 = mul(mul(2 * i128::from(lead), cpr)?, i128::from(steps))?;
+        let n2 = mul(i128::from(delta), i128::from(steps))?;
+        let den = mul(mul(2 * i128::from(per_nm), cpr)?, cpr)?;
+        let g = gcd_u128(gcd_u128(n1.unsigned_abs(), n2.unsigned_abs()), den.unsigned_abs()) as i128;
+        let fit = |v: i128| i64::try_from(v / g).map_err(|_| AlarmKind::Overflow);
+        Ok(Gearing { n1: fit(n1)?, n2: fit(n2)?, den: fit(den)? })
     }
 
-    fn up(&mut self) {
-        self.acc += self.num2;
-        while self.acc >= self.den2 {
-            self.acc -= self.den2;
-            self.pos += 1;
-        }
+    /// Speed at the synchronised start, steps per count (checks and reports only).
+    pub fn steps_per_count(&self) -> f64 {
+        self.n1 as f64 / self.den as f64
     }
 
-    fn down(&mut self) {
-        self.acc -= self.num2;
-        while self.acc < 0 {
-            self.acc += self.den2;
-            self.pos -= 1;
-        }
+    /// Change of the speed per count, steps per count² (checks and reports only).
+    pub fn accel(&self) -> f64 {
+        2.0 * self.n2 as f64 / self.den as f64
     }
+
+    /// The same gearing over a denominator `f` times larger.
+    fn scaled(self, f: i64) -> Option<Self> {
+        Some(Gearing { n1: self.n1.checked_mul(f)?, n2: self.n2.checked_mul(f)?, den: self.den.checked_mul(f)? })
+    }
+}
+
+impl From<Ratio> for Gearing {
+    fn from(r: Ratio) -> Self {
+        Gearing { n1: r.n, n2: 0, den: r.d }
+    }
+}
+
+fn gcd_u128(mut a: u128, mut b: u128) -> u128 {
+    while b != 0 {
+        (a, b) = (b, a % b);
+    }
+    a.max(1)
+}
+
+/// Length in counts (even, at least 2) of a thread pass's ramps, such that the
+/// ramp-up (the lead's own ramp plus a G34's constant K acceleration) and the
+/// deceleration from the lead it ends with stay within the axis's acceleration.
+/// `lead` is the lead at the synchronised start and `lead_end` the largest the pass
+/// decelerates from, nm per count; `k` the lead's change, nm per count²; `cpt`
+/// counts per period; `accel` nm per period² along the long axis. `None` when K alone
+/// takes more than half the acceleration (alarm 4510).
+pub fn ramp_counts(lead: f32, lead_end: f32, k: f32, cpt: f32, accel: f32) -> Option<i64> {
+    let kc = k * cpt * cpt;
+    if kc.is_nan() || kc.abs() > accel / 2.0 {
+        return None;
+    }
+    let up = if kc > 0.0 { lead * cpt * cpt / (accel - kc) } else { lead * cpt * cpt / accel };
+    let down = lead_end * cpt * cpt / accel;
+    Some((up.max(down) as i64 + 2) & !1)
+}
+
+/// Long-axis steps the ramp-up of `ramp` counts takes with gearing `g`: the linear
+/// part's `v·R/2` and the quadratic part's `a·(R/2)²/2` (when the lead grows).
+pub fn ramp_up_steps(g: &Gearing, ramp: i64) -> f64 {
+    let r = ramp as f64;
+    g.steps_per_count() * r / 2.0 + g.accel().max(0.0) * r * r / 8.0
 }
 
 /// Long-axis steps the deceleration of a ramp of `ramp` counts may need, doubled,
-/// plus a margin (computed once: no division per count).
-fn ramp_zone(ratio: Ratio, ramp: i64) -> i64 {
-    ratio.n.saturating_mul(ramp) / ratio.d.max(1) + 4
+/// plus a margin, at up to `v` steps per count (computed once: no division per count).
+fn ramp_zone(v: f64, ramp: i64) -> i64 {
+    (v * ramp as f64) as i64 + 4
+}
+
+/// Whether the accumulator of unit `unit` (`two_r·den`) stays far from overflow for
+/// speeds up to `v` steps per count and the ramp's products with gearing `g`.
+fn fits(unit: i64, two_r: i64, g: &Gearing, ramp: i64, v: f64) -> bool {
+    let (unit, two_r) = (unit as f64, two_r as f64);
+    let top =
+        unit * (v + 1.0) + two_r * (g.n1.unsigned_abs() as f64 + g.n2.unsigned_abs() as f64 * (ramp as f64 + 2.0));
+    (top + unit) * 8.0 < i64::MAX as f64
+}
+
+/// Speed at the end of a leg of `len` steps entered at `v0` steps per count with
+/// gearing `g`, or alarm 0014 if the lead would reach zero before the end.
+fn speed_after(v0: f64, g: &Gearing, len: i64) -> Result<f64, AlarmKind> {
+    let sq = v0 * v0 + 2.0 * g.accel() * len as f64;
+    if sq > 0.0 { Ok(libm::sqrt(sq)) } else { Err(AlarmKind::IllegalLead) }
 }
 
 /// Where a thread pass is.
@@ -140,22 +221,58 @@ enum Mode {
     Tap,
 }
 
+/// The announced leg that continues the running one without re-synchronising.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+struct Next {
+    leg: Leg,
+    /// Its gearing over the denominator common to both legs.
+    gearing: Gearing,
+    /// What the running leg's numbers are multiplied by to reach that denominator.
+    scale: i64,
+    /// It continues from the lead reached (after a G34) instead of its own lead.
+    keep_lead: bool,
+    /// Same long axis and the same motion going on (a pull-out at the same lead, a
+    /// G34 continued with the same K): the deceleration may span both legs.
+    same_motion: bool,
+    /// Its long-axis length, steps.
+    len: i64,
+    /// Its [`ramp_zone`] and the speed it ends with, steps per count.
+    ramp_zone: i64,
+    end_speed: f64,
+}
+
 /// The electronic gearbox.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Gear {
     mode: Mode,
     phase: Phase,
-    ratio: Ratio,
-    /// Ramp length in counts (even; 0 for taps).
+    /// The running leg's gearing.
+    gearing: Gearing,
+    /// Ramp length in counts (even; 1 for taps) and twice it.
     ramp: i64,
-    /// Accumulator unit: one long-axis step is `unit` (2RD, or 2D for taps).
+    two_r: i64,
+    /// Accumulator unit: one long-axis step is `unit` = `2R·den` (`2·den` for taps).
     unit: i64,
     /// Long-axis steps from the end within which the deceleration may start (twice
-    /// the ramp's N·R/2D, plus a margin): below it the exact test runs.
+    /// the largest deceleration, plus a margin): below it the exact test runs.
     ramp_zone: i64,
     /// Remainder of the long axis's exact position, `[0, unit)` (rounded: starts at half).
     acc: i64,
+    /// Ramping up: the next count's increment and its change per count. Locked: the
+    /// next count's increment over `2R` (the first difference of `n1·c + n2·c²`) and
+    /// its change per count, `2·n2`. Decelerating: the `w` the deceleration started
+    /// from.
+    w: i64,
+    dw: i64,
+    /// Within the ramp zone of the last leg: how far (units) the deceleration start
+    /// is, `unit·left − now − w·R²`, kept up to date by one subtraction of
+    /// `2R·w + dw·R²` a count (the second number); `None` until the exact test first
+    /// runs (or when the numbers do not fit: then the exact test runs every count).
+    to_start: Option<(i64, i64)>,
+    /// Speed at the end of the running leg, steps per count (checks only).
+    end_speed: f64,
     /// Long-axis steps from the leg's start, and the leg's length and direction.
     p: i64,
     delta: i64,
@@ -165,7 +282,7 @@ pub struct Gear {
     legs_done: u32,
     /// The leg that follows without re-synchronising, if known, and whether the
     /// sequence ends with it.
-    next: Option<(Leg, Ratio)>,
+    next: Option<Next>,
     next_last: bool,
     /// The other moving axis (a taper), its direction and DDA.
     follower: Option<(usize, i64, Follower)>,
@@ -180,22 +297,65 @@ pub struct Gear {
     way_out: bool,
 }
 
+/// A rounding DDA: `pos = round(p · num / den)` kept up to date as `p` steps ±1.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+struct Follower {
+    num2: i64,
+    den2: i64,
+    acc: i64,
+    pos: i64,
+}
+
+impl Follower {
+    fn new(num: i64, den: i64) -> Self {
+        let den = den.max(1);
+        Follower { num2: 2 * num, den2: 2 * den, acc: den, pos: 0 }
+    }
+
+    fn up(&mut self) {
+        self.acc += self.num2;
+        while self.acc >= self.den2 {
+            self.acc -= self.den2;
+            self.pos += 1;
+        }
+    }
+
+    fn down(&mut self) {
+        self.acc -= self.num2;
+        while self.acc < 0 {
+            self.acc += self.den2;
+            self.pos -= 1;
+        }
+    }
+}
+
 impl Gear {
-    fn new(mode: Mode, leg: Leg, ratio: Ratio, ramp: i64, sigma: i64, origin: i64) -> Result<Self, AlarmKind> {
-        let unit = 2i64.checked_mul(ramp.max(1)).and_then(|v| v.checked_mul(ratio.d)).ok_or(AlarmKind::Overflow)?;
-        // The largest increment (2RN) and a carry must stay far from overflow.
-        let top = 2i64.checked_mul(ramp.max(1)).and_then(|v| v.checked_mul(ratio.n)).ok_or(AlarmKind::Overflow)?;
-        if top.checked_add(unit).and_then(|v| v.checked_mul(4)).is_none() {
+    fn new(mode: Mode, leg: Leg, gearing: Gearing, ramp: i64, sigma: i64, origin: i64) -> Result<Self, AlarmKind> {
+        if gearing.n1 <= 0 || gearing.den <= 0 {
+            return Err(AlarmKind::FeedZero);
+        }
+        let two_r = 2i64.checked_mul(ramp.max(1)).ok_or(AlarmKind::Overflow)?;
+        let unit = two_r.checked_mul(gearing.den).ok_or(AlarmKind::Overflow)?;
+        let v0 = gearing.steps_per_count();
+        let end_speed = speed_after(v0, &gearing, (leg.end[leg.long] - leg.start[leg.long]).saturating_abs())?;
+        let v_max = v0.max(end_speed);
+        if !fits(unit, two_r, &gearing, ramp, v_max) {
             return Err(AlarmKind::Overflow);
         }
         let mut g = Gear {
             mode,
             phase: if mode == Mode::Thread { Phase::Waiting } else { Phase::Locked },
-            ratio,
+            gearing,
             ramp,
+            two_r,
             unit,
-            ramp_zone: ramp_zone(ratio, ramp),
+            ramp_zone: ramp_zone(v_max, ramp),
             acc: unit / 2,
+            w: gearing.n1,
+            dw: 2 * gearing.n1,
+            to_start: None,
+            end_speed,
             p: 0,
             delta: 0,
             long_sign: 1,
@@ -217,18 +377,29 @@ impl Gear {
     /// A thread pass along `leg` whose acceleration ramp of `ramp` counts (made even,
     /// at least 2) starts at raw encoder count `ramp_start`; forward rotation makes
     /// the count go in direction `sigma`. The tool is where a tool started at full
-    /// speed at `ramp_start + sigma·ramp/2` would be once the ramp is over.
-    pub fn thread(leg: Leg, ratio: Ratio, ramp: i64, sigma: i64, ramp_start: i64) -> Result<Self, AlarmKind> {
-        let ramp = (ramp.max(2) + 1) & !1;
+    /// speed at `ramp_start + sigma·ramp/2` would be once the ramp is over. Alarm 0014
+    /// if a variable lead would reach zero before the end of the leg.
+    pub fn thread(
+        leg: Leg,
+        gearing: impl Into<Gearing>,
+        ramp: i64,
+        sigma: i64,
+        ramp_start: i64,
+    ) -> Result<Self, AlarmKind> {
+        let ramp = (ramp.clamp(2, i64::MAX / 4) + 1) & !1;
         let sigma = if sigma < 0 { -1 } else { 1 };
-        Gear::new(Mode::Thread, leg, ratio, ramp, sigma, sigma * ramp_start)
+        Gear::new(Mode::Thread, leg, gearing.into(), ramp, sigma, sigma * ramp_start)
     }
 
     /// Rigid tapping along `leg` (the way in), locked from raw count `count` on;
     /// forward rotation (counts in direction `sigma`) moves towards the bottom.
-    pub fn tap(leg: Leg, ratio: Ratio, sigma: i64, count: i64) -> Result<Self, AlarmKind> {
+    pub fn tap(leg: Leg, ratio: impl Into<Gearing>, sigma: i64, count: i64) -> Result<Self, AlarmKind> {
         let sigma = if sigma < 0 { -1 } else { 1 };
-        Gear::new(Mode::Tap, leg, ratio, 1, sigma, sigma * count)
+        let gearing = ratio.into();
+        if gearing.n2 != 0 {
+            return Err(AlarmKind::IllegalLead);
+        }
+        Gear::new(Mode::Tap, leg, gearing, 1, sigma, sigma * count)
     }
 
     fn set_leg(&mut self, leg: Leg) {
@@ -244,34 +415,64 @@ impl Gear {
     }
 
     /// Announces the thread leg that continues this one without re-synchronising
-    /// (2.17.1 note 2); `last` if the sequence ends with it. Without one, the pass
-    /// decelerates onto the current leg's end. A last leg on the same axis at the
-    /// same lead (a pull-out) shares the deceleration with the leg before it, so a
-    /// short pull-out still ends exactly on its end point. Alarm 4507 when the pass is
-    /// already decelerating or done, 4502 when what is left cannot hold the ramps.
-    pub fn set_next(&mut self, leg: Leg, ratio: Ratio, last: bool) -> Result<(), AlarmKind> {
+    /// (2.17.1 note 2); `last` if the sequence ends with it. It starts at its own
+    /// lead, or with `keep_lead` at the lead the running leg has reached (the blocks
+    /// after a G34), and its gearing's K applies from there. Without one, the pass
+    /// decelerates onto the current leg's end. A last leg on the same axis
+    /// continuing the same motion (a pull-out at the same lead) shares the
+    /// deceleration with the leg before it, so a short pull-out still ends exactly
+    /// on its end point. Alarm 4507 when the pass is already decelerating or done,
+    /// 4502 when what is left cannot hold the ramps, 0014 when the lead would reach
+    /// zero.
+    pub fn set_next(
+        &mut self,
+        leg: Leg,
+        gearing: impl Into<Gearing>,
+        last: bool,
+        keep_lead: bool,
+    ) -> Result<(), AlarmKind> {
+        let gearing = gearing.into();
         if self.mode != Mode::Thread
             || matches!(self.phase, Phase::RampDown { .. } | Phase::Done)
             || leg.start != self.leg.end
             || leg.end[leg.long] == leg.start[leg.long]
+            || gearing.den <= 0
+            || (gearing.n1 <= 0 && !keep_lead)
         {
             return Err(AlarmKind::SyncSequenceBroken);
         }
-        let unit = 2i64.checked_mul(self.ramp).and_then(|v| v.checked_mul(ratio.d)).ok_or(AlarmKind::Overflow)?;
-        if unit > i64::MAX / 8 {
+        // Both legs over one denominator: the running leg's state is multiplied by
+        // `scale` when the next takes over (exact, no rounding).
+        let g = gcd(self.gearing.den, gearing.den);
+        let scale = gearing.den / g;
+        let next = gearing.scaled(self.gearing.den / g).ok_or(AlarmKind::Overflow)?;
+        let unit = self.two_r.checked_mul(next.den).ok_or(AlarmKind::Overflow)?;
+        let len = (leg.end[leg.long] - leg.start[leg.long]).saturating_abs();
+        let v0 = if keep_lead { self.end_speed } else { gearing.steps_per_count() };
+        let end_speed = speed_after(v0, &gearing, len)?;
+        let v_max = v0.max(end_speed).max(self.end_speed);
+        let running = self.gearing.scaled(scale).ok_or(AlarmKind::Overflow)?;
+        if !fits(unit, self.two_r, &next, self.ramp, v_max) || !fits(unit, self.two_r, &running, self.ramp, v_max) {
             return Err(AlarmKind::Overflow);
         }
-        let len = (leg.end[leg.long] - leg.start[leg.long]).abs();
-        let shares = ratio == self.ratio && leg.long == self.leg.long;
-        let ramp_steps = ratio.n.saturating_mul(self.ramp) / ratio.d.max(1) / 2 + 1;
+        let same_motion = leg.long == self.leg.long
+            && scale == 1
+            && if keep_lead { next.n2 == self.gearing.n2 } else { next == self.gearing && next.n2 == 0 };
+        let down = (end_speed * self.ramp as f64 / 2.0) as i64 + 1;
         let starting = matches!(self.phase, Phase::Waiting | Phase::RampUp { .. });
-        let room = if shares { len + self.delta - self.p } else { len };
-        let need = if shares && starting { 2 * ramp_steps } else { ramp_steps };
+        let room = if same_motion { len + self.delta - self.p } else { len };
+        let need =
+            if same_motion && starting { down + ramp_up_steps(&self.gearing, self.ramp) as i64 + 1 } else { down };
         if last && room < need {
             return Err(AlarmKind::ThreadRampTooLong);
         }
-        self.next = Some((leg, ratio));
+        let zone = ramp_zone(v_max, self.ramp);
+        if same_motion && last {
+            self.ramp_zone = self.ramp_zone.max(zone);
+        }
+        self.next = Some(Next { leg, gearing: next, scale, keep_lead, same_motion, len, ramp_zone: zone, end_speed });
         self.next_last = last;
+        self.to_start = None;
         Ok(())
     }
 
@@ -300,9 +501,23 @@ impl Gear {
         self.ramp
     }
 
-    /// The ratio in force.
-    pub fn ratio(&self) -> Ratio {
-        self.ratio
+    /// The running leg's gearing.
+    pub fn gearing(&self) -> Gearing {
+        self.gearing
+    }
+
+    /// The long axis's speed now, steps per count: the lead it has reached in a
+    /// thread pass (what a stop brakes from), the tap's ratio.
+    pub fn steps_per_count(&self) -> f64 {
+        let unit = self.unit as f64;
+        let g = &self.gearing;
+        match (self.mode, self.phase) {
+            (Mode::Tap, _) => g.steps_per_count(),
+            (_, Phase::Waiting | Phase::Done) => 0.0,
+            (_, Phase::RampUp { .. }) => self.w as f64 / unit,
+            (_, Phase::Locked) => self.w as f64 / g.den as f64,
+            (_, Phase::RampDown { u }) => self.w as f64 * (2 * u) as f64 / unit,
+        }
     }
 
     /// Legs finished so far in this sequence.
@@ -382,7 +597,7 @@ impl Gear {
                 while self.m != fwd {
                     let dir = (fwd - self.m).signum();
                     self.m += dir;
-                    moved |= self.add(2 * self.ratio.n * dir);
+                    moved |= self.add(2 * self.gearing.n1 * dir);
                 }
             }
             Mode::Thread => {
@@ -401,27 +616,27 @@ impl Gear {
 
     /// One forward count of a thread pass.
     fn thread_count(&mut self) -> bool {
-        let (n, r) = (self.ratio.n, self.ramp);
         match self.phase {
-            Phase::Waiting | Phase::RampUp { .. } => {
-                let k = if let Phase::RampUp { k } = self.phase { k } else { 0 };
-                self.phase = if k + 1 >= r { Phase::Locked } else { Phase::RampUp { k: k + 1 } };
-                self.add(n * (2 * k + 1))
-            }
-            Phase::Locked => match self.ramp_down_jump() {
-                Some(jump) => {
-                    self.phase = Phase::RampDown { u: r };
-                    self.add(jump)
+            Phase::Waiting | Phase::RampUp { .. } => self.ramp_up_count(),
+            Phase::Locked => {
+                let inc = self.two_r * self.w;
+                match self.ramp_down_jump(inc) {
+                    Some(jump) => {
+                        self.phase = Phase::RampDown { u: self.ramp };
+                        self.add(jump)
+                    }
+                    None => {
+                        self.w += self.dw;
+                        self.add(inc)
+                    }
                 }
-                None => self.add(2 * r * n),
-            },
+            }
             Phase::RampDown { u } => {
-                let moved = self.add(n * (2 * u - 1));
+                let moved = self.add(self.w * (2 * u - 1));
                 if u <= 1 {
-                    if let Some((leg, _)) = self.next.take() {
+                    if self.next.is_some() {
                         // Rounding left the last leg's first step undone: finish on it.
-                        self.legs_done += 1;
-                        self.set_leg(leg);
+                        self.take_next();
                     }
                     self.phase = Phase::Done;
                     self.p = self.delta;
@@ -435,24 +650,105 @@ impl Gear {
         }
     }
 
-    /// On the last leg, the increment that lands exactly where the deceleration
-    /// starts (`unit·Δ − N·R²` in accumulator terms) if this count gets there.
-    fn ramp_down_jump(&self) -> Option<i64> {
-        let (n, r) = (self.ratio.n, self.ramp);
+    /// One count of the ramp-up, `m = k + 1` since the ramp started and `c = m − R/2`
+    /// since the synchronised start: the linear part's `n1·(2m − 1)` and, from the
+    /// synchronised start on, the quadratic part's `2R·n2·(2c − 1)`, both kept by
+    /// additions (`w` the increment, `dw` its change: `2·n1`, plus `4R·n2` from the
+    /// synchronised start on). After the last one the gearbox is locked with the next
+    /// count's `w = n1 + n2·(2c + 1)`.
+    fn ramp_up_count(&mut self) -> bool {
+        let k = if let Phase::RampUp { k } = self.phase { k } else { 0 };
+        let inc = self.w;
+        let m = k + 1;
+        if m >= self.ramp {
+            self.phase = Phase::Locked;
+            self.lock();
+        } else {
+            self.phase = Phase::RampUp { k: m };
+            self.w += self.dw;
+            if m == self.ramp / 2 {
+                self.start_quadratic();
+            }
+        }
+        self.add(inc)
+    }
+
+    /// The synchronised count is reached: the quadratic part starts (its first
+    /// increment `2R·n2`, then `4R·n2` more each count).
+    #[inline(never)]
+    fn start_quadratic(&mut self) {
+        let q = self.two_r * self.gearing.n2;
+        self.w += q;
+        self.dw += 2 * q;
+    }
+
+    /// The ramp is over: the next count is `c = R/2 + 1` since the synchronised start.
+    #[inline(never)]
+    fn lock(&mut self) {
+        let g = self.gearing;
+        self.w = g.n1 + g.n2 * (self.ramp + 1);
+        self.dw = 2 * g.n2;
+    }
+
+    /// Near the end of the last leg: the increment that lands exactly where the
+    /// deceleration from this count's speed must start (`unit·left − now − w·R²` in
+    /// accumulator units), on the count where going on at `inc` would leave less
+    /// than the next count's speed needs to stop: `rem − inc ≤ (w + dw)·R²`.
+    fn ramp_down_jump(&mut self, inc: i64) -> Option<i64> {
         let left = match self.next {
             None => self.delta - self.p,
-            Some((leg, ratio)) if self.next_last && ratio == self.ratio && leg.long == self.leg.long => {
-                self.delta - self.p + (leg.end[leg.long] - leg.start[leg.long]).abs()
-            }
+            Some(n) if self.next_last && n.same_motion => self.delta - self.p + n.len,
             Some(_) => return None,
         };
         // Far from the end the products below could overflow; the ramp is short.
         if left > self.ramp_zone {
             return None;
         }
-        let now = self.acc - self.unit / 2; // position within the step, in units
-        let to_start = i128::from(self.unit) * i128::from(left) - i128::from(n) * i128::from(r * r) - i128::from(now);
-        (to_start <= i128::from(2 * r * n)).then_some(to_start.max(0) as i64)
+        self.near_end(left, inc)
+    }
+
+    /// [`Gear::ramp_down_jump`] in the ramp zone, `left` steps from the end. The
+    /// distance to the deceleration start is computed once, then follows by one
+    /// subtraction a count (`rem` drops by `inc`, `w·R²` grows by `dw·R²`). Out of
+    /// line: the locked count's fast path stays small.
+    #[inline(never)]
+    fn near_end(&mut self, left: i64, inc: i64) -> Option<i64> {
+        if self.to_start.is_none() {
+            self.to_start = self.exact_to_start(left);
+        }
+        let Some((x, step)) = self.to_start else { return self.exact_jump(left, inc) };
+        match x.checked_sub(inc).and_then(|v| v.checked_sub(step)) {
+            Some(after) if after > 0 => {
+                self.to_start = Some((after, step));
+                None
+            }
+            Some(_) => {
+                self.to_start = None;
+                Some(x.max(0))
+            }
+            None => {
+                self.to_start = None;
+                self.exact_jump(left, inc)
+            }
+        }
+    }
+
+    /// `unit·left − now − w·R²` and `dw·R²`, if they fit the fast test.
+    #[inline(never)]
+    fn exact_to_start(&self, left: i64) -> Option<(i64, i64)> {
+        let r2 = i128::from(self.ramp) * i128::from(self.ramp);
+        let now = i128::from(self.acc - self.unit / 2);
+        let x = i128::from(self.unit) * i128::from(left) - now - i128::from(self.w) * r2;
+        Some((i64::try_from(x).ok()?, i64::try_from(i128::from(self.dw) * r2).ok()?))
+    }
+
+    /// The deceleration test in 128 bits, from scratch.
+    #[inline(never)]
+    fn exact_jump(&self, left: i64, inc: i64) -> Option<i64> {
+        let r2 = i128::from(self.ramp) * i128::from(self.ramp);
+        let w = i128::from(self.w);
+        let rem = i128::from(self.unit) * i128::from(left) - i128::from(self.acc - self.unit / 2);
+        (rem - i128::from(inc) <= (w + i128::from(self.dw)) * r2).then(|| (rem - w * r2).max(0) as i64)
     }
 
     /// Adds `inc` units to the long axis's exact position; moves whole steps.
@@ -479,19 +775,34 @@ impl Gear {
         if let Some((_, _, f)) = &mut self.follower {
             if dir > 0 { f.up() } else { f.down() }
         }
-        if self.mode == Mode::Thread
-            && self.p >= self.delta
-            && let Some((leg, ratio)) = self.next.take()
-        {
-            self.legs_done += 1;
-            if ratio != self.ratio {
-                self.unit = 2 * self.ramp * ratio.d;
-                self.acc = self.unit / 2;
-                self.ratio = ratio;
-                self.ramp_zone = ramp_zone(ratio, self.ramp);
-            }
-            self.set_leg(leg);
+        if self.mode == Mode::Thread && self.p >= self.delta && self.next.is_some() {
+            self.take_next();
         }
+    }
+
+    /// The announced leg takes over: the state goes to the common denominator
+    /// (multiplications only) and, while locked, the speed goes on from the lead
+    /// reached (`keep_lead`: the running leg's next increment less its own half
+    /// change plus the new one's) or starts at the new leg's own lead.
+    fn take_next(&mut self) {
+        let Some(n) = self.next.take() else { return };
+        self.legs_done += 1;
+        self.to_start = None;
+        let s = n.scale;
+        if s != 1 {
+            self.acc *= s;
+            self.unit *= s;
+            self.w *= s;
+        }
+        if self.phase == Phase::Locked {
+            let g = &n.gearing;
+            self.w = if n.keep_lead { self.w - self.gearing.n2 * s + g.n2 } else { g.n1 + g.n2 };
+            self.dw = 2 * g.n2;
+        }
+        self.gearing = n.gearing;
+        self.ramp_zone = n.ramp_zone;
+        self.end_speed = n.end_speed;
+        self.set_leg(n.leg);
     }
 }
 
@@ -583,7 +894,7 @@ mod tests {
         let first = leg(3_200, 0);
         let second = Leg { start: first.end, end: [800, 0, -6_400, 0], long: 2 };
         let mut g = Gear::thread(first, ratio, 200, 1, 0).unwrap();
-        g.set_next(second, ratio, true).unwrap();
+        g.set_next(second, ratio, true, false).unwrap();
         let trace = run(&mut g, 0, 60_000);
         assert_eq!(g.legs_done(), 1);
         // The lead is continuous across the junction: Z keeps N/D per count.
@@ -601,11 +912,11 @@ mod tests {
         let first = leg(400, 0);
         let pull = Leg { start: first.end, end: [80, 0, -500, 0], long: 2 };
         let mut g = Gear::thread(first, ratio, 4_000, 1, 0).unwrap();
-        assert_eq!(g.set_next(pull, ratio, true), Err(AlarmKind::ThreadRampTooLong), "ramps need 626 steps");
+        assert_eq!(g.set_next(pull, ratio, true, false), Err(AlarmKind::ThreadRampTooLong), "ramps need 626 steps");
         let first = leg(6_400, 0);
         let pull = Leg { start: first.end, end: [80, 0, -6_500, 0], long: 2 };
         let mut g = Gear::thread(first, ratio, 4_000, 1, 0).unwrap();
-        g.set_next(pull, ratio, true).unwrap();
+        g.set_next(pull, ratio, true, false).unwrap();
         let trace = run(&mut g, 0, 80_000);
         assert_eq!(g.phase(), Phase::Done);
         assert_eq!(trace.last().map(|t| (t.1, t.2)), Some((-6_500, 80)));
@@ -613,6 +924,110 @@ mod tests {
         for w in trace.windows(2) {
             assert!((0..=1).contains(&(w[0].1 - w[1].1)), "{:?}", w);
         }
+    }
+
+    #[test]
+    fn a_g34_gearing_is_f_theta_plus_k_theta_squared_over_two() {
+        // F 4 mm, K 0.2 mm/rev per rev on 3.125 µm steps, 4096 counts:
+        // steps(c) = (163840·c + c²) / 524288.
+        let g = Gearing::new(4_000_000, 200_000, 1, 3_125, CPR).unwrap();
+        assert_eq!(g, Gearing { n1: 163_840, n2: 1, den: 524_288 });
+        // One revolution: z(1) = F + K/2 = 4.1 mm = 1312 steps; ten: 40 + 10 mm.
+        let z = |c: i64| (g.n1 * c + g.n2 * c * c) as f64 / g.den as f64;
+        assert_eq!(z(4_096), 1_312.0);
+        assert_eq!(z(40_960), 16_000.0);
+        // A constant lead is the reduced ratio.
+        let c = Gearing::new(2_000_000, 0, 1, 3_125, CPR).unwrap();
+        assert_eq!(c, Gearing::from(Ratio::new(2_000_000, 1, 3_125, CPR).unwrap()));
+        assert_eq!(Gearing::new(0, 100, 1, 3_125, CPR), Err(AlarmKind::FeedZero));
+    }
+
+    /// Exact position `round((n1·c + n2·c²)/den)` (halves up) of gearing `g` at count `c`.
+    fn ideal(g: &Gearing, c: i64) -> i64 {
+        let num = 2 * (i128::from(g.n1) * i128::from(c) + i128::from(g.n2) * i128::from(c) * i128::from(c));
+        (num + i128::from(g.den)).div_euclid(2 * i128::from(g.den)) as i64
+    }
+
+    #[test]
+    fn a_g34_pass_is_exact_after_the_ramp_at_any_ramp_length_and_ends_on_its_end_point() {
+        // F 2 mm, K ±0.1 mm/rev per rev, 20000 steps (62.5 mm) of Z.
+        for k in [100_000, -20_000] {
+            let g = Gearing::new(2_000_000, k, 1, 3_125, CPR).unwrap();
+            let sync = 10_000;
+            let mut reference = None;
+            for ramp in [100, 2_000, 8_000] {
+                let start = sync - ramp / 2;
+                let mut gear = Gear::thread(leg(20_000, 3_000), g, ramp, 1, start).unwrap();
+                let trace = run(&mut gear, start - 50, sync + 200_000);
+                for &(c, z, _) in trace.iter().filter(|t| t.0 > start + ramp && -t.1 < 20_000 - 1_500) {
+                    assert_eq!(-z, ideal(&g, c - sync), "K {k} ramp {ramp} count {c}");
+                }
+                let at = trace.iter().find(|t| t.1 == -10_000).unwrap().0;
+                assert_eq!(*reference.get_or_insert(at), at, "K {k} ramp {ramp}");
+                // Never backwards, never more than a step per count; on the end point.
+                assert!(trace.windows(2).all(|w| (0..=1).contains(&(w[0].1 - w[1].1))));
+                assert_eq!(trace.last().map(|t| (t.1, t.2)), Some((-20_000, 3_000)));
+                assert_eq!(gear.phase(), Phase::Done);
+            }
+        }
+    }
+
+    #[test]
+    fn a_g34_ramp_has_its_linear_part_only_before_the_synchronised_start() {
+        let g = Gearing::new(2_000_000, 400_000, 1, 3_125, CPR).unwrap();
+        let mut gear = Gear::thread(leg(20_000, 0), g, 1_000, 1, 0).unwrap();
+        let trace = run(&mut gear, 0, 1_000);
+        // m ≤ R/2: n1·m²/(2R·den); after it the quadratic part adds n2·(m − R/2)²/den.
+        for &(m, z, _) in &trace {
+            let c = (m - 500).max(0) as f64;
+            let exact = (g.n1 as f64 * (m * m) as f64 / 2_000.0 + g.n2 as f64 * c * c) / g.den as f64;
+            assert!((-z as f64 - exact).abs() <= 0.5 + 1e-9, "m {m}: {z} vs {exact}");
+        }
+        assert_eq!(gear.phase(), Phase::Locked);
+    }
+
+    #[test]
+    fn a_lead_that_would_reach_zero_is_alarm_0014() {
+        // F 1 mm, K -0.1 mm: after 5 mm the lead is zero; the leg is 10 mm.
+        let g = Gearing::new(1_000_000, -100_000, 1, 3_125, CPR).unwrap();
+        assert_eq!(Gear::thread(leg(3_200, 0), g, 100, 1, 0), Err(AlarmKind::IllegalLead));
+        let mut gear = Gear::thread(leg(320, 0), g, 100, 1, 0).unwrap();
+        let next = Leg { start: leg(320, 0).end, end: [0, 0, -3_200, 0], long: 2 };
+        assert_eq!(gear.set_next(next, g, true, true), Err(AlarmKind::IllegalLead));
+    }
+
+    #[test]
+    fn blocks_after_a_g34_continue_from_the_lead_reached() {
+        let g = Gearing::new(2_000_000, 100_000, 1, 3_125, CPR).unwrap();
+        let first = leg(8_000, 0);
+        let second = Leg { start: first.end, end: [0, 0, -20_000, 0], long: 2 };
+        // The same K: one exact parabola across the junction.
+        let mut gear = Gear::thread(first, g, 400, 1, -200).unwrap();
+        gear.set_next(second, g, true, true).unwrap();
+        let trace = run(&mut gear, -200, 200_000);
+        assert_eq!(gear.legs_done(), 1);
+        for &(c, z, _) in trace.iter().filter(|t| t.0 > 200 && -t.1 < 19_000) {
+            assert_eq!(-z, ideal(&g, c), "count {c}");
+        }
+        assert_eq!(trace.last().unwrap().1, -20_000);
+        // A constant lead after it (another denominator): the lead it had reached.
+        let constant = Gearing::new(2_000_000, 0, 1, 3_125, CPR).unwrap();
+        assert_ne!(constant.den, g.den);
+        let mut gear = Gear::thread(first, g, 400, 1, -200).unwrap();
+        gear.set_next(second, constant, true, true).unwrap();
+        let trace = run(&mut gear, -200, 200_000);
+        let cj = trace.iter().find(|t| t.1 == -8_000).unwrap().0;
+        let slope = (g.n1 + 2 * g.n2 * cj) as f64 / g.den as f64;
+        for &(c, z, _) in trace.iter().filter(|t| t.0 > 200 && -t.1 < 19_000) {
+            let exact = if c <= cj {
+                ideal(&g, c) as f64
+            } else {
+                (g.n1 * cj + g.n2 * cj * cj) as f64 / g.den as f64 + slope * (c - cj) as f64
+            };
+            assert!((-z as f64 - exact).abs() <= 1.0, "count {c}: {z} vs {exact}");
+        }
+        assert_eq!(trace.last().unwrap().1, -20_000);
+        assert_eq!(gear.phase(), Phase::Done);
     }
 
     #[test]

@@ -1,7 +1,8 @@
 //! Instruction counts of the motion core on the Cortex-M4F: planning a short G01
 //! block (preparation and look-ahead) and starting it in the interpolator, an
 //! interpolation period on a line and on an arc, a step event, an encoder count of
-//! a locked thread, and the RAM the motion core takes. Run through
+//! a locked thread (constant lead and G34 variable lead), and the RAM the motion
+//! core takes. Run through
 //! `bench.sh bench_motion`.
 #![no_std]
 #![no_main]
@@ -18,7 +19,7 @@ use interp_core::interpolator::Segment;
 use interp_core::motion::{Feedback, MotionCore, QUEUE};
 use interp_core::planner::{Block, Item, MotionParams, Planner};
 use interp_core::stepgen::{AxisStepGen, StepEvent};
-use interp_core::sync::{Gear, Leg, Ratio};
+use interp_core::sync::{Gear, Gearing, Leg, Phase, Ratio};
 use m4_tests::{exit, measure};
 
 const MM: i64 = 1_000_000;
@@ -207,6 +208,46 @@ fn main() -> ! {
     }
     hprintln!("bench encoder count, thread locked");
     for c in 20_000..20_008 {
+        measure(count, (&mut gear, c));
+    }
+
+    // A locked G34 thread: lead 2 mm growing by 0.1 mm per revolution, same axis.
+    let Ok(g34) = Gearing::new(2_000_000, 100_000, 1, 3_125, 4_096) else { exit(false) };
+    let leg = Leg { start: [0; AXIS_COUNT], end: [0, 0, -40_000, 0], long: 2 };
+    let Ok(mut gear) = Gear::thread(leg, g34, 18_000, 1, 0) else { exit(false) };
+    for c in 1..40_000 {
+        gear.on_count(c);
+    }
+    hprintln!("bench encoder count, G34 thread locked");
+    for c in 40_000..40_008 {
+        measure(count, (&mut gear, c));
+    }
+    // Near the end: the exact test for where the deceleration starts runs each count.
+    let mut c = 40_008;
+    while gear.remaining() > 6_000 {
+        c += 1;
+        gear.on_count(c);
+    }
+    hprintln!("bench encoder count, G34 thread near its end (deceleration test)");
+    for c in c + 1..c + 9 {
+        measure(count, (&mut gear, c));
+    }
+    let mut c = c + 8;
+    while !matches!(gear.phase(), Phase::RampDown { .. }) {
+        c += 1;
+        gear.on_count(c);
+    }
+    hprintln!("bench encoder count, G34 thread decelerating");
+    for c in c + 1..c + 9 {
+        measure(count, (&mut gear, c));
+    }
+    // In the ramp-up after the synchronised count (linear and quadratic parts).
+    let Ok(mut gear) = Gear::thread(leg, g34, 18_000, 1, 0) else { exit(false) };
+    for c in 1..12_000 {
+        gear.on_count(c);
+    }
+    hprintln!("bench encoder count, G34 thread ramp-up");
+    for c in 12_000..12_008 {
         measure(count, (&mut gear, c));
     }
 
