@@ -137,12 +137,12 @@ pub fn check(block: &Block, state: &State, cfg: &MachineConfig) -> Result<Comman
 
 /// The P (and L) of M98, M99, M91, M92.
 fn flow_word(block: &Block, f: MFunction) -> Result<FlowWord, AlarmKind> {
-    let p = |max| block.get(b'P').map(|n| words::whole(b'P', &n, max)).transpose();
+    let p = |max| block.get(b'P').map(|n| crate::parse::whole(b'P', &n, max)).transpose();
     match f {
         MFunction::Call => {
             let p = p(99_999_999)?.ok_or(AlarmKind::SubprogramNumberMissing)?;
             let (program, repeats) = match block.get(b'L') {
-                Some(l) => (p, words::whole(b'L', &l, 9_999)?),
+                Some(l) => (p, crate::parse::whole(b'L', &l, 9_999)?),
                 // FANUC's packed form: P30012 = 3 times O0012.
                 None if p > 9_999 => (p % 10_000, p / 10_000),
                 None => (p, 1),

@@ -6,7 +6,7 @@ use crate::axis::Axis;
 use crate::codes::{GCode, MFunction};
 use crate::config::{MAX_OFFSETS, MachineConfig, Param};
 use crate::exec::State;
-use crate::parse::Block;
+use crate::parse::{Block, whole};
 use crate::units::{Number, NumberFormat};
 
 /// A set of address letters, one bit per letter A–Z.
@@ -241,8 +241,6 @@ fn required_words(user: GCode, cmd: &Command) -> Result<(), AlarmKind> {
     }
     Ok(())
 }
-
-pub(super) use crate::parse::whole;
 
 /// T: turret station and offset number (the last 1 or 2 digits, parameter 5002).
 fn tool_word(t: &Number, cfg: &MachineConfig) -> Result<(u16, u16), AlarmKind> {
