@@ -518,3 +518,17 @@ fn g71_allowance_longer_than_the_shape_is_alarm_0062() {
     assert_eq!(r.alarm_codes(), vec![(3, 62)]);
     assert!(r.alarms[0].to_string().contains("ends before the start point"), "{}", r.alarms[0]);
 }
+
+#[test]
+fn g73_pass_ending_at_the_start_x_drops_its_zero_length_retract() {
+    // First pass offset 2 × 9.09 + 1.82 = 20 (dia): its shape ends at X200, the
+    // start's X, so the retract to X200 has no length and is not emitted.
+    let r = run("G00 X200 Z40 M3 S500\nG73 U9.09 W0 R2\nG73 P1 Q2 U1.82 W0 F100\nN1 G00 X80 Z0\nG01 Z-20\n\
+         X120 Z-30\nG02 X160 Z-50 R20\nN2 G01 X180 Z-60\nM30\n");
+    assert!(r.alarms.is_empty(), "{:?}", r.alarms);
+    let ends: Vec<_> = r.actions.iter().filter(|c| c.line == 3).filter_map(host_tests::xz).collect();
+    assert_eq!(ends.len(), 15);
+    assert_eq!(ends[5], (200.0, -60.0), "first pass ends on the start's X");
+    assert_eq!(ends[6], (200.0, 40.0), "then straight back to the start");
+    assert_eq!(ends.last(), Some(&(200.0, 40.0)));
+}

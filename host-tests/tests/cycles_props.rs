@@ -126,6 +126,14 @@ proptest! {
         du in 100i64..2_000,
         dw in 0i64..1_000,
     ) {
+        // A pass whose shape ends at the start's X (X180 + offset = X200) has a
+        // zero-length retract, which is dropped like every zero-length move: the
+        // pass then has 7 moves, not 8. Not a case of this property.
+        let den = i64::from(count.max(2) - 1);
+        prop_assume!((0..count).all(|n| {
+            let left = if count == 1 { 0 } else { i64::from(count - 1 - n) };
+            180_000 * den + 2 * di * left + du * den != 200_000 * den
+        }));
         let prog = format!(
             "G00 X200 Z40 M3 S500\nG73 U{} W{} R{count}\nG73 P1 Q2 U{} W{} F100\nN1 G00 X80 Z0\nG01 Z-20\n\
              X120 Z-30\nG02 X160 Z-50 R20\nN2 G01 X180 Z-60\nM30\n",
