@@ -1,5 +1,5 @@
 //! `lathe sim` on the simulated machine: the program runs interpreter → planner →
-//! interpolator → step generation on the host-tests simulator (axes that count
+//! interpolator → step generation on the simulator of the `sim` crate (axes that count
 //! steps, a spindle with an encoder), as the board will run it. This gives the
 //! cycle time with acceleration, spindle starts and dwells, how far the stepped
 //! axes strayed from the programmed path, and the step trace of `--trace`.
@@ -8,9 +8,9 @@ use std::fs::File;
 use std::io::BufWriter;
 use std::path::Path;
 
-use host_tests::sim::{Sim, SimOptions, SpindleModel};
 use interp_core::macros::Variables;
 use interp_core::{Alarm, MachineConfig, Panel};
+use sim::{Sim, SimOptions, SpindleModel};
 
 use crate::error::Error;
 use crate::program::Programs;

@@ -10,7 +10,6 @@
 use std::hint::black_box;
 use std::time::Instant;
 
-use host_tests::sim::{Sim, SimOptions};
 use interp_core::MachineConfig;
 use interp_core::axis::{AXIS_COUNT, Pos};
 use interp_core::canon::{Action, Canon, CanonSink, Endpoint, Feed, FeedMode, Move, SpindleSpeed};
@@ -18,6 +17,7 @@ use interp_core::fixed::STEP_ONE;
 use interp_core::motion::{Feedback, MotionCore, QUEUE};
 use interp_core::planner::{Item, MotionParams, Planner};
 use interp_core::stepgen::AxisStepGen;
+use sim::{Sim, SimOptions};
 
 const MM: i64 = 1_000_000;
 

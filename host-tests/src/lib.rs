@@ -1,8 +1,6 @@
 //! Helpers shared by the host tests: a growable recording sink, a runner that
-//! drives the interpreter over a whole program, compact action formatting, and
-//! the simulated machine ([`sim`]) that runs the motion core.
-
-pub mod sim;
+//! drives the interpreter over a whole program, and compact action formatting.
+//! The simulated machine that runs the motion core is the `sim` crate.
 
 use interp_core::canon::{Action, Canon, CanonSink, Full};
 use interp_core::program::{ProgramId, ProgramMemory, ProgramStore};

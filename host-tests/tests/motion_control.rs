@@ -2,13 +2,13 @@
 //! the order of commands and motion, feed hold, overrides, single block, dwell,
 //! starvation, reset and the queue's back-pressure.
 
-use host_tests::sim::{Report, Sim, SimOptions, SpindleModel, TickSample};
 use interp_core::axis::{Axis, Pos};
 use interp_core::canon::css_rpm;
 use interp_core::canon::{Action, Canon, CanonSink, Endpoint, Feed, FeedMode, Move, SpindleDir, SpindleSpeed};
 use interp_core::fixed::STEP_ONE;
 use interp_core::motion::{EventKind, MotionCore, QUEUE, State};
 use interp_core::{MachineConfig, Panel};
+use sim::{Report, Sim, SimOptions, SpindleModel, TickSample};
 
 fn sim_with(model: SpindleModel) -> Sim {
     Sim::new(

@@ -1,12 +1,12 @@
 //! The motion core on the simulated machine: path accuracy, exact end points,
 //! speed and acceleration limits, blending and exact stop.
 
-use host_tests::sim::{Report, Sim, SimOptions, TickSample};
 use interp_core::MachineConfig;
 use interp_core::axis::{AXIS_COUNT, Pos};
 use interp_core::fixed::STEP_ONE;
 use interp_core::motion::State;
 use proptest::prelude::*;
+use sim::{Report, Sim, SimOptions, TickSample};
 
 fn sim(cfg: MachineConfig) -> Sim {
     Sim::new(cfg, SimOptions { samples: true, ..SimOptions::default() }).unwrap()

@@ -2,13 +2,13 @@
 //! simulated machine: the example programs, G32/G92 threads and G84 rigid tapping
 //! written in G code, and a million blocks without drift.
 
-use host_tests::sim::{Report, Sim, SimOptions, SpindleModel, TraceRow};
 use interp_core::axis::{AXIS_COUNT, Pos};
 use interp_core::canon::{Action, Canon, CanonSink as _, Endpoint, Feed, FeedMode, Move, SpindleSpeed};
 use interp_core::fixed::round_steps;
 use interp_core::macros::Variables;
 use interp_core::motion::{Feedback, MotionCore, QUEUE, State};
 use interp_core::{Axis, MachineConfig};
+use sim::{Report, Sim, SimOptions, SpindleModel, TraceRow};
 
 const CPR: i64 = 4_096;
 

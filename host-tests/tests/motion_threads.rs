@@ -2,7 +2,6 @@
 //! phase at any speed with speed ripple, multi-start offsets, continuing threads,
 //! the checks before a pass, feed hold and reset in a pass, and rigid tapping.
 
-use host_tests::sim::{Report, Sim, SimOptions, SpindleModel, TraceRow};
 use interp_core::MachineConfig;
 use interp_core::axis::{Axis, Pos};
 use interp_core::canon::{
@@ -10,6 +9,7 @@ use interp_core::canon::{
     ThreadSync,
 };
 use interp_core::motion::State;
+use sim::{Report, Sim, SimOptions, SpindleModel, TraceRow};
 
 const MM: i64 = 1_000_000;
 const CPR: i64 = 4_096;
