@@ -4,10 +4,46 @@
 //! window and program store, settings and persistence. `no_std`, no allocation,
 //! no unsafe code; bytes in, bytes out, time and hardware readings as arguments.
 //! See `docs/PROTOCOL.md` for the wire contract.
+//!
+//! A shell drives it like this (the firmware's serial task, `lathe board`, tests):
+//!
+//! ```text
+//! loop {
+//!     let n = ctl.receive(&rx_bytes, now);      // keep rx_bytes[n..] for later
+//!     ctl.poll(now, &mut port, &mut io, inputs); // bounded work
+//!     let m = ctl.transmit(&mut tx_buf);        // send tx_buf[..m]
+//! }
+//! ```
+//!
+//! `port` reaches the motion core ([`MotionPort`]); on the board the core runs in
+//! the interpolation timer interrupt and every port call is one short critical
+//! section. The controller itself never runs in an interrupt.
 #![no_std]
 #![forbid(unsafe_code)]
 
 #[cfg(test)]
 extern crate std;
 
+mod controller;
+pub mod crc;
+mod dollar;
+mod homing;
+pub mod io;
+mod lines;
+pub mod outq;
 pub mod persist;
+pub mod port;
+pub mod report;
+pub mod settings;
+mod tape;
+pub mod window;
+
+pub use controller::{Controller, Counters, LINES_PER_POLL, Mode, OUT, QUIET_NS, RX, STEPS_PER_POLL, WELCOME};
+pub use io::{Inputs, MachineIo};
+pub use lines::frame_line;
+pub use port::{MotionPort, MotionStatus};
+pub use settings::Settings;
+
+/// The board's controller: an 8 KiB stream window, 48 KiB of program memory for
+/// 64 programs with 2048 indexed sequence numbers.
+pub type Board = Controller<8192, 49152, 64, 2048>;

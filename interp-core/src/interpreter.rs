@@ -174,6 +174,8 @@ pub struct Interpreter {
     cycle: Option<Expansion>,
     /// A cycle block whose dry run is still going on.
     validating: Option<Validating>,
+    /// Where the block the last step read (or failed to read) begins.
+    last_block: Cursor,
 }
 
 impl Interpreter {
@@ -197,6 +199,7 @@ impl Interpreter {
             budget: DEFAULT_STEP_BUDGET,
             cycle: None,
             validating: None,
+            last_block: Cursor::start(0),
         }
     }
 
@@ -310,6 +313,79 @@ impl Interpreter {
         }
     }
 
+    /// Where the block the last step read begins — the block an alarm of that
+    /// step came from (for a cycle block, the cycle block), so a caller whose text
+    /// was still arriving (the board's stream window) can read it again.
+    pub fn block_start(&self) -> Cursor {
+        self.last_block
+    }
+
+    /// Goes on reading at `at` (a block start from [`Interpreter::block_start`] or
+    /// [`Interpreter::cursor`]), running again if an end of text had ended the
+    /// run. Together with [`Interpreter::block_start`] this retries a block whose
+    /// alarm only said that text was missing: the failed block changed nothing.
+    pub fn resume_at(&mut self, at: Cursor) {
+        self.cursor = at;
+        self.positioned = true;
+        self.phase = Phase::Running;
+    }
+
+    /// Whether a step has work that needs no new block: actions waiting for the
+    /// sink, a canned cycle being delivered or validated.
+    pub fn has_pending(&self) -> bool {
+        !self.outbox.is_empty() || self.cycle.is_some() || self.validating.is_some()
+    }
+
+    /// The lowest byte offset into program `program`'s text that the run may still
+    /// read: the cursor, open loops (their WHILE blocks), call frames' return
+    /// points. `None` if nothing of the run points into it. While a canned cycle is
+    /// delivered or validated (it reads its shape blocks by cursor) it is 0.
+    pub fn earliest_offset(&self, program: ProgramId) -> Option<usize> {
+        if self.has_pending() && self.cursor.program == program {
+            return Some(0);
+        }
+        if !self.positioned && self.main == program {
+            return Some(0);
+        }
+        let mine = |c: &Cursor| (c.program == program).then_some(c.offset);
+        let here = self.cursor.program == program;
+        let cursor = if self.positioned { mine(&self.cursor) } else { None };
+        let loops = self.loops.iter().filter(|_| here).map(|l| l.start.offset);
+        let frames = self.calls.iter().flat_map(|f| {
+            let own = f.ret.program == program;
+            mine(&f.ret).into_iter().chain(f.loops.iter().filter(move |_| own).map(|l| l.start.offset))
+        });
+        cursor.into_iter().chain(loops).chain(frames).min()
+    }
+
+    /// Program `program`'s text lost its first `bytes` bytes (a stream window
+    /// dropping lines already run): every cursor into it moves back by `bytes`.
+    /// Only valid when [`Interpreter::earliest_offset`] is at least `bytes`.
+    pub fn rebase(&mut self, program: ProgramId, bytes: usize) {
+        let shift = |c: &mut Cursor| {
+            if c.program == program {
+                c.offset = c.offset.saturating_sub(bytes);
+            }
+        };
+        let shift_loops = |loops: &mut Loops| {
+            for l in loops.iter_mut() {
+                shift(&mut l.start);
+                shift(&mut l.end);
+            }
+        };
+        shift(&mut self.cursor);
+        shift(&mut self.last_block);
+        if self.cursor.program == program {
+            shift_loops(&mut self.loops);
+        }
+        for f in self.calls.iter_mut() {
+            if f.ret.program == program {
+                shift_loops(&mut f.loops);
+            }
+            shift(&mut f.ret);
+        }
+    }
+
     /// Runs macro statements up to the step budget and at most one NC block (or
     /// delivers pending actions). On an alarm the offending block has been passed
     /// over and the state is unchanged: a control stops there, `lathe check` goes
@@ -346,6 +422,7 @@ impl Interpreter {
         let mut budget = self.budget;
         loop {
             let at = self.cursor;
+            self.last_block = at;
             let alarm = |line, kind| Alarm::in_program(at.program, line, kind);
             let text = programs.text(at.program).unwrap_or(&[]);
             let Some(raw) = next_block(text, &mut self.cursor) else {

@@ -342,6 +342,28 @@ impl<const N: usize> MotionCore<N> {
         self.begin_stop();
     }
 
+    /// Path speed of the last interpolation period, nm/min (0 at rest; for the
+    /// status report's `FS:`).
+    pub fn path_speed(&self) -> i64 {
+        let per_min = u128::from(self.interp.speed()) * 60_000_000_000 / 256 / u128::from(self.p.tick_ns.max(1));
+        i64::try_from(per_min).unwrap_or(i64::MAX)
+    }
+
+    /// Redefines where the axes are (homing, setting the reference position): the
+    /// machine position becomes `pos` without any motion. Only at rest: `false`
+    /// (nothing changed) while anything is queued or moving.
+    pub fn set_position(&mut self, pos: Pos) -> bool {
+        if !self.is_idle() {
+            return false;
+        }
+        let steps: [i64; AXIS_COUNT] = core::array::from_fn(|i| self.p.scale[i].steps(pos.0[i]));
+        self.planner.clear(pos);
+        self.interp = Interpolator::new(steps);
+        let p = &self.p;
+        self.steppers = core::array::from_fn(|i| AxisStepGen::new(p.timing[i], steps[i]));
+        true
+    }
+
     /// Emergency stop: as reset, with alarm 4509.
     pub fn emergency_stop(&mut self) {
         self.raise(AlarmKind::EmergencyStop);

@@ -204,6 +204,23 @@ impl<const P: usize, const S: usize> ProgramIndex<P, S> {
         self.sequences.clear();
     }
 
+    /// Forgets program `id`: its file offset and whether another program shares
+    /// the file; `None` if it is not indexed.
+    fn remove(&mut self, id: ProgramId) -> Option<(u32, bool)> {
+        let i = self.programs.binary_search_by_key(&id, |p| p.number).ok()?;
+        let p = self.programs.remove(i);
+        let (first, count) = (p.seq_first as usize, p.seq_count as usize);
+        let len = self.sequences.len();
+        if let Some(tail) = self.sequences.get_mut(first..) {
+            tail.rotate_left(count.min(tail.len()));
+        }
+        self.sequences.truncate(len.saturating_sub(count));
+        for q in self.programs.iter_mut().filter(|q| q.seq_first > p.seq_first) {
+            q.seq_first -= p.seq_count;
+        }
+        Some((p.file, self.programs.iter().any(|q| q.file == p.file)))
+    }
+
     /// The O numbers indexed, ascending.
     pub fn numbers(&self) -> impl Iterator<Item = ProgramId> + '_ {
         self.programs.iter().map(|p| p.number)
@@ -276,6 +293,27 @@ impl<const T: usize, const P: usize, const S: usize> ProgramMemory<T, P, S> {
     pub fn clear(&mut self) {
         self.text.clear();
         self.index.clear();
+    }
+
+    /// Removes program `id` (the board's `$PD`, or before storing a new version);
+    /// its text is freed unless another program was loaded with it in one file.
+    /// False if there is no such program.
+    pub fn remove(&mut self, id: ProgramId) -> bool {
+        let Some((file, shared)) = self.index.remove(id) else { return false };
+        if !shared {
+            let later = self.index.programs.iter().map(|q| q.file).filter(|&f| f > file).min();
+            let end = later.unwrap_or(self.text.len() as u32);
+            let n = end.saturating_sub(file);
+            let len = self.text.len();
+            if let Some(tail) = self.text.get_mut(file as usize..) {
+                tail.rotate_left((n as usize).min(tail.len()));
+            }
+            self.text.truncate(len.saturating_sub(n as usize));
+            for q in self.index.programs.iter_mut().filter(|q| q.file > file) {
+                q.file -= n;
+            }
+        }
+        true
     }
 
     /// The O numbers stored, ascending.

@@ -1,0 +1,885 @@
+//! The controller: bytes in ([`Controller::receive`]), bytes out
+//! ([`Controller::transmit`]), and [`Controller::poll`] doing a bounded amount of
+//! work with the time, the motion core's port, the outputs and the inputs as
+//! arguments.
+
+use interp_core::axis::Pos;
+use interp_core::canon::{Canon, CanonSink, Full};
+use interp_core::motion::{EventKind, State};
+use interp_core::program::{Cursor, ProgramMemory};
+use interp_core::{Alarm, AlarmKind, Interpreter, MachineConfig, Panel, Progress};
+
+use crate::io::{Inputs, MachineIo};
+use crate::outq::{Class, OutQueue};
+use crate::port::{MotionPort, MotionStatus};
+use crate::report::{Mm, Xyz};
+use crate::settings::Settings;
+use crate::window::{Store, Window};
+
+/// Receive buffer, bytes (the LF included): what a character-counting sender may
+/// have in flight.
+pub const RX: usize = 128;
+/// Output queue, bytes.
+pub const OUT: usize = 2048;
+/// Interpreter steps one poll runs at most (each at most one NC block and 32
+/// macro statements).
+pub const STEPS_PER_POLL: usize = 8;
+/// Received lines one poll handles at most.
+pub const LINES_PER_POLL: usize = 4;
+/// How long the link must be quiet before a look-ahead that waits for text (G70–G73
+/// shape, forward GOTO, WHILE's END) is given up as an alarm.
+pub const QUIET_NS: u64 = 200_000_000;
+/// The welcome line senders wait for.
+pub const WELCOME: &str = "Grbl 1.1h ['$' for help]";
+
+/// XON (DC1) and XOFF (DC3).
+pub(crate) const XON: u8 = 0x11;
+pub(crate) const XOFF: u8 = 0x13;
+
+/// The state a status report shows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Mode {
+    /// Nothing to do.
+    Idle,
+    /// A program or stream is running.
+    Run,
+    /// Feed hold: `held` once the axes have stopped (also M00/M01).
+    Hold {
+        /// Stopped.
+        held: bool,
+    },
+    /// Alarm: lines are refused until `$X` or reset.
+    Alarm,
+    /// `$C`: programs are interpreted without motion.
+    Check,
+    /// `$J=` jogging.
+    Jog,
+    /// `$H` homing.
+    Home,
+    /// Safety door: `open` while the door input is active.
+    Door {
+        /// The door is open.
+        open: bool,
+    },
+    /// `$SLP`.
+    Sleep,
+}
+
+/// What the interpreter is running.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Job {
+    /// Nothing.
+    None,
+    /// Program text from the link (grbl lines or tape drip feed), program 0.
+    Stream,
+    /// Program O`n` from memory (`$PR=n`).
+    Memory(u32),
+}
+
+/// Real-time commands latched by [`Controller::receive`] for the next poll.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Latched {
+    pub status: bool,
+    pub hold: bool,
+    pub resume: bool,
+    pub reset: bool,
+    pub door: bool,
+    pub jog_cancel: bool,
+    pub overrides: bool,
+    pub spindle_stop: bool,
+    pub flood: bool,
+    pub mist: bool,
+}
+
+/// A look-ahead waiting for text still to come.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Wait {
+    /// Window bytes received when it failed.
+    pub received: u64,
+    /// The alarm it raises if the text never comes.
+    pub alarm: Alarm,
+}
+
+/// Link line numbering of `N<k> …*<crc>` lines.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct LinkSeq {
+    /// A checksummed line was accepted: every program line must carry one.
+    pub active: bool,
+    /// The number the next line must have.
+    pub expected: u32,
+}
+
+/// Counters for tests and diagnostics.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Counters {
+    /// Lines answered `ok`.
+    pub ok: u32,
+    /// Lines answered `error:N`.
+    pub errors: u32,
+    /// Resend requests (`error:88`).
+    pub resends: u32,
+    /// Alarms raised.
+    pub alarms: u32,
+    /// Bytes the stream window dropped behind the interpreter.
+    pub window_dropped: u64,
+}
+
+/// The board's controller. `W`: stream window bytes; `T`, `P`, `S`: program
+/// memory text bytes, programs, indexed sequence numbers.
+pub struct Controller<const W: usize, const T: usize, const P: usize, const S: usize> {
+    pub(crate) interp: Interpreter,
+    pub(crate) window: Window<W>,
+    pub(crate) memory: ProgramMemory<T, P, S>,
+    pub(crate) settings: Settings,
+    pub(crate) startup: [heapless::String<80>; 2],
+    pub(crate) rx: heapless::Vec<u8, RX>,
+    pub(crate) discarding: bool,
+    pub(crate) out: OutQueue<OUT>,
+    pub(crate) rt: Latched,
+    /// Feed, rapid, spindle override, %.
+    pub(crate) ovr: [u16; 3],
+    /// grbl alarm number in force.
+    pub(crate) alarm: Option<u8>,
+    pub(crate) hold: bool,
+    pub(crate) paused: bool,
+    pub(crate) door: bool,
+    pub(crate) check: bool,
+    pub(crate) sleep: bool,
+    pub(crate) job: Job,
+    pub(crate) jog: bool,
+    /// Where the last jog move ends (machine, nm).
+    pub(crate) jog_target: Pos,
+    pub(crate) homing: Option<crate::homing::Homing>,
+    /// The interpreter's position must be taken from the motion core once at rest.
+    pub(crate) need_sync: bool,
+    /// The interpreter reached M02/M30; the motion core's End event closes the job.
+    pub(crate) interp_done: bool,
+    /// The motion core reported M02/M30 done.
+    pub(crate) motion_end: bool,
+    pub(crate) lookahead: Option<Wait>,
+    /// A line could not enter the window even after dropping old text.
+    pub(crate) window_stuck: bool,
+    pub(crate) last_rx: u64,
+    pub(crate) now: u64,
+    pub(crate) prev_inputs: Inputs,
+    pub(crate) door_open: bool,
+    pub(crate) tape: Option<crate::tape::Tape>,
+    pub(crate) xoff: bool,
+    pub(crate) link: LinkSeq,
+    pub(crate) panel: Panel,
+    pub(crate) flood: bool,
+    pub(crate) mist: bool,
+    /// Startup block to run next (`$N0`, `$N1`), 2 = none.
+    pub(crate) startup_next: u8,
+    pub(crate) counters: Counters,
+}
+
+/// Feeds the motion core through the port.
+pub(crate) struct PortSink<'a, M: MotionPort + ?Sized>(pub &'a mut M);
+
+impl<M: MotionPort + ?Sized> CanonSink for PortSink<'_, M> {
+    fn push(&mut self, c: Canon) -> Result<(), Full> {
+        self.0.push(c)
+    }
+}
+
+/// Check mode: takes everything, moves nothing.
+pub(crate) struct Discard;
+
+impl CanonSink for Discard {
+    fn push(&mut self, _: Canon) -> Result<(), Full> {
+        Ok(())
+    }
+}
+
+impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<W, T, P, S> {
+    /// A controller for machine `cfg` with the axes at machine position `pos`
+    /// (where the motion core was built). The welcome line is queued.
+    pub fn new(cfg: MachineConfig, pos: Pos) -> Self {
+        let mut interp = Interpreter::new(cfg);
+        interp.set_machine_position(pos);
+        let mut c = Controller {
+            interp,
+            window: Window::new(),
+            memory: ProgramMemory::new(),
+            settings: Settings::default(),
+            startup: [heapless::String::new(), heapless::String::new()],
+            rx: heapless::Vec::new(),
+            discarding: false,
+            out: OutQueue::default(),
+            rt: Latched::default(),
+            ovr: [100; 3],
+            alarm: None,
+            hold: false,
+            paused: false,
+            door: false,
+            check: false,
+            sleep: false,
+            job: Job::None,
+            jog: false,
+            jog_target: pos,
+            homing: None,
+            need_sync: false,
+            interp_done: false,
+            motion_end: false,
+            lookahead: None,
+            window_stuck: false,
+            last_rx: 0,
+            now: 0,
+            prev_inputs: Inputs::default(),
+            door_open: false,
+            tape: None,
+            xoff: false,
+            link: LinkSeq { active: false, expected: 1 },
+            panel: Panel::default(),
+            flood: false,
+            mist: false,
+            startup_next: 2,
+            counters: Counters::default(),
+        };
+        c.rewind_stream();
+        c.welcome();
+        c
+    }
+
+    /// The interpreter (modal state, variables, machine description).
+    pub fn interpreter(&self) -> &Interpreter {
+        &self.interp
+    }
+
+    /// The interpreter, to load common variables or edit the machine description
+    /// between jobs.
+    pub fn interpreter_mut(&mut self) -> &mut Interpreter {
+        &mut self.interp
+    }
+
+    /// Program memory (M98 subprograms, `$PR`, tape punch).
+    pub fn memory(&self) -> &ProgramMemory<T, P, S> {
+        &self.memory
+    }
+
+    /// Program memory, to fill it from flash at start-up.
+    pub fn memory_mut(&mut self) -> &mut ProgramMemory<T, P, S> {
+        &mut self.memory
+    }
+
+    /// The controller's own settings.
+    pub fn settings(&self) -> &Settings {
+        &self.settings
+    }
+
+    /// The settings, to restore them from flash at start-up.
+    pub fn settings_mut(&mut self) -> &mut Settings {
+        &mut self.settings
+    }
+
+    /// The startup blocks `$N0`, `$N1`.
+    pub fn startup_blocks(&self) -> [&str; 2] {
+        [self.startup[0].as_str(), self.startup[1].as_str()]
+    }
+
+    /// Counters.
+    pub fn counters(&self) -> Counters {
+        self.counters
+    }
+
+    /// Bytes free in the receive buffer.
+    pub fn rx_free(&self) -> usize {
+        RX - self.rx.len()
+    }
+
+    /// Output bytes waiting for [`Controller::transmit`].
+    pub fn pending_output(&self) -> usize {
+        self.out.len()
+    }
+
+    /// The grbl alarm number in force.
+    pub fn alarm(&self) -> Option<u8> {
+        self.alarm
+    }
+
+    /// Takes bytes from the link: real-time commands are latched at once (even
+    /// with the receive buffer full) for the next [`Controller::poll`]; other bytes
+    /// go into the receive buffer. Returns how many bytes were consumed: the shell
+    /// keeps the rest and offers it again (the buffer is full until a line leaves
+    /// it). Never blocks, never panics.
+    pub fn receive(&mut self, bytes: &[u8], now: u64) -> usize {
+        self.last_rx = now;
+        for (i, &raw) in bytes.iter().enumerate() {
+            let b = if self.tape.is_some() && self.settings.parity_strip { raw & 0x7f } else { raw };
+            if self.realtime(b) || b == XON || b == XOFF {
+                continue;
+            }
+            if self.discarding {
+                if b == b'\n' {
+                    self.discarding = false;
+                    self.refuse(11, "line longer than 127 characters");
+                }
+                continue;
+            }
+            if self.rx.is_full() {
+                if self.rx.contains(&b'\n') {
+                    return i;
+                }
+                // A line longer than the buffer: drop it up to its LF.
+                self.rx.clear();
+                self.discarding = b != b'\n';
+                if b == b'\n' {
+                    self.refuse(11, "line longer than 127 characters");
+                }
+                continue;
+            }
+            let _ = self.rx.push(b);
+            if self.tape.is_some() && !self.xoff && self.rx.len() >= RX * 3 / 4 {
+                self.out.control(XOFF);
+                self.xoff = true;
+            }
+        }
+        bytes.len()
+    }
+
+    /// Moves output bytes into `out`; how many. Lines end with CR LF.
+    pub fn transmit(&mut self, out: &mut [u8]) -> usize {
+        self.out.drain(out)
+    }
+
+    /// A real-time byte: latched, true; any other byte: false.
+    fn realtime(&mut self, b: u8) -> bool {
+        let rt = &mut self.rt;
+        match b {
+            b'?' => rt.status = true,
+            b'!' => rt.hold = true,
+            b'~' => rt.resume = true,
+            0x18 => {
+                rt.reset = true;
+                // What was received before the reset is dropped with it.
+                self.rx.clear();
+                self.discarding = false;
+                self.tape = None;
+                self.xoff = false;
+            }
+            0x84 => rt.door = true,
+            0x85 => rt.jog_cancel = true,
+            0x90..=0x9D => {
+                override_byte(&mut self.ovr, b);
+                rt.overrides = true;
+            }
+            0x9E => rt.spindle_stop = true,
+            0xA0 => rt.flood = true,
+            0xA1 => rt.mist = true,
+            _ => return false,
+        }
+        true
+    }
+
+    /// Runs a bounded amount of work at time `now` (ns): soft reset, inputs,
+    /// real-time commands, motion events, received lines, a few interpreter steps
+    /// feeding `port` until it is full, job state, a status report if asked. Call it
+    /// every millisecond or so, and after every `receive`.
+    pub fn poll<M, I>(&mut self, now: u64, port: &mut M, io: &mut I, inputs: Inputs)
+    where
+        M: MotionPort + ?Sized,
+        I: MachineIo + ?Sized,
+    {
+        self.now = now;
+        if core::mem::take(&mut self.rt.reset) {
+            self.soft_reset(port, inputs);
+        }
+        self.read_inputs(port, inputs);
+        self.apply_realtime(port, io);
+        self.motion_events(port, io);
+        self.sync(port);
+        self.handle_lines(port);
+        self.run_startup(port);
+        self.run_interpreter(port);
+        self.after_motion(port);
+        if self.tape.is_some() && self.xoff && self.rx.len() <= RX / 4 {
+            self.out.control(XON);
+            self.xoff = false;
+        }
+        if core::mem::take(&mut self.rt.status) {
+            self.status_report(port, inputs);
+        }
+    }
+
+    /// The state a status report would show now.
+    pub fn mode<M: MotionPort + ?Sized>(&self, port: &M) -> Mode {
+        let st = port.status();
+        if self.sleep {
+            Mode::Sleep
+        } else if self.alarm.is_some() {
+            Mode::Alarm
+        } else if self.door {
+            Mode::Door { open: self.door_open }
+        } else if self.homing.is_some() {
+            Mode::Home
+        } else if self.jog {
+            Mode::Jog
+        } else if self.hold {
+            Mode::Hold { held: st.idle || st.state == State::Held }
+        } else if self.paused && st.state == State::Stopped {
+            Mode::Hold { held: true }
+        } else if self.check {
+            Mode::Check
+        } else if !st.idle || (self.job != Job::None && self.interp_busy()) {
+            Mode::Run
+        } else {
+            Mode::Idle
+        }
+    }
+
+    /// The interpreter has work it can do now (not waiting for text or M02/M30).
+    fn interp_busy(&self) -> bool {
+        self.interp.has_pending() || (!self.interp_done && self.lookahead.is_none() && !self.stream_drained())
+    }
+
+    /// The stream job has run every line received so far.
+    pub(crate) fn stream_drained(&self) -> bool {
+        self.job == Job::Stream && self.interp.program() == 0 && self.interp.cursor().offset >= self.window.len()
+    }
+
+    // ----- replies -----
+
+    pub(crate) fn ok(&mut self) {
+        self.counters.ok += 1;
+        self.out.line(Class::Reply, "ok");
+    }
+
+    /// `[MSG:why]` + `error:n`.
+    pub(crate) fn refuse(&mut self, n: u8, why: &str) {
+        self.counters.errors += 1;
+        self.out.fmt(Class::Info, format_args!("[MSG:{why}]"));
+        self.out.fmt(Class::Reply, format_args!("error:{n}"));
+    }
+
+    pub(crate) fn msg(&mut self, text: core::fmt::Arguments<'_>) {
+        self.out.fmt(Class::Info, format_args!("[MSG:{text}]"));
+    }
+
+    fn welcome(&mut self) {
+        self.out.line(Class::Reply, WELCOME);
+        self.startup_next = 0;
+    }
+
+    // ----- job control -----
+
+    /// Soft reset (0x18): motion reset, interpreter reset, window and buffers
+    /// cleared, welcome line.
+    fn soft_reset<M: MotionPort + ?Sized>(&mut self, port: &mut M, inputs: Inputs) {
+        port.reset();
+        self.interp.reset();
+        self.close_job();
+        self.check = false;
+        self.sleep = false;
+        self.door = false;
+        self.ovr = [100; 3];
+        self.apply_overrides(port);
+        self.link = LinkSeq { active: false, expected: 1 };
+        self.alarm = if inputs.estop { Some(10) } else { None };
+        if inputs.estop {
+            port.emergency_stop();
+        }
+        self.welcome();
+    }
+
+    /// Drops the job: interpreter rewound to an empty window, holds released; the
+    /// interpreter takes the position from the motion core once at rest.
+    pub(crate) fn close_job(&mut self) {
+        self.interp.rewind();
+        self.interp.select_main(0);
+        self.window.clear();
+        self.rewind_stream();
+        self.job = Job::None;
+        self.lookahead = None;
+        self.window_stuck = false;
+        self.interp_done = false;
+        self.motion_end = false;
+        self.hold = false;
+        self.paused = false;
+        self.jog = false;
+        self.homing = None;
+        self.need_sync = true;
+    }
+
+    /// Positions the interpreter at the start of the window (program 0).
+    pub(crate) fn rewind_stream(&mut self) {
+        let start = Cursor { program: 0, offset: 0, line: self.window.first_line() };
+        self.interp.resume_at(start);
+    }
+
+    /// Enters alarm `code` after `[MSG:…]` lines were sent: motion stopped, job
+    /// dropped, lines refused with `error:9` until `$X` or reset.
+    pub(crate) fn enter_alarm<M: MotionPort + ?Sized>(&mut self, code: u8, port: &mut M) {
+        self.out.fmt(Class::Reply, format_args!("ALARM:{code}"));
+        self.counters.alarms += 1;
+        self.alarm = Some(code);
+        port.reset();
+        self.close_job();
+    }
+
+    /// A program or motion alarm: its message line, then `ALARM:2` (overtravel) or
+    /// `ALARM:20`.
+    pub(crate) fn program_alarm<M: MotionPort + ?Sized>(&mut self, a: Alarm, hint: bool, port: &mut M) {
+        let code = a.code();
+        match a.program {
+            0 => self.msg(format_args!("ALARM {code:04} line {}: {}", a.line, a.kind)),
+            p => self.msg(format_args!("ALARM {code:04} O{p:04} line {}: {}", a.line, a.kind)),
+        }
+        if hint {
+            self.msg(format_args!("Not in the stream window: upload the program and run it from memory ($PR=n)"));
+        }
+        let grbl = match a.kind {
+            AlarmKind::OvertravelPositive { .. } | AlarmKind::OvertravelNegative { .. } => 2,
+            AlarmKind::EmergencyStop => 10,
+            _ => 20,
+        };
+        self.enter_alarm(grbl, port);
+    }
+
+    fn read_inputs<M: MotionPort + ?Sized>(&mut self, port: &mut M, inputs: Inputs) {
+        let prev = core::mem::replace(&mut self.prev_inputs, inputs);
+        self.panel.inputs = inputs.user;
+        self.door_open = inputs.door;
+        if inputs.estop && self.alarm != Some(10) {
+            port.emergency_stop();
+            self.msg(format_args!("Emergency stop"));
+            self.enter_alarm(10, port);
+            port.emergency_stop();
+            return;
+        }
+        let limit = (inputs.limit_x && !prev.limit_x) || (inputs.limit_z && !prev.limit_z);
+        if limit && self.settings.hard_limits && self.homing.is_none() && self.alarm.is_none() {
+            port.emergency_stop();
+            self.msg(format_args!("Hard limit {}", if inputs.limit_x { 'X' } else { 'Z' }));
+            self.enter_alarm(1, port);
+            return;
+        }
+        self.rt.hold |= inputs.feed_hold && !prev.feed_hold;
+        self.rt.resume |= inputs.cycle_start && !prev.cycle_start;
+        self.rt.door |= inputs.door && !prev.door;
+    }
+
+    fn apply_realtime<M: MotionPort + ?Sized, I: MachineIo + ?Sized>(&mut self, port: &mut M, io: &mut I) {
+        if core::mem::take(&mut self.rt.jog_cancel) && self.jog {
+            port.reset();
+        }
+        if core::mem::take(&mut self.rt.door) && self.alarm.is_none() {
+            self.door = true;
+            self.hold = true;
+            port.feed_hold();
+        }
+        if core::mem::take(&mut self.rt.hold) && self.alarm.is_none() {
+            if self.jog {
+                port.reset();
+            } else if self.homing.is_none() {
+                self.hold = true;
+                port.feed_hold();
+            }
+        }
+        if core::mem::take(&mut self.rt.resume) {
+            self.resume(port);
+        }
+        if core::mem::take(&mut self.rt.overrides) {
+            self.apply_overrides(port);
+        }
+        if core::mem::take(&mut self.rt.spindle_stop) && self.hold {
+            self.msg(format_args!("Spindle stop in hold is not supported"));
+        }
+        if core::mem::take(&mut self.rt.flood) {
+            self.flood = !self.flood;
+            io.m_code(if self.flood { 8 } else { 9 }, 0);
+        }
+        if core::mem::take(&mut self.rt.mist) {
+            self.mist = !self.mist;
+            io.m_code(if self.mist { 7 } else { 9 }, 0);
+        }
+    }
+
+    /// Cycle start: out of a closed door's hold, feed hold, or M00/M01.
+    fn resume<M: MotionPort + ?Sized>(&mut self, port: &mut M) {
+        if self.alarm.is_some() || (self.door && self.door_open) {
+            return;
+        }
+        self.door = false;
+        if self.hold || self.paused {
+            self.hold = false;
+            self.paused = false;
+            port.cycle_start();
+            self.interp.cycle_start();
+        }
+    }
+
+    pub(crate) fn apply_overrides<M: MotionPort + ?Sized>(&mut self, port: &mut M) {
+        port.set_feed_override(self.ovr[0]);
+        port.set_rapid_override(self.ovr[1]);
+        port.set_spindle_override(self.ovr[2]);
+    }
+
+    fn motion_events<M: MotionPort + ?Sized, I: MachineIo + ?Sized>(&mut self, port: &mut M, io: &mut I) {
+        while let Some(e) = port.pop_event() {
+            match e.kind {
+                EventKind::Spindle { dir, rpm } => io.spindle(dir, rpm),
+                EventKind::Tool { tool, offset } => io.tool(tool, offset),
+                EventKind::Aux { m } => {
+                    match m {
+                        7 => self.mist = true,
+                        8 => self.flood = true,
+                        9 => (self.flood, self.mist) = (false, false),
+                        _ => {}
+                    }
+                    io.m_code(m, e.line);
+                }
+                EventKind::Stop { .. } => self.paused = true,
+                EventKind::End { .. } => {
+                    self.motion_end = true;
+                    self.try_finish();
+                }
+                EventKind::Starved => {}
+                EventKind::Alarm(a) => {
+                    if self.alarm.is_none() {
+                        self.program_alarm(a, false, port);
+                    }
+                }
+            }
+        }
+    }
+
+    /// Ends the job once the interpreter has read M02/M30 and the motion core has
+    /// run it (or at once in check mode, and for M02/M30 outside a job).
+    pub(crate) fn try_finish(&mut self) {
+        if self.job == Job::None || (self.interp_done && (self.motion_end || self.check)) {
+            self.end_job();
+        }
+    }
+
+    /// M02/M30 has run: `[MSG:Pgm End]`; a stream keeps what arrived after it.
+    fn end_job(&mut self) {
+        self.msg(format_args!("Pgm End"));
+        self.interp_done = false;
+        self.motion_end = false;
+        self.paused = false;
+        match self.job {
+            Job::Stream => {
+                let c = self.interp.cursor();
+                let rest = if c.program == 0 { c.offset.min(self.window.len()) } else { self.window.len() };
+                self.window.drop_front(rest);
+                if self.window.is_empty() {
+                    self.window.clear();
+                }
+                self.interp.rewind();
+                self.rewind_stream();
+                self.job = if self.window.is_empty() { Job::None } else { Job::Stream };
+            }
+            Job::Memory(_) => {
+                self.interp.select_main(0);
+                self.rewind_stream();
+                self.job = Job::None;
+            }
+            Job::None => {}
+        }
+    }
+
+    /// Takes the interpreter's position from the motion core once it is at rest.
+    fn sync<M: MotionPort + ?Sized>(&mut self, port: &mut M) {
+        if self.need_sync {
+            let st = port.status();
+            if st.idle {
+                self.interp.set_machine_position(st.position);
+                self.need_sync = false;
+            }
+        }
+    }
+
+    /// Runs the startup blocks `$N0`, `$N1` (one per poll) after power-on and
+    /// reset, as MDI blocks: `>block:ok` or `>block:error:20` with the alarm.
+    fn run_startup<M: MotionPort + ?Sized>(&mut self, port: &mut M) {
+        while self.startup_next < 2 {
+            if self.alarm.is_some() || self.job != Job::None || self.need_sync || self.check {
+                return;
+            }
+            let i = usize::from(self.startup_next);
+            self.startup_next += 1;
+            let text = self.startup[i].clone();
+            if text.is_empty() {
+                continue;
+            }
+            match self.interp.mdi(text.as_bytes(), &self.panel, &mut PortSink(&mut *port)) {
+                Ok(Progress::Blocked) => self.startup_next -= 1,
+                Ok(_) => self.out.fmt(Class::Reply, format_args!(">{text}:ok")),
+                Err(a) => {
+                    self.msg(format_args!("ALARM {:04}: {}", a.code(), a.kind));
+                    self.out.fmt(Class::Reply, format_args!(">{text}:error:20"));
+                }
+            }
+            return;
+        }
+    }
+
+    /// Whether the interpreter may step now.
+    fn may_run(&self) -> bool {
+        self.alarm.is_none()
+            && !self.sleep
+            && !self.need_sync
+            && !self.jog
+            && self.homing.is_none()
+            && self.job != Job::None
+            && !self.interp_done
+    }
+
+    fn run_interpreter<M: MotionPort + ?Sized>(&mut self, port: &mut M) {
+        for _ in 0..STEPS_PER_POLL {
+            if !self.may_run() || self.waiting_for_text(port) {
+                return;
+            }
+            let store = Store { window: &self.window, memory: &self.memory };
+            let r = if self.check {
+                self.interp.step(&store, &self.panel, &mut Discard)
+            } else {
+                self.interp.step(&store, &self.panel, &mut PortSink(&mut *port))
+            };
+            match r {
+                Ok(Progress::Blocked | Progress::Paused) => return,
+                Ok(Progress::Ended) => {
+                    self.interp_done = true;
+                    self.try_finish();
+                    return;
+                }
+                Ok(_) => {}
+                Err(a) => {
+                    self.interp_alarm(a, port);
+                    return;
+                }
+            }
+        }
+    }
+
+    /// An interpreter alarm: a look-ahead in a stream that only lacks text waits
+    /// for it; anything else is a program alarm.
+    fn interp_alarm<M: MotionPort + ?Sized>(&mut self, a: Alarm, port: &mut M) {
+        let missing_text = matches!(
+            a.kind,
+            AlarmKind::EndOfRecord
+                | AlarmKind::JumpTargetNotFound { .. }
+                | AlarmKind::MissingEnd { .. }
+                | AlarmKind::SequenceNotFound { .. }
+        );
+        if self.job == Job::Stream && a.program == 0 && missing_text {
+            let at = self.interp.block_start();
+            self.interp.resume_at(at);
+            let at_end = at.offset >= self.window.len();
+            if !(a.kind == AlarmKind::EndOfRecord && at_end) {
+                self.lookahead = Some(Wait { received: self.window.received(), alarm: a });
+            }
+            return;
+        }
+        self.program_alarm(a, false, port);
+    }
+
+    /// A stream waits for text: at the end of what arrived, or a look-ahead waiting
+    /// for more (given up when the link is quiet or the window cannot take more).
+    fn waiting_for_text<M: MotionPort + ?Sized>(&mut self, port: &mut M) -> bool {
+        if let Some(w) = self.lookahead {
+            if self.window.received() > w.received && !self.window_stuck {
+                self.lookahead = None;
+                return false;
+            }
+            if self.window_stuck || self.now.saturating_sub(self.last_rx) >= QUIET_NS {
+                self.lookahead = None;
+                self.program_alarm(w.alarm, true, port);
+            }
+            return true;
+        }
+        !self.interp.has_pending() && self.stream_drained()
+    }
+
+    /// Jog and homing completion.
+    fn after_motion<M: MotionPort + ?Sized>(&mut self, port: &mut M) {
+        if self.jog && port.status().idle {
+            self.jog = false;
+            self.need_sync = true;
+            self.sync(port);
+        }
+        if self.homing.is_some() {
+            self.homing_step(port);
+        }
+    }
+
+    /// Sends `<…>` with the motion core's snapshot.
+    fn status_report<M: MotionPort + ?Sized>(&mut self, port: &mut M, inputs: Inputs) {
+        let st: MotionStatus = port.status();
+        let cfg = self.interp.config();
+        let mode = self.mode(port);
+        let mut state: heapless::String<8> = heapless::String::new();
+        let name = match mode {
+            Mode::Idle => "Idle",
+            Mode::Run => "Run",
+            Mode::Hold { held: false } => "Hold:0",
+            Mode::Hold { held: true } => "Hold:1",
+            Mode::Alarm => "Alarm",
+            Mode::Check => "Check",
+            Mode::Jog => "Jog",
+            Mode::Home => "Home",
+            Mode::Door { open: true } => "Door:1",
+            Mode::Door { open: false } => "Door:0",
+            Mode::Sleep => "Sleep",
+        };
+        let _ = state.push_str(name);
+        let wco = if st.idle { self.interp.state().work_to_machine(cfg) } else { st.work_offset };
+        let feed = (st.feed + 500_000) / 1_000_000;
+        let mut pins: heapless::String<8> = heapless::String::new();
+        for (on, c) in [
+            (inputs.limit_x, 'X'),
+            (inputs.limit_z, 'Z'),
+            (inputs.feed_hold, 'H'),
+            (inputs.cycle_start, 'S'),
+            (inputs.door, 'D'),
+            (inputs.estop, 'E'),
+        ] {
+            if on {
+                let _ = pins.push(c);
+            }
+        }
+        let sep = if pins.is_empty() { "" } else { "|Pn:" };
+        self.out.fmt(
+            Class::Info,
+            format_args!(
+                "<{state}|MPos:{}|FS:{feed},{}|Bf:{},{}|Ln:{}|WCO:{}|Ov:{},{},{}{sep}{pins}>",
+                Xyz::of(&st.position, cfg),
+                st.rpm,
+                st.capacity.saturating_sub(st.queued),
+                RX - self.rx.len(),
+                st.line,
+                Xyz::of(&wco, cfg),
+                self.ovr[0],
+                self.ovr[1],
+                self.ovr[2],
+            ),
+        );
+    }
+
+    /// Mm of an internal length, for messages.
+    pub(crate) fn mm(v: i64) -> Mm {
+        Mm(v)
+    }
+}
+
+/// Applies an override byte 0x90–0x9D to (feed, rapid, spindle) percentages.
+fn override_byte(ovr: &mut [u16; 3], b: u8) {
+    let step = |v: u16, d: i16, lo: u16, hi: u16| (v as i16 + d).clamp(lo as i16, hi as i16) as u16;
+    match b {
+        0x90 => ovr[0] = 100,
+        0x91 => ovr[0] = step(ovr[0], 10, 10, 200),
+        0x92 => ovr[0] = step(ovr[0], -10, 10, 200),
+        0x93 => ovr[0] = step(ovr[0], 1, 10, 200),
+        0x94 => ovr[0] = step(ovr[0], -1, 10, 200),
+        0x95 => ovr[1] = 100,
+        0x96 => ovr[1] = 50,
+        0x97 => ovr[1] = 25,
+        0x99 => ovr[2] = 100,
+        0x9A => ovr[2] = step(ovr[2], 10, 50, 200),
+        0x9B => ovr[2] = step(ovr[2], -10, 50, 200),
+        0x9C => ovr[2] = step(ovr[2], 1, 50, 200),
+        0x9D => ovr[2] = step(ovr[2], -1, 50, 200),
+        _ => {}
+    }
+}

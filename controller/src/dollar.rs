@@ -1,0 +1,334 @@
+//! `$` commands (PROTOCOL.md): settings, offsets, modal state, unlock, homing,
+//! check mode, jogging, startup blocks, programs in memory, variables.
+
+use interp_core::axis::Axis;
+use interp_core::canon::{FeedMode, Plane, SpindleDir};
+use interp_core::codes::GCode;
+use interp_core::config::{PARAMS, Param};
+use interp_core::units::Units;
+
+use crate::controller::{Controller, Job, Mode};
+use crate::lines::Handled;
+use crate::outq::Class;
+use crate::port::MotionPort;
+use crate::report::{Value, Xyz};
+use crate::settings::{self, NUMBERS, SettingError};
+
+const HELP: &str =
+    "[HLP:$$ $# $G $I $N $x=val $Nx=line $J=line $SLP $C $X $H $RST= $P $Pn=val $PL $PR=n $PD=n $V $LN=n ~ ! ? ctrl-x]";
+
+/// Whether a `$` command only reads (allowed in any state).
+fn read_only(cmd: &[u8]) -> bool {
+    matches!(cmd, b"" | b"$" | b"#" | b"G" | b"I" | b"N" | b"P" | b"PL" | b"V") || cmd.starts_with(b"LN=")
+}
+
+/// A decimal number.
+fn number(s: &[u8]) -> Option<f64> {
+    core::str::from_utf8(s).ok()?.trim().parse::<f64>().ok().filter(|v| v.is_finite())
+}
+
+/// A whole number.
+fn whole(s: &[u8]) -> Option<u32> {
+    core::str::from_utf8(s).ok()?.trim().parse().ok()
+}
+
+impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<W, T, P, S> {
+    /// A `$` line; `cmd` is what follows the `$`.
+    pub(crate) fn dollar<M: MotionPort + ?Sized>(&mut self, cmd: &[u8], port: &mut M) -> Handled {
+        let mut upper: heapless::Vec<u8, 128> = heapless::Vec::new();
+        for &b in cmd {
+            let _ = upper.push(if b.is_ascii_lowercase() && upper.len() < 4 { b.to_ascii_uppercase() } else { b });
+        }
+        let cmd = &upper[..];
+        if !read_only(cmd) && !matches!(cmd, b"X" | b"SLP") && !cmd.starts_with(b"J=") {
+            if self.alarm.is_some() && !cmd.starts_with(b"RST=") && cmd != b"H" {
+                self.refuse(9, "Alarm: $X or reset first");
+                return Handled::Done;
+            }
+            if self.job != Job::None || self.mode(port) != Mode::Idle && self.mode(port) != Mode::Check {
+                self.refuse(8, "Only when idle");
+                return Handled::Done;
+            }
+        }
+        match cmd {
+            b"" => self.out.line(Class::Info, HELP),
+            b"$" => self.list_settings(),
+            b"#" => self.list_offsets(),
+            b"G" => self.list_modal(),
+            b"I" => {
+                self.out.line(Class::Info, "[VER:1.1h.lathe:]");
+                self.out.fmt(Class::Info, format_args!("[OPT:,{},{}]", port.status().capacity, crate::controller::RX));
+                self.msg(format_args!("lathe controller {} (FANUC lathe language)", env!("CARGO_PKG_VERSION")));
+            }
+            b"N" => {
+                for i in 0..2 {
+                    let s = self.startup[i].clone();
+                    self.out.fmt(Class::Info, format_args!("$N{i}={s}"));
+                }
+            }
+            b"P" => self.list_params(),
+            b"PL" => self.list_programs(),
+            b"V" => self.list_variables(),
+            b"X" => return self.unlock(port),
+            b"C" => self.toggle_check(),
+            b"H" => return self.home(port),
+            b"SLP" => {
+                port.reset();
+                self.close_job();
+                self.sleep = true;
+                self.msg(format_args!("Sleeping"));
+            }
+            _ => return self.dollar_assign(cmd, port),
+        }
+        self.ok();
+        Handled::Done
+    }
+
+    /// `$x=…` forms.
+    fn dollar_assign<M: MotionPort + ?Sized>(&mut self, cmd: &[u8], port: &mut M) -> Handled {
+        let (key, value) = match cmd.iter().position(|&b| b == b'=') {
+            Some(i) => (&cmd[..i], &cmd[i + 1..]),
+            None => {
+                self.refuse(3, "Unknown $ command");
+                return Handled::Done;
+            }
+        };
+        let r: Result<(), (u8, &'static str)> = match key {
+            b"J" => return self.jog_line(value, port),
+            b"N0" | b"N1" => self.set_startup(usize::from(key[1] - b'0'), value),
+            b"RST" => self.restore(value, port),
+            b"PR" => self.run_program(value),
+            b"PD" => self.delete_program(value),
+            b"LN" => match whole(value) {
+                Some(n) => {
+                    self.link.expected = n.max(1);
+                    self.link.active = n > 0;
+                    Ok(())
+                }
+                None => Err((2, "Bad number")),
+            },
+            [b'P', digits @ ..] => self.set_param(digits, value),
+            digits => self.set_setting(digits, value, port),
+        };
+        match r {
+            Ok(()) => self.ok(),
+            Err((n, why)) => self.refuse(n, why),
+        }
+        Handled::Done
+    }
+
+    fn set_setting<M: MotionPort + ?Sized>(
+        &mut self,
+        key: &[u8],
+        value: &[u8],
+        port: &mut M,
+    ) -> Result<(), (u8, &'static str)> {
+        let n = whole(key).and_then(|n| u16::try_from(n).ok()).ok_or((3, "Unknown $ command"))?;
+        let v = number(value).ok_or((2, "Bad number"))?;
+        let mut cfg = self.interp.config().clone();
+        let mut s = self.settings;
+        settings::set(n, v, &mut cfg, &mut s).map_err(|e| match e {
+            SettingError::Unknown => (3, "Unknown setting"),
+            SettingError::BadValue(why) => (2, why),
+        })?;
+        if cfg != *self.interp.config() {
+            port.reconfigure(&cfg).map_err(|_| (2, "The motion core cannot run with this value"))?;
+            *self.interp.config_mut() = cfg;
+        }
+        self.settings = s;
+        Ok(())
+    }
+
+    fn set_param(&mut self, digits: &[u8], value: &[u8]) -> Result<(), (u8, &'static str)> {
+        let n = whole(digits).and_then(|n| u16::try_from(n).ok()).ok_or((3, "Unknown $ command"))?;
+        let v = number(value).ok_or((2, "Bad number"))?;
+        self.interp.config_mut().params.set_from_file(n, v).map_err(|e| match e {
+            interp_core::config::ParamError::Unknown { .. } => (3, "Unknown parameter"),
+            _ => (2, "Bad value for this parameter"),
+        })
+    }
+
+    fn set_startup(&mut self, i: usize, value: &[u8]) -> Result<(), (u8, &'static str)> {
+        let text = core::str::from_utf8(value).map_err(|_| (1, "Not text"))?;
+        let mut s = heapless::String::new();
+        s.push_str(text).map_err(|_| (11, "Startup block longer than 80 characters"))?;
+        if let Some(slot) = self.startup.get_mut(i) {
+            *slot = s;
+        }
+        Ok(())
+    }
+
+    /// `$RST=$` settings, `$RST=#` offsets, `$RST=*` everything.
+    fn restore<M: MotionPort + ?Sized>(&mut self, what: &[u8], port: &mut M) -> Result<(), (u8, &'static str)> {
+        let fresh = interp_core::MachineConfig::default();
+        let mut cfg = self.interp.config().clone();
+        match what {
+            b"$" => {
+                cfg = interp_core::MachineConfig {
+                    work_offsets: cfg.work_offsets,
+                    tools: cfg.tools,
+                    reference: cfg.reference,
+                    ..fresh
+                };
+                self.settings = settings::Settings::default();
+            }
+            b"#" => {
+                cfg.work_offsets = fresh.work_offsets;
+                cfg.external_offset = fresh.external_offset;
+                cfg.tools = fresh.tools;
+            }
+            b"*" => {
+                cfg = fresh;
+                self.settings = settings::Settings::default();
+                self.startup = Default::default();
+                self.memory.clear();
+            }
+            _ => return Err((3, "$RST= takes $, # or *")),
+        }
+        port.reconfigure(&cfg).map_err(|_| (2, "The motion core cannot run with the defaults"))?;
+        *self.interp.config_mut() = cfg;
+        Ok(())
+    }
+
+    /// `$PR=n`: runs O`n` from memory.
+    fn run_program(&mut self, value: &[u8]) -> Result<(), (u8, &'static str)> {
+        let n = whole(value).ok_or((2, "Bad number"))?;
+        if n == 0 || !self.memory.numbers().any(|p| p == n) {
+            return Err((20, "No such program in memory ($PL lists them)"));
+        }
+        self.interp.select_main(n);
+        self.job = Job::Memory(n);
+        Ok(())
+    }
+
+    /// `$PD=n`: deletes O`n`.
+    fn delete_program(&mut self, value: &[u8]) -> Result<(), (u8, &'static str)> {
+        let n = whole(value).ok_or((2, "Bad number"))?;
+        if self.memory.remove(n) { Ok(()) } else { Err((20, "No such program in memory")) }
+    }
+
+    fn unlock<M: MotionPort + ?Sized>(&mut self, port: &mut M) -> Handled {
+        if self.prev_inputs.estop {
+            self.refuse(9, "E-stop is active");
+            return Handled::Done;
+        }
+        if self.alarm.take().is_some() {
+            port.reset();
+            self.need_sync = true;
+            self.msg(format_args!("Caution: Unlocked"));
+        }
+        self.sleep = false;
+        self.ok();
+        Handled::Done
+    }
+
+    fn toggle_check(&mut self) {
+        self.check = !self.check;
+        self.close_job();
+        self.msg(format_args!("{}", if self.check { "Enabled" } else { "Disabled" }));
+    }
+
+    fn list_settings(&mut self) {
+        for &n in NUMBERS {
+            if let Some(v) = settings::get(n, self.interp.config(), &self.settings) {
+                self.out.fmt(Class::Info, format_args!("${n}={}", Value(v)));
+            }
+        }
+    }
+
+    fn list_params(&mut self) {
+        for d in PARAMS {
+            let v = settings::param_value(d.id, self.interp.config());
+            self.out.fmt(Class::Info, format_args!("$P{}={}", d.number, Value(v)));
+        }
+    }
+
+    fn list_offsets(&mut self) {
+        let cfg = self.interp.config().clone();
+        for (i, o) in cfg.work_offsets.iter().enumerate() {
+            self.out.fmt(Class::Info, format_args!("[G{}:{}]", 54 + i, Xyz::of(o, &cfg)));
+        }
+        self.out.fmt(Class::Info, format_args!("[G28:{}]", Xyz::of(&cfg.reference[0], &cfg)));
+        self.out.fmt(Class::Info, format_args!("[G30:{}]", Xyz::of(&cfg.reference[1], &cfg)));
+        let shift = self.interp.state().frames.shift;
+        self.out.fmt(Class::Info, format_args!("[G92:{}]", Xyz::of(&shift, &cfg)));
+        let tlo = self.interp.state().tool.offset[Axis::Z];
+        self.out.fmt(Class::Info, format_args!("[TLO:{}]", Self::mm(tlo)));
+    }
+
+    fn list_modal(&mut self) {
+        let st = *self.interp.state();
+        let m = &st.modal;
+        let motion = match m.motion {
+            GCode::Rapid => "0",
+            GCode::Linear => "1",
+            GCode::ArcCw => "2",
+            GCode::ArcCcw => "3",
+            GCode::Thread => "32",
+            GCode::VariableLeadThread => "34",
+            GCode::TurningCycle => "90",
+            GCode::ThreadCycle => "92",
+            GCode::FacingCycle => "94",
+            _ => "80",
+        };
+        let plane = match m.plane {
+            Plane::Xy => 17,
+            Plane::Zx => 18,
+            Plane::Yz => 19,
+        };
+        let units = if m.units == Units::Inch { 20 } else { 21 };
+        let css = if m.css { 96 } else { 97 };
+        let feed_mode = if m.feed_mode == FeedMode::PerRev { 99 } else { 98 };
+        let spindle = match st.spindle.dir {
+            SpindleDir::Cw => 3,
+            SpindleDir::Ccw => 4,
+            SpindleDir::Stop => 5,
+        };
+        let coolant = if self.flood {
+            8
+        } else if self.mist {
+            7
+        } else {
+            9
+        };
+        let f = Value(st.feed.get(m.feed_mode) as f64 / 1e6);
+        let s = if m.css { st.spindle.css.unwrap_or(0) / 1000 } else { st.spindle.rpm };
+        self.out.fmt(
+            Class::Info,
+            format_args!(
+                "[GC:G{motion} G{} G{plane} G{units} G{css} G{feed_mode} M{spindle} M{coolant} T{:02}{:02} F{f} S{s}]",
+                54 + u16::from(m.work_frame),
+                st.tool.tool,
+                st.tool.offset_number,
+            ),
+        );
+    }
+
+    fn list_programs(&mut self) {
+        let mut numbers: heapless::Vec<u32, 64> = heapless::Vec::new();
+        for n in self.memory.numbers() {
+            let _ = numbers.push(n);
+        }
+        for n in numbers {
+            let len = interp_core::ProgramStore::text(&self.memory, n).map_or(0, <[u8]>::len);
+            self.out.fmt(Class::Info, format_args!("[PRG:O{n:04},{len}]"));
+        }
+    }
+
+    fn list_variables(&mut self) {
+        let mut vars: heapless::Vec<(u16, f64), 200> = heapless::Vec::new();
+        for (n, v) in self.interp.variables().defined() {
+            if interp_core::macros::Variables::is_common(n) {
+                let _ = vars.push((n, v));
+            }
+        }
+        for (n, v) in vars {
+            self.out.fmt(Class::Info, format_args!("[VAR:#{n}={}]", Value(v)));
+        }
+    }
+
+    /// A parameter by number, for tests and tools.
+    pub fn param(&self, n: u16) -> Option<f64> {
+        Param::by_number(n).map(|p| settings::param_value(p, self.interp.config()))
+    }
+}

@@ -1,0 +1,102 @@
+//! The output queue the shell drains: whole lines, never blocking. When it runs
+//! short, status reports and messages are dropped first: `RESERVE` bytes are kept
+//! for replies (`ok`, `error:N`, `ALARM:N`, the welcome line).
+
+use core::fmt::{self, Write};
+
+/// What a line is, for what to drop when the queue is short.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Class {
+    /// `ok`, `error:N`, `ALARM:N`, welcome: dropped only if nothing fits.
+    Reply,
+    /// `[MSG:…]`, status reports, listings: need `RESERVE` bytes left over.
+    Info,
+}
+
+/// Bytes kept free for replies.
+pub const RESERVE: usize = 256;
+
+/// The longest line formatted at once.
+pub const LINE: usize = 200;
+
+/// A byte queue of `N` bytes.
+#[derive(Debug)]
+pub struct OutQueue<const N: usize> {
+    buf: heapless::Deque<u8, N>,
+    /// Replies dropped because the queue was full (should stay 0).
+    pub lost_replies: u32,
+    /// Info lines dropped.
+    pub lost_info: u32,
+}
+
+impl<const N: usize> Default for OutQueue<N> {
+    fn default() -> Self {
+        OutQueue { buf: heapless::Deque::new(), lost_replies: 0, lost_info: 0 }
+    }
+}
+
+impl<const N: usize> OutQueue<N> {
+    /// Queues `text` and CR LF, whole or not at all.
+    pub fn line(&mut self, class: Class, text: &str) {
+        let need = text.len() + 2;
+        let free = N - self.buf.len();
+        let room = match class {
+            Class::Reply => free >= need,
+            Class::Info => free >= need + RESERVE,
+        };
+        if !room {
+            match class {
+                Class::Reply => self.lost_replies += 1,
+                Class::Info => self.lost_info += 1,
+            }
+            return;
+        }
+        for &b in text.as_bytes().iter().chain(b"\r\n") {
+            let _ = self.buf.push_back(b);
+        }
+    }
+
+    /// Formats and queues a line.
+    pub fn fmt(&mut self, class: Class, args: fmt::Arguments<'_>) {
+        let mut s: heapless::String<LINE> = heapless::String::new();
+        if s.write_fmt(args).is_err() {
+            // Too long: cut at the capacity (still a useful line).
+            let _ = s.push_str("…");
+        }
+        self.line(class, &s);
+    }
+
+    /// Sends a flow-control byte ahead of everything queued.
+    pub fn control(&mut self, b: u8) {
+        if self.buf.push_front(b).is_err() {
+            let _ = self.buf.pop_back();
+            let _ = self.buf.push_front(b);
+        }
+    }
+
+    /// Moves queued bytes into `out`; how many.
+    pub fn drain(&mut self, out: &mut [u8]) -> usize {
+        let mut n = 0;
+        for slot in out.iter_mut() {
+            let Some(b) = self.buf.pop_front() else { break };
+            *slot = b;
+            n += 1;
+        }
+        n
+    }
+
+    /// Bytes waiting.
+    pub fn len(&self) -> usize {
+        self.buf.len()
+    }
+
+    /// Nothing waiting.
+    pub fn is_empty(&self) -> bool {
+        self.buf.is_empty()
+    }
+
+    /// Drops everything.
+    pub fn clear(&mut self) {
+        self.buf.clear();
+    }
+}

@@ -1,0 +1,201 @@
+//! Settings: grbl's `$n` numbers where they mean the same on a lathe, mapped onto
+//! the machine description, plus the controller's own; the interpreter's
+//! numbered parameters are `$P<n>`.
+//!
+//! Axis values of X are per millimetre of **slide travel** (radius), as the
+//! drive sees them; positions on the wire are diameters.
+
+use interp_core::MachineConfig;
+use interp_core::axis::Axis;
+use interp_core::config::{Param, ParamUnit};
+
+/// The controller's own settings (the rest live in the machine description).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Settings {
+    /// `$20`: soft limits checked (the travel is kept in `travel` while off).
+    pub soft_limits: bool,
+    /// `$21`: a limit switch raises ALARM:1.
+    pub hard_limits: bool,
+    /// `$22`: home switches fitted; `$H` runs the homing sequence.
+    pub homing: bool,
+    /// `$23`: homing direction mask, bit 0 X, bit 2 Z: set = toward minus.
+    pub homing_dir_mask: u8,
+    /// `$24`: homing locate feed, mm/min.
+    pub homing_feed: u32,
+    /// `$25`: homing seek rate, mm/min.
+    pub homing_seek: u32,
+    /// `$27`: homing pull-off, µm.
+    pub homing_pulloff_um: u32,
+    /// `$300`: tape mode: 0 auto (punch if the first block is an O number), 1
+    /// always store, 2 always run (drip feed).
+    pub tape_mode: u8,
+    /// `$302`: strip bit 7 (even parity) from tape bytes.
+    pub parity_strip: bool,
+    /// Soft-limit travel (min, max per axis, nm) while `$20=0`.
+    pub travel: [(i64, i64); 2],
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            soft_limits: true,
+            hard_limits: true,
+            homing: false,
+            homing_dir_mask: 0,
+            homing_feed: 50,
+            homing_seek: 500,
+            homing_pulloff_um: 1_000,
+            tape_mode: 0,
+            parity_strip: false,
+            travel: [(0, 0); 2],
+        }
+    }
+}
+
+/// The grbl-numbered settings, in `$$` order.
+pub const NUMBERS: &[u16] = &[11, 12, 20, 21, 22, 23, 24, 25, 27, 30, 100, 102, 110, 112, 120, 122, 130, 132, 300, 302];
+
+/// Why a setting write was refused.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SettingError {
+    /// No such setting.
+    Unknown,
+    /// The value does not suit it.
+    BadValue(&'static str),
+}
+
+const NM: f64 = 1e6;
+
+/// Soft-limit travel with limits "off": ±1000 m.
+const UNLIMITED: i64 = 1_000_000_000_000;
+
+fn lin(a: Axis) -> usize {
+    if a == Axis::X { 0 } else { 1 }
+}
+
+/// The value of setting `n` (file units: mm, mm/min, mm/s², counts).
+pub fn get(n: u16, cfg: &MachineConfig, s: &Settings) -> Option<f64> {
+    let ax = |n: u16| if n.is_multiple_of(10) { Axis::X } else { Axis::Z };
+    let a = cfg.axis(ax(n));
+    Some(match n {
+        11 => cfg.motion.junction_deviation as f64 / NM,
+        12 => cfg.motion.chord_tolerance as f64 / NM,
+        20 => f64::from(u8::from(s.soft_limits)),
+        21 => f64::from(u8::from(s.hard_limits)),
+        22 => f64::from(u8::from(s.homing)),
+        23 => f64::from(s.homing_dir_mask),
+        24 => f64::from(s.homing_feed),
+        25 => f64::from(s.homing_seek),
+        27 => f64::from(s.homing_pulloff_um) / 1e3,
+        30 => f64::from(cfg.spindle.max_rpm),
+        100 | 102 => a.drive.steps as f64 * NM / a.drive.per_nm.max(1) as f64,
+        110 | 112 => a.rapid_per_min as f64 / NM,
+        120 | 122 => a.accel_per_s2 as f64 / NM,
+        130 | 132 => {
+            let (lo, hi) = if s.soft_limits { (a.min, a.max) } else { s.travel[lin(ax(n))] };
+            (hi - lo) as f64 / NM
+        }
+        300 => f64::from(s.tape_mode),
+        302 => f64::from(u8::from(s.parity_strip)),
+        _ => return None,
+    })
+}
+
+/// Writes setting `n` into `cfg`/`s` (on copies: the caller commits them once the
+/// motion core accepted the machine description).
+pub fn set(n: u16, v: f64, cfg: &mut MachineConfig, s: &mut Settings) -> Result<(), SettingError> {
+    let bad = SettingError::BadValue;
+    if !v.is_finite() || !(0.0..=1e9).contains(&v) {
+        return Err(bad("must be a number from 0 to 1e9"));
+    }
+    let flag = |v: f64| if v == 0.0 || v == 1.0 { Ok(v == 1.0) } else { Err(bad("must be 0 or 1")) };
+    let whole = |v: f64| if libm::trunc(v) == v { Ok(v as u32) } else { Err(bad("must be a whole number")) };
+    let positive = |v: f64| if v > 0.0 { Ok(libm::round(v * NM) as i64) } else { Err(bad("must be above 0")) };
+    let ax = if n.is_multiple_of(10) { Axis::X } else { Axis::Z };
+    match n {
+        11 => cfg.motion.junction_deviation = positive(v)?,
+        12 => cfg.motion.chord_tolerance = positive(v)?,
+        20 => set_soft_limits(flag(v)?, cfg, s),
+        21 => s.hard_limits = flag(v)?,
+        22 => s.homing = flag(v)?,
+        23 => s.homing_dir_mask = u8::try_from(whole(v)?).map_err(|_| bad("is a bit mask 0-255"))?,
+        24 => s.homing_feed = whole(v)?.max(1),
+        25 => s.homing_seek = whole(v)?.max(1),
+        27 => s.homing_pulloff_um = libm::round(v * 1e3) as u32,
+        30 => cfg.spindle.max_rpm = whole(v)?.max(1),
+        100 | 102 => {
+            let d = &mut cfg.axes[ax.index()].drive;
+            // Exact ratio: steps per metre over a metre.
+            d.steps = libm::round(v * 1000.0) as i64;
+            d.per_nm = 1_000_000_000;
+            if d.steps <= 0 {
+                return Err(bad("must be above 0"));
+            }
+        }
+        110 | 112 => cfg.axes[ax.index()].rapid_per_min = positive(v)?,
+        120 | 122 => cfg.axes[ax.index()].accel_per_s2 = positive(v)?,
+        130 | 132 => {
+            let travel = positive(v)?;
+            let t = &mut s.travel[lin(ax)];
+            let a = &mut cfg.axes[ax.index()];
+            if s.soft_limits {
+                a.min = a.max - travel;
+            } else {
+                t.0 = t.1 - travel;
+            }
+        }
+        300 => s.tape_mode = u8::try_from(whole(v)?).ok().filter(|m| *m <= 2).ok_or(bad("is 0, 1 or 2"))?,
+        302 => s.parity_strip = flag(v)?,
+        _ => return Err(SettingError::Unknown),
+    }
+    Ok(())
+}
+
+/// `$20`: switching soft limits off keeps the travel aside and opens the limits.
+fn set_soft_limits(on: bool, cfg: &mut MachineConfig, s: &mut Settings) {
+    if on == s.soft_limits {
+        return;
+    }
+    for (i, a) in [Axis::X, Axis::Z].into_iter().enumerate() {
+        let ax = &mut cfg.axes[a.index()];
+        if on {
+            (ax.min, ax.max) = s.travel[i];
+        } else {
+            s.travel[i] = (ax.min, ax.max);
+            (ax.min, ax.max) = (-UNLIMITED, UNLIMITED);
+        }
+    }
+    s.soft_limits = on;
+}
+
+/// A numbered parameter's value in file units.
+pub fn param_value(p: Param, cfg: &MachineConfig) -> f64 {
+    let v = cfg.params.get(p) as f64;
+    match p.def().unit {
+        ParamUnit::Mm | ParamUnit::MmPerMin => v / NM,
+        _ => v,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn settings_map_onto_the_machine_and_read_back() {
+        let mut cfg = MachineConfig::default();
+        let mut s = Settings::default();
+        assert_eq!(get(100, &cfg, &s), Some(400.0));
+        assert_eq!(get(102, &cfg, &s), Some(320.0));
+        assert_eq!(get(130, &cfg, &s), Some(165.0));
+        set(102, 640.5, &mut cfg, &mut s).unwrap();
+        assert_eq!(get(102, &cfg, &s), Some(640.5));
+        set(20, 0.0, &mut cfg, &mut s).unwrap();
+        assert_eq!(get(132, &cfg, &s), Some(900.0));
+        assert!(cfg.axis(Axis::Z).max > 1_000_000_000);
+        set(20, 1.0, &mut cfg, &mut s).unwrap();
+        assert_eq!((cfg.axis(Axis::Z).min, cfg.axis(Axis::Z).max), (-600_000_000, 300_000_000));
+        assert_eq!(set(22, 2.0, &mut cfg, &mut s), Err(SettingError::BadValue("must be 0 or 1")));
+        assert_eq!(set(7, 1.0, &mut cfg, &mut s), Err(SettingError::Unknown));
+    }
+}
