@@ -10,6 +10,7 @@
 //! step event: `t_s,x_mm,z_mm,spindle_deg` (work coordinates, X as a diameter,
 //! the cumulative spindle angle the encoder reports at that moment).
 
+pub mod board;
 pub mod path;
 pub mod spindle;
 
@@ -245,6 +246,8 @@ pub struct Sim {
     resume_program: bool,
     edges: Vec<Edge>,
     step_buf: Vec<(u64, usize, EdgeKind)>,
+    /// Driven period by period from outside ([`Sim::external_period`]).
+    external: bool,
 }
 
 /// The sink the interpreter feeds: the motion core, recording the path it accepts.
@@ -300,6 +303,7 @@ impl Sim {
             resume_program: false,
             edges: Vec::new(),
             step_buf: Vec::new(),
+            external: false,
         })
     }
 
@@ -415,6 +419,15 @@ impl Sim {
         }
     }
 
+    /// One interpolation period driven from outside (the virtual board): the
+    /// motion core's events stay in the core for whoever drives it (the board's
+    /// controller takes them through its motion port), and no programmed path is
+    /// kept to measure against.
+    pub fn external_period(&mut self) {
+        self.external = true;
+        self.period(u64::from(self.core.params().tick_ns));
+    }
+
     /// One interpolation period: the core's tick, the spindle and its encoder
     /// edges, and every step event, in time order.
     fn period(&mut self, period: u64) {
@@ -423,7 +436,9 @@ impl Sim {
         self.core.tick(t, fb);
         let (dir, rpm) = self.core.spindle_output();
         self.spindle.set_speed(rotation(dir), rpm);
-        self.handle_events();
+        if !self.external {
+            self.handle_events();
+        }
         if self.opts.samples {
             self.samples.push(TickSample {
                 t,
@@ -508,6 +523,9 @@ impl Sim {
     }
 
     fn after_step(&mut self, t: u64, axis: usize) {
+        if self.external && !self.opts.trace && self.trace_out.is_none() {
+            return;
+        }
         let pos = self.machine_pos();
         let err = self.path.error(&pos, self.core.stats().blocks as usize);
         let p = self.core.params();

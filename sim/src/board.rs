@@ -1,0 +1,247 @@
+//! The virtual board: the board's controller (the same `controller` crate the
+//! firmware runs) on the simulated machine, driven by simulated time. `lathe
+//! board` puts it behind a pseudo-terminal in real time; tests drive it directly
+//! with bytes and simulated time, so a whole session on the wire is deterministic.
+//!
+//! Per simulated millisecond the controller is polled once (as the firmware's
+//! controller task is); between polls the motion core runs its interpolation
+//! periods on the simulated machine, exactly as [`Sim`] runs a program.
+
+use controller::{Inputs, MachineIo, MotionPort, MotionStatus};
+use interp_core::axis::{Axis, Pos};
+use interp_core::canon::{Canon, Full, SpindleDir};
+use interp_core::motion::{Event, MotionCore, QUEUE};
+use interp_core::{AlarmKind, MachineConfig};
+
+use crate::{Sim, SimOptions, SpindleModel};
+
+/// How often the controller is polled, ns of simulated time.
+pub const POLL_NS: u64 = 1_000_000;
+
+/// What the simulated switches do.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Switches {
+    /// Emergency stop pressed.
+    pub estop: bool,
+    /// Feed hold button held.
+    pub feed_hold: bool,
+    /// Cycle start button held.
+    pub cycle_start: bool,
+    /// Safety door open.
+    pub door: bool,
+    /// External inputs for M91/M92 (bit n).
+    pub user: u32,
+}
+
+/// The motion core as the controller reaches it, recording every action it
+/// accepts (the executed canonical program, for comparison with `lathe sim`).
+struct Recorder<'a> {
+    core: &'a mut MotionCore<QUEUE>,
+    log: Option<&'a mut Vec<Canon>>,
+}
+
+impl MotionPort for Recorder<'_> {
+    fn push(&mut self, c: Canon) -> Result<(), Full> {
+        MotionPort::push(self.core, c)?;
+        if let Some(log) = self.log.as_mut() {
+            log.push(c);
+        }
+        Ok(())
+    }
+    fn feed_hold(&mut self) {
+        MotionPort::feed_hold(self.core);
+    }
+    fn cycle_start(&mut self) {
+        MotionPort::cycle_start(self.core);
+    }
+    fn reset(&mut self) {
+        MotionPort::reset(self.core);
+    }
+    fn emergency_stop(&mut self) {
+        MotionPort::emergency_stop(self.core);
+    }
+    fn set_feed_override(&mut self, pct: u16) {
+        MotionPort::set_feed_override(self.core, pct);
+    }
+    fn set_rapid_override(&mut self, pct: u16) {
+        MotionPort::set_rapid_override(self.core, pct);
+    }
+    fn set_spindle_override(&mut self, pct: u16) {
+        MotionPort::set_spindle_override(self.core, pct);
+    }
+    fn set_position(&mut self, pos: Pos) -> bool {
+        MotionPort::set_position(self.core, pos)
+    }
+    fn reconfigure(&mut self, cfg: &MachineConfig) -> Result<(), AlarmKind> {
+        MotionPort::reconfigure(self.core, cfg)
+    }
+    fn pop_event(&mut self) -> Option<Event> {
+        MotionPort::pop_event(self.core)
+    }
+    fn status(&self) -> MotionStatus {
+        MotionPort::status(&*self.core)
+    }
+}
+
+/// The outputs the controller switches: logged with their simulated time.
+#[derive(Clone, Debug, Default)]
+pub struct OutputLog {
+    /// (time ns, M code, line) in order.
+    pub m_codes: Vec<(u64, u16, u32)>,
+    /// (time ns, tool, offset).
+    pub tools: Vec<(u64, u16, u16)>,
+    now: u64,
+}
+
+impl MachineIo for OutputLog {
+    fn m_code(&mut self, m: u16, line: u32) {
+        self.m_codes.push((self.now, m, line));
+    }
+    fn tool(&mut self, tool: u16, offset: u16) {
+        self.tools.push((self.now, tool, offset));
+    }
+    fn spindle(&mut self, _dir: SpindleDir, _rpm: u32) {}
+}
+
+/// The controller on the simulated machine.
+pub struct VirtualBoard {
+    /// The board's controller, as the firmware builds it.
+    pub ctl: Box<controller::Board>,
+    /// The simulated machine (its `core` is the motion core the controller feeds).
+    pub sim: Sim,
+    /// Switches the operator holds.
+    pub switches: Switches,
+    /// Outputs switched so far.
+    pub outputs: OutputLog,
+    /// Every canonical action the motion core accepted, when recording.
+    pub executed: Option<Vec<Canon>>,
+    /// Received bytes the controller has not taken yet (its receive buffer was full).
+    pending: Vec<u8>,
+    next_poll: u64,
+    /// Home switches trip at reference position 1 (homing toward plus).
+    home: Pos,
+}
+
+impl VirtualBoard {
+    /// A board for machine `cfg`, the axes standing at reference position 1 (where a
+    /// homed lathe stands after power-on and `$H`).
+    pub fn new(cfg: MachineConfig) -> Result<Self, AlarmKind> {
+        let spindle = SpindleModel {
+            accel_rpm_s: f64::from(cfg.spindle.accel_rpm_per_s) * 1.25,
+            cpr: cfg.spindle.encoder_cpr,
+            ..SpindleModel::default()
+        };
+        let start = cfg.reference[0];
+        let opts = SimOptions { spindle, start, max_time_s: f64::INFINITY, ..SimOptions::default() };
+        let sim = Sim::new(cfg.clone(), opts)?;
+        let ctl = Box::new(controller::Board::new(cfg, start));
+        Ok(VirtualBoard {
+            ctl,
+            sim,
+            switches: Switches::default(),
+            outputs: OutputLog::default(),
+            executed: None,
+            pending: Vec::new(),
+            next_poll: 0,
+            home: start,
+        })
+    }
+
+    /// Keeps every canonical action the motion core accepts from now on.
+    pub fn record(&mut self) {
+        self.executed.get_or_insert_with(Vec::new);
+    }
+
+    /// Simulated time, ns.
+    pub fn now(&self) -> u64 {
+        self.sim.clock.0
+    }
+
+    /// Bytes from the link. The controller takes what fits; the rest waits here
+    /// (as it waits in the UART's ring buffer on the board) and is offered again at
+    /// every poll.
+    pub fn receive(&mut self, bytes: &[u8]) {
+        self.pending.extend_from_slice(bytes);
+        self.offer();
+    }
+
+    /// Bytes received but not yet taken by the controller.
+    pub fn backlog(&self) -> usize {
+        self.pending.len()
+    }
+
+    /// Bytes for the link.
+    pub fn transmit(&mut self) -> Vec<u8> {
+        let mut out = Vec::new();
+        let mut buf = [0u8; 256];
+        loop {
+            let n = self.ctl.transmit(&mut buf);
+            if n == 0 {
+                return out;
+            }
+            out.extend_from_slice(&buf[..n]);
+        }
+    }
+
+    /// Runs the machine and the controller up to simulated time `until` (ns).
+    pub fn advance(&mut self, until: u64) {
+        while self.sim.clock.0 < until {
+            if self.sim.clock.0 >= self.next_poll {
+                self.poll();
+                self.next_poll = self.sim.clock.0 + POLL_NS;
+            }
+            self.sim.external_period();
+        }
+    }
+
+    /// Advances by `ns` of simulated time.
+    pub fn run_for(&mut self, ns: u64) {
+        self.advance(self.now() + ns);
+    }
+
+    /// Machine position of the stepped axes, nm (X radius).
+    pub fn position(&self) -> Pos {
+        self.sim.machine_pos()
+    }
+
+    fn offer(&mut self) {
+        if self.pending.is_empty() {
+            return;
+        }
+        let n = self.ctl.receive(&self.pending, self.sim.clock.0);
+        self.pending.drain(..n.min(self.pending.len()));
+    }
+
+    fn poll(&mut self) {
+        self.offer();
+        let inputs = self.inputs();
+        self.outputs.now = self.sim.clock.0;
+        let mut port = Recorder { core: &mut self.sim.core, log: self.executed.as_mut() };
+        self.ctl.poll(self.sim.clock.0, &mut port, &mut self.outputs, inputs);
+        self.offer();
+    }
+
+    /// The switch inputs as the machine shows them now: the operator's switches,
+    /// home switches at reference position 1, limit switches just beyond the soft
+    /// limits (1 mm).
+    fn inputs(&self) -> Inputs {
+        let pos = self.position();
+        let cfg = &self.sim.cfg;
+        let beyond = |a: Axis| {
+            let c = cfg.axis(a);
+            c.present && (pos[a] > c.max + 1_000_000 || pos[a] < c.min - 1_000_000)
+        };
+        let s = self.switches;
+        Inputs {
+            estop: s.estop,
+            limit_x: beyond(Axis::X),
+            limit_z: beyond(Axis::Z),
+            home_x: pos[Axis::X] > self.home[Axis::X],
+            home_z: pos[Axis::Z] > self.home[Axis::Z],
+            feed_hold: s.feed_hold,
+            cycle_start: s.cycle_start,
+            door: s.door,
+            user: s.user,
+        }
+    }
+}
