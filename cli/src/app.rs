@@ -14,7 +14,7 @@ use crate::error::Error;
 use crate::motion::{self, Motion};
 use crate::program::{OnAlarm, Programs, Run, Runaway, run_programs};
 use crate::summary::Summary;
-use crate::{docs, jsonl, machine, svg, vars};
+use crate::{docs, jsonl, link, machine, svg, vars};
 
 /// Exit status: done, no alarms.
 pub const EXIT_OK: u8 = 0;
@@ -23,10 +23,11 @@ pub const EXIT_ALARM: u8 = 1;
 /// Exit status: the command could not do its work.
 pub const EXIT_ERROR: u8 = 2;
 
-/// Check and simulate lathe part programs (FANUC-style, G-code systems A/B/C).
+/// Check and simulate lathe part programs (FANUC-style, G-code systems A/B/C), and send them to the board.
 #[derive(Debug, Parser)]
 #[command(name = "lathe", version, max_term_width = 100)]
-#[command(after_help = "Exit status: 0 no alarms, 1 alarm, 2 error.")]
+#[command(after_help = "Exit status: 0 no alarms (or the board's job done), 1 alarm (or the board \
+                         refused, alarmed or was stopped), 2 error.")]
 pub struct Cli {
     /// What to do.
     #[command(subcommand)]
@@ -71,6 +72,23 @@ pub enum Command {
         #[arg(long, value_name = "FILE")]
         machine: Option<PathBuf>,
     },
+    /// Stream a program to the board and follow it to its end
+    ///
+    /// grbl 1.1 streaming with character counting (at most 128 bytes unanswered), or FANUC
+    /// tape mode with --tape. The board is soft-reset first and must come up Idle. The
+    /// program goes line by line as it is (CR dropped; a leading `%` line as an empty line,
+    /// nothing after a closing `%`). Keys on a terminal: ! or space feed hold, ~ or c
+    /// resume, x soft reset, q abort. Exit status 0 only when every line got `ok` and the
+    /// board reached program end or went back to Idle with nothing queued.
+    Send(link::commands::SendArgs),
+    /// Store a program in the board's memory (tape mode, `%` O-number … `%`), checked with $PL
+    Upload(link::commands::UploadArgs),
+    /// Run program N from the board's memory ($PR=N) and follow it to its end like send
+    Run(link::commands::RunArgs),
+    /// Print the board's status report (position, feed, spindle, line, buffers)
+    Status(link::commands::StatusArgs),
+    /// Print the board's settings ($$), write settings ($n=value …), or list its programs
+    Settings(link::commands::SettingsArgs),
 }
 
 /// What programs run with besides their own text: subprograms, the common
@@ -203,6 +221,11 @@ fn execute(command: Command, out: &mut dyn Write, err: &mut dyn Write) -> Result
                 .map_err(|e| Error::Write { target: STDOUT.into(), source: std::io::Error::other(e) })?;
             print(out, &text)
         }
+        Command::Send(args) => link::commands::send(&args, out, err),
+        Command::Upload(args) => link::commands::upload(&args, out, err),
+        Command::Run(args) => link::commands::run(&args, out, err),
+        Command::Status(args) => link::commands::status(&args, out),
+        Command::Settings(args) => link::commands::settings(&args, out, err),
     }
 }
 

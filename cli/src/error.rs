@@ -1,6 +1,7 @@
 //! Errors that keep a command from doing its work: unreadable files, programs that
 //! are not text, bad machine files, output that cannot be written. All of them make
-//! `lathe` exit with status 2 (alarms, status 1, are results, not errors).
+//! `lathe` exit with status 2 (alarms, status 1, are results, not errors), and so
+//! do a failed link to the board and program lines that cannot be sent.
 
 use std::fmt;
 use std::io;
@@ -58,6 +59,17 @@ pub enum Error {
         /// What is wrong.
         message: &'static str,
     },
+    /// A program line cannot go over the link (`lathe send`, `upload`).
+    Unsendable {
+        /// The program.
+        path: PathBuf,
+        /// 1-based line.
+        line: usize,
+        /// What is wrong.
+        message: String,
+    },
+    /// The link to the board failed (port, timeout, no welcome).
+    Link(crate::link::LinkError),
     /// A program was still running after [`crate::program::MAX_STEPS`] steps.
     Runaway {
         /// The program.
@@ -78,6 +90,8 @@ impl fmt::Display for Error {
             Error::Write { target, source } => write!(f, "cannot write {target}: {source}"),
             Error::Library { path, message } => write!(f, "{path}: {message}"),
             Error::Vars { path, line, message } => write!(f, "{}:{line}: {message}", path.display()),
+            Error::Unsendable { path, line, message } => write!(f, "{}:{line}: {message}", path.display()),
+            Error::Link(e) => write!(f, "{e}"),
             Error::Runaway { path } => write!(
                 f,
                 "{}: still running after {} steps; the program loops",
@@ -94,5 +108,11 @@ impl std::error::Error for Error {
             Error::Read { source, .. } | Error::Write { source, .. } => Some(source),
             _ => None,
         }
+    }
+}
+
+impl From<crate::link::LinkError> for Error {
+    fn from(e: crate::link::LinkError) -> Self {
+        Error::Link(e)
     }
 }

@@ -1,6 +1,6 @@
 //! The `lathe` host command as a library: checking and simulating part programs
-//! with the interpreter of `interp-core`, reading machine files, and generating
-//! the alarm and parameter documentation. The binary (`src/main.rs`) only calls
+//! with the interpreter of `interp-core`, reading machine files, generating
+//! the alarm and parameter documentation, and talking to the board ([`link`]). The binary (`src/main.rs`) only calls
 //! [`app::main`]; `host-tests` uses the modules directly for golden tests.
 //!
 //! Internal units come from `interp-core` (nanometres, micro-degrees, X as a
@@ -11,6 +11,7 @@ pub mod app;
 pub mod docs;
 pub mod error;
 pub mod jsonl;
+pub mod link;
 pub mod machine;
 pub mod motion;
 pub mod path;

@@ -122,6 +122,9 @@ pub struct Counters {
     pub alarms: u32,
     /// Bytes the stream window dropped behind the interpreter.
     pub window_dropped: u64,
+    /// Times a look-ahead (G70–G73 shape, forward GOTO, WHILE's END) waited for
+    /// lines not yet received.
+    pub lookahead_waits: u32,
 }
 
 /// The board's controller. `W`: stream window bytes; `T`, `P`, `S`: program
@@ -304,7 +307,9 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
     /// keeps the rest and offers it again (the buffer is full until a line leaves
     /// it). Never blocks, never panics.
     pub fn receive(&mut self, bytes: &[u8], now: u64) -> usize {
-        self.last_rx = now;
+        if !bytes.is_empty() {
+            self.last_rx = now;
+        }
         for (i, &raw) in bytes.iter().enumerate() {
             let b = if self.tape.is_some() && self.settings.parity_strip { raw & 0x7f } else { raw };
             if self.realtime(b) || b == XON || b == XOFF {
@@ -769,6 +774,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             let at_end = at.offset >= self.window.len();
             if !(a.kind == AlarmKind::EndOfRecord && at_end) {
                 self.lookahead = Some(Wait { received: self.window.received(), alarm: a });
+                self.counters.lookahead_waits += 1;
             }
             return;
         }
@@ -789,7 +795,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             }
             return true;
         }
-        !self.interp.has_pending() && self.stream_drained()
+        !self.interp.has_pending() && !self.interp.is_ended() && self.stream_drained()
     }
 
     /// Jog and homing completion.

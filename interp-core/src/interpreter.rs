@@ -330,6 +330,12 @@ impl Interpreter {
         self.phase = Phase::Running;
     }
 
+    /// Whether the run has ended (M02/M30, or an end-of-record alarm): the next
+    /// step returns [`Progress::Ended`].
+    pub fn is_ended(&self) -> bool {
+        self.phase == Phase::Ended
+    }
+
     /// Whether a step has work that needs no new block: actions waiting for the
     /// sink, a canned cycle being delivered or validated.
     pub fn has_pending(&self) -> bool {

@@ -3,7 +3,9 @@
 
 mod check;
 mod docs;
+mod fake_board;
 mod jsonl;
+mod link;
 mod machine;
 mod macros;
 mod sim;

@@ -1,0 +1,463 @@
+//! One job on the board followed to its end: lines fed by a [`Feeder`] (the
+//! counting streamer or the tape), a status report asked every 200 ms, keys
+//! acted on, every board message shown, and a [`Verdict`] at the end.
+//!
+//! The job is done when every line was accepted (or the whole tape went out) and
+//! the board is Idle with empty queues afterwards: once after `[MSG:Pgm End]`,
+//! twice in a row without it. An `error:N` stops the job gently (feed hold, then
+//! soft reset once held); an alarm stops it where the board stopped.
+
+use std::time::{Duration, Instant};
+
+use super::LinkError;
+use super::keys::{Key, Keys};
+use super::response::{self, Response, Status};
+use super::stream::{Outcome, RX_BUFFER, Streamer};
+use super::tape::Tape;
+use super::ui::Ui;
+use super::wire::{Incoming, Link};
+
+/// What feeds the board.
+#[derive(Debug)]
+pub enum Feeder {
+    /// grbl mode: character counting, `ok` per line.
+    Counting(Streamer),
+    /// FANUC tape mode: XON/XOFF, no answers per line.
+    Tape(Tape),
+}
+
+/// How a job ended.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Verdict {
+    /// Every line accepted and the board back to Idle (or at program end).
+    Done,
+    /// A line was refused: where (`file:line`), the error number, the message.
+    Refused(String),
+    /// The board raised an alarm: the report.
+    Alarm(String),
+    /// The user stopped it.
+    Aborted(&'static str),
+    /// The board restarted (welcome line) during the job.
+    BoardReset,
+}
+
+impl Verdict {
+    /// The exit status: 0 only for [`Verdict::Done`].
+    pub fn exit_status(&self) -> u8 {
+        if *self == Verdict::Done { 0 } else { 1 }
+    }
+}
+
+/// Where the lines of a job come from, to name them in messages.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Origin {
+    /// File name (or `O0012` for a program in memory).
+    pub name: String,
+    /// File line of each line sent (index = board line − 1); empty: board lines are file lines.
+    pub file_lines: Vec<usize>,
+}
+
+impl Origin {
+    /// `name:line` for board line `n` (1-based); just `name` when the line is not in the file.
+    pub fn place(&self, n: u32) -> String {
+        let line = if self.file_lines.is_empty() {
+            Some(n as usize)
+        } else {
+            (n as usize).checked_sub(1).and_then(|i| self.file_lines.get(i).copied())
+        };
+        match line.filter(|&l| l > 0) {
+            Some(l) => format!("{}:{l}", self.name),
+            None => self.name.clone(),
+        }
+    }
+}
+
+/// Timing of a session.
+#[derive(Clone, Copy, Debug)]
+pub struct Timing {
+    /// Status report period.
+    pub poll: Duration,
+    /// Nothing at all from the board for this long is a dead link.
+    pub dead: Duration,
+    /// How long a gentle stop waits for the hold before resetting.
+    pub hold_wait: Duration,
+    /// How long to wait for the welcome after a soft reset.
+    pub welcome_wait: Duration,
+    /// Time of one character on the wire (10 bits): the tape is never written faster,
+    /// so that on a pty, as on a real line, an XOFF stops it within a few characters.
+    pub char_time: Duration,
+}
+
+impl Timing {
+    /// The default timing at `baud` (8N1: 10 bits a character).
+    pub fn at_baud(baud: u32) -> Timing {
+        Timing { char_time: Duration::from_secs(10) / baud.max(1), ..Timing::default() }
+    }
+}
+
+impl Default for Timing {
+    fn default() -> Self {
+        Timing {
+            poll: Duration::from_millis(200),
+            dead: Duration::from_secs(5),
+            hold_wait: Duration::from_secs(10),
+            welcome_wait: Duration::from_secs(3),
+            char_time: Duration::from_secs(10) / 115_200,
+        }
+    }
+}
+
+/// A job in progress.
+pub struct Session<'a> {
+    link: &'a mut Link,
+    ui: &'a mut dyn Ui,
+    keys: Option<&'a Keys>,
+    feeder: Feeder,
+    origin: Origin,
+    timing: Timing,
+    /// Free planner blocks of an idle board (from the first status report).
+    capacity: Option<u32>,
+    last_msg: Option<String>,
+    alarm_msg: Option<String>,
+    pgm_end: bool,
+    fed_at: Option<Instant>,
+    /// When the wire is free for the next tape chunk.
+    tape_free_at: Instant,
+    polled_at: Instant,
+    heard_at: Instant,
+    idle_reports: u32,
+    last_progress: (usize, usize),
+}
+
+impl<'a> Session<'a> {
+    /// A job feeding `feeder` over `link`; `capacity` is the planner's free block
+    /// count of the idle board, when known.
+    pub fn new(link: &'a mut Link, ui: &'a mut dyn Ui, feeder: Feeder, origin: Origin, capacity: Option<u32>) -> Self {
+        let now = Instant::now();
+        Session {
+            link,
+            ui,
+            keys: None,
+            feeder,
+            origin,
+            timing: Timing::default(),
+            capacity,
+            last_msg: None,
+            alarm_msg: None,
+            pgm_end: false,
+            fed_at: None,
+            tape_free_at: now,
+            polled_at: now.checked_sub(Duration::from_secs(1)).unwrap_or(now),
+            heard_at: now,
+            idle_reports: 0,
+            last_progress: (usize::MAX, usize::MAX),
+        }
+    }
+
+    /// Reads keys from `keys`.
+    pub fn with_keys(mut self, keys: Option<&'a Keys>) -> Self {
+        self.keys = keys;
+        self
+    }
+
+    /// Uses `timing` instead of the defaults.
+    pub fn with_timing(mut self, timing: Timing) -> Self {
+        self.timing = timing;
+        self
+    }
+
+    /// Runs the job to its verdict.
+    pub fn run(mut self) -> Result<Verdict, LinkError> {
+        let verdict = self.run_loop();
+        self.ui.finish();
+        verdict
+    }
+
+    /// The loop: keys, status poll, feed, one incoming item, end checks.
+    fn run_loop(&mut self) -> Result<Verdict, LinkError> {
+        loop {
+            if let Some(v) = self.keys_step()? {
+                return Ok(v);
+            }
+            let now = Instant::now();
+            if now.duration_since(self.polled_at) >= self.timing.poll {
+                self.link.write(b"?")?;
+                self.polled_at = now;
+            }
+            self.feed(now)?;
+            let wait = self.idle_wait(now);
+            if let Some(item) = self.link.poll(wait)? {
+                self.heard_at = Instant::now();
+                if let Some(v) = self.incoming(item)? {
+                    return Ok(v);
+                }
+            } else if self.heard_at.elapsed() >= self.timing.dead {
+                return Err(LinkError::Timeout {
+                    port: self.link.name().to_owned(),
+                    what: "any answer (the board stopped talking)".into(),
+                });
+            }
+            if self.finished() {
+                return Ok(Verdict::Done);
+            }
+        }
+    }
+
+    /// Acts on a key, if one was pressed.
+    fn keys_step(&mut self) -> Result<Option<Verdict>, LinkError> {
+        let Some(key) = self.keys.and_then(Keys::poll) else { return Ok(None) };
+        match key {
+            Key::Hold => {
+                self.link.write(b"!")?;
+                self.ui.note("feed hold");
+            }
+            Key::Resume => {
+                self.link.write(b"~")?;
+                self.ui.note("resume");
+            }
+            Key::Reset => {
+                self.stop_feeding();
+                self.reset()?;
+                return Ok(Some(Verdict::Aborted("soft reset")));
+            }
+            Key::Quit => return self.stop_gently(Verdict::Aborted("aborted")).map(Some),
+        }
+        Ok(None)
+    }
+
+    /// How long to wait for the board before the loop turns again: until the wire is
+    /// free when the tape has more to write, else 10 ms.
+    fn idle_wait(&self, now: Instant) -> Duration {
+        let slice = Duration::from_millis(10);
+        match &self.feeder {
+            Feeder::Tape(t) if t.next_chunk().is_some() => self.tape_free_at.saturating_duration_since(now).min(slice),
+            _ => slice,
+        }
+    }
+
+    /// Writes what the feeder allows, reports progress, notes when feeding is complete.
+    fn feed(&mut self, now: Instant) -> Result<(), LinkError> {
+        match &mut self.feeder {
+            Feeder::Counting(s) => {
+                if let Some(from) = s.tick(now) {
+                    self.ui.note(&format!("resending from line {}", from + 1));
+                }
+                while let Some(line) = s.next_line() {
+                    self.link.write(line.as_bytes())?;
+                }
+            }
+            Feeder::Tape(t) => {
+                if let Some(chunk) = t.next_chunk()
+                    && now >= self.tape_free_at
+                    && self.link.queued_out() < TAPE_QUEUE
+                {
+                    let n = self.link.write_some(chunk)?;
+                    t.wrote(n);
+                    self.tape_free_at = now.max(self.tape_free_at) + self.timing.char_time * n as u32;
+                }
+            }
+        }
+        self.show_progress();
+        if self.fed_at.is_none() && self.fed() {
+            self.fed_at = Some(now);
+        }
+        Ok(())
+    }
+
+    /// Updates the progress display when the counts changed.
+    fn show_progress(&mut self) {
+        let (sent, accepted, total) = match &self.feeder {
+            Feeder::Counting(s) => (s.sent(), s.accepted(), s.total()),
+            Feeder::Tape(t) => (t.lines_sent(), t.lines_sent(), t.total()),
+        };
+        if (sent, accepted) != self.last_progress {
+            self.last_progress = (sent, accepted);
+            self.ui.progress(sent, accepted, total);
+        }
+    }
+
+    /// Every line accepted, or the whole tape out.
+    fn fed(&self) -> bool {
+        match &self.feeder {
+            Feeder::Counting(s) => s.all_accepted(),
+            Feeder::Tape(t) => t.done(),
+        }
+    }
+
+    /// Fed, and Idle with empty queues often enough since.
+    fn finished(&self) -> bool {
+        self.fed_at.is_some() && self.idle_reports >= if self.pgm_end { 1 } else { 2 }
+    }
+
+    /// Handles one thing from the board.
+    fn incoming(&mut self, item: Incoming) -> Result<Option<Verdict>, LinkError> {
+        match item {
+            Incoming::Flow(b) => {
+                if let Feeder::Tape(t) = &mut self.feeder {
+                    t.flow(b);
+                }
+                Ok(None)
+            }
+            Incoming::Line(l) => self.response(response::parse(&l)),
+        }
+    }
+
+    /// Handles one response line.
+    fn response(&mut self, r: Response) -> Result<Option<Verdict>, LinkError> {
+        match r {
+            Response::Ok => self.answer(Ok(())),
+            Response::Error(code) => self.answer(Err(code)),
+            Response::Resend(n) => {
+                if let Feeder::Counting(s) = &mut self.feeder
+                    && s.resend_request(n, Instant::now())
+                {
+                    self.ui.note(&format!("board asks to resend from line {n}"));
+                }
+                Ok(None)
+            }
+            Response::Msg(m) => {
+                self.message(m);
+                Ok(None)
+            }
+            Response::Alarm(code) => Ok(Some(self.alarm(code))),
+            Response::Welcome(w) => {
+                self.ui.note(&w);
+                Ok(Some(Verdict::BoardReset))
+            }
+            Response::Status(s) => {
+                self.status(&s);
+                Ok(None)
+            }
+            Response::Feedback(t) | Response::Other(t) => {
+                self.ui.note(&t);
+                Ok(None)
+            }
+        }
+    }
+
+    /// A `[MSG:…]`: shown (a program alarm's is shown with its `ALARM:N`), remembered.
+    fn message(&mut self, m: String) {
+        if m == "Pgm End" {
+            self.pgm_end = true;
+        }
+        if response::program_alarm(&m).is_some() {
+            self.alarm_msg = Some(m.clone());
+        } else {
+            self.ui.note(&format!("[MSG:{m}]"));
+        }
+        self.last_msg = Some(m);
+    }
+
+    /// `ok` or `error:N`.
+    fn answer(&mut self, a: Result<(), u16>) -> Result<Option<Verdict>, LinkError> {
+        let outcome = match &mut self.feeder {
+            Feeder::Counting(s) => s.answer(a, Instant::now()),
+            Feeder::Tape(_) => match a {
+                Ok(()) => return Ok(None),
+                Err(code) => Outcome::Refused(usize::MAX, code),
+            },
+        };
+        match outcome {
+            Outcome::Refused(index, code) => {
+                let place = u32::try_from(index + 1).map_or(self.origin.name.clone(), |n| self.origin.place(n));
+                let message = self.last_msg.take().unwrap_or_else(|| response::error_text(code).to_owned());
+                let text = format!("{place}: error:{code}: {message}");
+                self.ui.note(&text);
+                self.stop_gently(Verdict::Refused(text)).map(Some)
+            }
+            Outcome::Unexpected => {
+                self.ui.note("board answered a line that was not sent");
+                Ok(None)
+            }
+            Outcome::Accepted(_) | Outcome::Superseded(_) => Ok(None),
+        }
+    }
+
+    /// `ALARM:N`, with the program alarm's `[MSG:…]` before it when there was one.
+    fn alarm(&mut self, code: u16) -> Verdict {
+        self.stop_feeding();
+        let kind = format!("ALARM:{code} {}", response::alarm_text(code));
+        let text = match self.alarm_msg.as_deref().and_then(response::program_alarm) {
+            Some((number, line, message)) => format!("{}: alarm {number}: {message} ({kind})", self.origin.place(line)),
+            None => format!("{}: {kind}", self.origin.name),
+        };
+        self.ui.note(&text);
+        Verdict::Alarm(text)
+    }
+
+    /// A status report: shown; counted when Idle with empty queues after feeding.
+    fn status(&mut self, s: &Status) {
+        self.ui.status(s);
+        let asked_after_fed = self.fed_at.is_some_and(|t| self.polled_at > t);
+        if asked_after_fed && s.idle_and_empty(self.capacity, RX_BUFFER as u32) {
+            self.idle_reports += 1;
+        } else if s.state != "Idle" {
+            self.idle_reports = 0;
+        }
+    }
+
+    /// Nothing more is written.
+    fn stop_feeding(&mut self) {
+        if let Feeder::Counting(s) = &mut self.feeder {
+            s.stop();
+        }
+        if let Feeder::Tape(t) = &mut self.feeder {
+            t.flow(super::tape::XOFF);
+        }
+    }
+
+    /// Stops writing, holds the feed, waits until the board is held (or idle, or in
+    /// alarm, or [`Timing::hold_wait`] passed), then soft-resets it; returns `verdict`.
+    fn stop_gently(&mut self, verdict: Verdict) -> Result<Verdict, LinkError> {
+        self.stop_feeding();
+        self.link.write(b"!")?;
+        let deadline = Instant::now() + self.timing.hold_wait;
+        while Instant::now() < deadline {
+            self.link.write(b"?")?;
+            let wait = Instant::now() + self.timing.poll;
+            while let Ok(r) = self.link.line_until(wait, "a status report") {
+                if let Response::Status(s) = r
+                    && matches!(s.state.as_str(), "Hold:1" | "Idle" | "Alarm")
+                {
+                    self.reset()?;
+                    return Ok(verdict);
+                }
+            }
+        }
+        self.reset()?;
+        Ok(verdict)
+    }
+
+    /// Soft reset and its welcome (a missing welcome is only noted).
+    fn reset(&mut self) -> Result<(), LinkError> {
+        self.ui.note("soft reset");
+        match self.link.reset(self.timing.welcome_wait) {
+            Ok(_) => Ok(()),
+            Err(e @ LinkError::Timeout { .. }) => {
+                self.ui.note(&e.to_string());
+                Ok(())
+            }
+            Err(e) => Err(e),
+        }
+    }
+}
+
+/// Tape mode writes only while fewer bytes than this wait in the port's output queue,
+/// so that an XOFF takes effect within a few characters.
+const TAPE_QUEUE: u32 = 16;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn places_map_board_lines_to_file_lines() {
+        let o = Origin { name: "p.nc".into(), file_lines: vec![2, 3, 5] };
+        assert_eq!(o.place(1), "p.nc:2");
+        assert_eq!(o.place(3), "p.nc:5");
+        assert_eq!(o.place(4), "p.nc");
+        assert_eq!(o.place(0), "p.nc");
+        let mem = Origin { name: "O0012".into(), file_lines: vec![] };
+        assert_eq!(mem.place(7), "O0012:7");
+    }
+}
