@@ -72,6 +72,12 @@ pub enum Command {
         #[arg(long, value_name = "FILE")]
         machine: Option<PathBuf>,
     },
+    /// The virtual board: the board's controller on the simulated machine behind a pty
+    ///
+    /// Prints the pseudo-terminal it listens on (and links --pty PATH to it); a sender
+    /// (`lathe send`, or any grbl 1.1 sender) connects there exactly as to the board. Runs
+    /// in real time (--speed scales it) until killed.
+    Board(crate::board::BoardArgs),
     /// Stream a program to the board and follow it to its end
     ///
     /// grbl 1.1 streaming with character counting (at most 128 bytes unanswered), or FANUC
@@ -221,6 +227,7 @@ fn execute(command: Command, out: &mut dyn Write, err: &mut dyn Write) -> Result
                 .map_err(|e| Error::Write { target: STDOUT.into(), source: std::io::Error::other(e) })?;
             print(out, &text)
         }
+        Command::Board(args) => crate::board::run(&args, out),
         Command::Send(args) => link::commands::send(&args, out, err),
         Command::Upload(args) => link::commands::upload(&args, out, err),
         Command::Run(args) => link::commands::run(&args, out, err),

@@ -8,6 +8,7 @@
 //! diameter (see [`units`]).
 
 pub mod app;
+pub mod board;
 pub mod docs;
 pub mod error;
 pub mod jsonl;

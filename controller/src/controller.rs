@@ -175,6 +175,8 @@ pub struct Controller<const W: usize, const T: usize, const P: usize, const S: u
     /// Startup block to run next (`$N0`, `$N1`), 2 = none.
     pub(crate) startup_next: u8,
     pub(crate) counters: Counters,
+    /// grbl traffic (`?`, a real-time byte, a `$` line) since power-on or reset.
+    pub(crate) grbl_seen: bool,
 }
 
 /// Feeds the motion core through the port.
@@ -239,6 +241,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             mist: false,
             startup_next: 2,
             counters: Counters::default(),
+            grbl_seen: false,
         };
         c.rewind_stream();
         c.welcome();
@@ -374,6 +377,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             0xA1 => rt.mist = true,
             _ => return false,
         }
+        self.grbl_seen = b != 0x18;
         true
     }
 

@@ -126,12 +126,28 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
                 self.ok();
                 Handled::Done
             }
-            Some(b'$') => self.dollar(text.get(1..).unwrap_or(&[]), port),
-            Some(b'%') if text == b"%" && self.job == Job::None && self.alarm.is_none() && !self.check => {
+            Some(b'$') => {
+                self.grbl_seen = true;
+                self.dollar(text.get(1..).unwrap_or(&[]), port)
+            }
+            Some(b'%') if text == b"%" && self.tape_starts() => {
                 self.start_tape();
                 Handled::Done
             }
             Some(_) => self.program_line(text),
+        }
+    }
+
+    /// Whether a `%` line starts tape mode now (setting `$301`): only while Idle,
+    /// and by default only from a sender that has not spoken grbl since the last
+    /// reset — grbl senders poll `?` and send `$` commands when they connect, tape
+    /// DNC software never does; a grbl sender's `%` is a record mark.
+    fn tape_starts(&self) -> bool {
+        let idle = self.job == Job::None && self.alarm.is_none() && !self.check;
+        idle && match self.settings.tape_detect {
+            0 => !self.grbl_seen,
+            1 => true,
+            _ => false,
         }
     }
 

@@ -29,6 +29,10 @@ pub struct Settings {
     /// `$300`: tape mode: 0 auto (punch if the first block is an O number), 1
     /// always store, 2 always run (drip feed).
     pub tape_mode: u8,
+    /// `$301`: when a `%` line starts tape mode: 0 while no grbl traffic (`?`, a
+    /// real-time byte, a `$` line) came since power-on or reset; 1 always; 2 never
+    /// (the `%` is a record mark of the streamed program, answered `ok`).
+    pub tape_detect: u8,
     /// `$302`: strip bit 7 (even parity) from tape bytes.
     pub parity_strip: bool,
     /// Soft-limit travel (min, max per axis, nm) while `$20=0`.
@@ -46,6 +50,7 @@ impl Default for Settings {
             homing_seek: 500,
             homing_pulloff_um: 1_000,
             tape_mode: 0,
+            tape_detect: 0,
             parity_strip: false,
             travel: [(0, 0); 2],
         }
@@ -96,6 +101,7 @@ pub fn get(n: u16, cfg: &MachineConfig, s: &Settings) -> Option<f64> {
             (hi - lo) as f64 / NM
         }
         300 => f64::from(s.tape_mode),
+        301 => f64::from(s.tape_detect),
         302 => f64::from(u8::from(s.parity_strip)),
         _ => return None,
     })
@@ -145,6 +151,7 @@ pub fn set(n: u16, v: f64, cfg: &mut MachineConfig, s: &mut Settings) -> Result<
             }
         }
         300 => s.tape_mode = u8::try_from(whole(v)?).ok().filter(|m| *m <= 2).ok_or(bad("is 0, 1 or 2"))?,
+        301 => s.tape_detect = u8::try_from(whole(v)?).ok().filter(|m| *m <= 2).ok_or(bad("is 0, 1 or 2"))?,
         302 => s.parity_strip = flag(v)?,
         _ => return Err(SettingError::Unknown),
     }

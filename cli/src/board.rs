@@ -1,0 +1,107 @@
+//! `lathe board`: the virtual board behind a pseudo-terminal. The board's
+//! controller (the `controller` crate the firmware runs) on the simulated machine
+//! (`sim`), in real time or scaled time; a sender connects to the pty as it would
+//! to the board's USB serial port.
+
+use std::io::{Read, Write};
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+use clap::Args;
+use serialport::{SerialPort, TTYPort};
+use sim::board::VirtualBoard;
+
+use crate::error::Error;
+use crate::machine;
+
+/// Arguments of `lathe board`.
+#[derive(Debug, Args)]
+pub struct BoardArgs {
+    /// Make PATH a symbolic link to the board's pseudo-terminal (replaced if it exists).
+    #[arg(long, value_name = "PATH")]
+    pub pty: Option<PathBuf>,
+    /// Machine description (TOML); the built-in machine without it.
+    #[arg(long, value_name = "FILE")]
+    pub machine: Option<PathBuf>,
+    /// Time scale: 2 runs the machine twice as fast as the wall clock, 0.5 half as fast.
+    #[arg(long, default_value_t = 1.0, value_name = "FACTOR")]
+    pub speed: f64,
+    /// Stop after this many seconds of wall-clock time (tests); runs until killed without it.
+    #[arg(long, value_name = "SECONDS")]
+    pub exit_after: Option<f64>,
+}
+
+/// The most simulated time one loop turn may catch up (a slow host falls behind the
+/// wall clock instead of stalling the link).
+const MAX_CATCH_UP_NS: u64 = 50_000_000;
+
+/// Runs the virtual board until killed (or `--exit-after`).
+pub fn run(args: &BoardArgs, out: &mut dyn Write) -> Result<u8, Error> {
+    if !(args.speed.is_finite() && args.speed > 0.0) {
+        let message = format!("--speed must be a positive number, not {}", args.speed);
+        return Err(Error::Write { target: "the virtual board".into(), source: std::io::Error::other(message) });
+    }
+    let cfg = machine::load_or_default(args.machine.as_deref())?;
+    let mut board = VirtualBoard::new(cfg).map_err(|k| Error::Machine {
+        path: args.machine.clone().unwrap_or_else(|| "built-in machine".into()),
+        message: format!("the motion core refuses it: {k}"),
+    })?;
+    let (mut master, slave) = TTYPort::pair().map_err(|e| link_error("pseudo-terminal", e))?;
+    let name = slave.name().unwrap_or_default();
+    if let Some(link) = &args.pty {
+        make_link(link, &name)?;
+    }
+    let shown = args.pty.as_ref().map_or(name.clone(), |l| format!("{} -> {name}", l.display()));
+    writeln!(out, "lathe board: listening on {shown} (grbl 1.1 / FANUC tape, any baud rate)")
+        .and_then(|()| out.flush())
+        .map_err(|source| Error::Write { target: "standard output".into(), source })?;
+    master.set_timeout(Duration::from_millis(1)).map_err(|e| link_error(&name, e))?;
+    let result = serve(&mut board, &mut master, args);
+    // The slave end stays open until here, so the master never sees a hang-up
+    // between two senders.
+    drop(slave);
+    if let Some(link) = &args.pty {
+        let _ = std::fs::remove_file(link);
+    }
+    result.map_err(|e| Error::Write { target: name, source: e })?;
+    Ok(crate::app::EXIT_OK)
+}
+
+/// The loop: bytes in, simulated time up to the (scaled) wall clock, bytes out.
+fn serve(board: &mut VirtualBoard, master: &mut TTYPort, args: &BoardArgs) -> std::io::Result<()> {
+    let start = Instant::now();
+    let mut buf = [0u8; 4096];
+    loop {
+        let wall = start.elapsed().as_secs_f64();
+        if args.exit_after.is_some_and(|s| wall >= s) {
+            return Ok(());
+        }
+        match master.read(&mut buf) {
+            Ok(n) => board.receive(&buf[..n]),
+            Err(e) if matches!(e.kind(), std::io::ErrorKind::TimedOut | std::io::ErrorKind::WouldBlock) => {}
+            // EIO: no sender has the pty open right now.
+            Err(e) if e.raw_os_error() == Some(5) => std::thread::sleep(Duration::from_millis(1)),
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
+            Err(e) => return Err(e),
+        }
+        let target = (wall * args.speed * 1e9) as u64;
+        let until = target.min(board.now() + MAX_CATCH_UP_NS);
+        board.advance(until.max(board.now()));
+        let out = board.transmit();
+        if !out.is_empty() {
+            master.write_all(&out)?;
+        }
+    }
+}
+
+/// Points `link` at the pty `name`, replacing an old link.
+fn make_link(link: &Path, name: &str) -> Result<(), Error> {
+    if link.symlink_metadata().is_ok() {
+        std::fs::remove_file(link).map_err(|source| Error::Write { target: link.display().to_string(), source })?;
+    }
+    std::os::unix::fs::symlink(name, link).map_err(|source| Error::Write { target: link.display().to_string(), source })
+}
+
+fn link_error(what: &str, e: serialport::Error) -> Error {
+    Error::Write { target: what.into(), source: std::io::Error::other(e.to_string()) }
+}
