@@ -12,7 +12,7 @@ use serialport::{SerialPort, TTYPort};
 use sim::board::VirtualBoard;
 
 use crate::error::Error;
-use crate::machine;
+use crate::{jsonl, machine};
 
 /// Arguments of `lathe board`.
 #[derive(Debug, Args)]
@@ -29,6 +29,58 @@ pub struct BoardArgs {
     /// Stop after this many seconds of wall-clock time (tests); runs until killed without it.
     #[arg(long, value_name = "SECONDS")]
     pub exit_after: Option<f64>,
+    /// Write every canonical action the motion core accepts to FILE as JSON lines, in
+    /// the format of `lathe sim --format jsonl` (to compare a streamed run with it).
+    #[arg(long, value_name = "FILE")]
+    pub record: Option<PathBuf>,
+    /// Line noise: corrupt this percentage of the bytes received (half of them get one
+    /// bit flipped, half are dropped), to test link checksums (`lathe send --checksum`).
+    #[arg(long, default_value_t = 0.0, value_name = "PERCENT")]
+    pub corrupt: f64,
+    /// Seed of the line noise.
+    #[arg(long, default_value_t = 1, value_name = "N")]
+    pub seed: u64,
+}
+
+/// Deterministic line noise on received bytes (xorshift64*).
+struct Noise {
+    state: u64,
+    /// Probability per byte, scaled to 2^32.
+    threshold: u64,
+    /// Bytes flipped and dropped so far.
+    flipped: u64,
+    dropped: u64,
+}
+
+impl Noise {
+    fn new(percent: f64, seed: u64) -> Self {
+        let threshold = (percent.clamp(0.0, 100.0) / 100.0 * 4_294_967_296.0) as u64;
+        Noise { state: seed.max(1).wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1, threshold, flipped: 0, dropped: 0 }
+    }
+
+    fn next(&mut self) -> u64 {
+        let mut x = self.state;
+        x ^= x >> 12;
+        x ^= x << 25;
+        x ^= x >> 27;
+        self.state = x;
+        x.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 32
+    }
+
+    /// Passes `bytes` through the noise into `out`.
+    fn apply(&mut self, bytes: &[u8], out: &mut Vec<u8>) {
+        out.clear();
+        for &b in bytes {
+            if self.threshold == 0 || self.next() >= self.threshold {
+                out.push(b);
+            } else if self.next() & 1 == 0 {
+                out.push(b ^ (1 << (self.next() % 8)));
+                self.flipped += 1;
+            } else {
+                self.dropped += 1;
+            }
+        }
+    }
 }
 
 /// The most simulated time one loop turn may catch up (a slow host falls behind the
@@ -56,7 +108,20 @@ pub fn run(args: &BoardArgs, out: &mut dyn Write) -> Result<u8, Error> {
         .and_then(|()| out.flush())
         .map_err(|source| Error::Write { target: "standard output".into(), source })?;
     master.set_timeout(Duration::from_millis(1)).map_err(|e| link_error(&name, e))?;
-    let result = serve(&mut board, &mut master, args);
+    let mut record = match &args.record {
+        Some(path) => {
+            board.record();
+            let file = std::fs::File::create(path)
+                .map_err(|source| Error::Write { target: path.display().to_string(), source })?;
+            Some(std::io::BufWriter::new(file))
+        }
+        None => None,
+    };
+    let mut noise = Noise::new(args.corrupt, args.seed);
+    let result = serve(&mut board, &mut master, args, &mut noise, record.as_mut().map(|w| w as &mut dyn Write));
+    if args.corrupt > 0.0 {
+        let _ = writeln!(out, "lathe board: line noise flipped {} and dropped {} bytes", noise.flipped, noise.dropped);
+    }
     // The slave end stays open until here, so the master never sees a hang-up
     // between two senders.
     drop(slave);
@@ -68,16 +133,27 @@ pub fn run(args: &BoardArgs, out: &mut dyn Write) -> Result<u8, Error> {
 }
 
 /// The loop: bytes in, simulated time up to the (scaled) wall clock, bytes out.
-fn serve(board: &mut VirtualBoard, master: &mut TTYPort, args: &BoardArgs) -> std::io::Result<()> {
+fn serve(
+    board: &mut VirtualBoard,
+    master: &mut TTYPort,
+    args: &BoardArgs,
+    noise: &mut Noise,
+    mut record: Option<&mut dyn Write>,
+) -> std::io::Result<()> {
     let start = Instant::now();
     let mut buf = [0u8; 4096];
+    let mut noisy = Vec::new();
+    let cfg = board.sim.cfg.clone();
     loop {
         let wall = start.elapsed().as_secs_f64();
         if args.exit_after.is_some_and(|s| wall >= s) {
             return Ok(());
         }
         match master.read(&mut buf) {
-            Ok(n) => board.receive(&buf[..n]),
+            Ok(n) => {
+                noise.apply(&buf[..n], &mut noisy);
+                board.receive(&noisy);
+            }
             Err(e) if matches!(e.kind(), std::io::ErrorKind::TimedOut | std::io::ErrorKind::WouldBlock) => {}
             // EIO: no sender has the pty open right now.
             Err(e) if e.raw_os_error() == Some(5) => std::thread::sleep(Duration::from_millis(1)),
@@ -90,6 +166,13 @@ fn serve(board: &mut VirtualBoard, master: &mut TTYPort, args: &BoardArgs) -> st
         let out = board.transmit();
         if !out.is_empty() {
             master.write_all(&out)?;
+        }
+        if let (Some(w), Some(done)) = (record.as_mut(), board.executed.as_mut()) {
+            for c in done.drain(..) {
+                serde_json::to_writer(&mut **w, &jsonl::record(&c, &cfg))?;
+                w.write_all(b"\n")?;
+            }
+            w.flush()?;
         }
     }
 }

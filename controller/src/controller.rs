@@ -127,6 +127,10 @@ pub struct Counters {
     pub lookahead_waits: u32,
 }
 
+/// With link checksums: a partial line that got no byte for this long (ns) has
+/// lost its LF (128 bytes take 11 ms at 115200 baud).
+pub const STALE_LINE_NS: u64 = 20_000_000;
+
 /// The board's controller. `W`: stream window bytes; `T`, `P`, `S`: program
 /// memory text bytes, programs, indexed sequence numbers.
 pub struct Controller<const W: usize, const T: usize, const P: usize, const S: usize> {
@@ -310,14 +314,13 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
     /// keeps the rest and offers it again (the buffer is full until a line leaves
     /// it). Never blocks, never panics.
     pub fn receive(&mut self, bytes: &[u8], now: u64) -> usize {
-        if !bytes.is_empty() {
-            self.last_rx = now;
-        }
         for (i, &raw) in bytes.iter().enumerate() {
             let b = if self.tape.is_some() && self.settings.parity_strip { raw & 0x7f } else { raw };
-            if self.realtime(b) || b == XON || b == XOFF {
+            if (self.at_line_boundary() && self.realtime(b)) || b == XON || b == XOFF {
                 continue;
             }
+            // Line data (not status polls) is what keeps the link from being quiet.
+            self.last_rx = now;
             if self.discarding {
                 if b == b'\n' {
                     self.discarding = false;
@@ -344,6 +347,30 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             }
         }
         bytes.len()
+    }
+
+    /// Whether a real-time byte would be acted on now. Always, except while link
+    /// checksums are in use: then only between lines (the first byte after a LF),
+    /// so that line noise turning a byte of a line into `!`, `~` or 0x18 (a flipped
+    /// bit makes `1` a `!`, `X` a 0x18) corrupts that line — caught by its CRC and
+    /// resent — instead of holding or resetting the machine. A sender writes
+    /// real-time bytes between its lines, so they still act at once.
+    fn at_line_boundary(&self) -> bool {
+        !self.link.active || (!self.discarding && self.rx.last().is_none_or(|&b| b == b'\n'))
+    }
+
+    /// With link checksums, a line whose end has not come for [`STALE_LINE_NS`] lost
+    /// its LF to line noise: it is ended here (its CRC fails, the sender is asked to
+    /// resend), so real-time bytes, which count as line data inside a line, act
+    /// again.
+    fn end_stale_line(&mut self) {
+        let partial = !self.discarding && self.rx.last().is_some_and(|&b| b != b'\n');
+        if self.link.active && partial && self.now.saturating_sub(self.last_rx) >= STALE_LINE_NS {
+            if self.rx.push(b'\n').is_err() {
+                self.rx.clear();
+                self.refuse(11, "line longer than 127 characters");
+            }
+        }
     }
 
     /// Moves output bytes into `out`; how many. Lines end with CR LF.
@@ -391,6 +418,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
         I: MachineIo + ?Sized,
     {
         self.now = now;
+        self.end_stale_line();
         if core::mem::take(&mut self.rt.reset) {
             self.soft_reset(port, inputs);
         }

@@ -122,10 +122,13 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             return Handled::Done;
         }
         match text.first() {
-            None => {
+            // An empty line counts as a line of the stream (so its line numbers stay
+            // those of the sender's file); in alarm it is just answered.
+            None if self.alarm.is_some() => {
                 self.ok();
                 Handled::Done
             }
+            None => self.program_line(text),
             Some(b'$') => {
                 self.grbl_seen = true;
                 self.dollar(text.get(1..).unwrap_or(&[]), port)

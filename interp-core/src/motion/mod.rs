@@ -340,6 +340,11 @@ impl<const N: usize> MotionCore<N> {
     pub fn reset(&mut self) {
         self.alarm = None;
         self.begin_stop();
+        if self.interp.segment().is_none() && self.gear.is_none() {
+            // Nothing to brake: at rest the reset is done at once (a status report
+            // right after it shows Idle, not a stop in progress).
+            self.run_stopping(&mut false);
+        }
     }
 
     /// Path speed of the last interpolation period, nm/min (0 at rest; for the
