@@ -430,7 +430,11 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
         self.run_startup(port);
         self.run_interpreter(port);
         self.after_motion(port);
-        if self.tape.is_some() && self.xoff && self.rx.len() <= RX / 4 {
+        // XON once the buffer has room again — or when what is left is only the
+        // start of a line (longer than a quarter of the buffer): it needs more bytes
+        // to end, so holding the sender would never release.
+        let partial_only = !self.rx.contains(&b'\n');
+        if self.tape.is_some() && self.xoff && (self.rx.len() <= RX / 4 || partial_only) {
             self.out.control(XON);
             self.xoff = false;
         }

@@ -71,6 +71,12 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             b"V" => self.list_variables(),
             b"X" => return self.unlock(port),
             b"C" => self.toggle_check(),
+            b"TAPE" => {
+                // Tape mode asked for by name (`lathe upload`, `lathe send --tape`):
+                // whatever grbl traffic came before.
+                self.start_tape();
+                return Handled::Done;
+            }
             b"H" => return self.home(port),
             b"SLP" => {
                 port.reset();

@@ -66,8 +66,17 @@ impl<const N: usize> OutQueue<N> {
         self.line(class, &s);
     }
 
-    /// Sends a flow-control byte ahead of everything queued.
+    /// Sends a flow-control byte ahead of everything queued. Only the latest flow
+    /// state counts: a DC1/DC3 still waiting is dropped (pushed to the front, an
+    /// older XOFF would otherwise reach the sender after a newer XON and hold it).
     pub fn control(&mut self, b: u8) {
+        for _ in 0..self.buf.len() {
+            if let Some(c) = self.buf.pop_front() {
+                if c != 0x11 && c != 0x13 {
+                    let _ = self.buf.push_back(c);
+                }
+            }
+        }
         if self.buf.push_front(b).is_err() {
             let _ = self.buf.pop_back();
             let _ = self.buf.push_front(b);

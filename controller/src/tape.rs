@@ -41,7 +41,11 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
         let text = trim(raw);
         let Some(tape) = self.tape else { return Handled::Done };
         if text == b"%" {
-            self.end_tape(tape);
+            // Before the first block a `%` is the tape's leader (after `$TAPE`);
+            // after it, the end of the tape.
+            if tape != Tape::Undecided {
+                self.end_tape(tape);
+            }
             return Handled::Done;
         }
         if let Some(b) = text.iter().copied().find(|&b| (b < 0x20 && b != b'\t') || b >= 0x7f) {

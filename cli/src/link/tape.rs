@@ -20,7 +20,9 @@ pub struct Tape {
 impl Tape {
     /// The tape `%` LF, `lines` each with LF, `%` LF, written at most `chunk` bytes at a time.
     pub fn new(lines: &[String], chunk: usize) -> Tape {
-        let mut data = b"%\n".to_vec();
+        // `$TAPE` first: the board takes the tape even though this sender spoke grbl
+        // (`?`, `$`) before (docs/PROTOCOL.md, setting $301).
+        let mut data = b"$TAPE\n%\n".to_vec();
         for l in lines {
             data.extend_from_slice(l.as_bytes());
             data.push(b'\n');
@@ -62,10 +64,10 @@ impl Tape {
         self.pos >= self.data.len()
     }
 
-    /// Program lines that went out completely (the `%` lines not counted).
+    /// Program lines that went out completely (the `$TAPE` and `%` lines not counted).
     pub fn lines_sent(&self) -> usize {
         let ends = self.data.iter().take(self.pos).filter(|&&b| b == b'\n').count();
-        ends.saturating_sub(1).min(self.lines)
+        ends.saturating_sub(2).min(self.lines)
     }
 
     /// Number of program lines.
@@ -95,7 +97,7 @@ mod tests {
     #[test]
     fn the_tape_is_percent_blocks_percent() {
         let mut t = tape();
-        assert_eq!(send_all(&mut t), b"%\nO0012\nG00 X20\nM30\n%\n");
+        assert_eq!(send_all(&mut t), b"$TAPE\n%\nO0012\nG00 X20\nM30\n%\n");
         assert!(t.done());
         assert_eq!(t.lines_sent(), 3);
     }
@@ -104,7 +106,7 @@ mod tests {
     fn xoff_stops_the_output_until_xon() {
         let mut t = tape();
         let first = t.next_chunk().unwrap().to_vec();
-        assert_eq!(first, b"%\nO0");
+        assert_eq!(first, b"$TAP");
         t.wrote(first.len());
         t.flow(XOFF);
         assert!(t.held());
@@ -112,8 +114,12 @@ mod tests {
         t.flow(b'x');
         assert_eq!(t.next_chunk(), None, "other bytes do not release it");
         t.flow(XON);
-        assert_eq!(t.next_chunk().unwrap(), b"012\n");
+        assert_eq!(t.next_chunk().unwrap(), b"E\n%\n");
+        t.wrote(4);
+        assert_eq!(t.next_chunk().unwrap(), b"O001");
+        t.wrote(4);
         assert_eq!(t.lines_sent(), 0);
+        assert_eq!(t.next_chunk().unwrap(), b"2\nG0");
         t.wrote(4);
         assert_eq!(t.lines_sent(), 1);
     }
@@ -122,6 +128,6 @@ mod tests {
     fn a_partial_write_resumes_where_it_stopped() {
         let mut t = tape();
         t.wrote(3);
-        assert_eq!(t.next_chunk().unwrap(), b"0012");
+        assert_eq!(t.next_chunk().unwrap(), b"PE\n%");
     }
 }

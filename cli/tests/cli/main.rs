@@ -1,6 +1,7 @@
 //! Tests of the `lathe` command: the binary run as a user runs it, and the library
 //! where a test needs values rather than text.
 
+mod board;
 mod check;
 mod docs;
 mod fake_board;
