@@ -253,6 +253,67 @@ fn cut_and_restart(snap: &Flash, u: &Update, k: u64, old: &State, new: &State, t
     tally.cuts += 1;
 }
 
+/// Cuts the power at operation `k` during update `u`, then again at every
+/// `step`-th flash operation of the restart that settles the interrupted update
+/// (finishing or undoing it, repairing the pages); returns how many second cuts
+/// were tried.
+fn cut_twice(snap: &Flash, u: &Update, k: u64, step: usize, old: &State, new: &State) -> u64 {
+    let mut cut = Box::new(snap.clone());
+    cut.cut_power_at(k);
+    let mut p = Persist::new(&mut *cut, RANGE).unwrap();
+    assert!(apply(&mut p, u).is_err());
+    let _ = p.release();
+    cut.restore_power();
+    // How many operations the restart's first read takes (the journal settling).
+    let mut probe = Box::new((*cut).clone());
+    let mut p = Persist::new(&mut *probe, RANGE).unwrap();
+    p.load_params(|_, _| {}).unwrap();
+    let _ = p.release();
+    let settle = probe.ops() - cut.ops();
+    let mut tried = 0;
+    for j in (1..=settle).step_by(step) {
+        tried += 1;
+        let mut flash = Box::new((*cut).clone());
+        flash.cut_power_at(cut.ops() + j);
+        let mut p = Persist::new(&mut *flash, RANGE).unwrap();
+        assert_eq!(p.load_params(|_, _| {}), Err(Error::Flash(NorFlashErrorKind::Other)), "cut {k}+{j}");
+        let _ = p.release();
+        flash.restore_power();
+        let mut p = Persist::new(&mut *flash, RANGE).unwrap();
+        let got = read_state(&mut p);
+        assert_old_or_new(&got, old, new, k);
+        assert_still_works(&mut p, k);
+    }
+    tried
+}
+
+/// Sampling step of the double-cut test: `PERSIST_CUT_STEP` (1 = every cut
+/// point; slow in a debug build), else 16.
+fn cut_step() -> usize {
+    std::env::var("PERSIST_CUT_STEP").ok().and_then(|s| s.parse().ok()).filter(|s| *s > 0).unwrap_or(16)
+}
+
+#[test]
+fn a_cut_while_settling_an_interrupted_program_update_is_safe_too() {
+    let seq = sequence();
+    let (snaps, states, done) = chain(&seq);
+    let (mut first, mut second) = (0, 0);
+    let step = cut_step();
+    for (i, u) in seq.iter().enumerate() {
+        if !matches!(u, Update::Save(..) | Update::Delete(_)) {
+            continue;
+        }
+        let end = snaps.get(i + 1).map_or(done.ops(), Flash::ops);
+        // Every (4·step)-th first cut, every step-th second cut.
+        for k in (snaps[i].ops() + 1..=end).step_by(4 * step) {
+            second += cut_twice(&snaps[i], u, k, step, &states[i], &states[i + 1]);
+            first += 1;
+        }
+    }
+    println!("first cuts during program updates: {first}, second cuts while settling: {second}");
+    assert!(second >= first, "settling writes");
+}
+
 #[test]
 fn every_power_cut_leaves_old_or_new_values_and_a_working_store() {
     let seq = sequence();
