@@ -283,3 +283,42 @@ fn the_f405_sectors_hold_a_large_program_store() {
     assert_eq!(flash.ones_over_zeros(), 0);
     println!("F405 sectors: erase counts {:?}", flash.erase_counts());
 }
+
+/// Saves, replaces and reads back records and programs on a flash with `WRITE`-byte
+/// words, through a restart.
+fn round_trip_with_word_size<const WRITE: usize>() {
+    let mut flash = Box::new(SimFlash::<{ 8 * 2048 }, 2048, WRITE>::new());
+    let a = text(4, 999, 1);
+    {
+        let mut p = Persist::new(&mut *flash, 0..8 * 2048).unwrap();
+        for round in 0..30u8 {
+            p.save_param(7, i64::from(round)).unwrap();
+            p.store(420, Some(f64::from(round))).unwrap();
+            p.save_program(4, &text(4, 500 + usize::from(round) * 17, round)).unwrap();
+        }
+        p.save_program(4, &a).unwrap();
+    }
+    let mut p = Persist::new(&mut *flash, 0..8 * 2048).unwrap();
+    let mut last = None;
+    p.load_params(|n, v| {
+        if n == 7 {
+            last = Some(v);
+        }
+    })
+    .unwrap();
+    assert_eq!(last, Some(29), "word size {WRITE}");
+    assert_eq!(p.load(420), Ok(Some(29.0)));
+    let mut buf = vec![0; 1000];
+    let n = p.load_program(4, &mut buf).unwrap();
+    assert_eq!(&buf[..n], &a[..]);
+    let _ = p.release();
+    assert_eq!(flash.ones_over_zeros(), 0);
+    assert!(flash.erase_counts().iter().all(|c| *c > 0), "the pages were reused");
+}
+
+#[test]
+fn byte_word_and_128_bit_writes_work() {
+    round_trip_with_word_size::<1>();
+    round_trip_with_word_size::<2>();
+    round_trip_with_word_size::<16>();
+}

@@ -189,7 +189,8 @@ impl<const SIZE: usize, const ERASE: usize, const WRITE: usize> ReadNorFlash for
             return Err(SimError::PowerLost);
         }
         let start = offset as usize;
-        let src = self.bytes.get(start..start + bytes.len()).ok_or(SimError::OutOfBounds)?;
+        let end = start.checked_add(bytes.len()).ok_or(SimError::OutOfBounds)?;
+        let src = self.bytes.get(start..end).ok_or(SimError::OutOfBounds)?;
         bytes.copy_from_slice(src);
         Ok(())
     }
@@ -226,7 +227,7 @@ impl<const SIZE: usize, const ERASE: usize, const WRITE: usize> NorFlash for Sim
         if !start.is_multiple_of(WRITE) || !bytes.len().is_multiple_of(WRITE) {
             return Err(SimError::NotAligned);
         }
-        if start + bytes.len() > SIZE {
+        if start.checked_add(bytes.len()).is_none_or(|end| end > SIZE) {
             return Err(SimError::OutOfBounds);
         }
         for (i, word) in bytes.chunks(WRITE).enumerate() {
