@@ -18,23 +18,65 @@
 //!
 //! # Flash layout and size
 //! The range given to [`Persist::new`] is whole erase sectors of equal size, at
-//! least two, at most [`MAX_PAGES`]. One page is always kept erased for moving live
-//! items, so everything stored must fit into the other pages; a program update
-//! needs room for its old and new text at once. On the STM32F405 use sectors
-//! 10–11 (`0x080C_0000..0x0810_0000`, 2 × 128 KB; 128 KB of live data, e.g.
-//! ~110 KB of program text besides settings, offsets and commons), through the
-//! 128 KB-sector region of embassy-stm32's blocking flash, wrapped in
-//! [`Rewritable`] (the F4 may program a word twice; the store marks deleted items
-//! that way). Sectors 1–3 (3 × 16 KB) hold only ~32 KB: too little for programs.
-//! Erasing a 128 KB sector takes 1–2 s on the F4, so persist when idle.
+//! least two, at most [`MAX_PAGES`], in the flash driver's offsets. The map keeps
+//! one page erased for moving live items, so what is stored must fit into the
+//! other pages (each item costs 8 bytes of header and a 4-byte key, padded to the
+//! flash word), and replacing a program needs room for its old and new text at
+//! once. Records: a parameter or common ~24 B, a work offset ~48 B, a tool row
+//! ~56 B (39 offset records ~2 KB), a program its length plus ~16 B per chunk.
 //!
-//! # RAM
-//! About 5 KB: the item buffer ([`MAX_CHUNK`] + 64 B), the mirror of the 200
-//! commons (1.6 KB), the key-location cache ([`KEY_CACHE`] × 8 B).
+//! On the STM32F405 use **sectors 10–11** (`0x080C_0000..0x0810_0000`, 2 × 128 KB):
+//! 128 KB of live data. Measured on the simulated F405 sectors: 200 commons, 100
+//! parameters, four 20 KB programs each replaced once, then 40 KB more — 120 KB of
+//! program text in all. Sectors 8–11 (4 × 128 KB) would hold ~380 KB; sectors 1–3
+//! (3 × 16 KB) only ~30 KB, too little for programs. Erasing a 128 KB sector takes
+//! 1–2 s on the F4 and stalls the CPU (as does programming): persist when idle.
+//!
+//! # On the board
+//! embassy-stm32's blocking `Flash` (offsets from `0x0800_0000`, erase size 128 KB)
+//! implements the blocking `NorFlash`; wrap it in [`Rewritable`] (the F4 may program
+//! a word twice, which the store uses to mark items deleted):
+//! `Persist::new(Rewritable(Flash::new_blocking(p.FLASH)), 0xC_0000..0x10_0000)`.
+//! The first call after power-on settles an update a power cut interrupted. If a
+//! call returns [`Error::Corrupted`] the pages are beyond repair: [`Persist::format`].
+//!
+//! # RAM and stack
+//! `Persist` is ~4.9 KB: the item buffer ([`MAX_CHUNK`] + 64 B), the mirror of the
+//! 200 commons (1.6 KB), the key-location cache ([`KEY_CACHE`] × 8 B). Each call
+//! runs the storage crate's future to completion on the caller's stack (< 1 KB).
 //!
 //! # Host tests
 //! [`sim::SimFlash`] is a simulated NOR flash with power-cut injection; the
 //! firmware does not use it, so it is not linked there.
+//!
+//! # Example
+//! ```
+//! use controller::persist::sim::SimFlash;
+//! use controller::persist::{Offsets, Persist};
+//! use interp_core::macros::Variables;
+//!
+//! let mut flash = SimFlash::<{ 4 * 2048 }, 2048, 4>::new();
+//! let mut store = Persist::new(&mut flash, 0..4 * 2048)?;
+//! store.save_param(5147, 1_500_000)?;
+//! store.save_program(1, b"O0001\nG00 X10 Z2\nM30\n")?;
+//! let mut vars = Variables::new();
+//! vars.set(401, Some(2.5)).unwrap();
+//! vars.flush_commons(&mut store)?; // writes only the commons that changed
+//!
+//! // After a restart:
+//! let mut store = Persist::new(&mut flash, 0..4 * 2048)?;
+//! let mut vars = Variables::new();
+//! vars.load_commons(&mut store)?;
+//! assert_eq!(vars.get(401).unwrap(), Some(2.5));
+//! store.load_params(|n, v| assert_eq!((n, v), (5147, 1_500_000)))?;
+//! let mut offsets = Offsets::default();
+//! store.load_offsets(&mut offsets)?;
+//! let mut text = [0u8; 64];
+//! let len = store.load_program(1, &mut text)?;
+//! assert_eq!(&text[..len], b"O0001\nG00 X10 Z2\nM30\n");
+//! assert_eq!(store.programs::<8>()?.len(), 1);
+//! # Ok::<(), controller::persist::Error>(())
+//! ```
 
 mod flash;
 pub mod keys;
