@@ -123,6 +123,17 @@ fn offsets_round_trip() {
     back.work[1] = Pos::xz(9, 9); // overwritten by the stored zero record
     p.load_offsets(&mut back).unwrap();
     assert_eq!(back, offsets);
+    // One record at a time (a G10 or an offset page edit).
+    p.save_work_offset(6, &Pos::xz(5, 5)).unwrap();
+    p.save_tool_offset(2, &ToolOffset { x_wear: -12, ..ToolOffset::default() }).unwrap();
+    assert_eq!(p.save_work_offset(7, &Pos::ZERO), Err(Error::BadNumber));
+    assert_eq!(p.save_tool_offset(0, &ToolOffset::default()), Err(Error::BadNumber));
+    assert_eq!(p.save_tool_offset(33, &ToolOffset::default()), Err(Error::BadNumber));
+    let mut back = Offsets::default();
+    p.load_offsets(&mut back).unwrap();
+    assert_eq!(back.external, Pos::xz(5, 5));
+    assert_eq!(back.tools.get(2).unwrap().x_wear, -12);
+    assert_eq!(back.work, offsets.work);
 }
 
 #[test]

@@ -93,16 +93,34 @@ impl<F: NorFlash + MultiwriteNorFlash> Persist<F> {
     /// Stores the offsets that differ from the stored ones (one record per work
     /// offset and per tool row; each record is updated atomically).
     pub fn save_offsets(&mut self, offsets: &Offsets) -> Result<(), Error> {
-        self.ready()?;
         for (i, p) in (0u16..).zip(offsets.work.iter().chain([&offsets.external])) {
-            self.put_if_changed(keys::work_offset(i), &encode_pos(p))?;
+            self.save_work_offset(i, p)?;
         }
         for n in 1..=MAX_OFFSETS as u16 {
             if let Some(t) = offsets.tools.get(n) {
-                self.put_if_changed(keys::tool_offset(n), &encode_tool(t))?;
+                self.save_tool_offset(n, t)?;
             }
         }
         Ok(())
+    }
+
+    /// Stores work offset `index` (0–5 = G54–G59, 6 = the external offset) unless
+    /// unchanged.
+    pub fn save_work_offset(&mut self, index: u16, p: &Pos) -> Result<(), Error> {
+        if index > EXTERNAL {
+            return Err(Error::BadNumber);
+        }
+        self.ready()?;
+        self.put_if_changed(keys::work_offset(index), &encode_pos(p))
+    }
+
+    /// Stores tool offset row `n` (1–32) unless unchanged.
+    pub fn save_tool_offset(&mut self, n: u16, t: &ToolOffset) -> Result<(), Error> {
+        if !(1..=MAX_OFFSETS as u16).contains(&n) {
+            return Err(Error::BadNumber);
+        }
+        self.ready()?;
+        self.put_if_changed(keys::tool_offset(n), &encode_tool(t))
     }
 
     /// Reads the stored offsets into `offsets` (records never stored leave their
