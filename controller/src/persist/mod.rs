@@ -207,6 +207,9 @@ impl<F: NorFlash + MultiwriteNorFlash> Persist<F> {
     /// `flash`. Reads nothing yet: the first operation finishes or undoes an update
     /// a power cut interrupted.
     pub fn new(flash: F, range: Range<u32>) -> Result<Self, Error> {
+        if range.start >= range.end {
+            return Err(Error::BadRange);
+        }
         let config = MapConfig::<AsAsync<F>>::try_new(range.clone()).map_err(|_| Error::BadRange)?;
         let pages = (range.end - range.start) as usize / F::ERASE_SIZE.max(1);
         if pages > MAX_PAGES || range.end as usize > flash.capacity() {
