@@ -236,7 +236,7 @@ fn bad_ranges_are_refused() {
     assert!(matches!(Persist::new(&mut *flash, 0..2048), Err(Error::BadRange)));
     assert!(matches!(Persist::new(&mut *flash, 100..4096), Err(Error::BadRange)));
     assert!(matches!(Persist::new(&mut *flash, 0..9 * 2048), Err(Error::BadRange)));
-    assert!(matches!(Persist::new(&mut *flash, 4096..0), Err(Error::BadRange)));
+    assert!(matches!(Persist::new(&mut *flash, core::ops::Range { start: 4096, end: 0 }), Err(Error::BadRange)));
     assert!(matches!(Persist::new(&mut *flash, 4096..4096), Err(Error::BadRange)));
     let mut big = Box::new(SimFlash::<{ 20 * 1024 }, 1024, 4>::new());
     assert!(matches!(Persist::new(&mut *big, 0..17 * 1024), Err(Error::BadRange)));
