@@ -304,8 +304,9 @@ fn a_cut_while_settling_an_interrupted_program_update_is_safe_too() {
             continue;
         }
         let end = snaps.get(i + 1).map_or(done.ops(), Flash::ops);
-        // Every (4·step)-th first cut, every step-th second cut.
-        for k in (snaps[i].ops() + 1..=end).step_by(4 * step) {
+        // Every (4·step)-th first cut (all of them for step 1), every step-th
+        // second cut.
+        for k in (snaps[i].ops() + 1..=end).step_by(if step == 1 { 1 } else { 4 * step }) {
             second += cut_twice(&snaps[i], u, k, step, &states[i], &states[i + 1]);
             first += 1;
         }
