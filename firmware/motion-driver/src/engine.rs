@@ -1,0 +1,279 @@
+//! The motion interrupt's logic: runs the motion core one interpolation period ahead
+//! of the step player and queues each axis's step and direction edges on the step
+//! timer's clock.
+//!
+//! Pipeline: while period `j` plays, [`Engine::period`] computes period `j + 1`
+//! (`tick` at its start time, then every edge before its end), so every edge is
+//! queued before it is due and the first step of a period is never late by the
+//! time the core takes. Core time and step-timer time are the same clock: period
+//! `j` starts at `j × period_ns` and at timer tick `start + j × period_ticks`.
+//!
+//! While axes are locked to the spindle, [`Engine::encoder`] runs at each encoder
+//! count (same interrupt priority as the period, so they never preempt each other and
+//! the rings keep a single producer): it hands the count and its time to the core
+//! and queues the steps the gearbox makes, due at once.
+//!
+//! The e-stop input is read in the period: its rising level calls the core's
+//! `emergency_stop` (the step player already raises no STEP pin while it is active).
+
+use interp_core::motion::{Feedback, MotionCore};
+use interp_core::stepgen::{EdgeKind, StepEvent};
+
+use crate::encoder::Encoder;
+use crate::ring::{Edge, Producer, Timed};
+use crate::timebase::TimeBase;
+
+/// Edges per axis ring: two periods of the fastest axis (100 kHz at 1 ms) with
+/// direction changes fit.
+pub const RING: usize = 256;
+
+/// One period's machine readings, taken at the start of the motion interrupt.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Sample {
+    /// Step timer count now.
+    pub now: u32,
+    /// Raw 32-bit spindle encoder count.
+    pub raw_count: u32,
+    /// Raw count latched at the last index pulse, if one was seen since power-on.
+    pub index: Option<u32>,
+    /// E-stop input active.
+    pub estop: bool,
+}
+
+/// Counters for reports and tests.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct EngineStats {
+    /// Periods computed.
+    pub periods: u32,
+    /// Periods whose interrupt started after the period it computes had begun.
+    pub late: u32,
+    /// Times an axis ring was full (its edge waits for the next period).
+    pub ring_full: u32,
+    /// Edges queued.
+    pub edges: u32,
+    /// Encoder counts handed to the core while locked.
+    pub sync_counts: u32,
+}
+
+/// One driven axis: the core's axis index, its ring's producer end, and an edge the
+/// full ring could not take.
+pub struct EngineAxis {
+    core_axis: usize,
+    tx: Producer<RING>,
+    carry: Option<StepEvent>,
+}
+
+impl EngineAxis {
+    /// Axis `core_axis` of the motion core (`interp_core::axis::Axis as usize`) fed
+    /// into ring end `tx`.
+    pub fn new(core_axis: usize, tx: Producer<RING>) -> Self {
+        EngineAxis { core_axis, tx, carry: None }
+    }
+
+    /// Edges waiting to be played.
+    pub fn queued(&self) -> u32 {
+        self.tx.len()
+    }
+}
+
+/// The motion interrupt's state for `A` driven axes.
+pub struct Engine<const A: usize> {
+    tb: TimeBase,
+    axes: [EngineAxis; A],
+    /// Start of the period playing: core time (ns) and step timer tick.
+    base_ns: u64,
+    base_ticks: u32,
+    encoder: Encoder,
+    estop: bool,
+    stats: EngineStats,
+}
+
+impl<const A: usize> Engine<A> {
+    /// An engine whose period 0 starts at timer tick `start` (core time 0), with the
+    /// encoder's raw count `raw_count` as count 0.
+    pub fn new(tb: TimeBase, axes: [EngineAxis; A], start: u32, raw_count: u32) -> Self {
+        Engine {
+            tb,
+            axes,
+            base_ns: 0,
+            base_ticks: start,
+            encoder: Encoder::new(raw_count),
+            estop: false,
+            stats: EngineStats::default(),
+        }
+    }
+
+    /// The time base.
+    pub fn time_base(&self) -> &TimeBase {
+        &self.tb
+    }
+
+    /// Counters.
+    pub fn stats(&self) -> EngineStats {
+        self.stats
+    }
+
+    /// Timer tick at which the period playing started.
+    pub fn base_ticks(&self) -> u32 {
+        self.base_ticks
+    }
+
+    /// The spindle count (widened) at the last reading.
+    pub fn count(&self) -> i64 {
+        self.encoder.count()
+    }
+
+    /// The driven axes.
+    pub fn axes(&self) -> &[EngineAxis; A] {
+        &self.axes
+    }
+
+    /// The period interrupt: computes the period after the one playing, queues its
+    /// edges, and moves on to it.
+    pub fn period<const N: usize>(&mut self, core: &mut MotionCore<N>, s: Sample) {
+        let period_ns = u64::from(self.tb.period_ns);
+        let next_ticks = self.base_ticks.wrapping_add(self.tb.period_ticks);
+        if s.now.wrapping_sub(next_ticks) as i32 >= 0 {
+            self.stats.late += 1;
+        }
+        if s.estop && !self.estop {
+            core.emergency_stop();
+        }
+        self.estop = s.estop;
+        let count = self.encoder.update(s.raw_count);
+        let index = s.index.map(|raw| self.encoder.widen(raw));
+        let next_ns = self.base_ns + period_ns;
+        core.tick(next_ns, Feedback { count, index });
+        self.drain(core, next_ns + period_ns);
+        self.stats.periods += 1;
+        self.base_ns = next_ns;
+        self.base_ticks = next_ticks;
+    }
+
+    /// An encoder count interrupt at timer tick `now`: while the core wants counts
+    /// one by one, hands it the count with its time and queues the steps it makes.
+    pub fn encoder<const N: usize>(&mut self, core: &mut MotionCore<N>, now: u32, raw_count: u32) {
+        let count = self.encoder.update(raw_count);
+        if !core.wants_encoder_edges() {
+            return;
+        }
+        self.stats.sync_counts += 1;
+        let t = self.base_ns + self.tb.ns(now.wrapping_sub(self.base_ticks));
+        core.on_encoder(t, count);
+        let horizon = self.base_ns + 2 * u64::from(self.tb.period_ns);
+        self.drain(core, horizon);
+    }
+
+    /// Queues every axis's edges before `until` (core time).
+    fn drain<const N: usize>(&mut self, core: &mut MotionCore<N>, until: u64) {
+        let (tb, base_ns, base_ticks) = (self.tb, self.base_ns, self.base_ticks);
+        for ax in &mut self.axes {
+            while let Some(ev) = ax.carry.take().or_else(|| core.next_step(ax.core_axis, until)) {
+                let dt = ev.t.saturating_sub(base_ns).min(u64::from(u32::MAX)) as u32;
+                let at = base_ticks.wrapping_add(tb.ticks(dt));
+                let edge = match ev.kind {
+                    EdgeKind::Step(_) => Edge::Step,
+                    EdgeKind::Dir(positive) => Edge::Dir(positive),
+                };
+                if ax.tx.push(Timed { at, edge }).is_err() {
+                    ax.carry = Some(ev);
+                    self.stats.ring_full += 1;
+                    break;
+                }
+                self.stats.edges += 1;
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::playback::{AxisPins, PlayTiming, Player};
+    use crate::ring::EdgeRing;
+    use interp_core::axis::Pos;
+    use interp_core::canon::{Action, Canon, CanonSink as _, Endpoint, Feed, FeedMode, Move, SpindleSpeed};
+    use interp_core::config::MachineConfig;
+    use std::boxed::Box;
+    use std::vec::Vec;
+
+    const MM: i64 = 1_000_000;
+
+    fn rapid(x: i64, z: i64) -> Canon {
+        let p = Pos::xz(x, z);
+        let m = Move {
+            to: Endpoint { machine: p, work: p },
+            feed: Feed { mode: FeedMode::PerMin, value: 0 },
+            spindle: SpindleSpeed { rpm: None, css: None, max_rpm: 3_000 },
+            exact_stop: true,
+            independent: false,
+        };
+        Canon { line: 1, action: Action::Rapid(m) }
+    }
+
+    /// Runs a rapid X 40→41 mm (radius, 400 steps/mm), Z 0→−10 mm through engine and player from
+    /// timer tick `start`; returns each axis's STEP rise ticks and the core.
+    fn run_rapid(start: u32, rings: &'static [EdgeRing<RING>; 2]) -> ([Vec<u32>; 2], Box<MotionCore<64>>) {
+        let cfg = MachineConfig::default();
+        let mut core: Box<MotionCore<64>> = Box::new(MotionCore::new(&cfg, Pos::xz(40 * MM, 0)).unwrap());
+        core.push(rapid(41 * MM, -10 * MM)).unwrap();
+        let tb = TimeBase::new(84_000_000, cfg.motion.tick_ns).unwrap();
+        let [(tx, rx), (tz, rz)] = [rings[0].split().unwrap(), rings[1].split().unwrap()];
+        let timing = |a: usize| PlayTiming::new(core.stepper(a).unwrap().timing(), &tb);
+        let mut player = Player::new([
+            (rx, AxisPins { step: 6, dir: 10 }, timing(0)),
+            (rz, AxisPins { step: 7, dir: 11 }, timing(2)),
+        ]);
+        let mut engine = Engine::new(tb, [EngineAxis::new(0, tx), EngineAxis::new(2, tz)], start, 0);
+        let mut rises = [Vec::new(), Vec::new()];
+        let mut now = start;
+        for _ in 0..2_000 {
+            let end = engine.base_ticks().wrapping_add(tb.period_ticks);
+            engine.period(&mut core, Sample { now, raw_count: 0, index: None, estop: false });
+            // Play the period as the step interrupt would, waking at each `next`.
+            while end.wrapping_sub(now) as i32 > 0 {
+                let out = player.run(now, false);
+                for (k, bit) in [(0, 1 << 6), (1, 1 << 7)] {
+                    if out.bsrr & bit != 0 {
+                        rises[k].push(now);
+                    }
+                }
+                now = match out.next {
+                    Some(n) if n.wrapping_sub(now) as i32 > 0 && end.wrapping_sub(n) as i32 > 0 => n,
+                    Some(n) if n.wrapping_sub(now) as i32 <= 0 => now.wrapping_add(1),
+                    _ => end,
+                };
+            }
+            if core.is_idle() && engine.axes().iter().all(|a| a.queued() == 0) {
+                break;
+            }
+        }
+        assert_eq!(engine.stats().late, 0);
+        assert_eq!(engine.stats().ring_full, 0);
+        (rises, core)
+    }
+
+    #[test]
+    fn a_rapid_plays_every_step_within_the_driver_timing() {
+        static RINGS: [EdgeRing<RING>; 2] = [EdgeRing::new(), EdgeRing::new()];
+        let (rises, core) = run_rapid(1_000, &RINGS);
+        assert_eq!(core.steps(), [16_400, 0, -3_200, 0]);
+        assert_eq!(rises[0].len(), 400);
+        assert_eq!(rises[1].len(), 3_200);
+        // 100 kHz drivers: rises at least 10 us (840 ticks) apart.
+        for r in &rises {
+            assert!(r.windows(2).all(|w| w[1].wrapping_sub(w[0]) >= 840));
+        }
+    }
+
+    #[test]
+    fn the_same_rapid_across_the_timer_wrap() {
+        static RINGS: [EdgeRing<RING>; 2] = [EdgeRing::new(), EdgeRing::new()];
+        let (rises, core) = run_rapid(u32::MAX - 5_000_000, &RINGS);
+        assert_eq!(core.steps(), [16_400, 0, -3_200, 0]);
+        assert_eq!((rises[0].len(), rises[1].len()), (400, 3_200));
+        assert!(rises[1].windows(2).all(|w| w[1].wrapping_sub(w[0]) >= 840));
+    }
+}
