@@ -18,6 +18,11 @@ impl Encoder {
         Encoder { raw, count: 0 }
     }
 
+    /// The same encoder with its widened count set to `count`.
+    pub const fn with_count(self, count: i64) -> Self {
+        Encoder { raw: self.raw, count }
+    }
+
     /// Takes a raw reading; returns the widened count.
     #[inline]
     pub fn update(&mut self, raw: u32) -> i64 {

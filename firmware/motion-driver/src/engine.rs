@@ -105,6 +105,14 @@ impl<const A: usize> Engine<A> {
         }
     }
 
+    /// Makes timer tick `start` the start of the period playing and `raw_count` the
+    /// encoder's current reading (once, when the timers start, before the first
+    /// period).
+    pub fn set_origin(&mut self, start: u32, raw_count: u32) {
+        self.base_ticks = start;
+        self.encoder = Encoder::new(raw_count).with_count(self.encoder.count());
+    }
+
     /// The time base.
     pub fn time_base(&self) -> &TimeBase {
         &self.tb
