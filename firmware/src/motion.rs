@@ -246,7 +246,7 @@ pub mod isr {
         STEP_TIMER.sr().write_value(SrGp16(0));
         STEP_TIMER.dier().write(|w| w.set_ccie(0, true));
         // The period timer is 16-bit: the smallest prescaler that fits.
-        let psc = (1..=65_536u32).find(|p| period_ticks % p == 0 && period_ticks / p <= 65_536).unwrap_or(1);
+        let psc = (1..=65_536u32).find(|p| period_ticks.is_multiple_of(*p) && period_ticks / p <= 65_536).unwrap_or(1);
         PERIOD_TIMER.psc().write_value((psc - 1) as u16);
         PERIOD_TIMER.arr().write(|w| w.set_arr((period_ticks / psc - 1) as u16));
         PERIOD_TIMER.egr().write(|w| w.set_ug(true));

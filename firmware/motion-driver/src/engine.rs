@@ -154,7 +154,7 @@ impl<const A: usize> Engine<A> {
         let index = s.index.map(|raw| self.encoder.widen(raw));
         let next_ns = self.base_ns + period_ns;
         core.tick(next_ns, Feedback { count, index });
-        self.drain(core, next_ns + period_ns);
+        self.drain(core, next_ns + period_ns, |_| true);
         self.stats.periods += 1;
         self.base_ns = next_ns;
         self.base_ticks = next_ticks;
@@ -170,30 +170,60 @@ impl<const A: usize> Engine<A> {
         self.stats.sync_counts += 1;
         let t = self.base_ns + self.tb.ns(now.wrapping_sub(self.base_ticks));
         core.on_encoder(t, count);
+        // Only the gearbox's axes move at a count.
+        let Some((long, follower)) = core.gear().map(|g| g.axes()) else { return };
         let horizon = self.base_ns + 2 * u64::from(self.tb.period_ns);
-        self.drain(core, horizon);
+        self.drain(core, horizon, |a| a == long || Some(a) == follower);
     }
 
-    /// Queues every axis's edges before `until` (core time).
-    fn drain<const N: usize>(&mut self, core: &mut MotionCore<N>, until: u64) {
+    /// Queues the edges before `until` (core time) of every axis `which` selects.
+    fn drain<const N: usize>(&mut self, core: &mut MotionCore<N>, until: u64, which: impl Fn(usize) -> bool) {
         let (tb, base_ns, base_ticks) = (self.tb, self.base_ns, self.base_ticks);
+        let mut edges = 0;
         for ax in &mut self.axes {
-            while let Some(ev) = ax.carry.take().or_else(|| core.next_step(ax.core_axis, until)) {
-                let dt = ev.t.saturating_sub(base_ns).min(u64::from(u32::MAX)) as u32;
-                let at = base_ticks.wrapping_add(tb.ticks(dt));
-                let edge = match ev.kind {
-                    EdgeKind::Step(_) => Edge::Step,
-                    EdgeKind::Dir(positive) => Edge::Dir(positive),
-                };
-                if ax.tx.push(Timed { at, edge }).is_err() {
-                    ax.carry = Some(ev);
-                    self.stats.ring_full += 1;
-                    break;
-                }
-                self.stats.edges += 1;
+            if which(ax.core_axis) {
+                edges += ax.drain(core, until, |ev| timed(&tb, base_ns, base_ticks, ev), &mut self.stats.ring_full);
             }
         }
+        self.stats.edges = self.stats.edges.wrapping_add(edges);
     }
+}
+
+impl EngineAxis {
+    /// Queues this axis's edges before `until` (converted by `at`); returns how many.
+    #[inline]
+    fn drain<const N: usize>(
+        &mut self,
+        core: &mut MotionCore<N>,
+        until: u64,
+        at: impl Fn(&StepEvent) -> Timed,
+        ring_full: &mut u32,
+    ) -> u32 {
+        let mut edges = 0;
+        let mut next = self.carry.take();
+        while let Some(ev) = next.or_else(|| core.next_step(self.core_axis, until)) {
+            if self.tx.push(at(&ev)).is_err() {
+                self.carry = Some(ev);
+                *ring_full += 1;
+                break;
+            }
+            edges += 1;
+            next = None;
+        }
+        edges
+    }
+}
+
+/// A step event of the core as an edge on the step timer, whose period playing
+/// started at `base_ns` = tick `base_ticks` (events before it are due at once).
+#[inline]
+fn timed(tb: &TimeBase, base_ns: u64, base_ticks: u32, ev: &StepEvent) -> Timed {
+    let dt = ev.t.saturating_sub(base_ns).min(u64::from(u32::MAX)) as u32;
+    let edge = match ev.kind {
+        EdgeKind::Step(_) => Edge::Step,
+        EdgeKind::Dir(positive) => Edge::Dir(positive),
+    };
+    Timed { at: base_ticks.wrapping_add(tb.ticks(dt)), edge }
 }
 
 #[cfg(test)]
