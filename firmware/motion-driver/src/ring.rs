@@ -4,6 +4,7 @@
 //! once from a `'static` ring, so each interrupt owns its end and neither ever waits.
 
 use core::cell::UnsafeCell;
+use core::mem::MaybeUninit;
 use core::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 
 /// What an edge does to the axis's pins.
@@ -29,7 +30,9 @@ pub struct Timed {
 
 /// Edge ring with `N` slots (`N` a power of two; one slot stays empty).
 pub struct EdgeRing<const N: usize> {
-    buf: UnsafeCell<[Timed; N]>,
+    /// Slots (uninitialised until written: a `static` ring costs no flash for an
+    /// initial image and lands in `.bss`).
+    buf: UnsafeCell<[MaybeUninit<Timed>; N]>,
     /// Next slot the consumer reads (written by the consumer only).
     head: AtomicU32,
     /// Next slot the producer writes (written by the producer only).
@@ -52,7 +55,7 @@ impl<const N: usize> EdgeRing<N> {
     /// An empty ring.
     pub const fn new() -> Self {
         EdgeRing {
-            buf: UnsafeCell::new([Timed { at: 0, edge: Edge::Step }; N]),
+            buf: UnsafeCell::new([const { MaybeUninit::uninit() }; N]),
             head: AtomicU32::new(0),
             tail: AtomicU32::new(0),
             split: AtomicBool::new(false),
@@ -125,7 +128,8 @@ impl<const N: usize> Consumer<N> {
             return None;
         }
         // SAFETY: the slot at `head` is inside head..tail: the producer wrote it
-        // before its Release store of `tail` and does not touch it until we move on.
+        // (initialised) before its Release store of `tail` and does not touch it
+        // until we move on.
         Some(unsafe { self.ring.slot(head).read() })
     }
 
