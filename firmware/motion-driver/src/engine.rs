@@ -82,7 +82,8 @@ impl EngineAxis {
 pub struct Engine<const A: usize> {
     tb: TimeBase,
     axes: [EngineAxis; A],
-    /// Start of the period playing: core time (ns) and step timer tick.
+    /// Start of the period computed last (the one after the period playing, between
+    /// two period interrupts): core time (ns) and step timer tick.
     base_ns: u64,
     base_ticks: u32,
     encoder: Encoder,
@@ -123,7 +124,7 @@ impl<const A: usize> Engine<A> {
         self.stats
     }
 
-    /// Timer tick at which the period playing started.
+    /// Timer tick at which the period computed last starts.
     pub fn base_ticks(&self) -> u32 {
         self.base_ticks
     }
@@ -168,12 +169,24 @@ impl<const A: usize> Engine<A> {
             return;
         }
         self.stats.sync_counts += 1;
-        let t = self.base_ns + self.tb.ns(now.wrapping_sub(self.base_ticks));
+        let t = self.core_time(now);
         core.on_encoder(t, count);
         // Only the gearbox's axes move at a count.
         let Some((long, follower)) = core.gear().map(|g| g.axes()) else { return };
         let horizon = self.base_ns + 2 * u64::from(self.tb.period_ns);
         self.drain(core, horizon, |a| a == long || Some(a) == follower);
+    }
+
+    /// The core time (ns) of step-timer tick `now`, which lies within a few periods
+    /// of the last period computed (before it while that period has not started).
+    #[inline]
+    fn core_time(&self, now: u32) -> u64 {
+        let dt = now.wrapping_sub(self.base_ticks) as i32;
+        if dt >= 0 {
+            self.base_ns + self.tb.ns(dt as u32)
+        } else {
+            self.base_ns.saturating_sub(self.tb.ns(dt.unsigned_abs()))
+        }
     }
 
     /// Queues the edges before `until` (core time) of every axis `which` selects.
@@ -214,16 +227,20 @@ impl EngineAxis {
     }
 }
 
-/// A step event of the core as an edge on the step timer, whose period playing
-/// started at `base_ns` = tick `base_ticks` (events before it are due at once).
+/// A step event of the core as an edge on the step timer, where core time `base_ns`
+/// is tick `base_ticks` (the event may lie before or after it).
 #[inline]
 fn timed(tb: &TimeBase, base_ns: u64, base_ticks: u32, ev: &StepEvent) -> Timed {
-    let dt = ev.t.saturating_sub(base_ns).min(u64::from(u32::MAX)) as u32;
+    let at = if ev.t >= base_ns {
+        base_ticks.wrapping_add(tb.ticks((ev.t - base_ns).min(u64::from(u32::MAX)) as u32))
+    } else {
+        base_ticks.wrapping_sub(tb.ticks((base_ns - ev.t).min(u64::from(u32::MAX)) as u32))
+    };
     let edge = match ev.kind {
         EdgeKind::Step(_) => Edge::Step,
         EdgeKind::Dir(positive) => Edge::Dir(positive),
     };
-    Timed { at: base_ticks.wrapping_add(tb.ticks(dt)), edge }
+    Timed { at, edge }
 }
 
 #[cfg(test)]
@@ -313,5 +330,86 @@ mod tests {
         assert_eq!(core.steps(), [16_400, 0, -3_200, 0]);
         assert_eq!((rises[0].len(), rises[1].len()), (400, 3_200));
         assert!(rises[1].windows(2).all(|w| w[1].wrapping_sub(w[0]) >= 840));
+    }
+
+    /// Cuts a 2 mm-lead G32 from Z 5 to Z −40 mm with the spindle at `rpm` (4096
+    /// counts per revolution, index every 4096): periods from the period
+    /// interrupt, every count through [`Engine::encoder`] at its time, edges played
+    /// at theirs. Returns, for each Z step played, the encoder count at that moment.
+    fn thread_at(rpm: u32, rings: &'static [EdgeRing<RING>; 1]) -> (Vec<u32>, Box<MotionCore<64>>) {
+        use interp_core::canon::{SpindleCommand, SpindleDir, ThreadMove, ThreadSync};
+        let cfg = MachineConfig::default();
+        let mut core: Box<MotionCore<64>> = Box::new(MotionCore::new(&cfg, Pos::xz(20 * MM, 5 * MM)).unwrap());
+        let on = SpindleCommand { dir: SpindleDir::Cw, rpm: Some(rpm), css: None };
+        core.push(Canon { line: 1, action: Action::Spindle(on) }).unwrap();
+        let p = Pos::xz(20 * MM, -40 * MM);
+        let t = ThreadMove {
+            to: Endpoint { machine: p, work: p },
+            lead: 2 * MM,
+            lead_delta: 0,
+            start_udeg: 0,
+            sync: ThreadSync::Index,
+            spindle: SpindleSpeed { rpm: Some(rpm), css: None, max_rpm: 3_000 },
+        };
+        core.push(Canon { line: 2, action: Action::Thread(t) }).unwrap();
+        let tb = TimeBase::new(84_000_000, cfg.motion.tick_ns).unwrap();
+        let (tz, rz) = rings[0].split().unwrap();
+        let timing = PlayTiming::new(core.stepper(2).unwrap().timing(), &tb);
+        let mut player = Player::new([(rz, AxisPins { step: 7, dir: 11 }, timing)]);
+        let mut engine = Engine::new(tb, [EngineAxis::new(2, tz)], 0, 0);
+        // Ticks per count, as an exact fraction: 84e6 × 60 / (rpm × 4096).
+        let (num, den) = (84_000_000u64 * 60, u64::from(rpm) * 4_096);
+        let tick_of = |c: u64| (c * num / den) as u32;
+        let (mut count, mut played, mut next_period) = (0u64, 0u32, 0u32);
+        let mut z_counts = Vec::new();
+        while count < 4_096 * 40 {
+            let now = tick_of(count);
+            if now.wrapping_sub(next_period) as i32 >= 0 {
+                let index = (count >= 4_096).then_some((count as u32) & !4_095);
+                engine.period(&mut core, Sample { now, raw_count: count as u32, index, estop: false });
+                next_period = next_period.wrapping_add(tb.period_ticks);
+            } else {
+                engine.encoder(&mut core, now, count as u32);
+            }
+            // Play up to the next count.
+            let until = tick_of(count + 1);
+            let mut t = played;
+            loop {
+                let out = player.run(t, false);
+                if out.bsrr & (1 << 7) != 0 {
+                    // The count in force at tick t.
+                    z_counts.push((u64::from(t) * den / num) as u32);
+                }
+                match out.next {
+                    Some(n) if until.wrapping_sub(n) as i32 > 0 => {
+                        t = if n.wrapping_sub(t) as i32 > 0 { n } else { t + 1 };
+                    }
+                    _ => break,
+                }
+            }
+            played = until;
+            count += 1;
+        }
+        (z_counts, core)
+    }
+
+    #[test]
+    fn a_thread_cut_at_200_and_2000_rpm_steps_at_the_same_counts() {
+        static R200: [EdgeRing<RING>; 1] = [EdgeRing::new()];
+        static R2000: [EdgeRing<RING>; 1] = [EdgeRing::new()];
+        let (slow, core_slow) = thread_at(200, &R200);
+        let (fast, core_fast) = thread_at(2_000, &R2000);
+        // Both passes end exactly on Z −40 mm (320 steps/mm).
+        assert_eq!(core_slow.steps()[2], -40 * 320);
+        assert_eq!(core_fast.steps()[2], -40 * 320);
+        assert_eq!(slow.len(), 45 * 320);
+        assert_eq!(fast.len(), slow.len());
+        // Between the ramps (the faster pass ramps longer) each Z step comes at the
+        // same spindle angle at both speeds: the same count modulo 4096 (the faster
+        // pass starts whole revolutions later), within the count in progress.
+        for k in slow.len() / 2..slow.len() * 5 / 6 {
+            let d = (i64::from(fast[k]) - i64::from(slow[k])).rem_euclid(4_096);
+            assert!(d <= 1 || d == 4_095, "step {k}: count {} at 200 rpm, {} at 2000 rpm", slow[k], fast[k]);
+        }
     }
 }

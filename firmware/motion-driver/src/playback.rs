@@ -69,6 +69,8 @@ struct PlayAxis<const N: usize> {
     dir_set: u32,
     dir_clear: u32,
     timing: PlayTiming,
+    /// [`PlayTiming::hold`], kept.
+    hold: u32,
     /// End of the running STEP pulse.
     fall_at: Option<u32>,
     /// No edge before this tick (driver timing after the last edge).
@@ -79,7 +81,7 @@ impl<const N: usize> PlayAxis<N> {
     /// When `e` may be played: its own time, or later if the driver needs it.
     fn when(&self, e: &Timed, now: u32) -> u32 {
         let ahead = self.ready.wrapping_sub(now);
-        let ready_future = ahead != 0 && ahead <= self.timing.hold();
+        let ready_future = ahead != 0 && ahead <= self.hold;
         if ready_future && !due(self.ready, e.at) { self.ready } else { e.at }
     }
 
@@ -139,6 +141,7 @@ impl<const N: usize, const A: usize> Player<N, A> {
                 dir_set: 1 << (pins.dir & 15),
                 dir_clear: 1 << ((pins.dir & 15) + 16),
                 timing,
+                hold: timing.hold(),
                 fall_at: None,
                 ready: 0,
             }),
