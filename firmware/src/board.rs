@@ -6,7 +6,7 @@
 //!
 //! | Pin  | Function       | Notes                                                     |
 //! |------|----------------|-----------------------------------------------------------|
-//! | PC6  | X STEP         | TIM8_CH1 capable (AF3) for hardware pulse generation      |
+//! | PC6  | X STEP         | step interrupt via GPIOC BSRR; TIM8_CH1 capable (AF3)     |
 //! | PC7  | Z STEP         | TIM8_CH2 capable (AF3)                                    |
 //! | PC8  | C STEP         | TIM8_CH3 capable (AF3); optional rotary axis              |
 //! | PC9  | DRIVE ENABLE   | shared by all step drivers; high = enabled                |
@@ -25,13 +25,13 @@
 //! | PB9  | TAILSTOCK      | high = quill forward                                      |
 //! | PB10 | LUBE           | way-lube pump                                             |
 //! | PB5  | STATUS LED     | heartbeat                                                 |
-//! | PC0  | E-STOP         | EXTI0 (own IRQ vector); NC contact, high = stop           |
-//! | PC1  | FEED HOLD      | EXTI1; NO button to GND, low = pressed                    |
-//! | PC3  | CYCLE START    | EXTI3; NO button to GND, low = pressed                    |
-//! | PB12 | X LIMIT        | EXTI12; both ends in series, NC, high = tripped           |
-//! | PB13 | Z LIMIT        | EXTI13; both ends in series, NC, high = tripped           |
-//! | PB14 | X HOME         | EXTI14                                                    |
-//! | PB15 | Z HOME         | EXTI15                                                    |
+//! | PC0  | E-STOP         | NC contact, high = stop; read raw in the motion ISRs      |
+//! | PC1  | FEED HOLD      | NO button to GND, low = pressed                           |
+//! | PC3  | CYCLE START    | NO button to GND, low = pressed                           |
+//! | PB12 | X LIMIT        | both ends in series, NC, high = tripped                   |
+//! | PB13 | Z LIMIT        | both ends in series, NC, high = tripped                   |
+//! | PB14 | X HOME         | high = on the switch                                      |
+//! | PB15 | Z HOME         |                                                           |
 //! | PA2  | DNC TX         | USART2_TX (AF7)                                           |
 //! | PA3  | DNC RX         | USART2_RX (AF7)                                           |
 //!
@@ -39,7 +39,7 @@
 //! start low, so a reset leaves the spindle, coolant and drives off. Switch inputs use
 //! the internal pull-ups; normally-closed safety contacts read high when open, so a
 //! broken wire looks like a tripped switch. Switches are sampled every millisecond and
-//! debounced by the I/O task; the e-stop is also read raw by the step and motion
+//! debounced by the control task; the e-stop is also read raw by the step and motion
 //! interrupts (same port as the STEP pins: one IDR read).
 //!
 //! Kept free on purpose: PA13/PA14 (SWD), PB3 (SWO), PH0/PH1 (8 MHz HSE crystal),
@@ -163,7 +163,7 @@ pub struct Aux {
     pub lube: Output<'static>,
 }
 
-/// Operator and machine switch inputs (pull-ups; sampled and debounced by the I/O task).
+/// Operator and machine switch inputs (pull-ups; sampled and debounced by the control task).
 pub struct Switches {
     /// Emergency stop (normally closed; high = stop).
     pub estop: Input<'static>,

@@ -89,7 +89,7 @@ impl Switch {
 }
 
 /// Debounced switch levels: a switch changes state after `K` consecutive equal
-/// samples that differ from it (K ms at the 1 ms sampling of the I/O task).
+/// samples that differ from it (K ms at the control task's 1 ms sampling).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Debounce<const K: u8> {
