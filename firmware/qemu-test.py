@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Boot test of the firmware's QEMU build: builds it (qemu-run.sh --build), boots it on
 QEMU netduinoplus2 with USART2 on a TCP socket, and checks the link: the welcome line,
-a `?` status report, a line answered `ok`, and the welcome again after a soft reset
-(0x18). Exits non-zero on the first failure. Used by .ci/run.
+a `?` status report, a line answered `ok`, a rapid (`$MOVE`) run by the motion core on
+the software time base until the status shows it arrived, and the welcome again after a
+soft reset (0x18). Exits non-zero on the first failure. Used by .ci/run.
 """
 import os
 import socket
@@ -77,6 +78,20 @@ def main():
             raise SystemExit(f"qemu-test: unexpected status {status!r}")
         link.send(b"G01 X10 Z-5 F0.2\r\n")
         link.expect(b"[ECHO:G01 X10 Z-5 F0.2]\r\nok\r\n", "line answered")
+        # The motion path on the software time base: a rapid, then Idle at the target.
+        link.send(b"$MOVE X310 Z240.5\n")
+        link.expect(b"ok\r\n", "move queued")
+        deadline = time.monotonic() + TIMEOUT
+        while True:
+            link.send(b"?")
+            status = link.expect(b">\r\n", "status while moving")
+            if status.startswith(b"<Idle|MPos:310.000,0.000,240.500|"):
+                break
+            if not status.startswith(b"<Run|"):
+                raise SystemExit(f"qemu-test: not running towards the target ({status!r})")
+            if time.monotonic() > deadline:
+                raise SystemExit(f"qemu-test: the rapid never arrived ({status!r})")
+            time.sleep(0.05)
         link.send(b"\x18")
         link.expect(WELCOME, "welcome after soft reset")
         print("qemu-test: passed")

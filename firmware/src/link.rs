@@ -4,13 +4,18 @@
 //! (docs/PROTOCOL.md) to prove the path: the grbl welcome at start and after 0x18,
 //! a `?` status report built from the motion core, `ok` for every line (echoed in a
 //! `[ECHO:…]` message; nothing is executed), and it applies the motion core's
-//! spindle and M-code events to the outputs.
+//! spindle and M-code events to the outputs. The buttons act on the motion core
+//! (feed hold, cycle start; a tripped limit is an emergency stop). One command of its
+//! own exercises the motion path end to end: `$MOVE X<diameter> Z<z>` (mm, machine
+//! coordinates) queues a rapid there.
 
 use core::fmt::Write as _;
 
 use heapless::{Deque, String, Vec};
-use interp_core::axis::Axis;
+use interp_core::axis::{Axis, Pos};
+use interp_core::canon::{Action, Canon, CanonSink as _, Endpoint, Feed, FeedMode, Move, SpindleSpeed};
 use interp_core::motion::State;
+use motion_driver::io::Switch;
 
 use crate::io::{InputLevels, Outputs};
 use crate::motion::MotionPort;
@@ -28,6 +33,10 @@ pub struct Placeholder {
     out: Deque<u8, 1024>,
     status_wanted: bool,
     reset_wanted: bool,
+    /// A `$MOVE` target (machine X radius, Z; nm) to queue at the next poll.
+    move_wanted: Option<Pos>,
+    /// Switch levels at the last poll (for edges).
+    last_inputs: InputLevels,
 }
 
 impl Default for Placeholder {
@@ -45,6 +54,8 @@ impl Placeholder {
             out: Deque::new(),
             status_wanted: false,
             reset_wanted: false,
+            move_wanted: None,
+            last_inputs: InputLevels::default(),
         };
         p.say(WELCOME);
         p
@@ -71,6 +82,11 @@ impl Placeholder {
         while let Some(e) = port.lock(|m| m.core.pop_event()).flatten() {
             outputs.apply(&e);
         }
+        self.buttons(port, inputs);
+        if let Some(to) = self.move_wanted.take() {
+            let queued = port.push(rapid(to)).is_ok();
+            self.say(if queued { "ok\r\n" } else { "error:9\r\n" });
+        }
         if core::mem::take(&mut self.reset_wanted) {
             port.lock(|m| m.core.reset());
             outputs.stop_all();
@@ -94,9 +110,29 @@ impl Placeholder {
         n
     }
 
+    /// Feed hold and cycle start on pressing; a limit tripping stops everything.
+    fn buttons(&mut self, port: &mut MotionPort, inputs: InputLevels) {
+        let pressed = |s: Switch| inputs.active(s) && !self.last_inputs.active(s);
+        if pressed(Switch::FeedHold) {
+            port.lock(|m| m.core.feed_hold());
+        }
+        if pressed(Switch::CycleStart) {
+            port.lock(|m| m.core.cycle_start());
+        }
+        if pressed(Switch::XLimit) || pressed(Switch::ZLimit) {
+            port.lock(|m| m.core.emergency_stop());
+        }
+        self.last_inputs = inputs;
+    }
+
     fn end_line(&mut self) {
         if core::mem::take(&mut self.overflow) {
             self.say("error:11\r\n");
+        } else if let Some(rest) = self.line.strip_prefix(b"$MOVE") {
+            match parse_move(rest) {
+                Some(to) => self.move_wanted = Some(to),
+                None => self.say("error:2\r\n"),
+            }
         } else {
             let mut msg: String<{ LINE_MAX + 16 }> = String::new();
             let text = core::str::from_utf8(&self.line).unwrap_or("?");
@@ -107,17 +143,18 @@ impl Placeholder {
     }
 
     fn status(&mut self, port: &mut MotionPort, inputs: InputLevels) {
-        let Some((state, pos, rpm, free)) = port.lock(|m| {
-            let state = m.core.state();
+        let Some((state, idle, alarm, pos, rpm, free)) = port.lock(|m| {
             let free = interp_core::motion::QUEUE - m.core.queued();
-            (state, m.core.position(), m.core.spindle().measured_rpm(), free)
+            let c = &m.core;
+            (c.state(), c.is_idle(), c.alarm().is_some(), c.position(), c.spindle().measured_rpm(), free)
         }) else {
             return;
         };
         let name = match state {
+            _ if alarm => "Alarm",
             State::Held => "Hold:1",
-            State::Stopping if m_alarm(port) => "Alarm",
-            State::Idle | State::Ended | State::Stopped => "Idle",
+            State::Stopped => "Idle",
+            _ if idle => "Idle",
             _ => "Run",
         };
         let mut s: String<160> = String::new();
@@ -150,14 +187,8 @@ impl Placeholder {
     }
 }
 
-/// Whether the motion core has an alarm in force.
-fn m_alarm(port: &mut MotionPort) -> bool {
-    port.lock(|m| m.core.alarm().is_some()).unwrap_or(false)
-}
-
 /// The `Pn:` letters of the active inputs.
 fn pins(inputs: InputLevels) -> String<8> {
-    use motion_driver::io::Switch;
     let mut s = String::new();
     for (sw, c) in [
         (Switch::XLimit, 'X'),
@@ -171,4 +202,53 @@ fn pins(inputs: InputLevels) -> String<8> {
         }
     }
     s
+}
+
+/// A rapid to machine position `to`.
+fn rapid(to: Pos) -> Canon {
+    let m = Move {
+        to: Endpoint { machine: to, work: to },
+        feed: Feed { mode: FeedMode::PerMin, value: 0 },
+        spindle: SpindleSpeed { rpm: None, css: None, max_rpm: 0 },
+        exact_stop: true,
+        independent: false,
+    };
+    Canon { line: 0, action: Action::Rapid(m) }
+}
+
+/// `X<diameter> Z<z>` in mm (both required) as a machine position (X a radius), nm.
+fn parse_move(text: &[u8]) -> Option<Pos> {
+    let text = core::str::from_utf8(text).ok()?;
+    let (mut x, mut z) = (None, None);
+    for word in text.split_ascii_whitespace() {
+        let (letter, value) = word.split_at_checked(1)?;
+        let nm = mm_to_nm(value)?;
+        match letter {
+            "X" | "x" => x = Some(nm / 2),
+            "Z" | "z" => z = Some(nm),
+            _ => return None,
+        }
+    }
+    Some(Pos::xz(x?, z?))
+}
+
+/// A decimal number of mm (up to 6 decimals) as nm.
+fn mm_to_nm(s: &str) -> Option<i64> {
+    let (neg, s) = match s.strip_prefix('-') {
+        Some(rest) => (true, rest),
+        None => (false, s),
+    };
+    let (int, frac) = s.split_once('.').unwrap_or((s, ""));
+    if frac.len() > 6 || (int.is_empty() && frac.is_empty()) {
+        return None;
+    }
+    let whole: i64 = if int.is_empty() { 0 } else { int.parse().ok()? };
+    let mut nm = whole.checked_mul(1_000_000)?;
+    let mut scale = 100_000;
+    for c in frac.bytes() {
+        let d = i64::from(c.checked_sub(b'0').filter(|d| *d <= 9)?);
+        nm = nm.checked_add(d * scale)?;
+        scale /= 10;
+    }
+    Some(if neg { -nm } else { nm })
 }

@@ -190,12 +190,13 @@ async fn control(
 fn soft_period(port: &mut MotionPort) {
     use motion_driver::engine::Sample;
     let now = Instant::now().as_micros() as u32;
+    // As the period interrupt does at the start of each period: compute the next one.
     for _ in 0..4 {
         let due = port.lock(|m| {
-            let next = m.engine.base_ticks().wrapping_add(m.engine.time_base().period_ticks);
-            let due = now.wrapping_sub(next) as i32 >= 0;
+            let start = m.engine.base_ticks();
+            let due = now.wrapping_sub(start) as i32 >= 0;
             if due {
-                m.engine.period(&mut m.core, Sample { now: next, raw_count: 0, index: None, estop: false });
+                m.engine.period(&mut m.core, Sample { now: start, raw_count: 0, index: None, estop: false });
             }
             due
         });

@@ -320,18 +320,25 @@ pub mod isr {
                 m.core.wants_encoder_edges()
             })
         };
-        count_interrupt(wants.unwrap_or(false), sample.raw_count);
+        count_interrupt(wants.unwrap_or(false));
         interrupt::TIM2.pend();
     }
 
-    /// Encoder-count interrupts on (compares one count either side of `raw`) or off.
-    fn count_interrupt(on: bool, raw: u32) {
+    /// Encoder-count interrupts on or off. When on, the compares go one count either
+    /// side of the count now and the count interrupt is pended: counts that came
+    /// while the period ran are handed over at once (it re-arms around the count it
+    /// reads).
+    fn count_interrupt(on: bool) {
+        let raw = ENCODER_TIMER.cnt().read();
         ENCODER_TIMER.ccr(2).write_value(raw.wrapping_add(1));
         ENCODER_TIMER.ccr(3).write_value(raw.wrapping_sub(1));
         ENCODER_TIMER.dier().write(|w| {
             w.set_ccie(2, on);
             w.set_ccie(3, on);
         });
+        if on {
+            interrupt::TIM5.pend();
+        }
     }
 
     /// Encoder-count interrupt (P1, only while locked to the spindle): each new count
