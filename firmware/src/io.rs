@@ -1,16 +1,23 @@
-//! The board's outputs and switch inputs as the `hal` traits: what the controller's
-//! `poll` gets to switch the spindle, coolant, chuck, tailstock and lube, and the
-//! debounced switch levels it reads.
+//! The board's outputs and inputs as the `hal` traits: what the controller's `poll`
+//! gets to switch the spindle, coolant, chuck, tailstock and lube, the debounced
+//! switch levels it reads, the spindle encoder and the clock. (`hal::StepDir` has no
+//! implementation here on purpose: steps are timed edges the step interrupt plays,
+//! not calls.)
+
+use core::cell::Cell;
 
 use embassy_stm32::gpio::Output;
 use embassy_stm32::peripherals::TIM3;
 use embassy_stm32::timer::simple_pwm::SimplePwmChannel;
-use hal::{DigitalInputs, DigitalOutputs, Rotation, SpindleDrive};
+use embassy_time::Instant;
+use hal::{DigitalInputs, DigitalOutputs, MonotonicClock, Rotation, SpindleDrive, SpindleEncoder};
 use interp_core::canon::SpindleDir;
 use interp_core::motion::{Event, EventKind};
+use motion_driver::encoder::Encoder;
 use motion_driver::io::{AuxOut, Debounce, Switch, aux_switches, spindle_duty};
 
-use crate::board::{Aux, Switches};
+use crate::board::{Aux, ENCODER_TIMER, Switches};
+use crate::motion::index_latch;
 
 /// Samples a switch must hold before its debounced level changes (ms at 1 kHz).
 pub const DEBOUNCE_SAMPLES: u8 = 5;
@@ -173,5 +180,50 @@ impl DigitalInputs for InputLevels {
     /// 4 Z limit, 5 X home, 6 Z home).
     fn input(&self, n: u16) -> bool {
         Switch::ALL.get(usize::from(n)).is_some_and(|s| self.active(*s))
+    }
+}
+
+/// The spindle encoder as thread mode reads it (displays, the controller): TIM5's
+/// 32-bit count widened on every read, the index count from the index interrupt.
+/// Independent of the motion interrupts' own widening (same counter, same result up
+/// to the starting offset).
+pub struct EncoderReader {
+    encoder: Cell<Encoder>,
+}
+
+impl EncoderReader {
+    /// Count 0 is the counter's value now.
+    pub fn new() -> Self {
+        EncoderReader { encoder: Cell::new(Encoder::new(ENCODER_TIMER.cnt().read())) }
+    }
+}
+
+impl Default for EncoderReader {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl SpindleEncoder for EncoderReader {
+    fn count(&self) -> i64 {
+        let mut e = self.encoder.get();
+        let c = e.update(ENCODER_TIMER.cnt().read());
+        self.encoder.set(e);
+        c
+    }
+
+    fn index_count(&self) -> Option<i64> {
+        let _ = self.count();
+        index_latch().map(|raw| self.encoder.get().widen(raw))
+    }
+}
+
+/// Embassy's time as the hal clock (ns since boot; µs resolution).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Clock;
+
+impl MonotonicClock for Clock {
+    fn now_ns(&self) -> u64 {
+        Instant::now().as_micros() * 1_000
     }
 }

@@ -19,7 +19,8 @@ use embassy_sync::signal::Signal;
 use embassy_time::{Duration, Instant, Ticker, Timer};
 use embedded_io_async::{Read as _, Write as _};
 use firmware::board::{Axis, Board, MotionTimers, Spindle};
-use firmware::io::{Inputs, Outputs};
+use firmware::io::{Clock, Inputs, Outputs};
+use hal::MonotonicClock as _;
 use firmware::link::Placeholder;
 use firmware::motion::{self, MotionPort};
 use firmware::store::Store;
@@ -144,7 +145,7 @@ fn start_motion(cfg: &'static MachineConfig) -> Result<MotionPort, motion::Start
 
 /// Nanoseconds since boot.
 fn now_ns() -> u64 {
-    Instant::now().as_micros() * 1_000
+    Clock.now_ns()
 }
 
 /// The control task (thread mode, below every interrupt): every millisecond samples
