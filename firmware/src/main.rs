@@ -16,14 +16,14 @@ use embassy_stm32::wdg::IndependentWatchdog;
 use embassy_sync::blocking_mutex::Mutex;
 use embassy_sync::blocking_mutex::raw::ThreadModeRawMutex;
 use embassy_sync::signal::Signal;
-use embassy_time::{Duration, Instant, Ticker, Timer};
+use embassy_time::{Duration, Ticker, Timer};
 use embedded_io_async::{Read as _, Write as _};
 use firmware::board::{Axis, Board, MotionTimers, Spindle};
 use firmware::io::{Clock, Inputs, Outputs};
-use hal::MonotonicClock as _;
 use firmware::link::Placeholder;
 use firmware::motion::{self, MotionPort};
 use firmware::store::Store;
+use hal::MonotonicClock as _;
 use interp_core::config::MachineConfig;
 use motion_driver::timebase::TimeBase;
 use static_cell::StaticCell;
@@ -136,7 +136,7 @@ fn start_motion(cfg: &'static MachineConfig) -> Result<MotionPort, motion::Start
     {
         // Software time base: microseconds of embassy time.
         let tb = TimeBase::new(1_000_000, cfg.motion.tick_ns).map_err(motion::StartError::TimeBase)?;
-        let now = Instant::now().as_micros() as u32;
+        let now = embassy_time::Instant::now().as_micros() as u32;
         let port = motion::init(cfg, pos, tb, now, 0)?;
         info!("motion: software time base, period {} ns", tb.period_ns);
         Ok(port)
@@ -190,7 +190,7 @@ async fn control(
 #[cfg(feature = "qemu")]
 fn soft_period(port: &mut MotionPort) {
     use motion_driver::engine::Sample;
-    let now = Instant::now().as_micros() as u32;
+    let now = embassy_time::Instant::now().as_micros() as u32;
     // As the period interrupt does at the start of each period: compute the next one.
     for _ in 0..4 {
         let due = port.lock(|m| {
