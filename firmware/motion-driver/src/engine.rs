@@ -412,4 +412,39 @@ mod tests {
             assert!(d <= 1 || d == 4_095, "step {k}: count {} at 200 rpm, {} at 2000 rpm", slow[k], fast[k]);
         }
     }
+
+    #[test]
+    fn estop_in_the_period_stops_the_core_and_the_player_raises_no_step() {
+        static RINGS: [EdgeRing<RING>; 1] = [EdgeRing::new()];
+        let cfg = MachineConfig::default();
+        let mut core: Box<MotionCore<64>> = Box::new(MotionCore::new(&cfg, Pos::xz(40 * MM, 0)).unwrap());
+        core.push(rapid(40 * MM, -100 * MM)).unwrap();
+        let tb = TimeBase::new(84_000_000, cfg.motion.tick_ns).unwrap();
+        let (tz, rz) = RINGS[0].split().unwrap();
+        let timing = PlayTiming::new(core.stepper(2).unwrap().timing(), &tb);
+        let mut player = Player::new([(rz, AxisPins { step: 7, dir: 11 }, timing)]);
+        let mut engine = Engine::new(tb, [EngineAxis::new(2, tz)], 0, 0);
+        let mut now = 0u32;
+        let mut rises = 0;
+        for k in 0..400 {
+            let estop = k >= 200;
+            engine.period(&mut core, Sample { now, raw_count: 0, index: None, estop });
+            let end = now.wrapping_add(tb.period_ticks);
+            while now != end {
+                let out = player.run(now, estop);
+                if out.bsrr & (1 << 7) != 0 {
+                    assert!(!estop, "a STEP rise during e-stop at period {k}");
+                    rises += 1;
+                }
+                now = match out.next {
+                    Some(n) if n.wrapping_sub(now) as i32 > 0 && end.wrapping_sub(n) as i32 > 0 => n,
+                    Some(n) if n.wrapping_sub(now) as i32 <= 0 => now + 1,
+                    _ => end,
+                };
+            }
+        }
+        assert!(rises > 1_000, "the rapid moved before the e-stop ({rises} steps)");
+        assert!(core.alarm().is_some());
+        assert!(core.is_idle());
+    }
 }
