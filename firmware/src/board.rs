@@ -6,7 +6,7 @@
 //!
 //! | Pin  | Function       | Notes                                                     |
 //! |------|----------------|-----------------------------------------------------------|
-//! | PC6  | X STEP         | TIM8_CH1 capable (AF3) for hardware pulse generation      |
+//! | PC6  | X STEP         | step interrupt via GPIOC BSRR; TIM8_CH1 capable (AF3)     |
 //! | PC7  | Z STEP         | TIM8_CH2 capable (AF3)                                    |
 //! | PC8  | C STEP         | TIM8_CH3 capable (AF3); optional rotary axis              |
 //! | PC9  | DRIVE ENABLE   | shared by all step drivers; high = enabled                |
@@ -15,7 +15,7 @@
 //! | PC12 | C DIR          |                                                           |
 //! | PA0  | SPINDLE ENC A  | TIM5_CH1 (AF2), 32-bit timer in encoder mode              |
 //! | PA1  | SPINDLE ENC B  | TIM5_CH2 (AF2)                                            |
-//! | PD2  | SPINDLE INDEX  | EXTI2 (own IRQ vector): once-per-rev pulse for threading  |
+//! | PD2  | SPINDLE INDEX  | EXTI2 (own IRQ vector): latches TIM5's count in its ISR   |
 //! | PA6  | SPINDLE PWM    | TIM3_CH1 (AF2), 1 kHz into a PWM-to-0–10 V converter     |
 //! | PB0  | SPINDLE CW     | M03: VFD forward run                                      |
 //! | PB1  | SPINDLE CCW    | M04: VFD reverse run                                      |
@@ -25,20 +25,22 @@
 //! | PB9  | TAILSTOCK      | high = quill forward                                      |
 //! | PB10 | LUBE           | way-lube pump                                             |
 //! | PB5  | STATUS LED     | heartbeat                                                 |
-//! | PC0  | E-STOP         | EXTI0 (own IRQ vector); NC contact, high = stop           |
-//! | PC1  | FEED HOLD      | EXTI1; NO button to GND, low = pressed                    |
-//! | PC3  | CYCLE START    | EXTI3; NO button to GND, low = pressed                    |
-//! | PB12 | X LIMIT        | EXTI12; both ends in series, NC, high = tripped           |
-//! | PB13 | Z LIMIT        | EXTI13; both ends in series, NC, high = tripped           |
-//! | PB14 | X HOME         | EXTI14                                                    |
-//! | PB15 | Z HOME         | EXTI15                                                    |
+//! | PC0  | E-STOP         | NC contact, high = stop; read raw in the motion ISRs      |
+//! | PC1  | FEED HOLD      | NO button to GND, low = pressed                           |
+//! | PC3  | CYCLE START    | NO button to GND, low = pressed                           |
+//! | PB12 | X LIMIT        | both ends in series, NC, high = tripped                   |
+//! | PB13 | Z LIMIT        | both ends in series, NC, high = tripped                   |
+//! | PB14 | X HOME         | high = on the switch                                      |
+//! | PB15 | Z HOME         |                                                           |
 //! | PA2  | DNC TX         | USART2_TX (AF7)                                           |
 //! | PA3  | DNC RX         | USART2_RX (AF7)                                           |
 //!
 //! Outputs are active high at the MCU pin (opto/relay drivers on the board) and all
 //! start low, so a reset leaves the spindle, coolant and drives off. Switch inputs use
 //! the internal pull-ups; normally-closed safety contacts read high when open, so a
-//! broken wire looks like a tripped switch. Every switch sits on its own EXTI line.
+//! broken wire looks like a tripped switch. Switches are sampled every millisecond and
+//! debounced by the control task; the e-stop is also read raw by the step and motion
+//! interrupts (same port as the STEP pins: one IDR read).
 //!
 //! Kept free on purpose: PA13/PA14 (SWD), PB3 (SWO), PH0/PH1 (8 MHz HSE crystal),
 //! PC14/PC15 (LSE), PB2 (BOOT1), PA9/PA10 (USART1: ROM bootloader, service console),
@@ -46,21 +48,27 @@
 //! alternative to PWM for the 0–10 V speed signal), PA7, PA8, PA15, PB4, PB11, PC2,
 //! PC4, PC5 (ADC, e.g. override potentiometers), PC13.
 //!
-//! Timers: TIM5 spindle encoder, TIM3 spindle PWM, TIM4 embassy time driver (no pins),
-//! TIM8 reserved for step pulses; TIM1, TIM2, TIM6 and TIM7 are free.
+//! Timers: TIM2 (32-bit, 84 MHz, no pins) step time base and step-edge compare, TIM7
+//! interpolation period, TIM5 spindle encoder (32-bit) with per-count compares, TIM3
+//! spindle PWM, TIM4 embassy time driver (no pins); TIM8 (for hardware step pulses
+//! later), TIM1 and TIM6 are free.
+//!
+//! Flash: sectors 0–9 (768 KB) program, sectors 10–11 (0x080C0000..0x08100000,
+//! 256 KB) the controller's store ([`STORE_START`]); on the F446RE (512 KB) sectors
+//! 0–5 program and 6–7 (0x08040000..0x08080000) the store. See `memory.x`.
 
 use defmt::unwrap;
-use embassy_stm32::exti::{self, ExtiInput};
-use embassy_stm32::gpio::{Level, Output, OutputType, Pin, Pull, Speed};
-use embassy_stm32::interrupt::typelevel::{EXTI0, EXTI1, EXTI2, EXTI3, EXTI15_10};
-use embassy_stm32::mode::Async;
-use embassy_stm32::peripherals::{TIM3, TIM5};
+use embassy_stm32::flash::{Blocking, Flash};
+use embassy_stm32::gpio::{Input, Level, Output, OutputType, Pin, Pull, Speed};
+use embassy_stm32::peripherals::{IWDG, TIM2, TIM3, TIM5, TIM7};
 use embassy_stm32::time::Hertz;
-use embassy_stm32::timer::low_level::CountingMode;
+use embassy_stm32::timer::low_level::{CountingMode, Timer};
 use embassy_stm32::timer::qei::{self, Qei};
 use embassy_stm32::timer::simple_pwm::{PwmPin, SimplePwm, SimplePwmChannel};
 use embassy_stm32::usart::{self, BufferedUart};
-use embassy_stm32::{Peri, Peripherals, bind_interrupts, peripherals};
+use embassy_stm32::wdg::IndependentWatchdog;
+use embassy_stm32::{Peri, Peripherals, bind_interrupts, pac, peripherals};
+use motion_driver::playback::AxisPins;
 use static_cell::ConstStaticCell;
 
 /// Baud rate of the DNC serial link.
@@ -69,15 +77,45 @@ pub const DNC_BAUD: u32 = 115_200;
 /// Carrier frequency of the spindle speed PWM (typical PWM-to-0–10 V modules take 1–3 kHz).
 pub const SPINDLE_PWM_FREQ: Hertz = Hertz(1_000);
 
+/// Clock of TIM2/TIM5/TIM7 (APB1 timers at 2 × 42 MHz with the 168 MHz clock tree).
+pub const TIMER_HZ: u32 = 84_000_000;
+
+/// STEP/DIR pins of X, Z and C on port C (the step interrupt writes GPIOC's BSRR).
+pub const STEP_PINS: [AxisPins; 3] =
+    [AxisPins { step: 6, dir: 10 }, AxisPins { step: 7, dir: 11 }, AxisPins { step: 8, dir: 12 }];
+
+/// The port of the STEP/DIR pins and the e-stop input.
+pub const STEP_PORT: pac::gpio::Gpio = pac::GPIOC;
+
+/// E-stop input bit in [`STEP_PORT`]'s IDR (PC0, high = stop).
+pub const ESTOP_BIT: u32 = 1 << 0;
+
+/// Drive enable bit in [`STEP_PORT`]'s BSRR (PC9, high = enabled).
+pub const DRIVE_ENABLE_BIT: u32 = 1 << 9;
+
+/// The spindle encoder timer (TIM5, 32-bit, encoder mode).
+pub const ENCODER_TIMER: pac::timer::TimGp32 = pac::TIM5;
+
+/// The step time base and step-edge compare timer (TIM2, 32-bit, free running).
+pub const STEP_TIMER: pac::timer::TimGp32 = pac::TIM2;
+
+/// The interpolation period timer (TIM7).
+pub const PERIOD_TIMER: pac::timer::TimBasic = pac::TIM7;
+
+/// First byte of the flash region reserved for the controller's store (see memory.x).
+#[cfg(feature = "f405")]
+pub const STORE_START: u32 = 0x080C_0000;
+/// First byte of the flash region reserved for the controller's store (see memory.x).
+#[cfg(feature = "f446")]
+pub const STORE_START: u32 = 0x0804_0000;
+/// Size of the store region: two 128 KB sectors.
+pub const STORE_SIZE: u32 = 256 * 1024;
+
 bind_interrupts!(
-    /// Interrupt vectors used by the board's drivers.
+    /// Interrupt vectors bound to embassy drivers (the motion interrupts are in
+    /// `motion.rs`).
     struct Irqs {
         USART2 => usart::BufferedInterruptHandler<peripherals::USART2>;
-        EXTI0 => exti::InterruptHandler<EXTI0>;
-        EXTI1 => exti::InterruptHandler<EXTI1>;
-        EXTI2 => exti::InterruptHandler<EXTI2>;
-        EXTI3 => exti::InterruptHandler<EXTI3>;
-        EXTI15_10 => exti::InterruptHandler<EXTI15_10>;
     }
 );
 
@@ -87,7 +125,8 @@ static DNC_RX_BUF: ConstStaticCell<[u8; 1024]> = ConstStaticCell::new([0; 1024])
 /// Transmit buffer of the DNC link (acknowledgements, status reports).
 static DNC_TX_BUF: ConstStaticCell<[u8; 256]> = ConstStaticCell::new([0; 256]);
 
-/// STEP and DIR outputs of one stepper/servo drive.
+/// STEP and DIR outputs of one stepper/servo drive. The step interrupt drives them
+/// through the port's BSRR; these handles keep the pins configured.
 pub struct Axis {
     /// One pulse per step.
     pub step: Output<'static>,
@@ -97,11 +136,11 @@ pub struct Axis {
 
 /// Spindle feedback and command signals.
 pub struct Spindle {
-    /// Quadrature count of the spindle encoder (TIM5). TIM5 counts in 32 bits, but
-    /// `Qei::count` returns the low 16: widen in software or read TIM5's CNT.
+    /// Quadrature decoder on TIM5 (pins and encoder mode); the count is read in 32
+    /// bits from [`ENCODER_TIMER`] (embassy's `Qei::count` reads 16).
     pub encoder: Qei<'static, TIM5>,
-    /// Once-per-revolution index pulse.
-    pub index: ExtiInput<'static, Async>,
+    /// Once-per-revolution index pulse (EXTI2, rising edge, handled in `motion.rs`).
+    pub index: Input<'static>,
     /// Speed command: duty cycle 0–100 % maps to 0–10 V at the VFD.
     pub speed: SimplePwmChannel<'static, TIM3>,
     /// Run forward (M03).
@@ -116,30 +155,38 @@ pub struct Aux {
     pub coolant_flood: Output<'static>,
     /// Air/mist coolant (M07).
     pub coolant_mist: Output<'static>,
-    /// Chuck clamp.
+    /// Chuck clamp (M10/M11).
     pub chuck_clamp: Output<'static>,
-    /// Tailstock quill forward.
+    /// Tailstock quill forward (M12/M13).
     pub tailstock: Output<'static>,
-    /// Way-lube pump.
+    /// Way-lube pump (M32/M33).
     pub lube: Output<'static>,
 }
 
-/// Operator and machine switch inputs, each on its own EXTI line.
+/// Operator and machine switch inputs (pull-ups; sampled and debounced by the control task).
 pub struct Switches {
     /// Emergency stop (normally closed; high = stop).
-    pub estop: ExtiInput<'static, Async>,
+    pub estop: Input<'static>,
     /// Feed hold button (low = pressed).
-    pub feed_hold: ExtiInput<'static, Async>,
+    pub feed_hold: Input<'static>,
     /// Cycle start button (low = pressed).
-    pub cycle_start: ExtiInput<'static, Async>,
+    pub cycle_start: Input<'static>,
     /// X travel limits, both ends in series (high = tripped).
-    pub x_limit: ExtiInput<'static, Async>,
+    pub x_limit: Input<'static>,
     /// Z travel limits, both ends in series (high = tripped).
-    pub z_limit: ExtiInput<'static, Async>,
-    /// X home switch.
-    pub x_home: ExtiInput<'static, Async>,
-    /// Z home switch.
-    pub z_home: ExtiInput<'static, Async>,
+    pub z_limit: Input<'static>,
+    /// X home switch (high = on the switch).
+    pub x_home: Input<'static>,
+    /// Z home switch (high = on the switch).
+    pub z_home: Input<'static>,
+}
+
+/// The timers of the motion interrupts, clocked and reset; `motion::start` programs them.
+pub struct MotionTimers {
+    /// Step time base and step-edge compare (TIM2).
+    pub step: Timer<'static, TIM2>,
+    /// Interpolation period (TIM7).
+    pub period: Timer<'static, TIM7>,
 }
 
 /// Every board signal as a driver, built once at start-up.
@@ -162,7 +209,16 @@ pub struct Board {
     pub dnc: BufferedUart<'static>,
     /// Heartbeat LED.
     pub status_led: Output<'static>,
+    /// Timers of the step and period interrupts.
+    pub timers: MotionTimers,
+    /// Independent watchdog (started by the control task, fed by its loop).
+    pub watchdog: IndependentWatchdog<'static, IWDG>,
+    /// Flash for the controller's store (region [`STORE_START`], [`STORE_SIZE`]).
+    pub flash: Flash<'static, Blocking>,
 }
+
+/// Watchdog timeout: ten periods of the control loop's slowest step.
+pub const WATCHDOG_TIMEOUT_US: u32 = 250_000;
 
 impl Board {
     /// Configures every pin of the board from the HAL's peripherals.
@@ -177,24 +233,9 @@ impl Board {
             c: Axis { step: step_output(p.PC8), dir: step_output(p.PC12) },
             drive_enable: relay_output(p.PC9),
             spindle: Spindle {
-                encoder: Qei::new(p.TIM5, p.PA0, p.PA1, qei::Config::default()),
-                index: ExtiInput::new(p.PD2, p.EXTI2, Pull::Up, Irqs),
-                speed: {
-                    let pin = PwmPin::new(p.PA6, OutputType::PushPull);
-                    let pwm = SimplePwm::new(
-                        p.TIM3,
-                        Some(pin),
-                        None,
-                        None,
-                        None,
-                        SPINDLE_PWM_FREQ,
-                        CountingMode::EdgeAlignedUp,
-                    );
-                    let mut speed = pwm.split().ch1;
-                    speed.set_duty_cycle_fully_off();
-                    speed.enable();
-                    speed
-                },
+                encoder: encoder(Qei::new(p.TIM5, p.PA0, p.PA1, qei::Config::default())),
+                index: Input::new(p.PD2, Pull::Up),
+                speed: spindle_pwm(p.TIM3, p.PA6),
                 cw: relay_output(p.PB0),
                 ccw: relay_output(p.PB1),
             },
@@ -206,22 +247,55 @@ impl Board {
                 lube: relay_output(p.PB10),
             },
             switches: Switches {
-                estop: ExtiInput::new(p.PC0, p.EXTI0, Pull::Up, Irqs),
-                feed_hold: ExtiInput::new(p.PC1, p.EXTI1, Pull::Up, Irqs),
-                cycle_start: ExtiInput::new(p.PC3, p.EXTI3, Pull::Up, Irqs),
-                x_limit: ExtiInput::new(p.PB12, p.EXTI12, Pull::Up, Irqs),
-                z_limit: ExtiInput::new(p.PB13, p.EXTI13, Pull::Up, Irqs),
-                x_home: ExtiInput::new(p.PB14, p.EXTI14, Pull::Up, Irqs),
-                z_home: ExtiInput::new(p.PB15, p.EXTI15, Pull::Up, Irqs),
+                estop: Input::new(p.PC0, Pull::Up),
+                feed_hold: Input::new(p.PC1, Pull::Up),
+                cycle_start: Input::new(p.PC3, Pull::Up),
+                x_limit: Input::new(p.PB12, Pull::Up),
+                z_limit: Input::new(p.PB13, Pull::Up),
+                x_home: Input::new(p.PB14, Pull::Up),
+                z_home: Input::new(p.PB15, Pull::Up),
             },
             dnc: {
                 let mut config = usart::Config::default();
                 config.baudrate = DNC_BAUD;
+                // Wake the reader at every byte (QEMU never signals line idle).
+                config.eager_reads = Some(1);
                 unwrap!(BufferedUart::new(p.USART2, p.PA3, p.PA2, DNC_TX_BUF.take(), DNC_RX_BUF.take(), Irqs, config))
             },
             status_led: relay_output(p.PB5),
+            timers: MotionTimers { step: Timer::new(p.TIM2), period: Timer::new(p.TIM7) },
+            watchdog: IndependentWatchdog::new(p.IWDG, WATCHDOG_TIMEOUT_US),
+            flash: Flash::new_blocking(p.FLASH),
         }
     }
+}
+
+/// The encoder timer counting all 32 bits, inputs filtered (8 samples at 84 MHz:
+/// pulses under 95 ns are noise; a 2000 rpm × 4096 count edge lasts 7.3 µs), and the
+/// index line (PD2 → EXTI2, rising edge) routed for the index interrupt.
+fn encoder(qei: Qei<'static, TIM5>) -> Qei<'static, TIM5> {
+    ENCODER_TIMER.arr().write_value(u32::MAX);
+    ENCODER_TIMER.ccmr_input(0).modify(|w| {
+        w.set_icf(0, pac::timer::vals::FilterValue::FCK_INT_N8);
+        w.set_icf(1, pac::timer::vals::FilterValue::FCK_INT_N8);
+    });
+    ENCODER_TIMER.egr().write(|w| w.set_ug(true));
+    pac::RCC.apb2enr().modify(|w| w.set_syscfgen(true));
+    pac::SYSCFG.exticr(0).modify(|w| w.set_exti(2, 3)); // line 2 ← port D
+    pac::EXTI.rtsr(0).modify(|w| w.set_line(2, true));
+    pac::EXTI.pr(0).write(|w| w.set_line(2, true));
+    pac::EXTI.imr(0).modify(|w| w.set_line(2, true));
+    qei
+}
+
+/// TIM3 channel 1 on PA6 at [`SPINDLE_PWM_FREQ`], starting at 0 % (spindle stopped).
+fn spindle_pwm(tim: Peri<'static, TIM3>, pin: Peri<'static, peripherals::PA6>) -> SimplePwmChannel<'static, TIM3> {
+    let pin = PwmPin::new(pin, OutputType::PushPull);
+    let pwm = SimplePwm::new(tim, Some(pin), None, None, None, SPINDLE_PWM_FREQ, CountingMode::EdgeAlignedUp);
+    let mut speed = pwm.split().ch1;
+    speed.set_duty_cycle_fully_off();
+    speed.enable();
+    speed
 }
 
 /// A STEP or DIR output: fast edges for pulse rates of 100 kHz and more.

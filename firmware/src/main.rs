@@ -1,29 +1,61 @@
-//! Firmware entry point: clocks, board bring-up and the task set.
+//! Firmware entry point: clocks, board bring-up, the motion interrupts and the task
+//! set (control, link receive, link transmit, heartbeat). See `motion.rs` for the
+//! interrupt priorities.
 #![no_std]
 #![no_main]
 
-use defmt::{info, unwrap};
+use core::cell::RefCell;
+
+use defmt::{info, unwrap, warn};
 use embassy_executor::Spawner;
-use embassy_stm32::gpio::Output;
-use embassy_stm32::rcc::{
-    AHBPrescaler, APBPrescaler, Hse, HseMode, Pll, PllMul, PllPDiv, PllPreDiv, PllQDiv, PllSource, Sysclk,
-};
-use embassy_stm32::time::Hertz;
-use embassy_time::Timer;
-use firmware::board::Board;
+use embassy_stm32::gpio::{Input, Output};
+use embassy_stm32::peripherals::{IWDG, TIM5};
+use embassy_stm32::timer::qei::Qei;
+use embassy_stm32::usart::{BufferedUartRx, BufferedUartTx};
+use embassy_stm32::wdg::IndependentWatchdog;
+use embassy_sync::blocking_mutex::Mutex;
+use embassy_sync::blocking_mutex::raw::ThreadModeRawMutex;
+use embassy_sync::signal::Signal;
+use embassy_time::{Duration, Ticker, Timer};
+use embedded_io_async::{Read as _, Write as _};
+use firmware::board::{Axis, Board, MotionTimers, Spindle};
+use firmware::io::{Clock, Inputs, Outputs};
+use firmware::link::Placeholder;
+use firmware::motion::{self, MotionPort};
+use firmware::store::Store;
+use hal::MonotonicClock as _;
+use interp_core::config::MachineConfig;
+use motion_driver::timebase::TimeBase;
 use static_cell::StaticCell;
 use {defmt_rtt as _, panic_probe as _};
-// The interpreter core and the hardware traits are linked in now so the target build
-// checks that they stay no_std; the DNC/interpreter task that drives them arrives with
-// the firmware issue.
-use {hal as _, interp_core as _};
 
-/// The board lives for the whole run, so its pins keep their configured (safe) levels.
-static BOARD: StaticCell<Board> = StaticCell::new();
+/// The controller (the placeholder until `controller::Controller` is wired in),
+/// shared by the control and link tasks (all in thread mode).
+static CONTROLLER: Mutex<ThreadModeRawMutex, RefCell<Option<Placeholder>>> = Mutex::new(RefCell::new(None));
+
+/// Set when the controller may have output for the link.
+static TX_READY: Signal<ThreadModeRawMutex, ()> = Signal::new();
+
+/// Pins and timers nobody touches after set-up, kept so they stay configured.
+struct Kept {
+    _axes: [Axis; 3],
+    _encoder: Qei<'static, TIM5>,
+    _index: Input<'static>,
+    _timers: MotionTimers,
+}
+static KEPT: StaticCell<Kept> = StaticCell::new();
+
+/// The machine description in force (the controller's store will provide it).
+static MACHINE: StaticCell<MachineConfig> = StaticCell::new();
 
 /// System clock from the board's 8 MHz crystal: 168 MHz core, 42 MHz APB1
-/// (84 MHz timers), 84 MHz APB2 (168 MHz timers), 48 MHz for USB.
+/// (84 MHz timers), 84 MHz APB2 (168 MHz timers), 48 MHz for USB. Same on the F446.
+#[cfg(not(feature = "qemu"))]
 fn clock_config() -> embassy_stm32::Config {
+    use embassy_stm32::rcc::{
+        AHBPrescaler, APBPrescaler, Hse, HseMode, Pll, PllMul, PllPDiv, PllPreDiv, PllQDiv, PllSource, Sysclk,
+    };
+    use embassy_stm32::time::Hertz;
     let mut config = embassy_stm32::Config::default();
     let rcc = &mut config.rcc;
     rcc.hse = Some(Hse { freq: Hertz::mhz(8), mode: HseMode::Oscillator });
@@ -42,16 +74,192 @@ fn clock_config() -> embassy_stm32::Config {
     config
 }
 
+/// QEMU: the reset clocks (HSI 16 MHz) and no backup domain (QEMU's PWR never
+/// acknowledges DBP).
+#[cfg(feature = "qemu")]
+fn clock_config() -> embassy_stm32::Config {
+    let mut config = embassy_stm32::Config::default();
+    config.rcc.ls = embassy_stm32::rcc::LsConfig::off();
+    config
+}
+
 #[embassy_executor::main]
 async fn main(spawner: Spawner) {
-    let board = BOARD.init(Board::new(embassy_stm32::init(clock_config())));
+    #[cfg(feature = "qemu")]
+    let mut cp = {
+        firmware::qemu::rcc_workaround();
+        let mut cp = unwrap!(cortex_m::Peripherals::take());
+        firmware::qemu::trap_pwr(&mut cp.MPU);
+        cp
+    };
+    let p = embassy_stm32::init(clock_config());
+    #[cfg(feature = "qemu")]
+    {
+        firmware::qemu::untrap_pwr(&mut cp.MPU);
+        firmware::qemu::start_time_driver(&mut cp.SYST);
+    }
+    let Board { x, z, c, drive_enable, spindle, aux, switches, dnc, status_led, timers, watchdog, flash } =
+        Board::new(p);
+    let Spindle { encoder, index, speed, cw, ccw } = spindle;
+    KEPT.init(Kept { _axes: [x, z, c], _encoder: encoder, _index: index, _timers: timers });
+    let machine = MACHINE.init(MachineConfig::default());
+    let port = unwrap!(start_motion(machine));
+    let outputs = Outputs::new(aux, cw, ccw, speed, drive_enable, machine.spindle.max_rpm);
+    let _store = Store::new(flash);
+    CONTROLLER.lock(|c| *c.borrow_mut() = Some(Placeholder::new()));
     info!("lathe motion board up");
-    spawner.spawn(unwrap!(heartbeat(&mut board.status_led)));
+    let (tx, rx) = dnc.split();
+    spawner.spawn(unwrap!(control(port, outputs, Inputs::new(switches), watchdog)));
+    spawner.spawn(unwrap!(link_rx(rx)));
+    spawner.spawn(unwrap!(link_tx(tx)));
+    spawner.spawn(unwrap!(heartbeat(status_led)));
+}
+
+/// Builds the motion core at reference position 1 and starts the step, period and
+/// encoder interrupts (on the board) — or, in the QEMU build, the software time base
+/// that the control task advances.
+fn start_motion(cfg: &'static MachineConfig) -> Result<MotionPort, motion::StartError> {
+    let pos = cfg.reference[0];
+    #[cfg(feature = "hw")]
+    {
+        use firmware::board::{ENCODER_TIMER, TIMER_HZ};
+        let tb = TimeBase::new(TIMER_HZ, cfg.motion.tick_ns).map_err(motion::StartError::TimeBase)?;
+        let mut port = motion::init(cfg, pos, tb, 0, 0)?;
+        let start = motion::isr::start_timers(tb.period_ticks);
+        let raw = ENCODER_TIMER.cnt().read();
+        port.lock(|m| m.engine.set_origin(start, raw));
+        motion::isr::enable();
+        info!("motion: period {} ns = {} ticks of {} Hz", tb.period_ns, tb.period_ticks, tb.timer_hz);
+        Ok(port)
+    }
+    #[cfg(not(feature = "hw"))]
+    {
+        // Software time base: microseconds of embassy time.
+        let tb = TimeBase::new(1_000_000, cfg.motion.tick_ns).map_err(motion::StartError::TimeBase)?;
+        let now = embassy_time::Instant::now().as_micros() as u32;
+        let port = motion::init(cfg, pos, tb, now, 0)?;
+        info!("motion: software time base, period {} ns", tb.period_ns);
+        Ok(port)
+    }
+}
+
+/// Nanoseconds since boot.
+fn now_ns() -> u64 {
+    Clock.now_ns()
+}
+
+/// The control task (thread mode, below every interrupt): every millisecond samples
+/// and debounces the switches, runs the controller's `poll` (interpreter, planner
+/// feed, events to outputs, status), and feeds the watchdog. In the QEMU build it
+/// also advances the software motion time base.
+#[embassy_executor::task]
+async fn control(
+    mut port: MotionPort,
+    mut outputs: Outputs,
+    mut inputs: Inputs,
+    mut watchdog: IndependentWatchdog<'static, IWDG>,
+) {
+    watchdog.unleash();
+    let mut ticker = Ticker::every(Duration::from_millis(1));
+    let mut estop = false;
+    loop {
+        ticker.next().await;
+        let levels = inputs.sample();
+        let e = levels.active(motion_driver::io::Switch::EStop);
+        if e && !estop {
+            warn!("e-stop");
+            outputs.stop_all();
+        }
+        estop = e;
+        outputs.enable_drives(!e);
+        #[cfg(feature = "qemu")]
+        soft_period(&mut port);
+        let now = now_ns();
+        CONTROLLER.lock(|c| {
+            if let Some(c) = c.borrow_mut().as_mut() {
+                c.poll(now, &mut port, &mut outputs, levels);
+            }
+        });
+        TX_READY.signal(());
+        watchdog.pet();
+    }
+}
+
+/// QEMU build: the motion interrupts' work on the software time base — every period
+/// due is computed, and its edges are played (counted, no pins) at once.
+#[cfg(feature = "qemu")]
+fn soft_period(port: &mut MotionPort) {
+    use motion_driver::engine::Sample;
+    let now = embassy_time::Instant::now().as_micros() as u32;
+    // As the period interrupt does at the start of each period: compute the next one.
+    for _ in 0..4 {
+        let due = port.lock(|m| {
+            let start = m.engine.base_ticks();
+            let due = now.wrapping_sub(start) as i32 >= 0;
+            if due {
+                m.engine.period(&mut m.core, Sample { now: start, raw_count: 0, index: None, estop: false });
+            }
+            due
+        });
+        if due != Some(true) {
+            break;
+        }
+    }
+    // SAFETY: without a step interrupt, this task is the player's only user.
+    let _ = unsafe {
+        motion::with_player(|p| {
+            for _ in 0..1_024 {
+                match p.run(now, false).next {
+                    Some(n) if now.wrapping_sub(n) as i32 >= 0 => {}
+                    _ => break,
+                }
+            }
+        })
+    };
+}
+
+/// Link receive: bytes from USART2 into the controller as they arrive.
+#[embassy_executor::task]
+async fn link_rx(mut rx: BufferedUartRx<'static>) {
+    let mut buf = [0u8; 64];
+    loop {
+        match rx.read(&mut buf).await {
+            Ok(n) => {
+                let now = now_ns();
+                let bytes = buf.get(..n).unwrap_or(&[]);
+                CONTROLLER.lock(|c| {
+                    if let Some(c) = c.borrow_mut().as_mut() {
+                        c.receive(bytes, now);
+                    }
+                });
+                TX_READY.signal(());
+            }
+            Err(e) => warn!("link receive: {}", e),
+        }
+    }
+}
+
+/// Link transmit: whatever the controller has to say, to USART2.
+#[embassy_executor::task]
+async fn link_tx(mut tx: BufferedUartTx<'static>) {
+    let mut buf = [0u8; 128];
+    loop {
+        TX_READY.wait().await;
+        loop {
+            let n = CONTROLLER.lock(|c| c.borrow_mut().as_mut().map_or(0, |c| c.transmit(&mut buf)));
+            if n == 0 {
+                break;
+            }
+            if tx.write_all(buf.get(..n).unwrap_or(&[])).await.is_err() {
+                warn!("link transmit failed");
+            }
+        }
+    }
 }
 
 /// Blinks the status LED at 1 Hz: visible proof that the executor and time driver run.
 #[embassy_executor::task]
-async fn heartbeat(led: &'static mut Output<'static>) {
+async fn heartbeat(mut led: Output<'static>) {
     loop {
         led.toggle();
         Timer::after_millis(500).await;

@@ -1,0 +1,313 @@
+//! Instruction counts of the firmware's interrupt bodies on the Cortex-M4F — the code
+//! the step (TIM2), period (TIM7) and encoder-count (TIM5) interrupts run, from
+//! `motion-driver`, with the same motion core and machine as the board:
+//!
+//! - period interrupt (`Engine::period`): `MotionCore::tick` one period ahead and
+//!   every step edge of that period queued — on a line at 1000 mm/min, on an arc, and
+//!   in a rapid with both axes at their top rates (the worst case: most steps);
+//! - step interrupt (`Player::run`): one edge, edges on three axes at once, a pulse
+//!   end, nothing due;
+//! - encoder-count interrupt (`Engine::encoder`) in a locked G32 thread at 2000 rpm
+//!   with 4096 counts per revolution.
+//!
+//! The register reads and writes around these bodies (about 10 loads and stores)
+//! and the interrupt entry and exit (12 + 12 cycles on the M4) come on top. Run
+//! through `bench.sh bench_isr`.
+#![no_std]
+#![no_main]
+
+use cortex_m_rt::entry;
+use cortex_m_semihosting::hprintln;
+use interp_core::axis::Pos;
+use interp_core::canon::{
+    Action, ArcMove, Canon, CanonSink as _, Endpoint, Feed, FeedMode, Move, Plane, SpindleCommand, SpindleDir,
+    SpindleSpeed, ThreadMove, ThreadSync,
+};
+use interp_core::config::MachineConfig;
+use interp_core::motion::{MotionCore, QUEUE, State};
+use m4_tests::{exit, measure};
+use motion_driver::engine::{Engine, EngineAxis, RING, Sample};
+use motion_driver::playback::{AxisPins, PlayTiming, Player};
+use motion_driver::ring::{Edge, EdgeRing, Timed};
+use motion_driver::timebase::TimeBase;
+
+const MM: i64 = 1_000_000;
+/// The board's step timer clock.
+const TIMER_HZ: u32 = 84_000_000;
+
+type Core = MotionCore<QUEUE>;
+
+fn at(x: i64, z: i64) -> Endpoint {
+    let p = Pos::xz(x, z);
+    Endpoint { machine: p, work: p }
+}
+
+fn spindle(rpm: u32) -> SpindleSpeed {
+    SpindleSpeed { rpm: Some(rpm), css: None, max_rpm: 3_000 }
+}
+
+fn linear(x: i64, z: i64, mm_min: i64) -> Action {
+    let feed = Feed { mode: FeedMode::PerMin, value: mm_min * MM };
+    Action::Linear(Move { to: at(x, z), feed, spindle: spindle(1_000), exact_stop: true, independent: false })
+}
+
+fn rapid(x: i64, z: i64) -> Action {
+    let feed = Feed { mode: FeedMode::PerMin, value: 0 };
+    Action::Rapid(Move { to: at(x, z), feed, spindle: spindle(1_000), exact_stop: true, independent: false })
+}
+
+/// The machine the firmware runs and its driven axes X, Z, C (rings 0–2).
+struct Rig {
+    core: Core,
+    engine: Engine<3>,
+    player: Player<RING, 3>,
+    /// Simulated step timer and spindle.
+    now: u32,
+    /// Step timer tick the player has played up to.
+    played: u32,
+    count: f64,
+    counts_per_tick: f64,
+}
+
+/// Rings for the rigs (each rig splits its own three).
+static RINGS: [[EdgeRing<RING>; 3]; 2] =
+    [[EdgeRing::new(), EdgeRing::new(), EdgeRing::new()], [EdgeRing::new(), EdgeRing::new(), EdgeRing::new()]];
+
+impl Rig {
+    fn new(rings: &'static [EdgeRing<RING>; 3], pos: Pos) -> Rig {
+        let cfg = MachineConfig::default();
+        let core: Core = Core::new(&cfg, pos).unwrap_or_else(|_| exit(false));
+        let tb = TimeBase::new(TIMER_HZ, cfg.motion.tick_ns).unwrap_or_else(|_| exit(false));
+        let ends = rings.each_ref().map(|r| r.split().unwrap_or_else(|| exit(false)));
+        let pins = [AxisPins { step: 6, dir: 10 }, AxisPins { step: 7, dir: 11 }, AxisPins { step: 8, dir: 12 }];
+        let axis = [0usize, 2, 3];
+        let timing = |a: usize| {
+            let t = core.stepper(a).map(|s| s.timing()).unwrap_or_else(|| exit(false));
+            PlayTiming::new(t, &tb)
+        };
+        let [(tx, rx), (tz, rz), (tc, rc)] = ends;
+        let player = Player::new([
+            (rx, pins[0], timing(axis[0])),
+            (rz, pins[1], timing(axis[1])),
+            (rc, pins[2], timing(axis[2])),
+        ]);
+        let engine = Engine::new(
+            tb,
+            [EngineAxis::new(axis[0], tx), EngineAxis::new(axis[1], tz), EngineAxis::new(axis[2], tc)],
+            0,
+            0,
+        );
+        Rig { core, engine, player, now: 0, played: 0, count: 0.0, counts_per_tick: 0.0 }
+    }
+
+    /// The spindle's raw count and the raw count at its last index (every 4096).
+    fn encoder(&self) -> (u32, Option<u32>) {
+        let c = self.count as u32;
+        (c, (c >= 4_096).then_some(c & !4_095))
+    }
+
+    fn sample(&self) -> Sample {
+        let (raw_count, index) = self.encoder();
+        Sample { now: self.now, raw_count, index, estop: false }
+    }
+
+    /// Plays every edge due by `self.now` at its own time (what the step interrupt
+    /// does meanwhile), from where the last call stopped.
+    fn play(&mut self) {
+        let mut t = self.played;
+        for _ in 0..10_000 {
+            match self.player.run(t, false).next {
+                Some(n) if self.now.wrapping_sub(n) as i32 >= 0 => {
+                    t = if n.wrapping_sub(t) as i32 > 0 { n } else { t.wrapping_add(1) };
+                }
+                _ => break,
+            }
+        }
+        self.played = self.now;
+    }
+
+    /// One period (unmeasured): the period interrupt, then the period's playing.
+    fn period(&mut self) {
+        let s = self.sample();
+        self.engine.period(&mut self.core, s);
+        self.advance_period();
+    }
+
+    fn advance_period(&mut self) {
+        let ticks = self.engine.time_base().period_ticks;
+        let step = ticks / 16;
+        for _ in 0..16 {
+            self.now = self.now.wrapping_add(step);
+            self.count += self.counts_per_tick / 16.0;
+            self.play();
+        }
+    }
+}
+
+/// The period interrupt's body.
+fn period(rig: &mut Rig) {
+    let s = rig.sample();
+    rig.engine.period(&mut rig.core, s);
+}
+
+/// The step interrupt's body at the rig's time.
+fn step(rig: &mut Rig) -> u32 {
+    rig.player.run(rig.now, false).bsrr
+}
+
+/// The encoder-count interrupt's body for the rig's current count.
+fn encoder(rig: &mut Rig) {
+    let (raw, _) = rig.encoder();
+    rig.engine.encoder(&mut rig.core, rig.now, raw);
+}
+
+/// Measures three period interrupts after `warm` periods of `action`.
+fn bench_periods(rig: &mut Rig, label: &str, warm: u32) {
+    for _ in 0..warm {
+        rig.period();
+    }
+    hprintln!("bench period interrupt: {} ({} edges queued so far)", label, rig.engine.stats().edges);
+    for _ in 0..3 {
+        measure(period, &mut *rig);
+        rig.advance_period();
+    }
+}
+
+fn periods() {
+    let mut rig = Rig::new(&RINGS[0], Pos::xz(40 * MM, 0));
+    let _ = rig.core.push(Canon { line: 1, action: linear(40 * MM, -100 * MM, 1_000) });
+    let arc = ArcMove {
+        to: at(40 * MM, -140 * MM),
+        center: at(40 * MM, -120 * MM),
+        plane: Plane::Zx,
+        cw: true,
+        full_circle: false,
+        feed: Feed { mode: FeedMode::PerMin, value: 1_000 * MM },
+        spindle: spindle(1_000),
+        exact_stop: true,
+    };
+    let _ = rig.core.push(Canon { line: 2, action: Action::Arc(arc) });
+    // A rapid that leaves X and Z at their top rates together (6000 and 8000 mm/min).
+    let _ = rig.core.push(Canon { line: 3, action: rapid(40 * MM + 75 * MM, -140 * MM - 100 * MM) });
+    bench_periods(&mut rig, "line at 1000 mm/min (Z, 5.3 steps per period)", 300);
+    while rig.core.line() == 1 {
+        rig.period();
+    }
+    bench_periods(&mut rig, "arc R20 at 1000 mm/min", 300);
+    while rig.core.line() == 2 {
+        rig.period();
+    }
+    bench_periods(&mut rig, "rapid X 6000 + Z 8000 mm/min (40 + 43 steps per period)", 400);
+    let st = rig.engine.stats();
+    if st.late != 0 || st.ring_full != 0 {
+        hprintln!("late {} ring full {}", st.late, st.ring_full);
+        exit(false);
+    }
+}
+
+fn steps() {
+    static PLAY: [EdgeRing<RING>; 3] = [EdgeRing::new(), EdgeRing::new(), EdgeRing::new()];
+    let t = PlayTiming { pulse: 210, dir_setup: 420, min_period: 840 };
+    let pins = [AxisPins { step: 6, dir: 10 }, AxisPins { step: 7, dir: 11 }, AxisPins { step: 8, dir: 12 }];
+    let [(mut tx, rx), (mut tz, rz), (mut tc, rc)] = PLAY.each_ref().map(|r| r.split().unwrap_or_else(|| exit(false)));
+    let mut player = Player::new([(rx, pins[0], t), (rz, pins[1], t), (rc, pins[2], t)]);
+    let _ = tx.push(Timed { at: 1_000, edge: Edge::Step });
+    let _ = tx.push(Timed { at: 5_000, edge: Edge::Step });
+    let _ = tz.push(Timed { at: 5_000, edge: Edge::Step });
+    let _ = tc.push(Timed { at: 5_000, edge: Edge::Dir(true) });
+    let run = |input: (&mut Player<RING, 3>, u32)| input.0.run(input.1, false).bsrr;
+    hprintln!("bench step interrupt: nothing due");
+    measure(run, (&mut player, 500));
+    hprintln!("bench step interrupt: one STEP rise");
+    measure(run, (&mut player, 1_000));
+    hprintln!("bench step interrupt: its pulse end");
+    measure(run, (&mut player, 1_210));
+    hprintln!("bench step interrupt: X and Z rise, C direction, one write");
+    let bsrr = measure(run, (&mut player, 5_000));
+    if bsrr != (1 << 6) | (1 << 7) | (1 << 12) {
+        exit(false);
+    }
+    let mut rig = Rig::new(&RINGS[1], Pos::xz(40 * MM, 0));
+    let _ = rig.core.push(Canon { line: 1, action: rapid(40 * MM + 75 * MM, -100 * MM) });
+    for _ in 0..300 {
+        rig.period();
+    }
+    hprintln!("bench step interrupt in a rapid (next edge of the queue)");
+    let s = rig.sample();
+    rig.engine.period(&mut rig.core, s);
+    for _ in 0..4 {
+        let mut next = rig.player.run(rig.now, false).next.unwrap_or(rig.now);
+        if next.wrapping_sub(rig.now) as i32 <= 0 {
+            next = rig.now.wrapping_add(1);
+        }
+        rig.now = next;
+        measure(step, &mut rig);
+    }
+}
+
+fn thread() {
+    static RINGS_T: [EdgeRing<RING>; 3] = [EdgeRing::new(), EdgeRing::new(), EdgeRing::new()];
+    let mut rig = Rig::new(&RINGS_T, Pos::xz(20 * MM, 5 * MM));
+    // 2000 rpm × 4096 counts: 136.5 counts per 1 ms period.
+    rig.counts_per_tick = 4_096.0 * 2_000.0 / 60_000.0;
+    let on = SpindleCommand { dir: SpindleDir::Cw, rpm: Some(2_000), css: None };
+    let _ = rig.core.push(Canon { line: 1, action: Action::Spindle(on) });
+    let thread = ThreadMove {
+        to: at(20 * MM, -40 * MM),
+        lead: 2 * MM,
+        lead_delta: 0,
+        start_udeg: 0,
+        sync: ThreadSync::Index,
+        spindle: spindle(2_000),
+    };
+    let _ = rig.core.push(Canon { line: 2, action: Action::Thread(thread) });
+    // Periods until the pass is locked, counts one by one from then on.
+    let ticks_per_count = (f64::from(TIMER_HZ) * 60.0 / (2_000.0 * 4_096.0)) as u32;
+    let period_ticks = rig.engine.time_base().period_ticks;
+    let mut n = 0;
+    while rig.core.state() != State::Locked {
+        rig.period();
+        n += 1;
+        if n > 5_000 {
+            hprintln!("thread never locked: {:?}", rig.core.state());
+            exit(false);
+        }
+    }
+    let mut next_period = rig.engine.base_ticks().wrapping_add(period_ticks);
+    let mut measured = 0;
+    for k in 0..40_000u32 {
+        rig.count += 1.0;
+        rig.now = rig.now.wrapping_add(ticks_per_count);
+        if rig.now.wrapping_sub(next_period) as i32 >= 0 {
+            if (9_000..9_700).contains(&k) {
+                hprintln!("bench period interrupt, G32 locked (the count interrupt waits for it)");
+                measure(period, &mut rig);
+            } else {
+                period(&mut rig);
+            }
+            next_period = next_period.wrapping_add(period_ticks);
+        }
+        if k == 8_000 {
+            hprintln!("bench encoder-count interrupt, G32 locked, 2000 rpm × 4096 counts");
+        }
+        if (8_000..8_008).contains(&k) {
+            measure(encoder, &mut rig);
+            measured += 1;
+        } else {
+            encoder(&mut rig);
+        }
+        rig.play();
+    }
+    hprintln!("thread: {} counts to the core, Z at {} steps", rig.engine.stats().sync_counts, rig.core.steps()[2]);
+    if measured != 8 || rig.engine.stats().ring_full != 0 {
+        exit(false);
+    }
+}
+
+#[entry]
+fn main() -> ! {
+    periods();
+    steps();
+    thread();
+    exit(true)
+}
