@@ -18,7 +18,9 @@ struct Board {
 impl Board {
     /// Starts `lathe board` with `extra` arguments, linked at a scratch path.
     fn start(name: &str, extra: &[&str]) -> Board {
-        let link = scratch(&format!("{name}.pty"), "");
+        let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("lathe-cli-tests");
+        std::fs::create_dir_all(&dir).expect("scratch directory");
+        let link = dir.join(format!("{name}.pty")).display().to_string();
         let _ = std::fs::remove_file(&link);
         let mut child = Command::new(env!("CARGO_BIN_EXE_lathe"))
             .args(["board", "--pty", &link, "--exit-after", "600"])
