@@ -359,7 +359,8 @@ impl<'a> Session<'a> {
         };
         match outcome {
             Outcome::Refused(index, code) => {
-                let place = u32::try_from(index + 1).map_or(self.origin.name.clone(), |n| self.origin.place(n));
+                let line = index.checked_add(1).and_then(|n| u32::try_from(n).ok());
+                let place = line.map_or(self.origin.name.clone(), |n| self.origin.place(n));
                 let message = self.last_msg.take().unwrap_or_else(|| response::error_text(code).to_owned());
                 let text = format!("{place}: error:{code}: {message}");
                 self.ui.note(&text);
