@@ -15,6 +15,8 @@ pub struct Tape {
     held: bool,
     chunk: usize,
     lines: usize,
+    /// Line ends written so far (the opening `%` line's included).
+    ends: usize,
 }
 
 impl Tape {
@@ -26,7 +28,7 @@ impl Tape {
             data.push(b'\n');
         }
         data.extend_from_slice(b"%\n");
-        Tape { data, pos: 0, held: false, chunk: chunk.max(1), lines: lines.len() }
+        Tape { data, pos: 0, held: false, chunk: chunk.max(1), lines: lines.len(), ends: 0 }
     }
 
     /// The bytes to write next: nothing while held or when all went out.
@@ -40,7 +42,9 @@ impl Tape {
 
     /// `n` bytes of the chunk were written.
     pub fn wrote(&mut self, n: usize) {
-        self.pos = (self.pos + n).min(self.data.len());
+        let end = (self.pos + n).min(self.data.len());
+        self.ends += self.data.get(self.pos..end).map_or(0, |w| w.iter().filter(|&&b| b == b'\n').count());
+        self.pos = end;
     }
 
     /// A flow-control byte from the board: XOFF holds, XON releases.
@@ -64,8 +68,7 @@ impl Tape {
 
     /// Program lines that went out completely (the `%` lines not counted).
     pub fn lines_sent(&self) -> usize {
-        let ends = self.data.iter().take(self.pos).filter(|&&b| b == b'\n').count();
-        ends.saturating_sub(1).min(self.lines)
+        self.ends.saturating_sub(1).min(self.lines)
     }
 
     /// Number of program lines.
