@@ -128,10 +128,10 @@ const STATUS_WAIT: Duration = Duration::from_secs(1);
 /// Tape bytes written at a time.
 const TAPE_CHUNK: usize = 16;
 
-/// A board that was reset and found Idle, with the planner's free block count.
+/// A board that was reset and found Idle, with its `Bf:` then (nothing queued).
 struct Board {
     link: Link,
-    capacity: Option<u32>,
+    empty: Option<(u32, u32)>,
 }
 
 /// Opens the port, soft-resets the board, waits for its welcome, and checks it is Idle.
@@ -141,7 +141,7 @@ fn connect(port: &PortArgs, ui: &mut dyn Ui) -> Result<Board, LinkError> {
     ui.note(&format!("connected to {}: {welcome}", port.port));
     let s = link.status(STATUS_WAIT)?;
     match s.state.as_str() {
-        "Idle" => Ok(Board { link, capacity: s.buffer.map(|b| b.0) }),
+        "Idle" => Ok(Board { link, empty: s.buffer }),
         "Alarm" => Err(LinkError::NotReady {
             state: s.state,
             hint: "clear the cause, then unlock it (lathe settings --unlock)",
@@ -175,7 +175,7 @@ fn job(
     let (mut ui, keys) = display(port, total, out);
     let mut board = connect(port, ui.as_mut())?;
     let started = Instant::now();
-    let verdict = Session::new(&mut board.link, ui.as_mut(), feeder, origin.clone(), board.capacity)
+    let verdict = Session::new(&mut board.link, ui.as_mut(), feeder, origin.clone(), board.empty)
         .with_keys(keys.as_ref())
         .with_timing(Timing::at_baud(port.baud))
         .run()?;

@@ -12,7 +12,7 @@ use std::time::{Duration, Instant};
 use super::LinkError;
 use super::keys::{Key, Keys};
 use super::response::{self, Response, Status};
-use super::stream::{Outcome, RX_BUFFER, Streamer};
+use super::stream::{Outcome, Streamer};
 use super::tape::Tape;
 use super::ui::Ui;
 use super::wire::{Incoming, Link};
@@ -115,8 +115,8 @@ pub struct Session<'a> {
     feeder: Feeder,
     origin: Origin,
     timing: Timing,
-    /// Free planner blocks of an idle board (from the first status report).
-    capacity: Option<u32>,
+    /// Free planner blocks and receive bytes of the idle board (its first status report).
+    empty: Option<(u32, u32)>,
     last_msg: Option<String>,
     alarm_msg: Option<String>,
     pgm_end: bool,
@@ -130,9 +130,15 @@ pub struct Session<'a> {
 }
 
 impl<'a> Session<'a> {
-    /// A job feeding `feeder` over `link`; `capacity` is the planner's free block
-    /// count of the idle board, when known.
-    pub fn new(link: &'a mut Link, ui: &'a mut dyn Ui, feeder: Feeder, origin: Origin, capacity: Option<u32>) -> Self {
+    /// A job feeding `feeder` over `link`; `empty` is the `Bf:` of the idle board
+    /// (free planner blocks, free receive bytes), when known.
+    pub fn new(
+        link: &'a mut Link,
+        ui: &'a mut dyn Ui,
+        feeder: Feeder,
+        origin: Origin,
+        empty: Option<(u32, u32)>,
+    ) -> Self {
         let now = Instant::now();
         Session {
             link,
@@ -141,7 +147,7 @@ impl<'a> Session<'a> {
             feeder,
             origin,
             timing: Timing::default(),
-            capacity,
+            empty,
             last_msg: None,
             alarm_msg: None,
             pgm_end: false,
@@ -390,7 +396,7 @@ impl<'a> Session<'a> {
     fn status(&mut self, s: &Status) {
         self.ui.status(s);
         let asked_after_fed = self.fed_at.is_some_and(|t| self.polled_at > t);
-        if asked_after_fed && s.idle_and_empty(self.capacity, RX_BUFFER as u32) {
+        if asked_after_fed && s.idle_and_empty(self.empty) {
             self.idle_reports += 1;
         } else if s.state != "Idle" {
             self.idle_reports = 0;

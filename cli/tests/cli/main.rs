@@ -3,8 +3,10 @@
 
 mod check;
 mod docs;
+#[cfg(unix)]
 mod fake_board;
 mod jsonl;
+#[cfg(unix)]
 mod link;
 mod machine;
 mod macros;
