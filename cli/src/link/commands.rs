@@ -174,6 +174,11 @@ fn job(
     };
     let (mut ui, keys) = display(port, total, out);
     let mut board = connect(port, ui.as_mut())?;
+    if let Feeder::Tape(_) = feeder {
+        // The board chooses tape mode only when nothing grbl-like came since its last
+        // reset, and connecting asked for a status report.
+        board.link.reset(WELCOME_WAIT)?;
+    }
     let started = Instant::now();
     let verdict = Session::new(&mut board.link, ui.as_mut(), feeder, origin.clone(), board.empty)
         .with_keys(keys.as_ref())
@@ -209,7 +214,7 @@ fn write_err(source: std::io::Error) -> Error {
 
 /// The origin of `lines` of the file `name`.
 fn origin(name: &str, lines: &[SourceLine]) -> Origin {
-    Origin { name: name.to_owned(), file_lines: lines.iter().map(|l| l.file_line).collect() }
+    Origin { name: name.to_owned(), file_lines: lines.iter().map(|l| l.file_line).collect(), command: None }
 }
 
 /// The texts of `lines`.
@@ -278,11 +283,11 @@ fn verify_stored(link: &mut Link, number: u32, out: &mut dyn Write, err: &mut dy
 pub fn run(args: &RunArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result<u8, Error> {
     let command = format!("$PR={}", args.number);
     let streamer = Streamer::new(vec![command.clone()], StreamConfig::default()).map_err(|_| Error::Unsendable {
-        path: command.into(),
+        path: command.clone().into(),
         line: 1,
         message: "longer than the board's receive buffer".into(),
     })?;
-    let origin = Origin { name: format!("O{:04}", args.number), file_lines: Vec::new() };
+    let origin = Origin { name: format!("O{:04}", args.number), file_lines: Vec::new(), command: Some(command) };
     job(&args.port, Feeder::Counting(streamer), origin, out, err).map(|(status, _)| status)
 }
 

@@ -2,6 +2,9 @@
 //! counting streamer or the tape), a status report asked every 200 ms, keys
 //! acted on, every board message shown, and a [`Verdict`] at the end.
 //!
+//! In tape mode nothing is asked before the opening `%` has gone out (a board that
+//! heard a `?` since its reset takes `%` for the program's record mark).
+//!
 //! The job is done when every line was accepted (or the whole tape went out) and
 //! the board is Idle with empty queues afterwards: once after `[MSG:Pgm End]`,
 //! twice in a row without it. An `error:N` stops the job gently (feed hold, then
@@ -55,6 +58,9 @@ pub struct Origin {
     pub name: String,
     /// File line of each line sent (index = board line − 1); empty: board lines are file lines.
     pub file_lines: Vec<usize>,
+    /// The command that started the job, when it is not program text (`$PR=12`): a
+    /// refusal names it instead of a line.
+    pub command: Option<String>,
 }
 
 impl Origin {
@@ -186,7 +192,7 @@ impl<'a> Session<'a> {
                 return Ok(v);
             }
             let now = Instant::now();
-            if now.duration_since(self.polled_at) >= self.timing.poll {
+            if self.may_poll() && now.duration_since(self.polled_at) >= self.timing.poll {
                 self.link.write(b"?")?;
                 self.polled_at = now;
             }
@@ -229,6 +235,15 @@ impl<'a> Session<'a> {
             Key::Quit => return self.stop_gently(Verdict::Aborted("aborted")).map(Some),
         }
         Ok(None)
+    }
+
+    /// Whether a status report may be asked: not before a tape's opening `%` (a `?`
+    /// first would make the board take the `%` for a record mark).
+    fn may_poll(&self) -> bool {
+        match &self.feeder {
+            Feeder::Counting(_) => true,
+            Feeder::Tape(t) => t.opened(),
+        }
     }
 
     /// How long to wait for the board before the loop turns again: until the wire is
@@ -366,7 +381,11 @@ impl<'a> Session<'a> {
         match outcome {
             Outcome::Refused(index, code) => {
                 let line = index.checked_add(1).and_then(|n| u32::try_from(n).ok());
-                let place = line.map_or(self.origin.name.clone(), |n| self.origin.place(n));
+                let place = match (&self.origin.command, line) {
+                    (Some(c), _) => c.clone(),
+                    (None, Some(n)) => self.origin.place(n),
+                    (None, None) => self.origin.name.clone(),
+                };
                 let message = self.last_msg.take().unwrap_or_else(|| response::error_text(code).to_owned());
                 let text = format!("{place}: error:{code}: {message}");
                 self.ui.note(&text);
@@ -459,12 +478,12 @@ mod tests {
 
     #[test]
     fn places_map_board_lines_to_file_lines() {
-        let o = Origin { name: "p.nc".into(), file_lines: vec![2, 3, 5] };
+        let o = Origin { name: "p.nc".into(), file_lines: vec![2, 3, 5], command: None };
         assert_eq!(o.place(1), "p.nc:2");
         assert_eq!(o.place(3), "p.nc:5");
         assert_eq!(o.place(4), "p.nc");
         assert_eq!(o.place(0), "p.nc");
-        let mem = Origin { name: "O0012".into(), file_lines: vec![] };
+        let mem = Origin { name: "O0012".into(), file_lines: vec![], command: Some("$PR=12".into()) };
         assert_eq!(mem.place(7), "O0012:7");
     }
 }

@@ -56,6 +56,12 @@ impl Tape {
         }
     }
 
+    /// Whether the opening `%` line went out (before it, nothing grbl-like may be sent:
+    /// a board that heard `?` since its reset takes `%` for a record mark, not tape mode).
+    pub fn opened(&self) -> bool {
+        self.ends >= 1
+    }
+
     /// Whether the board holds the tape (XOFF seen, no XON since).
     pub fn held(&self) -> bool {
         self.held
@@ -117,6 +123,7 @@ mod tests {
         t.flow(XON);
         assert_eq!(t.next_chunk().unwrap(), b"012\n");
         assert_eq!(t.lines_sent(), 0);
+        assert!(t.opened());
         t.wrote(4);
         assert_eq!(t.lines_sent(), 1);
     }
@@ -124,7 +131,9 @@ mod tests {
     #[test]
     fn a_partial_write_resumes_where_it_stopped() {
         let mut t = tape();
-        t.wrote(3);
+        t.wrote(1);
+        assert!(!t.opened());
+        t.wrote(2);
         assert_eq!(t.next_chunk().unwrap(), b"0012");
     }
 }

@@ -104,6 +104,7 @@ fn tape_mode_honours_xoff_and_drip_feeds_without_the_o_number() {
     assert_eq!(seen.drip[0], " (SHAFT)");
     assert_eq!(seen.drip[82], "M30");
     assert!(seen.programs.is_empty());
+    assert_eq!(seen.resets, 2, "a second reset after the status check, so that % starts tape mode");
     assert!(seen.xoffs >= 1, "the tape was long enough to fill the buffer");
     assert!(seen.after_xoff <= 32, "{} bytes came after XOFF", seen.after_xoff);
     assert!(seen.max_buffered <= 128, "{}", seen.max_buffered);
@@ -124,7 +125,7 @@ fn upload_stores_the_program_and_run_follows_it_to_its_end() {
     assert_eq!(status(&o), 1);
     assert_eq!(
         stderr(&o),
-        "lathe: O0043: stopped: the board refused a line (O0043:1: error:3: O0043 is not in memory)\n"
+        "lathe: O0043: stopped: the board refused a line ($PR=43: error:3: O0043 is not in memory)\n"
     );
     let seen = board.finish();
     assert_eq!(seen.programs[&42], "O0042\nG00 X20 Z2\nG01 Z-10 F0.2\nM30\n");
