@@ -329,10 +329,13 @@ impl<'a> Session<'a> {
             Response::Ok => self.answer(Ok(())),
             Response::Error(code) => self.answer(Err(code)),
             Response::Resend(n) => {
-                if let Feeder::Counting(s) = &mut self.feeder
-                    && s.resend_request(n, Instant::now())
-                {
-                    self.ui.note(&format!("board asks to resend from line {n}"));
+                // Every line in flight after a damaged one is answered with the same
+                // request: it is shown once.
+                if let Feeder::Counting(s) = &mut self.feeder {
+                    let pending = s.resending();
+                    if s.resend_request(n, Instant::now()) && !pending {
+                        self.ui.note(&format!("board asks to resend from line {n}"));
+                    }
                 }
                 Ok(None)
             }
