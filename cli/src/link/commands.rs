@@ -128,10 +128,10 @@ const STATUS_WAIT: Duration = Duration::from_secs(1);
 /// Tape bytes written at a time.
 const TAPE_CHUNK: usize = 16;
 
-/// A board that was reset and found Idle, with the planner's free block count.
+/// A board that was reset and found Idle, with its `Bf:` then (nothing queued).
 struct Board {
     link: Link,
-    capacity: Option<u32>,
+    empty: Option<(u32, u32)>,
 }
 
 /// Opens the port, soft-resets the board, waits for its welcome, and checks it is Idle.
@@ -141,7 +141,7 @@ fn connect(port: &PortArgs, ui: &mut dyn Ui) -> Result<Board, LinkError> {
     ui.note(&format!("connected to {}: {welcome}", port.port));
     let s = link.status(STATUS_WAIT)?;
     match s.state.as_str() {
-        "Idle" => Ok(Board { link, capacity: s.buffer.map(|b| b.0) }),
+        "Idle" => Ok(Board { link, empty: s.buffer }),
         "Alarm" => Err(LinkError::NotReady {
             state: s.state,
             hint: "clear the cause, then unlock it (lathe settings --unlock)",
@@ -174,8 +174,13 @@ fn job(
     };
     let (mut ui, keys) = display(port, total, out);
     let mut board = connect(port, ui.as_mut())?;
+    if let Feeder::Tape(_) = feeder {
+        // The board chooses tape mode only when nothing grbl-like came since its last
+        // reset, and connecting asked for a status report.
+        board.link.reset(WELCOME_WAIT)?;
+    }
     let started = Instant::now();
-    let verdict = Session::new(&mut board.link, ui.as_mut(), feeder, origin.clone(), board.capacity)
+    let verdict = Session::new(&mut board.link, ui.as_mut(), feeder, origin.clone(), board.empty)
         .with_keys(keys.as_ref())
         .with_timing(Timing::at_baud(port.baud))
         .run()?;
@@ -209,7 +214,7 @@ fn write_err(source: std::io::Error) -> Error {
 
 /// The origin of `lines` of the file `name`.
 fn origin(name: &str, lines: &[SourceLine]) -> Origin {
-    Origin { name: name.to_owned(), file_lines: lines.iter().map(|l| l.file_line).collect() }
+    Origin { name: name.to_owned(), file_lines: lines.iter().map(|l| l.file_line).collect(), command: None }
 }
 
 /// The texts of `lines`.
@@ -278,11 +283,11 @@ fn verify_stored(link: &mut Link, number: u32, out: &mut dyn Write, err: &mut dy
 pub fn run(args: &RunArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result<u8, Error> {
     let command = format!("$PR={}", args.number);
     let streamer = Streamer::new(vec![command.clone()], StreamConfig::default()).map_err(|_| Error::Unsendable {
-        path: command.into(),
+        path: command.clone().into(),
         line: 1,
         message: "longer than the board's receive buffer".into(),
     })?;
-    let origin = Origin { name: format!("O{:04}", args.number), file_lines: Vec::new() };
+    let origin = Origin { name: format!("O{:04}", args.number), file_lines: Vec::new(), command: Some(command) };
     job(&args.port, Feeder::Counting(streamer), origin, out, err).map(|(status, _)| status)
 }
 

@@ -124,12 +124,13 @@ impl Status {
     }
 
     /// Whether the board is idle with nothing queued: state `Idle` and, when the report
-    /// has `Bf:`, `blocks` free planner blocks and `bytes` free receive bytes.
-    pub fn idle_and_empty(&self, blocks: Option<u32>, bytes: u32) -> bool {
+    /// has `Bf:`, at least the free planner blocks and receive bytes of `empty` (what
+    /// the idle board reported at the start; without it, any `Bf:` counts).
+    pub fn idle_and_empty(&self, empty: Option<(u32, u32)>) -> bool {
         self.state == "Idle"
-            && match self.buffer {
-                Some((b, r)) => blocks.is_none_or(|n| b >= n) && r >= bytes,
-                None => true,
+            && match (self.buffer, empty) {
+                (Some((b, r)), Some((eb, er))) => b >= eb && r >= er,
+                _ => true,
             }
     }
 }
@@ -223,16 +224,18 @@ mod tests {
         assert_eq!(s.overrides, Some((100, 50, 110)));
         assert_eq!(s.pins, "XH");
         assert_eq!(s.summary(), "Run     X 50.000  Z -10.000  F 120  S 812  Ln 14");
-        assert!(!s.idle_and_empty(Some(64), 128));
+        assert!(!s.idle_and_empty(Some((64, 128))));
     }
 
     #[test]
     fn idle_and_empty_needs_every_block_and_byte_free() {
         let s = Status::parse("Idle|MPos:0,0,0|Bf:64,128");
-        assert!(s.idle_and_empty(Some(64), 128));
-        assert!(!s.idle_and_empty(Some(65), 128));
-        assert!(Status::parse("Idle|MPos:0,0,0").idle_and_empty(Some(64), 128));
-        assert!(!Status::parse("Hold:1|Bf:64,128").idle_and_empty(None, 128));
+        assert!(s.idle_and_empty(Some((64, 128))));
+        assert!(!s.idle_and_empty(Some((65, 128))));
+        assert!(!s.idle_and_empty(Some((64, 129))));
+        assert!(Status::parse("Idle|Bf:15,127").idle_and_empty(Some((15, 127))), "a board that reports 127");
+        assert!(Status::parse("Idle|MPos:0,0,0").idle_and_empty(Some((64, 128))));
+        assert!(!Status::parse("Hold:1|Bf:64,128").idle_and_empty(None));
     }
 
     #[test]

@@ -2,6 +2,9 @@
 //! counting streamer or the tape), a status report asked every 200 ms, keys
 //! acted on, every board message shown, and a [`Verdict`] at the end.
 //!
+//! In tape mode nothing is asked before the opening `%` has gone out (a board that
+//! heard a `?` since its reset takes `%` for the program's record mark).
+//!
 //! The job is done when every line was accepted (or the whole tape went out) and
 //! the board is Idle with empty queues afterwards: once after `[MSG:Pgm End]`,
 //! twice in a row without it. An `error:N` stops the job gently (feed hold, then
@@ -12,7 +15,7 @@ use std::time::{Duration, Instant};
 use super::LinkError;
 use super::keys::{Key, Keys};
 use super::response::{self, Response, Status};
-use super::stream::{Outcome, RX_BUFFER, Streamer};
+use super::stream::{Outcome, Streamer};
 use super::tape::Tape;
 use super::ui::Ui;
 use super::wire::{Incoming, Link};
@@ -55,6 +58,9 @@ pub struct Origin {
     pub name: String,
     /// File line of each line sent (index = board line − 1); empty: board lines are file lines.
     pub file_lines: Vec<usize>,
+    /// The command that started the job, when it is not program text (`$PR=12`): a
+    /// refusal names it instead of a line.
+    pub command: Option<String>,
 }
 
 impl Origin {
@@ -115,8 +121,8 @@ pub struct Session<'a> {
     feeder: Feeder,
     origin: Origin,
     timing: Timing,
-    /// Free planner blocks of an idle board (from the first status report).
-    capacity: Option<u32>,
+    /// Free planner blocks and receive bytes of the idle board (its first status report).
+    empty: Option<(u32, u32)>,
     last_msg: Option<String>,
     alarm_msg: Option<String>,
     pgm_end: bool,
@@ -130,9 +136,15 @@ pub struct Session<'a> {
 }
 
 impl<'a> Session<'a> {
-    /// A job feeding `feeder` over `link`; `capacity` is the planner's free block
-    /// count of the idle board, when known.
-    pub fn new(link: &'a mut Link, ui: &'a mut dyn Ui, feeder: Feeder, origin: Origin, capacity: Option<u32>) -> Self {
+    /// A job feeding `feeder` over `link`; `empty` is the `Bf:` of the idle board
+    /// (free planner blocks, free receive bytes), when known.
+    pub fn new(
+        link: &'a mut Link,
+        ui: &'a mut dyn Ui,
+        feeder: Feeder,
+        origin: Origin,
+        empty: Option<(u32, u32)>,
+    ) -> Self {
         let now = Instant::now();
         Session {
             link,
@@ -141,7 +153,7 @@ impl<'a> Session<'a> {
             feeder,
             origin,
             timing: Timing::default(),
-            capacity,
+            empty,
             last_msg: None,
             alarm_msg: None,
             pgm_end: false,
@@ -180,7 +192,7 @@ impl<'a> Session<'a> {
                 return Ok(v);
             }
             let now = Instant::now();
-            if now.duration_since(self.polled_at) >= self.timing.poll {
+            if self.may_poll() && now.duration_since(self.polled_at) >= self.timing.poll {
                 self.link.write(b"?")?;
                 self.polled_at = now;
             }
@@ -223,6 +235,15 @@ impl<'a> Session<'a> {
             Key::Quit => return self.stop_gently(Verdict::Aborted("aborted")).map(Some),
         }
         Ok(None)
+    }
+
+    /// Whether a status report may be asked: not before a tape's opening `%` (a `?`
+    /// first would make the board take the `%` for a record mark).
+    fn may_poll(&self) -> bool {
+        match &self.feeder {
+            Feeder::Counting(_) => true,
+            Feeder::Tape(t) => t.opened(),
+        }
     }
 
     /// How long to wait for the board before the loop turns again: until the wire is
@@ -308,10 +329,13 @@ impl<'a> Session<'a> {
             Response::Ok => self.answer(Ok(())),
             Response::Error(code) => self.answer(Err(code)),
             Response::Resend(n) => {
-                if let Feeder::Counting(s) = &mut self.feeder
-                    && s.resend_request(n, Instant::now())
-                {
-                    self.ui.note(&format!("board asks to resend from line {n}"));
+                // Every line in flight after a damaged one is answered with the same
+                // request: it is shown once.
+                if let Feeder::Counting(s) = &mut self.feeder {
+                    let pending = s.resending();
+                    if s.resend_request(n, Instant::now()) && !pending {
+                        self.ui.note(&format!("board asks to resend from line {n}"));
+                    }
                 }
                 Ok(None)
             }
@@ -359,7 +383,12 @@ impl<'a> Session<'a> {
         };
         match outcome {
             Outcome::Refused(index, code) => {
-                let place = u32::try_from(index + 1).map_or(self.origin.name.clone(), |n| self.origin.place(n));
+                let line = index.checked_add(1).and_then(|n| u32::try_from(n).ok());
+                let place = match (&self.origin.command, line) {
+                    (Some(c), _) => c.clone(),
+                    (None, Some(n)) => self.origin.place(n),
+                    (None, None) => self.origin.name.clone(),
+                };
                 let message = self.last_msg.take().unwrap_or_else(|| response::error_text(code).to_owned());
                 let text = format!("{place}: error:{code}: {message}");
                 self.ui.note(&text);
@@ -389,7 +418,7 @@ impl<'a> Session<'a> {
     fn status(&mut self, s: &Status) {
         self.ui.status(s);
         let asked_after_fed = self.fed_at.is_some_and(|t| self.polled_at > t);
-        if asked_after_fed && s.idle_and_empty(self.capacity, RX_BUFFER as u32) {
+        if asked_after_fed && s.idle_and_empty(self.empty) {
             self.idle_reports += 1;
         } else if s.state != "Idle" {
             self.idle_reports = 0;
@@ -452,12 +481,12 @@ mod tests {
 
     #[test]
     fn places_map_board_lines_to_file_lines() {
-        let o = Origin { name: "p.nc".into(), file_lines: vec![2, 3, 5] };
+        let o = Origin { name: "p.nc".into(), file_lines: vec![2, 3, 5], command: None };
         assert_eq!(o.place(1), "p.nc:2");
         assert_eq!(o.place(3), "p.nc:5");
         assert_eq!(o.place(4), "p.nc");
         assert_eq!(o.place(0), "p.nc");
-        let mem = Origin { name: "O0012".into(), file_lines: vec![] };
+        let mem = Origin { name: "O0012".into(), file_lines: vec![], command: Some("$PR=12".into()) };
         assert_eq!(mem.place(7), "O0012:7");
     }
 }

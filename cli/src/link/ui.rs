@@ -2,7 +2,6 @@
 //! on a terminal ([`Bar`]), or plain log lines for logs and tests ([`Plain`]).
 
 use std::io::Write;
-use std::time::Duration;
 
 use indicatif::{MultiProgress, ProgressBar, ProgressDrawTarget, ProgressStyle};
 
@@ -72,7 +71,6 @@ impl Bar {
         let bar = multi.add(ProgressBar::new(total as u64).with_style(style).with_message("0"));
         let line_style = ProgressStyle::with_template("{msg}").unwrap_or_else(|_| ProgressStyle::default_spinner());
         let line = multi.add(ProgressBar::new_spinner().with_style(line_style).with_message(help.to_owned()));
-        bar.enable_steady_tick(Duration::from_millis(250));
         Bar { multi, bar, line }
     }
 }

@@ -77,6 +77,8 @@ impl Link {
             .timeout(READ_SLICE)
             .open()
             .map_err(|e| LinkError::Open { port: path.to_owned(), message: e.to_string() })?;
+        // Whatever the board said before we came (an old welcome line) is not for us.
+        let _ = port.clear(serialport::ClearBuffer::Input);
         Ok(Link::from_port(port, path))
     }
 

@@ -6,7 +6,9 @@
 //! It models the 128-byte receive buffer: bytes are taken off the pty as they come,
 //! one line leaves the buffer (and is answered) every [`Script::line_period`], and the
 //! most bytes ever waiting is recorded — a sender that counts correctly never makes
-//! it exceed 128. In tape mode it sends XOFF at ¾ full and XON at ¼.
+//! it exceed 128. A `%` line starts tape mode only when nothing grbl-like (`?`, a
+//! real-time byte, a `$` line) came since the last reset ($301=0); in tape mode it
+//! sends XOFF at ¾ full and XON at ¼.
 
 use std::collections::BTreeMap;
 use std::io::{Read, Write};
@@ -141,6 +143,9 @@ struct State {
     damaged: bool,
     tape: TapeMode,
     xoff: bool,
+    /// Something grbl-like (`?`, a real-time byte, a `$` line) came since the last
+    /// reset: a `%` is then a record mark, not the start of tape mode ($301=0).
+    grbl_spoken: bool,
     settings: BTreeMap<u32, String>,
 }
 
@@ -164,6 +169,7 @@ impl State {
             damaged: false,
             tape: TapeMode::Off,
             xoff: false,
+            grbl_spoken: false,
             settings,
         }
     }
@@ -208,12 +214,19 @@ impl State {
     /// A byte from the host: real-time commands at once, the rest into the buffer.
     fn byte(&mut self, b: u8) {
         match b {
-            b'?' => self.report(),
+            b'?' => {
+                self.grbl_spoken = true;
+                self.report();
+            }
             b'!' => {
+                self.grbl_spoken = true;
                 self.held = true;
                 self.seen().holds += 1;
             }
-            b'~' => self.held = false,
+            b'~' => {
+                self.grbl_spoken = true;
+                self.held = false;
+            }
             0x18 => self.reset(),
             _ => {
                 if self.xoff {
@@ -231,6 +244,7 @@ impl State {
         self.busy_until = Instant::now();
         self.tape = TapeMode::Off;
         self.xoff = false;
+        self.grbl_spoken = false;
         self.line_no = 0;
         self.expected = 1;
         self.machine = if self.script.locked { Machine::Alarm } else { Machine::Idle };
@@ -276,11 +290,12 @@ impl State {
             return self.tape_line(text);
         }
         self.seen().lines.push(text.to_owned());
-        if text.trim() == "%" && self.machine == Machine::Idle {
+        if text.trim() == "%" && self.machine == Machine::Idle && !self.grbl_spoken {
             self.tape = TapeMode::On { store: None, text: String::new() };
             return;
         }
         if let Some(cmd) = text.strip_prefix('$') {
+            self.grbl_spoken = true;
             return self.dollar(cmd);
         }
         if self.machine == Machine::Alarm {

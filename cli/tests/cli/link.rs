@@ -104,6 +104,7 @@ fn tape_mode_honours_xoff_and_drip_feeds_without_the_o_number() {
     assert_eq!(seen.drip[0], " (SHAFT)");
     assert_eq!(seen.drip[82], "M30");
     assert!(seen.programs.is_empty());
+    assert_eq!(seen.resets, 2, "a second reset after the status check, so that % starts tape mode");
     assert!(seen.xoffs >= 1, "the tape was long enough to fill the buffer");
     assert!(seen.after_xoff <= 32, "{} bytes came after XOFF", seen.after_xoff);
     assert!(seen.max_buffered <= 128, "{}", seen.max_buffered);
@@ -124,7 +125,7 @@ fn upload_stores_the_program_and_run_follows_it_to_its_end() {
     assert_eq!(status(&o), 1);
     assert_eq!(
         stderr(&o),
-        "lathe: O0043: stopped: the board refused a line (O0043:1: error:3: O0043 is not in memory)\n"
+        "lathe: O0043: stopped: the board refused a line ($PR=43: error:3: O0043 is not in memory)\n"
     );
     let seen = board.finish();
     assert_eq!(seen.programs[&42], "O0042\nG00 X20 Z2\nG01 Z-10 F0.2\nM30\n");
@@ -198,4 +199,56 @@ fn no_welcome_no_port_and_unsendable_lines_exit_2() {
         stderr(&o),
         format!("lathe: {bad}:2: column 10: `!` acts as a real-time command on the link; remove it before sending\n")
     );
+}
+
+/// `lathe send` on a terminal (a pty as its standard input and error): the progress
+/// bar draws, and `q` aborts gently — feed hold, then soft reset — with exit status 1.
+#[test]
+fn on_a_terminal_q_aborts_with_a_feed_hold_and_a_reset() {
+    use std::io::{Read, Write};
+    use std::process::{Command, Stdio};
+
+    use serialport::SerialPort;
+
+    let board = FakeBoard::start(Script { line_period: std::time::Duration::from_millis(20), ..Script::default() });
+    let p = scratch("link-keys.nc", program(100));
+    let (mut term, user) = serialport::TTYPort::pair().expect("a terminal pty");
+    let user_path = user.name().expect("terminal name");
+    let open = || std::fs::OpenOptions::new().read(true).write(true).open(&user_path).expect("terminal");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_lathe"))
+        .args(["send", &p, "--port", &board.path])
+        .stdin(Stdio::from(open()))
+        .stderr(Stdio::from(open()))
+        .stdout(Stdio::piped())
+        .spawn()
+        .expect("lathe runs");
+    let mut shown = Vec::new();
+    let mut buf = [0u8; 4096];
+    let started = std::time::Instant::now();
+    let mut pressed = false;
+    term.set_timeout(std::time::Duration::from_millis(20)).expect("timeout");
+    while child.try_wait().expect("wait").is_none() {
+        if let Ok(n) = term.read(&mut buf) {
+            shown.extend_from_slice(&buf[..n]);
+        }
+        if !pressed && String::from_utf8_lossy(&shown).contains("acknowledged") {
+            term.write_all(b"q").expect("key");
+            pressed = true;
+        }
+        assert!(started.elapsed().as_secs() < 20, "lathe send ends");
+    }
+    while let Ok(n) = term.read(&mut buf) {
+        if n == 0 {
+            break;
+        }
+        shown.extend_from_slice(&buf[..n]);
+    }
+    let status = child.wait().expect("exit").code();
+    let seen = board.finish();
+    let shown = String::from_utf8_lossy(&shown);
+    assert_eq!(status, Some(1), "{shown}");
+    assert!(shown.contains(&format!("lathe: {p}: stopped: aborted by the user")), "{shown}");
+    assert_eq!((seen.holds, seen.resets), (1, 2));
+    assert!(seen.lines.len() < 104, "streaming stopped: {} lines", seen.lines.len());
+    drop(user);
 }

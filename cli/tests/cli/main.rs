@@ -4,8 +4,10 @@
 mod board;
 mod check;
 mod docs;
+#[cfg(unix)]
 mod fake_board;
 mod jsonl;
+#[cfg(unix)]
 mod link;
 mod machine;
 mod macros;
