@@ -52,6 +52,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             self.msg(format_args!("Tape: byte 0x{b:02X} is not G-code text: block dropped"));
             return Handled::Done;
         }
+        let starting = tape == Tape::Undecided;
         let tape = match tape {
             Tape::Undecided if text.is_empty() => return Handled::Done,
             Tape::Undecided => match (self.settings.tape_mode, starts_program(text)) {
@@ -74,6 +75,11 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
                 Handled::Done
             }
             Tape::Drip if self.alarm.is_none() => {
+                // The leading `%` is line 1 of the tape: the program's lines keep the
+                // numbers they have in the sender's file.
+                if starting && !self.stream_text(b"") {
+                    return Handled::Wait;
+                }
                 if self.stream_text(text) {
                     Handled::Done
                 } else {
