@@ -365,11 +365,10 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
     /// again.
     fn end_stale_line(&mut self) {
         let partial = !self.discarding && self.rx.last().is_some_and(|&b| b != b'\n');
-        if self.link.active && partial && self.now.saturating_sub(self.last_rx) >= STALE_LINE_NS {
-            if self.rx.push(b'\n').is_err() {
-                self.rx.clear();
-                self.refuse(11, "line longer than 127 characters");
-            }
+        let stale = self.link.active && partial && self.now.saturating_sub(self.last_rx) >= STALE_LINE_NS;
+        if stale && self.rx.push(b'\n').is_err() {
+            self.rx.clear();
+            self.refuse(11, "line longer than 127 characters");
         }
     }
 

@@ -71,10 +71,8 @@ impl<const N: usize> OutQueue<N> {
     /// older XOFF would otherwise reach the sender after a newer XON and hold it).
     pub fn control(&mut self, b: u8) {
         for _ in 0..self.buf.len() {
-            if let Some(c) = self.buf.pop_front() {
-                if c != 0x11 && c != 0x13 {
-                    let _ = self.buf.push_back(c);
-                }
+            if let Some(c) = self.buf.pop_front().filter(|&c| c != 0x11 && c != 0x13) {
+                let _ = self.buf.push_back(c);
             }
         }
         if self.buf.push_front(b).is_err() {

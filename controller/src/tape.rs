@@ -80,11 +80,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
                 if starting && !self.stream_text(b"") {
                     return Handled::Wait;
                 }
-                if self.stream_text(text) {
-                    Handled::Done
-                } else {
-                    Handled::Wait
-                }
+                if self.stream_text(text) { Handled::Done } else { Handled::Wait }
             }
             _ => Handled::Done,
         }

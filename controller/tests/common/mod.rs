@@ -233,7 +233,7 @@ impl<C: Drive> Rig<C> {
             self.step();
             if let Some(l) = self.lines().iter().rev().find(|l| l.starts_with('<')) {
                 let l = l.clone();
-                if self.take_lines().iter().any(|x| *x == l) {
+                if self.take_lines().contains(&l) {
                     return l;
                 }
             }
