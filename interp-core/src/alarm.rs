@@ -255,6 +255,16 @@ pub enum AlarmKind {
     /// 4510: a G34 lead change K × spindle speed² (the constant acceleration of a
     /// variable-lead thread) takes more than half the long axis's acceleration.
     ThreadLeadChangeTooFast { letter: Letter },
+    /// 0050: `,C`/`,R` in a thread block (2.23 note 8).
+    ChamferInThread,
+    /// 0051: the block after a `,C`/`,R` block is not a G01/G02/G03 move (2.23 notes 2, 7).
+    ChamferNoMove { what: &'static str },
+    /// 0055: a chamfer or corner R longer than the moves it joins (2.23 note 3).
+    ChamferTooLarge,
+    /// 0212: plane selection after a `,C`/`,R` block, or a move leaving the plane (2.23 note 4).
+    ChamferPlaneChange,
+    /// 4044: more actions wait behind a held move than the look-ahead holds.
+    ContourBufferFull,
     /// 3576: reversing G41/G42 directly while compensating (2.18.4).
     NoseCompReversed,
     /// 3577: T code while nose compensation is active (2.18.4).
@@ -356,6 +366,11 @@ impl AlarmKind {
             MotionConfigInvalid { .. } => 4508,
             EmergencyStop => 4509,
             ThreadLeadChangeTooFast { .. } => 4510,
+            ChamferInThread => 50,
+            ChamferNoMove { .. } => 51,
+            ChamferTooLarge => 55,
+            ChamferPlaneChange => 212,
+            ContourBufferFull => 4044,
             NoseCompReversed => 3576,
             ToolChangeInNoseComp => 3577,
             NoseCompGouge => 3605,
@@ -500,6 +515,11 @@ impl fmt::Display for AlarmKind {
                     Ch(letter)
                 )
             }
+            ChamferInThread => write!(f, "chamfer or corner R (,C/,R) cannot be given in a thread block"),
+            ChamferNoMove { what } => write!(f, "no G01/G02/G03 move after chamfer/corner R: {what}"),
+            ChamferTooLarge => write!(f, "chamfer or corner R is larger than the moves it joins"),
+            ChamferPlaneChange => write!(f, "plane selection or a move out of the plane after chamfer/corner R"),
+            ContourBufferFull => write!(f, "too many actions between a held move and the next move"),
             NoseCompReversed => write!(f, "G41/G42 reversed while nose compensation is active"),
             ToolChangeInNoseComp => write!(f, "T code while nose compensation is active"),
             NoseCompGouge => write!(f, "nose compensation would gouge the part"),
@@ -572,6 +592,21 @@ pub const CATALOG: &[CatalogEntry] = &[
         when: "T word selects a tool or offset outside the tool table",
     },
     CatalogEntry { code: 46, title: "illegal reference number", when: "G30 P other than 1-4 (2.11.2)" },
+    CatalogEntry {
+        code: 50,
+        title: "chamfer in thread block",
+        when: ",C or ,R in a G32/G34/G92/G76 block (2.23 note 8)",
+    },
+    CatalogEntry {
+        code: 51,
+        title: "no move after chamfer/corner R",
+        when: "the block after a ,C/,R block is not a G01/G02/G03 move (one G04 block may stand between), or a group 00 code shares or follows it (2.23 notes 2, 7)",
+    },
+    CatalogEntry {
+        code: 55,
+        title: "chamfer/corner R too large",
+        when: "the chamfer or corner R does not fit on the moves it joins (2.23 note 3)",
+    },
     CatalogEntry {
         code: 61,
         title: "P/Q missing in G70-G73",
@@ -660,6 +695,11 @@ pub const CATALOG: &[CatalogEntry] = &[
         when: "S between M29 and G84/G88, or M29 repeated in rigid tapping (2.22.1)",
     },
     CatalogEntry { code: 204, title: "axis move in rigid tap", when: "axis motion between M29 and G84/G88 (2.22.1)" },
+    CatalogEntry {
+        code: 212,
+        title: "plane change after chamfer/corner R",
+        when: "G17/G18/G19 in the block after a ,C/,R block, or a chamfered move leaving the plane (2.23 note 4)",
+    },
     CatalogEntry {
         code: 224,
         title: "reference not established",
@@ -815,6 +855,11 @@ pub const CATALOG: &[CatalogEntry] = &[
         code: 4043,
         title: "jump input missing",
         when: "M91/M92 test an external input the machine does not have (3.1.5)",
+    },
+    CatalogEntry {
+        code: 4044,
+        title: "look-ahead full",
+        when: "too many actions (M codes, dwells, blocks without motion) between a held move and the next move",
     },
     CatalogEntry {
         code: 4501,
@@ -977,6 +1022,11 @@ mod tests {
             MotionConfigInvalid { what: "x" },
             EmergencyStop,
             ThreadLeadChangeTooFast { letter: b'Z' },
+            ChamferInThread,
+            ChamferNoMove { what: "x" },
+            ChamferTooLarge,
+            ChamferPlaneChange,
+            ContourBufferFull,
             NoseCompReversed,
             ToolChangeInNoseComp,
             NoseCompGouge,

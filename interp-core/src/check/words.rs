@@ -95,9 +95,6 @@ pub(super) fn check_letters(
             return Err(AlarmKind::AxisNotConfigured { letter });
         }
     }
-    if block.chamfer.is_some() || block.corner.is_some() {
-        return Err(AlarmKind::NotSupportedYet { what: "chamfer and corner rounding ,C/,R" });
-    }
     Ok(())
 }
 
@@ -143,6 +140,7 @@ pub(super) fn convert(
     if let Some(t) = block.get(b'T') {
         cmd.tool = Some(tool_word(&t, cfg)?);
     }
+    cmd.corner = corner_word(block, fmt)?;
     required_words(user, cmd)
 }
 
@@ -254,4 +252,19 @@ fn tool_word(t: &Number, cfg: &MachineConfig) -> Result<(u16, u16), AlarmKind> {
         return Err(AlarmKind::IllegalOffsetNumber { number: offset as u16 });
     }
     Ok((tool as u16, offset as u16))
+}
+
+/// `,C` / `,R` (2.23): a length, never negative; zero asks for nothing.
+fn corner_word(block: &Block, fmt: &NumberFormat) -> Result<Option<crate::contour::Corner>, AlarmKind> {
+    use crate::contour::Corner;
+    let (n, letter, make): (_, u8, fn(i64) -> Corner) = match (&block.chamfer, &block.corner) {
+        (Some(c), _) => (c, b'C', Corner::Chamfer),
+        (None, Some(r)) => (r, b'R', Corner::Round),
+        (None, None) => return Ok(None),
+    };
+    if n.is_negative() {
+        return Err(AlarmKind::IllegalMinusSign { letter });
+    }
+    let v = fmt.length_nm(n).ok_or(AlarmKind::Overflow)?;
+    Ok((v > 0).then(|| make(v)))
 }

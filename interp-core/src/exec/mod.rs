@@ -127,6 +127,7 @@ pub fn execute(
     env: &dyn Environment,
     out: &mut Staged<'_>,
 ) -> Result<Flow, AlarmKind> {
+    let from = st.pos;
     let chained = cycles::before_block(cmd, st)?;
     apply_modal(cmd, st);
     spindle::before_motion(cmd, st, cfg, out)?;
@@ -152,7 +153,9 @@ pub fn execute(
     }
     aux(cmd, MTiming::After, out)?;
     spindle::after_motion(cmd, st, out)?;
-    program_flow(cmd, cfg, env, out)
+    let flow = program_flow(cmd, cfg, env, out)?;
+    crate::contour::after_block(cmd, st, from, out)?;
+    Ok(flow)
 }
 
 /// Modal codes that govern how the rest of the block is read.

@@ -208,6 +208,8 @@ pub struct State {
     pub moved: bool,
     /// Canned cycle memory.
     pub cycle: CycleMemory,
+    /// The contour look-ahead: a move held back until the next one is known.
+    pub contour: crate::contour::Contour,
 }
 
 impl State {
@@ -236,6 +238,7 @@ impl State {
             spindle: SpindleState { dir: SpindleDir::Stop, rpm: 0, css: None, clamp: None, gear: 0 },
             moved: false,
             cycle: CycleMemory::default(),
+            contour: crate::contour::Contour::default(),
         }
     }
 
