@@ -172,6 +172,8 @@ fn note_1_chamfer_on_g00_is_ignored_and_note_9_the_last_word_wins() {
     let r = ok("G00 X20 Z0 ,C2\nZ-20\nG01 X40 ,C1 ,R2 F100\nZ-40\nM30\n");
     assert_eq!(moves(&r)[..2], [('r', 20.0, 0.0), ('r', 20.0, -20.0)]);
     assert_eq!(kind_names(&r)[2..5], ["linear", "arc", "linear"]);
+    let r = ok("G00 X20 Z-20\nG01 X40 ,R2 ,C1 F100\nZ-40\nM30\n");
+    assert_eq!(kind_names(&r)[1..4], ["linear", "linear", "linear"]);
 }
 
 #[test]

@@ -144,6 +144,8 @@ pub enum AlarmKind {
     OvertravelPositive { letter: Letter },
     /// 0501: the move would pass the negative soft limit.
     OvertravelNegative { letter: Letter },
+    /// 0502/0503: a move would enter the forbidden area of stored stroke check 2 (G22, 2.10).
+    StrokeLimit2 { letter: Letter, plus: bool },
     /// 5010: the program text ended without M02, M30 or M99.
     EndOfRecord,
     /// 4001: G20/G21 must stand alone in its block (2.9 note 2).
@@ -312,6 +314,8 @@ impl AlarmKind {
             ReferenceNotEstablished { .. } => 224,
             OvertravelPositive { .. } => 500,
             OvertravelNegative { .. } => 501,
+            StrokeLimit2 { plus: true, .. } => 502,
+            StrokeLimit2 { plus: false, .. } => 503,
             EndOfRecord => 5010,
             UnitsNotAlone => 4001,
             UnitsNotAtStart => 4002,
@@ -436,6 +440,12 @@ impl fmt::Display for AlarmKind {
             }
             OvertravelPositive { letter } => write!(f, "move exceeds the + soft limit of axis {}", Ch(letter)),
             OvertravelNegative { letter } => write!(f, "move exceeds the - soft limit of axis {}", Ch(letter)),
+            StrokeLimit2 { letter, plus } => write!(
+                f,
+                "move enters the forbidden area of stored stroke check 2 (G22) in {} {}",
+                if plus { "+" } else { "-" },
+                Ch(letter)
+            ),
             EndOfRecord => write!(f, "program ended without M02, M30 or M99"),
             UnitsNotAlone => write!(f, "G20/G21 must be alone in its block"),
             UnitsNotAtStart => write!(f, "G20/G21 only at the start of the program, before any move"),
@@ -721,6 +731,12 @@ pub const CATALOG: &[CatalogEntry] = &[
         when: "a move's end point or arc passes the axis's - travel limit",
     },
     CatalogEntry {
+        code: 502,
+        title: "+ overtravel (stroke check 2)",
+        when: "G22 in force: a move would enter the forbidden area moving in + (2.10), or the tool is outside an outside-forbidden box when G22 is given (note 7)",
+    },
+    CatalogEntry { code: 503, title: "- overtravel (stroke check 2)", when: "as 0502, moving in - or below the box" },
+    CatalogEntry {
         code: 3576,
         title: "nose compensation reversed",
         when: "G41 to G42 or back directly while compensating (2.18.4); reserved until G41/G42 are supported",
@@ -969,6 +985,8 @@ mod tests {
             OvertravelPositive { letter: b'X' },
             OvertravelNegative { letter: b'X' },
             EndOfRecord,
+            StrokeLimit2 { letter: b'X', plus: true },
+            StrokeLimit2 { letter: b'X', plus: false },
             UnitsNotAlone,
             UnitsNotAtStart,
             DuplicateGroup { first: GNum(0), second: GNum(10) },

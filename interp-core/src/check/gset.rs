@@ -37,6 +37,8 @@ pub struct GSet {
     pub drilling: Option<GCode>,
     /// Group 11 (B/C): Some(true) = G99.
     pub return_to_r: Option<bool>,
+    /// Group 04: Some(true) = G22, Some(false) = G23.
+    pub stroke: Option<bool>,
 }
 
 /// Whether a group-00 code takes the block's axis words for itself.
@@ -62,6 +64,11 @@ impl GSet {
             set.assign(code);
         }
         set.check_units_alone(block, state)?;
+        // 2.10 note 6: G22/G23 take no other G code in their block.
+        if set.stroke.is_some() && block.g.len() > 1 {
+            let tenths = seen[Group::StrokeCheck as usize].unwrap_or(220);
+            return Err(AlarmKind::CodeMustBeAlone { code: GNum(tenths) });
+        }
         if let (Some(one), Some(_)) = (set.one_shot, set.motion)
             && uses_axes(one)
         {
@@ -90,6 +97,8 @@ impl GSet {
             ContinuousMode => self.exact_stop_mode = Some(false),
             ReturnInitial => self.return_to_r = Some(false),
             ReturnR => self.return_to_r = Some(true),
+            StrokeCheckOn => self.stroke = Some(true),
+            StrokeCheckOff => self.stroke = Some(false),
             _ => match code.group() {
                 Group::Motion => self.motion = Some(code),
                 Group::NonModal => self.one_shot = Some(code),
@@ -119,7 +128,7 @@ impl GSet {
 }
 
 /// Rejects codes this build does not implement with a clear alarm; accepts the
-/// cancel codes of modes that can never be on (G13.1, G50.2, G23, G40).
+/// cancel codes of modes that can never be on (G13.1, G50.2, G40).
 fn supported(code: GCode) -> Result<(), AlarmKind> {
     use GCode::*;
     let what = match code {
@@ -127,7 +136,6 @@ fn supported(code: GCode) -> Result<(), AlarmKind> {
         ParabolaCw | ParabolaCcw => "parabolic interpolation G02.2/G03.2",
         PolarOn => "polar coordinate interpolation G12.1",
         PolygonOn => "polygon turning G51.2",
-        StrokeCheckOn => "stored stroke check 2 (G22)",
         NoseCompLeft | NoseCompRight => "tool nose radius compensation G41/G42",
         _ => return Ok(()),
     };

@@ -89,6 +89,11 @@ impl Command {
     /// The code that consumes the block's axis words.
     pub fn axis_user(&self, state: &State) -> GCode {
         use crate::cycles::args::{is_hole, is_multiple};
+        match self.g.stroke {
+            Some(true) => return GCode::StrokeCheckOn,
+            Some(false) => return GCode::StrokeCheckOff,
+            None => {}
+        }
         match self.g.one_shot {
             Some(c) if gset::uses_axes(c) || is_multiple(c) => c,
             _ => match self.g.drilling {

@@ -53,6 +53,7 @@ fn words_of(code: GCode) -> (Letters, &'static str) {
         SetCoordinates => (AXES, "G50"),
         LocalFrame => (AXES, "G52"),
         MachineCoordinates => (AXES, "G53"),
+        StrokeCheckOn => (Letters::of(b"XYZIJK"), "G22"),
         _ => (Letters(0), "this block"),
     }
 }
@@ -116,7 +117,7 @@ pub(super) fn convert(
     if args::is_cycle(user) {
         cmd.cycle = args::read(user, block, fmt, cfg.diameter_x)?;
     }
-    if matches!(user, GCode::ArcCw | GCode::ArcCcw) {
+    if matches!(user, GCode::ArcCw | GCode::ArcCcw | GCode::StrokeCheckOn) {
         convert_arc_words(block, fmt, cmd)?;
     }
     if user == GCode::ReferenceReturnN {
@@ -258,6 +259,7 @@ fn tool_word(t: &Number, cfg: &MachineConfig) -> Result<(u16, u16), AlarmKind> {
 fn corner_word(block: &Block, fmt: &NumberFormat) -> Result<Option<crate::contour::Corner>, AlarmKind> {
     use crate::contour::Corner;
     let (n, letter, make): (_, u8, fn(i64) -> Corner) = match (&block.chamfer, &block.corner) {
+        (_, Some(r)) if block.corner_last => (r, b'R', Corner::Round),
         (Some(c), _) => (c, b'C', Corner::Chamfer),
         (None, Some(r)) => (r, b'R', Corner::Round),
         (None, None) => return Ok(None),

@@ -3,7 +3,7 @@
 //! that the corner between them can be shaped — a chamfer or corner R inserted
 //! (`,C`/`,R`, 2.23).
 //!
-//! The held actions live in the [`State`] (a fixed array, no allocation), so they
+//! The held actions live in the [`State`] (fixed arrays, no allocation), so they
 //! follow the interpreter's rule that a block runs on a copy of the state: a block
 //! that raises an alarm leaves the held move exactly as it was. All geometry is done
 //! in machine coordinates (the path the tool really follows) with f64
@@ -19,8 +19,8 @@ use crate::codes::GCode;
 use crate::exec::{STAGE, Staged, State};
 use crate::geom::path::V2;
 
-/// Most actions held back: the move plus what the blocks after it produced before
-/// the next move (a G04 between a chamfered block and its follower, M codes …).
+/// Most actions held back behind the move: what the blocks after it produced
+/// before the next move (a G04 between a chamfered block and its follower, M codes …).
 pub const HOLD: usize = 6;
 
 /// What `,C` or `,R` asks for at the end of a block's move (2.23).
@@ -34,13 +34,53 @@ pub enum Corner {
     Round(i64),
 }
 
+/// A non-motion action waiting behind the held move, kept small (the state is
+/// copied for every block).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+enum Aside {
+    Dwell { ms: u32 },
+    Spindle(crate::canon::SpindleCommand),
+    Tool { tool: u16, offset: u16 },
+    Aux { m: u16 },
+    Stop { optional: bool },
+    End { rewind: bool },
+}
+
+impl Aside {
+    fn of(a: &Action) -> Option<Aside> {
+        Some(match *a {
+            Action::Dwell { ms } => Aside::Dwell { ms },
+            Action::Spindle(s) => Aside::Spindle(s),
+            Action::Tool { tool, offset } => Aside::Tool { tool, offset },
+            Action::Aux { m } => Aside::Aux { m },
+            Action::Stop { optional } => Aside::Stop { optional },
+            Action::End { rewind } => Aside::End { rewind },
+            _ => return None,
+        })
+    }
+
+    fn action(self) -> Action {
+        match self {
+            Aside::Dwell { ms } => Action::Dwell { ms },
+            Aside::Spindle(s) => Action::Spindle(s),
+            Aside::Tool { tool, offset } => Action::Tool { tool, offset },
+            Aside::Aux { m } => Action::Aux { m },
+            Aside::Stop { optional } => Action::Stop { optional },
+            Aside::End { rewind } => Action::End { rewind },
+        }
+    }
+}
+
 /// The look-ahead buffer: a held move, the actions after it, and what is to be done
 /// at its end.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Contour {
-    /// The held move first, then the actions after it, in order.
-    held: [Option<Canon>; HOLD],
+    /// The held move.
+    held: Option<Canon>,
+    /// The actions after it (with their lines), in order.
+    after: [Option<(u32, Aside)>; HOLD],
     /// Machine position where the held move starts.
     start: Pos,
     /// The corner requested at the held move's end.
@@ -54,14 +94,14 @@ impl Eq for Contour {}
 
 impl Default for Contour {
     fn default() -> Self {
-        Contour { held: [None; HOLD], start: Pos::ZERO, corner: None, idle_blocks: 0 }
+        Contour { held: None, after: [None; HOLD], start: Pos::ZERO, corner: None, idle_blocks: 0 }
     }
 }
 
 impl Contour {
     /// Whether a move is held back.
     pub fn is_holding(&self) -> bool {
-        self.held[0].is_some()
+        self.held.is_some()
     }
 
     /// The corner the held move waits for, if any.
@@ -75,21 +115,22 @@ impl Contour {
     }
 
     fn hold(&mut self, c: Canon, start: Pos, corner: Option<Corner>) {
-        *self = Contour { held: [None; HOLD], start, corner, idle_blocks: 0 };
-        self.held[0] = Some(c);
+        *self = Contour { held: Some(c), start, corner, ..Contour::default() };
     }
 
     /// Appends a non-motion action behind the held move.
     fn push(&mut self, c: Canon) -> Result<(), AlarmKind> {
-        let slot = self.held.iter_mut().find(|s| s.is_none()).ok_or(AlarmKind::ContourBufferFull)?;
-        *slot = Some(c);
+        let aside = Aside::of(&c.action).ok_or(AlarmKind::ContourBufferFull)?;
+        let slot = self.after.iter_mut().find(|s| s.is_none()).ok_or(AlarmKind::ContourBufferFull)?;
+        *slot = Some((c.line, aside));
         Ok(())
     }
 
-    fn take(&mut self) -> [Option<Canon>; HOLD] {
-        let held = self.held;
+    /// Takes the held move and the actions after it.
+    fn take(&mut self) -> (Option<Canon>, impl Iterator<Item = Canon>) {
+        let (held, after) = (self.held, self.after);
         self.clear();
-        held
+        (held, after.into_iter().flatten().map(|(line, a)| Canon { line, action: a.action() }))
     }
 }
 
@@ -215,7 +256,8 @@ pub fn flush(st: &mut State, out: &mut Staged<'_>) -> Result<(), AlarmKind> {
     if st.contour.corner.is_some() {
         return Err(AlarmKind::ChamferNoMove { what: "a block without a G01/G02/G03 move" });
     }
-    for c in st.contour.take().into_iter().flatten() {
+    let (held, after) = st.contour.take();
+    for c in held.into_iter().chain(after) {
         put(out, c)?;
     }
     Ok(())
@@ -226,9 +268,8 @@ pub fn flush(st: &mut State, out: &mut Staged<'_>) -> Result<(), AlarmKind> {
 fn join(st: &mut State, next: Canon, from: Pos, plane: Plane, out: &mut Staged<'_>) -> Result<Pos, AlarmKind> {
     let start = st.contour.start;
     let corner = st.contour.corner;
-    let held = st.contour.take();
-    let mut rest = held.into_iter().flatten();
-    let Some(first) = rest.next() else { return Ok(from) };
+    let (held, rest) = st.contour.take();
+    let Some(first) = held else { return Ok(from) };
     let Some(corner) = corner else {
         put(out, first)?;
         for c in rest {

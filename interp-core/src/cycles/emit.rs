@@ -218,6 +218,9 @@ impl Emitter {
                 Action::Spindle(SpindleCommand { dir, rpm: s.rpm, css: s.css.or(css) })
             }
         };
+        if let Some(area) = self.st.stroke {
+            crate::exec::stroke::check_move(&area, self.st.pos, &action)?;
+        }
         if let Some(e) = action.endpoint() {
             self.st.pos = e.machine;
             self.st.moved = true;

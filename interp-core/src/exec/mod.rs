@@ -6,6 +6,7 @@ mod coords;
 pub(crate) mod motion;
 mod spindle;
 mod state;
+pub mod stroke;
 
 pub use spindle::spindle_speed;
 pub use state::{
@@ -130,6 +131,7 @@ pub fn execute(
     let from = st.pos;
     let chained = cycles::before_block(cmd, st)?;
     apply_modal(cmd, st);
+    stroke::apply(cmd, st, cfg)?;
     spindle::before_motion(cmd, st, cfg, out)?;
     cycles::after_spindle(cmd, st, out)?;
     tool_change(cmd, st, cfg, out)?;
@@ -140,6 +142,7 @@ pub fn execute(
         Some(GCode::LocalFrame) => coords::local_frame(cmd, st),
         Some(GCode::MachineCoordinates) => coords::machine_move(cmd, st, cfg, out)?,
         Some(GCode::ReferenceReturn | GCode::ReferenceReturnN) => coords::reference_return(cmd, st, cfg, env, out)?,
+        _ if cmd.g.stroke.is_some() => {}
         _ => {
             let mut ctx = cycles::Ctx { cfg, env, out };
             if !cycles::execute(cmd, st, &mut ctx, chained)? {
@@ -154,6 +157,7 @@ pub fn execute(
     aux(cmd, MTiming::After, out)?;
     spindle::after_motion(cmd, st, out)?;
     let flow = program_flow(cmd, cfg, env, out)?;
+    stroke::check_actions(st, from, out.actions.iter())?;
     crate::contour::after_block(cmd, st, from, out)?;
     Ok(flow)
 }

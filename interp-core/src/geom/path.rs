@@ -184,6 +184,36 @@ impl Elem {
         }
     }
 
+    /// The point `s` along the element from its start (path length).
+    pub fn point_at(&self, s: f64) -> V2 {
+        match *self {
+            Elem::Line { start, end } => start.plus(end.minus(start).unit().scale(s)),
+            Elem::Arc { start, center, ccw, .. } => {
+                let r = self.radius();
+                let t = if r > 0.0 { s / r } else { 0.0 };
+                center.plus(start.minus(center).rotate(if ccw { t } else { -t }))
+            }
+        }
+    }
+
+    /// The points of the element's circle (arcs only) whose `a` (`on_a`) or `b`
+    /// coordinate equals `v`.
+    pub fn crossings_at(&self, on_a: bool, v: f64) -> heapless::Vec<V2, 2> {
+        let mut out = heapless::Vec::new();
+        let Elem::Arc { center, .. } = *self else { return out };
+        let r = self.radius();
+        let (c, o) = if on_a { (center.a, center.b) } else { (center.b, center.a) };
+        let d = v - c;
+        if d.abs() > r {
+            return out;
+        }
+        let h = libm::sqrt(r * r - d * d);
+        for k in [o - h, o + h] {
+            let _ = out.push(if on_a { V2::new(v, k) } else { V2::new(k, v) });
+        }
+        out
+    }
+
     /// The point at straight-line distance `d` from the end, back along the element
     /// (`None` if the element's circle has no such point).
     pub fn back_from_end(&self, d: f64) -> Option<V2> {

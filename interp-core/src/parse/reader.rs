@@ -200,12 +200,14 @@ impl Reader<'_, '_> {
             self.peek().map(|c| c.to_ascii_uppercase()).ok_or(AlarmKind::NoDataAfterAddress { letter: b',' })?;
         self.pos += 1;
         let Some(n) = self.value(letter)? else { return Ok(()) };
-        // 2.23 note 9: with several C/R in one block the last one is effective.
-        match letter {
-            b'C' => (block.chamfer, block.corner) = (Some(n), None),
-            b'R' => (block.corner, block.chamfer) = (Some(n), None),
+        let slot = match letter {
+            b'C' => &mut block.chamfer,
+            b'R' => &mut block.corner,
             _ => return Err(AlarmKind::ImproperAddress { letter }),
-        }
+        };
+        // 2.23 note 9: with several C/R in one block the last one is effective.
+        *slot = Some(n);
+        block.corner_last = letter == b'R';
         Ok(())
     }
 
