@@ -122,7 +122,7 @@ fn two_g_codes_of_one_group_duplicate_words_and_foreign_words() {
 
 #[test]
 fn codes_not_implemented_yet_say_so() {
-    let r = run("G41 X10
+    let r = run("G51.2
 G12.1
 G02.1 X1 Z1 A2 B1
 M30

@@ -267,6 +267,10 @@ pub enum AlarmKind {
     ChamferPlaneChange,
     /// 4044: more actions wait behind a held move than the look-ahead holds.
     ContourBufferFull,
+    /// 0034: nose compensation starting up or cancelling in an arc block (2.18.3).
+    NoseCompArc,
+    /// 0037: plane selection while nose compensation is active.
+    NoseCompPlaneChange,
     /// 3576: reversing G41/G42 directly while compensating (2.18.4).
     NoseCompReversed,
     /// 3577: T code while nose compensation is active (2.18.4).
@@ -375,6 +379,8 @@ impl AlarmKind {
             ChamferTooLarge => 55,
             ChamferPlaneChange => 212,
             ContourBufferFull => 4044,
+            NoseCompArc => 34,
+            NoseCompPlaneChange => 37,
             NoseCompReversed => 3576,
             ToolChangeInNoseComp => 3577,
             NoseCompGouge => 3605,
@@ -530,6 +536,8 @@ impl fmt::Display for AlarmKind {
             ChamferTooLarge => write!(f, "chamfer or corner R is larger than the moves it joins"),
             ChamferPlaneChange => write!(f, "plane selection or a move out of the plane after chamfer/corner R"),
             ContourBufferFull => write!(f, "too many actions between a held move and the next move"),
+            NoseCompArc => write!(f, "nose compensation cannot start up or cancel in an arc block"),
+            NoseCompPlaneChange => write!(f, "plane selection while nose compensation is active"),
             NoseCompReversed => write!(f, "G41/G42 reversed while nose compensation is active"),
             ToolChangeInNoseComp => write!(f, "T code while nose compensation is active"),
             NoseCompGouge => write!(f, "nose compensation would gouge the part"),
@@ -601,6 +609,12 @@ pub const CATALOG: &[CatalogEntry] = &[
         title: "illegal offset or tool number",
         when: "T word selects a tool or offset outside the tool table",
     },
+    CatalogEntry {
+        code: 34,
+        title: "arc in compensation start-up or cancel",
+        when: "the first move after G41/G42 or the G40 move is an arc (2.18.3)",
+    },
+    CatalogEntry { code: 37, title: "plane change in compensation", when: "G17/G18/G19 while G41/G42 is in force" },
     CatalogEntry { code: 46, title: "illegal reference number", when: "G30 P other than 1-4 (2.11.2)" },
     CatalogEntry {
         code: 50,
@@ -739,22 +753,18 @@ pub const CATALOG: &[CatalogEntry] = &[
     CatalogEntry {
         code: 3576,
         title: "nose compensation reversed",
-        when: "G41 to G42 or back directly while compensating (2.18.4); reserved until G41/G42 are supported",
+        when: "G41 to G42 or back directly while compensating (2.18.4)",
     },
-    CatalogEntry {
-        code: 3577,
-        title: "tool change in nose compensation",
-        when: "T code in G41/G42 (2.18.4); reserved until G41/G42 are supported",
-    },
+    CatalogEntry { code: 3577, title: "tool change in nose compensation", when: "T code in G41/G42 (2.18.4)" },
     CatalogEntry {
         code: 3605,
         title: "nose compensation gouge",
-        when: "interference check finds overcutting (2.18.4); reserved until G41/G42 are supported",
+        when: "interference check finds overcutting (2.18.4)",
     },
     CatalogEntry {
         code: 3607,
         title: "compensation corner angle",
-        when: "corner between two paths under 0.1 degrees (2.18.4); reserved until G41/G42 are supported",
+        when: "corner between two paths under 0.1 degrees (2.18.4)",
     },
     CatalogEntry {
         code: 4001,
@@ -1045,6 +1055,8 @@ mod tests {
             ChamferTooLarge,
             ChamferPlaneChange,
             ContourBufferFull,
+            NoseCompArc,
+            NoseCompPlaneChange,
             NoseCompReversed,
             ToolChangeInNoseComp,
             NoseCompGouge,

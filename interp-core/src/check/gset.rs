@@ -136,7 +136,6 @@ fn supported(code: GCode) -> Result<(), AlarmKind> {
         ParabolaCw | ParabolaCcw => "parabolic interpolation G02.2/G03.2",
         PolarOn => "polar coordinate interpolation G12.1",
         PolygonOn => "polygon turning G51.2",
-        NoseCompLeft | NoseCompRight => "tool nose radius compensation G41/G42",
         _ => return Ok(()),
     };
     Err(AlarmKind::NotSupportedYet { what })

@@ -1,27 +1,35 @@
 //! The contour layer between execution and the canonical stream: a bounded
-//! look-ahead that holds a block's last move back until the next move is known, so
-//! that the corner between them can be shaped — a chamfer or corner R inserted
-//! (`,C`/`,R`, 2.23).
+//! look-ahead that holds a move back until the next move is known, so that the
+//! corner between them can be shaped. Two stages, each holding at most one move
+//! and the non-motion actions behind it:
+//!
+//! 1. chamfer and corner R (`,C`/`,R`, 2.23; [`corner`]): the programmed path with
+//!    the corner blocks inserted;
+//! 2. tool-nose radius compensation (G40/G41/G42, 2.18; [`comp`]): that path offset
+//!    by the nose radius, with the corner types of the manual.
 //!
 //! The held actions live in the [`State`] (fixed arrays, no allocation), so they
 //! follow the interpreter's rule that a block runs on a copy of the state: a block
-//! that raises an alarm leaves the held move exactly as it was. All geometry is done
-//! in machine coordinates (the path the tool really follows) with f64
+//! that raises an alarm leaves the held moves exactly as they were. All geometry is
+//! done in machine coordinates (the path the tool really follows) with f64
 //! ([`crate::geom::path`]), results rounded to whole nanometres.
 
+pub mod comp;
 mod corner;
+
+pub use comp::{Comp, Side};
 
 use crate::alarm::AlarmKind;
 use crate::axis::{Axis, Pos};
 use crate::canon::{Action, Canon, Endpoint, Plane};
 use crate::check::Command;
 use crate::codes::GCode;
-use crate::exec::{STAGE, Staged, State};
+use crate::exec::{Flow, STAGE, Staged, State};
 use crate::geom::path::V2;
 
-/// Most actions held back behind the move: what the blocks after it produced
-/// before the next move (a G04 between a chamfered block and its follower, M codes …).
-pub const HOLD: usize = 6;
+/// Most non-motion actions one stage holds behind its move (a G04 between a
+/// chamfered block and its follower, M codes of blocks without motion …).
+pub const HOLD: usize = 4;
 
 /// What `,C` or `,R` asks for at the end of a block's move (2.23).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -34,7 +42,7 @@ pub enum Corner {
     Round(i64),
 }
 
-/// A non-motion action waiting behind the held move, kept small (the state is
+/// A non-motion action waiting behind a held move, kept small (the state is
 /// copied for every block).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -72,53 +80,35 @@ impl Aside {
     }
 }
 
-/// The look-ahead buffer: a held move, the actions after it, and what is to be done
-/// at its end.
+/// One stage's buffer: a held move, where it starts, and the actions after it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct Contour {
+pub struct Buffer {
     /// The held move.
     held: Option<Canon>,
+    /// Machine position where the held move starts (as programmed).
+    start: Pos,
     /// The actions after it (with their lines), in order.
     after: [Option<(u32, Aside)>; HOLD],
-    /// Machine position where the held move starts.
-    start: Pos,
-    /// The corner requested at the held move's end.
-    corner: Option<Corner>,
-    /// Blocks without motion read since the held move (2.23 note 2 allows one G04).
-    idle_blocks: u8,
 }
 
-// Every field compares exactly (integers only).
-impl Eq for Contour {}
-
-impl Default for Contour {
+impl Default for Buffer {
     fn default() -> Self {
-        Contour { held: None, after: [None; HOLD], start: Pos::ZERO, corner: None, idle_blocks: 0 }
+        Buffer { held: None, start: Pos::ZERO, after: [None; HOLD] }
     }
 }
 
-impl Contour {
+impl Buffer {
     /// Whether a move is held back.
     pub fn is_holding(&self) -> bool {
         self.held.is_some()
     }
 
-    /// The corner the held move waits for, if any.
-    pub fn pending_corner(&self) -> Option<Corner> {
-        self.corner
+    fn hold(&mut self, c: Canon, start: Pos) {
+        *self = Buffer { held: Some(c), start, after: [None; HOLD] };
     }
 
-    /// Drops everything held (rewind, reset).
-    pub fn clear(&mut self) {
-        *self = Contour::default();
-    }
-
-    fn hold(&mut self, c: Canon, start: Pos, corner: Option<Corner>) {
-        *self = Contour { held: Some(c), start, corner, ..Contour::default() };
-    }
-
-    /// Appends a non-motion action behind the held move.
+    /// Appends a non-motion action behind the held move (alarm 4044 when full).
     fn push(&mut self, c: Canon) -> Result<(), AlarmKind> {
         let aside = Aside::of(&c.action).ok_or(AlarmKind::ContourBufferFull)?;
         let slot = self.after.iter_mut().find(|s| s.is_none()).ok_or(AlarmKind::ContourBufferFull)?;
@@ -126,11 +116,49 @@ impl Contour {
         Ok(())
     }
 
-    /// Takes the held move and the actions after it.
-    fn take(&mut self) -> (Option<Canon>, impl Iterator<Item = Canon>) {
+    /// Takes the held move and the actions after it, leaving the buffer empty.
+    fn take(&mut self) -> (Option<Canon>, impl Iterator<Item = Canon> + use<>) {
         let (held, after) = (self.held, self.after);
-        self.clear();
+        *self = Buffer::default();
         (held, after.into_iter().flatten().map(|(line, a)| Canon { line, action: a.action() }))
+    }
+}
+
+/// The look-ahead of both stages.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Contour {
+    /// Stage 1: the move waiting for its chamfer or corner R.
+    shape: Buffer,
+    /// The corner requested at the end of stage 1's held move.
+    corner: Option<Corner>,
+    /// Blocks without motion read since stage 1's held move (2.23 note 2 allows one G04).
+    idle_blocks: u8,
+    /// Stage 2: the move waiting for its compensated corner.
+    offset: Buffer,
+    /// Nose radius compensation in force.
+    pub comp: Comp,
+    /// Compensation suppressed: G71–G73 read their shape without it (2.16.7 note 5).
+    pub no_comp: bool,
+}
+
+// Every field compares exactly (integers only).
+impl Eq for Contour {}
+
+impl Contour {
+    /// Whether a move is held back in either stage.
+    pub fn is_holding(&self) -> bool {
+        self.shape.is_holding() || self.offset.is_holding()
+    }
+
+    /// The corner the held move waits for, if any.
+    pub fn pending_corner(&self) -> Option<Corner> {
+        self.corner
+    }
+
+    /// Drops everything held and cancels compensation (rewind, reset).
+    pub fn clear(&mut self) {
+        *self = Contour::default();
     }
 }
 
@@ -180,28 +208,94 @@ fn check_follower(cmd: &Command, st: &State) -> Result<bool, AlarmKind> {
     }
 }
 
-/// Passes the actions the block just staged in `out` through the look-ahead: the
-/// held move meets the block's first move (its corner is shaped), the block's last
-/// move is held if it asks for a corner. `from` is the machine position before the
-/// block. Actions after a cycle's place (`out.split`) come after the held ones.
-pub fn after_block(cmd: &Command, st: &mut State, from: Pos, out: &mut Staged<'_>) -> Result<(), AlarmKind> {
+/// What the block does to the compensation.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct CompPlan {
+    /// G40 in this block while compensating: the block's first move cancels.
+    cancel: bool,
+    /// A temporary cancel before the block's moves (G28, G30, G50, G52, G53).
+    pause: bool,
+}
+
+/// G40/G41/G42 of the block checked against 2.18.4 and put in force: a direct
+/// G41↔G42 switch (3576), a T code (3577) or a plane change (0037) while
+/// compensating are alarms.
+fn plan_comp(cmd: &Command, st: &mut State) -> Result<CompPlan, AlarmKind> {
+    use GCode::*;
+    let was = st.contour.comp.side;
+    if st.contour.no_comp {
+        return Ok(CompPlan { cancel: false, pause: false });
+    }
+    let now = match st.modal.nose_comp {
+        NoseCompLeft => Some(Side::Left),
+        NoseCompRight => Some(Side::Right),
+        _ => None,
+    };
+    if let (Some(a), Some(b)) = (was, now) {
+        if a != b {
+            return Err(AlarmKind::NoseCompReversed);
+        }
+        if cmd.tool.is_some() {
+            return Err(AlarmKind::ToolChangeInNoseComp);
+        }
+        if cmd.g.plane.is_some_and(|p| p != st.contour.comp.plane) {
+            return Err(AlarmKind::NoseCompPlaneChange);
+        }
+    }
+    if was.is_none()
+        && let Some(side) = now
+    {
+        let comp = Comp {
+            side: Some(side),
+            radius: st.tool.nose_radius,
+            tip: st.tool.tip,
+            plane: st.modal.plane,
+            engaged: false,
+            centre: (0, 0),
+        };
+        st.contour.comp = comp;
+    }
+    let pause = matches!(
+        cmd.g.one_shot,
+        Some(ReferenceReturn | ReferenceReturnN | SetCoordinates | LocalFrame | MachineCoordinates)
+    );
+    Ok(CompPlan { cancel: was.is_some() && now.is_none(), pause: was.is_some() && now.is_some() && pause })
+}
+
+/// Passes the actions the block just staged in `out` through both stages. `from`
+/// is the machine position before the block, `flow` what the block does next (a
+/// stop or the end of the program empties the look-ahead). Actions after a
+/// cycle's place (`out.split`) come after everything held; the cycle itself runs
+/// uncompensated and the next move starts the offset up again.
+pub fn after_block(
+    cmd: &Command,
+    st: &mut State,
+    from: Pos,
+    flow: Flow,
+    out: &mut Staged<'_>,
+) -> Result<(), AlarmKind> {
     let request = corner_request(cmd, st)?;
-    if !st.contour.is_holding() && request.is_none() {
+    let plan = plan_comp(cmd, st)?;
+    let comp_on = st.contour.comp.side.is_some();
+    if !st.contour.is_holding() && request.is_none() && !comp_on {
         return Ok(());
     }
     let dwell_between = match st.contour.corner {
         Some(_) => check_follower(cmd, st)?,
         None => false,
     };
+    if plan.pause {
+        flush(st, out)?;
+    }
     let mut acts: heapless::Vec<Canon, STAGE> = heapless::Vec::new();
     while let Some(c) = out.actions.pop_front() {
         acts.push(c).map_err(|_| AlarmKind::Overflow)?;
     }
     let split = out.split.unwrap_or(acts.len());
     let last_move = acts[..split].iter().rposition(|c| c.action.endpoint().is_some());
-    let plane = st.modal.plane;
     let waited = st.contour.corner.is_some();
     let mut moved = false;
+    let mut cancel = plan.cancel;
     let mut pos = from;
     for (i, c) in acts.iter().enumerate() {
         if i == split {
@@ -209,21 +303,29 @@ pub fn after_block(cmd: &Command, st: &mut State, from: Pos, out: &mut Staged<'_
             out.split = Some(out.actions.len());
         }
         let Some(end) = c.action.endpoint().map(|e| e.machine) else {
-            if st.contour.is_holding() {
-                st.contour.push(*c)?
-            } else {
-                put(out, *c)?
-            }
+            shape_aside(st, *c, out)?;
             continue;
         };
         moved = true;
         let mut start = pos;
-        if st.contour.is_holding() {
-            start = join(st, *c, pos, plane, out)?;
+        if st.contour.shape.is_holding() {
+            start = join(st, *c, pos, out)?;
         }
-        match request.filter(|_| Some(i) == last_move) {
-            Some(corner) if shapeable(&c.action) => st.contour.hold(*c, start, Some(corner)),
-            _ => put(out, *c)?,
+        if i >= split || plan.pause {
+            put(out, *c)?;
+        } else if cancel {
+            cancel = false;
+            comp::cancel_with(&mut st.contour.offset, &mut st.contour.comp, *c, start, out)?;
+            st.contour.comp = Comp::default();
+        } else {
+            match request.filter(|_| Some(i) == last_move) {
+                Some(corner) if shapeable(&c.action) => {
+                    st.contour.shape.hold(*c, start);
+                    st.contour.corner = Some(corner);
+                    st.contour.idle_blocks = 0;
+                }
+                _ => to_offset(st, *c, start, out)?,
+            }
         }
         pos = end;
     }
@@ -231,7 +333,47 @@ pub fn after_block(cmd: &Command, st: &mut State, from: Pos, out: &mut Staged<'_
         flush(st, out)?;
         out.split = Some(out.actions.len());
     }
+    if cancel {
+        // G40 without a move: the held move ends on its normal.
+        comp::end_here(&mut st.contour.offset, &mut st.contour.comp, out)?;
+        st.contour.comp = Comp::default();
+    }
+    if matches!(flow, Flow::Stop | Flow::End) {
+        flush(st, out)?;
+        if flow == Flow::End {
+            // M02/M30 cancel the compensation (3.1.4).
+            st.contour.comp = Comp::default();
+        }
+    }
     finish_block(st, waited, moved, dwell_between)
+}
+
+/// A non-motion action: behind stage 1's held move, else behind stage 2's, else out.
+fn shape_aside(st: &mut State, c: Canon, out: &mut Staged<'_>) -> Result<(), AlarmKind> {
+    if st.contour.shape.is_holding() {
+        st.contour.shape.push(c)
+    } else if st.contour.offset.is_holding() {
+        st.contour.offset.push(c)
+    } else {
+        put(out, c)
+    }
+}
+
+/// Stage 2: a move of the programmed path (from `start`) into the compensation, or
+/// straight out without it.
+fn to_offset(st: &mut State, c: Canon, start: Pos, out: &mut Staged<'_>) -> Result<(), AlarmKind> {
+    let ct = &mut st.contour;
+    if ct.comp.side.is_none() {
+        return put(out, c);
+    }
+    if c.action.endpoint().is_none() {
+        return if ct.offset.is_holding() { ct.offset.push(c) } else { put(out, c) };
+    }
+    if ct.comp.engaged {
+        comp::advance(&mut ct.offset, &mut ct.comp, c, start, out)
+    } else {
+        comp::start_up(&mut ct.offset, &mut ct.comp, c, start)
+    }
 }
 
 /// After the block: a corner still waiting from before means the block had no
@@ -251,38 +393,43 @@ fn shapeable(a: &Action) -> bool {
     matches!(a, Action::Linear(_) | Action::Arc(_))
 }
 
-/// Emits everything held unchanged (nothing may be waiting for a corner).
+/// Emits everything held: stage 1 unchanged (nothing may be waiting for a corner,
+/// alarm 0051), stage 2 ending on the normal of its move (a temporary cancel: the
+/// next move starts the offset up again).
 pub fn flush(st: &mut State, out: &mut Staged<'_>) -> Result<(), AlarmKind> {
     if st.contour.corner.is_some() {
         return Err(AlarmKind::ChamferNoMove { what: "a block without a G01/G02/G03 move" });
     }
-    let (held, after) = st.contour.take();
-    for c in held.into_iter().chain(after) {
-        put(out, c)?;
+    let start = st.contour.shape.start;
+    let (held, after) = st.contour.shape.take();
+    if let Some(c) = held {
+        to_offset(st, c, start, out)?;
     }
-    Ok(())
+    for c in after {
+        to_offset(st, c, start, out)?;
+    }
+    comp::end_here(&mut st.contour.offset, &mut st.contour.comp, out)
 }
 
-/// The held move meets `next` (starting at `from`): shapes the corner, emits the
-/// held actions and returns where `next` now starts.
-fn join(st: &mut State, next: Canon, from: Pos, plane: Plane, out: &mut Staged<'_>) -> Result<Pos, AlarmKind> {
-    let start = st.contour.start;
-    let corner = st.contour.corner;
-    let (held, rest) = st.contour.take();
+/// Stage 1's held move meets `next` (starting at `from`): shapes the corner, passes
+/// the held actions on to stage 2 and returns where `next` now starts.
+fn join(st: &mut State, next: Canon, from: Pos, out: &mut Staged<'_>) -> Result<Pos, AlarmKind> {
+    let start = st.contour.shape.start;
+    let corner = st.contour.corner.take();
+    let (held, rest) = st.contour.shape.take();
     let Some(first) = held else { return Ok(from) };
-    let Some(corner) = corner else {
-        put(out, first)?;
-        for c in rest {
-            put(out, c)?;
-        }
-        return Ok(from);
+    let plane = st.modal.plane;
+    let shaped = match corner {
+        Some(corner) => corner::shape(corner, plane, start, first, next)?,
+        None => corner::Shaped { trimmed: Some(first), insert: None, next_start: from },
     };
-    let shaped = corner::shape(corner, plane, start, first, next)?;
+    let mut at = start;
     for c in [shaped.trimmed, shaped.insert].into_iter().flatten() {
-        put(out, c)?;
+        to_offset(st, c, at, out)?;
+        at = c.action.endpoint().map_or(at, |e| e.machine);
     }
     for c in rest {
-        put(out, c)?;
+        to_offset(st, c, at, out)?;
     }
     Ok(shaped.next_start)
 }

@@ -445,19 +445,3 @@ mod tests {
         assert!(interp < 16 * 1024 + vars + exp, "Interpreter is {interp} bytes");
     }
 }
-#[cfg(test)]
-mod size_probe {
-    #[test]
-    fn sizes() {
-        extern crate std;
-        std::println!(
-            "canon {} state {} contour {} exp {} interp {} vars {}",
-            core::mem::size_of::<crate::canon::Canon>(),
-            core::mem::size_of::<crate::exec::State>(),
-            core::mem::size_of::<crate::contour::Contour>(),
-            core::mem::size_of::<super::Expansion>(),
-            core::mem::size_of::<crate::Interpreter>(),
-            core::mem::size_of::<crate::macros::Variables>()
-        );
-    }
-}

@@ -326,6 +326,9 @@ pub fn read_profile<E: Environment + ?Sized>(
     env: &E,
 ) -> Result<Profile, AlarmKind> {
     let mut scratch = *st;
+    // Roughing follows the programmed shape: no nose compensation (2.16.7 note 5).
+    scratch.contour.clear();
+    scratch.contour.no_comp = true;
     scratch.feed.per_min = scratch.feed.per_min.max(1);
     scratch.feed.per_rev = scratch.feed.per_rev.max(1);
     if scratch.spindle.dir == SpindleDir::Stop {

@@ -158,7 +158,7 @@ pub fn execute(
     spindle::after_motion(cmd, st, out)?;
     let flow = program_flow(cmd, cfg, env, out)?;
     stroke::check_actions(st, from, out.actions.iter())?;
-    crate::contour::after_block(cmd, st, from, out)?;
+    crate::contour::after_block(cmd, st, from, flow, out)?;
     Ok(flow)
 }
 
