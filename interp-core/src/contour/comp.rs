@@ -254,9 +254,17 @@ fn emit_to_corner(buf: &mut Buffer, comp: &Comp, e2: Option<&Elem>, out: &mut St
     };
     check_direction(&e1, comp, V2::of(comp.centre), join.end1)?;
     let tip = comp.tip_vector();
-    put(out, Canon { line: held.line, action: shifted(held.action, comp.plane, join.end1, tip) })?;
+    // Nothing is emitted for a piece of no length (a corner point on top of the last).
+    let mut last = V2::of(comp.centre);
+    if matches!(e1, Elem::Arc { .. }) || join.end1.minus(last).len() >= 0.5 {
+        put(out, Canon { line: held.line, action: shifted(held.action, comp.plane, join.end1, tip) })?;
+        last = join.end1;
+    }
     for m in &join.mids {
-        put(out, Canon { line: held.line, action: line_from(&held.action, comp.plane, m.plus(tip)) })?;
+        if m.minus(last).len() >= 0.5 {
+            put(out, Canon { line: held.line, action: line_from(&held.action, comp.plane, m.plus(tip)) })?;
+            last = *m;
+        }
     }
     for c in after {
         put(out, c)?;
