@@ -124,7 +124,7 @@ fn two_g_codes_of_one_group_duplicate_words_and_foreign_words() {
 fn codes_not_implemented_yet_say_so() {
     let r = run("G51.2
 G12.1
-G02.1 X1 Z1 A2 B1
+G51.2 P1 Q2
 M30
 ");
     assert_eq!(r.alarm_codes().iter().map(|a| a.1).collect::<Vec<_>>(), vec![4007; 3]);

@@ -90,6 +90,9 @@ pub enum AlarmKind {
     FeedZero,
     /// 0020: arc end point not on the circle (I/K form) or R shorter than half the chord.
     ArcRadiusTolerance { excess_nm: i64 },
+    /// 0020: the end point of an ellipse or parabola is off every curve of the given
+    /// size (2.4, 2.5).
+    CurveEndOff { excess_nm: i64 },
     /// 0021: an axis outside the selected plane in an arc block (2.3 note 7, 2.13 note 5).
     ArcAxisOutsidePlane { letter: Letter },
     /// 0022: arc with neither R nor I/J/K (2.3 note 2, parameter 3403 = alarm).
@@ -294,7 +297,7 @@ impl AlarmKind {
             ImproperAddress { .. } | AxisNotConfigured { .. } => 9,
             ImproperGCode { .. } => 10,
             FeedZero => 11,
-            ArcRadiusTolerance { .. } => 20,
+            ArcRadiusTolerance { .. } | CurveEndOff { .. } => 20,
             ArcAxisOutsidePlane { .. } => 21,
             ArcCenterMissing => 22,
             ArcRadiusZero => 23,
@@ -414,6 +417,12 @@ impl fmt::Display for AlarmKind {
             ArcRadiusTolerance { excess_nm } => write!(
                 f,
                 "arc end point is {}.{:03} mm off the circle (R too small or I/K inconsistent)",
+                excess_nm / 1_000_000,
+                (excess_nm % 1_000_000) / 1_000
+            ),
+            CurveEndOff { excess_nm } => write!(
+                f,
+                "end point is {}.{:03} mm off every ellipse/parabola of the given A, B or P",
                 excess_nm / 1_000_000,
                 (excess_nm % 1_000_000) / 1_000
             ),
@@ -591,7 +600,7 @@ pub const CATALOG: &[CatalogEntry] = &[
     CatalogEntry {
         code: 20,
         title: "arc radius out of tolerance",
-        when: "R shorter than half the chord, or I/K end point off the circle by more than parameter 3410",
+        when: "R shorter than half the chord, or I/K end point off the circle by more than parameter 3410; an ellipse (G02.1/G03.1) or parabola (G02.2/G03.2) whose end point no curve of the given A/B or P reaches (2.4, 2.5)",
     },
     CatalogEntry {
         code: 21,
@@ -967,6 +976,8 @@ mod tests {
             ImproperGCode { code: GNum(910) },
             FeedZero,
             ArcRadiusTolerance { excess_nm: 1 },
+            CurveEndOff { excess_nm: 1 },
+            CurveEndOff { excess_nm: 1 },
             ArcAxisOutsidePlane { letter: b'Y' },
             ArcCenterMissing,
             ArcRadiusZero,

@@ -132,8 +132,6 @@ impl GSet {
 fn supported(code: GCode) -> Result<(), AlarmKind> {
     use GCode::*;
     let what = match code {
-        EllipseCw | EllipseCcw => "elliptical interpolation G02.1/G03.1",
-        ParabolaCw | ParabolaCcw => "parabolic interpolation G02.2/G03.2",
         PolarOn => "polar coordinate interpolation G12.1",
         PolygonOn => "polygon turning G51.2",
         _ => return Ok(()),

@@ -54,6 +54,8 @@ fn words_of(code: GCode) -> (Letters, &'static str) {
         LocalFrame => (AXES, "G52"),
         MachineCoordinates => (AXES, "G53"),
         StrokeCheckOn => (Letters::of(b"XYZIJK"), "G22"),
+        EllipseCw | EllipseCcw => (Letters::of(b"XZUWABQ"), "G02.1/G03.1"),
+        ParabolaCw | ParabolaCcw => (Letters::of(b"XZUWPQ"), "G02.2/G03.2"),
         _ => (Letters(0), "this block"),
     }
 }
@@ -116,6 +118,9 @@ pub(super) fn convert(
     }
     if args::is_cycle(user) {
         cmd.cycle = args::read(user, block, fmt, cfg.diameter_x)?;
+    }
+    if matches!(user, GCode::EllipseCw | GCode::EllipseCcw | GCode::ParabolaCw | GCode::ParabolaCcw) {
+        cmd.cycle = args::read_curve(block, fmt)?;
     }
     if matches!(user, GCode::ArcCw | GCode::ArcCcw | GCode::StrokeCheckOn) {
         convert_arc_words(block, fmt, cmd)?;

@@ -24,6 +24,7 @@
 //! and delivered after its last move. Every action carries the cycle block's line.
 
 pub mod args;
+pub mod curve;
 mod emit;
 mod finish;
 mod groove;
@@ -76,6 +77,7 @@ enum Gen {
     Groove(GrooveGen),
     MultiThread(MultiThreadGen),
     Hole(HoleGen),
+    Curve(curve::CurveGen),
 }
 
 /// A cycle being delivered: its generator, its copy of the state and what is
@@ -169,6 +171,7 @@ impl Expansion {
                     Gen::Groove(g) => g.fill(&mut self.queue)?,
                     Gen::MultiThread(g) => g.fill(&mut self.queue)?,
                     Gen::Hole(g) => g.fill(&mut self.queue)?,
+                    Gen::Curve(g) => g.fill(&mut self.queue)?,
                 };
                 self.gen_done = !more;
                 continue;
@@ -373,6 +376,36 @@ fn multiple(code: GCode, cmd: &Command, st: &mut State, ctx: &mut Ctx<'_, '_>) -
         _ => return Ok(None),
     };
     Ok(Some(Expansion::new(em, generator, Profile::default())))
+}
+
+/// G02.1/G03.1 and G02.2/G03.2 (2.4, 2.5): the curve's cuts as an expansion.
+pub fn curve_block(cmd: &Command, st: &mut State, cfg: &MachineConfig, out: &mut Staged<'_>) -> Result<(), AlarmKind> {
+    use GCode::*;
+    if st.modal.plane != Plane::Zx {
+        return Err(AlarmKind::CycleNotInZxPlane);
+    }
+    for a in [crate::axis::Axis::Y, crate::axis::Axis::C] {
+        if cmd.axes[a.index()].is_some() {
+            return Err(AlarmKind::CycleOtherAxis { letter: a.letter() });
+        }
+    }
+    let CycleArgs::Curve { a, b, p, q_udeg } = cmd.cycle else { return Ok(()) };
+    let em = Emitter::new(*st, cmd.line);
+    let (start, end) = (em.here(cfg), target(cmd, st, cfg)?);
+    if start == end {
+        return Ok(());
+    }
+    let tol = cfg.motion.chord_tolerance;
+    let code = st.modal.motion;
+    let missing = |letter| AlarmKind::MissingWord { letter, context: "G02.1/G03.1 and G02.2/G03.2" };
+    let generator = match code {
+        EllipseCw | EllipseCcw => {
+            let (a, b) = (a.ok_or(missing(b'A'))?, b.ok_or(missing(b'B'))?);
+            curve::CurveGen::ellipse(start, end, a, b, q_udeg, code == EllipseCw, tol)?
+        }
+        _ => curve::CurveGen::parabola(start, end, p.ok_or(missing(b'P'))?, q_udeg, code == ParabolaCw, tol)?,
+    };
+    out.start_cycle(Expansion::new(em, Gen::Curve(generator), Profile::default()))
 }
 
 /// The block's X/Z target in work coordinates.
