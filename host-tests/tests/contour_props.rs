@@ -10,6 +10,9 @@ use proptest::prelude::*;
 
 const R: f64 = 0.8;
 
+/// A programmed segment: source line, start and end (Z, X radius) in mm.
+type Seg = (u32, (f64, f64), (f64, f64));
+
 fn machine() -> MachineConfig {
     let mut cfg = MachineConfig::default();
     for (n, tip) in [(1, 0), (2, 3)] {
@@ -85,7 +88,7 @@ proptest! {
         let start = (0.0, if face_first { 0.0 } else { x });
         let mut prog = format!("T0101\nG00 X{} Z5\nG42 G01 Z0 F100\n", 2.0 * start.1);
         // (source line, start, end) of every programmed segment after the start-up.
-        let mut segs: Vec<(u32, (f64, f64), (f64, f64))> = Vec::new();
+        let mut segs: Vec<Seg> = Vec::new();
         let mut line = 3;
         let mut here = start;
         let mut cut = |prog: &mut String, to: (f64, f64), text: String| {
