@@ -123,12 +123,12 @@ fn two_g_codes_of_one_group_duplicate_words_and_foreign_words() {
 #[test]
 fn codes_not_implemented_yet_say_so() {
     let r = run("G51.2
-G12.1
 G51.2 P1 Q2
+G51.2 P2 Q5 R0 S100
 M30
 ");
     assert_eq!(r.alarm_codes().iter().map(|a| a.1).collect::<Vec<_>>(), vec![4007; 3]);
-    assert!(r.alarms[1].to_string().contains("G12.1"), "{}", r.alarms[1]);
+    assert!(r.alarms[1].to_string().contains("G51.2"), "{}", r.alarms[1]);
 }
 
 /// A sink that takes at most one action per step.

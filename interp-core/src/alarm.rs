@@ -268,6 +268,10 @@ pub enum AlarmKind {
     ChamferTooLarge,
     /// 0212: plane selection after a `,C`/`,R` block, or a move leaving the plane (2.23 note 4).
     ChamferPlaneChange,
+    /// 4045: a G code polar interpolation does not allow (2.7 note 4).
+    PolarCodeNotAllowed { code: GNum },
+    /// 4046: an arc in the polar plane without R, or with I/J/K (2.7 note 6).
+    PolarArcNeedsR,
     /// 4044: more actions wait behind a held move than the look-ahead holds.
     ContourBufferFull,
     /// 0034: nose compensation starting up or cancelling in an arc block (2.18.3).
@@ -382,6 +386,8 @@ impl AlarmKind {
             ChamferTooLarge => 55,
             ChamferPlaneChange => 212,
             ContourBufferFull => 4044,
+            PolarCodeNotAllowed { .. } => 4045,
+            PolarArcNeedsR => 4046,
             NoseCompArc => 34,
             NoseCompPlaneChange => 37,
             NoseCompReversed => 3576,
@@ -545,6 +551,8 @@ impl fmt::Display for AlarmKind {
             ChamferTooLarge => write!(f, "chamfer or corner R is larger than the moves it joins"),
             ChamferPlaneChange => write!(f, "plane selection or a move out of the plane after chamfer/corner R"),
             ContourBufferFull => write!(f, "too many actions between a held move and the next move"),
+            PolarCodeNotAllowed { code } => write!(f, "{code} is not allowed in polar interpolation (G12.1)"),
+            PolarArcNeedsR => write!(f, "arcs in polar interpolation take R, not I/J/K"),
             NoseCompArc => write!(f, "nose compensation cannot start up or cancel in an arc block"),
             NoseCompPlaneChange => write!(f, "plane selection while nose compensation is active"),
             NoseCompReversed => write!(f, "G41/G42 reversed while nose compensation is active"),
@@ -897,6 +905,16 @@ pub const CATALOG: &[CatalogEntry] = &[
         when: "too many actions (M codes, dwells, blocks without motion) between a held move and the next move",
     },
     CatalogEntry {
+        code: 4045,
+        title: "code not allowed in polar interpolation",
+        when: "in G12.1 a G code other than G01, G02, G03, G04, G40-G42, G98/G99, G13.1 (2.7 note 4)",
+    },
+    CatalogEntry {
+        code: 4046,
+        title: "polar arc without R",
+        when: "G02/G03 in G12.1 with I/J/K or without R (2.7 note 6)",
+    },
+    CatalogEntry {
         code: 4501,
         title: "thread too fast",
         when: "lead x spindle speed (with the ripple margin) above an axis's cutting feed or step-rate limit, \
@@ -1066,6 +1084,8 @@ mod tests {
             ChamferTooLarge,
             ChamferPlaneChange,
             ContourBufferFull,
+            PolarCodeNotAllowed { code: GNum(0) },
+            PolarArcNeedsR,
             NoseCompArc,
             NoseCompPlaneChange,
             NoseCompReversed,

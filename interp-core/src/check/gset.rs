@@ -39,6 +39,8 @@ pub struct GSet {
     pub return_to_r: Option<bool>,
     /// Group 04: Some(true) = G22, Some(false) = G23.
     pub stroke: Option<bool>,
+    /// Group 21: Some(true) = G12.1, Some(false) = G13.1.
+    pub polar: Option<bool>,
 }
 
 /// Whether a group-00 code takes the block's axis words for itself.
@@ -64,10 +66,13 @@ impl GSet {
             set.assign(code);
         }
         set.check_units_alone(block, state)?;
-        // 2.10 note 6: G22/G23 take no other G code in their block.
-        if set.stroke.is_some() && block.g.len() > 1 {
-            let tenths = seen[Group::StrokeCheck as usize].unwrap_or(220);
-            return Err(AlarmKind::CodeMustBeAlone { code: GNum(tenths) });
+        // 2.10 note 6: G22/G23 take no other G code in their block; 2.7: G12.1/G13.1
+        // are given in a block of their own.
+        for (on, group) in [(set.stroke.is_some(), Group::StrokeCheck), (set.polar.is_some(), Group::Polar)] {
+            if on && block.g.len() > 1 {
+                let tenths = seen[group as usize].unwrap_or(0);
+                return Err(AlarmKind::CodeMustBeAlone { code: GNum(tenths) });
+            }
         }
         if let (Some(one), Some(_)) = (set.one_shot, set.motion)
             && uses_axes(one)
@@ -99,6 +104,8 @@ impl GSet {
             ReturnR => self.return_to_r = Some(true),
             StrokeCheckOn => self.stroke = Some(true),
             StrokeCheckOff => self.stroke = Some(false),
+            PolarOn => self.polar = Some(true),
+            PolarOff => self.polar = Some(false),
             _ => match code.group() {
                 Group::Motion => self.motion = Some(code),
                 Group::NonModal => self.one_shot = Some(code),
@@ -132,7 +139,6 @@ impl GSet {
 fn supported(code: GCode) -> Result<(), AlarmKind> {
     use GCode::*;
     let what = match code {
-        PolarOn => "polar coordinate interpolation G12.1",
         PolygonOn => "polygon turning G51.2",
         _ => return Ok(()),
     };

@@ -89,10 +89,12 @@ impl Command {
     /// The code that consumes the block's axis words.
     pub fn axis_user(&self, state: &State) -> GCode {
         use crate::cycles::args::{is_hole, is_multiple};
-        match self.g.stroke {
-            Some(true) => return GCode::StrokeCheckOn,
-            Some(false) => return GCode::StrokeCheckOff,
-            None => {}
+        match (self.g.stroke, self.g.polar) {
+            (Some(true), _) => return GCode::StrokeCheckOn,
+            (Some(false), _) => return GCode::StrokeCheckOff,
+            (_, Some(true)) => return GCode::PolarOn,
+            (_, Some(false)) => return GCode::PolarOff,
+            _ => {}
         }
         match self.g.one_shot {
             Some(c) if gset::uses_axes(c) || is_multiple(c) => c,

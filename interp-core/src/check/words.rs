@@ -175,7 +175,12 @@ fn convert_axes(
             (None, Some(n)) => (n, true),
             (None, None) => continue,
         };
-        let value = axis_value(axis, &n, cfg, fmt)?;
+        let value = if axis == Axis::C && state.polar.is_some() {
+            // 2.7: in polar interpolation C is the plane's second axis, a length.
+            fmt.length_nm(&n).ok_or(AlarmKind::Overflow)?
+        } else {
+            axis_value(axis, &n, cfg, fmt)?
+        };
         cmd.axes[axis.index()] = Some(AxisWord { value, incremental });
     }
     Ok(())

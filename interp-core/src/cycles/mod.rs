@@ -30,6 +30,7 @@ mod finish;
 mod groove;
 mod hole;
 mod pattern;
+pub mod polar;
 pub mod profile;
 mod rough;
 mod single;
@@ -65,8 +66,10 @@ const TAIL: usize = 6;
 /// expand to millions of pecks.
 pub const MAX_CYCLE_STEPS: u32 = 1_000_000;
 
-/// The generator of one cycle.
+/// The generator of one cycle. One lives inline in each expansion (there is no heap
+/// to box the larger ones into); the expansion's size is bounded by a test.
 #[derive(Clone, Debug, PartialEq)]
+#[allow(clippy::large_enum_variant)]
 enum Gen {
     /// A fixed handful of steps (G90/G94).
     Plan(heapless::Vec<Step, 8>),
@@ -78,6 +81,7 @@ enum Gen {
     MultiThread(MultiThreadGen),
     Hole(HoleGen),
     Curve(curve::CurveGen),
+    Polar(polar::PolarGen),
 }
 
 /// A cycle being delivered: its generator, its copy of the state and what is
@@ -172,6 +176,7 @@ impl Expansion {
                     Gen::MultiThread(g) => g.fill(&mut self.queue)?,
                     Gen::Hole(g) => g.fill(&mut self.queue)?,
                     Gen::Curve(g) => g.fill(&mut self.queue)?,
+                    Gen::Polar(g) => g.fill(&mut self.queue)?,
                 };
                 self.gen_done = !more;
                 continue;
@@ -406,6 +411,38 @@ pub fn curve_block(cmd: &Command, st: &mut State, cfg: &MachineConfig, out: &mut
         _ => curve::CurveGen::parabola(start, end, p.ok_or(missing(b'P'))?, q_udeg, code == ParabolaCw, tol)?,
     };
     out.start_cycle(Expansion::new(em, Gen::Curve(generator), Profile::default()))
+}
+
+/// Polar interpolation (2.7): the virtual moves the contour layer let out for this
+/// block become an expansion of real X/C moves. Actions before the first move stay
+/// before it; the others follow the moves.
+pub fn polar_block(st: &mut State, cfg: &MachineConfig, out: &mut Staged<'_>) -> Result<(), AlarmKind> {
+    if !out.actions.iter().any(|c| c.action.endpoint().is_some()) {
+        return Ok(());
+    }
+    let mut moves: heapless::Vec<Canon, { polar::MOVES }> = heapless::Vec::new();
+    let mut after: heapless::Vec<Canon, { crate::exec::STAGE }> = heapless::Vec::new();
+    let mut before = 0;
+    let all: heapless::Vec<Canon, { crate::exec::STAGE }> = out.actions.iter().copied().collect();
+    out.actions.clear();
+    for c in all {
+        if c.action.endpoint().is_some() {
+            moves.push(c).map_err(|_| AlarmKind::ContourBufferFull)?;
+        } else if moves.is_empty() {
+            out.actions.push_back(c).map_err(|_| AlarmKind::Overflow)?;
+            before += 1;
+        } else {
+            after.push(c).map_err(|_| AlarmKind::Overflow)?;
+        }
+    }
+    let _ = before;
+    let line = moves.first().map_or(0, |c| c.line);
+    let generator = polar::PolarGen::new(&moves, st.work_pos(cfg), cfg.motion.chord_tolerance)?;
+    out.start_cycle(Expansion::new(Emitter::new(*st, line), Gen::Polar(generator), Profile::default()))?;
+    for c in after {
+        out.actions.push_back(c).map_err(|_| AlarmKind::Overflow)?;
+    }
+    Ok(())
 }
 
 /// The block's X/Z target in work coordinates.

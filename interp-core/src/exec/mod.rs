@@ -4,6 +4,7 @@
 
 mod coords;
 pub(crate) mod motion;
+pub mod polar;
 mod spindle;
 mod state;
 pub mod stroke;
@@ -128,7 +129,8 @@ pub fn execute(
     env: &dyn Environment,
     out: &mut Staged<'_>,
 ) -> Result<Flow, AlarmKind> {
-    let from = st.pos;
+    polar::check_codes(cmd, st)?;
+    let from = st.polar.map_or(st.pos, |p| p.virtual_pos());
     let chained = cycles::before_block(cmd, st)?;
     apply_modal(cmd, st);
     stroke::apply(cmd, st, cfg)?;
@@ -143,6 +145,8 @@ pub fn execute(
         Some(GCode::MachineCoordinates) => coords::machine_move(cmd, st, cfg, out)?,
         Some(GCode::ReferenceReturn | GCode::ReferenceReturnN) => coords::reference_return(cmd, st, cfg, env, out)?,
         _ if cmd.g.stroke.is_some() => {}
+        _ if polar::mode_change(cmd, st, cfg)? => {}
+        _ if st.polar.is_some() => polar::execute(cmd, st, cfg, out)?,
         _ => {
             let mut ctx = cycles::Ctx { cfg, env, out };
             if !cycles::execute(cmd, st, &mut ctx, chained)? {
@@ -157,8 +161,13 @@ pub fn execute(
     aux(cmd, MTiming::After, out)?;
     spindle::after_motion(cmd, st, out)?;
     let flow = program_flow(cmd, cfg, env, out)?;
-    stroke::check_actions(st, from, out.actions.iter())?;
+    if st.polar.is_none() {
+        stroke::check_actions(st, from, out.actions.iter())?;
+    }
     crate::contour::after_block(cmd, st, from, flow, out)?;
+    if st.polar.is_some() {
+        cycles::polar_block(st, cfg, out)?;
+    }
     Ok(flow)
 }
 
