@@ -40,7 +40,9 @@ const CASES: &[(&str, u32, u16)] = &[
     ("G00 X1 X2\nM30\n", 1, 4004),
     ("G00 X1 I2\nM30\n", 1, 4005),
     ("G52\nM30\n", 1, 4006),
-    ("G51.2 P1 Q2\nM30\n", 1, 4007),
+    ("G51.2 P1 Q2\nM30\n", 1, 4047),
+    ("G51.2 P1000 Q2\nM30\n", 1, 4011),
+    ("G51.2 P1 Q2 M03\nM30\n", 1, 4016),
     ("M77\nM30\n", 1, 4008),
     ("M8 M9\nM30\n", 1, 4009),
     ("M3 M8 M41 M1\nM30\n", 1, 4010),
@@ -238,6 +240,8 @@ fn every_catalog_code_has_a_triggering_program() {
     covered.extend([3605, 4044]);
     // polar.rs alarms_of_2_7 (they need a C axis)
     covered.extend([4045, 4046]);
+    // program_structure.rs codes_not_implemented_yet_say_so (a cycle in MDI)
+    covered.insert(4007);
     for entry in CATALOG {
         assert!(
             covered.contains(&entry.code) || RESERVED.contains(&entry.code),

@@ -272,6 +272,8 @@ pub enum AlarmKind {
     PolarCodeNotAllowed { code: GNum },
     /// 4046: an arc in the polar plane without R, or with I/J/K (2.7 note 6).
     PolarArcNeedsR,
+    /// 4047: G51.2 polygon turning on a machine without a synchronised tool spindle (2.8 note 6).
+    PolygonNoToolSpindle,
     /// 4044: more actions wait behind a held move than the look-ahead holds.
     ContourBufferFull,
     /// 0034: nose compensation starting up or cancelling in an arc block (2.18.3).
@@ -388,6 +390,7 @@ impl AlarmKind {
             ContourBufferFull => 4044,
             PolarCodeNotAllowed { .. } => 4045,
             PolarArcNeedsR => 4046,
+            PolygonNoToolSpindle => 4047,
             NoseCompArc => 34,
             NoseCompPlaneChange => 37,
             NoseCompReversed => 3576,
@@ -553,6 +556,9 @@ impl fmt::Display for AlarmKind {
             ContourBufferFull => write!(f, "too many actions between a held move and the next move"),
             PolarCodeNotAllowed { code } => write!(f, "{code} is not allowed in polar interpolation (G12.1)"),
             PolarArcNeedsR => write!(f, "arcs in polar interpolation take R, not I/J/K"),
+            PolygonNoToolSpindle => {
+                write!(f, "polygon turning (G51.2) needs a tool spindle synchronised to the work spindle")
+            }
             NoseCompArc => write!(f, "nose compensation cannot start up or cancel in an arc block"),
             NoseCompPlaneChange => write!(f, "plane selection while nose compensation is active"),
             NoseCompReversed => write!(f, "G41/G42 reversed while nose compensation is active"),
@@ -915,6 +921,11 @@ pub const CATALOG: &[CatalogEntry] = &[
         when: "G02/G03 in G12.1 with I/J/K or without R (2.7 note 6)",
     },
     CatalogEntry {
+        code: 4047,
+        title: "no tool spindle for polygon turning",
+        when: "G51.2 (its P/Q/R/S valid) on this controller, which drives one spindle: the synchronised tool spindle in position control that 2.8 note 6 requires is missing",
+    },
+    CatalogEntry {
         code: 4501,
         title: "thread too fast",
         when: "lead x spindle speed (with the ripple margin) above an axis's cutting feed or step-rate limit, \
@@ -1086,6 +1097,7 @@ mod tests {
             ContourBufferFull,
             PolarCodeNotAllowed { code: GNum(0) },
             PolarArcNeedsR,
+            PolygonNoToolSpindle,
             NoseCompArc,
             NoseCompPlaneChange,
             NoseCompReversed,

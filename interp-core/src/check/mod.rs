@@ -96,6 +96,11 @@ impl Command {
             (_, Some(false)) => return GCode::PolarOff,
             _ => {}
         }
+        match self.g.polygon {
+            Some(true) => return GCode::PolygonOn,
+            Some(false) => return GCode::PolygonOff,
+            None => {}
+        }
         match self.g.one_shot {
             Some(c) if gset::uses_axes(c) || is_multiple(c) => c,
             _ => match self.g.drilling {

@@ -54,6 +54,7 @@ fn words_of(code: GCode) -> (Letters, &'static str) {
         LocalFrame => (AXES, "G52"),
         MachineCoordinates => (AXES, "G53"),
         StrokeCheckOn => (Letters::of(b"XYZIJK"), "G22"),
+        PolygonOn => (Letters::of(b"PQR"), "G51.2"),
         EllipseCw | EllipseCcw => (Letters::of(b"XZUWABQ"), "G02.1/G03.1"),
         ParabolaCw | ParabolaCcw => (Letters::of(b"XZUWPQ"), "G02.2/G03.2"),
         _ => (Letters(0), "this block"),
@@ -118,6 +119,9 @@ pub(super) fn convert(
     }
     if args::is_cycle(user) {
         cmd.cycle = args::read(user, block, fmt, cfg.diameter_x)?;
+    }
+    if user == GCode::PolygonOn {
+        polygon(block, fmt)?;
     }
     if matches!(user, GCode::EllipseCw | GCode::EllipseCcw | GCode::ParabolaCw | GCode::ParabolaCcw) {
         cmd.cycle = args::read_curve(block, fmt)?;
@@ -279,4 +283,31 @@ fn corner_word(block: &Block, fmt: &NumberFormat) -> Result<Option<crate::contou
     }
     let v = fmt.length_nm(n).ok_or(AlarmKind::Overflow)?;
     Ok((v > 0).then(|| make(v)))
+}
+
+/// G51.2 P Q R S (2.8): P and Q whole 1–999, R 0–359.999°, S 1–9999 rev/min. Polygon
+/// turning needs a tool spindle in position control synchronised to the work
+/// spindle (note 6, "否则报警"); this controller drives one spindle, so a valid G51.2
+/// raises alarm 4047.
+fn polygon(block: &Block, fmt: &NumberFormat) -> Result<(), AlarmKind> {
+    for l in [b'P', b'Q'] {
+        if let Some(n) = block.get(l) {
+            let v = whole(l, &n, 999)?;
+            if v == 0 {
+                return Err(AlarmKind::ValueOutOfRange { letter: l });
+            }
+        }
+    }
+    if let Some(r) = block.get(b'R') {
+        let u = fmt.angle_udeg(&r).ok_or(AlarmKind::Overflow)?;
+        if !(0..360_000_000).contains(&u) {
+            return Err(AlarmKind::ValueOutOfRange { letter: b'R' });
+        }
+    }
+    if let Some(s) = block.get(b'S')
+        && !(1..=9_999).contains(&whole(b'S', &s, 99_999)?)
+    {
+        return Err(AlarmKind::ValueOutOfRange { letter: b'S' });
+    }
+    Err(AlarmKind::PolygonNoToolSpindle)
 }
