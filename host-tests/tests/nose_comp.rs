@@ -254,3 +254,33 @@ fn an_alarm_leaves_the_held_move_and_the_mode_as_they_were() {
     assert_eq!(bad.alarm_codes(), vec![(4, 3576)]);
     assert_eq!(host_tests::moves(&good), host_tests::moves(&bad));
 }
+
+#[test]
+fn a_chamfer_under_g42_is_offset_like_any_other_line() {
+    // Face up to Ø20 with ,C2, then along -Z: the chamfer (Z0,r8)→(Z-2,r10) is
+    // inserted into the contour, then offset by R like the face and the diameter.
+    let r = ok("T0101\nG00 X0 Z5\nG42 G01 Z0 F0.1\nX20 ,C2\nZ-10\nG40 G00 X40\nM30\n", 0);
+    let mv = centre_moves(&r, 0);
+    let own: Vec<_> = mv.iter().filter(|m| m.line == 4).map(|m| m.end).collect();
+    // The face's offset ends where it meets the chamfer's offset (an outer 45° turn:
+    // lengthened), then the chamfer's offset runs R from the chamfer line.
+    let chamfer = ((0.0, 8.0), (-2.0, 10.0));
+    let on_chamfer: Vec<_> = own.iter().filter(|p| (line_dist(**p, chamfer.0, chamfer.1) - R).abs() < 1e-6).collect();
+    assert!(on_chamfer.len() >= 2, "{own:?}");
+    let diameter = mv.iter().find(|m| m.line == 5).unwrap();
+    assert!((diameter.end.1 - (10.0 + R)).abs() < 1e-6, "{diameter:?}");
+}
+
+#[test]
+fn g52_and_g50_cancel_the_offset_for_the_next_move_to_start_up() {
+    for code in ["G52 W0", "G50 X20 Z0"] {
+        let prog = format!("T0101\nG00 X0 Z5\nG42 G01 Z0 F0.1\nX20\n{code}\nZ-10\nX30\nG40 G00 X50\nM30\n");
+        let r = ok(&prog, 0);
+        let mv = centre_moves(&r, 0);
+        let face = mv.iter().rfind(|m| m.line == 4).unwrap();
+        assert!(near(face.end, (R, 10.0)), "{code}: the face ends on its normal: {face:?}");
+        // Z-10 starts up again from the uncompensated point: a line from (R, 10).
+        let z = mv.iter().find(|m| m.line == 6).unwrap();
+        assert!((z.end.1 - (10.0 + R)).abs() < 1e-6, "{code}: {z:?}");
+    }
+}
