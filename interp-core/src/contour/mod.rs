@@ -452,9 +452,11 @@ pub(crate) fn moved_to(ep: Endpoint, plane: Plane, p: V2) -> Endpoint {
     let (pa, pb) = p.round();
     let mut out = ep;
     for (axis, v) in [(a, pa), (b, pb)] {
-        let d = v - ep.machine[axis];
+        // Saturating: a point thrown far off by degenerate geometry must not panic
+        // (it then fails the soft limits downstream instead).
+        let d = v.saturating_sub(ep.machine[axis]);
         out.machine[axis] = v;
-        out.work[axis] = ep.work[axis] + d;
+        out.work[axis] = ep.work[axis].saturating_add(d);
     }
     out
 }
