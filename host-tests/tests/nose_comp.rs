@@ -284,3 +284,12 @@ fn g52_and_g50_cancel_the_offset_for_the_next_move_to_start_up() {
         assert!((z.end.1 - (10.0 + R)).abs() < 1e-6, "{code}: {z:?}");
     }
 }
+
+#[test]
+fn offset_points_beyond_the_soft_limits_are_refused() {
+    // Facing up at Z-599.5 with the tool on the -Z side: the offset runs at
+    // Z-600.3, past the Z travel (-600).
+    let text = "T0101\nG00 X20 Z-595\nG41 G01 Z-599.5 F0.1\nX40\nG40 G00 X60\nM30\n";
+    let r = run_with(text, machine(0), Panel::default());
+    assert_eq!(r.alarm_codes().first(), Some(&(4, 501)));
+}

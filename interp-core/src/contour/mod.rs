@@ -270,6 +270,7 @@ fn plan_comp(cmd: &Command, st: &mut State) -> Result<CompPlan, AlarmKind> {
 pub fn after_block(
     cmd: &Command,
     st: &mut State,
+    cfg: &crate::config::MachineConfig,
     from: Pos,
     flow: Flow,
     out: &mut Staged<'_>,
@@ -345,7 +346,16 @@ pub fn after_block(
             st.contour.comp = Comp::default();
         }
     }
-    finish_block(st, waited, moved, dwell_between)
+    finish_block(st, waited, moved, dwell_between)?;
+    if st.polar.is_none() {
+        // The shaped and offset points must respect the soft limits too.
+        for c in out.actions.iter() {
+            if let Some(e) = c.action.endpoint() {
+                crate::exec::motion::check_limits(&e.machine, cfg)?;
+            }
+        }
+    }
+    Ok(())
 }
 
 /// A non-motion action: behind stage 1's held move, else behind stage 2's, else out.

@@ -164,7 +164,7 @@ pub fn execute(
     if st.polar.is_none() {
         stroke::check_actions(st, from, out.actions.iter())?;
     }
-    crate::contour::after_block(cmd, st, from, flow, out)?;
+    crate::contour::after_block(cmd, st, cfg, from, flow, out)?;
     if st.polar.is_some() {
         cycles::polar_block(st, cfg, out)?;
     }
