@@ -293,3 +293,12 @@ fn offset_points_beyond_the_soft_limits_are_refused() {
     let r = run_with(text, machine(0), Panel::default());
     assert_eq!(r.alarm_codes().first(), Some(&(4, 501)));
 }
+
+#[test]
+fn a_start_up_shorter_than_the_radius_is_not_interference() {
+    // Approaching the face from 0.5 mm with R0.8: the start-up move runs back in Z
+    // to the offset corner, which is no gouge.
+    let r = ok("T0101\nG00 X0 Z0.5\nG42 G01 Z0 F0.1\nX20\nZ-10\nG40 G00 X40\nM30\n", 0);
+    let first = centre_moves(&r, 0).into_iter().find(|m| m.line == 3).unwrap();
+    assert!(near(first.end, (R, R)), "{first:?}");
+}

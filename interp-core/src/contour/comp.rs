@@ -49,11 +49,14 @@ pub struct Comp {
     pub engaged: bool,
     /// Nose-centre start (plane, nm) of the held move.
     pub centre: (i64, i64),
+    /// The held move is the start-up move (it starts off the offset path: no
+    /// interference check on it).
+    pub starting: bool,
 }
 
 impl Default for Comp {
     fn default() -> Self {
-        Comp { side: None, radius: 0, tip: 0, plane: Plane::Zx, engaged: false, centre: (0, 0) }
+        Comp { side: None, radius: 0, tip: 0, plane: Plane::Zx, engaged: false, centre: (0, 0), starting: false }
     }
 }
 
@@ -185,6 +188,7 @@ pub(super) fn start_up(buf: &mut Buffer, comp: &mut Comp, c: Canon, start: Pos) 
     }
     let centre = in_plane(&start, comp.plane).minus(comp.tip_vector());
     comp.engaged = true;
+    comp.starting = true;
     comp.centre = centre.round();
     buf.hold(c, start);
     Ok(())
@@ -203,6 +207,7 @@ pub(super) fn advance(
     let e2 = elem(&next.action, from, comp.plane)?;
     let start2 = emit_to_corner(buf, comp, Some(&e2), out)?;
     comp.centre = start2.round();
+    comp.starting = false;
     buf.hold(next, from);
     Ok(())
 }
@@ -275,7 +280,7 @@ fn emit_to_corner(buf: &mut Buffer, comp: &Comp, e2: Option<&Elem>, out: &mut St
 /// Alarm 3605 when the offset element from `from` to `to` runs against the
 /// programmed one (2.18.4 criterion 1): the nose would cut back into the part.
 fn check_direction(e: &Elem, comp: &Comp, from: V2, to: V2) -> Result<(), AlarmKind> {
-    if !comp.engaged {
+    if !comp.engaged || comp.starting {
         return Ok(());
     }
     match *e {

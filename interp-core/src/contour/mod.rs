@@ -252,6 +252,7 @@ fn plan_comp(cmd: &Command, st: &mut State) -> Result<CompPlan, AlarmKind> {
             plane: st.modal.plane,
             engaged: false,
             centre: (0, 0),
+            starting: false,
         };
         st.contour.comp = comp;
     }
