@@ -336,7 +336,12 @@ fn sim(args: &SimArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result<u8, E
     } else {
         None
     };
-    let output = render(args.format, &name, &r, &cfg, motion.as_ref()).map_err(stream_error(STDOUT))?;
+    let overlay = match args.format {
+        Format::Svg => compensation_overlay(&programs, &cfg, &panel(args), &variables, &r),
+        _ => None,
+    };
+    let output =
+        render(args.format, &name, &r, &cfg, motion.as_ref(), overlay.as_ref()).map_err(stream_error(STDOUT))?;
     match &args.out {
         Some(path) => std::fs::write(path, output)
             .map_err(|source| Error::Write { target: path.display().to_string(), source })?,
@@ -359,11 +364,49 @@ fn panel(args: &SimArgs) -> Panel {
     }
 }
 
+/// The programmed contour and the nose-centre path of a run that used nose radius
+/// compensation (the program run again with every nose radius, then every tip
+/// direction, set to 0); `None` when the contour is the machine's path.
+fn compensation_overlay(
+    programs: &Programs,
+    cfg: &MachineConfig,
+    panel: &Panel,
+    variables: &interp_core::macros::Variables,
+    r: &Run,
+) -> Option<svg::Overlay> {
+    let with = |radius: bool, tip: bool| {
+        let mut c = cfg.clone();
+        for n in 1..=interp_core::config::MAX_OFFSETS as u16 {
+            if let Some(row) = c.tools.get_mut(n) {
+                if radius {
+                    row.radius = 0;
+                }
+                if tip {
+                    row.tip = 0;
+                }
+            }
+        }
+        run_programs(programs, &c, panel, OnAlarm::Stop, variables).ok().map(|run| run.actions)
+    };
+    let contour = with(true, true)?;
+    if contour == r.actions {
+        return None;
+    }
+    Some(svg::Overlay { contour, centre: with(false, true)? })
+}
+
 /// The output of `lathe sim` in `format`.
-fn render(format: Format, name: &str, r: &Run, cfg: &MachineConfig, m: Option<&Motion>) -> std::io::Result<Vec<u8>> {
+fn render(
+    format: Format,
+    name: &str,
+    r: &Run,
+    cfg: &MachineConfig,
+    m: Option<&Motion>,
+    overlay: Option<&svg::Overlay>,
+) -> std::io::Result<Vec<u8>> {
     Ok(match format {
         Format::Summary => Summary::new(name, r, cfg).with_motion(m.cloned()).to_string().into_bytes(),
-        Format::Svg => svg::render(name, r, cfg).into_bytes(),
+        Format::Svg => svg::render(name, r, cfg, overlay).into_bytes(),
         Format::Jsonl => {
             let mut buf = Vec::new();
             jsonl::write(r, cfg, &mut buf)?;

@@ -6,12 +6,16 @@
 //! dash-dot and a dot marks the start. Line widths and text sizes are computed from
 //! the drawing's size, so they look the same for a watch part and a shaft.
 //!
+//! With tool-nose radius compensation (G41/G42) two more layers are drawn: the
+//! programmed contour (grey) and the path of the nose centre (green, what the
+//! compensation computed); the blue path is the imaginary tip the machine moves.
+//!
 //! SVG's y axis points down, so a point (Z, X) is drawn at (Z, −X). The picture is
 //! the program's view (X up), where G02 turns clockwise: that is sweep-flag 1.
 
 use std::fmt::Write;
 
-use interp_core::canon::Plane;
+use interp_core::canon::{Canon, Plane};
 use interp_core::{Axis, MachineConfig, Pos};
 
 use crate::path::{ArcPath, Bounds, Motion, Segment, segments};
@@ -24,19 +28,34 @@ const CAPTION_PX: f64 = 36.0;
 /// Points a G17/G19 arc is drawn with (it projects to a line or curve in X–Z).
 const PROJECTED_ARC_POINTS: u32 = 32;
 
-/// The drawing of `run` of `program` on machine `cfg` as an SVG document.
-pub fn render(program: &str, run: &Run, cfg: &MachineConfig) -> String {
+/// The paths drawn besides the machine's when nose compensation was used.
+#[derive(Debug, Clone, Default)]
+pub struct Overlay {
+    /// The run with every nose radius 0: the programmed contour.
+    pub contour: Vec<Canon>,
+    /// The run with every tip direction 0: the nose centre's path.
+    pub centre: Vec<Canon>,
+}
+
+/// The drawing of `run` of `program` on machine `cfg` as an SVG document, with the
+/// compensation layers of `overlay`.
+pub fn render(program: &str, run: &Run, cfg: &MachineConfig, overlay: Option<&Overlay>) -> String {
     let segs = segments(run.start, &run.actions);
-    let view = View::fit(Bounds::of(&segs));
+    // With compensation the interest is the cut: the view fits the cutting moves
+    // (a 0.8 mm offset would vanish beside the rapid from the reference position).
+    let cuts: Vec<Segment> = segs.iter().filter(|g| !matches!(g.motion, Motion::Rapid(_))).copied().collect();
+    let view = View::fit(Bounds::of(if overlay.is_some() && !cuts.is_empty() { &cuts } else { &segs }));
     let mut s = String::new();
     view.open(&mut s, program);
     view.grid(&mut s);
     view.centreline(&mut s);
-    s.push_str("<g id=\"path\">\n");
-    for seg in &segs {
-        path_element(&mut s, seg, cfg);
+    if let Some(o) = overlay {
+        group(&mut s, "contour", Some("contour"), &segments(run.start, &o.contour), cfg);
     }
-    s.push_str("</g>\n");
+    group(&mut s, "path", None, &segs, cfg);
+    if let Some(o) = overlay {
+        group(&mut s, "centre", Some("centre"), &segments(run.start, &o.centre), cfg);
+    }
     if let Some(first) = segs.first() {
         let (x, y) = screen(first.from);
         let _ = writeln!(
@@ -47,9 +66,19 @@ pub fn render(program: &str, run: &Run, cfg: &MachineConfig) -> String {
             n(4.0 * view.px)
         );
     }
-    view.caption(&mut s, program);
+    view.caption(&mut s, program, overlay.is_some());
     s.push_str("</svg>\n");
     s
+}
+
+/// A `<g>` of path elements; `class` replaces the feed/rapid classes of the
+/// cutting moves (rapids keep theirs).
+fn group(s: &mut String, id: &str, class: Option<&str>, segs: &[Segment], cfg: &MachineConfig) {
+    let _ = writeln!(s, "<g id=\"{id}\">");
+    for seg in segs {
+        path_element(s, seg, cfg, class);
+    }
+    s.push_str("</g>\n");
 }
 
 /// A work position as drawn: (Z, −X radius) in mm.
@@ -132,6 +161,8 @@ impl View {
              .feed {{ stroke: #1f4fb4; stroke-width: {w2}px; }}\n\
              .thread {{ stroke: #9c27b0; stroke-width: {w2}px; }}\n\
              .tap {{ stroke: #8c564b; stroke-width: {w2}px; }}\n\
+             .contour {{ stroke: #888; stroke-width: {w3}px; }}\n\
+             .centre {{ stroke: #2ca02c; stroke-width: {w1}px; }}\n\
              .start {{ fill: #2ca02c; }}\n\
              .scale {{ stroke: #000; stroke-width: {w15}px; }}\n\
              text {{ font-family: sans-serif; font-size: {f11}px; fill: #555; }}\n\
@@ -140,6 +171,7 @@ impl View {
             w1 = p(1.0),
             w15 = p(1.5),
             w2 = p(2.0),
+            w3 = p(3.0),
             d2 = p(2.0),
             d3 = p(3.0),
             d4 = p(4.0),
@@ -191,7 +223,7 @@ impl View {
     }
 
     /// Title line, legend and a scale bar one grid step long.
-    fn caption(&self, s: &mut String, program: &str) {
+    fn caption(&self, s: &mut String, program: &str, comp: bool) {
         let x = self.min_x + 6.0 * self.px;
         let (y1, y2) = (self.min_y + 15.0 * self.px, self.min_y + 31.0 * self.px);
         let _ = writeln!(
@@ -203,9 +235,10 @@ impl View {
         );
         let _ = writeln!(
             s,
-            "<text x=\"{}\" y=\"{}\">rapid: red dashed; feed: blue; thread: purple; tap: brown; green dot: start; grid {} mm</text>",
+            "<text x=\"{}\" y=\"{}\">rapid: red dashed; feed: blue; thread: purple; tap: brown; green dot: start; {}grid {} mm</text>",
             n(x),
             n(y2),
+            if comp { "grey: programmed contour; green line: nose centre (G41/G42); " } else { "" },
             n(self.step)
         );
         let right = self.min_x + self.width - 10.0 * self.px;
@@ -236,13 +269,18 @@ fn nice_step(raw: f64) -> f64 {
 }
 
 /// One `<path>` for a move, with its class and source line.
-fn path_element(s: &mut String, seg: &Segment, cfg: &MachineConfig) {
+fn path_element(s: &mut String, seg: &Segment, cfg: &MachineConfig, layer: Option<&str>) {
     let (class, d) = match &seg.motion {
         Motion::Rapid(_) => ("rapid", polyline(&seg.vertices(cfg))),
         Motion::Linear(_) => ("feed", polyline(&seg.vertices(cfg))),
         Motion::Arc(a) => ("feed", arc_data(&ArcPath::new(seg.from, a), a.cw, seg.to())),
         Motion::Thread(_) => ("thread", polyline(&seg.vertices(cfg))),
         Motion::Tap(_) => ("tap", polyline(&seg.vertices(cfg))),
+    };
+    let class = match layer {
+        Some(l) if class != "rapid" => l,
+        Some(_) => return,
+        None => class,
     };
     let _ = writeln!(s, "<path class=\"{class}\" data-line=\"{}\" d=\"{d}\"/>", seg.line);
 }

@@ -12,7 +12,7 @@ use interp_core::{Axis, Interpreter, MachineConfig, Panel, Pos};
 use sim::{Sim, SimOptions, SpindleModel};
 
 /// Codes documented but raised only by features still to come.
-const RESERVED: &[u16] = &[3576, 3577, 3605, 3607];
+const RESERVED: &[u16] = &[];
 
 /// One program per alarm: (program, line of the alarm, code).
 const CASES: &[(&str, u32, u16)] = &[
@@ -40,7 +40,9 @@ const CASES: &[(&str, u32, u16)] = &[
     ("G00 X1 X2\nM30\n", 1, 4004),
     ("G00 X1 I2\nM30\n", 1, 4005),
     ("G52\nM30\n", 1, 4006),
-    ("G41 X1\nM30\n", 1, 4007),
+    ("G51.2 P1 Q2\nM30\n", 1, 4047),
+    ("G51.2 P1000 Q2\nM30\n", 1, 4011),
+    ("G51.2 P1 Q2 M03\nM30\n", 1, 4016),
     ("M77\nM30\n", 1, 4008),
     ("M8 M9\nM30\n", 1, 4009),
     ("M3 M8 M41 M1\nM30\n", 1, 4010),
@@ -86,6 +88,17 @@ const CASES: &[(&str, u32, u16)] = &[
     ("M3 S500\nG32 W-30 F2 Q361\nM30\n", 2, 4033),
     ("M3 S500\nG00 X40 Z5\nG76 P011060\nG76 X30 Z-20 P1.0 Q0.5 F50\nM30\n", 4, 4034),
     ("G0 X40 Z5 M3 S500\nG74 R0.5\nG74 X20 Z-20 P3 Q5 F50\nM30\n", 3, 4037),
+    ("M3 S500\nG32 W-30 F2 ,C1\nM30\n", 2, 50),
+    ("G01 W-20 F100 ,C1\nG00 U10\nM30\n", 2, 51),
+    ("G01 W-20 F100 ,R5\nU2\nM30\n", 2, 55),
+    ("G01 W-20 F100 ,C1\nG19 U10\nM30\n", 2, 212),
+    ("G22 X40 Z-10 I20 K-30\nG00 X10 Z-5\nG01 X50 Z-35 F100\nM30\n", 3, 502),
+    ("G42 G01 X10 F100\nG41 Z-10\nM30\n", 2, 3576),
+    ("G42 G01 X10 F100\nT0101\nM30\n", 2, 3577),
+    ("G42 G02 X10 Z-5 R5 F100\nM30\n", 1, 34),
+    ("G42 G01 X10 F100\nG19 W-10\nM30\n", 2, 37),
+    ("G42 G01 W-10 F100\nW10\nM30\n", 2, 3607),
+    ("G22 X40 Z-10 I20 K-30\nG00 X30 Z0\nG01 Z-40 F100\nM30\n", 3, 503),
 ];
 
 #[test]
@@ -223,6 +236,12 @@ fn every_catalog_code_has_a_triggering_program() {
     // motion_alarms_are_raised_with_their_line
     covered.extend(MOTION_CASES.iter().map(|c| c.2));
     covered.extend([4503, 4504, 4506, 4507, 4508, 4509]);
+    // nose_comp.rs alarms_of_2_18 (they need a nose radius in the tool table)
+    covered.extend([3605, 4044]);
+    // polar.rs alarms_of_2_7 (they need a C axis)
+    covered.extend([4045, 4046]);
+    // program_structure.rs codes_not_implemented_yet_say_so (a cycle in MDI)
+    covered.insert(4007);
     for entry in CATALOG {
         assert!(
             covered.contains(&entry.code) || RESERVED.contains(&entry.code),

@@ -90,6 +90,9 @@ pub enum AlarmKind {
     FeedZero,
     /// 0020: arc end point not on the circle (I/K form) or R shorter than half the chord.
     ArcRadiusTolerance { excess_nm: i64 },
+    /// 0020: the end point of an ellipse or parabola is off every curve of the given
+    /// size (2.4, 2.5).
+    CurveEndOff { excess_nm: i64 },
     /// 0021: an axis outside the selected plane in an arc block (2.3 note 7, 2.13 note 5).
     ArcAxisOutsidePlane { letter: Letter },
     /// 0022: arc with neither R nor I/J/K (2.3 note 2, parameter 3403 = alarm).
@@ -144,6 +147,8 @@ pub enum AlarmKind {
     OvertravelPositive { letter: Letter },
     /// 0501: the move would pass the negative soft limit.
     OvertravelNegative { letter: Letter },
+    /// 0502/0503: a move would enter the forbidden area of stored stroke check 2 (G22, 2.10).
+    StrokeLimit2 { letter: Letter, plus: bool },
     /// 5010: the program text ended without M02, M30 or M99.
     EndOfRecord,
     /// 4001: G20/G21 must stand alone in its block (2.9 note 2).
@@ -255,6 +260,26 @@ pub enum AlarmKind {
     /// 4510: a G34 lead change K × spindle speed² (the constant acceleration of a
     /// variable-lead thread) takes more than half the long axis's acceleration.
     ThreadLeadChangeTooFast { letter: Letter },
+    /// 0050: `,C`/`,R` in a thread block (2.23 note 8).
+    ChamferInThread,
+    /// 0051: the block after a `,C`/`,R` block is not a G01/G02/G03 move (2.23 notes 2, 7).
+    ChamferNoMove { what: &'static str },
+    /// 0055: a chamfer or corner R longer than the moves it joins (2.23 note 3).
+    ChamferTooLarge,
+    /// 0212: plane selection after a `,C`/`,R` block, or a move leaving the plane (2.23 note 4).
+    ChamferPlaneChange,
+    /// 4045: a G code polar interpolation does not allow (2.7 note 4).
+    PolarCodeNotAllowed { code: GNum },
+    /// 4046: an arc in the polar plane without R, or with I/J/K (2.7 note 6).
+    PolarArcNeedsR,
+    /// 4047: G51.2 polygon turning on a machine without a synchronised tool spindle (2.8 note 6).
+    PolygonNoToolSpindle,
+    /// 4044: more actions wait behind a held move than the look-ahead holds.
+    ContourBufferFull,
+    /// 0034: nose compensation starting up or cancelling in an arc block (2.18.3).
+    NoseCompArc,
+    /// 0037: plane selection while nose compensation is active.
+    NoseCompPlaneChange,
     /// 3576: reversing G41/G42 directly while compensating (2.18.4).
     NoseCompReversed,
     /// 3577: T code while nose compensation is active (2.18.4).
@@ -278,7 +303,7 @@ impl AlarmKind {
             ImproperAddress { .. } | AxisNotConfigured { .. } => 9,
             ImproperGCode { .. } => 10,
             FeedZero => 11,
-            ArcRadiusTolerance { .. } => 20,
+            ArcRadiusTolerance { .. } | CurveEndOff { .. } => 20,
             ArcAxisOutsidePlane { .. } => 21,
             ArcCenterMissing => 22,
             ArcRadiusZero => 23,
@@ -302,6 +327,8 @@ impl AlarmKind {
             ReferenceNotEstablished { .. } => 224,
             OvertravelPositive { .. } => 500,
             OvertravelNegative { .. } => 501,
+            StrokeLimit2 { plus: true, .. } => 502,
+            StrokeLimit2 { plus: false, .. } => 503,
             EndOfRecord => 5010,
             UnitsNotAlone => 4001,
             UnitsNotAtStart => 4002,
@@ -356,6 +383,16 @@ impl AlarmKind {
             MotionConfigInvalid { .. } => 4508,
             EmergencyStop => 4509,
             ThreadLeadChangeTooFast { .. } => 4510,
+            ChamferInThread => 50,
+            ChamferNoMove { .. } => 51,
+            ChamferTooLarge => 55,
+            ChamferPlaneChange => 212,
+            ContourBufferFull => 4044,
+            PolarCodeNotAllowed { .. } => 4045,
+            PolarArcNeedsR => 4046,
+            PolygonNoToolSpindle => 4047,
+            NoseCompArc => 34,
+            NoseCompPlaneChange => 37,
             NoseCompReversed => 3576,
             ToolChangeInNoseComp => 3577,
             NoseCompGouge => 3605,
@@ -392,6 +429,12 @@ impl fmt::Display for AlarmKind {
                 excess_nm / 1_000_000,
                 (excess_nm % 1_000_000) / 1_000
             ),
+            CurveEndOff { excess_nm } => write!(
+                f,
+                "end point is {}.{:03} mm off every ellipse/parabola of the given A, B or P",
+                excess_nm / 1_000_000,
+                (excess_nm % 1_000_000) / 1_000
+            ),
             ArcAxisOutsidePlane { letter } => write!(f, "axis {} is outside the arc's plane", Ch(letter)),
             ArcCenterMissing => write!(f, "arc needs R or I/J/K"),
             ArcRadiusZero => write!(f, "arc radius R is zero"),
@@ -421,6 +464,12 @@ impl fmt::Display for AlarmKind {
             }
             OvertravelPositive { letter } => write!(f, "move exceeds the + soft limit of axis {}", Ch(letter)),
             OvertravelNegative { letter } => write!(f, "move exceeds the - soft limit of axis {}", Ch(letter)),
+            StrokeLimit2 { letter, plus } => write!(
+                f,
+                "move enters the forbidden area of stored stroke check 2 (G22) in {} {}",
+                if plus { "+" } else { "-" },
+                Ch(letter)
+            ),
             EndOfRecord => write!(f, "program ended without M02, M30 or M99"),
             UnitsNotAlone => write!(f, "G20/G21 must be alone in its block"),
             UnitsNotAtStart => write!(f, "G20/G21 only at the start of the program, before any move"),
@@ -500,6 +549,18 @@ impl fmt::Display for AlarmKind {
                     Ch(letter)
                 )
             }
+            ChamferInThread => write!(f, "chamfer or corner R (,C/,R) cannot be given in a thread block"),
+            ChamferNoMove { what } => write!(f, "no G01/G02/G03 move after chamfer/corner R: {what}"),
+            ChamferTooLarge => write!(f, "chamfer or corner R is larger than the moves it joins"),
+            ChamferPlaneChange => write!(f, "plane selection or a move out of the plane after chamfer/corner R"),
+            ContourBufferFull => write!(f, "too many actions between a held move and the next move"),
+            PolarCodeNotAllowed { code } => write!(f, "{code} is not allowed in polar interpolation (G12.1)"),
+            PolarArcNeedsR => write!(f, "arcs in polar interpolation take R, not I/J/K"),
+            PolygonNoToolSpindle => {
+                write!(f, "polygon turning (G51.2) needs a tool spindle synchronised to the work spindle")
+            }
+            NoseCompArc => write!(f, "nose compensation cannot start up or cancel in an arc block"),
+            NoseCompPlaneChange => write!(f, "plane selection while nose compensation is active"),
             NoseCompReversed => write!(f, "G41/G42 reversed while nose compensation is active"),
             ToolChangeInNoseComp => write!(f, "T code while nose compensation is active"),
             NoseCompGouge => write!(f, "nose compensation would gouge the part"),
@@ -553,7 +614,7 @@ pub const CATALOG: &[CatalogEntry] = &[
     CatalogEntry {
         code: 20,
         title: "arc radius out of tolerance",
-        when: "R shorter than half the chord, or I/K end point off the circle by more than parameter 3410",
+        when: "R shorter than half the chord, or I/K end point off the circle by more than parameter 3410; an ellipse (G02.1/G03.1) or parabola (G02.2/G03.2) whose end point no curve of the given A/B or P reaches (2.4, 2.5)",
     },
     CatalogEntry {
         code: 21,
@@ -571,7 +632,28 @@ pub const CATALOG: &[CatalogEntry] = &[
         title: "illegal offset or tool number",
         when: "T word selects a tool or offset outside the tool table",
     },
+    CatalogEntry {
+        code: 34,
+        title: "arc in compensation start-up or cancel",
+        when: "the first move after G41/G42 or the G40 move is an arc (2.18.3)",
+    },
+    CatalogEntry { code: 37, title: "plane change in compensation", when: "G17/G18/G19 while G41/G42 is in force" },
     CatalogEntry { code: 46, title: "illegal reference number", when: "G30 P other than 1-4 (2.11.2)" },
+    CatalogEntry {
+        code: 50,
+        title: "chamfer in thread block",
+        when: ",C or ,R in a G32/G34/G92/G76 block (2.23 note 8)",
+    },
+    CatalogEntry {
+        code: 51,
+        title: "no move after chamfer/corner R",
+        when: "the block after a ,C/,R block is not a G01/G02/G03 move (one G04 block may stand between), or a group 00 code shares or follows it (2.23 notes 2, 7)",
+    },
+    CatalogEntry {
+        code: 55,
+        title: "chamfer/corner R too large",
+        when: "the chamfer or corner R does not fit on the moves it joins (2.23 note 3)",
+    },
     CatalogEntry {
         code: 61,
         title: "P/Q missing in G70-G73",
@@ -661,6 +743,11 @@ pub const CATALOG: &[CatalogEntry] = &[
     },
     CatalogEntry { code: 204, title: "axis move in rigid tap", when: "axis motion between M29 and G84/G88 (2.22.1)" },
     CatalogEntry {
+        code: 212,
+        title: "plane change after chamfer/corner R",
+        when: "G17/G18/G19 in the block after a ,C/,R block, or a chamfered move leaving the plane (2.23 note 4)",
+    },
+    CatalogEntry {
         code: 224,
         title: "reference not established",
         when: "G28/G30 on an axis that has not been homed (2.11.2 note 2)",
@@ -681,24 +768,26 @@ pub const CATALOG: &[CatalogEntry] = &[
         when: "a move's end point or arc passes the axis's - travel limit",
     },
     CatalogEntry {
+        code: 502,
+        title: "+ overtravel (stroke check 2)",
+        when: "G22 in force: a move would enter the forbidden area moving in + (2.10), or the tool is outside an outside-forbidden box when G22 is given (note 7)",
+    },
+    CatalogEntry { code: 503, title: "- overtravel (stroke check 2)", when: "as 0502, moving in - or below the box" },
+    CatalogEntry {
         code: 3576,
         title: "nose compensation reversed",
-        when: "G41 to G42 or back directly while compensating (2.18.4); reserved until G41/G42 are supported",
+        when: "G41 to G42 or back directly while compensating (2.18.4)",
     },
-    CatalogEntry {
-        code: 3577,
-        title: "tool change in nose compensation",
-        when: "T code in G41/G42 (2.18.4); reserved until G41/G42 are supported",
-    },
+    CatalogEntry { code: 3577, title: "tool change in nose compensation", when: "T code in G41/G42 (2.18.4)" },
     CatalogEntry {
         code: 3605,
         title: "nose compensation gouge",
-        when: "interference check finds overcutting (2.18.4); reserved until G41/G42 are supported",
+        when: "interference check finds overcutting (2.18.4)",
     },
     CatalogEntry {
         code: 3607,
         title: "compensation corner angle",
-        when: "corner between two paths under 0.1 degrees (2.18.4); reserved until G41/G42 are supported",
+        when: "corner between two paths under 0.1 degrees (2.18.4)",
     },
     CatalogEntry {
         code: 4001,
@@ -817,6 +906,26 @@ pub const CATALOG: &[CatalogEntry] = &[
         when: "M91/M92 test an external input the machine does not have (3.1.5)",
     },
     CatalogEntry {
+        code: 4044,
+        title: "look-ahead full",
+        when: "too many actions (M codes, dwells, blocks without motion) between a held move and the next move",
+    },
+    CatalogEntry {
+        code: 4045,
+        title: "code not allowed in polar interpolation",
+        when: "in G12.1 a G code other than G01, G02, G03, G04, G40-G42, G98/G99, G13.1 (2.7 note 4)",
+    },
+    CatalogEntry {
+        code: 4046,
+        title: "polar arc without R",
+        when: "G02/G03 in G12.1 with I/J/K or without R (2.7 note 6)",
+    },
+    CatalogEntry {
+        code: 4047,
+        title: "no tool spindle for polygon turning",
+        when: "G51.2 (its P/Q/R/S valid) on this controller, which drives one spindle: the synchronised tool spindle in position control that 2.8 note 6 requires is missing",
+    },
+    CatalogEntry {
         code: 4501,
         title: "thread too fast",
         when: "lead x spindle speed (with the ripple margin) above an axis's cutting feed or step-rate limit, \
@@ -896,6 +1005,8 @@ mod tests {
             ImproperGCode { code: GNum(910) },
             FeedZero,
             ArcRadiusTolerance { excess_nm: 1 },
+            CurveEndOff { excess_nm: 1 },
+            CurveEndOff { excess_nm: 1 },
             ArcAxisOutsidePlane { letter: b'Y' },
             ArcCenterMissing,
             ArcRadiusZero,
@@ -924,6 +1035,8 @@ mod tests {
             OvertravelPositive { letter: b'X' },
             OvertravelNegative { letter: b'X' },
             EndOfRecord,
+            StrokeLimit2 { letter: b'X', plus: true },
+            StrokeLimit2 { letter: b'X', plus: false },
             UnitsNotAlone,
             UnitsNotAtStart,
             DuplicateGroup { first: GNum(0), second: GNum(10) },
@@ -977,6 +1090,16 @@ mod tests {
             MotionConfigInvalid { what: "x" },
             EmergencyStop,
             ThreadLeadChangeTooFast { letter: b'Z' },
+            ChamferInThread,
+            ChamferNoMove { what: "x" },
+            ChamferTooLarge,
+            ChamferPlaneChange,
+            ContourBufferFull,
+            PolarCodeNotAllowed { code: GNum(0) },
+            PolarArcNeedsR,
+            PolygonNoToolSpindle,
+            NoseCompArc,
+            NoseCompPlaneChange,
             NoseCompReversed,
             ToolChangeInNoseComp,
             NoseCompGouge,

@@ -302,6 +302,7 @@ impl Interpreter {
         self.phase = Phase::Running;
         self.started = false;
         self.state.moved = false;
+        self.state.contour.clear();
         self.calls.clear();
         self.loops.clear();
     }

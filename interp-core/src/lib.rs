@@ -24,6 +24,7 @@ pub mod canon;
 pub mod check;
 pub mod codes;
 pub mod config;
+pub mod contour;
 pub mod cycles;
 pub mod env;
 pub mod exec;

@@ -114,3 +114,39 @@ fn line_widths_do_not_grow_with_the_part() {
     let (a, b) = (relative_stroke(&small), relative_stroke(&large));
     assert!((a - b).abs() < 1e-3 * a, "{a} vs {b}");
 }
+
+/// With nose radius compensation the drawing adds the programmed contour and the
+/// nose-centre path; without it, neither.
+#[test]
+fn compensation_draws_the_contour_and_the_nose_centre() {
+    let machine = scratch("r08.toml", "[[offsets]]\nnumber = 1\nradius = 0.8\ntip = 3\n");
+    let prog = scratch("g42.nc", "T0101\nG00 X20 Z3\nG42 G01 Z0 F100\nZ-10\nX30 Z-20\nG40 G00 X50\nM30\n");
+    let o = lathe(&["sim", &prog, "--machine", &machine, "--format", "svg"]);
+    assert_eq!(status(&o), 0);
+    let text = stdout(&o);
+    let doc = roxmltree::Document::parse(&text).unwrap();
+    let contour = paths(&doc, "contour");
+    let centre = paths(&doc, "centre");
+    // The taper (line 5) as programmed: (Z-10, r10) to (Z-20, r15), drawn at (Z, -r).
+    assert!(contour.iter().any(|d| d == "M-10 -10 L-20 -15"), "{contour:?}");
+    // The nose centre on the taper lies 0.8 mm off it: check both ends' distance.
+    let taper_centre = doc
+        .descendants()
+        .find(|n| n.attribute("class") == Some("centre") && n.attribute("data-line") == Some("5"))
+        .and_then(|n| n.attribute("d"))
+        .unwrap();
+    let v: Vec<f64> = taper_centre
+        .split(|c: char| c == 'M' || c == 'L' || c.is_whitespace())
+        .filter(|s| !s.is_empty())
+        .map(|s| s.parse().unwrap())
+        .collect();
+    for p in [(v[0], -v[1]), (v[2], -v[3])] {
+        // Line through (-10, 10) and (-20, 15): distance |(p - a) × (b - a)| / |b - a|.
+        let (dx, dy) = (-10.0, 5.0);
+        let d = ((p.0 + 10.0) * dy - (p.1 - 10.0) * dx).abs() / f64::hypot(dx, dy);
+        assert!((d - 0.8).abs() < 2e-4, "{p:?}: {d}");
+    }
+    assert!(!centre.is_empty());
+    let plain = svg("plain.nc", "G00 X20 Z3\nG01 Z-10 F100\nM30\n");
+    assert!(!plain.contains("class=\"contour\"") && !plain.contains("class=\"centre\""));
+}

@@ -79,6 +79,8 @@ pub struct Command {
     pub tool: Option<(u16, u16)>,
     /// M98/M99/M91/M92 with their words.
     pub flow: Option<FlowWord>,
+    /// `,C`/`,R`: the corner to insert after the block's move (2.23).
+    pub corner: Option<crate::contour::Corner>,
     /// Cycle words (G70–G76, G90/G92/G94, G32/G34, G83–G89), internal units.
     pub cycle: crate::cycles::CycleArgs,
 }
@@ -87,6 +89,18 @@ impl Command {
     /// The code that consumes the block's axis words.
     pub fn axis_user(&self, state: &State) -> GCode {
         use crate::cycles::args::{is_hole, is_multiple};
+        match (self.g.stroke, self.g.polar) {
+            (Some(true), _) => return GCode::StrokeCheckOn,
+            (Some(false), _) => return GCode::StrokeCheckOff,
+            (_, Some(true)) => return GCode::PolarOn,
+            (_, Some(false)) => return GCode::PolarOff,
+            _ => {}
+        }
+        match self.g.polygon {
+            Some(true) => return GCode::PolygonOn,
+            Some(false) => return GCode::PolygonOff,
+            None => {}
+        }
         match self.g.one_shot {
             Some(c) if gset::uses_axes(c) || is_multiple(c) => c,
             _ => match self.g.drilling {
@@ -125,6 +139,7 @@ pub fn check(block: &Block, state: &State, cfg: &MachineConfig) -> Result<Comman
         speed: None,
         tool: None,
         flow: None,
+        corner: None,
         cycle: crate::cycles::CycleArgs::None,
     };
     let flow_m = cmd.m.iter().map(|&(_, f)| f).find(|f| f.is_flow());

@@ -53,6 +53,10 @@ fn words_of(code: GCode) -> (Letters, &'static str) {
         SetCoordinates => (AXES, "G50"),
         LocalFrame => (AXES, "G52"),
         MachineCoordinates => (AXES, "G53"),
+        StrokeCheckOn => (Letters::of(b"XYZIJK"), "G22"),
+        PolygonOn => (Letters::of(b"PQR"), "G51.2"),
+        EllipseCw | EllipseCcw => (Letters::of(b"XZUWABQ"), "G02.1/G03.1"),
+        ParabolaCw | ParabolaCcw => (Letters::of(b"XZUWPQ"), "G02.2/G03.2"),
         _ => (Letters(0), "this block"),
     }
 }
@@ -95,9 +99,6 @@ pub(super) fn check_letters(
             return Err(AlarmKind::AxisNotConfigured { letter });
         }
     }
-    if block.chamfer.is_some() || block.corner.is_some() {
-        return Err(AlarmKind::NotSupportedYet { what: "chamfer and corner rounding ,C/,R" });
-    }
     Ok(())
 }
 
@@ -119,7 +120,13 @@ pub(super) fn convert(
     if args::is_cycle(user) {
         cmd.cycle = args::read(user, block, fmt, cfg.diameter_x)?;
     }
-    if matches!(user, GCode::ArcCw | GCode::ArcCcw) {
+    if user == GCode::PolygonOn {
+        polygon(block, fmt)?;
+    }
+    if matches!(user, GCode::EllipseCw | GCode::EllipseCcw | GCode::ParabolaCw | GCode::ParabolaCcw) {
+        cmd.cycle = args::read_curve(block, fmt)?;
+    }
+    if matches!(user, GCode::ArcCw | GCode::ArcCcw | GCode::StrokeCheckOn) {
         convert_arc_words(block, fmt, cmd)?;
     }
     if user == GCode::ReferenceReturnN {
@@ -143,6 +150,7 @@ pub(super) fn convert(
     if let Some(t) = block.get(b'T') {
         cmd.tool = Some(tool_word(&t, cfg)?);
     }
+    cmd.corner = corner_word(block, fmt)?;
     required_words(user, cmd)
 }
 
@@ -171,7 +179,12 @@ fn convert_axes(
             (None, Some(n)) => (n, true),
             (None, None) => continue,
         };
-        let value = axis_value(axis, &n, cfg, fmt)?;
+        let value = if axis == Axis::C && state.polar.is_some() {
+            // 2.7: in polar interpolation C is the plane's second axis, a length.
+            fmt.length_nm(&n).ok_or(AlarmKind::Overflow)?
+        } else {
+            axis_value(axis, &n, cfg, fmt)?
+        };
         cmd.axes[axis.index()] = Some(AxisWord { value, incremental });
     }
     Ok(())
@@ -254,4 +267,47 @@ fn tool_word(t: &Number, cfg: &MachineConfig) -> Result<(u16, u16), AlarmKind> {
         return Err(AlarmKind::IllegalOffsetNumber { number: offset as u16 });
     }
     Ok((tool as u16, offset as u16))
+}
+
+/// `,C` / `,R` (2.23): a length, never negative; zero asks for nothing.
+fn corner_word(block: &Block, fmt: &NumberFormat) -> Result<Option<crate::contour::Corner>, AlarmKind> {
+    use crate::contour::Corner;
+    let (n, letter, make): (_, u8, fn(i64) -> Corner) = match (&block.chamfer, &block.corner) {
+        (_, Some(r)) if block.corner_last => (r, b'R', Corner::Round),
+        (Some(c), _) => (c, b'C', Corner::Chamfer),
+        (None, Some(r)) => (r, b'R', Corner::Round),
+        (None, None) => return Ok(None),
+    };
+    if n.is_negative() {
+        return Err(AlarmKind::IllegalMinusSign { letter });
+    }
+    let v = fmt.length_nm(n).ok_or(AlarmKind::Overflow)?;
+    Ok((v > 0).then(|| make(v)))
+}
+
+/// G51.2 P Q R S (2.8): P and Q whole 1–999, R 0–359.999°, S 1–9999 rev/min. Polygon
+/// turning needs a tool spindle in position control synchronised to the work
+/// spindle (note 6, "否则报警"); this controller drives one spindle, so a valid G51.2
+/// raises alarm 4047.
+fn polygon(block: &Block, fmt: &NumberFormat) -> Result<(), AlarmKind> {
+    for l in [b'P', b'Q'] {
+        if let Some(n) = block.get(l) {
+            let v = whole(l, &n, 999)?;
+            if v == 0 {
+                return Err(AlarmKind::ValueOutOfRange { letter: l });
+            }
+        }
+    }
+    if let Some(r) = block.get(b'R') {
+        let u = fmt.angle_udeg(&r).ok_or(AlarmKind::Overflow)?;
+        if !(0..360_000_000).contains(&u) {
+            return Err(AlarmKind::ValueOutOfRange { letter: b'R' });
+        }
+    }
+    if let Some(s) = block.get(b'S')
+        && !(1..=9_999).contains(&whole(b'S', &s, 99_999)?)
+    {
+        return Err(AlarmKind::ValueOutOfRange { letter: b'S' });
+    }
+    Err(AlarmKind::PolygonNoToolSpindle)
 }

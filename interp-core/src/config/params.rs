@@ -31,6 +31,20 @@ pub enum Param {
     InchAtPowerOn,
     /// No.405: F at power-up for both G98 and G99 memories (2.20 note 5).
     InitialFeed,
+    /// No.1002: stored stroke check 2 forbids 0 = the inside, 1 = the outside of its box (2.10 note 3).
+    Stroke2Outside,
+    /// No.1360: stored stroke check 2, + limit of X (machine, diameter).
+    Stroke2PlusX,
+    /// No.1361: + limit of Y.
+    Stroke2PlusY,
+    /// No.1362: + limit of Z.
+    Stroke2PlusZ,
+    /// No.1370: stored stroke check 2, - limit of X (machine, diameter).
+    Stroke2MinusX,
+    /// No.1371: - limit of Y.
+    Stroke2MinusY,
+    /// No.1372: - limit of Z.
+    Stroke2MinusZ,
     /// No.3401#0 (DPI, seed 004): 1 = calculator-type input, 0 = least increment.
     CalculatorInput,
     /// No.3403: G02/G03 without R/I/J/K: 1 = straight line, 0 = alarm 0022 (2.3 note 2).
@@ -115,6 +129,13 @@ macro_rules! defs {
 defs! {
     InchAtPowerOn 10 Bool 0.0 "1 = G20 (inch) at power-on, 0 = G21 (2.9 note 1)";
     InitialFeed 405 Count 0.0 "F value of both G98 and G99 memories at power-on (2.20 note 5)";
+    Stroke2Outside 1002 Bool 0.0 "stored stroke check 2 (G22): 0 = the inside of the box is forbidden, 1 = the outside (2.10 note 3)";
+    Stroke2PlusX 1360 Mm 0.0 "G22 box without words: + limit of X, machine coordinates, diameter (2.10)";
+    Stroke2PlusY 1361 Mm 0.0 "G22 box: + limit of Y, machine coordinates (2.10)";
+    Stroke2PlusZ 1362 Mm 0.0 "G22 box: + limit of Z, machine coordinates (2.10)";
+    Stroke2MinusX 1370 Mm 0.0 "G22 box: - limit of X, machine coordinates, diameter; above 1360 switches the check off (2.10 note 8)";
+    Stroke2MinusY 1371 Mm 0.0 "G22 box: - limit of Y, machine coordinates (2.10)";
+    Stroke2MinusZ 1372 Mm 0.0 "G22 box: - limit of Z, machine coordinates (2.10)";
     CalculatorInput 3401 Bool 1.0 "1 = calculator-type input (X60 = 60 mm), 0 = least increment (X60 = 0.060 mm)";
     ArcWithoutCenterIsLine 3403 Bool 0.0 "G02/G03 without R and I/J/K: 1 = straight line, 0 = alarm 0022 (2.3 note 2)";
     ArcRadiusTolerance 3410 Mm 0.01 "allowed difference of start and end radius of an arc (2.3)";

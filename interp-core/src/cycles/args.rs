@@ -110,6 +110,18 @@ pub enum CycleArgs {
         /// Lead, nm/rev.
         lead: Option<i64>,
     },
+    /// G02.1/G03.1 (A, B, Q) and G02.2/G03.2 (P, Q): the curve's size and turn.
+    Curve {
+        /// Ellipse semi-axis A along the long axis, nm.
+        a: Option<i64>,
+        /// Ellipse semi-axis B, nm.
+        b: Option<i64>,
+        /// Parabola parameter P of y² = 2px, nm.
+        p: Option<i64>,
+        /// Q: the long axis (ellipse) or the axis (parabola) turned clockwise from
+        /// +Z, µdeg (0 when omitted).
+        q_udeg: i64,
+    },
     /// G83–G89 hole data.
     Hole {
         /// R: initial level → R level, signed radius value.
@@ -412,6 +424,18 @@ pub fn letters_of(code: GCode) -> Option<(&'static [u8], &'static str)> {
         FaceBore | SideBore => (b"XZUWYVCHRPK", "G85/G89"),
         _ => return None,
     })
+}
+
+/// The words of an ellipse or parabola block (2.4, 2.5): A, B, P lengths; Q an
+/// angle in 0.001° without a decimal point, in degrees with one.
+pub fn read_curve(block: &Block, fmt: &NumberFormat) -> Result<CycleArgs, AlarmKind> {
+    let r = Reader { block, fmt, diameter_x: false };
+    let q_udeg = match block.get(b'Q') {
+        None => 0,
+        Some(q) if q.has_point => fmt.angle_udeg(&q).ok_or(AlarmKind::Overflow)?,
+        Some(q) => q.as_integer().and_then(|v| v.checked_mul(1_000)).ok_or(AlarmKind::Overflow)?,
+    };
+    Ok(CycleArgs::Curve { a: r.length(b'A')?, b: r.length(b'B')?, p: r.length(b'P')?, q_udeg })
 }
 
 #[cfg(test)]

@@ -86,6 +86,20 @@ pub enum Step {
         /// Spindle direction during the move.
         dir: SpindleDir,
     },
+    /// Cutting feed to a work position of all axes at a given feed (polar
+    /// interpolation's X/C moves).
+    FeedTo {
+        /// Work X (radius), nm.
+        x: i64,
+        /// Work C, µdeg.
+        c: i64,
+        /// Work Z, nm.
+        z: i64,
+        /// Feed of this move in the cycle's feed mode (nm/min or nm/rev).
+        feed: i64,
+        /// Source line of the programmed move it belongs to.
+        line: u32,
+    },
     /// Dwell.
     Dwell(u32),
     /// Spindle direction change at the remembered speed.
@@ -209,6 +223,19 @@ impl Emitter {
                 let spindle = spindle_speed(&locked, cfg, p.x);
                 Action::Tap(TapMove { to, lead, dir, spindle })
             }
+            Step::FeedTo { x, c, z, feed, .. } => {
+                let mut work = self.st.work_pos(cfg);
+                (work[Axis::X], work[Axis::C], work[Axis::Z]) = (x, c, z);
+                let feed = Feed { value: feed, ..self.feed };
+                let to = motion::endpoint(work, &self.st, cfg)?;
+                motion::check_limits(&to.machine, cfg)?;
+                if to.machine == self.st.pos {
+                    return Ok(());
+                }
+                let spindle = spindle_speed(&self.st, cfg, work[Axis::X]);
+                let exact_stop = self.st.modal.exact_stop_mode;
+                Action::Linear(Move { to, feed, spindle, exact_stop, independent: false })
+            }
             Step::Dwell(ms) => Action::Dwell { ms },
             Step::Spindle(dir) => {
                 self.st.spindle.dir = dir;
@@ -218,11 +245,15 @@ impl Emitter {
                 Action::Spindle(SpindleCommand { dir, rpm: s.rpm, css: s.css.or(css) })
             }
         };
+        if let Some(area) = self.st.stroke {
+            crate::exec::stroke::check_move(&area, self.st.pos, &action)?;
+        }
         if let Some(e) = action.endpoint() {
             self.st.pos = e.machine;
             self.st.moved = true;
         }
-        out.put(Canon { line: self.line, action })
+        let line = if let Step::FeedTo { line, .. } = step { line } else { self.line };
+        out.put(Canon { line, action })
     }
 
     /// The end point of a move to `p`, soft limits checked; `None` if already there.

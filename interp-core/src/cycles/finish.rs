@@ -49,6 +49,9 @@ impl FinishGen {
         let mut outbox = crate::exec::Outbox::new();
         let mut staged = Staged::new(em.line, &mut outbox);
         run_shape_block(&sb, self.first, &mut em.st, cfg, env, &mut staged)?;
+        if sb.last {
+            crate::contour::flush(&mut em.st, &mut staged)?;
+        }
         self.first = false;
         while let Some(c) = outbox.pop_front() {
             out.put(c)?;

@@ -24,11 +24,13 @@
 //! and delivered after its last move. Every action carries the cycle block's line.
 
 pub mod args;
+pub mod curve;
 mod emit;
 mod finish;
 mod groove;
 mod hole;
 mod pattern;
+pub mod polar;
 pub mod profile;
 mod rough;
 mod single;
@@ -64,8 +66,10 @@ const TAIL: usize = 6;
 /// expand to millions of pecks.
 pub const MAX_CYCLE_STEPS: u32 = 1_000_000;
 
-/// The generator of one cycle.
+/// The generator of one cycle. One lives inline in each expansion (there is no heap
+/// to box the larger ones into); the expansion's size is bounded by a test.
 #[derive(Clone, Debug, PartialEq)]
+#[allow(clippy::large_enum_variant)]
 enum Gen {
     /// A fixed handful of steps (G90/G94).
     Plan(heapless::Vec<Step, 8>),
@@ -76,6 +80,8 @@ enum Gen {
     Groove(GrooveGen),
     MultiThread(MultiThreadGen),
     Hole(HoleGen),
+    Curve(curve::CurveGen),
+    Polar(polar::PolarGen),
 }
 
 /// A cycle being delivered: its generator, its copy of the state and what is
@@ -169,6 +175,8 @@ impl Expansion {
                     Gen::Groove(g) => g.fill(&mut self.queue)?,
                     Gen::MultiThread(g) => g.fill(&mut self.queue)?,
                     Gen::Hole(g) => g.fill(&mut self.queue)?,
+                    Gen::Curve(g) => g.fill(&mut self.queue)?,
+                    Gen::Polar(g) => g.fill(&mut self.queue)?,
                 };
                 self.gen_done = !more;
                 continue;
@@ -373,6 +381,68 @@ fn multiple(code: GCode, cmd: &Command, st: &mut State, ctx: &mut Ctx<'_, '_>) -
         _ => return Ok(None),
     };
     Ok(Some(Expansion::new(em, generator, Profile::default())))
+}
+
+/// G02.1/G03.1 and G02.2/G03.2 (2.4, 2.5): the curve's cuts as an expansion.
+pub fn curve_block(cmd: &Command, st: &mut State, cfg: &MachineConfig, out: &mut Staged<'_>) -> Result<(), AlarmKind> {
+    use GCode::*;
+    if st.modal.plane != Plane::Zx {
+        return Err(AlarmKind::CycleNotInZxPlane);
+    }
+    for a in [crate::axis::Axis::Y, crate::axis::Axis::C] {
+        if cmd.axes[a.index()].is_some() {
+            return Err(AlarmKind::CycleOtherAxis { letter: a.letter() });
+        }
+    }
+    let CycleArgs::Curve { a, b, p, q_udeg } = cmd.cycle else { return Ok(()) };
+    let em = Emitter::new(*st, cmd.line);
+    let (start, end) = (em.here(cfg), target(cmd, st, cfg)?);
+    if start == end {
+        return Ok(());
+    }
+    let tol = cfg.motion.chord_tolerance;
+    let code = st.modal.motion;
+    let missing = |letter| AlarmKind::MissingWord { letter, context: "G02.1/G03.1 and G02.2/G03.2" };
+    let generator = match code {
+        EllipseCw | EllipseCcw => {
+            let (a, b) = (a.ok_or(missing(b'A'))?, b.ok_or(missing(b'B'))?);
+            curve::CurveGen::ellipse(start, end, a, b, q_udeg, code == EllipseCw, tol)?
+        }
+        _ => curve::CurveGen::parabola(start, end, p.ok_or(missing(b'P'))?, q_udeg, code == ParabolaCw, tol)?,
+    };
+    out.start_cycle(Expansion::new(em, Gen::Curve(generator), Profile::default()))
+}
+
+/// Polar interpolation (2.7): the virtual moves the contour layer let out for this
+/// block become an expansion of real X/C moves. Actions before the first move stay
+/// before it; the others follow the moves.
+pub fn polar_block(st: &mut State, cfg: &MachineConfig, out: &mut Staged<'_>) -> Result<(), AlarmKind> {
+    if !out.actions.iter().any(|c| c.action.endpoint().is_some()) {
+        return Ok(());
+    }
+    let mut moves: heapless::Vec<Canon, { polar::MOVES }> = heapless::Vec::new();
+    let mut after: heapless::Vec<Canon, { crate::exec::STAGE }> = heapless::Vec::new();
+    let mut before = 0;
+    let all: heapless::Vec<Canon, { crate::exec::STAGE }> = out.actions.iter().copied().collect();
+    out.actions.clear();
+    for c in all {
+        if c.action.endpoint().is_some() {
+            moves.push(c).map_err(|_| AlarmKind::ContourBufferFull)?;
+        } else if moves.is_empty() {
+            out.actions.push_back(c).map_err(|_| AlarmKind::Overflow)?;
+            before += 1;
+        } else {
+            after.push(c).map_err(|_| AlarmKind::Overflow)?;
+        }
+    }
+    let _ = before;
+    let line = moves.first().map_or(0, |c| c.line);
+    let generator = polar::PolarGen::new(&moves, st.work_pos(cfg), cfg.motion.chord_tolerance)?;
+    out.start_cycle(Expansion::new(Emitter::new(*st, line), Gen::Polar(generator), Profile::default()))?;
+    for c in after {
+        out.actions.push_back(c).map_err(|_| AlarmKind::Overflow)?;
+    }
+    Ok(())
 }
 
 /// The block's X/Z target in work coordinates.

@@ -326,6 +326,9 @@ pub fn read_profile<E: Environment + ?Sized>(
     env: &E,
 ) -> Result<Profile, AlarmKind> {
     let mut scratch = *st;
+    // Roughing follows the programmed shape: no nose compensation (2.16.7 note 5).
+    scratch.contour.clear();
+    scratch.contour.no_comp = true;
     scratch.feed.per_min = scratch.feed.per_min.max(1);
     scratch.feed.per_rev = scratch.feed.per_rev.max(1);
     if scratch.spindle.dir == SpindleDir::Stop {
@@ -340,13 +343,22 @@ pub fn read_profile<E: Environment + ?Sized>(
         let mut outbox = crate::exec::Outbox::new();
         let mut staged = Staged::new(sb.block.line, &mut outbox);
         let here = scratch.work_pos(cfg);
+        // A move held back for a corner (2.23) comes out with this block: it
+        // starts where the last segment ended.
+        let held = scratch.contour.is_holding();
         let cmd = run_shape_block(&sb, first, &mut scratch, cfg, env, &mut staged)?;
         if first {
             profile.ns_x = cmd.axes[Axis::X.index()].is_some();
             profile.ns_z = cmd.axes[Axis::Z.index()].is_some();
             profile.ns_rapid = cmd.g.motion == Some(GCode::Rapid);
         }
-        let mut a = Pt::new(here[Axis::X], here[Axis::Z]);
+        let mut a = match profile.segs.last() {
+            Some(s) if held => s.b,
+            _ => Pt::new(here[Axis::X], here[Axis::Z]),
+        };
+        if sb.last {
+            crate::contour::flush(&mut scratch, &mut staged)?;
+        }
         for c in staged.actions.iter() {
             let (kind, to) = match c.action {
                 Action::Rapid(m) => (SegKind::Rapid, m.to.work),

@@ -4,8 +4,10 @@
 
 mod coords;
 pub(crate) mod motion;
+pub mod polar;
 mod spindle;
 mod state;
+pub mod stroke;
 
 pub use spindle::spindle_speed;
 pub use state::{
@@ -127,8 +129,11 @@ pub fn execute(
     env: &dyn Environment,
     out: &mut Staged<'_>,
 ) -> Result<Flow, AlarmKind> {
+    polar::check_codes(cmd, st)?;
+    let from = st.polar.map_or(st.pos, |p| p.virtual_pos());
     let chained = cycles::before_block(cmd, st)?;
     apply_modal(cmd, st);
+    stroke::apply(cmd, st, cfg)?;
     spindle::before_motion(cmd, st, cfg, out)?;
     cycles::after_spindle(cmd, st, out)?;
     tool_change(cmd, st, cfg, out)?;
@@ -139,6 +144,9 @@ pub fn execute(
         Some(GCode::LocalFrame) => coords::local_frame(cmd, st),
         Some(GCode::MachineCoordinates) => coords::machine_move(cmd, st, cfg, out)?,
         Some(GCode::ReferenceReturn | GCode::ReferenceReturnN) => coords::reference_return(cmd, st, cfg, env, out)?,
+        _ if cmd.g.stroke.is_some() => {}
+        _ if polar::mode_change(cmd, st, cfg)? => {}
+        _ if st.polar.is_some() => polar::execute(cmd, st, cfg, out)?,
         _ => {
             let mut ctx = cycles::Ctx { cfg, env, out };
             if !cycles::execute(cmd, st, &mut ctx, chained)? {
@@ -152,7 +160,15 @@ pub fn execute(
     }
     aux(cmd, MTiming::After, out)?;
     spindle::after_motion(cmd, st, out)?;
-    program_flow(cmd, cfg, env, out)
+    let flow = program_flow(cmd, cfg, env, out)?;
+    if st.polar.is_none() {
+        stroke::check_actions(st, from, out.actions.iter())?;
+    }
+    crate::contour::after_block(cmd, st, cfg, from, flow, out)?;
+    if st.polar.is_some() {
+        cycles::polar_block(st, cfg, out)?;
+    }
+    Ok(flow)
 }
 
 /// Modal codes that govern how the rest of the block is read.

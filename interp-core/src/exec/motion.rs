@@ -18,6 +18,9 @@ pub(super) fn execute(
     out: &mut Staged<'_>,
 ) -> Result<(), AlarmKind> {
     let code = st.modal.motion;
+    if matches!(code, GCode::EllipseCw | GCode::EllipseCcw | GCode::ParabolaCw | GCode::ParabolaCcw) {
+        return if cmd.has_axes() { crate::cycles::curve_block(cmd, st, cfg, out) } else { Ok(()) };
+    }
     let is_arc = matches!(code, GCode::ArcCw | GCode::ArcCcw);
     let arc_words = cmd.radius.is_some() || cmd.center.iter().any(Option::is_some);
     if !(cmd.has_axes() || is_arc && arc_words) {

@@ -208,6 +208,12 @@ pub struct State {
     pub moved: bool,
     /// Canned cycle memory.
     pub cycle: CycleMemory,
+    /// Polar coordinate interpolation (G12.1) in force.
+    pub polar: Option<super::polar::Polar>,
+    /// Stored stroke check 2 (G22) in force; `None` under G23.
+    pub stroke: Option<super::stroke::StrokeArea>,
+    /// The contour look-ahead: a move held back until the next one is known.
+    pub contour: crate::contour::Contour,
 }
 
 impl State {
@@ -236,6 +242,9 @@ impl State {
             spindle: SpindleState { dir: SpindleDir::Stop, rpm: 0, css: None, clamp: None, gear: 0 },
             moved: false,
             cycle: CycleMemory::default(),
+            polar: None,
+            stroke: None,
+            contour: crate::contour::Contour::default(),
         }
     }
 

@@ -2,5 +2,6 @@
 //! Uses f64 (libm) for the computation, returns integer nanometres.
 
 mod arc;
+pub mod path;
 
 pub use arc::{Extents, P2, arc_extents, center_from_offsets, center_from_radius};

@@ -100,6 +100,8 @@ pub struct Block {
     pub chamfer: Option<Number>,
     /// `,R` corner radius.
     pub corner: Option<Number>,
+    /// Of `,C` and `,R`, `,R` was written last (2.23 note 9: the last one counts).
+    pub corner_last: bool,
 }
 
 impl Default for Block {
@@ -115,6 +117,7 @@ impl Default for Block {
             values: [Number::int(0); 26],
             chamfer: None,
             corner: None,
+            corner_last: false,
         }
     }
 }
@@ -131,6 +134,7 @@ impl Block {
         self.present = 0;
         self.chamfer = None;
         self.corner = None;
+        self.corner_last = false;
     }
 
     /// The value of address `letter` (uppercase ASCII), if given.

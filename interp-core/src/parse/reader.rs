@@ -207,6 +207,7 @@ impl Reader<'_, '_> {
         };
         // 2.23 note 9: with several C/R in one block the last one is effective.
         *slot = Some(n);
+        block.corner_last = letter == b'R';
         Ok(())
     }
 

@@ -1,0 +1,352 @@
+//! Tool-nose radius compensation, G40/G41/G42 (2.18).
+//!
+//! The programmed points are the part contour. With G41 (tool left of the path) or
+//! G42 (right) the nose centre runs on the contour offset by the nose radius R;
+//! the machine positions the imaginary tip, which sits at the nose centre plus
+//! R times the tip direction's vector (figure 2.63: 1 = +X+Z, 2 = +X−Z, 3 = −X−Z,
+//! 4 = −X+Z, 5 = +Z, 6 = +X, 7 = −Z, 8 = −X, 0 and 9 = the centre itself).
+//!
+//! Corners follow 2.18.3 by the angle α on the work side: 180° ≤ α (the tool inside
+//! the corner) shortens both offset elements to their crossing; 90° ≤ α < 180°
+//! lengthens them along their tangents to where those cross; α < 90° inserts a
+//! line between the two elements each extended by R. Start-up (the first move
+//! after G41/G42, a line from the uncompensated point) and cancel (the G40 move, a
+//! line to the uncompensated point) use the same corner rules with the offset of
+//! the start-up or cancel line. A G40 or a temporary cancel without a move ends
+//! the held move on its normal.
+
+use super::{Buffer, in_plane, moved_to};
+use crate::alarm::AlarmKind;
+use crate::axis::Pos;
+use crate::canon::{Action, ArcMove, Canon, Move, Plane};
+use crate::exec::Staged;
+use crate::geom::path::{Elem, V2, intersect, nearest, wrap_tau};
+
+/// G41 or G42.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Side {
+    /// G41: the tool left of the direction of travel.
+    Left,
+    /// G42: the tool right of it.
+    Right,
+}
+
+/// The compensation's own state in the contour layer.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Comp {
+    /// G41/G42 in force (`None` = G40).
+    pub side: Option<Side>,
+    /// Nose radius (nm), taken when the offset starts up.
+    pub radius: i64,
+    /// Imaginary tip direction 0–9.
+    pub tip: u8,
+    /// The plane the offset works in.
+    pub plane: Plane,
+    /// Whether the tool is on the offset path; `false` before start-up and after a
+    /// temporary cancel (the next move starts up again).
+    pub engaged: bool,
+    /// Nose-centre start (plane, nm) of the held move.
+    pub centre: (i64, i64),
+    /// The held move is the start-up move (it starts off the offset path: no
+    /// interference check on it).
+    pub starting: bool,
+}
+
+impl Default for Comp {
+    fn default() -> Self {
+        Comp { side: None, radius: 0, tip: 0, plane: Plane::Zx, engaged: false, centre: (0, 0), starting: false }
+    }
+}
+
+/// Most vertices one corner inserts between two elements.
+const MIDS: usize = 3;
+
+/// A corner resolved: where the incoming element's offset ends, the points of the
+/// lines inserted after it, and where the outgoing element's offset starts.
+#[derive(Debug)]
+struct Join {
+    end1: V2,
+    mids: heapless::Vec<V2, MIDS>,
+    start2: V2,
+}
+
+/// Below this work-side angle the corner alarms (2.18.4 note 1: 0.1°).
+const MIN_ALPHA_DEG: f64 = 0.1;
+
+impl Comp {
+    /// Signed offset: positive to the left of travel.
+    fn d(&self) -> f64 {
+        let r = self.radius as f64;
+        if self.side == Some(Side::Left) { r } else { -r }
+    }
+
+    /// The vector from the nose centre to the imaginary tip in plane coordinates
+    /// (tips 1–8 only in G18, 2.18.1 note).
+    fn tip_vector(&self) -> V2 {
+        let (x, z) = match self.tip {
+            1 => (1.0, 1.0),
+            2 => (1.0, -1.0),
+            3 => (-1.0, -1.0),
+            4 => (-1.0, 1.0),
+            5 => (0.0, 1.0),
+            6 => (1.0, 0.0),
+            7 => (0.0, -1.0),
+            8 => (-1.0, 0.0),
+            _ => (0.0, 0.0),
+        };
+        if self.plane != Plane::Zx {
+            return V2::new(0.0, 0.0);
+        }
+        // G18's plane axes are (Z, X).
+        V2::new(z, x).scale(self.radius as f64)
+    }
+
+    /// The corner between `e1` and `e2` (2.18.3).
+    fn join(&self, e1: &Elem, e2: &Elem) -> Result<Join, AlarmKind> {
+        let d = self.d();
+        let (o1, o2) = (offset(e1, d)?, offset(e2, d)?);
+        let (t1, t2) = (e1.end_tangent(), e2.start_tangent());
+        let turn = libm::atan2(t1.cross(t2), t1.dot(t2));
+        let mut mids = heapless::Vec::new();
+        if libm::fabs(turn) < 1e-9 {
+            return Ok(Join { end1: o1.end(), mids, start2: o2.start() });
+        }
+        let inner = turn * d > 0.0;
+        let outer_deg = libm::fabs(turn).to_degrees();
+        // The path turning (almost) straight back: no corner angle left.
+        if 180.0 - outer_deg < MIN_ALPHA_DEG {
+            return Err(AlarmKind::NoseCompCornerAngle);
+        }
+        let line1 = matches!(e1, Elem::Line { .. });
+        let line2 = matches!(e2, Elem::Line { .. });
+        if inner {
+            let x = nearest(&intersect(&o1, &o2), e1.end()).ok_or(AlarmKind::NoseCompGouge)?;
+            return Ok(Join { end1: x, mids, start2: x });
+        }
+        let (p1, p2) = (o1.end(), o2.start());
+        let (a, b) = if outer_deg <= 90.0 {
+            // Lengthening: the tangents at the offset points, crossed.
+            let l1 = Elem::Line { start: p1, end: p1.plus(t1) };
+            let l2 = Elem::Line { start: p2, end: p2.plus(t2) };
+            let x = intersect(&l1, &l2).first().copied().ok_or(AlarmKind::NoseCompGouge)?;
+            (x, x)
+        } else {
+            // Insertion: each extended by R along its tangent, joined by a line.
+            let r = libm::fabs(d);
+            (p1.plus(t1.scale(r)), p2.minus(t2.scale(r)))
+        };
+        let end1 = if line1 { a } else { p1 };
+        if !line1 {
+            let _ = mids.push(a);
+        }
+        if b != a {
+            let _ = mids.push(b);
+        }
+        if !line2 {
+            let _ = mids.push(p2);
+        }
+        let start2 = if line2 { b } else { p2 };
+        Ok(Join { end1, mids, start2 })
+    }
+}
+
+/// The offset of `e` (alarm 3605 if an arc's radius would vanish: the nose does
+/// not fit inside it).
+fn offset(e: &Elem, d: f64) -> Result<Elem, AlarmKind> {
+    e.offset(d).ok_or(AlarmKind::NoseCompGouge)
+}
+
+/// The path element of a motion action from `start` in `plane`.
+pub(super) fn elem(a: &Action, start: Pos, plane: Plane) -> Result<Elem, AlarmKind> {
+    let s = in_plane(&start, plane);
+    let Some(to) = a.endpoint() else { return Err(AlarmKind::NoseCompGouge) };
+    let e = match a {
+        Action::Arc(m) if m.plane != plane => return Err(AlarmKind::NoseCompPlaneChange),
+        Action::Arc(m) => Elem::Arc {
+            start: s,
+            end: in_plane(&to.machine, plane),
+            center: in_plane(&m.center.machine, plane),
+            ccw: !m.cw,
+        },
+        _ => Elem::Line { start: s, end: in_plane(&to.machine, plane) },
+    };
+    // A move with no length in the plane has no direction to offset from.
+    if e.length() < 1.0 {
+        return Err(AlarmKind::NoseCompGouge);
+    }
+    Ok(e)
+}
+
+/// Starts compensating with the move `c` from `start`: the tool's tip is still on
+/// the programmed start point. Arcs cannot start up (2.18.3).
+pub(super) fn start_up(buf: &mut Buffer, comp: &mut Comp, c: Canon, start: Pos) -> Result<(), AlarmKind> {
+    let e = elem(&c.action, start, comp.plane)?;
+    if matches!(e, Elem::Arc { .. }) {
+        return Err(AlarmKind::NoseCompArc);
+    }
+    let centre = in_plane(&start, comp.plane).minus(comp.tip_vector());
+    comp.engaged = true;
+    comp.starting = true;
+    comp.centre = centre.round();
+    buf.hold(c, start);
+    Ok(())
+}
+
+/// The held move meets the next compensated move `next` (from `from`): the held
+/// move is emitted to its corner point, then the corner's lines and the actions
+/// waiting behind it; `next` becomes the held move.
+pub(super) fn advance(
+    buf: &mut Buffer,
+    comp: &mut Comp,
+    next: Canon,
+    from: Pos,
+    out: &mut Staged<'_>,
+) -> Result<(), AlarmKind> {
+    let e2 = elem(&next.action, from, comp.plane)?;
+    let start2 = emit_to_corner(buf, comp, Some(&e2), out)?;
+    comp.centre = start2.round();
+    comp.starting = false;
+    buf.hold(next, from);
+    Ok(())
+}
+
+/// The cancel move `last` (G40 with a line, from `from`): the held move ends at
+/// its corner with the cancel line's offset, then `last` runs to its programmed
+/// point uncompensated. Arcs cannot cancel (2.18.3).
+pub(super) fn cancel_with(
+    buf: &mut Buffer,
+    comp: &mut Comp,
+    last: Canon,
+    from: Pos,
+    out: &mut Staged<'_>,
+) -> Result<(), AlarmKind> {
+    let e = elem(&last.action, from, comp.plane)?;
+    if matches!(e, Elem::Arc { .. }) {
+        return Err(AlarmKind::NoseCompArc);
+    }
+    if buf.is_holding() {
+        emit_to_corner(buf, comp, Some(&e), out)?;
+    }
+    put(out, last)
+}
+
+/// Ends the held move on its normal (G40 or a temporary cancel without a move),
+/// and emits what waits behind it.
+pub(super) fn end_here(buf: &mut Buffer, comp: &mut Comp, out: &mut Staged<'_>) -> Result<(), AlarmKind> {
+    if buf.is_holding() {
+        emit_to_corner(buf, comp, None, out)?;
+    }
+    comp.engaged = false;
+    Ok(())
+}
+
+/// Emits the held move to its corner point with `e2` (or to its offset end point
+/// without one), the corner's lines and the waiting actions; returns where the
+/// next element's offset starts.
+fn emit_to_corner(buf: &mut Buffer, comp: &Comp, e2: Option<&Elem>, out: &mut Staged<'_>) -> Result<V2, AlarmKind> {
+    let start = buf.start;
+    let (held, after) = buf.take();
+    let Some(held) = held else { return Ok(V2::of(comp.centre)) };
+    let e1 = elem(&held.action, start, comp.plane)?;
+    let join = match e2 {
+        Some(e2) => comp.join(&e1, e2)?,
+        None => {
+            let o1 = offset(&e1, comp.d())?;
+            Join { end1: o1.end(), mids: heapless::Vec::new(), start2: o1.end() }
+        }
+    };
+    check_direction(&e1, comp, V2::of(comp.centre), join.end1)?;
+    let tip = comp.tip_vector();
+    // Nothing is emitted for a piece of no length (a corner point on top of the last).
+    let mut last = V2::of(comp.centre);
+    if matches!(e1, Elem::Arc { .. }) || join.end1.minus(last).len() >= 0.5 {
+        put(out, Canon { line: held.line, action: shifted(held.action, comp.plane, join.end1, tip) })?;
+        last = join.end1;
+    }
+    for m in &join.mids {
+        if m.minus(last).len() >= 0.5 {
+            put(out, Canon { line: held.line, action: line_from(&held.action, comp.plane, m.plus(tip)) })?;
+            last = *m;
+        }
+    }
+    for c in after {
+        put(out, c)?;
+    }
+    Ok(join.start2)
+}
+
+/// Alarm 3605 when the offset element from `from` to `to` runs against the
+/// programmed one (2.18.4 criterion 1): the nose would cut back into the part.
+fn check_direction(e: &Elem, comp: &Comp, from: V2, to: V2) -> Result<(), AlarmKind> {
+    if !comp.engaged || comp.starting {
+        return Ok(());
+    }
+    match *e {
+        Elem::Line { start, end } => {
+            let (p, q) = (end.minus(start), to.minus(from));
+            if q.len() > 1.0 && p.dot(q) < 0.0 {
+                return Err(AlarmKind::NoseCompGouge);
+            }
+        }
+        Elem::Arc { start, end, center, ccw } => {
+            let sweep = |a: V2, b: V2| {
+                let t = b.minus(center).angle() - a.minus(center).angle();
+                wrap_tau(if ccw { t } else { -t })
+            };
+            let programmed = sweep(start, end);
+            if to.minus(from).len() > 1.0 && programmed > 0.0 {
+                let travelled = sweep(from, to);
+                // The offset arc turns the other way round (or nearly all the way).
+                if travelled - programmed > core::f64::consts::PI {
+                    return Err(AlarmKind::NoseCompGouge);
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The held action ending at nose-centre point `p` (+ the tip vector); an arc's
+/// centre moves by the tip vector.
+fn shifted(a: Action, plane: Plane, p: V2, tip: V2) -> Action {
+    let moved = super::corner::retarget(a, plane, p.plus(tip));
+    match moved {
+        Action::Arc(m) => {
+            let c = in_plane(&m.center.machine, plane).plus(tip);
+            Action::Arc(ArcMove { center: moved_to(m.center, plane, c), ..m })
+        }
+        Action::Thread(t) => {
+            let to = moved_to(t.to, plane, p.plus(tip));
+            Action::Thread(crate::canon::ThreadMove { to, ..t })
+        }
+        Action::Tap(t) => {
+            let to = moved_to(t.to, plane, p.plus(tip));
+            Action::Tap(crate::canon::TapMove { to, ..t })
+        }
+        other => other,
+    }
+}
+
+/// A straight corner move to `p` in the style of `held` (rapid stays rapid).
+fn line_from(held: &Action, plane: Plane, p: V2) -> Action {
+    match *held {
+        Action::Rapid(m) => Action::Rapid(Move { to: moved_to(m.to, plane, p), ..m }),
+        Action::Linear(m) => Action::Linear(Move { to: moved_to(m.to, plane, p), ..m }),
+        Action::Arc(m) => Action::Linear(Move {
+            to: moved_to(m.to, plane, p),
+            feed: m.feed,
+            spindle: m.spindle,
+            exact_stop: m.exact_stop,
+            independent: false,
+        }),
+        Action::Thread(t) => Action::Thread(crate::canon::ThreadMove { to: moved_to(t.to, plane, p), ..t }),
+        Action::Tap(t) => Action::Tap(crate::canon::TapMove { to: moved_to(t.to, plane, p), ..t }),
+        other => other,
+    }
+}
+
+fn put(out: &mut Staged<'_>, c: Canon) -> Result<(), AlarmKind> {
+    out.actions.push_back(c).map_err(|_| AlarmKind::Overflow)
+}

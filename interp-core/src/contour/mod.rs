@@ -1,0 +1,478 @@
+//! The contour layer between execution and the canonical stream: a bounded
+//! look-ahead that holds a move back until the next move is known, so that the
+//! corner between them can be shaped. Two stages, each holding at most one move
+//! and the non-motion actions behind it:
+//!
+//! 1. chamfer and corner R (`,C`/`,R`, 2.23; [`corner`]): the programmed path with
+//!    the corner blocks inserted;
+//! 2. tool-nose radius compensation (G40/G41/G42, 2.18; [`comp`]): that path offset
+//!    by the nose radius, with the corner types of the manual.
+//!
+//! The held actions live in the [`State`] (fixed arrays, no allocation), so they
+//! follow the interpreter's rule that a block runs on a copy of the state: a block
+//! that raises an alarm leaves the held moves exactly as they were. All geometry is
+//! done in machine coordinates (the path the tool really follows) with f64
+//! ([`crate::geom::path`]), results rounded to whole nanometres.
+
+pub mod comp;
+mod corner;
+
+pub use comp::{Comp, Side};
+
+use crate::alarm::AlarmKind;
+use crate::axis::{Axis, Pos};
+use crate::canon::{Action, Canon, Endpoint, Plane};
+use crate::check::Command;
+use crate::codes::GCode;
+use crate::exec::{Flow, STAGE, Staged, State};
+use crate::geom::path::V2;
+
+/// Most non-motion actions one stage holds behind its move (a G04 between a
+/// chamfered block and its follower, M codes of blocks without motion …).
+pub const HOLD: usize = 4;
+
+/// What `,C` or `,R` asks for at the end of a block's move (2.23).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Corner {
+    /// `,C`: a straight chamfer from the point this far (nm, straight line) before
+    /// the imaginary corner to the point this far after it.
+    Chamfer(i64),
+    /// `,R`: a corner arc of this radius (nm) tangent to both moves.
+    Round(i64),
+}
+
+/// A non-motion action waiting behind a held move, kept small (the state is
+/// copied for every block).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+enum Aside {
+    Dwell { ms: u32 },
+    Spindle(crate::canon::SpindleCommand),
+    Tool { tool: u16, offset: u16 },
+    Aux { m: u16 },
+    Stop { optional: bool },
+    End { rewind: bool },
+}
+
+impl Aside {
+    fn of(a: &Action) -> Option<Aside> {
+        Some(match *a {
+            Action::Dwell { ms } => Aside::Dwell { ms },
+            Action::Spindle(s) => Aside::Spindle(s),
+            Action::Tool { tool, offset } => Aside::Tool { tool, offset },
+            Action::Aux { m } => Aside::Aux { m },
+            Action::Stop { optional } => Aside::Stop { optional },
+            Action::End { rewind } => Aside::End { rewind },
+            _ => return None,
+        })
+    }
+
+    fn action(self) -> Action {
+        match self {
+            Aside::Dwell { ms } => Action::Dwell { ms },
+            Aside::Spindle(s) => Action::Spindle(s),
+            Aside::Tool { tool, offset } => Action::Tool { tool, offset },
+            Aside::Aux { m } => Action::Aux { m },
+            Aside::Stop { optional } => Action::Stop { optional },
+            Aside::End { rewind } => Action::End { rewind },
+        }
+    }
+}
+
+/// One stage's buffer: a held move, where it starts, and the actions after it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Buffer {
+    /// The held move.
+    held: Option<Canon>,
+    /// Machine position where the held move starts (as programmed).
+    start: Pos,
+    /// The actions after it (with their lines), in order.
+    after: [Option<(u32, Aside)>; HOLD],
+}
+
+impl Default for Buffer {
+    fn default() -> Self {
+        Buffer { held: None, start: Pos::ZERO, after: [None; HOLD] }
+    }
+}
+
+impl Buffer {
+    /// Whether a move is held back.
+    pub fn is_holding(&self) -> bool {
+        self.held.is_some()
+    }
+
+    fn hold(&mut self, c: Canon, start: Pos) {
+        *self = Buffer { held: Some(c), start, after: [None; HOLD] };
+    }
+
+    /// Appends a non-motion action behind the held move (alarm 4044 when full).
+    fn push(&mut self, c: Canon) -> Result<(), AlarmKind> {
+        let aside = Aside::of(&c.action).ok_or(AlarmKind::ContourBufferFull)?;
+        let slot = self.after.iter_mut().find(|s| s.is_none()).ok_or(AlarmKind::ContourBufferFull)?;
+        *slot = Some((c.line, aside));
+        Ok(())
+    }
+
+    /// Takes the held move and the actions after it, leaving the buffer empty.
+    fn take(&mut self) -> (Option<Canon>, impl Iterator<Item = Canon> + use<>) {
+        let (held, after) = (self.held, self.after);
+        *self = Buffer::default();
+        (held, after.into_iter().flatten().map(|(line, a)| Canon { line, action: a.action() }))
+    }
+}
+
+/// The look-ahead of both stages.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Contour {
+    /// Stage 1: the move waiting for its chamfer or corner R.
+    shape: Buffer,
+    /// The corner requested at the end of stage 1's held move.
+    corner: Option<Corner>,
+    /// Blocks without motion read since stage 1's held move (2.23 note 2 allows one G04).
+    idle_blocks: u8,
+    /// Stage 2: the move waiting for its compensated corner.
+    offset: Buffer,
+    /// Nose radius compensation in force.
+    pub comp: Comp,
+    /// Compensation suppressed: G71–G73 read their shape without it (2.16.7 note 5).
+    pub no_comp: bool,
+}
+
+// Every field compares exactly (integers only).
+impl Eq for Contour {}
+
+impl Contour {
+    /// Whether a move is held back in either stage.
+    pub fn is_holding(&self) -> bool {
+        self.shape.is_holding() || self.offset.is_holding()
+    }
+
+    /// The corner the held move waits for, if any.
+    pub fn pending_corner(&self) -> Option<Corner> {
+        self.corner
+    }
+
+    /// Drops everything held and cancels compensation (rewind, reset).
+    pub fn clear(&mut self) {
+        *self = Contour::default();
+    }
+}
+
+/// The corner a block asks for, checked against 2.23 notes 1, 7 and 8: thread
+/// blocks refuse `,C`/`,R` (alarm 0050), group 00 codes other than G04 may not share
+/// their block (0051), blocks other than G01/G02/G03 ignore it.
+pub fn corner_request(cmd: &Command, st: &State) -> Result<Option<Corner>, AlarmKind> {
+    use GCode::*;
+    let Some(corner) = cmd.corner else { return Ok(None) };
+    if let Some(c) = cmd.g.one_shot
+        && c != Dwell
+    {
+        return Err(if c == MultiThreadCycle {
+            AlarmKind::ChamferInThread
+        } else {
+            AlarmKind::ChamferNoMove { what: "a group 00 code other than G04 in the block" }
+        });
+    }
+    if cmd.g.one_shot.is_some() {
+        return Ok(None);
+    }
+    Ok(match st.modal.motion {
+        Thread | VariableLeadThread | ThreadCycle => return Err(AlarmKind::ChamferInThread),
+        Linear | ArcCw | ArcCcw => Some(corner),
+        _ => None,
+    })
+}
+
+/// The rules for the block after a chamfered one (2.23 notes 2, 4 and 7): a G01,
+/// G02 or G03 move in the same plane, with at most one G04 block before it.
+/// Returns whether the block is that G04.
+fn check_follower(cmd: &Command, st: &State) -> Result<bool, AlarmKind> {
+    use GCode::*;
+    if cmd.g.plane.is_some() {
+        return Err(AlarmKind::ChamferPlaneChange);
+    }
+    match cmd.g.one_shot {
+        Some(Dwell) if !cmd.has_axes() && cmd.g.motion.is_none() => {
+            if st.contour.idle_blocks > 0 {
+                return Err(AlarmKind::ChamferNoMove { what: "more than one block between" });
+            }
+            Ok(true)
+        }
+        Some(_) => Err(AlarmKind::ChamferNoMove { what: "a group 00 code" }),
+        None if matches!(st.modal.motion, Linear | ArcCw | ArcCcw) => Ok(false),
+        None => Err(AlarmKind::ChamferNoMove { what: "a code other than G01/G02/G03" }),
+    }
+}
+
+/// What the block does to the compensation.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct CompPlan {
+    /// G40 in this block while compensating: the block's first move cancels.
+    cancel: bool,
+    /// A temporary cancel before the block's moves (G28, G30, G50, G52, G53).
+    pause: bool,
+}
+
+/// G40/G41/G42 of the block checked against 2.18.4 and put in force: a direct
+/// G41↔G42 switch (3576), a T code (3577) or a plane change (0037) while
+/// compensating are alarms.
+fn plan_comp(cmd: &Command, st: &mut State) -> Result<CompPlan, AlarmKind> {
+    use GCode::*;
+    let was = st.contour.comp.side;
+    if st.contour.no_comp {
+        return Ok(CompPlan { cancel: false, pause: false });
+    }
+    let now = match st.modal.nose_comp {
+        NoseCompLeft => Some(Side::Left),
+        NoseCompRight => Some(Side::Right),
+        _ => None,
+    };
+    if let (Some(a), Some(b)) = (was, now) {
+        if a != b {
+            return Err(AlarmKind::NoseCompReversed);
+        }
+        if cmd.tool.is_some() {
+            return Err(AlarmKind::ToolChangeInNoseComp);
+        }
+        if cmd.g.plane.is_some_and(|p| p != st.contour.comp.plane) {
+            return Err(AlarmKind::NoseCompPlaneChange);
+        }
+    }
+    if was.is_none()
+        && let Some(side) = now
+    {
+        let comp = Comp {
+            side: Some(side),
+            radius: st.tool.nose_radius,
+            tip: st.tool.tip,
+            plane: st.modal.plane,
+            engaged: false,
+            centre: (0, 0),
+            starting: false,
+        };
+        st.contour.comp = comp;
+    }
+    let pause = matches!(
+        cmd.g.one_shot,
+        Some(ReferenceReturn | ReferenceReturnN | SetCoordinates | LocalFrame | MachineCoordinates)
+    );
+    Ok(CompPlan { cancel: was.is_some() && now.is_none(), pause: was.is_some() && now.is_some() && pause })
+}
+
+/// Passes the actions the block just staged in `out` through both stages. `from`
+/// is the machine position before the block, `flow` what the block does next (a
+/// stop or the end of the program empties the look-ahead). Actions after a
+/// cycle's place (`out.split`) come after everything held; the cycle itself runs
+/// uncompensated and the next move starts the offset up again.
+pub fn after_block(
+    cmd: &Command,
+    st: &mut State,
+    cfg: &crate::config::MachineConfig,
+    from: Pos,
+    flow: Flow,
+    out: &mut Staged<'_>,
+) -> Result<(), AlarmKind> {
+    let request = corner_request(cmd, st)?;
+    let plan = plan_comp(cmd, st)?;
+    let comp_on = st.contour.comp.side.is_some();
+    if !st.contour.is_holding() && request.is_none() && !comp_on {
+        return Ok(());
+    }
+    let dwell_between = match st.contour.corner {
+        Some(_) => check_follower(cmd, st)?,
+        None => false,
+    };
+    if plan.pause {
+        flush(st, out)?;
+    }
+    let mut acts: heapless::Vec<Canon, STAGE> = heapless::Vec::new();
+    while let Some(c) = out.actions.pop_front() {
+        acts.push(c).map_err(|_| AlarmKind::Overflow)?;
+    }
+    let split = out.split.unwrap_or(acts.len());
+    let last_move = acts[..split].iter().rposition(|c| c.action.endpoint().is_some());
+    let waited = st.contour.corner.is_some();
+    let mut moved = false;
+    let mut cancel = plan.cancel;
+    let mut pos = from;
+    for (i, c) in acts.iter().enumerate() {
+        if i == split {
+            flush(st, out)?;
+            out.split = Some(out.actions.len());
+        }
+        let Some(end) = c.action.endpoint().map(|e| e.machine) else {
+            shape_aside(st, *c, out)?;
+            continue;
+        };
+        moved = true;
+        let mut start = pos;
+        if st.contour.shape.is_holding() {
+            start = join(st, *c, pos, out)?;
+        }
+        if i >= split || plan.pause {
+            put(out, *c)?;
+        } else if cancel {
+            cancel = false;
+            comp::cancel_with(&mut st.contour.offset, &mut st.contour.comp, *c, start, out)?;
+            st.contour.comp = Comp::default();
+        } else {
+            match request.filter(|_| Some(i) == last_move) {
+                Some(corner) if shapeable(&c.action) => {
+                    st.contour.shape.hold(*c, start);
+                    st.contour.corner = Some(corner);
+                    st.contour.idle_blocks = 0;
+                }
+                _ => to_offset(st, *c, start, out)?,
+            }
+        }
+        pos = end;
+    }
+    if split == acts.len() && out.split.is_some() {
+        flush(st, out)?;
+        out.split = Some(out.actions.len());
+    }
+    if cancel {
+        // G40 without a move: the held move ends on its normal.
+        comp::end_here(&mut st.contour.offset, &mut st.contour.comp, out)?;
+        st.contour.comp = Comp::default();
+    }
+    if matches!(flow, Flow::Stop | Flow::End) {
+        flush(st, out)?;
+        if flow == Flow::End {
+            // M02/M30 cancel the compensation (3.1.4).
+            st.contour.comp = Comp::default();
+        }
+    }
+    finish_block(st, waited, moved, dwell_between)?;
+    if st.polar.is_none() {
+        // The shaped and offset points must respect the soft limits too.
+        for c in out.actions.iter() {
+            if let Some(e) = c.action.endpoint() {
+                crate::exec::motion::check_limits(&e.machine, cfg)?;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// A non-motion action: behind stage 1's held move, else behind stage 2's, else out.
+fn shape_aside(st: &mut State, c: Canon, out: &mut Staged<'_>) -> Result<(), AlarmKind> {
+    if st.contour.shape.is_holding() {
+        st.contour.shape.push(c)
+    } else if st.contour.offset.is_holding() {
+        st.contour.offset.push(c)
+    } else {
+        put(out, c)
+    }
+}
+
+/// Stage 2: a move of the programmed path (from `start`) into the compensation, or
+/// straight out without it.
+fn to_offset(st: &mut State, c: Canon, start: Pos, out: &mut Staged<'_>) -> Result<(), AlarmKind> {
+    let ct = &mut st.contour;
+    if ct.comp.side.is_none() {
+        return put(out, c);
+    }
+    if c.action.endpoint().is_none() {
+        return if ct.offset.is_holding() { ct.offset.push(c) } else { put(out, c) };
+    }
+    if ct.comp.engaged {
+        comp::advance(&mut ct.offset, &mut ct.comp, c, start, out)
+    } else {
+        comp::start_up(&mut ct.offset, &mut ct.comp, c, start)
+    }
+}
+
+/// After the block: a corner still waiting from before means the block had no
+/// move; only one G04 block may stand there (2.23 note 2).
+fn finish_block(st: &mut State, waited: bool, moved: bool, dwell_between: bool) -> Result<(), AlarmKind> {
+    if waited && !moved {
+        if !dwell_between {
+            return Err(AlarmKind::ChamferNoMove { what: "a block without a G01/G02/G03 move" });
+        }
+        st.contour.idle_blocks += 1;
+    }
+    Ok(())
+}
+
+/// Whether a corner can be shaped at the end of this action (a feed move).
+fn shapeable(a: &Action) -> bool {
+    matches!(a, Action::Linear(_) | Action::Arc(_))
+}
+
+/// Emits everything held: stage 1 unchanged (nothing may be waiting for a corner,
+/// alarm 0051), stage 2 ending on the normal of its move (a temporary cancel: the
+/// next move starts the offset up again).
+pub fn flush(st: &mut State, out: &mut Staged<'_>) -> Result<(), AlarmKind> {
+    if st.contour.corner.is_some() {
+        return Err(AlarmKind::ChamferNoMove { what: "a block without a G01/G02/G03 move" });
+    }
+    let start = st.contour.shape.start;
+    let (held, after) = st.contour.shape.take();
+    if let Some(c) = held {
+        to_offset(st, c, start, out)?;
+    }
+    for c in after {
+        to_offset(st, c, start, out)?;
+    }
+    comp::end_here(&mut st.contour.offset, &mut st.contour.comp, out)
+}
+
+/// Stage 1's held move meets `next` (starting at `from`): shapes the corner, passes
+/// the held actions on to stage 2 and returns where `next` now starts.
+fn join(st: &mut State, next: Canon, from: Pos, out: &mut Staged<'_>) -> Result<Pos, AlarmKind> {
+    let start = st.contour.shape.start;
+    let corner = st.contour.corner.take();
+    let (held, rest) = st.contour.shape.take();
+    let Some(first) = held else { return Ok(from) };
+    let plane = st.modal.plane;
+    let shaped = match corner {
+        Some(corner) => corner::shape(corner, plane, start, first, next)?,
+        None => corner::Shaped { trimmed: Some(first), insert: None, next_start: from },
+    };
+    let mut at = start;
+    for c in [shaped.trimmed, shaped.insert].into_iter().flatten() {
+        to_offset(st, c, at, out)?;
+        at = c.action.endpoint().map_or(at, |e| e.machine);
+    }
+    for c in rest {
+        to_offset(st, c, at, out)?;
+    }
+    Ok(shaped.next_start)
+}
+
+/// Queues an action as it is (with its own line).
+fn put(out: &mut Staged<'_>, c: Canon) -> Result<(), AlarmKind> {
+    out.actions.push_back(c).map_err(|_| AlarmKind::Overflow)
+}
+
+/// The plane coordinates of a machine position.
+pub(crate) fn in_plane(p: &Pos, plane: Plane) -> V2 {
+    let (a, b) = plane.axes();
+    V2::new(p[a] as f64, p[b] as f64)
+}
+
+/// `ep` with its plane coordinates (machine) replaced by `p`, the work coordinates
+/// shifted alike.
+pub(crate) fn moved_to(ep: Endpoint, plane: Plane, p: V2) -> Endpoint {
+    let (a, b) = plane.axes();
+    let (pa, pb) = p.round();
+    let mut out = ep;
+    for (axis, v) in [(a, pa), (b, pb)] {
+        // Saturating: a point thrown far off by degenerate geometry must not panic
+        // (it then fails the soft limits downstream instead).
+        let d = v.saturating_sub(ep.machine[axis]);
+        out.machine[axis] = v;
+        out.work[axis] = ep.work[axis].saturating_add(d);
+    }
+    out
+}
+
+/// Whether `a` and `b` differ in an axis outside `plane`.
+pub(crate) fn leaves_plane(a: &Pos, b: &Pos, plane: Plane) -> bool {
+    Axis::ALL.into_iter().any(|x| !plane.contains(x) && a[x] != b[x])
+}
