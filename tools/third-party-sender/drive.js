@@ -121,7 +121,12 @@ function stream(opts, port, secret) {
     });
     socket.on('controller:state', (type, s) => {
       const active = s && s.status && s.status.activeState;
-      if (active === 'Idle') { st.idle = true; maybeStart(); }
+      if (active === 'Idle' && !st.idle) {
+        st.idle = true;
+        // A board whose `$$` lists no setting never triggers controller:settings.
+        setTimeout(() => { st.settings = true; maybeStart(); }, 3000);
+        maybeStart();
+      }
       if (active === 'Alarm') finish(1, `board in Alarm: ${describe(st)}`);
     });
     socket.on('serialport:read', (line) => {
@@ -164,6 +169,8 @@ function onPause(socket, opts, isFinished, say) {
 
 /** One-line progress for messages. */
 function describe(st) {
+  if (!st.open) return 'CNCjs never opened the port';
+  if (!st.idle) return 'the board never reported Idle (CNCjs needs the grbl welcome or an answer to ?)';
   return st.total > 0 ? `sent ${st.sent}, acknowledged ${st.received} of ${st.total} lines` : 'before the first progress report';
 }
 

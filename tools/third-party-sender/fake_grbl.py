@@ -46,13 +46,20 @@ OFFSETS = [
     "[TLO:0.000]", "[PRB:0.000,0.000,0.000:0]",
 ]
 PARSER_STATE = "[GC:G0 G54 G17 G21 G90 G94 M5 M9 T0 F0 S0]"
+# --board-format: the answers docs/PROTOCOL.md gives for our lathe board.
+BOARD_PARSER_STATE = "[GC:G1 G54 G18 G21 G97 G99 M5 M9 T0101 F0.2 S500]"
+BOARD_VERSION = ["[VER:1.1h.lathe:]", "[OPT:,64,128]", "[MSG:lathe controller (fake_grbl.py)]"]
 
 
 class FakeGrbl:
     """The board's state: receive buffer, pending lines, the record of the session."""
 
-    def __init__(self, fd, log, line_s, error_on=None, alarm_on=None):
+    def __init__(self, fd, log, line_s, error_on=None, alarm_on=None, board=False, strict=False,
+                 parser_state=None):
         self.fd = fd
+        self.parser_state = parser_state or (BOARD_PARSER_STATE if board else PARSER_STATE)
+        self.board = board
+        self.strict = strict
         self.error_on = error_on
         self.alarm_on = alarm_on
         self.alarm = False
@@ -91,6 +98,10 @@ class FakeGrbl:
         state = "Hold:0" if self.hold else ("Run" if busy else "Idle")
         state = "Alarm" if self.alarm else state
         free = RX_BUFFER - self.unanswered()
+        if self.board:
+            ln = len(self.program_lines)
+            return (f"<{state}|MPos:40.000,0.000,-12.500|FS:0.2,500|Bf:15,{free}|Ln:{ln}"
+                    "|WCO:0.000,0.000,0.000|Ov:100,100,100>")
         return f"<{state}|MPos:0.000,0.000,0.000|Bf:15,{free}|FS:0,0>"
 
     def reset(self):
@@ -159,11 +170,13 @@ class FakeGrbl:
         if not text.startswith("$"):
             return self.program_line(text)
         self.commands.append(text)
+        if self.strict and any(not t.startswith("$") for t, _ in self.pending):
+            return ["[MSG:not idle]", "error:8"]
         replies = {
             "$$": SETTINGS,
             "$#": OFFSETS,
-            "$G": [PARSER_STATE],
-            "$I": ["[VER:1.1h.fake_grbl:]", "[OPT:V,15,128]"],
+            "$G": [self.parser_state],
+            "$I": BOARD_VERSION if self.board else ["[VER:1.1h.fake_grbl:]", "[OPT:V,15,128]"],
             "$": ["[HLP:$$ $# $G $I $N $x=val $Nx=line $J=line $SLP $C $X $H ~ ! ? ctrl-x]"],
         }
         if text in replies:
@@ -225,6 +238,11 @@ def main():
     parser.add_argument("--line-ms", type=float, default=10.0, help="time to answer each line")
     parser.add_argument("--error-on", help="answer error:20 to lines containing this text")
     parser.add_argument("--alarm-on", help="raise ALARM:20 after lines containing this text")
+    parser.add_argument("--board-format", action="store_true",
+                        help="answer ?, $G and $I in the formats of docs/PROTOCOL.md (lathe board)")
+    parser.add_argument("--strict-dollar", action="store_true",
+                        help="answer error:8 to $ commands while program lines are pending (Run)")
+    parser.add_argument("--parser-state", help="the [GC:...] line to answer $G with")
     parser.add_argument("--no-welcome", action="store_true", help="stay silent at start")
     args = parser.parse_args()
 
@@ -241,7 +259,8 @@ def main():
     signal.signal(signal.SIGTERM, on_signal)
     signal.signal(signal.SIGINT, on_signal)
     with open(args.log, "a", encoding="utf-8") as log:
-        fake = FakeGrbl(fd, log, args.line_ms / 1000.0, args.error_on, args.alarm_on)
+        fake = FakeGrbl(fd, log, args.line_ms / 1000.0, args.error_on, args.alarm_on,
+                        args.board_format, args.strict_dollar, args.parser_state)
         if not args.no_welcome:
             os.write(fd, WELCOME)
             fake.note("TX", "Grbl 1.1h ['$' for help]")

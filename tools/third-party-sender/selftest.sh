@@ -6,7 +6,8 @@
 #  2. FANUC-dialect program: what CNCjs sends must equal testdata/fanuc.expected
 #     (pins down how CNCjs rewrites FANUC text: see README);
 #  3. the board answers error:20 to a line -> run.sh must exit 1;
-#  4. the board raises ALARM after CNCjs's "G4 P0.5" -> run.sh must exit 1.
+#  4. the board raises ALARM after CNCjs's "G4 P0.5" -> run.sh must exit 1;
+#  5. the board refuses `$G` while running (error:8) -> run.sh must exit 1.
 # Needs setup.sh to have run (CNCjs in node_modules) and socat. Prints
 # "N passed, N failed"; exits non-zero if any case failed. KEEP=1 keeps the logs.
 set -uo pipefail
@@ -92,8 +93,10 @@ open(sys.argv[2], "w").write("\n".join(lines + ["G4 P0.5"]) + "\n")
 PY
 run_case plain "$work/plain.nc" 0 --line-ms 4 && check plain "$work/plain.expected" 64
 
-# 2. FANUC dialect: CNCjs's rewriting is pinned in testdata/fanuc.expected.
-run_case fanuc "$here/testdata/fanuc.nc" 0 && check fanuc "$here/testdata/fanuc.expected" 0
+# 2. FANUC dialect: CNCjs's rewriting is pinned in testdata/fanuc.expected; the
+#    fake answers ?, $G, $I in our board's formats (docs/PROTOCOL.md) this time.
+run_case fanuc "$here/testdata/fanuc.nc" 0 --board-format &&
+  check fanuc "$here/testdata/fanuc.expected" 0
 
 # 3. an error from the board fails the run.
 printf 'G21 G90\nG1 X1 Z-1 F100\nG1 X7.77 Z-2\nG1 X3 Z-3\nM30\n' >"$work/error.nc"
@@ -103,6 +106,11 @@ run_case error "$work/error.nc" 1 --error-on X7.77 &&
 # 4. a board that alarms on CNCjs's closing "G4 P0.5" (FANUC: P takes no decimal point).
 run_case alarm "$work/error.nc" 1 --alarm-on "G4 P0.5" &&
   pass alarm "board ALARM -> run.sh exit 1 ($(tail -n 1 "$work/alarm/run.log"))"
+
+# 5. a board that refuses `$G` while running (error:8): CNCjs polls `$G` every
+#    ~0.5 s during the job and takes the error as the program's -> run.sh exit 1.
+run_case strict "$work/plain.nc" 1 --line-ms 4 --strict-dollar &&
+  pass strict "\$G refused in Run -> run.sh exit 1 ($(tail -n 1 "$work/strict/run.log"))"
 
 echo "$passed passed, $failed failed"
 if [ "$failed" -eq 0 ] && [ -z "${KEEP:-}" ]; then rm -rf "$work"; else echo "selftest: files kept in $work"; fi
