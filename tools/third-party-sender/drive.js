@@ -202,6 +202,10 @@ async function main() {
   try {
     const started = await startCncjs(configFile, log);
     child = started.child;
+    // Never leave the CNCjs server behind when we are interrupted.
+    for (const sig of ['SIGINT', 'SIGTERM', 'SIGHUP']) {
+      process.on(sig, () => { child.kill('SIGTERM'); console.log(`[cncjs] FAIL: interrupted (${sig})`); process.exit(1); });
+    }
     console.log(`[cncjs] server on 127.0.0.1:${started.port} (log ${logFile})`);
     result = await stream(opts, started.port, secret);
   } catch (err) {
