@@ -213,7 +213,7 @@ async function main() {
   }
   if (child) { child.removeAllListeners('exit'); child.kill('SIGTERM'); }
   logStream.end();
-  if (result.code === 0) fs.rmSync(dir, { recursive: true, force: true });
+  if (result.code === 0 || process.env.SENDER_KEEP_LOG === '0') fs.rmSync(dir, { recursive: true, force: true });
   else console.log(`[cncjs] CNCjs server log kept in ${logFile}`);
   console.log(`[cncjs] ${result.code === 0 ? 'OK' : 'FAIL'}: ${result.message}`);
   process.exit(result.code);
