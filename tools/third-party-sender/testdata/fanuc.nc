@@ -1,0 +1,28 @@
+%
+O0001 (SHAFT - CNCJS DIALECT PROBE)
+(T0101 OD ROUGHING TOOL)
+N10 G50 S2000;
+N20 G96 S180 M03
+G00 X52.0 Z2.0 ; rapid approach
+G00 X30.0;G01 Z-5.0 F0.1
+#100=[#101+2.5]
+#1=1
+G01 X[#100] Z-10.0 F0.2
+X[1+2] Z-12.
+X[-2] Z-13.
+Z[posz]
+#2=[ABS[-2]*3]
+WHILE [#1 LE 3] DO1
+#1=#1+1
+END1
+	g01 x40.0 z-20.0 (lower case, leading tab)
+/N30 G00 X60.0
+G01 U2.0 W-1.0 ( one ) Z-25.0 ( two )
+M00
+M01
+G04 P500
+T0202
+M06
+G28 U0 W0
+M30
+%
