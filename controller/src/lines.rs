@@ -164,6 +164,14 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             self.refuse(8, "Busy: not while sleeping, jogging, homing or running from memory");
             return Handled::Done;
         }
+        let mut dwell: heapless::Vec<u8, 24> = heapless::Vec::new();
+        let text = match grbl_sync_dwell(text) {
+            Some(seconds) if self.settings.grbl_dwell && dwell.extend_from_slice(b"G04 X").is_ok() => {
+                let _ = dwell.extend_from_slice(seconds);
+                &dwell[..]
+            }
+            _ => text,
+        };
         if !self.stream_text(text) {
             return Handled::Wait;
         }
@@ -253,5 +261,34 @@ mod tests {
         assert_eq!(link_frame(b"N10 #1=#2*1000", false), Link::Plain);
         assert_eq!(link_frame(b"G01 X1", true), Link::Plain);
         assert_eq!(trim(b"  G1 \r"), b"G1");
+    }
+}
+
+/// A grbl sender's sync dwell: a line that is only `G4 P<seconds>` with a decimal
+/// point (CNCjs ends every job with `G4 P0.5`). In the board's language G04 P is in
+/// milliseconds without a decimal point (a decimal point is alarm 0007), so such a
+/// line can only mean grbl's dwell in seconds; with `$303=1` (the default) it runs as
+/// `G04 X<seconds>`. Returns the seconds' text.
+fn grbl_sync_dwell(text: &[u8]) -> Option<&[u8]> {
+    let t: &[u8] = trim(text);
+    let rest = t.strip_prefix(b"G4").or_else(|| t.strip_prefix(b"G04"))?;
+    let rest = trim(rest);
+    let value = trim(rest.strip_prefix(b"P")?);
+    let digits_and_point = value.iter().all(|b| b.is_ascii_digit() || *b == b'.');
+    let one_point = value.iter().filter(|&&b| b == b'.').count() == 1;
+    (digits_and_point && one_point && value.len() <= 12).then_some(value)
+}
+
+#[cfg(test)]
+mod dwell_tests {
+    use super::grbl_sync_dwell;
+
+    #[test]
+    fn only_a_lone_g4_p_with_a_decimal_point_is_a_grbl_dwell() {
+        assert_eq!(grbl_sync_dwell(b"G4 P0.5"), Some(&b"0.5"[..]));
+        assert_eq!(grbl_sync_dwell(b"G04P1."), Some(&b"1."[..]));
+        assert_eq!(grbl_sync_dwell(b"G4 P500"), None, "FANUC milliseconds stay as they are");
+        assert_eq!(grbl_sync_dwell(b"G4 P0.5 X1"), None);
+        assert_eq!(grbl_sync_dwell(b"G01 X1"), None);
     }
 }

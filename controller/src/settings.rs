@@ -33,6 +33,10 @@ pub struct Settings {
     /// real-time byte, a `$` line) came since power-on or reset; 1 always; 2 never
     /// (the `%` is a record mark of the streamed program, answered `ok`).
     pub tape_detect: u8,
+    /// `$303`: a streamed line that is only `G4 P<seconds with a decimal point>`
+    /// (a grbl sender's sync dwell, e.g. CNCjs's `G4 P0.5` at the end of a job) runs
+    /// as `G04 X<seconds>` instead of raising alarm 0007.
+    pub grbl_dwell: bool,
     /// `$302`: strip bit 7 (even parity) from tape bytes.
     pub parity_strip: bool,
     /// Soft-limit travel (min, max per axis, nm) while `$20=0`.
@@ -51,6 +55,7 @@ impl Default for Settings {
             homing_pulloff_um: 1_000,
             tape_mode: 0,
             tape_detect: 0,
+            grbl_dwell: true,
             parity_strip: false,
             travel: [(0, 0); 2],
         }
@@ -58,7 +63,8 @@ impl Default for Settings {
 }
 
 /// The grbl-numbered settings, in `$$` order.
-pub const NUMBERS: &[u16] = &[11, 12, 20, 21, 22, 23, 24, 25, 27, 30, 100, 102, 110, 112, 120, 122, 130, 132, 300, 302];
+pub const NUMBERS: &[u16] =
+    &[11, 12, 20, 21, 22, 23, 24, 25, 27, 30, 100, 102, 110, 112, 120, 122, 130, 132, 300, 301, 302, 303];
 
 /// Why a setting write was refused.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -102,6 +108,7 @@ pub fn get(n: u16, cfg: &MachineConfig, s: &Settings) -> Option<f64> {
         }
         300 => f64::from(s.tape_mode),
         301 => f64::from(s.tape_detect),
+        303 => f64::from(u8::from(s.grbl_dwell)),
         302 => f64::from(u8::from(s.parity_strip)),
         _ => return None,
     })
@@ -152,6 +159,7 @@ pub fn set(n: u16, v: f64, cfg: &mut MachineConfig, s: &mut Settings) -> Result<
         }
         300 => s.tape_mode = u8::try_from(whole(v)?).ok().filter(|m| *m <= 2).ok_or(bad("is 0, 1 or 2"))?,
         301 => s.tape_detect = u8::try_from(whole(v)?).ok().filter(|m| *m <= 2).ok_or(bad("is 0, 1 or 2"))?,
+        303 => s.grbl_dwell = flag(v)?,
         302 => s.parity_strip = flag(v)?,
         _ => return Err(SettingError::Unknown),
     }
