@@ -48,7 +48,7 @@ fn run(link: &Link, block: &str, blocks: usize) -> Result {
     let mut ended = false;
     let mut alarm = false;
     let (mut queued_sum, mut ticks) = (0u64, 0u64);
-    while !(ended && core.is_idle()) && !alarm && now < 600_000_000_000 {
+    while !(alarm || ended && core.is_idle()) && now < 600_000_000_000 {
         // Sender: character counting, writes into the wire queue.
         while let Some(l) = lines.front() {
             let n = l.len() + 1;
@@ -101,7 +101,7 @@ fn run(link: &Link, block: &str, blocks: usize) -> Result {
             back_credit = back_credit.min(1.0);
         }
         now += 1_000_000;
-        if std::env::var("BENCH_DEBUG").is_ok() && now % 10_000_000_000 == 0 {
+        if std::env::var("BENCH_DEBUG").is_ok() && now.is_multiple_of(10_000_000_000) {
             eprintln!(
                 "{} s: {:?} blocks {} {:?} in flight {}",
                 now / 1_000_000_000,

@@ -44,6 +44,7 @@ pub use lines::frame_line;
 pub use port::{MotionPort, MotionStatus};
 pub use settings::Settings;
 
-/// The board's controller: an 8 KiB stream window, 48 KiB of program memory for
-/// 64 programs with 2048 indexed sequence numbers.
-pub type Board = Controller<8192, 49152, 64, 2048>;
+/// The board's controller: an 8 KiB stream window, 24 KiB of program memory for
+/// 64 programs with 1024 indexed sequence numbers; about 76 KB in all (the
+/// STM32F405 has 128 KB of SRAM and 64 KB of CCM; the motion core takes 21 KB).
+pub type Board = Controller<8192, 24576, 64, 1024>;
