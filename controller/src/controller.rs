@@ -109,6 +109,18 @@ pub(crate) struct LinkSeq {
     pub expected: u32,
 }
 
+/// What changed since [`Controller::take_dirty`] last asked: what the shell
+/// should write to flash (see `persist`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Dirty {
+    /// Settings, parameters or the machine description (`$n=`, `$Pn=`, `$RST=`).
+    pub settings: bool,
+    /// Startup blocks (`$N0=`, `$N1=`).
+    pub startup: bool,
+    /// Program memory (tape punch, `$PD=`, `$RST=*`).
+    pub programs: bool,
+}
+
 /// Counters for tests and diagnostics.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Counters {
@@ -175,6 +187,7 @@ pub struct Controller<const W: usize, const T: usize, const P: usize, const S: u
     /// Startup block to run next (`$N0`, `$N1`), 2 = none.
     pub(crate) startup_next: u8,
     pub(crate) counters: Counters,
+    pub(crate) dirty: Dirty,
 }
 
 /// Feeds the motion core through the port.
@@ -239,6 +252,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             mist: false,
             startup_next: 2,
             counters: Counters::default(),
+            dirty: Dirty::default(),
         };
         c.rewind_stream();
         c.welcome();
@@ -279,6 +293,23 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
     /// The startup blocks `$N0`, `$N1`.
     pub fn startup_blocks(&self) -> [&str; 2] {
         [self.startup[0].as_str(), self.startup[1].as_str()]
+    }
+
+    /// Sets startup block `i` (0 or 1), e.g. restored from flash; false if `i` is
+    /// not 0 or 1 or the text is longer than 80 bytes.
+    pub fn set_startup_block(&mut self, i: usize, text: &str) -> bool {
+        let Some(slot) = self.startup.get_mut(i) else { return false };
+        let mut s = heapless::String::new();
+        if s.push_str(text).is_err() {
+            return false;
+        }
+        *slot = s;
+        true
+    }
+
+    /// What changed since the last call (and forgets it).
+    pub fn take_dirty(&mut self) -> Dirty {
+        core::mem::take(&mut self.dirty)
     }
 
     /// Counters.
@@ -768,15 +799,21 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
                 | AlarmKind::MissingEnd { .. }
                 | AlarmKind::SequenceNotFound { .. }
         );
+        let at = self.interp.block_start();
+        let at_end = at.offset >= self.window.len();
         if self.job == Job::Stream && a.program == 0 && missing_text {
-            let at = self.interp.block_start();
-            self.interp.resume_at(at);
-            let at_end = at.offset >= self.window.len();
-            if !(a.kind == AlarmKind::EndOfRecord && at_end) {
+            if a.kind == AlarmKind::EndOfRecord {
+                if at_end {
+                    // Caught up with the sender: wait for the next line.
+                    self.interp.resume_at(at);
+                    return;
+                }
+            } else {
+                self.interp.resume_at(at);
                 self.lookahead = Some(Wait { received: self.window.received(), alarm: a });
                 self.counters.lookahead_waits += 1;
+                return;
             }
-            return;
         }
         self.program_alarm(a, false, port);
     }

@@ -38,7 +38,7 @@ pub mod settings;
 mod tape;
 pub mod window;
 
-pub use controller::{Controller, Counters, LINES_PER_POLL, Mode, OUT, QUIET_NS, RX, STEPS_PER_POLL, WELCOME};
+pub use controller::{Controller, Counters, Dirty, LINES_PER_POLL, Mode, OUT, QUIET_NS, RX, STEPS_PER_POLL, WELCOME};
 pub use io::{Inputs, MachineIo};
 pub use lines::frame_line;
 pub use port::{MotionPort, MotionStatus};

@@ -19,7 +19,9 @@ fn settings_read_write_and_reconfigure_the_motion_core() {
     assert!(all.contains(&"$102=320".to_string()));
     assert!(all.contains(&"$130=165".to_string()));
     assert!(all.contains(&"$20=1".to_string()));
+    assert_eq!(r.ctl.take_dirty(), controller::Dirty::default());
     assert_eq!(r.command("$102=640"), vec!["ok"]);
+    assert!(r.ctl.take_dirty().settings);
     assert!(r.command("$$").contains(&"$102=640".to_string()));
     assert_eq!(r.port.core.params().scale[2].steps(1_000_000), 640);
     assert_eq!(r.command("$22=2").last().unwrap(), "error:2");
