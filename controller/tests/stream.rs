@@ -151,6 +151,15 @@ fn overrides_show_in_ov() {
     assert_eq!(field(&s, "Ov:"), "121,50,110");
     r.send(&[0x90, 0x95, 0x99, 0x92, 0x92]);
     assert_eq!(field(&r.status(), "Ov:"), "80,100,100");
+    // The spindle override changes the speed the drive is told (and measures).
+    assert_eq!(r.command("M03 S1000"), vec!["ok"]);
+    r.run_ms(100);
+    let rpm = |r: &mut Rig| -> i32 { field(&r.status(), "FS:").split(',').nth(1).unwrap().parse().unwrap() };
+    assert!((rpm(&mut r) - 1000).abs() <= 2);
+    r.send(&[0x9A, 0x9A]);
+    r.run_ms(100);
+    assert!((rpm(&mut r) - 1200).abs() <= 2);
+    assert_eq!(r.port.core.spindle_output().1, 1200);
 }
 
 #[test]
