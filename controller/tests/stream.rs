@@ -173,6 +173,19 @@ fn error_lines() {
     assert_eq!(a.last().unwrap(), "error:11");
     let a = r.command("$Q");
     assert_eq!(a.last().unwrap(), "error:3");
+    let a = r.command("G01 X1 \u{e9}");
+    assert_eq!(a, vec!["[MSG:Byte 0xC3 is not G-code text: line refused]", "error:1"]);
+    // Real-time bytes inside a line act and leave the line intact.
+    r.send(b"G00 W");
+    r.send(&[0x91]);
+    r.send(b"0.5");
+    assert_eq!(r.command(""), vec!["ok"]);
+    assert_eq!(field(&r.status(), "Ov:"), "110,100,100");
+    // A % inside a running stream is text: the interpreter's end-of-record alarm.
+    let a = r.command("%");
+    assert_eq!(a[0], "ok");
+    assert!(r.run_until(100, |r| r.lines().iter().any(|l| l.starts_with("[MSG:ALARM 5010 line 2"))), "{:?}", r.lines());
+    assert_eq!(r.command("$X").last().unwrap(), "ok");
     let a = r.command("G00 X500");
     assert_eq!(a[0], "ok");
     assert!(r.run_until(100, |r| r.lines().iter().any(|l| l == "ALARM:2")), "{:?}", r.lines());
