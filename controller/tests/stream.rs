@@ -224,3 +224,23 @@ fn a_runaway_loop_still_answers_status_and_reset_within_10ms() {
     assert!(r.take_lines().iter().any(|l| l.starts_with("Grbl 1.1h")));
     assert!(r.status().starts_with("<Idle"));
 }
+
+#[test]
+fn loops_survive_the_window_dropping_old_text() {
+    // A 512-byte window: text before and after the loop moves through it while
+    // the loop runs; its WHILE block stays.
+    let mut text = String::from("G98 G00 X20 Z0\n");
+    for _ in 0..40 {
+        text.push_str("G01 W-0.100 F3000\n");
+    }
+    text.push_str("#1=0\nWHILE [#1 LT 20] DO1\nG01 U0.2 F3000\nG01 U-0.2\n#1=#1+1\nEND1\n");
+    for _ in 0..40 {
+        text.push_str("G01 W-0.100 F3000\n");
+    }
+    text.push_str("M30\n");
+    let mut r: Rig<controller::Controller<512, 1024, 4, 64>> = Rig::with(interp_core::MachineConfig::default());
+    let answers = r.stream(&text, 60_000);
+    assert!(answers.iter().any(|l| l == "[MSG:Pgm End]"), "{answers:?}");
+    assert!(r.ctl.counters().window_dropped > 1000);
+    assert_eq!(r.port.pushed, direct(&text, None));
+}
