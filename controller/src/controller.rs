@@ -182,6 +182,8 @@ pub struct Controller<const W: usize, const T: usize, const P: usize, const S: u
     pub(crate) xoff: bool,
     pub(crate) link: LinkSeq,
     pub(crate) panel: Panel,
+    /// `$H` completed since power-on (G28/G30 need it when home switches are fitted).
+    pub(crate) homed: bool,
     pub(crate) flood: bool,
     pub(crate) mist: bool,
     /// Startup block to run next (`$N0`, `$N1`), 2 = none.
@@ -248,6 +250,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             xoff: false,
             link: LinkSeq { active: false, expected: 1 },
             panel: Panel::default(),
+            homed: false,
             flood: false,
             mist: false,
             startup_next: 2,
@@ -575,6 +578,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
     fn read_inputs<M: MotionPort + ?Sized>(&mut self, port: &mut M, inputs: Inputs) {
         let prev = core::mem::replace(&mut self.prev_inputs, inputs);
         self.panel.inputs = inputs.user;
+        self.panel.referenced = if self.homed || !self.settings.homing { 0xff } else { 0 };
         self.door_open = inputs.door;
         if inputs.estop && self.alarm != Some(10) {
             port.emergency_stop();

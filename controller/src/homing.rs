@@ -166,7 +166,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
                 return Handled::Done;
             }
             self.interp.set_machine_position(r);
-            self.panel.referenced = 0xff;
+            self.homed = true;
             self.msg(format_args!("No home switches ($22=0): reference position set where the axes stand"));
             self.ok();
             return Handled::Done;
@@ -232,7 +232,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
                     self.homing = Some(Homing { axis: h.axis + 1, phase: Phase::Start });
                 } else {
                     self.homing = None;
-                    self.panel.referenced = 0xff;
+                    self.homed = true;
                     self.interp.set_machine_position(st.position);
                     self.msg(format_args!("Homed"));
                 }

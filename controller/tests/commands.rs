@@ -118,17 +118,23 @@ fn homing_with_switches_finds_them() {
     let mut r = idle_rig();
     assert_eq!(r.command("$22=1"), vec!["ok"]);
     assert_eq!(r.command("$25=2000"), vec!["ok"]);
+    // Not homed yet: G28 needs the reference.
+    assert_eq!(r.command("G28 U0")[0], "ok");
+    assert!(r.run_until(50, |r| r.lines().iter().any(|l| l == "ALARM:20")), "{:?}", r.lines());
+    assert_eq!(r.command("$X").last().unwrap(), "ok");
     assert_eq!(r.command("$H"), vec!["ok"]);
     // The switches sit 20 mm (X radius) and 40 mm (Z) above the start.
     let ok = r.run_until(60_000, |r| {
         let p = r.port.core.position();
         r.inputs.home_x = p.0[0] >= 20_000_000;
         r.inputs.home_z = p.0[2] >= 40_000_000;
-        r.lines().iter().any(|l| l == "[MSG:Homed]" || l.starts_with("ALARM"))
+        r.lines().iter().any(|l| l == "[MSG:Homed]" || l == "ALARM:9")
     });
     assert!(ok && r.lines().iter().any(|l| l == "[MSG:Homed]"), "{:?}", r.lines());
     r.inputs.home_x = false;
     r.inputs.home_z = false;
+    assert!(r.run_until(5_000, |r| r.port.core.is_idle()));
+    r.run_ms(2);
     let s = r.status();
     // Pulled off 1 mm from the switch points, which are now the reference (X 300 dia, Z 250).
     let x: f64 = field(&s, "MPos:").split(',').next().unwrap().parse().unwrap();
