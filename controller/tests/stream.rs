@@ -244,3 +244,18 @@ fn loops_survive_the_window_dropping_old_text() {
     assert!(r.ctl.counters().window_dropped > 1000);
     assert_eq!(r.port.pushed, direct(&text, None));
 }
+
+#[test]
+fn m00_waits_for_cycle_start() {
+    let text = "G98 G00 X20 Z0\nM00\nG00 Z-10\nM30\n";
+    let mut r = Rig::new();
+    r.send(text.as_bytes());
+    r.run_ms(1_000);
+    assert!(r.status().starts_with("<Hold:1|MPos:20.000,0.000,0.000"));
+    r.run_ms(500);
+    assert!(r.status().starts_with("<Hold:1|MPos:20.000,0.000,0.000"));
+    r.send(b"~");
+    assert!(r.run_until(5_000, |r| r.lines().iter().any(|l| l == "[MSG:Pgm End]") && r.port.core.is_idle()));
+    assert!(r.status().starts_with("<Idle|MPos:20.000,0.000,-10.000"));
+    assert_eq!(r.port.pushed, direct(text, None));
+}

@@ -334,7 +334,8 @@ impl CanonSink for VecSink {
 }
 
 /// What the interpreter produces for `text` run directly (program 0), with
-/// `memory` for M98; stops at the end or the first alarm.
+/// `memory` for M98; M00/M01 answered with cycle start; stops at the end or the
+/// first alarm.
 pub fn direct(text: &str, memory: Option<&ProgramMemory<16384, 16, 512>>) -> Vec<Canon> {
     struct Both<'a>(&'a [u8], Option<&'a ProgramMemory<16384, 16, 512>>);
     impl ProgramStore for Both<'_> {
@@ -358,6 +359,7 @@ pub fn direct(text: &str, memory: Option<&ProgramMemory<16384, 16, 512>>) -> Vec
     for _ in 0..10_000_000 {
         match interp.step(&store, &Panel::default(), &mut sink) {
             Ok(Progress::Ended) | Err(_) => break,
+            Ok(Progress::Paused) => interp.cycle_start(),
             Ok(_) => {}
         }
     }
