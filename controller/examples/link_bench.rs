@@ -154,5 +154,9 @@ fn main() {
             );
         }
     }
-    println!("controller size: {} bytes (Board)", core::mem::size_of::<Board>());
+    println!(
+        "sizes: Board {} bytes, MotionCore<64> {} bytes",
+        core::mem::size_of::<Board>(),
+        core::mem::size_of::<MotionCore<64>>()
+    );
 }

@@ -480,13 +480,13 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
     // ----- replies -----
 
     pub(crate) fn ok(&mut self) {
-        self.counters.ok += 1;
+        self.counters.ok = self.counters.ok.saturating_add(1);
         self.out.line(Class::Reply, "ok");
     }
 
     /// `[MSG:why]` + `error:n`.
     pub(crate) fn refuse(&mut self, n: u8, why: &str) {
-        self.counters.errors += 1;
+        self.counters.errors = self.counters.errors.saturating_add(1);
         self.out.fmt(Class::Info, format_args!("[MSG:{why}]"));
         self.out.fmt(Class::Reply, format_args!("error:{n}"));
     }
@@ -550,7 +550,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
     /// dropped, lines refused with `error:9` until `$X` or reset.
     pub(crate) fn enter_alarm<M: MotionPort + ?Sized>(&mut self, code: u8, port: &mut M) {
         self.out.fmt(Class::Reply, format_args!("ALARM:{code}"));
-        self.counters.alarms += 1;
+        self.counters.alarms = self.counters.alarms.saturating_add(1);
         self.alarm = Some(code);
         port.reset();
         self.close_job();
@@ -815,7 +815,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             } else {
                 self.interp.resume_at(at);
                 self.lookahead = Some(Wait { received: self.window.received(), alarm: a });
-                self.counters.lookahead_waits += 1;
+                self.counters.lookahead_waits = self.counters.lookahead_waits.saturating_add(1);
                 return;
             }
         }
@@ -872,7 +872,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
         };
         let _ = state.push_str(name);
         let wco = if st.idle { self.interp.state().work_to_machine(cfg) } else { st.work_offset };
-        let feed = (st.feed + 500_000) / 1_000_000;
+        let feed = st.feed.saturating_add(500_000) / 1_000_000;
         let mut pins: heapless::String<8> = heapless::String::new();
         for (on, c) in [
             (inputs.limit_x, 'X'),

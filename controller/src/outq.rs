@@ -46,8 +46,8 @@ impl<const N: usize> OutQueue<N> {
         };
         if !room {
             match class {
-                Class::Reply => self.lost_replies += 1,
-                Class::Info => self.lost_info += 1,
+                Class::Reply => self.lost_replies = self.lost_replies.saturating_add(1),
+                Class::Info => self.lost_info = self.lost_info.saturating_add(1),
             }
             return;
         }
