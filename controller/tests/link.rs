@@ -230,4 +230,27 @@ proptest! {
         r.run_ms(3);
         prop_assert!(r.take_lines().iter().any(|l| l.starts_with('<')));
     }
+
+    #[test]
+    fn random_gcode_like_text_never_panics(picks in proptest::collection::vec(0usize..40, 0..1500)) {
+        const TOKENS: [&str; 40] = [
+            "G00 ", "G01 ", "G02 ", "G71 ", "G70 ", "X", "Z", "U", "W", "F", "R", "P", "Q", "N", "M98 ",
+            "M30", "M99", "#1", "=", "[", "]", "WHILE ", "DO1", "END1", "GOTO", "IF ", " LT ", "1", "5",
+            "0.", "-", "\n", "\n", "\n", ";", "%", "$", "$J=", "$H", "$X",
+        ];
+        let mut r = Rig::new();
+        let text: String = picks.iter().map(|&i| TOKENS[i]).collect();
+        for chunk in text.as_bytes().chunks(29) {
+            r.send(chunk);
+            r.step();
+        }
+        r.run_ms(50);
+        r.pending.clear();
+        r.send(&[0x18]);
+        r.run_ms(3);
+        r.take_lines();
+        r.send(b"?");
+        r.run_ms(3);
+        prop_assert!(r.take_lines().iter().any(|l| l.starts_with('<')));
+    }
 }
