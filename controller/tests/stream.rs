@@ -259,3 +259,21 @@ fn m00_waits_for_cycle_start() {
     assert!(r.status().starts_with("<Idle|MPos:20.000,0.000,-10.000"));
     assert_eq!(r.port.pushed, direct(text, None));
 }
+
+#[test]
+fn a_look_ahead_beyond_a_full_window_is_an_alarm_not_a_deadlock() {
+    // G71's shape starts 40 lines later: it cannot fit into a 512-byte window
+    // together with the cycle block.
+    let mut text = String::from("G98 G00 X100 Z5\nG71 U2 R1 F2000\nG71 P100 Q200 U0.5 W0.2\n");
+    for _ in 0..40 {
+        text.push_str("(FILLER COMMENT LINE)\n");
+    }
+    text.push_str("N100 G00 X40\nG01 Z-30 F1000\nN200 X100\nM30\n");
+    let mut r: Rig<controller::Controller<512, 1024, 4, 64>> = Rig::with(interp_core::MachineConfig::default());
+    let answers = r.stream(&text, 10_000);
+    let msg = answers.iter().find(|l| l.starts_with("[MSG:ALARM")).expect("alarm");
+    assert!(msg.contains("line 3"), "{msg}");
+    assert!(answers.iter().any(|l| l.contains("upload the program")));
+    // Every line was answered: `ok` before the alarm, `error:9` after it.
+    assert_eq!(answers.iter().filter(|l| *l == "ok" || l.starts_with("error:")).count(), text.lines().count());
+}
