@@ -109,6 +109,18 @@ pub(crate) struct LinkSeq {
     pub expected: u32,
 }
 
+/// What changed since [`Controller::take_dirty`] last asked: what the shell
+/// should write to flash (see `persist`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Dirty {
+    /// Settings, parameters or the machine description (`$n=`, `$Pn=`, `$RST=`).
+    pub settings: bool,
+    /// Startup blocks (`$N0=`, `$N1=`).
+    pub startup: bool,
+    /// Program memory (tape punch, `$PD=`, `$RST=*`).
+    pub programs: bool,
+}
+
 /// Counters for tests and diagnostics.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Counters {
@@ -174,6 +186,8 @@ pub struct Controller<const W: usize, const T: usize, const P: usize, const S: u
     pub(crate) xoff: bool,
     pub(crate) link: LinkSeq,
     pub(crate) panel: Panel,
+    /// `$H` completed since power-on (G28/G30 need it when home switches are fitted).
+    pub(crate) homed: bool,
     pub(crate) flood: bool,
     pub(crate) mist: bool,
     /// Startup block to run next (`$N0`, `$N1`), 2 = none.
@@ -181,6 +195,7 @@ pub struct Controller<const W: usize, const T: usize, const P: usize, const S: u
     pub(crate) counters: Counters,
     /// grbl traffic (`?`, a real-time byte, a `$` line) since power-on or reset.
     pub(crate) grbl_seen: bool,
+    pub(crate) dirty: Dirty,
 }
 
 /// Feeds the motion core through the port.
@@ -241,11 +256,13 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             xoff: false,
             link: LinkSeq { active: false, expected: 1 },
             panel: Panel::default(),
+            homed: false,
             flood: false,
             mist: false,
             startup_next: 2,
             counters: Counters::default(),
             grbl_seen: false,
+            dirty: Dirty::default(),
         };
         c.rewind_stream();
         c.welcome();
@@ -286,6 +303,23 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
     /// The startup blocks `$N0`, `$N1`.
     pub fn startup_blocks(&self) -> [&str; 2] {
         [self.startup[0].as_str(), self.startup[1].as_str()]
+    }
+
+    /// Sets startup block `i` (0 or 1), e.g. restored from flash; false if `i` is
+    /// not 0 or 1 or the text is longer than 80 bytes.
+    pub fn set_startup_block(&mut self, i: usize, text: &str) -> bool {
+        let Some(slot) = self.startup.get_mut(i) else { return false };
+        let mut s = heapless::String::new();
+        if s.push_str(text).is_err() {
+            return false;
+        }
+        *slot = s;
+        true
+    }
+
+    /// What changed since the last call (and forgets it).
+    pub fn take_dirty(&mut self) -> Dirty {
+        core::mem::take(&mut self.dirty)
     }
 
     /// Counters.
@@ -481,13 +515,13 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
     // ----- replies -----
 
     pub(crate) fn ok(&mut self) {
-        self.counters.ok += 1;
+        self.counters.ok = self.counters.ok.saturating_add(1);
         self.out.line(Class::Reply, "ok");
     }
 
     /// `[MSG:why]` + `error:n`.
     pub(crate) fn refuse(&mut self, n: u8, why: &str) {
-        self.counters.errors += 1;
+        self.counters.errors = self.counters.errors.saturating_add(1);
         self.out.fmt(Class::Info, format_args!("[MSG:{why}]"));
         self.out.fmt(Class::Reply, format_args!("error:{n}"));
     }
@@ -551,7 +585,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
     /// dropped, lines refused with `error:9` until `$X` or reset.
     pub(crate) fn enter_alarm<M: MotionPort + ?Sized>(&mut self, code: u8, port: &mut M) {
         self.out.fmt(Class::Reply, format_args!("ALARM:{code}"));
-        self.counters.alarms += 1;
+        self.counters.alarms = self.counters.alarms.saturating_add(1);
         self.alarm = Some(code);
         port.reset();
         self.close_job();
@@ -579,6 +613,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
     fn read_inputs<M: MotionPort + ?Sized>(&mut self, port: &mut M, inputs: Inputs) {
         let prev = core::mem::replace(&mut self.prev_inputs, inputs);
         self.panel.inputs = inputs.user;
+        self.panel.referenced = if self.homed || !self.settings.homing { 0xff } else { 0 };
         self.door_open = inputs.door;
         if inputs.estop && self.alarm != Some(10) {
             port.emergency_stop();
@@ -803,15 +838,21 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
                 | AlarmKind::MissingEnd { .. }
                 | AlarmKind::SequenceNotFound { .. }
         );
+        let at = self.interp.block_start();
+        let at_end = at.offset >= self.window.len();
         if self.job == Job::Stream && a.program == 0 && missing_text {
-            let at = self.interp.block_start();
-            self.interp.resume_at(at);
-            let at_end = at.offset >= self.window.len();
-            if !(a.kind == AlarmKind::EndOfRecord && at_end) {
+            if a.kind == AlarmKind::EndOfRecord {
+                if at_end {
+                    // Caught up with the sender: wait for the next line.
+                    self.interp.resume_at(at);
+                    return;
+                }
+            } else {
+                self.interp.resume_at(at);
                 self.lookahead = Some(Wait { received: self.window.received(), alarm: a });
-                self.counters.lookahead_waits += 1;
+                self.counters.lookahead_waits = self.counters.lookahead_waits.saturating_add(1);
+                return;
             }
-            return;
         }
         self.program_alarm(a, false, port);
     }
@@ -866,7 +907,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
         };
         let _ = state.push_str(name);
         let wco = if st.idle { self.interp.state().work_to_machine(cfg) } else { st.work_offset };
-        let feed = (st.feed + 500_000) / 1_000_000;
+        let feed = st.feed.saturating_add(500_000) / 1_000_000;
         let mut pins: heapless::String<8> = heapless::String::new();
         for (on, c) in [
             (inputs.limit_x, 'X'),

@@ -45,7 +45,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
                 self.refuse(9, "Alarm: $X or reset first");
                 return Handled::Done;
             }
-            if self.job != Job::None || self.mode(port) != Mode::Idle && self.mode(port) != Mode::Check {
+            if matches!(self.job, Job::Memory(_)) || !matches!(self.mode(port), Mode::Idle | Mode::Check) {
                 self.refuse(8, "Only when idle");
                 return Handled::Done;
             }
@@ -116,6 +116,15 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             [b'P', digits @ ..] => self.set_param(digits, value),
             digits => self.set_setting(digits, value, port),
         };
+        if r.is_ok() {
+            match key {
+                b"N0" | b"N1" => self.dirty.startup = true,
+                b"PD" => self.dirty.programs = true,
+                b"RST" => (self.dirty.settings, self.dirty.startup, self.dirty.programs) = (true, true, true),
+                b"J" | b"PR" | b"LN" => {}
+                _ => self.dirty.settings = true,
+            }
+        }
         match r {
             Ok(()) => self.ok(),
             Err((n, why)) => self.refuse(n, why),

@@ -7,7 +7,7 @@
 //! sequence per axis, X first: seek toward the home switch at `$25` (toward
 //! plus unless `$23` has the axis's bit), brake when the switch input is seen,
 //! redefine the axis so that the point where the switch tripped is the
-//! reference position, then pull off by `$27` at `$24`.
+//! reference position, then move to `$27` short of that point at `$24`.
 
 use interp_core::axis::{Axis, Pos};
 use interp_core::canon::{Action, Canon, Endpoint, Feed, FeedMode, Move, SpindleSpeed};
@@ -166,7 +166,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
                 return Handled::Done;
             }
             self.interp.set_machine_position(r);
-            self.panel.referenced = 0xff;
+            self.homed = true;
             self.msg(format_args!("No home switches ($22=0): reference position set where the axes stand"));
             self.ok();
             return Handled::Done;
@@ -219,8 +219,10 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
                 let mut pos = st.position;
                 pos[a] = self.interp.config().reference[0][a] + (st.position[a] - trip[a]);
                 port.set_position(pos);
+                // Pull off from the switch point (the axis braked beyond it).
                 let mut to = pos;
-                to[a] -= i64::from(self.settings.homing_pulloff_um) * 1_000 * self.home_dir(h.axis);
+                to[a] = self.interp.config().reference[0][a]
+                    - i64::from(self.settings.homing_pulloff_um) * 1_000 * self.home_dir(h.axis);
                 let feed = i64::from(self.settings.homing_feed) * 1_000_000;
                 let _ = port.push(feed_move(to, to, feed, self.interp.config().spindle.max_rpm));
                 self.homing = Some(Homing { phase: Phase::PullOff, ..h });
@@ -230,7 +232,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
                     self.homing = Some(Homing { axis: h.axis + 1, phase: Phase::Start });
                 } else {
                     self.homing = None;
-                    self.panel.referenced = 0xff;
+                    self.homed = true;
                     self.interp.set_machine_position(st.position);
                     self.msg(format_args!("Homed"));
                 }

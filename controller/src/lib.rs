@@ -18,6 +18,22 @@
 //! `port` reaches the motion core ([`MotionPort`]); on the board the core runs in
 //! the interpolation timer interrupt and every port call is one short critical
 //! section. The controller itself never runs in an interrupt.
+//!
+//! What a shell must honour:
+//! - `receive`, `poll` and `transmit` are called from one task (the UART
+//!   interrupt or DMA only fills a byte ring the task empties into `receive`);
+//!   bytes `receive` did not take are offered again later, in order.
+//! - `poll` every millisecond or so (and soon after `receive`): real-time
+//!   commands act at the next poll; one poll does bounded work (≤ 4 lines,
+//!   ≤ 8 interpreter steps of ≤ 32 macro statements each, one status report).
+//! - `now` is monotonic nanoseconds (the link-quiet timeout of look-aheads).
+//! - Inputs are debounced, true = active; they are read once per poll (e-stop is
+//!   level-sensitive; limits, buttons and the door act on their rising edge).
+//! - The spindle drive follows the motion core's `spindle_output()` every period
+//!   (the shell's job, not the controller's); M-code, tool and spindle events reach
+//!   [`MachineIo`] from `poll`.
+//! - Settings that change the motion (`$100` …) call [`MotionPort::reconfigure`]
+//!   at rest; [`Controller::take_dirty`] says what to write to flash.
 #![no_std]
 #![forbid(unsafe_code)]
 
@@ -38,12 +54,13 @@ pub mod settings;
 mod tape;
 pub mod window;
 
-pub use controller::{Controller, Counters, LINES_PER_POLL, Mode, OUT, QUIET_NS, RX, STEPS_PER_POLL, WELCOME};
+pub use controller::{Controller, Counters, Dirty, LINES_PER_POLL, Mode, OUT, QUIET_NS, RX, STEPS_PER_POLL, WELCOME};
 pub use io::{Inputs, MachineIo};
 pub use lines::frame_line;
 pub use port::{MotionPort, MotionStatus};
 pub use settings::Settings;
 
-/// The board's controller: an 8 KiB stream window, 48 KiB of program memory for
-/// 64 programs with 2048 indexed sequence numbers.
-pub type Board = Controller<8192, 49152, 64, 2048>;
+/// The board's controller: an 8 KiB stream window, 24 KiB of program memory for
+/// 64 programs with 1024 indexed sequence numbers; about 76 KB in all (the
+/// STM32F405 has 128 KB of SRAM and 64 KB of CCM; the motion core takes 21 KB).
+pub type Board = Controller<8192, 24576, 64, 1024>;

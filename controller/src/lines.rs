@@ -109,7 +109,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
     }
 
     fn resend(&mut self) -> Handled {
-        self.counters.resends += 1;
+        self.counters.resends = self.counters.resends.saturating_add(1);
         let n = self.link.expected;
         self.refuse(88, resend_text(n).as_str());
         Handled::Done
@@ -201,7 +201,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             Some(cut) => {
                 self.window.drop_front(cut);
                 self.interp.rebase(0, cut);
-                self.counters.window_dropped += cut as u64;
+                self.counters.window_dropped = self.counters.window_dropped.saturating_add(cut as u64);
                 let pushed = self.window.push_line(text);
                 self.window_stuck = !pushed;
                 pushed

@@ -46,8 +46,8 @@ impl<const N: usize> OutQueue<N> {
         };
         if !room {
             match class {
-                Class::Reply => self.lost_replies += 1,
-                Class::Info => self.lost_info += 1,
+                Class::Reply => self.lost_replies = self.lost_replies.saturating_add(1),
+                Class::Info => self.lost_info = self.lost_info.saturating_add(1),
             }
             return;
         }
@@ -105,5 +105,28 @@ impl<const N: usize> OutQueue<N> {
     /// Drops everything.
     pub fn clear(&mut self) {
         self.buf.clear();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn replies_are_kept_when_reports_fill_the_queue() {
+        let mut q = OutQueue::<300>::default();
+        for _ in 0..10 {
+            q.line(Class::Info, "<Idle|MPos:0.000,0.000,0.000|FS:0,0>");
+        }
+        assert!(q.lost_info > 0);
+        let before = q.len();
+        for _ in 0..40 {
+            q.line(Class::Reply, "ok");
+        }
+        assert_eq!(q.lost_replies, 0);
+        assert_eq!(q.len(), before + 40 * 4);
+        q.control(0x13);
+        let mut out = [0u8; 1];
+        assert_eq!((q.drain(&mut out), out[0]), (1, 0x13));
     }
 }

@@ -99,9 +99,9 @@ impl<const N: usize> MotionPort for MotionCore<N> {
         MotionCore::set_rapid_override(self, pct);
     }
 
-    /// The motion core has no spindle override yet: the value is reported in
-    /// `Ov:` but the commanded speed is unchanged.
-    fn set_spindle_override(&mut self, _pct: u16) {}
+    fn set_spindle_override(&mut self, pct: u16) {
+        MotionCore::set_spindle_override(self, pct);
+    }
 
     fn set_position(&mut self, pos: Pos) -> bool {
         MotionCore::set_position(self, pos)

@@ -102,7 +102,10 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             number = Some(n);
         }
         match self.memory.load(self.window.text(), None) {
-            Ok(n) => self.msg(format_args!("Stored O{n:04}")),
+            Ok(n) => {
+                self.dirty.programs = true;
+                self.msg(format_args!("Stored O{n:04}"));
+            }
             Err(e) => self.msg(format_args!("Tape: not stored: {e}")),
         }
         let _ = number;

@@ -151,6 +151,15 @@ fn overrides_show_in_ov() {
     assert_eq!(field(&s, "Ov:"), "121,50,110");
     r.send(&[0x90, 0x95, 0x99, 0x92, 0x92]);
     assert_eq!(field(&r.status(), "Ov:"), "80,100,100");
+    // The spindle override changes the speed the drive is told (and measures).
+    assert_eq!(r.command("M03 S1000"), vec!["ok"]);
+    r.run_ms(100);
+    let rpm = |r: &mut Rig| -> i32 { field(&r.status(), "FS:").split(',').nth(1).unwrap().parse().unwrap() };
+    assert!((rpm(&mut r) - 1000).abs() <= 2);
+    r.send(&[0x9A, 0x9A]);
+    r.run_ms(100);
+    assert!((rpm(&mut r) - 1200).abs() <= 2);
+    assert_eq!(r.port.core.spindle_output().1, 1200);
 }
 
 #[test]
@@ -164,6 +173,19 @@ fn error_lines() {
     assert_eq!(a.last().unwrap(), "error:11");
     let a = r.command("$Q");
     assert_eq!(a.last().unwrap(), "error:3");
+    let a = r.command("G01 X1 \u{e9}");
+    assert_eq!(a, vec!["[MSG:Byte 0xC3 is not G-code text: line refused]", "error:1"]);
+    // Real-time bytes inside a line act and leave the line intact.
+    r.send(b"G00 W");
+    r.send(&[0x91]);
+    r.send(b"0.5");
+    assert_eq!(r.command(""), vec!["ok"]);
+    assert_eq!(field(&r.status(), "Ov:"), "110,100,100");
+    // A % inside a running stream is text: the interpreter's end-of-record alarm.
+    let a = r.command("%");
+    assert_eq!(a[0], "ok");
+    assert!(r.run_until(100, |r| r.lines().iter().any(|l| l.starts_with("[MSG:ALARM 5010 line 2"))), "{:?}", r.lines());
+    assert_eq!(r.command("$X").last().unwrap(), "ok");
     let a = r.command("G00 X500");
     assert_eq!(a[0], "ok");
     assert!(r.run_until(100, |r| r.lines().iter().any(|l| l == "ALARM:2")), "{:?}", r.lines());
@@ -201,4 +223,57 @@ fn a_runaway_loop_still_answers_status_and_reset_within_10ms() {
     r.run_ms(10);
     assert!(r.take_lines().iter().any(|l| l.starts_with("Grbl 1.1h")));
     assert!(r.status().starts_with("<Idle"));
+}
+
+#[test]
+fn loops_survive_the_window_dropping_old_text() {
+    // A 512-byte window: text before and after the loop moves through it while
+    // the loop runs; its WHILE block stays.
+    let mut text = String::from("G98 G00 X20 Z0\n");
+    for _ in 0..40 {
+        text.push_str("G01 W-0.100 F3000\n");
+    }
+    text.push_str("#1=0\nWHILE [#1 LT 20] DO1\nG01 U0.2 F3000\nG01 U-0.2\n#1=#1+1\nEND1\n");
+    for _ in 0..40 {
+        text.push_str("G01 W-0.100 F3000\n");
+    }
+    text.push_str("M30\n");
+    let mut r: Rig<controller::Controller<512, 1024, 4, 64>> = Rig::with(interp_core::MachineConfig::default());
+    let answers = r.stream(&text, 60_000);
+    assert!(answers.iter().any(|l| l == "[MSG:Pgm End]"), "{answers:?}");
+    assert!(r.ctl.counters().window_dropped > 1000);
+    assert_eq!(r.port.pushed, direct(&text, None));
+}
+
+#[test]
+fn m00_waits_for_cycle_start() {
+    let text = "G98 G00 X20 Z0\nM00\nG00 Z-10\nM30\n";
+    let mut r = Rig::new();
+    r.send(text.as_bytes());
+    r.run_ms(1_000);
+    assert!(r.status().starts_with("<Hold:1|MPos:20.000,0.000,0.000"));
+    r.run_ms(500);
+    assert!(r.status().starts_with("<Hold:1|MPos:20.000,0.000,0.000"));
+    r.send(b"~");
+    assert!(r.run_until(5_000, |r| r.lines().iter().any(|l| l == "[MSG:Pgm End]") && r.port.core.is_idle()));
+    assert!(r.status().starts_with("<Idle|MPos:20.000,0.000,-10.000"));
+    assert_eq!(r.port.pushed, direct(text, None));
+}
+
+#[test]
+fn a_look_ahead_beyond_a_full_window_is_an_alarm_not_a_deadlock() {
+    // G71's shape starts 40 lines later: it cannot fit into a 512-byte window
+    // together with the cycle block.
+    let mut text = String::from("G98 G00 X100 Z5\nG71 U2 R1 F2000\nG71 P100 Q200 U0.5 W0.2\n");
+    for _ in 0..40 {
+        text.push_str("(FILLER COMMENT LINE)\n");
+    }
+    text.push_str("N100 G00 X40\nG01 Z-30 F1000\nN200 X100\nM30\n");
+    let mut r: Rig<controller::Controller<512, 1024, 4, 64>> = Rig::with(interp_core::MachineConfig::default());
+    let answers = r.stream(&text, 10_000);
+    let msg = answers.iter().find(|l| l.starts_with("[MSG:ALARM")).expect("alarm");
+    assert!(msg.contains("line 3"), "{msg}");
+    assert!(answers.iter().any(|l| l.contains("upload the program")));
+    // Every line was answered: `ok` before the alarm, `error:9` after it.
+    assert_eq!(answers.iter().filter(|l| *l == "ok" || l.starts_with("error:")).count(), text.lines().count());
 }

@@ -94,7 +94,7 @@ pub struct Rig<C = Ctl> {
     pub pending: VecDeque<u8>,
     /// Every byte the controller sent.
     pub sent: Vec<u8>,
-    /// Lines already handed out by `take_lines`.
+    /// Bytes of `sent` already handed out by `take_lines`.
     taken: usize,
     spindle_count: f64,
     pub cfg: MachineConfig,
@@ -219,10 +219,16 @@ impl<C: Drive> Rig<C> {
 
     /// Output lines not handed out before.
     pub fn take_lines(&mut self) -> Vec<String> {
-        let all = self.lines();
-        let new = all[self.taken.min(all.len())..].to_vec();
-        self.taken = all.len();
-        new
+        // Whole lines only, from the first byte not handed out yet.
+        let rest = &self.sent[self.taken.min(self.sent.len())..];
+        let Some(end) = rest.windows(2).rposition(|w| w == b"\r\n") else { return Vec::new() };
+        let chunk = String::from_utf8_lossy(&rest[..end + 2]).to_string();
+        self.taken += end + 2;
+        chunk
+            .split("\r\n")
+            .filter(|l| !l.is_empty())
+            .map(|l| l.trim_matches(|c| c == '\u{11}' || c == '\u{13}').to_string())
+            .collect()
     }
 
     /// Sends `?` and returns the report (runs a few ms).
@@ -328,7 +334,8 @@ impl CanonSink for VecSink {
 }
 
 /// What the interpreter produces for `text` run directly (program 0), with
-/// `memory` for M98; stops at the end or the first alarm.
+/// `memory` for M98; M00/M01 answered with cycle start; stops at the end or the
+/// first alarm.
 pub fn direct(text: &str, memory: Option<&ProgramMemory<16384, 16, 512>>) -> Vec<Canon> {
     struct Both<'a>(&'a [u8], Option<&'a ProgramMemory<16384, 16, 512>>);
     impl ProgramStore for Both<'_> {
@@ -352,6 +359,7 @@ pub fn direct(text: &str, memory: Option<&ProgramMemory<16384, 16, 512>>) -> Vec
     for _ in 0..10_000_000 {
         match interp.step(&store, &Panel::default(), &mut sink) {
             Ok(Progress::Ended) | Err(_) => break,
+            Ok(Progress::Paused) => interp.cycle_start(),
             Ok(_) => {}
         }
     }

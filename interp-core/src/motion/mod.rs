@@ -170,6 +170,10 @@ pub struct MotionCore<const N: usize> {
     spindle_wait: bool,
     feed_ovr: u64,
     rapid_ovr: u64,
+    /// Spindle override, %; not applied while axes are locked to the spindle.
+    spindle_ovr: u16,
+    /// The spindle's top speed (the override never commands more).
+    spindle_max: u32,
     hold: bool,
     single_block: bool,
     events: heapless::Deque<Event, 32>,
@@ -209,6 +213,8 @@ impl<const N: usize> MotionCore<N> {
             spindle_wait: false,
             feed_ovr: 256,
             rapid_ovr: 256,
+            spindle_ovr: 100,
+            spindle_max: cfg.spindle.max_rpm,
             hold: false,
             single_block: false,
             events: heapless::Deque::new(),
@@ -290,7 +296,31 @@ impl<const N: usize> MotionCore<N> {
 
     /// Commanded spindle direction and speed (rev/min) for the spindle drive.
     pub fn spindle_output(&self) -> (SpindleDir, u32) {
-        (self.spindle.dir, self.spindle.rpm)
+        (self.spindle.dir, self.spindle_target())
+    }
+
+    /// The speed the drive is told: the command times the spindle override, at
+    /// most the spindle's top speed (the command alone while locked).
+    fn spindle_target(&self) -> u32 {
+        let pct = self.spindle_pct();
+        if pct == 100 {
+            return self.spindle.rpm;
+        }
+        let rpm = u64::from(self.spindle.rpm) * u64::from(pct) / 100;
+        u32::try_from(rpm).unwrap_or(u32::MAX).min(self.spindle_max.max(self.spindle.rpm))
+    }
+
+    /// The spindle override in effect: 100 % while a thread or tap is locked to
+    /// the spindle or waiting to start (threading runs at the programmed speed).
+    fn spindle_pct(&self) -> u16 {
+        let locked = self.gear.is_some() || matches!(self.state, State::SyncWait { .. } | State::Locked);
+        if locked { 100 } else { self.spindle_ovr }
+    }
+
+    /// Whether the measured speed is within the at-speed band of the speed the
+    /// drive is told.
+    fn spindle_at_speed(&self) -> bool {
+        self.spindle.at_speed_of(self.spindle_target(), self.mc.at_speed_pct)
     }
 
     /// The spindle as measured.
@@ -324,6 +354,12 @@ impl<const N: usize> MotionCore<N> {
     /// Feed override, 0–200 %.
     pub fn set_feed_override(&mut self, pct: u16) {
         self.feed_ovr = u64::from(pct.min(200)) * 256 / 100;
+    }
+
+    /// Spindle override, 50–200 % (not inside threads and rigid taps, which run
+    /// at the programmed speed).
+    pub fn set_spindle_override(&mut self, pct: u16) {
+        self.spindle_ovr = pct.clamp(50, 200);
     }
 
     /// Rapid override, 0–100 %.
@@ -603,11 +639,11 @@ impl<const N: usize> MotionCore<N> {
     /// Whether a cutting block must wait for the spindle to reach its speed.
     fn needs_spindle(&self, b: &Block) -> bool {
         let per_rev = matches!(b.feed, FeedSpec::PerRev(_));
-        (self.spindle_wait || per_rev) && !self.spindle.at_speed(self.mc.at_speed_pct)
+        (self.spindle_wait || per_rev) && !self.spindle_at_speed()
     }
 
     fn wait_spindle(&mut self, since: u64) -> bool {
-        if self.spindle.at_speed(self.mc.at_speed_pct) {
+        if self.spindle_at_speed() {
             self.spindle_wait = false;
             if let Some(b) = self.pending.take() {
                 self.interp.start(&b, &self.p);

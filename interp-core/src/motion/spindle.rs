@@ -93,7 +93,13 @@ impl Spindle {
     /// Whether the measured speed is within `pct` % of the command (stopped counts
     /// as there when commanded stopped).
     pub fn at_speed(&self, pct: u8) -> bool {
-        let want = if self.dir == SpindleDir::Stop { 0.0 } else { self.rpm as f32 };
+        self.at_speed_of(self.rpm, pct)
+    }
+
+    /// Whether the measured speed is within `pct` % of `rpm` in the commanded
+    /// direction's sense (the drive's speed under a spindle override).
+    pub fn at_speed_of(&self, rpm: u32, pct: u8) -> bool {
+        let want = if self.dir == SpindleDir::Stop { 0.0 } else { rpm as f32 };
         (self.measured_rpm().abs() - want).abs() <= want * f32::from(pct) / 100.0 + 1.0
     }
 }
