@@ -210,7 +210,7 @@ fn tape_drip_feed_runs_under_xon_xoff() {
     assert!(ended);
     assert!(xoffs > 0);
     assert_eq!(r.lines().iter().filter(|l| *l == "ok").count(), 1, "only the opening % is answered");
-    // The leading `%` is line 1 of the tape, as in the sender's file.
+    // Drip feed keeps the tape's line numbers: the leading % is line 1.
     assert_eq!(r.port.pushed, direct(&format!("%\n{program}"), None));
 }
 
