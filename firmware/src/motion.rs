@@ -99,6 +99,20 @@ impl<T> PriorityCell<T> {
         // SAFETY: initialised (ready), exclusive by the caller's contract.
         Some(unsafe { (*self.value.get()).assume_init_mut() })
     }
+
+    /// The value for reading, if set.
+    ///
+    /// # Safety
+    ///
+    /// Only from the cell's owning priority level, and never while a `get` of it is
+    /// alive.
+    unsafe fn get_ref(&self) -> Option<&T> {
+        if !self.ready.load(Ordering::Acquire) {
+            return None;
+        }
+        // SAFETY: initialised (ready), no exclusive reference by the caller's contract.
+        Some(unsafe { (*self.value.get()).assume_init_ref() })
+    }
 }
 
 /// Owned by priority P1 (period and encoder interrupts; thread mode via MotionPort).
@@ -201,6 +215,19 @@ impl MotionPort {
         // SAFETY: BASEPRI at P1: no P1 interrupt runs until it is restored, so this is
         // the only user of P1's state; the closure cannot leak the reference.
         let r = unsafe { MOTION.get() }.map(f);
+        // SAFETY: back to the level we came in with.
+        unsafe { cortex_m::register::basepri::write(old) };
+        r
+    }
+
+    /// Runs `f` reading the motion core and engine, the motion interrupts held off
+    /// (for status snapshots: `&self`, so it cannot overlap a [`Self::lock`]).
+    pub fn peek<R>(&self, f: impl FnOnce(&Motion) -> R) -> Option<R> {
+        let old = cortex_m::register::basepri::read();
+        cortex_m::register::basepri_max::write(MOTION_BASEPRI);
+        // SAFETY: BASEPRI at P1 (no P1 interrupt runs); `lock` needs `&mut self`, so
+        // no exclusive reference exists while this shared one does.
+        let r = unsafe { MOTION.get_ref() }.map(f);
         // SAFETY: back to the level we came in with.
         unsafe { cortex_m::register::basepri::write(old) };
         r
