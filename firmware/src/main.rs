@@ -129,7 +129,7 @@ async fn main(spawner: Spawner) {
             warn!("persist: stored variables/programs: {}", defmt::Display2Format(&e));
         }
         info!("persist: {} programs in memory", ctl.memory().numbers().count());
-        firmware::saved::Saver::new(s, ctl)
+        &mut *SAVER.init_with(|| firmware::saved::Saver::new(s, ctl))
     });
     #[cfg(not(persist))]
     let saving: Saving = ();
@@ -145,7 +145,12 @@ async fn main(spawner: Spawner) {
 
 /// The persistence the control task runs (none on the F446RE and in QEMU).
 #[cfg(persist)]
-type Saving = Option<firmware::saved::Saver>;
+type Saving = Option<&'static mut firmware::saved::Saver>;
+
+/// The saver (the store and its caches, ~5 KB): a static rather than in the control
+/// task's future.
+#[cfg(persist)]
+static SAVER: StaticCell<firmware::saved::Saver> = StaticCell::new();
 #[cfg(not(persist))]
 type Saving = ();
 
@@ -153,6 +158,7 @@ type Saving = ();
 /// `cfg` and `settings`. A store beyond repair is formatted (everything stored is
 /// lost; erasing takes seconds, before the watchdog starts).
 #[cfg(persist)]
+#[inline(never)]
 fn open_store(
     flash: embassy_stm32::flash::Flash<'static, embassy_stm32::flash::Blocking>,
     cfg: &mut MachineConfig,

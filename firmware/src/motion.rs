@@ -141,7 +141,21 @@ pub enum StartError {
 /// `tb`, and the step player; `start`/`raw_count` are the timer and encoder readings
 /// that are time 0 and count 0. Returns the thread-mode handle.
 pub fn init(cfg: &MachineConfig, pos: Pos, tb: TimeBase, start: u32, raw_count: u32) -> Result<MotionPort, StartError> {
-    let core = Core::new(cfg, pos).map_err(|_| StartError::Config)?;
+    if MOTION.ready.load(Ordering::Acquire) {
+        return Err(StartError::Twice);
+    }
+    // The core (~21 KB) goes straight into its static: the stack holds one
+    // temporary at most.
+    // SAFETY: not ready: nothing else reads or writes the cell (interrupts that use
+    // it are not enabled yet).
+    let cell = unsafe { &mut *MOTION.value.get() };
+    let slot = cell.as_mut_ptr();
+    let core = match Core::new(cfg, pos) {
+        // SAFETY: `slot` points to the cell's storage; the field is written once
+        // and the cell marked ready only when every field is.
+        Ok(core) => unsafe { &mut *core::ptr::addr_of_mut!((*slot).core).cast::<MaybeUninit<Core>>() }.write(core),
+        Err(_) => return Err(StartError::Config),
+    };
     let [rx, rz, rc] = &RINGS;
     let (Some((tx, px)), Some((tz, pz)), Some((tc, pc))) = (rx.split(), rz.split(), rc.split()) else {
         return Err(StartError::Twice);
@@ -157,8 +171,10 @@ pub fn init(cfg: &MachineConfig, pos: Pos, tb: TimeBase, start: u32, raw_count: 
         EngineAxis::new(AXES[1].index(), tz),
         EngineAxis::new(AXES[2].index(), tc),
     ];
-    let engine = Engine::new(tb, axes, start, raw_count);
-    if !PLAYER.init(player) || !MOTION.init(Motion { core, engine }) {
+    // SAFETY: as above; the core is written, the engine now, then the cell is ready.
+    unsafe { core::ptr::addr_of_mut!((*slot).engine).write(Engine::new(tb, axes, start, raw_count)) };
+    MOTION.ready.store(true, Ordering::Release);
+    if !PLAYER.init(player) {
         return Err(StartError::Twice);
     }
     Ok(MotionPort { _thread_only: PhantomData })

@@ -92,7 +92,9 @@ pub fn load_config(store: &mut Store, cfg: &mut MachineConfig, s: &mut Settings)
 }
 
 /// Reads the common variables and the stored programs into the controller (the
-/// programs through a scratch buffer on the stack, at boot only).
+/// programs through a scratch buffer on the stack, at boot only; out of line so the
+/// buffer is not part of the caller's frame).
+#[inline(never)]
 pub fn load_rest(store: &mut Store, ctl: &mut Ctl) -> Result<usize, Error> {
     ctl.interpreter_mut().variables_mut().load_commons(store)?;
     let mut scratch = [0u8; TEXT];

@@ -101,12 +101,24 @@ impl controller::MotionPort for MotionPort {
         self.lock(|m| m.core.set_position(pos)).unwrap_or(false)
     }
 
-    /// Rebuilds the core in place (only at rest; the core's own checks). The step
-    /// timings the player was built with are the drives' pulse timings, which no
-    /// setting changes.
+    /// Rebuilds the core for `cfg` keeping the position, only at rest, as the host's
+    /// `MotionCore` does. The step timings the player was built with are the
+    /// drives' pulse timings, which no setting changes.
     fn reconfigure(&mut self, cfg: &MachineConfig) -> Result<(), AlarmKind> {
-        self.lock(|m| controller::MotionPort::reconfigure(&mut m.core, cfg))
-            .unwrap_or(Err(AlarmKind::MotionConfigInvalid { what: "motion core not started" }))
+        self.lock(|m| {
+            if !m.core.is_idle() {
+                return Err(AlarmKind::MotionConfigInvalid { what: "the machine is moving" });
+            }
+            // One temporary core on the stack (~21 KB), moved into place.
+            match crate::motion::Core::new(cfg, m.core.position()) {
+                Ok(core) => {
+                    m.core = core;
+                    Ok(())
+                }
+                Err(e) => Err(e),
+            }
+        })
+        .unwrap_or(Err(AlarmKind::MotionConfigInvalid { what: "motion core not started" }))
     }
 
     fn pop_event(&mut self) -> Option<Event> {

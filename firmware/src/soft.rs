@@ -12,8 +12,8 @@ use motion_driver::engine::Sample;
 
 use crate::motion::{self, MotionPort};
 
-/// Periods computed per call at most (catching up after a slow millisecond).
-const MAX_PERIODS: usize = 4;
+/// Periods computed per call at most (catching up after the host stalled QEMU).
+const MAX_PERIODS: usize = 16;
 /// Edges played per call at most.
 const MAX_EDGES: usize = 1_024;
 /// Microseconds per minute.
@@ -49,7 +49,8 @@ impl SoftMotion {
             let sample = Sample { now: start, raw_count: self.raw, index: motion::index_latch(), estop: false };
             port.lock(|m| m.engine.period(&mut m.core, sample));
         }
-        self.turn(port, now);
+        // The encoder never runs ahead of the periods computed: after a stall its
+        // counts and the core's time catch up together.
         // SAFETY: without a step interrupt, this task is the player's only user.
         let _ = unsafe {
             motion::with_player(|p| {
