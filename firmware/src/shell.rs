@@ -33,18 +33,18 @@ pub const PROGRAMS: usize = 32;
 pub const SEQUENCES: usize = 512;
 
 /// Stream window, bytes: the F446RE has no CCM for the stack, so its controller is
-/// smaller (the stack needs ~60 KB of its 128 KB SRAM).
+/// smaller (a G71 takes ~60 KB of stack out of its 128 KB SRAM).
 #[cfg(feature = "f446")]
-pub const WINDOW: usize = 2048;
+pub const WINDOW: usize = 1024;
 /// Program memory text, bytes.
 #[cfg(feature = "f446")]
-pub const TEXT: usize = 4096;
+pub const TEXT: usize = 2048;
 /// Programs in memory.
 #[cfg(feature = "f446")]
-pub const PROGRAMS: usize = 16;
+pub const PROGRAMS: usize = 8;
 /// Indexed sequence numbers in program memory.
 #[cfg(feature = "f446")]
-pub const SEQUENCES: usize = 128;
+pub const SEQUENCES: usize = 64;
 
 /// The controller the firmware runs. `controller::Board` (8 KB window, 48 KB program
 /// memory, 113 KB in all) does not fit beside the motion core in the 128 KB SRAM
