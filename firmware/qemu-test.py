@@ -1,19 +1,53 @@
 #!/usr/bin/env python3
 """Boot test of the firmware's QEMU build: builds it (qemu-run.sh --build), boots it on
-QEMU netduinoplus2 with USART2 on a TCP socket, and checks the link: the welcome line,
-a `?` status report, a line answered `ok`, a rapid (`$MOVE`) run by the motion core on
-the software time base until the status shows it arrived, and the welcome again after a
-soft reset (0x18). Exits non-zero on the first failure. Used by .ci/run.
+QEMU netduinoplus2 with USART2 on a TCP socket, and talks to the board's controller
+(docs/PROTOCOL.md) as a grbl sender does: the welcome line, a `?` status report, a
+short lathe program with G71/G70 roughing and finishing and a G76 thread streamed
+with grbl character counting (128-byte receive buffer; every line must get `ok`),
+run by the motion core on the software time base (with a simulated spindle encoder)
+until the status shows Idle at the position `lathe sim` gives for the program's end;
+then a program with an illegal G code: the alarm message names its line, ALARM:20,
+`$X` unlocks; and the welcome again after a soft reset (0x18). Exits non-zero on the
+first failure. Used by .ci/run.
 """
 import os
 import socket
 import subprocess
 import sys
+import tempfile
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 WELCOME = b"Grbl 1.1h ['$' for help]\r\n"
 TIMEOUT = 20.0
+# The receive buffer a character-counting sender may fill (docs/PROTOCOL.md).
+RX_BUFFER = 128
+
+# G71 roughing + G70 finishing of a short shaft, a G76 M24x1.5 thread, back out.
+# Everything up to the shape's last block (N20) fits into the first 128 bytes, so
+# G71 finds its shape without waiting for text: the controller gives a look-ahead
+# up after 200 ms of link silence, which a loaded CI machine can stall QEMU for.
+PROGRAM = """\
+G21 G97 G98
+G00 X40. Z5. M03 S1000
+G71 U1.5 R0.5 F4000
+G71 P10 Q20 U0.4 W0.1
+N10 G00 X24.
+G01 Z-10. F3000
+X30. Z-15.
+N20 X40.
+G70 P10 Q20
+G00 X40. Z5.
+G76 P010060 Q0.1 R0.05
+G76 X22.2 Z-8. P0.9 Q0.4 F1.5
+G00 X50. Z20. M05
+M30
+"""
+# Where `cargo run -p lathe -- sim PROGRAM --format jsonl | tail` ends: the last rapid
+# to X50 Z20 (machine coordinates, diameter; no work offset), 18.6 s simulated.
+PROGRAM_END = b"MPos:50.000,0.000,20.000|"
+# The second line has a G code the lathe system does not have (alarm 0010).
+ALARM_PROGRAM = b"G00 X60. Z30.\nG123 X10.\nG00 X70.\n"
 
 
 def free_port():
@@ -59,14 +93,106 @@ class Link:
         return got
 
 
+def read_line(link, deadline, what):
+    """One line from the board (CR LF stripped)."""
+    while b"\r\n" not in link.buf:
+        if time.monotonic() > deadline:
+            raise SystemExit(f"qemu-test: no {what} (got {link.buf!r})")
+        link.sock.settimeout(max(0.1, deadline - time.monotonic()))
+        try:
+            chunk = link.sock.recv(4096)
+        except socket.timeout:
+            continue
+        if not chunk:
+            raise SystemExit(f"qemu-test: link closed waiting for {what}")
+        link.buf += chunk
+    line, link.buf = link.buf.split(b"\r\n", 1)
+    return line
+
+
+def stream(link, text):
+    """Streams `text` with grbl character counting: a line is sent while the bytes
+    of the lines not yet answered fit into the board's receive buffer; every answer
+    must be `ok`. Returns the other lines the board sent meanwhile."""
+    pending, inflight, other = list(text.splitlines(keepends=True)), [], []
+    deadline = time.monotonic() + 3 * TIMEOUT
+    while pending or inflight:
+        while pending and sum(map(len, inflight)) + len(pending[0]) <= RX_BUFFER:
+            line = pending.pop(0).encode()
+            link.send(line)
+            inflight.append(line)
+        reply = read_line(link, deadline, "ok while streaming")
+        if reply == b"ok":
+            inflight.pop(0)
+        elif reply.startswith((b"error", b"ALARM")):
+            raise SystemExit(f"qemu-test: {inflight[0]!r} answered {reply!r} (before: {other!r})")
+        else:
+            other.append(reply)
+    print(f"qemu-test: streamed {len(text.splitlines())} lines, every one ok")
+    return other
+
+
+def wait_status(link, wanted, what, timeout):
+    """Polls `?` until the status report starts with `wanted`; the last report."""
+    deadline, said = time.monotonic() + timeout, []
+    while True:
+        link.send(b"?")
+        while True:
+            line = read_line(link, deadline, what)
+            if line.startswith(b"<"):
+                break
+            said.append(line)
+        if line.startswith(wanted):
+            print(f"qemu-test: {what}: {line!r}")
+            return line
+        if line.startswith((b"<Alarm", b"<Hold")) or time.monotonic() > deadline:
+            raise SystemExit(f"qemu-test: {what}: last status {line!r} after {said!r}")
+        time.sleep(0.25)
+
+
+# The stack: all of the F405's CCM (memory.x), painted 0xCCCCCCCC at reset.
+STACK_BASE, STACK_SIZE = 0x1000_0000, 64 * 1024
+
+
+def stack_check(monitor):
+    """Reads the CCM through QEMU's monitor: the stack's high-water mark."""
+    with socket.socket(socket.AF_UNIX) as m:
+        m.connect(monitor)
+        m.sendall(f"xp /{STACK_SIZE // 4}wx {STACK_BASE:#x}\n".encode())
+        out, deadline = b"", time.monotonic() + TIMEOUT
+        last = f"{STACK_BASE + STACK_SIZE - 16:08x}:".encode()
+        while last not in out or not out.rstrip().endswith(b"(qemu)"):
+            if time.monotonic() > deadline:
+                raise SystemExit("qemu-test: no memory dump from the QEMU monitor")
+            m.settimeout(1.0)
+            try:
+                out += m.recv(65536)
+            except socket.timeout:
+                pass
+    words = []
+    for line in out.decode(errors="replace").splitlines():
+        if ":" in line and line.strip()[:8].isalnum():
+            addr, _, rest = line.partition(":")
+            words += [(int(addr.strip(), 16) + 4 * i, int(w, 16)) for i, w in enumerate(rest.split())]
+    used = [a for a, w in words if w != 0xCCCCCCCC]
+    if not words or not used:
+        raise SystemExit("qemu-test: could not read the stack")
+    depth = STACK_BASE + STACK_SIZE - min(used)
+    print(f"qemu-test: stack high-water mark {depth} bytes of {STACK_SIZE}")
+    if depth > STACK_SIZE - 4096:
+        raise SystemExit("qemu-test: less than 4 KB of stack left")
+
+
 def main():
     elf = subprocess.run([os.path.join(HERE, "qemu-run.sh"), "--build"], check=True,
                          stdout=subprocess.PIPE, text=True).stdout.strip().splitlines()[-1]
     port = free_port()
+    monitor = os.path.join(tempfile.mkdtemp(prefix="qemu-test-"), "monitor")
     qemu = subprocess.Popen([
-        "qemu-system-arm", "-M", "netduinoplus2", "-nographic", "-monitor", "none",
+        "qemu-system-arm", "-M", "netduinoplus2", "-nographic",
         "-chardev", f"socket,id=dnc,host=127.0.0.1,port={port},server=on,wait=on",
         "-serial", "null", "-serial", "chardev:dnc", "-kernel", elf,
+        "-monitor", f"unix:{monitor},server=on,wait=off",
     ])
     try:
         link = Link(connect(port, time.monotonic() + TIMEOUT))
@@ -76,24 +202,24 @@ def main():
         # Reference position 1 of the built-in machine: X 150 mm radius = 300 diameter, Z 250.
         if not status.startswith(b"<Idle|MPos:300.000,0.000,250.000|"):
             raise SystemExit(f"qemu-test: unexpected status {status!r}")
-        link.send(b"G01 X10 Z-5 F0.2\r\n")
-        link.expect(b"[ECHO:G01 X10 Z-5 F0.2]\r\nok\r\n", "line answered")
-        # The motion path on the software time base: a rapid, then Idle at the target.
-        link.send(b"$MOVE X310 Z240.5\n")
-        link.expect(b"ok\r\n", "move queued")
-        deadline = time.monotonic() + TIMEOUT
-        while True:
-            link.send(b"?")
-            status = link.expect(b">\r\n", "status while moving")
-            if status.startswith(b"<Idle|MPos:310.000,0.000,240.500|"):
-                break
-            if not status.startswith(b"<Run|"):
-                raise SystemExit(f"qemu-test: not running towards the target ({status!r})")
-            if time.monotonic() > deadline:
-                raise SystemExit(f"qemu-test: the rapid never arrived ({status!r})")
-            time.sleep(0.05)
+        # A program with G71/G70 and G76, streamed, run to its end.
+        t0 = time.monotonic()
+        assert len(PROGRAM[:PROGRAM.index("N20")].encode()) + len("N20 X40.\n") <= RX_BUFFER
+        stream(link, PROGRAM)
+        wait_status(link, b"<Idle|" + PROGRAM_END, "program ran to its end", 120.0)
+        print(f"qemu-test: program streamed and run in {time.monotonic() - t0:.1f} s")
+        # An alarm names the line; lines are refused until $X.
+        link.send(ALARM_PROGRAM)
+        alarm = link.expect(b"ALARM:20\r\n", "alarm")
+        if b"[MSG:ALARM 0010 line 2: G123 " not in alarm:
+            raise SystemExit(f"qemu-test: the alarm does not name line 2 ({alarm!r})")
+        wait_status(link, b"<Alarm|", "alarm status", TIMEOUT)
+        link.send(b"$X\n")
+        link.expect(b"ok\r\n", "unlocked")
+        wait_status(link, b"<Idle|", "idle after $X", TIMEOUT)
         link.send(b"\x18")
         link.expect(WELCOME, "welcome after soft reset")
+        stack_check(monitor)
         print("qemu-test: passed")
     finally:
         qemu.kill()

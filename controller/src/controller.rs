@@ -220,17 +220,25 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
     /// A controller for machine `cfg` with the axes at machine position `pos`
     /// (where the motion core was built). The welcome line is queued.
     pub fn new(cfg: MachineConfig, pos: Pos) -> Self {
+        // Built from its parts and returned as one expression, never borrowed as a
+        // whole: the compiler then builds it in its destination (a firmware static)
+        // instead of on the stack and copying it. Same state as `rewind_stream` and
+        // `welcome` leave.
         let mut interp = Interpreter::new(cfg);
         interp.set_machine_position(pos);
-        let mut c = Controller {
+        let window = Window::new();
+        interp.resume_at(Cursor { program: 0, offset: 0, line: window.first_line() });
+        let mut out = OutQueue::default();
+        out.line(Class::Reply, WELCOME);
+        Controller {
             interp,
-            window: Window::new(),
+            window,
             memory: ProgramMemory::new(),
             settings: Settings::default(),
             startup: [heapless::String::new(), heapless::String::new()],
             rx: heapless::Vec::new(),
             discarding: false,
-            out: OutQueue::default(),
+            out,
             rt: Latched::default(),
             ovr: [100; 3],
             alarm: None,
@@ -259,14 +267,11 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             homed: false,
             flood: false,
             mist: false,
-            startup_next: 2,
+            startup_next: 0,
             counters: Counters::default(),
             grbl_seen: false,
             dirty: Dirty::default(),
-        };
-        c.rewind_stream();
-        c.welcome();
-        c
+        }
     }
 
     /// The interpreter (modal state, variables, machine description).

@@ -54,8 +54,9 @@
 //! later), TIM1 and TIM6 are free.
 //!
 //! Flash: sectors 0–9 (768 KB) program, sectors 10–11 (0x080C0000..0x08100000,
-//! 256 KB) the controller's store ([`STORE_START`]); on the F446RE (512 KB) sectors
-//! 0–5 program and 6–7 (0x08040000..0x08080000) the store. See `memory.x`.
+//! 256 KB) the controller's store ([`STORE_START`], `saved.rs`); on the F446RE
+//! (512 KB) all of it is program (the firmware outgrew sectors 0–5, so nothing
+//! persists there). See `memory.x`.
 
 use defmt::unwrap;
 use embassy_stm32::flash::{Blocking, Flash};
@@ -102,12 +103,9 @@ pub const STEP_TIMER: pac::timer::TimGp32 = pac::TIM2;
 /// The interpolation period timer (TIM7).
 pub const PERIOD_TIMER: pac::timer::TimBasic = pac::TIM7;
 
-/// First byte of the flash region reserved for the controller's store (see memory.x).
-#[cfg(feature = "f405")]
+/// First byte of the flash region reserved for the controller's store (see memory.x):
+/// STM32F405 sectors 10–11.
 pub const STORE_START: u32 = 0x080C_0000;
-/// First byte of the flash region reserved for the controller's store (see memory.x).
-#[cfg(feature = "f446")]
-pub const STORE_START: u32 = 0x0804_0000;
 /// Size of the store region: two 128 KB sectors.
 pub const STORE_SIZE: u32 = 256 * 1024;
 

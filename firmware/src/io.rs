@@ -1,5 +1,6 @@
-//! The board's outputs and inputs as the `hal` traits: what the controller's `poll`
-//! gets to switch the spindle, coolant, chuck, tailstock and lube, the debounced
+//! The board's outputs and inputs as the `hal` traits and the controller's
+//! `MachineIo`: what the controller's `poll` gets to switch the spindle, coolant,
+//! chuck, tailstock and lube, the debounced
 //! switch levels it reads, the spindle encoder and the clock. (`hal::StepDir` has no
 //! implementation here on purpose: steps are timed edges the step interrupt plays,
 //! not calls.)
@@ -12,7 +13,6 @@ use embassy_stm32::timer::simple_pwm::SimplePwmChannel;
 use embassy_time::Instant;
 use hal::{DigitalInputs, DigitalOutputs, MonotonicClock, Rotation, SpindleDrive, SpindleEncoder};
 use interp_core::canon::SpindleDir;
-use interp_core::motion::{Event, EventKind};
 use motion_driver::encoder::Encoder;
 use motion_driver::io::{AuxOut, Debounce, Switch, aux_switches, spindle_duty};
 
@@ -63,21 +63,6 @@ impl Outputs {
         }
     }
 
-    /// Applies a motion-core event that concerns the outputs (spindle, M codes; at
-    /// M02/M30 the spindle and coolants stop). Returns whether it did anything.
-    pub fn apply(&mut self, e: &Event) -> bool {
-        match e.kind {
-            EventKind::Spindle { dir, rpm } => self.set_speed(rotation(dir), rpm),
-            EventKind::Aux { m } => self.m_code(m),
-            EventKind::End { .. } => {
-                self.set_speed(Rotation::Stop, 0);
-                self.m_code(9);
-            }
-            _ => return false,
-        }
-        true
-    }
-
     /// Step drives on or off (off at e-stop; the step interrupt also drops it).
     pub fn enable_drives(&mut self, on: bool) {
         self.drive_enable.set_level(on.into());
@@ -90,6 +75,20 @@ impl Outputs {
         self.m_code(9);
         self.m_code(33);
         self.enable_drives(false);
+    }
+}
+
+/// What the controller switches as the program reaches it: M codes to the outputs
+/// ([`aux_switches`]), tool changes logged (the board has no turret output). The
+/// spindle drive follows the motion core's output instead
+/// (`shell::SpindleFollower`), so G96 speed changes along a cut reach it too.
+impl controller::MachineIo for Outputs {
+    fn m_code(&mut self, m: u16, _line: u32) {
+        Outputs::m_code(self, m);
+    }
+
+    fn tool(&mut self, tool: u16, offset: u16) {
+        defmt::info!("tool {} offset {}", tool, offset);
     }
 }
 

@@ -1,8 +1,9 @@
 //! Firmware for the STM32F405RG lathe motion board (and the STM32F446RE, feature
 //! `f446`; QEMU `netduinoplus2`, feature `qemu`): the board file, the motion
 //! interrupts with the task side's [`motion::MotionPort`], outputs and debounced
-//! inputs as `hal` traits, the flash store region, and the link placeholder the
-//! controller replaces.
+//! inputs as `hal` traits, the board's side of the controller (`shell`: the
+//! controller crate on the motion handle) and its persistence on flash (`saved`,
+//! not in the QEMU build).
 #![no_std]
 
 #[cfg(all(feature = "f405", feature = "f446"))]
@@ -12,8 +13,12 @@ compile_error!("`qemu` replaces `hw`: build with `--no-default-features --featur
 
 pub mod board;
 pub mod io;
-pub mod link;
+pub mod keep;
 pub mod motion;
 #[cfg(feature = "qemu")]
 pub mod qemu;
-pub mod store;
+#[cfg(persist)]
+pub mod saved;
+pub mod shell;
+#[cfg(feature = "qemu")]
+pub mod soft;

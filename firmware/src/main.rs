@@ -1,6 +1,7 @@
-//! Firmware entry point: clocks, board bring-up, the motion interrupts and the task
-//! set (control, link receive, link transmit, heartbeat). See `motion.rs` for the
-//! interrupt priorities.
+//! Firmware entry point: clocks, board bring-up, the stored settings and programs,
+//! the motion interrupts, the controller (`controller` crate, docs/PROTOCOL.md) and
+//! the task set (control, link receive, link transmit, heartbeat). See `motion.rs`
+//! for the interrupt priorities.
 #![no_std]
 #![no_main]
 
@@ -20,21 +21,25 @@ use embassy_time::{Duration, Ticker, Timer};
 use embedded_io_async::{Read as _, Write as _};
 use firmware::board::{Axis, Board, MotionTimers, Spindle};
 use firmware::io::{Clock, Inputs, Outputs};
-use firmware::link::Placeholder;
 use firmware::motion::{self, MotionPort};
-use firmware::store::Store;
+use firmware::shell::{self, Ctl, SpindleFollower};
 use hal::MonotonicClock as _;
 use interp_core::config::MachineConfig;
 use motion_driver::timebase::TimeBase;
 use static_cell::StaticCell;
 use {defmt_rtt as _, panic_probe as _};
 
-/// The controller (the placeholder until `controller::Controller` is wired in),
-/// shared by the control and link tasks (all in thread mode).
-static CONTROLLER: Mutex<ThreadModeRawMutex, RefCell<Option<Placeholder>>> = Mutex::new(RefCell::new(None));
+/// The controller's storage (it is tens of KB: built in place, see `shell::build`).
+static CTL: StaticCell<Ctl> = StaticCell::new();
+
+/// The controller, shared by the control and link tasks (all in thread mode).
+static CONTROLLER: Mutex<ThreadModeRawMutex, RefCell<Option<&'static mut Ctl>>> = Mutex::new(RefCell::new(None));
 
 /// Set when the controller may have output for the link.
 static TX_READY: Signal<ThreadModeRawMutex, ()> = Signal::new();
+
+/// Set after every poll: the receive buffer may have room again.
+static POLLED: Signal<ThreadModeRawMutex, ()> = Signal::new();
 
 /// Pins and timers nobody touches after set-up, kept so they stay configured.
 struct Kept {
@@ -44,9 +49,6 @@ struct Kept {
     _timers: MotionTimers,
 }
 static KEPT: StaticCell<Kept> = StaticCell::new();
-
-/// The machine description in force (the controller's store will provide it).
-static MACHINE: StaticCell<MachineConfig> = StaticCell::new();
 
 /// System clock from the board's 8 MHz crystal: 168 MHz core, 42 MHz APB1
 /// (84 MHz timers), 84 MHz APB2 (168 MHz timers), 48 MHz for USB. Same on the F446.
@@ -102,23 +104,94 @@ async fn main(spawner: Spawner) {
         Board::new(p);
     let Spindle { encoder, index, speed, cw, ccw } = spindle;
     KEPT.init(Kept { _axes: [x, z, c], _encoder: encoder, _index: index, _timers: timers });
-    let machine = MACHINE.init(MachineConfig::default());
-    let port = unwrap!(start_motion(machine));
-    let outputs = Outputs::new(aux, cw, ccw, speed, drive_enable, machine.spindle.max_rpm);
-    let _store = Store::new(flash);
-    CONTROLLER.lock(|c| *c.borrow_mut() = Some(Placeholder::new()));
+    let mut cfg = MachineConfig::default();
+    let mut settings = controller::Settings::default();
+    #[cfg(persist)]
+    let mut store = open_store(flash, &mut cfg, &mut settings);
+    #[cfg(not(persist))]
+    let _ = flash; // Nothing persists on the F446RE or in QEMU (build.rs).
+    let (port, cfg) = match start_motion(&cfg) {
+        Ok(port) => (port, cfg),
+        Err(e) => {
+            warn!("stored machine description refused ({}): defaults", e);
+            cfg = MachineConfig::default();
+            settings = controller::Settings::default();
+            (unwrap!(start_motion(&cfg)), cfg)
+        }
+    };
+    let outputs = Outputs::new(aux, cw, ccw, speed, drive_enable, cfg.spindle.max_rpm);
+    let pos = cfg.reference[0];
+    let ctl = shell::build(CTL.uninit(), cfg, pos);
+    *ctl.settings_mut() = settings;
+    #[cfg(persist)]
+    let saving: Saving = store.take().map(|mut s| {
+        if let Err(e) = firmware::saved::load_rest(&mut s, ctl) {
+            warn!("persist: stored variables/programs: {}", defmt::Display2Format(&e));
+        }
+        info!("persist: {} programs in memory", ctl.memory().numbers().count());
+        &mut *SAVER.init_with(|| firmware::saved::Saver::new(s, ctl))
+    });
+    #[cfg(not(persist))]
+    let saving: Saving = ();
+    info!("controller: {} bytes", core::mem::size_of::<Ctl>());
+    CONTROLLER.lock(|c| *c.borrow_mut() = Some(ctl));
     info!("lathe motion board up");
     let (tx, rx) = dnc.split();
-    spawner.spawn(unwrap!(control(port, outputs, Inputs::new(switches), watchdog)));
+    spawner.spawn(unwrap!(control(port, outputs, Inputs::new(switches), watchdog, saving)));
     spawner.spawn(unwrap!(link_rx(rx)));
     spawner.spawn(unwrap!(link_tx(tx)));
     spawner.spawn(unwrap!(heartbeat(status_led)));
 }
 
+/// The persistence the control task runs (none on the F446RE and in QEMU).
+#[cfg(persist)]
+type Saving = Option<&'static mut firmware::saved::Saver>;
+
+/// The saver (the store and its caches, ~5 KB): a static rather than in the control
+/// task's future.
+#[cfg(persist)]
+static SAVER: StaticCell<firmware::saved::Saver> = StaticCell::new();
+#[cfg(not(persist))]
+type Saving = ();
+
+/// Opens the store and reads the stored parameters, settings and offsets into
+/// `cfg` and `settings`. A store beyond repair is formatted (everything stored is
+/// lost; erasing takes seconds, before the watchdog starts).
+#[cfg(persist)]
+#[inline(never)]
+fn open_store(
+    flash: embassy_stm32::flash::Flash<'static, embassy_stm32::flash::Blocking>,
+    cfg: &mut MachineConfig,
+    settings: &mut controller::Settings,
+) -> Option<firmware::saved::Store> {
+    use controller::persist::Error;
+    let mut store = match firmware::saved::open(flash) {
+        Ok(s) => s,
+        Err(e) => {
+            warn!("persist: no store: {}", defmt::Display2Format(&e));
+            return None;
+        }
+    };
+    match firmware::saved::load_config(&mut store, cfg, settings) {
+        Ok(()) => {}
+        Err(Error::Corrupted) => {
+            warn!("persist: store corrupted: formatting it");
+            *cfg = MachineConfig::default();
+            *settings = controller::Settings::default();
+            if let Err(e) = store.format() {
+                warn!("persist: format failed: {}", defmt::Display2Format(&e));
+                return None;
+            }
+        }
+        Err(e) => warn!("persist: stored settings: {}", defmt::Display2Format(&e)),
+    }
+    Some(store)
+}
+
 /// Builds the motion core at reference position 1 and starts the step, period and
 /// encoder interrupts (on the board) — or, in the QEMU build, the software time base
 /// that the control task advances.
-fn start_motion(cfg: &'static MachineConfig) -> Result<MotionPort, motion::StartError> {
+fn start_motion(cfg: &MachineConfig) -> Result<MotionPort, motion::StartError> {
     let pos = cfg.reference[0];
     #[cfg(feature = "hw")]
     {
@@ -150,18 +223,26 @@ fn now_ns() -> u64 {
 
 /// The control task (thread mode, below every interrupt): every millisecond samples
 /// and debounces the switches, runs the controller's `poll` (interpreter, planner
-/// feed, events to outputs, status), and feeds the watchdog. In the QEMU build it
-/// also advances the software motion time base.
+/// feed, events to outputs, status), lets the spindle drive follow the motion core,
+/// saves what changed while at rest (board only), and feeds the watchdog. In the
+/// QEMU build it also advances the software motion time base.
 #[embassy_executor::task]
 async fn control(
     mut port: MotionPort,
     mut outputs: Outputs,
     mut inputs: Inputs,
     mut watchdog: IndependentWatchdog<'static, IWDG>,
+    mut saving: Saving,
 ) {
     watchdog.unleash();
     let mut ticker = Ticker::every(Duration::from_millis(1));
     let mut estop = false;
+    let mut spindle = SpindleFollower::new();
+    #[cfg(feature = "qemu")]
+    let mut soft = {
+        let cpr = CONTROLLER.lock(|c| c.borrow().as_ref().map_or(1, |c| c.interpreter().config().spindle.encoder_cpr));
+        firmware::soft::SoftMotion::new(cpr, embassy_time::Instant::now().as_micros() as u32)
+    };
     loop {
         ticker.next().await;
         let levels = inputs.sample();
@@ -169,72 +250,63 @@ async fn control(
         if e && !estop {
             warn!("e-stop");
             outputs.stop_all();
+            spindle.forget();
         }
         estop = e;
         outputs.enable_drives(!e);
         #[cfg(feature = "qemu")]
-        soft_period(&mut port);
+        soft.run(&mut port, embassy_time::Instant::now().as_micros() as u32);
         let now = now_ns();
         CONTROLLER.lock(|c| {
-            if let Some(c) = c.borrow_mut().as_mut() {
-                c.poll(now, &mut port, &mut outputs, levels);
+            if let Some(ctl) = c.borrow_mut().as_deref_mut() {
+                ctl.poll(now, &mut port, &mut outputs, shell::inputs(levels));
+                save(&mut saving, now, ctl, &port);
             }
         });
+        if !e {
+            spindle.follow(&port, &mut outputs);
+        }
+        POLLED.signal(());
         TX_READY.signal(());
         watchdog.pet();
     }
 }
 
-/// QEMU build: the motion interrupts' work on the software time base — every period
-/// due is computed, and its edges are played (counted, no pins) at once.
-#[cfg(feature = "qemu")]
-fn soft_period(port: &mut MotionPort) {
-    use motion_driver::engine::Sample;
-    let now = embassy_time::Instant::now().as_micros() as u32;
-    // As the period interrupt does at the start of each period: compute the next one.
-    for _ in 0..4 {
-        let due = port.lock(|m| {
-            let start = m.engine.base_ticks();
-            let due = now.wrapping_sub(start) as i32 >= 0;
-            if due {
-                m.engine.period(&mut m.core, Sample { now: start, raw_count: 0, index: None, estop: false });
-            }
-            due
-        });
-        if due != Some(true) {
-            break;
-        }
+/// Saves what changed while the machine is at rest (see `firmware::saved`).
+#[cfg(persist)]
+fn save(saving: &mut Saving, now: u64, ctl: &mut Ctl, port: &MotionPort) {
+    if let Some(s) = saving.as_mut() {
+        s.tick(now, ctl, port);
     }
-    // SAFETY: without a step interrupt, this task is the player's only user.
-    let _ = unsafe {
-        motion::with_player(|p| {
-            for _ in 0..1_024 {
-                match p.run(now, false).next {
-                    Some(n) if now.wrapping_sub(n) as i32 >= 0 => {}
-                    _ => break,
-                }
-            }
-        })
-    };
 }
 
-/// Link receive: bytes from USART2 into the controller as they arrive.
+/// Nothing persists on the F446RE and in QEMU.
+#[cfg(not(persist))]
+fn save(_: &mut Saving, _: u64, _: &mut Ctl, _: &MotionPort) {}
+
+/// Link receive: bytes from USART2 into the controller as they arrive. What its
+/// receive buffer cannot take yet is offered again after the next poll (the rest
+/// waits in the UART's ring buffer).
 #[embassy_executor::task]
 async fn link_rx(mut rx: BufferedUartRx<'static>) {
     let mut buf = [0u8; 64];
     loop {
-        match rx.read(&mut buf).await {
-            Ok(n) => {
-                let now = now_ns();
-                let bytes = buf.get(..n).unwrap_or(&[]);
-                CONTROLLER.lock(|c| {
-                    if let Some(c) = c.borrow_mut().as_mut() {
-                        c.receive(bytes, now);
-                    }
-                });
-                TX_READY.signal(());
+        let n = match rx.read(&mut buf).await {
+            Ok(n) => n,
+            Err(e) => {
+                warn!("link receive: {}", e);
+                continue;
             }
-            Err(e) => warn!("link receive: {}", e),
+        };
+        let mut rest = buf.get(..n).unwrap_or(&[]);
+        while !rest.is_empty() {
+            let now = now_ns();
+            let taken = CONTROLLER.lock(|c| c.borrow_mut().as_deref_mut().map_or(0, |c| c.receive(rest, now)));
+            rest = rest.get(taken..).unwrap_or(&[]);
+            TX_READY.signal(());
+            if !rest.is_empty() {
+                POLLED.wait().await;
+            }
         }
     }
 }
@@ -246,7 +318,7 @@ async fn link_tx(mut tx: BufferedUartTx<'static>) {
     loop {
         TX_READY.wait().await;
         loop {
-            let n = CONTROLLER.lock(|c| c.borrow_mut().as_mut().map_or(0, |c| c.transmit(&mut buf)));
+            let n = CONTROLLER.lock(|c| c.borrow_mut().as_deref_mut().map_or(0, |c| c.transmit(&mut buf)));
             if n == 0 {
                 break;
             }

@@ -99,6 +99,20 @@ impl<T> PriorityCell<T> {
         // SAFETY: initialised (ready), exclusive by the caller's contract.
         Some(unsafe { (*self.value.get()).assume_init_mut() })
     }
+
+    /// The value for reading, if set.
+    ///
+    /// # Safety
+    ///
+    /// Only from the cell's owning priority level, and never while a `get` of it is
+    /// alive.
+    unsafe fn get_ref(&self) -> Option<&T> {
+        if !self.ready.load(Ordering::Acquire) {
+            return None;
+        }
+        // SAFETY: initialised (ready), no exclusive reference by the caller's contract.
+        Some(unsafe { (*self.value.get()).assume_init_ref() })
+    }
 }
 
 /// Owned by priority P1 (period and encoder interrupts; thread mode via MotionPort).
@@ -127,7 +141,21 @@ pub enum StartError {
 /// `tb`, and the step player; `start`/`raw_count` are the timer and encoder readings
 /// that are time 0 and count 0. Returns the thread-mode handle.
 pub fn init(cfg: &MachineConfig, pos: Pos, tb: TimeBase, start: u32, raw_count: u32) -> Result<MotionPort, StartError> {
-    let core = Core::new(cfg, pos).map_err(|_| StartError::Config)?;
+    if MOTION.ready.load(Ordering::Acquire) {
+        return Err(StartError::Twice);
+    }
+    // The core (~21 KB) goes straight into its static: the stack holds one
+    // temporary at most.
+    // SAFETY: not ready: nothing else reads or writes the cell (interrupts that use
+    // it are not enabled yet).
+    let cell = unsafe { &mut *MOTION.value.get() };
+    let slot = cell.as_mut_ptr();
+    let core = match Core::new(cfg, pos) {
+        // SAFETY: `slot` points to the cell's storage; the field is written once
+        // and the cell marked ready only when every field is.
+        Ok(core) => unsafe { &mut *core::ptr::addr_of_mut!((*slot).core).cast::<MaybeUninit<Core>>() }.write(core),
+        Err(_) => return Err(StartError::Config),
+    };
     let [rx, rz, rc] = &RINGS;
     let (Some((tx, px)), Some((tz, pz)), Some((tc, pc))) = (rx.split(), rz.split(), rc.split()) else {
         return Err(StartError::Twice);
@@ -143,8 +171,10 @@ pub fn init(cfg: &MachineConfig, pos: Pos, tb: TimeBase, start: u32, raw_count: 
         EngineAxis::new(AXES[1].index(), tz),
         EngineAxis::new(AXES[2].index(), tc),
     ];
-    let engine = Engine::new(tb, axes, start, raw_count);
-    if !PLAYER.init(player) || !MOTION.init(Motion { core, engine }) {
+    // SAFETY: as above; the core is written, the engine now, then the cell is ready.
+    unsafe { core::ptr::addr_of_mut!((*slot).engine).write(Engine::new(tb, axes, start, raw_count)) };
+    MOTION.ready.store(true, Ordering::Release);
+    if !PLAYER.init(player) {
         return Err(StartError::Twice);
     }
     Ok(MotionPort { _thread_only: PhantomData })
@@ -201,6 +231,19 @@ impl MotionPort {
         // SAFETY: BASEPRI at P1: no P1 interrupt runs until it is restored, so this is
         // the only user of P1's state; the closure cannot leak the reference.
         let r = unsafe { MOTION.get() }.map(f);
+        // SAFETY: back to the level we came in with.
+        unsafe { cortex_m::register::basepri::write(old) };
+        r
+    }
+
+    /// Runs `f` reading the motion core and engine, the motion interrupts held off
+    /// (for status snapshots: `&self`, so it cannot overlap a [`Self::lock`]).
+    pub fn peek<R>(&self, f: impl FnOnce(&Motion) -> R) -> Option<R> {
+        let old = cortex_m::register::basepri::read();
+        cortex_m::register::basepri_max::write(MOTION_BASEPRI);
+        // SAFETY: BASEPRI at P1 (no P1 interrupt runs); `lock` needs `&mut self`, so
+        // no exclusive reference exists while this shared one does.
+        let r = unsafe { MOTION.get_ref() }.map(f);
         // SAFETY: back to the level we came in with.
         unsafe { cortex_m::register::basepri::write(old) };
         r

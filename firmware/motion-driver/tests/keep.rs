@@ -1,0 +1,91 @@
+//! The firmware's persistence logic (`firmware/src/keep.rs`, included here: the
+//! firmware crate itself builds only for the board) on the controller's simulated
+//! NOR flash: what a board saves at rest comes back after a restart.
+
+#[path = "../../src/keep.rs"]
+mod keep;
+
+use controller::persist::Persist;
+use controller::persist::sim::SimFlash;
+use controller::{Controller, Inputs, Settings};
+use interp_core::MachineConfig;
+use interp_core::ProgramStore;
+use interp_core::config::Param;
+use interp_core::motion::MotionCore;
+
+/// The firmware's F446 controller size (small enough for the test thread's stack).
+type Ctl = Controller<1024, 2048, 8, 64>;
+/// Eight 2 KB pages.
+type Flash = SimFlash<{ 8 * 2048 }, 2048, 4>;
+
+const PROGRAM: &[u8] = b"O0010\nG00 X10. Z2.\nM30\n";
+
+/// A controller fed `lines` (each polled to its answer) on a motion core.
+fn controller_after(lines: &[&str]) -> (Box<Ctl>, MotionCore<64>) {
+    let cfg = MachineConfig::default();
+    let pos = cfg.reference[0];
+    let mut core = MotionCore::<64>::new(&cfg, pos).unwrap();
+    let mut ctl = Box::new(Ctl::new(cfg, pos));
+    let mut now = 0;
+    for line in lines {
+        assert_eq!(ctl.receive(line.as_bytes(), now), line.len());
+        for _ in 0..5 {
+            now += 1_000_000;
+            ctl.poll(now, &mut core, &mut (), Inputs::default());
+        }
+    }
+    let mut out = [0u8; 2048];
+    let n = ctl.transmit(&mut out);
+    let text = String::from_utf8_lossy(&out[..n]).to_string();
+    assert!(!text.contains("error"), "{text}");
+    (ctl, core)
+}
+
+#[test]
+fn settings_parameters_offsets_commons_and_programs_survive_a_restart() {
+    let mut flash = Flash::new();
+    let (mut ctl, _core) = controller_after(&["$110=6000\n", "$20=0\n", "$P5147=2.5\n", "#401=12.5\n"]);
+    ctl.memory_mut().load(PROGRAM, None).unwrap();
+    // G54 X4 (diameter) Z-7.5 (this interpreter has no G10 yet).
+    ctl.interpreter_mut().config_mut().work_offsets[0].0[0] = 2_000_000;
+    ctl.interpreter_mut().config_mut().work_offsets[0].0[2] = -7_500_000;
+    let before = keep::fingerprint(&ctl);
+    assert_ne!(before, keep::fingerprint(&Ctl::new(MachineConfig::default(), Default::default())));
+    {
+        let mut store = Persist::new(&mut flash, 0..8 * 2048).unwrap();
+        keep::save(&mut store, &mut ctl).unwrap();
+    }
+
+    // Power-on: configuration first (the motion core is built from it), then the rest.
+    let mut store = Persist::new(&mut flash, 0..8 * 2048).unwrap();
+    let mut cfg = MachineConfig::default();
+    let mut settings = Settings::default();
+    let refused = keep::load_config(&mut store, &mut cfg, &mut settings).unwrap();
+    assert!(refused.is_empty(), "{refused:?}");
+    assert_eq!(controller::settings::get(110, &cfg, &settings), Some(6000.0));
+    assert!(!settings.soft_limits);
+    assert_eq!(cfg.params.get(Param::by_number(5147).unwrap()), 2_500_000);
+    assert_eq!(cfg.work_offsets[0].0[0], 2_000_000, "X4 diameter is 2 mm radius");
+    assert_eq!(cfg.work_offsets[0].0[2], -7_500_000);
+    let pos = cfg.reference[0];
+    let mut again = Box::new(Ctl::new(cfg, pos));
+    *again.settings_mut() = settings;
+    let mut scratch = [0u8; 2048];
+    assert_eq!(keep::load_rest(&mut store, &mut again, &mut scratch).unwrap(), 1);
+    assert_eq!(again.memory().text(10), Some(PROGRAM));
+    assert_eq!(again.interpreter().variables().get(401).unwrap(), Some(12.5));
+    assert_eq!(keep::fingerprint(&again), before);
+}
+
+#[test]
+fn a_deleted_program_is_deleted_from_the_store() {
+    let mut flash = Flash::new();
+    let (mut ctl, _core) = controller_after(&[]);
+    ctl.memory_mut().load(PROGRAM, None).unwrap();
+    let mut store = Persist::new(&mut flash, 0..8 * 2048).unwrap();
+    keep::save(&mut store, &mut ctl).unwrap();
+    assert_eq!(store.programs::<8>().unwrap().len(), 1);
+    assert!(ctl.memory_mut().remove(10));
+    keep::save(&mut store, &mut ctl).unwrap();
+    assert!(store.programs::<8>().unwrap().is_empty());
+}
