@@ -151,6 +151,17 @@ const fn plain(case: &'static str, code: u16, program: &'static str, line: u32) 
     Proof { case, code, setup: Setup::Plain, program, in_program: 0, line }
 }
 
+/// The machine of examples/machines/nose_radius.toml: nose R0.8 (tip 3) in offset row 1.
+const NOSE: Setup = Setup::Machine(include_str!("../../examples/machines/nose_radius.toml"));
+
+/// The machine of examples/machines/polar_c_axis.toml: a C axis for polar interpolation.
+const C_AXIS: Setup = Setup::Machine(include_str!("../../examples/machines/polar_c_axis.toml"));
+
+/// Shorthand for a [`Proof`] of the main program run with `setup`.
+const fn on(setup: Setup, case: &'static str, code: u16, program: &'static str, line: u32) -> Proof {
+    Proof { case, code, setup, program, in_program: 0, line }
+}
+
 /// One program per alarm code (several where the manual names several causes).
 pub const PROOFS: &[Proof] = &[
     plain("too_many_digits", 3, "G00 X1\nX1234567890\nM30\n", 2),
@@ -168,9 +179,10 @@ pub const PROOFS: &[Proof] = &[
     plain("arc_without_center", 22, "G00 X20 Z0\nG02 X30 Z-5 F100\nM30\n", 2),
     plain("arc_radius_zero", 23, "G00 X1\nG02 X10 R0 F100\nM30\n", 2),
     plain("tool_not_on_turret", 30, "G00 X1\nT0140\nM30\n", 2),
-    plain("comp_starts_on_arc", 34, "G00 X1\nG42 G02 X10 Z-5 R5 F100\nM30\n", 2),
-    plain("plane_change_in_comp", 37, "G42 G01 X10 F100\nG19 W-10\nM30\n", 2),
-    plain("polar_start_in_comp", 37, "G42 G01 X10 F100\nG12.1\nM30\n", 2),
+    on(NOSE, "comp_starts_on_arc", 34, "T0101\nG00 X20 Z5\nG42 G02 X30 Z0 R5 F0.1\nM30\n", 3),
+    on(NOSE, "comp_ends_on_arc", 34, "T0101\nG00 X20 Z5\nG42 G01 Z0 F0.1\nG40 G02 X30 Z-5 R5\nM30\n", 4),
+    on(NOSE, "plane_change_in_comp", 37, "T0101\nG00 X20 Z5\nG42 G01 Z0 F0.1\nG17 X30\nM30\n", 4),
+    on(C_AXIS, "polar_start_in_comp", 37, "G00 X60 C0\nG42 G01 X50 F100\nG12.1\nM30\n", 3),
     plain("g30_p7", 46, "G00 X1\nG30 P7 U0\nM30\n", 2),
     plain("chamfer_in_thread", 50, "M3 S500\nG32 W-30 F2 ,C1\nM30\n", 2),
     plain("chamfer_then_rapid", 51, "G01 W-20 F100 ,C1\nG00 U10\nM30\n", 2),
@@ -242,11 +254,26 @@ pub const PROOFS: &[Proof] = &[
         in_program: 0,
         line: 2,
     },
-    plain("g41_straight_after_g42", 3576, "G42 G01 X10 F100\nG41 Z-10\nM30\n", 2),
-    plain("t_in_comp", 3577, "G42 G01 X10 F100\nT0101\nM30\n", 2),
-    plain("corner_under_0_1_degree", 3607, "G42 G01 W-10 F100\nW10\nM30\n", 2),
+    on(NOSE, "g41_straight_after_g42", 3576, "T0101\nG00 X0 Z5\nG42 G01 Z0 F0.1\nG41 X20\nM30\n", 4),
+    on(NOSE, "t_in_comp", 3577, "T0101\nG00 X0 Z5\nG42 G01 Z0 F0.1\nT0202\nM30\n", 4),
+    on(
+        NOSE,
+        "inside_arc_smaller_than_nose",
+        3605,
+        "T0101\nG00 X20 Z5\nG41 G01 Z0 F0.1\nZ-10\nG03 X21 Z-10.5 R0.5\nG01 Z-20\nG40 X40\nM30\n",
+        5,
+    ),
+    on(
+        NOSE,
+        "groove_narrower_than_nose",
+        3605,
+        "T0101\nG00 X40 Z5\nG42 G01 Z0 F0.1\nZ-10\nX30\nZ-11\nX40\nZ-20\nG40 X60\nM30\n",
+        7,
+    ),
+    on(NOSE, "corner_under_0_1_degree", 3607, "T0101\nG00 X20 Z5\nG42 G01 Z0 F0.1\nZ-10\nZ0\nM30\n", 5),
     plain("g20_with_a_move", 4001, "G20 X1\nM30\n", 1),
     plain("g20_after_motion", 4002, "G00 X10\nG20\nM30\n", 2),
+    Proof { case: "cycle_in_mdi", code: 4007, setup: Setup::Mdi, program: "G90 X10 Z-5 F100", in_program: 0, line: 0 },
     plain("g00_with_g01", 4003, "G00 X1\nG00 G01 X1\nM30\n", 2),
     plain("x_twice", 4004, "G00 X1\nG00 X1 X2\nM30\n", 2),
     plain("i_on_g00", 4005, "G00 X1\nG00 X1 I2\nM30\n", 2),
@@ -274,6 +301,7 @@ pub const PROOFS: &[Proof] = &[
     plain("g32_x_with_u", 4020, "M3 S500\nG32 X10 U2 W-10 F1\nM30\n", 2),
     plain("g90_taper_too_large", 4030, "G00 X100 Z10\nG90 U-40 W-30 R21 F100\nM30\n", 2),
     plain("g90_in_g17", 4031, "G17\nG90 X10 Z-5 F100\nM30\n", 2),
+    on(C_AXIS, "g90_moves_c", 4032, "G00 X20 Z5\nG90 X10 C5 Z-5 F100\nM30\n", 2),
     plain("g32_q_361", 4033, "M3 S500\nG32 W-30 F2 Q361\nM30\n", 2),
     plain("g92_pullout_too_long", 4034, "M3 S500\nG0 X40 Z5\nG92 X30 W-3 F5\nM30\n", 3),
     plain("g76_pullout_too_long", 4034, "M3 S500\nG00 X40 Z5\nG76 P011060\nG76 X30 Z-20 P1.0 Q0.5 F50\nM30\n", 4),
@@ -287,6 +315,17 @@ pub const PROOFS: &[Proof] = &[
         line: 3,
     },
     Proof { case: "m98_in_mdi", code: 4041, setup: Setup::Mdi, program: "M98 P1", in_program: 0, line: 0 },
+    on(Setup::Machine("jump_input = 40\n"), "m92_input_missing", 4043, "G00 X1\nM92 P1\nN1 M30\n", 2),
+    on(
+        NOSE,
+        "five_m_blocks_behind_held_move",
+        4044,
+        "T0101\nG00 X20 Z5\nG42 G01 Z0 F0.1\nM08\nM09\nM08\nM09\nM08\nZ-10\nM30\n",
+        8,
+    ),
+    on(C_AXIS, "g00_in_polar", 4045, "G00 X60 C0\nG12.1\nG00 X40\nM30\n", 3),
+    on(C_AXIS, "g28_in_polar", 4045, "G00 X60 C0\nG12.1\nG28 U0\nM30\n", 3),
+    on(C_AXIS, "polar_arc_with_i", 4046, "G00 X60 C0\nG12.1\nG02 X40 C10 I5 F100\nM30\n", 3),
     plain("m99_with_x", 4042, "G00 X1\nM99 X1\nM30\n", 2),
     plain("g51_2_without_tool_spindle", 4047, "G00 X1\nG51.2 P1 Q2\nM30\n", 2),
     plain("no_m30", 5010, "G00 X10\n", 2),
@@ -296,16 +335,9 @@ pub const PROOFS: &[Proof] = &[
 /// it cannot be a plain program (a simulated drive, a switch of the operator panel …).
 pub const PROVEN_ELSEWHERE: &[(u16, &str)] = &[
     (224, "alarms.rs alarms_needing_a_machine_setting (axis not referenced: a panel switch)"),
-    (3605, "nose_comp.rs alarms_of_2_18 (needs a nose radius in the tool table)"),
-    (4007, "program_structure.rs codes_not_implemented_yet_say_so"),
     (4017, "alarms.rs alarms_needing_a_machine_setting (400 far moves on unlimited axes)"),
-    (4032, "alarms.rs cycle_alarms_needing_a_machine_or_a_long_program (needs a C axis)"),
     (4035, "alarms.rs cycle_alarms_needing_a_machine_or_a_long_program (49-segment shape)"),
     (4036, "alarms.rs cycle_alarms_needing_a_machine_or_a_long_program (11 pockets)"),
-    (4043, "alarms.rs alarms_of_subprograms_mdi_and_inputs (needs a jump input wired)"),
-    (4044, "nose_comp.rs alarms_of_2_18 (needs a nose radius in the tool table)"),
-    (4045, "polar.rs alarms_of_2_7 (needs a C axis)"),
-    (4046, "polar.rs alarms_of_2_7 (needs a C axis)"),
     (4501, "alarms.rs motion_alarms_are_raised_with_their_line (simulated drive)"),
     (4502, "alarms.rs motion_alarms_are_raised_with_their_line (simulated drive)"),
     (4503, "alarms.rs motion_alarms_are_raised_with_their_line (simulated spindle)"),
