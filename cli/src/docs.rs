@@ -48,7 +48,11 @@ fn manual_tables(s: &mut String) {
         "\n## The manual's alarms\n\n\
          Every place the manual says a condition raises an alarm (报警, P/S 报警, No.xxxx): {} in \
          all, {} raised, {} not raised (next table). The manual numbers only 3576, 3577, 3605 and \
-         3607; the others get FANUC's number or one of ours.\n\n\
+         3607; the others get FANUC's number or one of ours. Places that name an alarm without \
+         one being raised there are left out: 2.10 note 5 (the tool may back out of an \
+         overtravel), 2.13 note 5's `G01 X100 Y50 Z20` (no alarm), and 2.17.1 note 5, 2.17.3 \
+         note 4, 2.17.4 note 2, 2.22.2 note 5 (a thread or tap decelerates on reset, emergency \
+         stop or a drive alarm).\n\n\
          | Section | Alarm in the manual | Code |\n\
          | --- | --- | --- |\n",
         MANUAL.len(),
@@ -175,6 +179,12 @@ pub const PROOFS: &[Proof] = &[
     plain("feed_never_set", 11, "G00 X1\nG01 X10\nM30\n", 2),
     plain("g34_lead_turns_negative", 14, "M3 S500\nG34 W-78 F4 K-0.2\nM30\n", 2),
     plain("arc_r_too_short", 20, "G00 X60 Z0\nG02 W-20 R5 F100\nM30\n", 2),
+    plain(
+        "g71_shape_arc_off_circle",
+        20,
+        "G00 X100 Z5\nG71 U1 R0.5 F100\nG71 P10 Q20\nN10 G00 X40 Z0\nG01 Z-10\nG02 X60 Z-20 I10 K-3\nN20 G01 X80\nM30\n",
+        3,
+    ),
     plain("arc_axis_outside_plane", 21, "G17\nG00 X10 Z0\nG02 X20 Z50 R100 F100\nM30\n", 3),
     plain("arc_without_center", 22, "G00 X20 Z0\nG02 X30 Z-5 F100\nM30\n", 2),
     plain("arc_radius_zero", 23, "G00 X1\nG02 X10 R0 F100\nM30\n", 2),
@@ -409,6 +419,11 @@ pub const MANUAL: &[ManualAlarm] = &[
     raised("2.13 note 4", "G70-G76, G90, G92, G94 outside the ZX plane", &[4031]),
     raised("2.13 note 5", "an arc block with an axis outside the selected plane (G17 G02 X Z)", &[21]),
     raised("2.15 note 1", "a G90/G92/G94 block moving an axis other than X/Z", &[4032]),
+    raised(
+        "2.16.1 note 6",
+        "an arc of the G71 finishing shape off its circle by more than parameter 3410, whatever the allowance",
+        &[20],
+    ),
     raised("2.16.7 note 2", "the ns block of G71/G72/G73 without G00 or G01", &[65]),
     raised("2.17.1", "G32 start angle Q above 360 or below 0", &[4033]),
     ManualAlarm {
