@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Runs every fuzz target for SECONDS (default 20) each, on its committed corpus
-# (fuzz/corpus/<target>; new inputs it finds are added there). CI runs a short
+# Runs every fuzz target for SECONDS (default 20) each, from its committed corpus
+# (fuzz/corpus/<target>; new inputs go to fuzz/work/<target>, not committed: merge
+# the useful ones with `cargo fuzz cmin`). CI runs a short
 # bounded pass; a finding leaves its input in fuzz/artifacts/<target>/ and fails.
 # Stable Rust takes cargo-fuzz's nightly flags with RUSTC_BOOTSTRAP=1.
 #   fuzz/run.sh 20            # 20 s per target
@@ -16,7 +17,8 @@ command -v cargo-fuzz >/dev/null || cargo install cargo-fuzz --locked
 for t in "${targets[@]}"; do
     echo "== $t: ${secs} s"
     # -max_len: programs up to 4 KiB; rss limit keeps a runaway input a finding.
-    cargo fuzz run "$t" "corpus/$t" -- -max_total_time="$secs" -max_len=4096 \
+    mkdir -p "work/$t"
+    cargo fuzz run "$t" "work/$t" "corpus/$t" -- -max_total_time="$secs" -max_len=4096 \
         -rss_limit_mb=2048 -timeout=10 -print_final_stats=1 2>&1 | \
         grep -E '^(stat::number_of_executed_units|stat::average_exec_per_sec|#[0-9]+ +DONE)|ERROR|panicked|SUMMARY|Test unit written' || true
     # cargo fuzz run's status is lost in the pipe: a finding leaves an artifact.
