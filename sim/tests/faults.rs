@@ -313,3 +313,44 @@ fn link_lost_mid_stream_stops_at_the_end_of_the_last_block_received() {
     assert_eq!(b.sim.core.state(), State::Idle);
     restart_works(&mut b, 100.0);
 }
+
+#[test]
+fn a_short_encoder_glitch_mid_thread_is_ridden_through() {
+    let mut b = board();
+    mid_thread(&mut b);
+    let t = b.now();
+    // 50 ms without counts (under the 100 ms watch): the axes wait, then catch up
+    // with the count at their step rate.
+    b.sim.faults.encoder_lost = Some(Span { from: t, until: t + 50 * MS });
+    let out = settle(&mut b);
+    assert!(out.contains("Pgm End") && !out.contains("ALARM"), "{out}");
+    assert_eq!(b.sim.violations(), 0);
+    assert!((z_mm(&b) - 10.0).abs() < 1e-3, "the program ran to its end");
+}
+
+#[test]
+fn spindle_runaway_mid_thread_alarms_4501_and_brakes_along_the_thread() {
+    let mut cfg = MachineConfig::default();
+    cfg.axes[Axis::Z.index()].drive.max_step_hz = 30_000; // 5625 mm/min on Z
+    let mut b = board_on(cfg);
+    // Lead 7 at 600 rpm: 4200 mm/min, inside the 5000 mm/min feed limit with the
+    // 10 % margin; the drive then runs away to 900 rpm (6300 mm/min).
+    stream(&mut b, "G97 S600 M03\nG00 X40 Z10\nG32 Z-100 F7\nG00 X60\nZ10\nM30\n", |_| false);
+    assert!(run_until(&mut b, 20_000, |b| b.sim.core.state() == State::Locked && z_mm(&b) < -20.0));
+    let x0 = b.position()[Axis::X];
+    let (z0, deg0) = (z_mm(&b), b.sim.spindle.encoder_degrees());
+    b.sim.faults.spindle_load = Some((b.now(), 1.5));
+    assert!(run_until(&mut b, 2_000, |b| b.ctl.alarm().is_some()));
+    let lead = (z0 - z_mm(&b)) / ((b.sim.spindle.encoder_degrees() - deg0) / 360.0);
+    let z1 = z_mm(&b);
+    let out = settle(&mut b);
+    let v = 5_000.0 / 60.0;
+    let d = z1 - z_mm(&b);
+    eprintln!("spindle runaway mid-thread: lead {lead:.4} mm/rev up to the alarm, {d:.3} mm to stop");
+    assert!((lead - 7.0).abs() < 0.01, "the lead held up to the alarm: {lead}");
+    assert!(d > 0.0 && d < v * v / (2.0 * ACCEL) + v * 0.003, "stop distance {d:.3} mm");
+    assert!(out.contains("ALARM 4501") && out.contains("ALARM:20"), "{out}");
+    assert_eq!(b.position()[Axis::X], x0, "the tool stays in the thread's line");
+    assert_eq!(b.sim.violations(), 0, "the drive's step rate was never exceeded");
+    restart_works(&mut b, 30.0);
+}

@@ -397,6 +397,7 @@ impl<const N: usize> MotionCore<N> {
         self.stats.max_queued = self.stats.max_queued.max(self.planner.len());
         self.spindle.sample(fb.count, fb.index);
         self.watch_encoder(fb.count);
+        self.watch_thread_speed();
         let mut ticked = false;
         for _ in 0..8 {
             if !self.advance(&mut ticked) {
