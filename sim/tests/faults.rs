@@ -336,7 +336,7 @@ fn spindle_runaway_mid_thread_alarms_4501_and_brakes_along_the_thread() {
     // Lead 7 at 600 rpm: 4200 mm/min, inside the 5000 mm/min feed limit with the
     // 10 % margin; the drive then runs away to 900 rpm (6300 mm/min).
     stream(&mut b, "G97 S600 M03\nG00 X40 Z10\nG32 Z-100 F7\nG00 X60\nZ10\nM30\n", |_| false);
-    assert!(run_until(&mut b, 20_000, |b| b.sim.core.state() == State::Locked && z_mm(&b) < -20.0));
+    assert!(run_until(&mut b, 20_000, |b| b.sim.core.state() == State::Locked && z_mm(b) < -20.0));
     let x0 = b.position()[Axis::X];
     let (z0, deg0) = (z_mm(&b), b.sim.spindle.encoder_degrees());
     b.sim.faults.spindle_load = Some((b.now(), 1.5));
