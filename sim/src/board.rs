@@ -159,8 +159,11 @@ impl VirtualBoard {
 
     /// Bytes from the link. The controller takes what fits; the rest waits here
     /// (as it waits in the UART's ring buffer on the board) and is offered again at
-    /// every poll.
+    /// every poll. Lost while the link is down ([`crate::Faults::link_down`]).
     pub fn receive(&mut self, bytes: &[u8]) {
+        if self.sim.faults.link_down_at(self.now()) {
+            return;
+        }
         self.pending.extend_from_slice(bytes);
         self.offer();
     }
@@ -170,7 +173,7 @@ impl VirtualBoard {
         self.pending.len()
     }
 
-    /// Bytes for the link.
+    /// Bytes for the link (lost while the link is down).
     pub fn transmit(&mut self) -> Vec<u8> {
         let mut out = Vec::new();
         let mut buf = [0u8; 256];
@@ -179,7 +182,9 @@ impl VirtualBoard {
             if n == 0 {
                 return out;
             }
-            out.extend_from_slice(&buf[..n]);
+            if !self.sim.faults.link_down_at(self.now()) {
+                out.extend_from_slice(&buf[..n]);
+            }
         }
     }
 

@@ -11,9 +11,11 @@
 //! the cumulative spindle angle the encoder reports at that moment).
 
 pub mod board;
+pub mod faults;
 pub mod path;
 pub mod spindle;
 
+pub use faults::{Faults, Span};
 pub use path::PathRef;
 pub use spindle::{Edge, SimSpindle, SpindleModel};
 
@@ -234,6 +236,8 @@ pub struct Sim {
     pub events: Vec<Event>,
     /// Switches.
     pub panel: Panel,
+    /// Machine faults injected (none by default).
+    pub faults: Faults,
     /// Where trace rows are written as they happen (`lathe sim --trace`).
     trace_out: Option<Box<dyn Write>>,
     trace_error: Option<std::io::Error>,
@@ -294,6 +298,7 @@ impl Sim {
             samples: Vec::new(),
             events: Vec::new(),
             panel: Panel::default(),
+            faults: Faults::default(),
             trace_out: None,
             trace_error: None,
             opts,
@@ -432,10 +437,11 @@ impl Sim {
     /// edges, and every step event, in time order.
     fn period(&mut self, period: u64) {
         let t = self.clock.0;
-        let fb = Feedback { count: self.spindle.count(), index: self.spindle.index_count() };
+        let real = Feedback { count: self.spindle.count(), index: self.spindle.index_count() };
+        let fb = self.faults.feedback(t, real);
         self.core.tick(t, fb);
         let (dir, rpm) = self.core.spindle_output();
-        self.spindle.set_speed(rotation(dir), rpm);
+        self.spindle.set_speed(rotation(dir), self.faults.spindle_rpm(t, rpm));
         if !self.external {
             self.handle_events();
         }
@@ -455,7 +461,8 @@ impl Sim {
         self.spindle.advance((t + period) as f64 / 1e9, self.opts.spindle_dt, &mut edges);
         if self.core.wants_encoder_edges() {
             // Locked to the spindle: every count may move an axis at its own time.
-            for e in &edges {
+            let faults = self.faults;
+            for e in edges.iter().filter(|e| !faults.encoder_lost_at(e.t)) {
                 self.drain_steps(e.t, &[]);
                 self.count = e.count;
                 self.core.on_encoder(e.t, e.count);

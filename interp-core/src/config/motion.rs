@@ -47,6 +47,10 @@ pub struct MotionConfig {
     /// Headroom for spindle speed ripple in the thread speed check and the thread
     /// acceleration ramp, percent of the measured speed.
     pub thread_margin_pct: u8,
+    /// A thread, rigid tap or G99 cut whose spindle encoder shows no count for this
+    /// long (ms; at least four count intervals at the commanded speed) raises alarm
+    /// 4503 and stops: the encoder signal is lost or the spindle stalled.
+    pub encoder_timeout_ms: u32,
 }
 
 impl Default for MotionConfig {
@@ -59,6 +63,7 @@ impl Default for MotionConfig {
             at_speed_pct: 10,
             at_speed_timeout_ms: 10_000,
             thread_margin_pct: 10,
+            encoder_timeout_ms: 100,
         }
     }
 }

@@ -122,6 +122,12 @@ fn q8(v: f32) -> u64 {
 }
 
 impl Segment {
+    /// Whether the feed is per spindle revolution (G99): it moves only while the
+    /// encoder counts.
+    pub fn per_rev(&self) -> bool {
+        matches!(self.rate, Rate::PerRev(_))
+    }
+
     /// Starts `b` at whole steps `from` (its data was computed when it was queued:
     /// nothing here divides).
     pub fn new(b: &Block, from: &[i64; AXIS_COUNT], p: &MotionParams) -> Self {

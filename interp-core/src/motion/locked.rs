@@ -255,6 +255,32 @@ impl<const N: usize> MotionCore<N> {
         self.spindle.command(SpindleDir::Stop, 0, 0);
     }
 
+    /// The speed watch of a running thread pass: its axes move at lead × the
+    /// measured spindle speed, checked against every axis's cutting feed (or step
+    /// rate) limit when the pass started (with the ripple margin). A spindle that
+    /// speeds up beyond that mid-pass (a drive running away) would drive an axis
+    /// faster than it can follow — the step generator falls behind the spindle and
+    /// the thread's lead is lost without a sign — so it raises 4501 and the axes
+    /// brake along the thread.
+    pub(super) fn watch_thread_speed(&mut self) {
+        let Some(g) = self.gear else { return };
+        if g.is_tap() || self.state != State::Locked || self.alarm.is_some() {
+            return;
+        }
+        let leg = *g.leg();
+        let nm_per_count = g.steps_per_count() * self.p.scale[leg.long].nm_per_step();
+        let v_long = nm_per_count as f32 * self.spindle.counts_per_tick();
+        let d = self.leg_nm(&leg);
+        let long = d[leg.long].abs().max(1.0);
+        for a in Axis::ALL {
+            let lim = &self.p.limits[a.index()];
+            if lim.present && v_long * d[a.index()].abs() / long > lim.feed {
+                self.raise(AlarmKind::ThreadTooFast { letter: a.letter() });
+                return;
+            }
+        }
+    }
+
     /// On reset during a thread pass: the axes leave the spindle and brake along
     /// the thread's line from where they are, at the speed they had.
     pub(super) fn release_thread_for_stop(&mut self) {

@@ -187,6 +187,9 @@ pub struct MotionCore<const N: usize> {
     /// Machine minus work coordinates of the block running or last run.
     offset_memory: Pos,
     css_phase: u8,
+    /// The encoder count last seen to change, and when (the encoder watch).
+    watch_count: i64,
+    watch_since: u64,
 }
 
 /// Periods between two G96 speed updates.
@@ -226,6 +229,8 @@ impl<const N: usize> MotionCore<N> {
             line: 0,
             offset_memory: Pos::ZERO,
             css_phase: 0,
+            watch_count: 0,
+            watch_since: 0,
         })
     }
 
@@ -427,6 +432,8 @@ impl<const N: usize> MotionCore<N> {
         self.stats.ticks += 1;
         self.stats.max_queued = self.stats.max_queued.max(self.planner.len());
         self.spindle.sample(fb.count, fb.index);
+        self.watch_encoder(fb.count);
+        self.watch_thread_speed();
         let mut ticked = false;
         for _ in 0..8 {
             if !self.advance(&mut ticked) {
@@ -435,6 +442,38 @@ impl<const N: usize> MotionCore<N> {
         }
         self.spindle_control();
         self.feed_steppers(now);
+    }
+
+    /// The encoder watch: while the axes can move only with the spindle encoder
+    /// (a locked thread or tap that has not reached its end, a G99 cut) and the
+    /// spindle is commanded to turn, a count that does not change for
+    /// `encoder_timeout_ms` (and four count intervals at the commanded speed) means
+    /// the encoder signal is lost or the spindle stalled: alarm 4503, the axes
+    /// (standing with the count) stop where they are, the spindle is stopped.
+    fn watch_encoder(&mut self, count: i64) {
+        if count != self.watch_count || !self.needs_counts() {
+            self.watch_count = count;
+            self.watch_since = self.now;
+            return;
+        }
+        let per_min = u64::from(self.spindle.rpm) * u64::from(self.p.cpr);
+        let interval = 60_000_000_000u64.checked_div(per_min).unwrap_or(u64::MAX);
+        let timeout = (u64::from(self.mc.encoder_timeout_ms) * 1_000_000).max(interval.saturating_mul(4));
+        if self.now.saturating_sub(self.watch_since) > timeout {
+            self.raise(AlarmKind::SpindleNotTurning);
+        }
+    }
+
+    /// Whether the motion running now advances only with encoder counts.
+    fn needs_counts(&self) -> bool {
+        if self.spindle.rpm == 0 || self.spindle.dir == SpindleDir::Stop || self.alarm.is_some() {
+            return false;
+        }
+        match self.state {
+            State::Locked => self.gear.is_some_and(|g| !g.finished()),
+            State::Moving => self.interp.segment().is_some_and(|s| s.per_rev() && !s.rapid),
+            _ => false,
+        }
     }
 
     /// Whether encoder counts must come one by one with their times

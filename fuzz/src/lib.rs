@@ -1,0 +1,330 @@
+//! The fuzz harnesses: what each cargo-fuzz target runs on its input. They live
+//! here, outside the targets, so that `host-tests/tests/fuzz_corpus.rs` can replay
+//! every committed corpus file through exactly the same code on stable Rust.
+//!
+//! - [`program`]: arbitrary program text (macros, subprograms, several O programs
+//!   in one file) through the interpreter into a real motion core's planner.
+//! - [`cycles`]: canned cycles G70–G76 and G90/G92/G94 built around a contour and
+//!   parameters taken from the input bytes, through the same path.
+//! - [`board`]: arbitrary bytes on the link into the board's controller polling a
+//!   real motion core; afterwards it must still answer `?` with a status report.
+//!
+//! Every harness is bounded (interpreter steps, polls), never allocates without
+//! bound, and panics only when the code under test misbehaves.
+
+use std::fmt::Write as _;
+
+use interp_core::axis::{AXIS_COUNT, Pos};
+use interp_core::canon::{Canon, CanonSink, Full};
+use interp_core::motion::{Feedback, MotionCore};
+use interp_core::program::ProgramMemory;
+use interp_core::{Interpreter, MachineConfig, Panel, Progress, SingleProgram};
+
+/// Interpreter steps per input (a WHILE loop that never ends stops here).
+pub const MAX_STEPS: usize = 2_000;
+
+/// Actions per input the motion core's planner takes (a cycle of a million passes
+/// stops here: refused as a full queue, the interpreter stays blocked).
+pub const MAX_ACTIONS: usize = 4_000;
+
+/// Interpolation period the harnesses tick the motion core with, ns.
+const TICK_NS: u64 = 1_000_000;
+
+/// Program memory for the program target (the board's size).
+type Memory = ProgramMemory<49_152, 64, 2_048>;
+
+/// The interpreter's sink: a real motion core whose planner takes every action.
+/// When its queue is full it is reset (the queue drops), so the program goes on
+/// without simulating its moves; the first queue runs a few periods at the end.
+struct Planner {
+    core: Box<MotionCore<64>>,
+    now: u64,
+    count: i64,
+    pushed: usize,
+}
+
+impl Planner {
+    fn new(cfg: &MachineConfig) -> Option<Self> {
+        let core = Box::new(MotionCore::new(cfg, Pos::ZERO).ok()?);
+        Some(Planner { core, now: 0, count: 0, pushed: 0 })
+    }
+
+    /// Runs `n` interpolation periods with a spindle turning at its command.
+    fn run(&mut self, n: usize) {
+        for _ in 0..n {
+            let (_, rpm) = self.core.spindle_output();
+            let cpr = i64::from(self.core.params().cpr);
+            self.count += i64::from(rpm) * cpr / 60_000;
+            let fb = Feedback { count: self.count, index: Some(self.count - self.count.rem_euclid(cpr.max(1))) };
+            self.core.tick(self.now, fb);
+            self.now += TICK_NS;
+            for axis in 0..AXIS_COUNT {
+                while self.core.next_step(axis, self.now).is_some() {}
+            }
+        }
+    }
+}
+
+impl CanonSink for Planner {
+    fn push(&mut self, c: Canon) -> Result<(), Full> {
+        if self.pushed >= MAX_ACTIONS {
+            return Err(Full);
+        }
+        self.pushed += 1;
+        if self.core.push(c).is_ok() {
+            return Ok(());
+        }
+        self.core.reset();
+        self.core.push(c)
+    }
+}
+
+/// Runs the interpreter over `store` into a motion core, bounded.
+fn interpret<S: interp_core::ProgramStore + ?Sized>(store: &S, main: Option<interp_core::program::ProgramId>) {
+    let cfg = MachineConfig::default();
+    let Some(mut sink) = Planner::new(&cfg) else { return };
+    let mut interp = Box::new(Interpreter::new(cfg));
+    if let Some(id) = main {
+        interp.select_main(id);
+    }
+    let panel = Panel::default();
+    let mut blocked = 0;
+    for _ in 0..MAX_STEPS {
+        match interp.step(store, &panel, &mut sink) {
+            Ok(Progress::Ended) => break,
+            Ok(Progress::Paused) => interp.cycle_start(),
+            Ok(Progress::Blocked) => {
+                blocked += 1;
+                if blocked > 10 {
+                    break;
+                }
+            }
+            Ok(_) => {}
+            Err(alarm) => {
+                let _ = alarm.to_string();
+            }
+        }
+    }
+    sink.run(16);
+}
+
+/// Arbitrary program text: loaded into program memory (so M98/M99, GOTO and
+/// several O programs work) when it loads, else run as one unnamed program.
+pub fn program(data: &[u8]) {
+    let mut mem = Box::new(Memory::new());
+    match mem.load(data, Some(0)) {
+        Ok(id) => interpret(&*mem, Some(id)),
+        Err(_) => interpret(&SingleProgram(data), None),
+    }
+}
+
+/// Reads parameters from the fuzz input; zeros once it is used up.
+struct Bytes<'a>(&'a [u8]);
+
+impl Bytes<'_> {
+    fn u8(&mut self) -> u8 {
+        let (&b, rest) = self.0.split_first().unwrap_or((&0, &[]));
+        self.0 = rest;
+        b
+    }
+    fn i16(&mut self) -> i16 {
+        i16::from_le_bytes([self.u8(), self.u8()])
+    }
+    /// A length in mm, ±327.67, 0.01 resolution.
+    fn mm(&mut self) -> f64 {
+        f64::from(self.i16()) / 100.0
+    }
+    /// A small positive amount, 0–25.5.
+    fn small(&mut self) -> f64 {
+        f64::from(self.u8()) / 10.0
+    }
+}
+
+/// One contour block from the input: G00/G01/G02/G03 to X/Z (sometimes U/W), arcs
+/// with R.
+fn contour_block(b: &mut Bytes<'_>, out: &mut String) {
+    let kind = b.u8();
+    let g = ["G00", "G01", "G02", "G03"][usize::from(kind & 3)];
+    let (x, z) = if kind & 4 != 0 { ("U", "W") } else { ("X", "Z") };
+    let _ = write!(out, "{g} {x}{:.2} {z}{:.2}", b.mm(), b.mm());
+    if kind & 3 >= 2 {
+        let _ = write!(out, " R{:.2}", b.mm());
+    }
+    if kind & 8 != 0 {
+        let _ = write!(out, " F{:.2}", b.small());
+    }
+    out.push('\n');
+}
+
+/// The contour P..Q of a multiple cycle, blocks N100 to N200.
+fn contour(b: &mut Bytes<'_>, out: &mut String) {
+    let n = 1 + b.u8() % 8;
+    out.push_str("N100 ");
+    for _ in 0..n {
+        contour_block(b, out);
+    }
+    out.push_str("N200 ");
+    contour_block(b, out);
+}
+
+/// The program around a canned cycle chosen and filled in from the input.
+pub fn cycle_program(data: &[u8]) -> String {
+    let mut b = Bytes(data);
+    let mut p = String::new();
+    let head = b.u8();
+    let feed = if head & 0x80 != 0 { "G98" } else { "G99" };
+    let _ = writeln!(p, "{feed} G97 S{} M03 T0101", u16::from(b.u8()) * 10);
+    let _ = writeln!(p, "G00 X{:.2} Z{:.2}", b.mm(), b.mm());
+    match head % 9 {
+        0 => {
+            let _ = writeln!(p, "G71 U{:.1} R{:.1}", b.small(), b.small());
+            let _ = writeln!(p, "G71 P100 Q200 U{:.2} W{:.2} F{:.2}", b.small(), b.small(), b.small());
+            contour(&mut b, &mut p);
+            p.push_str("G70 P100 Q200\n");
+        }
+        1 => {
+            let _ = writeln!(p, "G72 W{:.1} R{:.1}", b.small(), b.small());
+            let _ = writeln!(p, "G72 P100 Q200 U{:.2} W{:.2} F{:.2}", b.small(), b.small(), b.small());
+            contour(&mut b, &mut p);
+            p.push_str("G70 P100 Q200\n");
+        }
+        2 => {
+            let _ = writeln!(p, "G73 U{:.2} W{:.2} R{}", b.mm(), b.mm(), b.u8() % 20);
+            let _ = writeln!(p, "G73 P100 Q200 U{:.2} W{:.2} F{:.2}", b.small(), b.small(), b.small());
+            contour(&mut b, &mut p);
+            p.push_str("G70 P100 Q200\n");
+        }
+        3 | 4 => {
+            let g = if head % 9 == 3 { "G74" } else { "G75" };
+            let _ = writeln!(p, "{g} R{:.1}", b.small());
+            let (x, z) = (b.mm(), b.mm());
+            let (pp, q) = (u32::from(b.u8()) * 100, u32::from(b.u8()) * 100);
+            let _ = writeln!(p, "{g} X{x:.2} Z{z:.2} P{pp} Q{q} R{:.2} F{:.2}", b.small(), b.small());
+        }
+        5 => {
+            let m = b.u8() % 100;
+            let r = b.u8() % 100;
+            let a = [0, 29, 30, 55, 60, 80][usize::from(b.u8() % 6)];
+            let _ = writeln!(p, "G76 P{m:02}{r:02}{a:02} Q{} R{:.2}", u32::from(b.u8()) * 10, b.small() / 10.0);
+            let (x, z, i) = (b.mm(), b.mm(), b.mm() / 10.0);
+            let (k, d) = (u32::from(b.u8()) * 10 + 1, u32::from(b.u8()) * 10 + 1);
+            let _ = writeln!(p, "G76 X{x:.2} Z{z:.2} R{i:.2} P{k} Q{d} F{:.2}", b.small());
+        }
+        g => {
+            let code = ["G90", "G92", "G94"][usize::from(g - 6)];
+            let (x, z, r) = (b.mm(), b.mm(), b.mm() / 10.0);
+            let _ = writeln!(p, "{code} X{x:.2} Z{z:.2} R{r:.2} F{:.2}", b.small());
+            let _ = writeln!(p, "X{:.2}", b.mm());
+        }
+    }
+    p.push_str("G00 X100 Z100\nM30\n");
+    p
+}
+
+/// A canned cycle built from the input (see [`cycle_program`]), run as [`program`] runs.
+pub fn cycles(data: &[u8]) {
+    let text = cycle_program(data);
+    interpret(&SingleProgram(text.as_bytes()), None);
+}
+
+/// The controller on a motion core, with a synthetic spindle encoder and switch
+/// inputs, driven one millisecond per poll.
+struct Link {
+    ctl: Box<controller::Board>,
+    core: Box<MotionCore<64>>,
+    inputs: controller::Inputs,
+    now: u64,
+    count: i64,
+    out: Vec<u8>,
+}
+
+impl Link {
+    fn new() -> Option<Self> {
+        let cfg = MachineConfig::default();
+        let start = cfg.reference[0];
+        let core = Box::new(MotionCore::new(&cfg, start).ok()?);
+        let ctl = Box::new(controller::Board::new(cfg, start));
+        Some(Link { ctl, core, inputs: controller::Inputs::default(), now: 0, count: 0, out: Vec::new() })
+    }
+
+    /// One millisecond: the core's period, the controller's poll, the output.
+    fn poll(&mut self) {
+        let (_, rpm) = self.core.spindle_output();
+        let cpr = i64::from(self.core.params().cpr);
+        self.count += i64::from(rpm) * cpr / 60_000;
+        let fb = Feedback { count: self.count, index: Some(self.count - self.count.rem_euclid(cpr.max(1))) };
+        self.core.tick(self.now, fb);
+        self.now += TICK_NS;
+        for axis in 0..AXIS_COUNT {
+            while self.core.next_step(axis, self.now).is_some() {}
+        }
+        self.ctl.poll(self.now, &mut *self.core, &mut (), self.inputs);
+        let mut buf = [0u8; 256];
+        loop {
+            let n = self.ctl.transmit(&mut buf);
+            if n == 0 {
+                break;
+            }
+            self.out.extend_from_slice(buf.get(..n).unwrap_or(&[]));
+        }
+        // Keep only the tail: what the final check looks at.
+        if self.out.len() > 1 << 16 {
+            self.out.drain(..self.out.len() - 4096);
+        }
+    }
+
+    /// Offers `bytes` until the controller took them all or `polls` polls passed;
+    /// true if all were taken.
+    fn send(&mut self, mut bytes: &[u8], polls: usize) -> bool {
+        for _ in 0..polls {
+            let n = self.ctl.receive(bytes, self.now);
+            bytes = bytes.get(n..).unwrap_or(&[]);
+            self.poll();
+            if bytes.is_empty() {
+                return true;
+            }
+        }
+        false
+    }
+}
+
+/// Whether `out` holds a complete status report line `<…>`.
+pub fn has_status_report(out: &[u8]) -> bool {
+    out.split(|&b| b == b'\n').any(|l| l.starts_with(b"<") && l.trim_ascii_end().ends_with(b">"))
+}
+
+/// Arbitrary bytes on the link. The first byte sets the chunk size (bits 0–5) and
+/// which switch changes halfway (bits 6–7: none, feed hold, e-stop, door); chunks
+/// arrive one per millisecond. Afterwards the controller must answer `?` with a
+/// status report within a second (after a line end, which ends any partial line).
+pub fn board(data: &[u8]) {
+    let Some(mut link) = Link::new() else { return };
+    let (&head, stream) = data.split_first().unwrap_or((&0, &[]));
+    let chunk = usize::from(head & 63) + 1;
+    let chunks: Vec<&[u8]> = stream.chunks(chunk).collect();
+    for (i, c) in chunks.iter().enumerate() {
+        if i == chunks.len() / 2 {
+            match head >> 6 {
+                1 => link.inputs.feed_hold = true,
+                2 => link.inputs.estop = true,
+                3 => link.inputs.door = true,
+                _ => {}
+            }
+        }
+        link.send(c, 20);
+    }
+    link.inputs = controller::Inputs::default();
+    for _ in 0..10 {
+        link.poll();
+    }
+    assert!(link.send(b"\n", 1_000), "the controller never takes a line end");
+    link.out.clear();
+    assert!(link.send(b"?", 10), "the controller never takes `?`");
+    for _ in 0..1_000 {
+        if has_status_report(&link.out) {
+            return;
+        }
+        link.poll();
+    }
+    panic!("no status report after `?`: {:?}", String::from_utf8_lossy(&link.out));
+}
