@@ -4,7 +4,7 @@
 //!
 //! Each step first delivers actions still waiting in the outbox; only when the
 //! outbox is empty does it read, check and execute the next block. A block runs on
-//! a copy of the state and is committed only if it succeeded — including the
+//! the state in place and is undone (from a small saved copy) unless it succeeded — including the
 //! lookup of a subprogram or jump target — so an alarm leaves the state exactly as
 //! it was.
 //!
@@ -576,8 +576,8 @@ impl Interpreter {
         }
     }
 
-    /// Checks and executes `self.block` on a copy of the state; `route` decides (and
-    /// checks) where the program goes next; commits only if all succeeded. The
+    /// Checks and executes `self.block` on the state in place; `route` decides (and
+    /// checks) where the program goes next; the block is undone unless all succeeded. The
     /// block's actions are staged in the (empty) outbox and dropped on failure.
     /// `program` is the program the block is in (its variables are filled in
     /// here); `None` in MDI, where calls, jumps and canned cycles are refused.
@@ -603,7 +603,8 @@ impl Interpreter {
                 return Err(AlarmKind::NotSupportedYet { what: "canned cycles in MDI" });
             }
         }
-        let mut next = self.state;
+        let before = self.state.save();
+        let held = self.state.contour.is_holding().then_some(self.state.contour);
         let mut cycle = BlockCycle::default();
         let program = program.map(|p| ProgramText { vars: Some(&self.vars), ..p });
         // A cycle the block starts goes straight into `self.cycle` (empty here: a
@@ -613,7 +614,7 @@ impl Interpreter {
             Some(p) => Staged::in_program(self.block.line, &mut self.outbox, p, &mut self.cycle),
             None => Staged::new(self.block.line, &mut self.outbox),
         };
-        let done = execute(&cmd, &mut next, &self.cfg, env, &mut staged);
+        let done = execute(&cmd, &mut self.state, &self.cfg, env, &mut staged);
         if done.is_ok() {
             cycle.split = staged.split.unwrap_or(staged.actions.len());
             cycle.params = core::mem::take(&mut staged.params);
@@ -622,16 +623,19 @@ impl Interpreter {
         match done.and_then(|flow| route(self, flow)) {
             Ok(go) => {
                 if let Some(exp) = &self.cycle {
+                    // The state stays as it was until the dry run has ended.
                     let (at, line) = (self.cursor, self.block.line);
                     let dry = exp.clone();
-                    self.validating = Some(Validating { state: next, block: cycle, next: go, dry, at, line });
+                    let state = self.state;
+                    self.state.restore(&before, held.as_ref());
+                    self.validating = Some(Validating { state, block: cycle, next: go, dry, at, line });
                     return Ok(None);
                 }
-                self.state = next;
                 self.commit_cycle(&cycle);
                 Ok(Some(go))
             }
             Err(e) => {
+                self.state.restore(&before, held.as_ref());
                 self.outbox.clear();
                 self.cycle = None;
                 Err(e)

@@ -216,6 +216,22 @@ pub struct State {
     pub contour: crate::contour::Contour,
 }
 
+/// A [`State`] as it was before a block (see [`State::save`]).
+#[derive(Clone, Copy, Debug)]
+pub struct Saved {
+    modal: Modal,
+    pos: Pos,
+    frames: Frames,
+    tool: ToolState,
+    feed: FeedMemory,
+    spindle: SpindleState,
+    moved: bool,
+    cycle: CycleMemory,
+    polar: Option<super::polar::Polar>,
+    stroke: Option<super::stroke::StrokeArea>,
+    contour: crate::contour::Marks,
+}
+
 impl State {
     /// The power-on state for machine `cfg` with the axes at machine position `pos`.
     pub fn power_on(cfg: &MachineConfig, pos: Pos) -> Self {
@@ -246,6 +262,43 @@ impl State {
             stroke: None,
             contour: crate::contour::Contour::default(),
         }
+    }
+
+    /// What [`State::restore`] needs to undo a block executed in place: everything
+    /// but the contour look-ahead's buffers, which the caller copies only while a
+    /// move is held ([`Contour::is_holding`](crate::contour::Contour::is_holding)).
+    pub fn save(&self) -> Saved {
+        // Destructured so that a new field cannot be forgotten here.
+        let State { modal, pos, frames, tool, feed, spindle, moved, cycle, polar, stroke, contour } = self;
+        Saved {
+            modal: *modal,
+            pos: *pos,
+            frames: *frames,
+            tool: *tool,
+            feed: *feed,
+            spindle: *spindle,
+            moved: *moved,
+            cycle: *cycle,
+            polar: *polar,
+            stroke: *stroke,
+            contour: contour.marks(),
+        }
+    }
+
+    /// Puts the state back as it was when `saved` was taken; `held` is the copy of
+    /// the contour look-ahead taken then if it held a move.
+    pub fn restore(&mut self, saved: &Saved, held: Option<&crate::contour::Contour>) {
+        self.modal = saved.modal;
+        self.pos = saved.pos;
+        self.frames = saved.frames;
+        self.tool = saved.tool;
+        self.feed = saved.feed;
+        self.spindle = saved.spindle;
+        self.moved = saved.moved;
+        self.cycle = saved.cycle;
+        self.polar = saved.polar;
+        self.stroke = saved.stroke;
+        self.contour.restore(&saved.contour, held);
     }
 
     /// Machine position of the work frame's origin, without the tool offset:
