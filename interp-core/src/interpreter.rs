@@ -16,7 +16,7 @@
 use crate::alarm::{Alarm, AlarmKind};
 use crate::axis::Pos;
 use crate::canon::CanonSink;
-use crate::check::check;
+use crate::check::{Command, check_into};
 use crate::config::{MachineConfig, Param};
 use crate::cycles::Expansion;
 use crate::env::Environment;
@@ -162,6 +162,8 @@ pub struct Interpreter {
     outbox: Outbox,
     /// The block being read, reused from block to block.
     block: Block,
+    /// The block checked, reused from block to block.
+    cmd: Command,
     phase: Phase,
     /// A block other than `%`/`O` has been executed in the current program level
     /// (a later `%` or `O` ends the record).
@@ -191,6 +193,7 @@ impl Interpreter {
             main: 0,
             outbox: heapless::Deque::new(),
             block: Block::default(),
+            cmd: Command::EMPTY,
             phase: Phase::Running,
             started: false,
             vars: Variables::new(),
@@ -594,12 +597,13 @@ impl Interpreter {
         E: Environment,
         R: FnOnce(&Self, Flow) -> Result<Next, AlarmKind>,
     {
-        let cmd = check(&self.block, &self.state, &self.cfg)?;
+        check_into(&self.block, &self.state, &self.cfg, &mut self.cmd)?;
+        let cmd = &self.cmd;
         if program.is_none() {
             if let Some(&(m, _)) = cmd.m.iter().find(|(_, f)| f.is_flow()) {
                 return Err(AlarmKind::FlowInMdi { m });
             }
-            if crate::cycles::cycle_of(&cmd, &self.state).is_some() {
+            if crate::cycles::cycle_of(cmd, &self.state).is_some() {
                 return Err(AlarmKind::NotSupportedYet { what: "canned cycles in MDI" });
             }
         }
@@ -614,7 +618,7 @@ impl Interpreter {
             Some(p) => Staged::in_program(self.block.line, &mut self.outbox, p, &mut self.cycle),
             None => Staged::new(self.block.line, &mut self.outbox),
         };
-        let done = execute(&cmd, &mut self.state, &self.cfg, env, &mut staged);
+        let done = execute(cmd, &mut self.state, &self.cfg, env, &mut staged);
         if done.is_ok() {
             cycle.split = staged.split.unwrap_or(staged.actions.len());
             cycle.params = core::mem::take(&mut staged.params);
