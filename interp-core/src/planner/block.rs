@@ -262,13 +262,24 @@ fn turns(rad: f64) -> i64 {
     libm::round(rad / core::f64::consts::TAU * 4_294_967_296.0) as i64
 }
 
-/// Unit tangent of an arc at angle `th` in the direction of travel.
-fn tangent(axes: (Axis, Axis), th: f64, ccw: bool) -> Dir {
+/// Unit tangent of an arc in the direction of travel at the point `v` from the
+/// centre (`r` its length): the radius turned a quarter, `(−sin θ, cos θ)` with
+/// `sin θ = v_b / r`, `cos θ = v_a / r` — no trigonometry (f32 on the FPU, as the
+/// directions are kept).
+fn tangent(axes: (Axis, Axis), v: (f64, f64), r: f64, ccw: bool) -> Dir {
     let mut d = [0.0; AXIS_COUNT];
-    let s = if ccw { 1.0 } else { -1.0 };
-    d[axes.0.index()] = (-s * libm::sin(th)) as f32;
-    d[axes.1.index()] = (s * libm::cos(th)) as f32;
+    if r > 0.0 {
+        let s = (if ccw { 1.0 } else { -1.0 }) / r as f32;
+        d[axes.0.index()] = -s * v.1 as f32;
+        d[axes.1.index()] = s * v.0 as f32;
+    }
     d
+}
+
+/// `√(a² + b²)`: plane distances in nm are far from f64's range, so `hypot`'s
+/// overflow scaling (~40 soft-float operations on the M4) buys nothing.
+fn norm(a: f64, b: f64) -> f64 {
+    libm::sqrt(a * a + b * b)
 }
 
 /// A circular move from `start`.
@@ -278,7 +289,7 @@ pub fn arc(start: &Pos, a: &ArcMove, p: &MotionParams, line: u32) -> Result<Prep
     let c = (a.center.machine.0[ia], a.center.machine.0[ib]);
     let rel = |q: &Pos| ((q.0[ia] - c.0) as f64, (q.0[ib] - c.1) as f64);
     let (s, e) = (rel(start), rel(&a.to.machine));
-    let (r0, r1) = (libm::hypot(s.0, s.1), libm::hypot(e.0, e.1));
+    let (r0, r1) = (norm(s.0, s.1), norm(e.0, e.1));
     let (th0, th1) = (libm::atan2(s.1, s.0), libm::atan2(e.1, e.0));
     let tau = core::f64::consts::TAU;
     let mut sweep = th1 - th0;
@@ -329,7 +340,7 @@ pub fn arc(start: &Pos, a: &ArcMove, p: &MotionParams, line: u32) -> Result<Prep
         exec: Exec::default(),
     };
     let ccw = sweep > 0.0;
-    Ok(Prepared { block, dir_in: tangent(axes, th0, ccw), dir_out: tangent(axes, th1, ccw), end: a.to.machine })
+    Ok(Prepared { block, dir_in: tangent(axes, s, r0, ccw), dir_out: tangent(axes, e, r1, ccw), end: a.to.machine })
 }
 
 /// The axis that travels furthest (the thread's or tap's long axis).
