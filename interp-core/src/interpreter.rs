@@ -607,8 +607,11 @@ impl Interpreter {
                 return Err(AlarmKind::NotSupportedYet { what: "canned cycles in MDI" });
             }
         }
-        let before = self.state.save();
+        let before = self.state.save(cmd);
         let held = self.state.contour.is_holding().then_some(self.state.contour);
+        // Tests (debug builds) check that an undone block leaves the whole state as it was.
+        #[cfg(debug_assertions)]
+        let whole = self.state;
         let mut cycle = BlockCycle::default();
         let program = program.map(|p| ProgramText { vars: Some(&self.vars), ..p });
         // A cycle the block starts goes straight into `self.cycle` (empty here: a
@@ -632,6 +635,8 @@ impl Interpreter {
                     let dry = exp.clone();
                     let state = self.state;
                     self.state.restore(&before, held.as_ref());
+                    #[cfg(debug_assertions)]
+                    debug_assert_eq!(self.state, whole, "a cycle block was not set aside completely");
                     self.validating = Some(Validating { state, block: cycle, next: go, dry, at, line });
                     return Ok(None);
                 }
@@ -640,6 +645,8 @@ impl Interpreter {
             }
             Err(e) => {
                 self.state.restore(&before, held.as_ref());
+                #[cfg(debug_assertions)]
+                debug_assert_eq!(self.state, whole, "a failed block was not undone completely");
                 self.outbox.clear();
                 self.cycle = None;
                 Err(e)

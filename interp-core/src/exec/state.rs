@@ -221,15 +221,21 @@ pub struct State {
 pub struct Saved {
     modal: Modal,
     pos: Pos,
-    frames: Frames,
-    tool: ToolState,
     feed: FeedMemory,
     spindle: SpindleState,
     moved: bool,
     cycle: CycleMemory,
+    rare: Option<Rare>,
+    contour: crate::contour::Marks,
+}
+
+/// The parts of a [`State`] few blocks change (see [`State::save`]).
+#[derive(Clone, Copy, Debug)]
+struct Rare {
+    frames: Frames,
+    tool: ToolState,
     polar: Option<super::polar::Polar>,
     stroke: Option<super::stroke::StrokeArea>,
-    contour: crate::contour::Marks,
 }
 
 impl State {
@@ -264,25 +270,34 @@ impl State {
         }
     }
 
-    /// What [`State::restore`] needs to undo a block executed in place: everything
-    /// but the contour look-ahead's buffers, which the caller copies only while a
-    /// move is held ([`Contour::is_holding`](crate::contour::Contour::is_holding)).
-    pub fn save(&self) -> Saved {
+    /// What [`State::restore`] needs to undo block `cmd` executed in place:
+    /// everything but the contour look-ahead's buffers, which the caller copies
+    /// only while a move is held ([`Contour::is_holding`](crate::contour::Contour::is_holding)),
+    /// and the frames, tool, polar and stroke-check state, which only a block
+    /// with G50/G52, T, G22/G23 or G12.1/G13.1 (or any block in polar mode) changes.
+    pub fn save(&self, cmd: &crate::check::Command) -> Saved {
+        use crate::codes::GCode::{LocalFrame, SetCoordinates};
         // Destructured so that a new field cannot be forgotten here.
         let State { modal, pos, frames, tool, feed, spindle, moved, cycle, polar, stroke, contour } = self;
-        Saved {
+        let rare = matches!(cmd.g.one_shot, Some(SetCoordinates | LocalFrame))
+            || cmd.tool.is_some()
+            || cmd.g.stroke.is_some()
+            || cmd.g.polar.is_some()
+            || polar.is_some();
+        let mut saved = Saved {
             modal: *modal,
             pos: *pos,
-            frames: *frames,
-            tool: *tool,
             feed: *feed,
             spindle: *spindle,
             moved: *moved,
             cycle: *cycle,
-            polar: *polar,
-            stroke: *stroke,
+            rare: None,
             contour: contour.marks(),
+        };
+        if rare {
+            saved.rare = Some(Rare { frames: *frames, tool: *tool, polar: *polar, stroke: *stroke });
         }
+        saved
     }
 
     /// Puts the state back as it was when `saved` was taken; `held` is the copy of
@@ -290,14 +305,16 @@ impl State {
     pub fn restore(&mut self, saved: &Saved, held: Option<&crate::contour::Contour>) {
         self.modal = saved.modal;
         self.pos = saved.pos;
-        self.frames = saved.frames;
-        self.tool = saved.tool;
         self.feed = saved.feed;
         self.spindle = saved.spindle;
         self.moved = saved.moved;
         self.cycle = saved.cycle;
-        self.polar = saved.polar;
-        self.stroke = saved.stroke;
+        if let Some(r) = &saved.rare {
+            self.frames = r.frames;
+            self.tool = r.tool;
+            self.polar = r.polar;
+            self.stroke = r.stroke;
+        }
         self.contour.restore(&saved.contour, held);
     }
 
