@@ -624,7 +624,10 @@ impl Interpreter {
         let done = execute(cmd, &mut self.state, &self.cfg, env, &mut staged);
         if done.is_ok() {
             cycle.split = staged.split.unwrap_or(staged.actions.len());
-            cycle.params = core::mem::take(&mut staged.params);
+            if !staged.params.is_empty() {
+                // Only cycle blocks set parameters: most blocks move nothing here.
+                cycle.params = core::mem::take(&mut staged.params);
+            }
             cycle.resume = staged.resume;
         }
         match done.and_then(|flow| route(self, flow)) {
