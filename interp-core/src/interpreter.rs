@@ -4,7 +4,7 @@
 //!
 //! Each step first delivers actions still waiting in the outbox; only when the
 //! outbox is empty does it read, check and execute the next block. A block runs on
-//! a copy of the state and is committed only if it succeeded — including the
+//! the state in place and is undone (from a small saved copy) unless it succeeded — including the
 //! lookup of a subprogram or jump target — so an alarm leaves the state exactly as
 //! it was.
 //!
@@ -16,7 +16,7 @@
 use crate::alarm::{Alarm, AlarmKind};
 use crate::axis::Pos;
 use crate::canon::CanonSink;
-use crate::check::check;
+use crate::check::{Command, check_into};
 use crate::config::{MachineConfig, Param};
 use crate::cycles::Expansion;
 use crate::env::Environment;
@@ -162,6 +162,8 @@ pub struct Interpreter {
     outbox: Outbox,
     /// The block being read, reused from block to block.
     block: Block,
+    /// The block checked, reused from block to block.
+    cmd: Command,
     phase: Phase,
     /// A block other than `%`/`O` has been executed in the current program level
     /// (a later `%` or `O` ends the record).
@@ -191,6 +193,7 @@ impl Interpreter {
             main: 0,
             outbox: heapless::Deque::new(),
             block: Block::default(),
+            cmd: Command::EMPTY,
             phase: Phase::Running,
             started: false,
             vars: Variables::new(),
@@ -576,8 +579,8 @@ impl Interpreter {
         }
     }
 
-    /// Checks and executes `self.block` on a copy of the state; `route` decides (and
-    /// checks) where the program goes next; commits only if all succeeded. The
+    /// Checks and executes `self.block` on the state in place; `route` decides (and
+    /// checks) where the program goes next; the block is undone unless all succeeded. The
     /// block's actions are staged in the (empty) outbox and dropped on failure.
     /// `program` is the program the block is in (its variables are filled in
     /// here); `None` in MDI, where calls, jumps and canned cycles are refused.
@@ -594,16 +597,21 @@ impl Interpreter {
         E: Environment,
         R: FnOnce(&Self, Flow) -> Result<Next, AlarmKind>,
     {
-        let cmd = check(&self.block, &self.state, &self.cfg)?;
+        check_into(&self.block, &self.state, &self.cfg, &mut self.cmd)?;
+        let cmd = &self.cmd;
         if program.is_none() {
             if let Some(&(m, _)) = cmd.m.iter().find(|(_, f)| f.is_flow()) {
                 return Err(AlarmKind::FlowInMdi { m });
             }
-            if crate::cycles::cycle_of(&cmd, &self.state).is_some() {
+            if crate::cycles::cycle_of(cmd, &self.state).is_some() {
                 return Err(AlarmKind::NotSupportedYet { what: "canned cycles in MDI" });
             }
         }
-        let mut next = self.state;
+        let before = self.state.save(cmd);
+        let held = self.state.contour.is_holding().then_some(self.state.contour);
+        // Tests (debug builds) check that an undone block leaves the whole state as it was.
+        #[cfg(debug_assertions)]
+        let whole = self.state;
         let mut cycle = BlockCycle::default();
         let program = program.map(|p| ProgramText { vars: Some(&self.vars), ..p });
         // A cycle the block starts goes straight into `self.cycle` (empty here: a
@@ -613,25 +621,35 @@ impl Interpreter {
             Some(p) => Staged::in_program(self.block.line, &mut self.outbox, p, &mut self.cycle),
             None => Staged::new(self.block.line, &mut self.outbox),
         };
-        let done = execute(&cmd, &mut next, &self.cfg, env, &mut staged);
+        let done = execute(cmd, &mut self.state, &self.cfg, env, &mut staged);
         if done.is_ok() {
             cycle.split = staged.split.unwrap_or(staged.actions.len());
-            cycle.params = core::mem::take(&mut staged.params);
+            if !staged.params.is_empty() {
+                // Only cycle blocks set parameters: most blocks move nothing here.
+                cycle.params = core::mem::take(&mut staged.params);
+            }
             cycle.resume = staged.resume;
         }
         match done.and_then(|flow| route(self, flow)) {
             Ok(go) => {
                 if let Some(exp) = &self.cycle {
+                    // The state stays as it was until the dry run has ended.
                     let (at, line) = (self.cursor, self.block.line);
                     let dry = exp.clone();
-                    self.validating = Some(Validating { state: next, block: cycle, next: go, dry, at, line });
+                    let state = self.state;
+                    self.state.restore(&before, held.as_ref());
+                    #[cfg(debug_assertions)]
+                    debug_assert_eq!(self.state, whole, "a cycle block was not set aside completely");
+                    self.validating = Some(Validating { state, block: cycle, next: go, dry, at, line });
                     return Ok(None);
                 }
-                self.state = next;
                 self.commit_cycle(&cycle);
                 Ok(Some(go))
             }
             Err(e) => {
+                self.state.restore(&before, held.as_ref());
+                #[cfg(debug_assertions)]
+                debug_assert_eq!(self.state, whole, "a failed block was not undone completely");
                 self.outbox.clear();
                 self.cycle = None;
                 Err(e)

@@ -53,9 +53,28 @@ pub(crate) fn uses_axes(c: GCode) -> bool {
 }
 
 impl GSet {
+    /// No G code at all.
+    pub const NONE: GSet = GSet {
+        motion: None,
+        one_shot: None,
+        plane: None,
+        units: None,
+        incremental: None,
+        feed_mode: None,
+        css: None,
+        nose_comp: None,
+        work_frame: None,
+        exact_stop_mode: None,
+        drilling: None,
+        return_to_r: None,
+        stroke: None,
+        polar: None,
+        polygon: None,
+    };
+
     /// Looks up every G code of `block` and sorts it into its group.
     pub fn resolve(block: &Block, state: &State, cfg: &MachineConfig) -> Result<GSet, AlarmKind> {
-        let mut set = GSet::default();
+        let mut set = GSet::NONE;
         let mut seen: [Option<u16>; 16] = [None; 16];
         for &tenths in &block.g {
             let code =

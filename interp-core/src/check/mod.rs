@@ -86,6 +86,25 @@ pub struct Command {
 }
 
 impl Command {
+    /// A command with no words (what [`check_into`] starts from).
+    pub const EMPTY: Command = Command {
+        line: 0,
+        seq: None,
+        g: GSet::NONE,
+        m: heapless::Vec::new(),
+        axes: [None; AXIS_COUNT],
+        center: [None; AXIS_COUNT],
+        radius: None,
+        dwell_ms: None,
+        reference: 1,
+        feed: None,
+        speed: None,
+        tool: None,
+        flow: None,
+        corner: None,
+        cycle: crate::cycles::CycleArgs::None,
+    };
+
     /// The code that consumes the block's axis words.
     pub fn axis_user(&self, state: &State) -> GCode {
         use crate::cycles::args::{is_hole, is_multiple};
@@ -119,35 +138,41 @@ impl Command {
 
 /// Checks `block` against the machine and the current state.
 pub fn check(block: &Block, state: &State, cfg: &MachineConfig) -> Result<Command, AlarmKind> {
+    let mut cmd = Command::EMPTY;
+    check_into(block, state, cfg, &mut cmd)?;
+    Ok(cmd)
+}
+
+/// [`check`] into a command reused from block to block (nothing ~300 bytes large
+/// is returned and copied per block). On an alarm `cmd` holds a partial result.
+pub fn check_into(block: &Block, state: &State, cfg: &MachineConfig, cmd: &mut Command) -> Result<(), AlarmKind> {
     let g = GSet::resolve(block, state, cfg)?;
     let fmt = NumberFormat {
         units: g.units.unwrap_or(state.modal.units),
         input: cfg.input_mode(),
         increments: cfg.increments,
     };
-    let mut cmd = Command {
-        line: block.line,
-        seq: block.seq,
-        g,
-        m: resolve_m(block, cfg)?,
-        axes: [None; AXIS_COUNT],
-        center: [None; AXIS_COUNT],
-        radius: None,
-        dwell_ms: None,
-        reference: 1,
-        feed: None,
-        speed: None,
-        tool: None,
-        flow: None,
-        corner: None,
-        cycle: crate::cycles::CycleArgs::None,
-    };
+    cmd.line = block.line;
+    cmd.seq = block.seq;
+    cmd.g = g;
+    resolve_m(block, cfg, &mut cmd.m)?;
+    cmd.axes = [None; AXIS_COUNT];
+    cmd.center = [None; AXIS_COUNT];
+    cmd.radius = None;
+    cmd.dwell_ms = None;
+    cmd.reference = 1;
+    cmd.feed = None;
+    cmd.speed = None;
+    cmd.tool = None;
+    cmd.flow = None;
+    cmd.corner = None;
+    cmd.cycle = crate::cycles::CycleArgs::None;
     let flow_m = cmd.m.iter().map(|&(_, f)| f).find(|f| f.is_flow());
     let user = cmd.axis_user(state);
     words::check_letters(block, user, flow_m, cfg)?;
-    words::convert(block, user, state, cfg, &fmt, &mut cmd)?;
+    words::convert(block, user, state, cfg, &fmt, cmd)?;
     cmd.flow = flow_m.map(|f| flow_word(block, f)).transpose()?;
-    Ok(cmd)
+    Ok(())
 }
 
 /// The P (and L) of M98, M99, M91, M92.
@@ -191,9 +216,13 @@ fn flow_word(block: &Block, f: MFunction) -> Result<FlowWord, AlarmKind> {
     }
 }
 
-/// Looks up every M code and rejects contradicting pairs.
-fn resolve_m(block: &Block, cfg: &MachineConfig) -> Result<heapless::Vec<(u16, MFunction), MAX_M>, AlarmKind> {
-    let mut out = heapless::Vec::new();
+/// Looks up every M code into `out` and rejects contradicting pairs.
+fn resolve_m(
+    block: &Block,
+    cfg: &MachineConfig,
+    out: &mut heapless::Vec<(u16, MFunction), MAX_M>,
+) -> Result<(), AlarmKind> {
+    out.clear();
     for (i, &m) in block.m.iter().enumerate() {
         let f = m_function(m, cfg).ok_or(AlarmKind::UnknownMCode { m })?;
         if let Some(&other) = block.m[..i].iter().find(|&&o| m_codes_conflict(o, m)) {
@@ -202,7 +231,7 @@ fn resolve_m(block: &Block, cfg: &MachineConfig) -> Result<heapless::Vec<(u16, M
         // Capacity equals the reader's, so this push cannot fail.
         let _ = out.push((m, f));
     }
-    Ok(out)
+    Ok(())
 }
 
 /// The axis addressed by `letter` and whether the letter is incremental.

@@ -9,8 +9,9 @@
 //!    by the nose radius, with the corner types of the manual.
 //!
 //! The held actions live in the [`State`] (fixed arrays, no allocation), so they
-//! follow the interpreter's rule that a block runs on a copy of the state: a block
-//! that raises an alarm leaves the held moves exactly as they were. All geometry is
+//! follow the interpreter's rule that a failed block is undone: a block that
+//! raises an alarm leaves the held moves exactly as they were ([`Contour::save`]
+//! copies them only while a move is held). All geometry is
 //! done in machine coordinates (the path the tool really follows) with f64
 //! ([`crate::geom::path`]), results rounded to whole nanometres.
 
@@ -160,6 +161,38 @@ impl Contour {
     pub fn clear(&mut self) {
         *self = Contour::default();
     }
+
+    /// The small fields [`Contour::restore`] needs to undo a block. While a move
+    /// is held, the caller keeps a copy of the whole look-ahead as well.
+    pub fn marks(&self) -> Marks {
+        Marks { corner: self.corner, idle_blocks: self.idle_blocks, comp: self.comp, no_comp: self.no_comp }
+    }
+
+    /// Puts the look-ahead back as it was when `marks` were taken: `held` is the
+    /// copy taken then if a move was held; otherwise both buffers were empty.
+    pub fn restore(&mut self, marks: &Marks, held: Option<&Contour>) {
+        if let Some(c) = held {
+            *self = *c;
+            return;
+        }
+        if self.is_holding() {
+            self.shape = Buffer::default();
+            self.offset = Buffer::default();
+        }
+        self.corner = marks.corner;
+        self.idle_blocks = marks.idle_blocks;
+        self.comp = marks.comp;
+        self.no_comp = marks.no_comp;
+    }
+}
+
+/// The small fields of a [`Contour`], to undo a block (see [`Contour::marks`]).
+#[derive(Clone, Copy, Debug)]
+pub struct Marks {
+    corner: Option<Corner>,
+    idle_blocks: u8,
+    comp: Comp,
+    no_comp: bool,
 }
 
 /// The corner a block asks for, checked against 2.23 notes 1, 7 and 8: thread

@@ -511,7 +511,9 @@ mod tests {
         // The macro variables (999 × 8 B, 2.24.1), the 12-level call stack and a
         // second expansion (the dry-run copy of a cycle block being validated)
         // live in the interpreter too: ~26 KB on a 64-bit host, less on the M4.
+        // So does the checked command reused from block to block (336 bytes here,
+        // 304 on the M4): returning it by value cost ~330 instructions a block.
         let vars = core::mem::size_of::<crate::macros::Variables>();
-        assert!(interp < 16 * 1024 + vars + exp, "Interpreter is {interp} bytes");
+        assert!(interp < 16 * 1024 + 512 + vars + exp, "Interpreter is {interp} bytes");
     }
 }

@@ -1,6 +1,7 @@
 //! Execution: a checked [`Command`] applied to the [`State`], emitting canonical
-//! actions in the order the control performs them. Runs on a copy of the state;
-//! the caller commits it only if the whole block succeeded.
+//! actions in the order the control performs them. Runs on the state in place;
+//! the caller undoes the block ([`State::save`], [`State::restore`]) unless the
+//! whole block succeeded.
 
 mod coords;
 pub(crate) mod motion;
@@ -11,7 +12,7 @@ pub mod stroke;
 
 pub use spindle::spindle_speed;
 pub use state::{
-    CycleMemory, FeedMemory, Frames, HoleMemory, Modal, RigidTap, SingleMemory, SpindleState, State, ToolState,
+    CycleMemory, FeedMemory, Frames, HoleMemory, Modal, RigidTap, Saved, SingleMemory, SpindleState, State, ToolState,
 };
 
 use crate::alarm::AlarmKind;

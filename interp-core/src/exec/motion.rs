@@ -26,19 +26,49 @@ pub(super) fn execute(
     if !(cmd.has_axes() || is_arc && arc_words) {
         return Ok(());
     }
-    let work = target(cmd, st, cfg)?;
+    // The work frame once per block (it sums five offsets).
+    let at = At::of(st, cfg);
+    let work = target_from(cmd, at.here)?;
     let exact = cmd.g.one_shot == Some(GCode::ExactStopOnce) || st.modal.exact_stop_mode;
     match code {
-        GCode::Rapid => rapid(work, st, cfg, out, cfg.rapid_independent),
-        GCode::Linear => linear(work, st, cfg, out, exact),
-        _ => arc(cmd, work, st, cfg, out, exact),
+        GCode::Rapid => rapid_to(at.endpoint(work)?, st, cfg, out, cfg.rapid_independent),
+        GCode::Linear => linear(work, at, st, cfg, out, exact),
+        _ => arc(cmd, work, at, st, cfg, out, exact),
+    }
+}
+
+/// Where a move starts: the work position and what turns work into machine
+/// coordinates.
+#[derive(Clone, Copy)]
+struct At {
+    /// The current position, work coordinates.
+    here: Pos,
+    /// Work to machine ([`State::work_to_machine`]).
+    shift: Pos,
+}
+
+impl At {
+    fn of(st: &State, cfg: &MachineConfig) -> At {
+        let shift = st.work_to_machine(cfg);
+        At { here: st.pos - shift, shift }
+    }
+
+    /// Both coordinates of a work target.
+    fn endpoint(&self, work: Pos) -> Result<Endpoint, AlarmKind> {
+        let machine = work.checked_add(self.shift).ok_or(AlarmKind::Overflow)?;
+        Ok(Endpoint { machine, work })
     }
 }
 
 /// Work-coordinate target of the block: commanded axes absolute or incremental,
 /// the others where they are.
 pub(crate) fn target(cmd: &Command, st: &State, cfg: &MachineConfig) -> Result<Pos, AlarmKind> {
-    let mut work = st.work_pos(cfg);
+    target_from(cmd, st.work_pos(cfg))
+}
+
+/// [`target`] from the work position `here`.
+fn target_from(cmd: &Command, here: Pos) -> Result<Pos, AlarmKind> {
+    let mut work = here;
     for axis in Axis::ALL {
         if let Some(w) = cmd.axes[axis.index()] {
             work[axis] =
@@ -76,18 +106,6 @@ fn check_axis_range(a: Axis, lo: i64, hi: i64, cfg: &MachineConfig) -> Result<()
     Ok(())
 }
 
-/// A rapid to `work` (no motion if already there).
-pub(super) fn rapid(
-    work: Pos,
-    st: &mut State,
-    cfg: &MachineConfig,
-    out: &mut Staged<'_>,
-    independent: bool,
-) -> Result<(), AlarmKind> {
-    let to = endpoint(work, st, cfg)?;
-    rapid_to(to, st, cfg, out, independent)
-}
-
 /// A rapid to a resolved end point.
 pub(super) fn rapid_to(
     to: Endpoint,
@@ -110,14 +128,15 @@ pub(super) fn rapid_to(
 
 fn linear(
     work: Pos,
+    at: At,
     st: &mut State,
     cfg: &MachineConfig,
     out: &mut Staged<'_>,
     exact_stop: bool,
 ) -> Result<(), AlarmKind> {
-    let to = endpoint(work, st, cfg)?;
+    let to = at.endpoint(work)?;
     check_limits(&to.machine, cfg)?;
-    let feed = cutting_feed(st, cfg)?;
+    let feed = cutting_feed(st, cfg, at.here[Axis::X])?;
     if to.machine == st.pos {
         return Ok(());
     }
@@ -132,18 +151,16 @@ fn arrive(st: &mut State, machine: Pos) {
     st.moved = true;
 }
 
-/// The F in force for a cutting move; alarms for F0 and feed per rev without spindle.
-fn cutting_feed(st: &State, cfg: &MachineConfig) -> Result<Feed, AlarmKind> {
+/// The F in force for a cutting move starting at work X `x`; alarms for F0 and
+/// feed per rev without spindle.
+fn cutting_feed(st: &State, cfg: &MachineConfig, x: i64) -> Result<Feed, AlarmKind> {
     let mode = st.modal.feed_mode;
     let value = st.feed.get(mode);
     if value <= 0 {
         return Err(AlarmKind::FeedZero);
     }
-    if mode == FeedMode::PerRev {
-        let x = st.work_axis(cfg, Axis::X);
-        if st.spindle.dir == SpindleDir::Stop || spindle_speed(st, cfg, x).rpm == Some(0) {
-            return Err(AlarmKind::FeedPerRevSpindleStopped);
-        }
+    if mode == FeedMode::PerRev && (st.spindle.dir == SpindleDir::Stop || spindle_speed(st, cfg, x).rpm == Some(0)) {
+        return Err(AlarmKind::FeedPerRevSpindleStopped);
     }
     Ok(Feed { mode, value })
 }
@@ -152,6 +169,7 @@ fn cutting_feed(st: &State, cfg: &MachineConfig) -> Result<Feed, AlarmKind> {
 fn arc(
     cmd: &Command,
     work: Pos,
+    at: At,
     st: &mut State,
     cfg: &MachineConfig,
     out: &mut Staged<'_>,
@@ -161,8 +179,7 @@ fn arc(
     reject_axes_outside(cmd, plane)?;
     let cw = st.modal.motion == GCode::ArcCw;
     let (pa, pb) = plane.axes();
-    let here = st.work_pos(cfg);
-    let start: P2 = (here[pa], here[pb]);
+    let start: P2 = (at.here[pa], at.here[pb]);
     let end: P2 = (work[pa], work[pb]);
     let tol = cfg.params.get(Param::ArcRadiusTolerance);
     let (center, full) = if let Some(r) = cmd.radius {
@@ -174,25 +191,25 @@ fn arc(
     } else if let Some(off) = center_offsets(cmd, plane) {
         if off == (0, 0) {
             // 2.3 note 3: I = K = 0 moves in a straight line.
-            return linear(work, st, cfg, out, exact_stop);
+            return linear(work, at, st, cfg, out, exact_stop);
         }
         (center_from_offsets(start, end, off, tol)?, start == end)
     } else if cfg.params.flag(Param::ArcWithoutCenterIsLine) {
-        return linear(work, st, cfg, out, exact_stop);
+        return linear(work, at, st, cfg, out, exact_stop);
     } else {
         return Err(AlarmKind::ArcCenterMissing);
     };
-    let to = endpoint(work, st, cfg)?;
+    let to = at.endpoint(work)?;
     let mut cwork = work;
     cwork[pa] = center.0;
     cwork[pb] = center.1;
-    let center_ep = endpoint(cwork, st, cfg)?;
+    let center_ep = at.endpoint(cwork)?;
     check_limits(&to.machine, cfg)?;
     let ext = arc_extents(start, end, center, cw, full);
-    let shift = st.work_to_machine(cfg);
+    let shift = at.shift;
     check_axis_range(pa, ext.a.0 + shift[pa], ext.a.1 + shift[pa], cfg)?;
     check_axis_range(pb, ext.b.0 + shift[pb], ext.b.1 + shift[pb], cfg)?;
-    let feed = cutting_feed(st, cfg)?;
+    let feed = cutting_feed(st, cfg, at.here[Axis::X])?;
     let spindle = spindle_speed(st, cfg, to.work[Axis::X]);
     out.emit(Action::Arc(ArcMove { to, center: center_ep, plane, cw, full_circle: full, feed, spindle, exact_stop }))?;
     arrive(st, to.machine);

@@ -216,6 +216,28 @@ pub struct State {
     pub contour: crate::contour::Contour,
 }
 
+/// A [`State`] as it was before a block (see [`State::save`]).
+#[derive(Clone, Copy, Debug)]
+pub struct Saved {
+    modal: Modal,
+    pos: Pos,
+    feed: FeedMemory,
+    spindle: SpindleState,
+    moved: bool,
+    cycle: CycleMemory,
+    rare: Option<Rare>,
+    contour: crate::contour::Marks,
+}
+
+/// The parts of a [`State`] few blocks change (see [`State::save`]).
+#[derive(Clone, Copy, Debug)]
+struct Rare {
+    frames: Frames,
+    tool: ToolState,
+    polar: Option<super::polar::Polar>,
+    stroke: Option<super::stroke::StrokeArea>,
+}
+
 impl State {
     /// The power-on state for machine `cfg` with the axes at machine position `pos`.
     pub fn power_on(cfg: &MachineConfig, pos: Pos) -> Self {
@@ -246,6 +268,54 @@ impl State {
             stroke: None,
             contour: crate::contour::Contour::default(),
         }
+    }
+
+    /// What [`State::restore`] needs to undo block `cmd` executed in place:
+    /// everything but the contour look-ahead's buffers, which the caller copies
+    /// only while a move is held ([`Contour::is_holding`](crate::contour::Contour::is_holding)),
+    /// and the frames, tool, polar and stroke-check state, which only a block
+    /// with G50/G52, T, G22/G23 or G12.1/G13.1 (or any block in polar mode) changes.
+    pub fn save(&self, cmd: &crate::check::Command) -> Saved {
+        use crate::codes::GCode::{LocalFrame, SetCoordinates};
+        // Destructured so that a new field cannot be forgotten here.
+        let State { modal, pos, frames, tool, feed, spindle, moved, cycle, polar, stroke, contour } = self;
+        let rare = matches!(cmd.g.one_shot, Some(SetCoordinates | LocalFrame))
+            || cmd.tool.is_some()
+            || cmd.g.stroke.is_some()
+            || cmd.g.polar.is_some()
+            || polar.is_some();
+        let mut saved = Saved {
+            modal: *modal,
+            pos: *pos,
+            feed: *feed,
+            spindle: *spindle,
+            moved: *moved,
+            cycle: *cycle,
+            rare: None,
+            contour: contour.marks(),
+        };
+        if rare {
+            saved.rare = Some(Rare { frames: *frames, tool: *tool, polar: *polar, stroke: *stroke });
+        }
+        saved
+    }
+
+    /// Puts the state back as it was when `saved` was taken; `held` is the copy of
+    /// the contour look-ahead taken then if it held a move.
+    pub fn restore(&mut self, saved: &Saved, held: Option<&crate::contour::Contour>) {
+        self.modal = saved.modal;
+        self.pos = saved.pos;
+        self.feed = saved.feed;
+        self.spindle = saved.spindle;
+        self.moved = saved.moved;
+        self.cycle = saved.cycle;
+        if let Some(r) = &saved.rare {
+            self.frames = r.frames;
+            self.tool = r.tool;
+            self.polar = r.polar;
+            self.stroke = r.stroke;
+        }
+        self.contour.restore(&saved.contour, held);
     }
 
     /// Machine position of the work frame's origin, without the tool offset:

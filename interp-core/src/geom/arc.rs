@@ -9,24 +9,41 @@ pub type P2 = (i64, i64);
 /// Centre of an arc of radius `r` from `start` to `end` (2.3 note 6: `r < 0` takes
 /// the arc of more than 180°). A chord longer than `2|r|` by no more than `tol`
 /// gives a half circle; longer still raises alarm 0020.
+///
+/// The chord² and `(2h)² = 4r² − chord²` (h: centre to chord) are exact integers,
+/// so the tolerance test is exact and a near half circle loses nothing to
+/// cancellation; one division and one square root in f64 then give `h / chord`,
+/// and the centre is rounded to whole nanometres.
 pub fn center_from_radius(start: P2, end: P2, r: i64, cw: bool, tol: i64) -> Result<P2, AlarmKind> {
-    let (sa, sb) = (start.0 as f64, start.1 as f64);
-    let (da, db) = ((end.0 - start.0) as f64, (end.1 - start.1) as f64);
-    let chord = libm::hypot(da, db);
-    let half = chord / 2.0;
-    let radius = (r as f64).abs();
-    let excess = half - radius;
-    if excess > tol as f64 {
+    // Every square below is under 2^126 and every sum under 2^128: no overflow.
+    // (Differences saturate at ±2^63 nm, radii at 2^62 nm: far beyond any machine.)
+    const CAP: u64 = 1 << 62;
+    let (da, db) = (end.0.saturating_sub(start.0), end.1.saturating_sub(start.1));
+    let sq = |v: u64| u128::from(v) * u128::from(v);
+    let c2 = sq(da.unsigned_abs()) + sq(db.unsigned_abs());
+    let radius = r.unsigned_abs().min(CAP);
+    let reach = i128::from(radius) + i128::from(tol);
+    // Alarm when half the chord exceeds the radius by more than `tol`.
+    if reach < 0 || c2 > 4 * sq(reach.min(i128::from(CAP)) as u64) {
+        let excess = libm::sqrt(to_f64(c2)) / 2.0 - radius as f64;
         return Err(AlarmKind::ArcRadiusTolerance { excess_nm: excess as i64 });
     }
-    let h = libm::sqrt((radius * radius - half * half).max(0.0));
+    let disc = (4 * sq(radius)).saturating_sub(c2);
+    let k = libm::sqrt(to_f64(disc) / to_f64(c2)) / 2.0;
     // Clockwise arcs of up to 180° have their centre to the right of the chord.
-    let right = cw == (r > 0);
-    let s = if right { 1.0 } else { -1.0 };
-    let (ua, ub) = (db / chord, -da / chord);
-    let ca = sa + da / 2.0 + s * h * ua;
-    let cb = sb + db / 2.0 + s * h * ub;
+    let k = if cw == (r > 0) { k } else { -k };
+    let (da, db) = (da as f64, db as f64);
+    let ca = start.0 as f64 + da / 2.0 + k * db;
+    let cb = start.1 as f64 + db / 2.0 - k * da;
     Ok((libm::round(ca) as i64, libm::round(cb) as i64))
+}
+
+/// An integer as f64, the cheap way when it fits in a u64 (the usual case).
+fn to_f64(v: u128) -> f64 {
+    match u64::try_from(v) {
+        Ok(x) => x as f64,
+        Err(_) => v as f64,
+    }
 }
 
 /// Centre from I/J/K offsets; the end point must lie on the circle within `tol`
@@ -43,7 +60,15 @@ pub fn center_from_offsets(start: P2, end: P2, off: P2, tol: i64) -> Result<P2, 
 }
 
 fn dist(p: P2, q: P2) -> f64 {
-    libm::hypot((p.0 - q.0) as f64, (p.1 - q.1) as f64)
+    norm((p.0 - q.0) as f64, (p.1 - q.1) as f64)
+}
+
+/// `√(a² + b²)` without `hypot`'s care for overflow and the last ulp, which cost
+/// ~40 soft-float operations on the Cortex-M4: lengths here are at most a few
+/// metres in nm (< 2^43), their squares far from f64's range, and the results are
+/// rounded to whole nanometres.
+fn norm(a: f64, b: f64) -> f64 {
+    libm::sqrt(a * a + b * b)
 }
 
 /// Bounding box of a path in the plane.
@@ -58,7 +83,6 @@ pub struct Extents {
 /// Bounding box of the arc from `start` to `end` around `center`: the end points
 /// plus every quadrant point (0°, 90°, 180°, 270°) the arc passes.
 pub fn arc_extents(start: P2, end: P2, center: P2, cw: bool, full: bool) -> Extents {
-    let r = libm::round(dist(start, center)) as i64;
     let mut e = Extents { a: (start.0.min(end.0), start.0.max(end.0)), b: (start.1.min(end.1), start.1.max(end.1)) };
     let rel = |p: P2| (p.0 - center.0, p.1 - center.1);
     let (s, t) = (pseudo_angle(rel(start)), pseudo_angle(rel(end)));
@@ -68,10 +92,13 @@ pub fn arc_extents(start: P2, end: P2, center: P2, cw: bool, full: bool) -> Exte
     if full || sweep == 0.0 {
         sweep = 4.0;
     }
-    let quads = [(r, 0), (0, r), (-r, 0), (0, -r)];
-    for (q, (da, db)) in quads.into_iter().enumerate() {
+    // The radius (a square root) only when the arc passes a quadrant point:
+    // short arcs mostly pass none.
+    let mut r = None;
+    for (q, (da, db)) in [(1, 0), (0, 1), (-1, 0), (0, -1)].into_iter().enumerate() {
         if wrap4(q as f32 - from) <= sweep {
-            let (pa, pb) = (center.0 + da, center.1 + db);
+            let r = *r.get_or_insert_with(|| libm::round(dist(start, center)) as i64);
+            let (pa, pb) = (center.0 + da * r, center.1 + db * r);
             e.a = (e.a.0.min(pa), e.a.1.max(pa));
             e.b = (e.b.0.min(pb), e.b.1.max(pb));
         }
@@ -135,6 +162,19 @@ mod tests {
     }
 
     #[test]
+    fn extreme_values_do_not_overflow() {
+        for (s, e, r, tol) in [
+            ((i64::MIN, i64::MIN), (i64::MAX, i64::MAX), i64::MIN, i64::MAX),
+            ((i64::MAX, 0), (i64::MIN, 0), i64::MAX, 0),
+            ((0, 0), (1, 0), i64::MAX, i64::MIN),
+            ((0, 0), (1, 1), 1, -5),
+        ] {
+            let _ = center_from_radius(s, e, r, true, tol);
+            let _ = center_from_radius(s, e, r, false, tol);
+        }
+    }
+
+    #[test]
     fn offsets_must_put_the_end_on_the_circle() {
         assert_eq!(center_from_offsets((0, 0), (10 * MM, 0), (5 * MM, 0), 10_000), Ok((5 * MM, 0)));
         assert!(center_from_offsets((0, 0), (11 * MM, 0), (5 * MM, 0), 10_000).is_err());
@@ -150,5 +190,61 @@ mod tests {
         assert_eq!(e.b, (-10 * MM, 0));
         let e = arc_extents((10 * MM, 0), (10 * MM, 0), (0, 0), true, true);
         assert_eq!(e, Extents { a: (-10 * MM, 10 * MM), b: (-10 * MM, 10 * MM) });
+    }
+
+    /// The centre as computed before `norm` replaced `libm::hypot`.
+    fn centre_with_hypot(start: P2, end: P2, r: i64, cw: bool) -> P2 {
+        let (sa, sb) = (start.0 as f64, start.1 as f64);
+        let (da, db) = ((end.0 - start.0) as f64, (end.1 - start.1) as f64);
+        let chord = libm::hypot(da, db);
+        let half = chord / 2.0;
+        let radius = (r as f64).abs();
+        let h = libm::sqrt((radius * radius - half * half).max(0.0));
+        let s = if cw == (r > 0) { 1.0 } else { -1.0 };
+        let (ua, ub) = (db / chord, -da / chord);
+        (libm::round(sa + da / 2.0 + s * h * ua) as i64, libm::round(sb + db / 2.0 + s * h * ub) as i64)
+    }
+
+    #[test]
+    fn centres_and_extents_match_hypot_within_a_nanometre() {
+        // A deterministic spread of arcs: chords from 1 µm to 1 m, radii from just
+        // over half the chord to 100 times it, both directions and signs.
+        let mut seed: u64 = 0x2545_f491_4f6c_dd1d;
+        let mut next = |m: i64| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed % (2 * m as u64)) as i64 - m
+        };
+        let mut far = 0;
+        for i in 0..20_000 {
+            let scale = [1_000, 100_000, 10 * MM, 1_000 * MM][i % 4];
+            let start = (next(500 * MM), next(500 * MM));
+            let end = (start.0 + next(scale), start.1 + next(scale));
+            if start == end {
+                continue;
+            }
+            let chord = libm::hypot((end.0 - start.0) as f64, (end.1 - start.1) as f64);
+            let r = (chord / 2.0 * (1.0 + (next(1_000) + 1_000) as f64 / 20.0)) as i64 + 1;
+            let r = if i % 3 == 0 { -r } else { r };
+            let cw = i % 2 == 0;
+            let c = center_from_radius(start, end, r, cw, 0).unwrap_or((i64::MAX, 0));
+            let want = centre_with_hypot(start, end, r, cw);
+            let off = |c: P2| {
+                let d = |p: P2| libm::hypot((p.0 - c.0) as f64, (p.1 - c.1) as f64) - r.abs() as f64;
+                d(start).abs().max(d(end).abs())
+            };
+            let close = (c.0 - want.0).abs() <= 1 && (c.1 - want.1).abs() <= 1;
+            // Where the two differ (near half circles, where the old f64
+            // `r² − (c/2)²` cancelled) the new centre must lie closer to the circle.
+            assert!(close || off(c) <= off(want), "{start:?} {end:?} R{r}: {c:?} vs {want:?}");
+            if !close {
+                far += 1;
+            }
+            let rel = (start.0 - c.0, start.1 - c.1);
+            let radius = libm::round(libm::hypot(rel.0 as f64, rel.1 as f64)) as i64;
+            assert!((libm::round(dist(start, c)) as i64 - radius).abs() <= 1);
+        }
+        assert_eq!(far, 0, "centres more than 1 nm from the hypot ones");
     }
 }

@@ -150,7 +150,16 @@ impl Block {
 
     /// The addresses given (beyond N, O, G, M), in alphabetical order.
     pub fn letters(&self) -> impl Iterator<Item = u8> + '_ {
-        (b'A'..=b'Z').filter(|l| self.has(*l))
+        let mut bits = self.present;
+        core::iter::from_fn(move || {
+            if bits == 0 {
+                return None;
+            }
+            let i = bits.trailing_zeros();
+            bits &= bits - 1;
+            // `present` has bits 0–25 only: i < 26.
+            Some(b'A' + i as u8)
+        })
     }
 
     /// Sets address `letter` (uppercase ASCII); false if it was already set.

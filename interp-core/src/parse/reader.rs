@@ -129,7 +129,10 @@ impl Reader<'_, '_> {
         loop {
             self.skip_blanks_and_comments()?;
             let Some(c) = self.peek() else { return Ok(()) };
-            if c == b'#' || c.is_ascii_alphabetic() && starts_statement(self.text, self.pos) {
+            // Keywords start with two letters (checked here first: it is cheap).
+            let two_letters =
+                c.is_ascii_alphabetic() && self.text.get(self.pos + 1).is_some_and(u8::is_ascii_alphabetic);
+            if c == b'#' || two_letters && starts_statement(self.text, self.pos) {
                 // A macro statement after NC words (2.24.2 note 7).
                 return Err(AlarmKind::MacroAndNcInOneBlock);
             }

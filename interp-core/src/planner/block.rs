@@ -7,6 +7,7 @@ use crate::alarm::AlarmKind;
 use crate::axis::{AXIS_COUNT, Axis, Pos};
 use crate::canon::{ArcMove, FeedMode, Move, SpindleDir, SpindleSpeed, TapMove, ThreadMove, ThreadSync};
 use crate::fixed::{PATH_FRAC, inverse62, sqrtf};
+use crate::interpolator::cordic;
 use crate::sync::ramp_counts;
 
 /// Unit direction of a path, per axis.
@@ -257,18 +258,74 @@ pub fn line(start: &Pos, m: &Move, rapid: bool, p: &MotionParams, line: u32) -> 
     Ok(Prepared { block, dir_in: dir, dir_out: dir, end: m.to.machine })
 }
 
+/// Start angle and signed sweep of an arc in turns × 2^32 from the radius vectors
+/// `s` (start) and `e` (end), by CORDIC ([`cordic::angle`], within 16 units of the
+/// exact angles). `None` when the end is within 2^12 units (~6e-6 rad) of the start
+/// direction, where a tiny arc and a full turn must be told apart exactly: the
+/// caller then uses f64.
+fn sweep_turns(s: (i64, i64), e: (i64, i64), cw: bool, full: bool) -> Option<(i64, i64)> {
+    const TURN: i64 = 1 << 32;
+    let t0 = cordic::angle(s.0, s.1);
+    let d = i64::from(cordic::angle(e.0, e.1).wrapping_sub(t0));
+    if !(1 << 12..=TURN - (1 << 12)).contains(&d) {
+        return None;
+    }
+    let sweep = match (full, cw) {
+        (true, true) => -TURN,
+        (true, false) => TURN,
+        (false, true) => d - TURN,
+        (false, false) => d,
+    };
+    // The start angle in (−½, ½] turn, as atan2 gives it.
+    Some((i64::from(t0 as i32), sweep))
+}
+
+/// [`sweep_turns`] in f64 (`atan2`), for arcs ending near their start direction.
+fn sweep_f64(s: (f64, f64), e: (f64, f64), cw: bool, full: bool) -> (i64, i64) {
+    let (th0, th1) = (libm::atan2(s.1, s.0), libm::atan2(e.1, e.0));
+    let tau = core::f64::consts::TAU;
+    let mut sweep = th1 - th0;
+    if cw {
+        while sweep >= 0.0 {
+            sweep -= tau;
+        }
+        if full {
+            sweep = -tau;
+        }
+    } else {
+        while sweep <= 0.0 {
+            sweep += tau;
+        }
+        if full {
+            sweep = tau;
+        }
+    }
+    (turns(th0), turns(sweep))
+}
+
 /// Turns × 2^32 of an angle in radians.
 fn turns(rad: f64) -> i64 {
     libm::round(rad / core::f64::consts::TAU * 4_294_967_296.0) as i64
 }
 
-/// Unit tangent of an arc at angle `th` in the direction of travel.
-fn tangent(axes: (Axis, Axis), th: f64, ccw: bool) -> Dir {
+/// Unit tangent of an arc in the direction of travel at the point `v` from the
+/// centre (`r` its length): the radius turned a quarter, `(−sin θ, cos θ)` with
+/// `sin θ = v_b / r`, `cos θ = v_a / r` — no trigonometry (f32 on the FPU, as the
+/// directions are kept).
+fn tangent(axes: (Axis, Axis), v: (f64, f64), r: f64, ccw: bool) -> Dir {
     let mut d = [0.0; AXIS_COUNT];
-    let s = if ccw { 1.0 } else { -1.0 };
-    d[axes.0.index()] = (-s * libm::sin(th)) as f32;
-    d[axes.1.index()] = (s * libm::cos(th)) as f32;
+    if r > 0.0 {
+        let s = (if ccw { 1.0 } else { -1.0 }) / r as f32;
+        d[axes.0.index()] = -s * v.1 as f32;
+        d[axes.1.index()] = s * v.0 as f32;
+    }
     d
+}
+
+/// `√(a² + b²)`: plane distances in nm are far from f64's range, so `hypot`'s
+/// overflow scaling (~40 soft-float operations on the M4) buys nothing.
+fn norm(a: f64, b: f64) -> f64 {
+    libm::sqrt(a * a + b * b)
 }
 
 /// A circular move from `start`.
@@ -278,26 +335,13 @@ pub fn arc(start: &Pos, a: &ArcMove, p: &MotionParams, line: u32) -> Result<Prep
     let c = (a.center.machine.0[ia], a.center.machine.0[ib]);
     let rel = |q: &Pos| ((q.0[ia] - c.0) as f64, (q.0[ib] - c.1) as f64);
     let (s, e) = (rel(start), rel(&a.to.machine));
-    let (r0, r1) = (libm::hypot(s.0, s.1), libm::hypot(e.0, e.1));
-    let (th0, th1) = (libm::atan2(s.1, s.0), libm::atan2(e.1, e.0));
-    let tau = core::f64::consts::TAU;
-    let mut sweep = th1 - th0;
-    if a.cw {
-        while sweep >= 0.0 {
-            sweep -= tau;
-        }
-        if a.full_circle {
-            sweep = -tau;
-        }
-    } else {
-        while sweep <= 0.0 {
-            sweep += tau;
-        }
-        if a.full_circle {
-            sweep = tau;
-        }
-    }
-    let len = (sweep.abs() * (r0 + r1) / 2.0) as f32;
+    let (r0, r1) = (norm(s.0, s.1), norm(e.0, e.1));
+    let irel = |q: &Pos| (q.0[ia].saturating_sub(c.0), q.0[ib].saturating_sub(c.1));
+    let (theta0, sweep) = match sweep_turns(irel(start), irel(&a.to.machine), a.cw, a.full_circle) {
+        Some(t) => t,
+        None => sweep_f64(s, e, a.cw, a.full_circle),
+    };
+    let len = ((sweep as f64).abs() * (core::f64::consts::TAU / 4_294_967_296.0) * (r0 + r1) / 2.0) as f32;
     let feed = match a.feed.mode {
         FeedMode::PerMin => FeedSpec::PerMin(a.feed.value),
         FeedMode::PerRev => FeedSpec::PerRev(a.feed.value),
@@ -310,14 +354,7 @@ pub fn arc(start: &Pos, a: &ArcMove, p: &MotionParams, line: u32) -> Result<Prep
     let centripetal = sqrtf(accel * r);
     let chord = sqrtf(8.0 * r * p.chord_tolerance);
     let cap = la.feed.min(lb.feed).min(p.path_feed).min(centripetal).min(chord);
-    let geom = ArcGeom {
-        axes,
-        center: c,
-        r0: libm::round(r0) as i64,
-        r1: libm::round(r1) as i64,
-        theta0: turns(th0),
-        sweep: turns(sweep),
-    };
+    let geom = ArcGeom { axes, center: c, r0: libm::round(r0) as i64, r1: libm::round(r1) as i64, theta0, sweep };
     let block = Block {
         line,
         kind: BlockKind::Arc(geom),
@@ -328,8 +365,8 @@ pub fn arc(start: &Pos, a: &ArcMove, p: &MotionParams, line: u32) -> Result<Prep
         plan: plan(len_q8(len)?, accel, cap, nominal(feed, &a.spindle, p, cap)),
         exec: Exec::default(),
     };
-    let ccw = sweep > 0.0;
-    Ok(Prepared { block, dir_in: tangent(axes, th0, ccw), dir_out: tangent(axes, th1, ccw), end: a.to.machine })
+    let ccw = sweep > 0;
+    Ok(Prepared { block, dir_in: tangent(axes, s, r0, ccw), dir_out: tangent(axes, e, r1, ccw), end: a.to.machine })
 }
 
 /// The axis that travels furthest (the thread's or tap's long axis).
@@ -483,4 +520,44 @@ pub fn tap(start: &Pos, t: &TapMove, p: &MotionParams, line: u32) -> Result<Prep
         exec: Exec::default(),
     };
     Ok(Prepared { block, dir_in: dir, dir_out: dir, end: t.to.machine })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The CORDIC start angle and sweep against the f64 ones, over arcs of every
+    /// size and direction: within 16 units of 2^-32 turn, or handed to f64.
+    #[test]
+    fn cordic_sweeps_match_atan2() {
+        let mut seed: u64 = 0x2545_f491_4f6c_dd1d;
+        let mut next = |m: i64| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed % (2 * m as u64)) as i64 - m
+        };
+        let mut fallbacks = 0;
+        for i in 0..20_000 {
+            let m = [1_000, 1_000_000, 100_000_000, 1_000_000_000][i % 4];
+            let (s, e) = ((next(m), next(m)), (next(m), next(m)));
+            let (cw, full) = (i % 2 == 0, i % 7 == 0);
+            let f = |p: (i64, i64)| (p.0 as f64, p.1 as f64);
+            let want = sweep_f64(f(s), f(e), cw, full);
+            let Some(got) = sweep_turns(s, e, cw, full) else {
+                fallbacks += 1;
+                continue;
+            };
+            let wrap = |d: i64| if d.abs() > 1 << 31 { d - d.signum() * (1 << 32) } else { d };
+            assert!(wrap(got.0 - want.0).abs() <= 16, "{s:?} {e:?}: {got:?} vs {want:?}");
+            assert!((got.1 - want.1).abs() <= 32, "{s:?} {e:?} cw {cw}: {got:?} vs {want:?}");
+        }
+        assert!(fallbacks < 40, "{fallbacks} arcs fell back to f64");
+        // An arc ending just past its start direction: a full turn less a little
+        // (clockwise) or a tiny one (counter-clockwise), decided exactly in f64.
+        let (s, e) = ((30_000_000, 0), (30_000_000, 1));
+        assert_eq!(sweep_turns(s, e, true, false), None);
+        assert!(sweep_f64((3e7, 0.0), (3e7, 1.0), true, false).1 < -(1 << 31));
+        assert!(sweep_f64((3e7, 0.0), (3e7, 1.0), false, false).1 < 1_000);
+    }
 }

@@ -1,5 +1,6 @@
 //! Instruction counts of the motion core on the Cortex-M4F: planning a short G01
-//! block (preparation and look-ahead) and starting it in the interpolator, an
+//! block and a short G02 block (preparation and look-ahead) and starting them in
+//! the interpolator, an
 //! interpolation period on a line and on an arc, a step event, an encoder count of
 //! a locked thread (constant lead and G34 variable lead), and the RAM the motion
 //! core takes. Run through
@@ -134,6 +135,47 @@ fn plan_blocks(label: &str, first: i64, n: i64, depth: usize) {
     }
 }
 
+/// A short G02 block: the next 0.2 mm of the same circle as an arc around its centre.
+fn arc_chord(k: i64) -> Canon {
+    let (x, z) = point(k);
+    let a = ArcMove {
+        to: at(x, z),
+        center: at(40 * MM, 0),
+        plane: Plane::Zx,
+        cw: true,
+        full_circle: false,
+        feed: feed(),
+        spindle: spindle(),
+        exact_stop: false,
+    };
+    Canon { line: k as u32, action: Action::Arc(a) }
+}
+
+/// Plans `n` short arcs after a queue of `depth` chords, measuring each push and
+/// each start.
+fn plan_arcs(n: i64, depth: usize) {
+    let p = MotionParams::new(&MachineConfig::default()).unwrap_or_else(|_| exit(false));
+    let start_pos = point(0);
+    let mut planner: Planner<QUEUE> = Planner::new(Pos::xz(start_pos.0, start_pos.1));
+    let mut from = [0i64; AXIS_COUNT];
+    let mut k = 1;
+    while planner.len() < depth {
+        planner.push(&arc_chord(k), &p).unwrap_or_else(|_| exit(false));
+        k += 1;
+    }
+    hprintln!("bench short G02 block (0.2 mm of R30) planned (push) and started: {} blocks, queue depth {}", n, depth);
+    for _ in 0..n {
+        let c = arc_chord(k);
+        k += 1;
+        if !measure(push, (&mut planner, &c, &p)) {
+            exit(false);
+        }
+        let Some(Item::Motion(b)) = planner.pop() else { exit(false) };
+        let seg = measure(start, (&b, &from, &p));
+        from = *black_box(&seg).end_steps();
+    }
+}
+
 #[entry]
 fn main() -> ! {
     // Planning: a polyline at steady speed (the look-ahead pass stops after a block
@@ -141,6 +183,7 @@ fn main() -> ! {
     // each new block raises the entry speed of every block before it.
     plan_blocks("short G01 block planned (push) and started", 1, 6, 32);
     plan_worst_case();
+    plan_arcs(3, 32);
 
     // Interpolation periods: a core moving along a line and along an arc.
     let cfg = MachineConfig::default();
