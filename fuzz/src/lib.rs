@@ -288,9 +288,11 @@ impl Link {
     }
 }
 
-/// Whether `out` holds a complete status report line `<…>`.
+/// Whether `out` holds a complete status report line `<…>`. XON/XOFF (tape mode's
+/// flow control, sent between any two bytes) are not part of the text.
 pub fn has_status_report(out: &[u8]) -> bool {
-    out.split(|&b| b == b'\n').any(|l| l.starts_with(b"<") && l.trim_ascii_end().ends_with(b">"))
+    let text: Vec<u8> = out.iter().copied().filter(|&b| b != 0x11 && b != 0x13).collect();
+    text.split(|&b| b == b'\n').any(|l| l.starts_with(b"<") && l.trim_ascii_end().ends_with(b">"))
 }
 
 /// Arbitrary bytes on the link. The first byte sets the chunk size (bits 0–5) and
