@@ -150,12 +150,22 @@ def wait_status(link, wanted, what, timeout):
         time.sleep(0.25)
 
 
-# The stack: all of the F405's CCM (memory.x), painted 0xCCCCCCCC at reset.
-STACK_BASE, STACK_SIZE = 0x1000_0000, 64 * 1024
+def stack_region(elf):
+    """The stack (memory.x): from the end of the statics (`_stack_end`) to the top of
+    the SRAM (`_stack_start`), painted 0xCCCCCCCC at reset."""
+    syms = {}
+    nm = subprocess.run(["arm-none-eabi-nm", elf], check=True, stdout=subprocess.PIPE, text=True).stdout
+    for line in nm.splitlines():
+        parts = line.split()
+        if len(parts) == 3 and parts[2] in ("_stack_start", "_stack_end"):
+            syms[parts[2]] = int(parts[0], 16)
+    return syms["_stack_end"], syms["_stack_start"] - syms["_stack_end"]
 
 
-def stack_check(monitor):
-    """Reads the CCM through QEMU's monitor: the stack's high-water mark."""
+def stack_check(monitor, elf):
+    """Reads the stack through QEMU's monitor: its high-water mark."""
+    STACK_BASE, STACK_SIZE = stack_region(elf)
+    STACK_SIZE -= STACK_SIZE % 16
     with socket.socket(socket.AF_UNIX) as m:
         m.connect(monitor)
         m.sendall(f"xp /{STACK_SIZE // 4}wx {STACK_BASE:#x}\n".encode())
@@ -219,7 +229,7 @@ def main():
         wait_status(link, b"<Idle|", "idle after $X", TIMEOUT)
         link.send(b"\x18")
         link.expect(WELCOME, "welcome after soft reset")
-        stack_check(monitor)
+        stack_check(monitor, elf)
         print("qemu-test: passed")
     finally:
         qemu.kill()

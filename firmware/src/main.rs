@@ -30,7 +30,29 @@ use static_cell::StaticCell;
 use {defmt_rtt as _, panic_probe as _};
 
 /// The controller's storage (it is tens of KB: built in place, see `shell::build`).
+/// On the F405 it lives in the 64 KB core-coupled memory (CPU only, no DMA: the
+/// controller is never a DMA buffer), so the 128 KB SRAM holds the other statics and
+/// the stack, which the interpreter's deepest step (a G71 through the contour layer)
+/// needs more than 64 KB of. `memory.x` puts `.ccmram` in the CCM, not initialised:
+/// the slot is `MaybeUninit` and written once at boot.
+#[cfg(feature = "f405")]
+#[unsafe(link_section = ".ccmram")]
+static mut CTL_SLOT: core::mem::MaybeUninit<Ctl> = core::mem::MaybeUninit::uninit();
+#[cfg(not(feature = "f405"))]
 static CTL: StaticCell<Ctl> = StaticCell::new();
+
+/// The controller's slot, taken once at boot.
+fn controller_slot() -> &'static mut core::mem::MaybeUninit<Ctl> {
+    #[cfg(feature = "f405")]
+    {
+        static TAKEN: core::sync::atomic::AtomicBool = core::sync::atomic::AtomicBool::new(false);
+        assert!(!TAKEN.swap(true, core::sync::atomic::Ordering::Relaxed), "controller slot taken twice");
+        // SAFETY: the flag above makes this the only reference to the slot, ever.
+        unsafe { &mut *core::ptr::addr_of_mut!(CTL_SLOT) }
+    }
+    #[cfg(not(feature = "f405"))]
+    CTL.uninit()
+}
 
 /// The controller, shared by the control and link tasks (all in thread mode).
 static CONTROLLER: Mutex<ThreadModeRawMutex, RefCell<Option<&'static mut Ctl>>> = Mutex::new(RefCell::new(None));
@@ -121,7 +143,7 @@ async fn main(spawner: Spawner) {
     };
     let outputs = Outputs::new(aux, cw, ccw, speed, drive_enable, cfg.spindle.max_rpm);
     let pos = cfg.reference[0];
-    let ctl = shell::build(CTL.uninit(), cfg, pos);
+    let ctl = shell::build(controller_slot(), cfg, pos);
     *ctl.settings_mut() = settings;
     #[cfg(persist)]
     let saving: Saving = store.take().map(|mut s| {
