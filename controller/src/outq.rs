@@ -23,6 +23,9 @@ pub const LINE: usize = 200;
 #[derive(Debug)]
 pub struct OutQueue<const N: usize> {
     buf: heapless::Deque<u8, N>,
+    /// The flow-control byte (DC1/DC3) to send before anything queued: only the
+    /// latest flow state counts.
+    flow: Option<u8>,
     /// Replies dropped because the queue was full (should stay 0).
     pub lost_replies: u32,
     /// Info lines dropped.
@@ -31,7 +34,7 @@ pub struct OutQueue<const N: usize> {
 
 impl<const N: usize> Default for OutQueue<N> {
     fn default() -> Self {
-        OutQueue { buf: heapless::Deque::new(), lost_replies: 0, lost_info: 0 }
+        OutQueue { buf: heapless::Deque::new(), flow: None, lost_replies: 0, lost_info: 0 }
     }
 }
 
@@ -67,25 +70,17 @@ impl<const N: usize> OutQueue<N> {
     }
 
     /// Sends a flow-control byte ahead of everything queued. Only the latest flow
-    /// state counts: a DC1/DC3 still waiting is dropped (pushed to the front, an
-    /// older XOFF would otherwise reach the sender after a newer XON and hold it).
+    /// state counts: it replaces a DC1/DC3 still waiting (an older XOFF must never
+    /// reach the sender after a newer XON and hold it).
     pub fn control(&mut self, b: u8) {
-        for _ in 0..self.buf.len() {
-            if let Some(c) = self.buf.pop_front().filter(|&c| c != 0x11 && c != 0x13) {
-                let _ = self.buf.push_back(c);
-            }
-        }
-        if self.buf.push_front(b).is_err() {
-            let _ = self.buf.pop_back();
-            let _ = self.buf.push_front(b);
-        }
+        self.flow = Some(b);
     }
 
     /// Moves queued bytes into `out`; how many.
     pub fn drain(&mut self, out: &mut [u8]) -> usize {
         let mut n = 0;
         for slot in out.iter_mut() {
-            let Some(b) = self.buf.pop_front() else { break };
+            let Some(b) = self.flow.take().or_else(|| self.buf.pop_front()) else { break };
             *slot = b;
             n += 1;
         }
@@ -94,17 +89,18 @@ impl<const N: usize> OutQueue<N> {
 
     /// Bytes waiting.
     pub fn len(&self) -> usize {
-        self.buf.len()
+        self.buf.len() + usize::from(self.flow.is_some())
     }
 
     /// Nothing waiting.
     pub fn is_empty(&self) -> bool {
-        self.buf.is_empty()
+        self.len() == 0
     }
 
     /// Drops everything.
     pub fn clear(&mut self) {
         self.buf.clear();
+        self.flow = None;
     }
 }
 
@@ -128,5 +124,17 @@ mod tests {
         q.control(0x13);
         let mut out = [0u8; 1];
         assert_eq!((q.drain(&mut out), out[0]), (1, 0x13));
+    }
+
+    #[test]
+    fn the_latest_flow_byte_goes_first_and_alone() {
+        let mut q = OutQueue::<64>::default();
+        q.line(Class::Reply, "ok");
+        q.control(0x13);
+        q.control(0x11);
+        assert_eq!(q.len(), 5);
+        let mut out = [0u8; 8];
+        assert_eq!(q.drain(&mut out), 5);
+        assert_eq!(&out[..5], b"\x11ok\r\n");
     }
 }
