@@ -36,6 +36,21 @@ type Memory = ProgramMemory<49_152, 64, 2_048>;
 /// The interpreter's sink: a real motion core whose planner takes every action.
 /// When its queue is full it is reset (the queue drops), so the program goes on
 /// without simulating its moves; the first queue runs a few periods at the end.
+/// One interpolation period of `core` at `now` with a spindle turning at its
+/// command (`count`: the encoder, one index per revolution); the period's steps
+/// are taken and dropped.
+fn period(core: &mut MotionCore<64>, now: &mut u64, count: &mut i64) {
+    let (_, rpm) = core.spindle_output();
+    let cpr = i64::from(core.params().cpr);
+    *count += i64::from(rpm) * cpr / 60_000;
+    let fb = Feedback { count: *count, index: Some(*count - count.rem_euclid(cpr.max(1))) };
+    core.tick(*now, fb);
+    *now += TICK_NS;
+    for axis in 0..AXIS_COUNT {
+        while core.next_step(axis, *now).is_some() {}
+    }
+}
+
 struct Planner {
     core: Box<MotionCore<64>>,
     now: u64,
@@ -52,15 +67,7 @@ impl Planner {
     /// Runs `n` interpolation periods with a spindle turning at its command.
     fn run(&mut self, n: usize) {
         for _ in 0..n {
-            let (_, rpm) = self.core.spindle_output();
-            let cpr = i64::from(self.core.params().cpr);
-            self.count += i64::from(rpm) * cpr / 60_000;
-            let fb = Feedback { count: self.count, index: Some(self.count - self.count.rem_euclid(cpr.max(1))) };
-            self.core.tick(self.now, fb);
-            self.now += TICK_NS;
-            for axis in 0..AXIS_COUNT {
-                while self.core.next_step(axis, self.now).is_some() {}
-            }
+            period(&mut self.core, &mut self.now, &mut self.count);
         }
     }
 }
@@ -249,15 +256,7 @@ impl Link {
 
     /// One millisecond: the core's period, the controller's poll, the output.
     fn poll(&mut self) {
-        let (_, rpm) = self.core.spindle_output();
-        let cpr = i64::from(self.core.params().cpr);
-        self.count += i64::from(rpm) * cpr / 60_000;
-        let fb = Feedback { count: self.count, index: Some(self.count - self.count.rem_euclid(cpr.max(1))) };
-        self.core.tick(self.now, fb);
-        self.now += TICK_NS;
-        for axis in 0..AXIS_COUNT {
-            while self.core.next_step(axis, self.now).is_some() {}
-        }
+        period(&mut self.core, &mut self.now, &mut self.count);
         self.ctl.poll(self.now, &mut *self.core, &mut (), self.inputs);
         let mut buf = [0u8; 256];
         loop {
