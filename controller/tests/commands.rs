@@ -203,3 +203,25 @@ fn run_from_memory_and_door() {
     assert!(r.status().starts_with("<Idle|MPos:40.000,0.000,-30.000"));
     assert_eq!(r.command("$PR=7").last().unwrap(), "error:20");
 }
+
+/// A grbl sender's closing `G4 P0.5` runs as a 0.5 s dwell (`$303=1`, the default);
+/// with `$303=0` the line is the board's language as written: G04 P takes no
+/// decimal point (2.6), alarm 0007, and nothing of it moves.
+#[test]
+fn a_grbl_sync_dwell_runs_as_seconds_or_raises_0007_as_the_manual_says() {
+    use interp_core::canon::Action;
+    let mut r = idle_rig();
+    let answers = r.stream("G4 P0.5\nM30\n", 5_000);
+    assert!(answers.contains(&"[MSG:Pgm End]".to_string()), "{answers:?}");
+    assert!(r.port.pushed.iter().any(|c| c.line == 1 && c.action == Action::Dwell { ms: 500 }), "{:?}", r.port.pushed);
+    let mut r = idle_rig();
+    assert_eq!(r.command("$303=0"), vec!["ok"]);
+    let answers = r.stream("G4 P0.5\n", 5_000);
+    assert!(answers.iter().any(|l| l.starts_with("[MSG:ALARM 0007 line 1")), "{answers:?}");
+    assert!(answers.contains(&"ALARM:20".to_string()), "{answers:?}");
+    assert!(r.port.pushed.is_empty(), "{:?}", r.port.pushed);
+    // FANUC milliseconds are never rewritten.
+    let mut r = idle_rig();
+    r.stream("G4 P500\nM30\n", 5_000);
+    assert!(r.port.pushed.iter().any(|c| c.line == 1 && c.action == Action::Dwell { ms: 500 }));
+}
