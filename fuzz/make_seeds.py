@@ -9,6 +9,10 @@ def put(target, name, data):
         data = data.encode()
     with open(f"corpus/{target}/seed_{name}", "wb") as f:
         f.write(data)
+    if target == "program":
+        # The parser target reads the same text after its number-format byte.
+        with open(f"corpus/parser/seed_{name}", "wb") as f:
+            f.write(b"\0" + data)
 
 for p in sorted(glob.glob("../examples/**/*.nc", recursive=True)):
     put("program", "ex_" + os.path.basename(p)[:-3], open(p, "rb").read())

@@ -2,6 +2,9 @@
 //! here, outside the targets, so that `host-tests/tests/fuzz_corpus.rs` can replay
 //! every committed corpus file through exactly the same code on stable Rust.
 //!
+//! - [`parser`]: arbitrary text, line by line, through the block reader (NC words,
+//!   macro statements and expressions against set variables) and the block check;
+//!   no interpreter, so it runs fast.
 //! - [`program`]: arbitrary program text (macros, subprograms, several O programs
 //!   in one file) through the interpreter into a real motion core's planner.
 //! - [`cycles`]: canned cycles G70–G76 and G90/G92/G94 built around a contour and
@@ -13,6 +16,7 @@
 //! bound, and panics only when the code under test misbehaves.
 
 use std::fmt::Write as _;
+use std::sync::OnceLock;
 
 use interp_core::axis::{AXIS_COUNT, Pos};
 use interp_core::canon::{Canon, CanonSink, Full};
@@ -20,8 +24,13 @@ use interp_core::motion::{Feedback, MotionCore};
 use interp_core::program::ProgramMemory;
 use interp_core::{Interpreter, MachineConfig, Panel, Progress, SingleProgram};
 
-/// Interpreter steps per input (a WHILE loop that never ends stops here).
-pub const MAX_STEPS: usize = 2_000;
+/// Interpreter steps per input (a WHILE loop that never ends stops here). A step
+/// runs up to one NC block and its macro statements. 500 reach every nesting limit
+/// (subprograms, macro calls, WHILE) and overflow any growing variable: replaying
+/// the corpus, 2 000 steps reached 4 more edges of 4 355 and took twice as long.
+/// An alarm does not end the input (a later block still runs, as after a reset):
+/// stopping at the 4th alarm lost 350 edges.
+pub const MAX_STEPS: usize = 500;
 
 /// Actions per input the motion core's planner takes (a cycle of a million passes
 /// stops here: refused as a full queue, the interpreter stays blocked).
@@ -108,11 +117,82 @@ fn interpret<S: interp_core::ProgramStore + ?Sized>(store: &S, main: Option<inte
             }
             Ok(_) => {}
             Err(alarm) => {
-                let _ = alarm.to_string();
+                let _ = write!(Discard, "{alarm}");
             }
         }
     }
     sink.run(16);
+}
+
+/// A formatter target that drops the text: the alarm's message is formatted (its
+/// `Display` runs on every alarm) without allocating.
+struct Discard;
+
+impl std::fmt::Write for Discard {
+    fn write_str(&mut self, _: &str) -> std::fmt::Result {
+        Ok(())
+    }
+}
+
+/// Variables the parser target's expressions read: #1–#33 and #100–#149 set to
+/// assorted values (whole, fractional, negative, large, zero), the rest null.
+fn parser_vars() -> &'static interp_core::macros::Variables {
+    static VARS: OnceLock<interp_core::macros::Variables> = OnceLock::new();
+    VARS.get_or_init(|| {
+        let mut v = interp_core::macros::Variables::new();
+        let values = [1.0, -2.5, 0.0, 1e9, 0.001, 360.0, -1e-9, 45.0, 99_999_999.0, 7.0];
+        for (i, n) in (1..=33).chain(100..150).enumerate() {
+            let _ = v.set(n, values.get(i % values.len()).copied());
+        }
+        v
+    })
+}
+
+/// One line through the reader and, when it is an NC block, the block check.
+fn parse_line(line: &[u8], n: u32, fmt: &interp_core::units::NumberFormat) {
+    use interp_core::parse::{Block, Read, read_block_into, read_statement_into, skip_level};
+    static CFG: OnceLock<(MachineConfig, interp_core::exec::State)> = OnceLock::new();
+    let (cfg, state) = CFG.get_or_init(|| {
+        let cfg = MachineConfig::default();
+        let state = interp_core::exec::State::power_on(&cfg, Pos::ZERO);
+        (cfg, state)
+    });
+    let _ = skip_level(line);
+    let mut block = Block::default();
+    match read_statement_into(line, n, parser_vars(), fmt, &mut block) {
+        Ok(Read::Nc) => {
+            assert_eq!(block.line, n, "the block keeps its line");
+            for letter in block.letters() {
+                assert!(letter.is_ascii_uppercase() && block.has(letter), "address {letter}");
+            }
+            let mut cmd = interp_core::check::Command::EMPTY;
+            if let Err(kind) = interp_core::check::check_into(&block, state, cfg, &mut cmd) {
+                let _ = write!(Discard, "{kind}");
+            }
+        }
+        Ok(Read::Macro(m)) => assert_eq!(m.line, n, "the statement keeps its line"),
+        Err(kind) => {
+            let _ = write!(Discard, "{kind}");
+        }
+    }
+    // Without variables: a `#` is an alarm, never a panic.
+    let _ = read_block_into(line, n, &mut block);
+}
+
+/// Arbitrary text, one block per line, through the block reader and check. The
+/// first byte picks the number format (bit 0 inch, bit 1 least-increment input,
+/// bit 2 IS-C).
+pub fn parser(data: &[u8]) {
+    use interp_core::units::{IncrementSystem, InputMode, NumberFormat, Units};
+    let (&head, text) = data.split_first().unwrap_or((&0, &[]));
+    let fmt = NumberFormat {
+        units: if head & 1 != 0 { Units::Inch } else { Units::Metric },
+        input: if head & 2 != 0 { InputMode::LeastIncrement } else { InputMode::Calculator },
+        increments: if head & 4 != 0 { IncrementSystem::IsC } else { IncrementSystem::IsB },
+    };
+    for (n, line) in (1u32..).zip(text.split(|&b| b == b'\n')) {
+        parse_line(line, n, &fmt);
+    }
 }
 
 /// Arbitrary program text: loaded into program memory (so M98/M99, GOTO and
@@ -294,14 +374,47 @@ pub fn has_status_report(out: &[u8]) -> bool {
     text.split(|&b| b == b'\n').any(|l| l.starts_with(b"<") && l.trim_ascii_end().ends_with(b">"))
 }
 
-/// Arbitrary bytes on the link. The first byte sets the chunk size (bits 0–5) and
+/// `stream` with every line framed as link line `N<k> …*<crc>` (k from 1, the
+/// checksum right), so the fuzzer reaches the checked-line paths without having to
+/// guess a CRC.
+fn framed(stream: &[u8]) -> Vec<u8> {
+    let mut out = Vec::with_capacity(stream.len() * 2);
+    for (k, line) in (1u32..).zip(stream.split(|&b| b == b'\n')) {
+        let start = out.len();
+        let _ = write!(Out(&mut out), "N{k} ");
+        out.extend_from_slice(line);
+        let crc = controller::crc::crc16(out.get(start..).unwrap_or(&[]));
+        let _ = writeln!(Out(&mut out), "*{crc:04X}");
+    }
+    out
+}
+
+/// `write!` into a byte vector.
+struct Out<'a>(&'a mut Vec<u8>);
+
+impl std::fmt::Write for Out<'_> {
+    fn write_str(&mut self, s: &str) -> std::fmt::Result {
+        self.0.extend_from_slice(s.as_bytes());
+        Ok(())
+    }
+}
+
+/// Arbitrary bytes on the link. The first byte sets the chunk size (bits 0–4),
+/// whether every line goes out framed with its checksum (bit 5, see [`framed`]) and
 /// which switch changes halfway (bits 6–7: none, feed hold, e-stop, door); chunks
 /// arrive one per millisecond. Afterwards the controller must answer `?` with a
 /// status report within a second (after a line end, which ends any partial line).
 pub fn board(data: &[u8]) {
     let Some(mut link) = Link::new() else { return };
     let (&head, stream) = data.split_first().unwrap_or((&0, &[]));
-    let chunk = usize::from(head & 63) + 1;
+    let chunk = usize::from(head & 31) + 1;
+    let framed_stream;
+    let stream = if head & 32 != 0 {
+        framed_stream = framed(stream);
+        framed_stream.as_slice()
+    } else {
+        stream
+    };
     let chunks: Vec<&[u8]> = stream.chunks(chunk).collect();
     for (i, c) in chunks.iter().enumerate() {
         if i == chunks.len() / 2 {

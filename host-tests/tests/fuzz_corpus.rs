@@ -31,6 +31,11 @@ fn replay(target: &str, min_files: usize, harness: fn(&[u8])) {
 }
 
 #[test]
+fn parser_corpus_replays() {
+    replay("parser", 20, harness::parser);
+}
+
+#[test]
 fn program_corpus_replays() {
     replay("program", 20, harness::program);
 }
