@@ -358,6 +358,7 @@ pub const PROVEN_ELSEWHERE: &[(u16, &str)] = &[
     (4508, "alarms.rs motion_alarms_are_raised_with_their_line (machine configuration)"),
     (4509, "alarms.rs motion_alarms_are_raised_with_their_line (emergency stop input)"),
     (4510, "alarms.rs motion_alarms_are_raised_with_their_line (simulated drive)"),
+    (4601, "controller starve.rs (a stream cut mid-job; the time the controller is given) and sim faults.rs"),
 ];
 
 /// What this controller does where the manual says "报警" (alarm).

@@ -179,6 +179,15 @@ pub struct Controller<const W: usize, const T: usize, const P: usize, const S: u
     /// A line could not enter the window even after dropping old text.
     pub(crate) window_stuck: bool,
     pub(crate) last_rx: u64,
+    /// When the last byte of any kind (a line, `?`, a real-time byte) arrived.
+    pub(crate) last_byte: u64,
+    /// When the stream job ran out of text and motion (see `starve`).
+    pub(crate) starved_at: Option<u64>,
+    /// The stream job has run a block (a job of only `%`, blank or comment lines
+    /// is not open).
+    pub(crate) job_worked: bool,
+    /// The tape's closing `%` came: the sender has sent the whole job.
+    pub(crate) record_closed: bool,
     pub(crate) now: u64,
     pub(crate) prev_inputs: Inputs,
     pub(crate) door_open: bool,
@@ -257,6 +266,10 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             lookahead: None,
             window_stuck: false,
             last_rx: 0,
+            last_byte: 0,
+            starved_at: None,
+            job_worked: false,
+            record_closed: false,
             now: 0,
             prev_inputs: Inputs::default(),
             door_open: false,
@@ -354,6 +367,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
     /// it). Never blocks, never panics.
     pub fn receive(&mut self, bytes: &[u8], now: u64) -> usize {
         for (i, &raw) in bytes.iter().enumerate() {
+            self.last_byte = now;
             let b = if self.tape.is_some() && self.settings.parity_strip { raw & 0x7f } else { raw };
             if (self.at_line_boundary() && self.realtime(b)) || b == XON || b == XOFF {
                 continue;
@@ -468,6 +482,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
         self.run_startup(port);
         self.run_interpreter(port);
         self.after_motion(port);
+        self.watch_stream(port);
         // XON once the buffer has room again — or when what is left is only the
         // start of a line (longer than a quarter of the buffer): it needs more bytes
         // to end, so holding the sender would never release.
@@ -573,6 +588,8 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
         self.window_stuck = false;
         self.interp_done = false;
         self.motion_end = false;
+        self.job_worked = false;
+        self.record_closed = false;
         self.hold = false;
         self.paused = false;
         self.jog = false;
@@ -736,6 +753,8 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
     fn end_job(&mut self) {
         self.msg(format_args!("Pgm End"));
         self.interp_done = false;
+        self.job_worked = false;
+        self.record_closed = false;
         self.motion_end = false;
         self.paused = false;
         match self.job {
@@ -819,6 +838,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             };
             match r {
                 Ok(Progress::Blocked | Progress::Paused) => return,
+                Ok(Progress::Executed { .. }) => self.job_worked = true,
                 Ok(Progress::Ended) => {
                     self.interp_done = true;
                     self.try_finish();

@@ -51,6 +51,7 @@ pub mod persist;
 pub mod port;
 pub mod report;
 pub mod settings;
+mod starve;
 mod tape;
 pub mod window;
 

@@ -187,6 +187,8 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             self.interp.rewind();
             self.rewind_stream();
             self.job = Job::Stream;
+            self.job_worked = false;
+            self.record_closed = false;
         }
         if self.window.push_line(text) {
             self.window_stuck = false;

@@ -39,6 +39,9 @@ pub struct Settings {
     pub grbl_dwell: bool,
     /// `$302`: strip bit 7 (even parity) from tape bytes.
     pub parity_strip: bool,
+    /// `$304`: seconds without a byte on the link after which a starved stream job
+    /// (open, its text and motion run out) raises alarm 4601; 0 never.
+    pub starve_timeout_s: u32,
     /// Soft-limit travel (min, max per axis, nm) while `$20=0`.
     pub travel: [(i64, i64); 2],
 }
@@ -57,6 +60,7 @@ impl Default for Settings {
             tape_detect: 0,
             grbl_dwell: true,
             parity_strip: false,
+            starve_timeout_s: 10,
             travel: [(0, 0); 2],
         }
     }
@@ -64,7 +68,7 @@ impl Default for Settings {
 
 /// The grbl-numbered settings, in `$$` order.
 pub const NUMBERS: &[u16] =
-    &[11, 12, 20, 21, 22, 23, 24, 25, 27, 30, 100, 102, 110, 112, 120, 122, 130, 132, 300, 301, 302, 303];
+    &[11, 12, 20, 21, 22, 23, 24, 25, 27, 30, 100, 102, 110, 112, 120, 122, 130, 132, 300, 301, 302, 303, 304];
 
 /// Why a setting write was refused.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -76,6 +80,9 @@ pub enum SettingError {
 }
 
 const NM: f64 = 1e6;
+
+/// Longest `$304`, s (a day).
+const MAX_STARVE_S: u32 = 86_400;
 
 /// Soft-limit travel with limits "off": ±1000 m.
 const UNLIMITED: i64 = 1_000_000_000_000;
@@ -110,6 +117,7 @@ pub fn get(n: u16, cfg: &MachineConfig, s: &Settings) -> Option<f64> {
         301 => f64::from(s.tape_detect),
         303 => f64::from(u8::from(s.grbl_dwell)),
         302 => f64::from(u8::from(s.parity_strip)),
+        304 => f64::from(s.starve_timeout_s),
         _ => return None,
     })
 }
@@ -161,6 +169,7 @@ pub fn set(n: u16, v: f64, cfg: &mut MachineConfig, s: &mut Settings) -> Result<
         301 => s.tape_detect = u8::try_from(whole(v)?).ok().filter(|m| *m <= 2).ok_or(bad("is 0, 1 or 2"))?,
         303 => s.grbl_dwell = flag(v)?,
         302 => s.parity_strip = flag(v)?,
+        304 => s.starve_timeout_s = whole(v)?.min(MAX_STARVE_S),
         _ => return Err(SettingError::Unknown),
     }
     Ok(())

@@ -89,6 +89,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
     /// The closing `%`.
     fn end_tape(&mut self, tape: Tape) {
         self.tape = None;
+        self.record_closed = true;
         if self.xoff {
             self.xoff = false;
             self.out.control(XON);

@@ -260,6 +260,9 @@ pub enum AlarmKind {
     /// 4510: a G34 lead change K × spindle speed² (the constant acceleration of a
     /// variable-lead thread) takes more than half the long axis's acceleration.
     ThreadLeadChangeTooFast { letter: Letter },
+    /// 4601: a streamed job starved: open, its text and motion run out, and no byte
+    /// came over the link for `seconds` (the link was lost mid-stream).
+    StreamStarved { seconds: u32 },
     /// 0050: `,C`/`,R` in a thread block (2.23 note 8).
     ChamferInThread,
     /// 0051: the block after a `,C`/`,R` block is not a G01/G02/G03 move (2.23 notes 2, 7).
@@ -383,6 +386,7 @@ impl AlarmKind {
             MotionConfigInvalid { .. } => 4508,
             EmergencyStop => 4509,
             ThreadLeadChangeTooFast { .. } => 4510,
+            StreamStarved { .. } => 4601,
             ChamferInThread => 50,
             ChamferNoMove { .. } => 51,
             ChamferTooLarge => 55,
@@ -548,6 +552,9 @@ impl fmt::Display for AlarmKind {
                     "G34 lead change K x spindle speed squared exceeds half the acceleration of axis {}",
                     Ch(letter)
                 )
+            }
+            StreamStarved { seconds } => {
+                write!(f, "stream starved: the job is open and nothing came over the link for {seconds} s (link lost?)")
             }
             ChamferInThread => write!(f, "chamfer or corner R (,C/,R) cannot be given in a thread block"),
             ChamferNoMove { what } => write!(f, "no G01/G02/G03 move after chamfer/corner R: {what}"),
@@ -977,6 +984,13 @@ pub const CATALOG: &[CatalogEntry] = &[
         when: "G34 K x spindle speed squared (with the ripple margin), the constant acceleration of a \
                variable-lead thread, above half the long axis's acceleration; raised before the pass moves (2.17.2)",
     },
+    CatalogEntry {
+        code: 4601,
+        title: "stream starved (link lost)",
+        when: "a streamed job is open (it ran a block and did not reach M02/M30, nor its tape's closing %), \
+               its text and motion have run out, and no byte, not even a status poll, came over the link \
+               for $304 seconds since before it ran out (default 10 s; $304=0 off)",
+    },
     CatalogEntry { code: 5010, title: "end of record", when: "program text ends without M02, M30 or M99" },
 ];
 
@@ -1090,6 +1104,7 @@ mod tests {
             MotionConfigInvalid { what: "x" },
             EmergencyStop,
             ThreadLeadChangeTooFast { letter: b'Z' },
+            StreamStarved { seconds: 10 },
             ChamferInThread,
             ChamferNoMove { what: "x" },
             ChamferTooLarge,

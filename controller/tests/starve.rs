@@ -1,0 +1,157 @@
+//! The stream starvation watch (`$304`, alarm 4601): a streamed job whose link
+//! goes quiet mid-run ends in an alarm; a sender that finished, one that polls, a
+//! program stop and a tape that closed its record never do. Times are the ones the
+//! controller is given (the rig's 1 ms polls).
+
+mod common;
+
+use common::{Counting, Rig, TICK};
+
+/// A rig past its welcome line, with `$304=seconds` unless `None`.
+fn rig(seconds: Option<u32>) -> Rig {
+    let mut r = Rig::new();
+    r.run_ms(2);
+    r.take_lines();
+    if let Some(s) = seconds {
+        assert_eq!(r.command(&format!("$304={s}")), vec!["ok"]);
+    }
+    r
+}
+
+/// A job of `n` short cuts with the spindle on, without its end.
+fn job(n: usize) -> Vec<String> {
+    let mut lines = vec!["G98 G00 X20 Z0".to_string(), "M03 S500".to_string()];
+    lines.extend((0..n).map(|_| "G01 W-0.5 F600".to_string()));
+    lines
+}
+
+/// Streams `lines` with character counting; `poll_ms`: a `?` every so many ms
+/// (0 = never). Runs `ms` ms; returns the time of the last byte sent (ns).
+fn stream_for(r: &mut Rig, lines: Vec<String>, poll_ms: u64, ms: u64) -> u64 {
+    let mut sender = Counting::new(lines);
+    let mut last = 0;
+    for i in 0..ms {
+        let before = r.pending.len();
+        sender.pump(r);
+        if poll_ms > 0 && i % poll_ms == 0 {
+            r.send(b"?");
+        }
+        if r.pending.len() > before {
+            last = r.now;
+        }
+        r.step();
+        for l in r.take_lines() {
+            sender.answer(&l);
+        }
+    }
+    last
+}
+
+/// When the `ALARM:` line appeared (ns), running at most `ms`.
+fn alarm_time(r: &mut Rig, ms: u64) -> Option<u64> {
+    r.run_until(ms, |r| r.lines().iter().any(|l| l.starts_with("ALARM:"))).then_some(r.now)
+}
+
+#[test]
+fn a_stream_cut_mid_job_alarms_4601_when_the_link_was_quiet_for_304_seconds() {
+    let mut r = rig(Some(2));
+    // 40 cuts of 0.5 mm at 600 mm/min: 2 s of work; the sender's bytes stop
+    // after the 30th line reached the board.
+    let mut lines = job(40);
+    lines.truncate(32);
+    let last = stream_for(&mut r, lines, 0, 200);
+    assert!(!r.lines().iter().any(|l| l.starts_with("ALARM")), "{:?}", r.lines());
+    assert!(r.run_until(10_000, |r| r.port.core.is_idle()), "the machine stops where the text ends");
+    let stopped_at = r.now;
+    let z_mm = r.port.core.position()[interp_core::Axis::Z] as f64 / 1e6;
+    assert!((z_mm + 15.0).abs() < 1e-3, "stopped at the end of the last block received: {z_mm}");
+    assert!(stopped_at < last + 2_000_000_000, "the last cut ends before the 2 s run out");
+    let at = alarm_time(&mut r, 5_000).expect("alarm 4601");
+    // Alarmed at the first poll 2 s after the last byte.
+    assert!(at >= last + 2_000_000_000 && at <= last + 2_000_000_000 + 2 * TICK, "{at} vs {last}");
+    let out = r.lines();
+    let msg = out.iter().find(|l| l.contains("ALARM 4601")).expect("message");
+    assert_eq!(
+        msg,
+        "[MSG:ALARM 4601 line 33: stream starved: the job is open and nothing came over the link for 2 s (link lost?)]"
+    );
+    assert!(out.contains(&"ALARM:20".to_string()), "{out:?}");
+    assert_eq!(r.port.core.spindle_output().1, 0, "spindle stopped");
+    assert!(r.status().starts_with("<Alarm"));
+    // Reset, then a new job runs.
+    r.send(&[0x18]);
+    r.run_ms(5);
+    let answers = r.stream("G98 G00 X30\nG01 Z-20 F600\nM30\n", 10_000);
+    assert!(answers.iter().any(|l| l == "[MSG:Pgm End]"), "{answers:?}");
+    let z_mm = r.port.core.position()[interp_core::Axis::Z] as f64 / 1e6;
+    assert!((z_mm + 20.0).abs() < 1e-3, "{z_mm}");
+}
+
+#[test]
+fn the_default_is_10_s_and_0_switches_the_watch_off() {
+    let mut r = rig(None);
+    assert!(r.command("$$").contains(&"$304=10".to_string()));
+    let last = stream_for(&mut r, job(4), 0, 100);
+    let at = alarm_time(&mut r, 12_000).expect("alarm 4601");
+    assert!(at >= last + 10_000_000_000 && at <= last + 10_000_000_000 + 2 * TICK, "{at} vs {last}");
+
+    let mut r = rig(Some(0));
+    stream_for(&mut r, job(4), 0, 100);
+    assert_eq!(alarm_time(&mut r, 30_000), None, "{:?}", r.lines());
+}
+
+#[test]
+fn a_polling_sender_never_starves_and_one_that_finished_polling_neither() {
+    // lathe send, CNCjs: `?` every 200 ms while connected. An interactive line
+    // without M30 (an MDI move typed into the sender) stays open for 30 s.
+    let mut r = rig(Some(1));
+    stream_for(&mut r, job(2), 200, 30_000);
+    assert!(!r.lines().iter().any(|l| l.starts_with("ALARM")), "{:?}", r.lines());
+    // The sender then goes (its last `?` saw Idle): the job stays open, no alarm.
+    assert_eq!(alarm_time(&mut r, 10_000), None);
+    assert!(r.status().starts_with("<Idle"));
+}
+
+#[test]
+fn a_job_that_ended_with_m30_and_trailing_lines_is_not_open() {
+    // A sender that stops after its file's last line: M30, then a record mark and
+    // a comment (they start the next job, which runs nothing).
+    let mut r = rig(Some(1));
+    let mut lines = job(4);
+    lines.extend(["M30".to_string(), "%".to_string(), "(end)".to_string()]);
+    stream_for(&mut r, lines, 0, 100);
+    assert_eq!(alarm_time(&mut r, 10_000), None, "{:?}", r.lines());
+    assert!(r.lines().contains(&"[MSG:Pgm End]".to_string()));
+}
+
+#[test]
+fn a_program_stop_or_a_feed_hold_waits_for_the_operator() {
+    let mut r = rig(Some(1));
+    let mut lines = job(2);
+    lines.push("M00".to_string());
+    stream_for(&mut r, lines, 0, 100);
+    assert_eq!(alarm_time(&mut r, 5_000), None, "M00: {:?}", r.lines());
+    assert!(r.status().starts_with("<Hold"));
+
+    let mut r = rig(Some(1));
+    stream_for(&mut r, job(20), 0, 300);
+    r.send(b"!");
+    assert_eq!(alarm_time(&mut r, 5_000), None, "feed hold: {:?}", r.lines());
+}
+
+#[test]
+fn a_drip_fed_tape_alarms_when_cut_but_not_after_its_closing_percent() {
+    // No grbl traffic before `%`: tape mode, no `ok`s, no polls.
+    let body: String = job(4).iter().map(|l| format!("{l}\n")).collect();
+    let mut r = Rig::new();
+    r.ctl.settings_mut().starve_timeout_s = 1;
+    r.send(format!("%\n{body}").as_bytes());
+    let at = alarm_time(&mut r, 5_000).expect("cut tape: alarm 4601");
+    assert!(at > TICK * 1_000, "{at}");
+
+    let mut r = Rig::new();
+    r.ctl.settings_mut().starve_timeout_s = 1;
+    r.send(format!("%\n{body}%\n").as_bytes());
+    assert_eq!(alarm_time(&mut r, 5_000), None, "closed tape: {:?}", r.lines());
+    assert!(r.port.core.is_idle());
+}
