@@ -1,7 +1,7 @@
 //! Machine faults on the virtual board (the controller on the simulated machine):
 //! e-stop mid-move and mid-thread, a limit switch hit, the encoder signal lost
 //! mid-thread, the spindle stalled or slowed (threads and G99), a thread too fast
-//! for the drives, the link lost mid-stream. Each must end in a controlled stop
+//! for the drives, the link lost mid-stream (alarm 4601 after `$304` s). Each must end in a controlled stop
 //! with the right alarm, no step after the stop, and a state from which a soft
 //! reset and a new program work.
 
@@ -295,22 +295,48 @@ fn a_thread_too_fast_for_the_drives_alarms_4501_before_any_step() {
 }
 
 #[test]
-fn link_lost_mid_stream_stops_at_the_end_of_the_last_block_received() {
+fn link_lost_mid_stream_stops_at_the_end_of_the_last_block_received_and_alarms_4601() {
     let mut b = board();
-    // 1000 blocks of 0.2 mm: more than the stream window holds.
+    // 1000 blocks of 0.2 mm with the spindle on: more than the stream window holds.
     let ends: Vec<i64> = (1..=1_000).map(|k| 250_000 - 200 * k).collect(); // µm
-    let prog: String =
-        ends.iter().map(|z| format!("G98 G01 Z{:.1} F2000\n", *z as f64 / 1e3)).chain(["M30\n".to_string()]).collect();
+    let prog: String = ["G98 M03 S300\n".to_string()]
+        .into_iter()
+        .chain(ends.iter().map(|z| format!("G01 Z{:.1} F2000\n", *z as f64 / 1e3)))
+        .chain(["M30\n".to_string()])
+        .collect();
     let log = stream(&mut b, &prog, |b| z_mm(b) < 225.0);
     assert!(!log.contains("error"), "{log}");
-    b.sim.faults.link_down = Some(b.now());
+    // The sender's last byte: a `?` poll (a sender held back by the full window
+    // sends nothing else).
+    assert!(status(&mut b).starts_with("<Run|"));
+    let last_byte = b.now() - 2 * MS;
+    let lost_at = b.now();
+    b.sim.faults.link_down = Some(lost_at);
     let _ = stream(&mut b, "G00 Z0\n", |_| true); // lost on the wire
-    let out = settle(&mut b);
+    settle(&mut b);
+    let stopped_at = b.now();
     let z_um = b.position()[Axis::Z] / 1_000;
     assert!(ends.contains(&z_um) && z_um > 100_000, "stopped at {z_um} µm: not the end of a block");
     assert!(z_um < 225_000);
-    assert_eq!(core_alarm(&b), None, "{out}");
-    assert_eq!(b.sim.core.state(), State::Idle);
+    assert_eq!(b.ctl.alarm(), None, "the machine ran out of text before the 10 s ($304)");
+    assert!(b.sim.core.spindle_output().1 > 0, "the spindle still turns");
+    // 10 s ($304's default) after the last byte: alarm 4601 (ALARM:20), spindle off.
+    let timeout = 10_000 * MS;
+    assert!(run_until(&mut b, 12_000, |b| b.ctl.alarm().is_some()));
+    let at = b.now();
+    eprintln!(
+        "link lost: stopped {:.3} s after the loss at Z {:.3} mm, alarm {:.3} s after it",
+        (stopped_at - lost_at) as f64 / 1e9,
+        z_um as f64 / 1e3,
+        (at - lost_at) as f64 / 1e9
+    );
+    assert!(at >= last_byte + timeout && at <= last_byte + timeout + 2 * MS, "alarm at {at}, last byte {last_byte}");
+    assert_eq!(b.ctl.alarm(), Some(20));
+    assert_eq!(b.sim.core.spindle_output().1, 0, "spindle stopped");
+    assert_eq!(b.position()[Axis::Z] / 1_000, z_um, "no step with the alarm");
+    // The link comes back: the board shows the alarm, then reset and restart work.
+    b.sim.faults = Faults::default();
+    assert!(status(&mut b).starts_with("<Alarm|"));
     restart_works(&mut b, 100.0);
 }
 
