@@ -117,6 +117,31 @@ fn ten_thousand_blocks_through_one_percent_line_noise_lose_nothing() {
     }
 }
 
+/// Heavy noise on the very first lines: `lathe send --checksum` switches the board's
+/// checksums on (`$LN=1`) before the program, so even a first line whose framing the
+/// noise destroyed is resent, never run or refused as plain text.
+#[test]
+fn heavy_noise_on_the_first_line_is_resent_too() {
+    let mut text = String::from("%\nO0001\nG98 G01 F3000\n");
+    for i in 0..20 {
+        text.push_str(&format!("X{}.5 Z-{}.25\n", 20 + i, i));
+    }
+    text.push_str("M30\n%\n");
+    let program = scratch("first-line.nc", text);
+    let want = sim_jsonl(&program);
+    for seed in ["11", "12", "13", "14", "15", "16"] {
+        let record = scratch(&format!("first-line-{seed}.jsonl"), "");
+        let board = Board::start(
+            &format!("first-{seed}"),
+            &["--speed", "50", "--record", &record, "--corrupt", "6", "--seed", seed],
+        );
+        let o = lathe(&["send", &program, "--port", &board.link, "--quiet", "--checksum"]);
+        assert_eq!(o.status.code(), Some(0), "seed {seed}: {}{}", stdout(&o), stderr(&o));
+        let got = wait_lines(&record, want.lines().count());
+        assert!(got == want, "seed {seed}: the executed actions differ from lathe sim's");
+    }
+}
+
 #[test]
 fn tape_upload_then_run_from_memory_and_drip_feed() {
     let record = scratch("tape.jsonl", "");
