@@ -10,8 +10,8 @@
 use controller::{Inputs, MachineIo, MotionPort, MotionStatus};
 use interp_core::axis::{Axis, Pos};
 use interp_core::canon::{Canon, Full, SpindleDir};
-use interp_core::motion::{Event, MotionCore, QUEUE};
 use interp_core::{AlarmKind, MachineConfig};
+use motion_core::motion::{Event, MotionCore, QUEUE};
 
 use crate::{Sim, SimOptions, SpindleModel};
 

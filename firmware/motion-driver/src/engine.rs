@@ -16,8 +16,8 @@
 //! The e-stop input is read in the period: its rising level calls the core's
 //! `emergency_stop` (the step player already raises no STEP pin while it is active).
 
-use interp_core::motion::{Feedback, MotionCore};
-use interp_core::stepgen::{EdgeKind, StepEvent};
+use motion_core::motion::{Feedback, MotionCore};
+use motion_core::stepgen::{EdgeKind, StepEvent};
 
 use crate::encoder::Encoder;
 use crate::ring::{Edge, Producer, Timed};
@@ -66,7 +66,7 @@ pub struct EngineAxis {
 }
 
 impl EngineAxis {
-    /// Axis `core_axis` of the motion core (`interp_core::axis::Axis as usize`) fed
+    /// Axis `core_axis` of the motion core (`motion_core::canon::Axis as usize`) fed
     /// into ring end `tx`.
     pub fn new(core_axis: usize, tx: Producer<RING>) -> Self {
         EngineAxis { core_axis, tx, carry: None }
