@@ -189,6 +189,7 @@ pub enum Plane {
 impl Plane {
     /// The plane's two axes in the order that makes G02 clockwise when the plane is
     /// seen from the positive side of its normal (G18: Z right, X up, Y towards you).
+    #[inline]
     pub const fn axes(self) -> (Axis, Axis) {
         match self {
             Plane::Xy => (Axis::X, Axis::Y),
@@ -198,6 +199,7 @@ impl Plane {
     }
 
     /// Whether `a` lies in the plane.
+    #[inline]
     pub fn contains(self, a: Axis) -> bool {
         let (p, q) = self.axes();
         a == p || a == q
@@ -307,6 +309,7 @@ pub struct SpindleCommand {
 
 impl Action {
     /// The end point of a motion action.
+    #[inline]
     pub fn endpoint(&self) -> Option<&Endpoint> {
         match self {
             Action::Rapid(m) | Action::Linear(m) => Some(&m.to),

@@ -35,11 +35,13 @@ pub const MAX_FRAC_DIGITS: u8 = 9;
 
 impl Number {
     /// An integer written without a decimal point.
+    #[inline]
     pub const fn int(value: i64) -> Self {
         Number { mantissa: value, frac_digits: 0, has_point: false }
     }
 
     /// The exact integer value, if the number has no non-zero fraction.
+    #[inline]
     pub fn as_integer(&self) -> Option<i64> {
         let p = pow10(self.frac_digits)?;
         if self.mantissa % p == 0 { Some(self.mantissa / p) } else { None }
@@ -47,6 +49,7 @@ impl Number {
 
     /// The value multiplied by `10^shift`, rounded half away from zero.
     /// `None` if the result does not fit in an `i64`.
+    #[inline]
     pub fn scaled(&self, shift: u8) -> Option<i64> {
         if shift >= self.frac_digits {
             self.mantissa.checked_mul(pow10(shift - self.frac_digits)?)
@@ -56,6 +59,7 @@ impl Number {
     }
 
     /// The value as a float (for geometry and macro arithmetic only).
+    #[inline]
     pub fn to_f64(&self) -> f64 {
         self.mantissa as f64 / libm::pow(10.0, f64::from(self.frac_digits))
     }
@@ -63,6 +67,7 @@ impl Number {
     /// The number nearest to `value` with [`MAX_FRAC_DIGITS`] fraction digits,
     /// marked as having a decimal point (macro values are real numbers).
     /// `None` for NaN, infinities and values beyond ±9.2e9.
+    #[inline]
     pub fn from_f64(value: f64) -> Option<Self> {
         let m = libm::round(value * 1e9);
         if !m.is_finite() || m.abs() >= 9.2e18 {
@@ -77,6 +82,7 @@ impl Number {
     }
 
     /// True if the value is negative.
+    #[inline]
     pub fn is_negative(&self) -> bool {
         self.mantissa < 0
     }
@@ -94,11 +100,13 @@ const POW10: [i64; 19] = {
 };
 
 /// `10^n` as an `i64`, `None` above `10^18`.
+#[inline]
 pub const fn pow10(n: u8) -> Option<i64> {
     if n > 18 { None } else { Some(POW10[n as usize]) }
 }
 
 /// Integer division rounding half away from zero (`d > 0`).
+#[inline]
 pub const fn div_round(n: i64, d: i64) -> i64 {
     let q = n / d;
     let r = n - q * d;
@@ -106,6 +114,7 @@ pub const fn div_round(n: i64, d: i64) -> i64 {
 }
 
 /// Round `v` to the nearest multiple of `step` (half away from zero).
+#[inline]
 pub const fn round_to(v: i64, step: i64) -> i64 {
     div_round(v, step) * step
 }
@@ -122,6 +131,7 @@ pub enum Units {
 
 impl Units {
     /// Nanometres in one program unit (1 mm or 1 in).
+    #[inline]
     pub const fn nm_per_unit(self) -> i64 {
         match self {
             Units::Metric => NM_PER_MM,
@@ -130,6 +140,7 @@ impl Units {
     }
 
     /// One program unit as a [`Scale`] of nanometres.
+    #[inline]
     const fn scale(self) -> Scale {
         match self {
             Units::Metric => Scale { factor: 1, exp: 6 },
@@ -173,6 +184,7 @@ pub enum IncrementSystem {
 impl IncrementSystem {
     /// Fraction digits a value may have and still be a whole number of increments
     /// (IS-B metric: 3, i.e. 0.001 mm).
+    #[inline]
     const fn linear_digits(self, units: Units) -> u8 {
         match (self, units) {
             (IncrementSystem::IsB, Units::Metric) => 3,
@@ -182,6 +194,7 @@ impl IncrementSystem {
     }
 
     /// Least input increment of a linear word, in nanometres.
+    #[inline]
     pub const fn linear_nm(self, units: Units) -> i64 {
         match (self, units) {
             (IncrementSystem::IsB, Units::Metric) => 1_000,
@@ -192,6 +205,7 @@ impl IncrementSystem {
     }
 
     /// Least input increment of an angle, in micro-degrees.
+    #[inline]
     pub const fn angle_udeg(self) -> i64 {
         match self {
             IncrementSystem::IsB => 1_000,
@@ -214,6 +228,7 @@ pub struct NumberFormat {
 impl NumberFormat {
     /// A length word (`X Z U W I K R …`) in nanometres, rounded to the least input
     /// increment as the manual requires for macro values (2.24.1). `None` on overflow.
+    #[inline]
     pub fn length_nm(&self, n: &Number) -> Option<i64> {
         let inc = self.increments.linear_nm(self.units);
         if !n.has_point && self.input == InputMode::LeastIncrement {
@@ -225,6 +240,7 @@ impl NumberFormat {
     }
 
     /// An angle word (`C`, degrees) in micro-degrees, rounded to the least increment.
+    #[inline]
     pub fn angle_udeg(&self, n: &Number) -> Option<i64> {
         let inc = self.increments.angle_udeg();
         let u = if n.has_point || self.input == InputMode::Calculator {
@@ -236,18 +252,21 @@ impl NumberFormat {
     }
 
     /// A time in seconds written with X/U in `G04` (0.001 s least increment), in ms.
+    #[inline]
     pub fn seconds_ms(&self, n: &Number) -> Option<i64> {
         if n.has_point || self.input == InputMode::Calculator { n.scaled(3) } else { Some(n.mantissa) }
     }
 
     /// A feed value (`F`) in nanometres per minute or per revolution. F is always read
     /// as written (F500 = 500 mm/min, F0.15 = 0.15 mm/rev) in both input modes.
+    #[inline]
     pub fn feed_nm(&self, n: &Number) -> Option<i64> {
         scale_to(n, self.units.scale())
     }
 }
 
 /// `n × scale`, rounded half away from zero; `None` on overflow.
+#[inline]
 fn scale_to(n: &Number, s: Scale) -> Option<i64> {
     let m = n.mantissa.checked_mul(s.factor)?;
     if n.frac_digits <= s.exp {

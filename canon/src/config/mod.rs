@@ -185,16 +185,19 @@ impl Default for MachineConfig {
 
 impl MachineConfig {
     /// The configuration of axis `a`.
+    #[inline]
     pub fn axis(&self, a: Axis) -> &AxisConfig {
         &self.axes[a.index()]
     }
 
     /// Input mode from parameter 3401.
+    #[inline]
     pub fn input_mode(&self) -> InputMode {
         if self.params.flag(Param::CalculatorInput) { InputMode::Calculator } else { InputMode::LeastIncrement }
     }
 
     /// The user M code `m`, if configured.
+    #[inline]
     pub fn user_m(&self, m: u16) -> Option<UserMCode> {
         self.user_m_codes.iter().copied().find(|u| u.m == m)
     }
