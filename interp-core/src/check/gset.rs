@@ -49,7 +49,7 @@ pub struct GSet {
 pub(crate) fn uses_axes(c: GCode) -> bool {
     use GCode::*;
     matches!(c, Dwell | ReferenceReturn | ReferenceReturnN | SetCoordinates | LocalFrame | MachineCoordinates)
-        || crate::cycles::args::is_multiple(c)
+        || crate::check::cycle_args::is_multiple(c)
 }
 
 impl GSet {

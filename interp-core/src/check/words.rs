@@ -70,7 +70,7 @@ pub(super) fn check_letters(
     flow: Option<MFunction>,
     cfg: &MachineConfig,
 ) -> Result<(), AlarmKind> {
-    let (mut allowed, name) = match crate::cycles::args::letters_of(user) {
+    let (mut allowed, name) = match crate::check::cycle_args::letters_of(user) {
         Some((l, name)) => (Letters::of(l), name),
         None => words_of(user),
     };
@@ -92,7 +92,7 @@ pub(super) fn check_letters(
         }
         if user != GCode::Dwell
             && !(user == GCode::ThreadCycle && letter == b'H')
-            && crate::cycles::args::axes_are_points(user)
+            && crate::check::cycle_args::axes_are_points(user)
             && let Some((axis, _)) = axis_of(letter)
             && !cfg.axis(axis).present
         {
@@ -111,7 +111,7 @@ pub(super) fn convert(
     fmt: &NumberFormat,
     cmd: &mut Command,
 ) -> Result<(), AlarmKind> {
-    use crate::cycles::args;
+    use crate::check::cycle_args as args;
     if user == GCode::Dwell {
         cmd.dwell_ms = Some(dwell_ms(block, fmt)?);
     } else if args::axes_are_points(user) {
@@ -270,8 +270,8 @@ fn tool_word(t: &Number, cfg: &MachineConfig) -> Result<(u16, u16), AlarmKind> {
 }
 
 /// `,C` / `,R` (2.23): a length, never negative; zero asks for nothing.
-fn corner_word(block: &Block, fmt: &NumberFormat) -> Result<Option<crate::contour::Corner>, AlarmKind> {
-    use crate::contour::Corner;
+fn corner_word(block: &Block, fmt: &NumberFormat) -> Result<Option<crate::check::Corner>, AlarmKind> {
+    use crate::check::Corner;
     let (n, letter, make): (_, u8, fn(i64) -> Corner) = match (&block.chamfer, &block.corner) {
         (_, Some(r)) if block.corner_last => (r, b'R', Corner::Round),
         (Some(c), _) => (c, b'C', Corner::Chamfer),

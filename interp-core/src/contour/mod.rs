@@ -19,6 +19,8 @@ pub mod comp;
 mod corner;
 
 pub use comp::{Comp, Side};
+// The `,C`/`,R` request is a word of the block: checked (and defined) in `check`.
+pub use crate::check::Corner;
 
 use crate::alarm::AlarmKind;
 use crate::axis::{Axis, Pos};
@@ -31,17 +33,6 @@ use crate::geom::path::V2;
 /// Most non-motion actions one stage holds behind its move (a G04 between a
 /// chamfered block and its follower, M codes of blocks without motion …).
 pub const HOLD: usize = 4;
-
-/// What `,C` or `,R` asks for at the end of a block's move (2.23).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub enum Corner {
-    /// `,C`: a straight chamfer from the point this far (nm, straight line) before
-    /// the imaginary corner to the point this far after it.
-    Chamfer(i64),
-    /// `,R`: a corner arc of this radius (nm) tangent to both moves.
-    Round(i64),
-}
 
 /// A non-motion action waiting behind a held move, kept small (the state is
 /// copied for every block).

@@ -23,7 +23,6 @@
 //! first; the ones after the motion (M05, M09, M30 …) are kept in the expansion
 //! and delivered after its last move. Every action carries the cycle block's line.
 
-pub mod args;
 pub mod curve;
 mod emit;
 mod finish;
@@ -36,12 +35,13 @@ mod rough;
 mod single;
 mod thread;
 
-pub use args::CycleArgs;
+pub use crate::check::cycle_args::CycleArgs;
 pub use emit::{Emitter, Out, Pt, Step};
 
 use crate::alarm::AlarmKind;
 use crate::canon::{Canon, Plane, SpindleDir};
 use crate::check::Command;
+use crate::check::cycle_args as args;
 use crate::codes::GCode;
 use crate::config::{MachineConfig, Param};
 use crate::env::Environment;
