@@ -1,7 +1,8 @@
 //! Fixed-point arithmetic for the motion layers: the formats, a widening multiply
 //! and a multiply-only reciprocal. Nothing here divides, so the per-tick and
 //! per-step paths that use it stay free of division (and of the slow `i64`
-//! division library call on the Cortex-M4).
+//! division library call on the Cortex-M4) — except [`gcd`], which reduces the step
+//! and gear ratios once, when the machine is configured or a thread is set up.
 //!
 //! Formats used by the motion core:
 //! - path lengths and speeds: nanometres with [`PATH_FRAC`] fraction bits (Q8 nm,
@@ -135,6 +136,14 @@ pub fn scaled_reciprocal(scale: u32, d: u32) -> u64 {
     let x = recip_normalised(d << n);
     // 2^32/d = x · 2^(n+32) / 2^63.
     (u64::from(scale) * x) >> (31 - n)
+}
+
+/// Greatest common divisor of two positive numbers.
+pub fn gcd(mut a: i64, mut b: i64) -> i64 {
+    while b != 0 {
+        (a, b) = (b, a % b);
+    }
+    a.abs().max(1)
 }
 
 #[cfg(test)]

@@ -6,8 +6,8 @@ use super::machine::MotionParams;
 use crate::alarm::AlarmKind;
 use crate::axis::{AXIS_COUNT, Axis, Pos};
 use crate::canon::{ArcMove, FeedMode, Move, SpindleDir, SpindleSpeed, TapMove, ThreadMove, ThreadSync};
+use crate::cordic;
 use crate::fixed::{PATH_FRAC, inverse62, sqrtf};
-use crate::interpolator::cordic;
 use crate::sync::ramp_counts;
 
 /// Unit direction of a path, per axis.
