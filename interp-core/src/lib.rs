@@ -25,6 +25,7 @@ pub mod cycles;
 pub mod env;
 pub mod exec;
 pub mod geom;
+mod head;
 pub mod interpreter;
 pub mod macros;
 pub mod parse;
