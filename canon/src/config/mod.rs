@@ -143,7 +143,7 @@ pub struct MachineConfig {
     /// M codes configured as user outputs.
     pub user_m_codes: heapless::Vec<UserMCode, MAX_USER_M>,
     /// The external input M91/M92 test (3.1.5 speaks of "the input signal" without
-    /// naming one; this machine wires it to [`crate::Environment::input`] number
+    /// naming one; this machine wires it to `interp_core::Environment::input` number
     /// `jump_input`, 0 by default).
     pub jump_input: u16,
     /// Numbered parameters.
