@@ -302,3 +302,104 @@ fn a_start_up_shorter_than_the_radius_is_not_interference() {
     let first = centre_moves(&r, 0).into_iter().find(|m| m.line == 3).unwrap();
     assert!(near(first.end, (R, R)), "{first:?}");
 }
+
+/// The tip positions (Z, X radius) of the moves of `line`, work coordinates.
+fn tips_of(r: &Run, line: u32) -> Vec<(f64, f64)> {
+    r.actions.iter().filter(|c| c.line == line).filter_map(host_tests::xz).map(|(x, z)| (z, x / 2.0)).collect()
+}
+
+/// Signed distance of `p` from the line `a`→`b` (positive on its left, Z right
+/// and X up).
+fn side_dist(p: (f64, f64), a: (f64, f64), b: (f64, f64)) -> f64 {
+    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+    (dx * (p.1 - a.1) - dy * (p.0 - a.0)) / dx.hypot(dy)
+}
+
+fn close(a: f64, b: f64) -> bool {
+    (a - b).abs() < 2e-6
+}
+
+#[test]
+fn g90_taper_under_g42_cuts_one_radius_inside_the_cycle_for_every_tip() {
+    // A = (Z2, r25); B = (Z2, r20 − 5); C = (Z−20, r20); D = (Z−20, r25).
+    let (a, b, c) = ((2.0, 25.0), (2.0, 15.0), (-20.0, 20.0));
+    for tip in [0, 2, 3, 8] {
+        let r = ok("T0101\nG42 G00 X50 Z2\nG90 X40 Z-20 R-5 F0.2\nG40 G00 X60 Z10\nM30\n", tip);
+        let tips = tips_of(&r, 3);
+        assert_eq!(tips.len(), 4, "tip {tip}: {tips:?}");
+        let t = tip_vec(tip);
+        let centre = |p: (f64, f64)| (p.0 - t.0, p.1 - t.1);
+        let (bc, cc, dc) = (centre(tips[0]), centre(tips[1]), centre(tips[2]));
+        // ② The cut's nose centre runs R off the taper, on the stock side
+        // (left of B→C: the cycle runs clockwise, the stock is inside it).
+        for p in [bc, cc] {
+            assert!(close(side_dist(p, b, c), -R), "tip {tip}: {p:?} is {} off the taper", side_dist(p, b, c));
+        }
+        // ③ The retract runs R off the shoulder Z−20, at the cycle's side.
+        assert!(close(cc.0, -20.0 + R) && close(dc.0, -20.0 + R), "tip {tip}: {cc:?} {dc:?}");
+        // ① approach and ③ retract stay X moves, ④ returns to A exactly.
+        assert!(close(tips[0].0, a.0), "tip {tip}: approach {tips:?}");
+        assert!(close(tips[2].1, a.1), "tip {tip}: retract {tips:?}");
+        assert_eq!(tips[3], a, "tip {tip}");
+    }
+}
+
+#[test]
+fn g90_and_g94_straight_with_tip_3_run_as_programmed() {
+    let r = ok("T0101\nG42 G00 X50 Z2\nG90 X40 Z-20 F0.2\nG94 X20 Z-2\nG40 G00 X60 Z10\nM30\n", 3);
+    assert_eq!(tips_of(&r, 3), [(2.0, 20.0), (-20.0, 20.0), (-20.0, 25.0), (2.0, 25.0)]);
+    assert_eq!(tips_of(&r, 4), [(-2.0, 25.0), (-2.0, 10.0), (2.0, 10.0), (2.0, 25.0)]);
+}
+
+#[test]
+fn g94_taper_under_g41_faces_one_radius_off_the_cone() {
+    // G41 or G42 alike: the side comes from the cycle. A = (Z2, r25), B = (Z−3, r25),
+    // C = (Z−2, r10), D = (Z2, r10); the cycle runs counter-clockwise.
+    let (a, b, c) = ((2.0, 25.0), (-3.0, 25.0), (-2.0, 10.0));
+    for tip in [0, 3] {
+        let r = ok("T0101\nG41 G00 X50 Z2\nG94 X20 Z-2 R-1 F0.2\nG40 G00 X60 Z10\nM30\n", tip);
+        let tips = tips_of(&r, 3);
+        let t = tip_vec(tip);
+        let centre = |p: (f64, f64)| (p.0 - t.0, p.1 - t.1);
+        for p in [centre(tips[0]), centre(tips[1])] {
+            assert!(close(side_dist(p, b, c), R), "tip {tip}: {p:?}");
+        }
+        assert!(close(centre(tips[1]).1, 10.0 + R) && close(centre(tips[2]).1, 10.0 + R), "{tips:?}");
+        assert!(close(tips[0].1, a.1) && close(tips[2].0, a.0), "{tips:?}");
+        assert_eq!(tips[3], a);
+    }
+}
+
+#[test]
+fn g90_boring_taper_keeps_the_nose_inside_the_bore() {
+    // Inside: A = (Z2, r10), B = (Z2, r14), C = (Z−15, r15), D = (Z−15, r10).
+    let (b, c) = ((2.0, 14.0), (-15.0, 15.0));
+    let r = ok("T0101\nG41 G00 X20 Z2\nG90 X30 Z-15 R-1 F0.2\nG40 G00 X10 Z10\nM30\n", 2);
+    let t = tip_vec(2);
+    let tips = tips_of(&r, 3);
+    let centre = |p: (f64, f64)| (p.0 - t.0, p.1 - t.1);
+    for p in [centre(tips[0]), centre(tips[1])] {
+        // Left of B→C (going −Z) is −X: the centre is below the bore wall.
+        assert!(close(side_dist(p, b, c), R), "{p:?}");
+    }
+    assert!(close(centre(tips[1]).0, -15.0 + R), "{tips:?}");
+}
+
+#[test]
+fn g90_whose_cut_is_shorter_than_the_nose_is_interference_before_any_motion() {
+    // A 0.5 mm cut with R0.8: the offset cut would run backwards.
+    let text = "T0101\nG42 G00 X50 Z2\nG90 X40 Z1.5 F0.2\nM30\n";
+    let r = run_with(text, machine(0), Panel::default());
+    assert_eq!(r.alarm_codes().first(), Some(&(3, 3605)));
+    assert!(r.actions.iter().all(|c| c.line != 3 || c.action.endpoint().is_none()));
+}
+
+#[test]
+fn g92_threads_on_the_programmed_path_under_g42() {
+    // The manual compensates no thread cycle: G92 runs as programmed.
+    let r = ok("T0101 M03 S500\nG42 G00 X50 Z2\nG92 X38 Z-20 F1.5\nG40 G00 X60 Z10\nM30\n", 0);
+    let tips = tips_of(&r, 3);
+    assert_eq!(tips.first(), Some(&(2.0, 19.0)), "{tips:?}");
+    // The thread runs at r19 (to the pull-out chamfer), not R off it.
+    assert_eq!(tips.get(1).map(|p| p.1), Some(19.0), "{tips:?}");
+}

@@ -8,6 +8,9 @@
 //! 2. tool-nose radius compensation (G40/G41/G42, 2.18; [`comp`]): that path offset
 //!    by the nose radius, with the corner types of the manual.
 //!
+//! The G90/G94 single cycles are compensated as a whole when they are planned
+//! ([`cycle`]); the look-ahead treats them as a temporary cancel.
+//!
 //! The held actions live in the [`State`] (fixed arrays, no allocation), so they
 //! follow the interpreter's rule that a failed block is undone: a block that
 //! raises an alarm leaves the held moves exactly as they were ([`Contour::save`]
@@ -17,6 +20,7 @@
 
 pub mod comp;
 mod corner;
+pub mod cycle;
 
 pub use comp::{Comp, Side};
 
@@ -299,8 +303,9 @@ fn plan_comp(cmd: &Command, st: &mut State) -> Result<CompPlan, AlarmKind> {
 /// Passes the actions the block just staged in `out` through both stages. `from`
 /// is the machine position before the block, `flow` what the block does next (a
 /// stop or the end of the program empties the look-ahead). Actions after a
-/// cycle's place (`out.split`) come after everything held; the cycle itself runs
-/// uncompensated and the next move starts the offset up again.
+/// cycle's place (`out.split`) come after everything held; the cycle itself is a
+/// temporary cancel (G90/G94 offset their own moves, [`cycle`]) and the next move
+/// starts the offset up again.
 pub fn after_block(
     cmd: &Command,
     st: &mut State,
