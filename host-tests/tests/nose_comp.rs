@@ -233,8 +233,9 @@ fn alarms_of_2_18() {
         // An inside arc smaller than the nose (R0.5 < 0.8): the nose cannot follow it.
         ("T0101\nG00 X20 Z5\nG41 G01 Z0 F0.1\nZ-10\nG03 X21 Z-10.5 R0.5\nG01 Z-20\nG40 X40\nM30\n", 5, 3605),
         // A groove 1 mm wide is narrower than the nose (1.6 mm): the groove bottom's
-        // offset runs backwards, found when the block after it is read.
-        ("T0101\nG00 X40 Z5\nG42 G01 Z0 F0.1\nZ-10\nX30\nZ-11\nX40\nZ-20\nG40 X60\nM30\n", 7, 3605),
+        // offset runs backwards, found when the block after it is read; the alarm
+        // names the groove bottom.
+        ("T0101\nG00 X40 Z5\nG42 G01 Z0 F0.1\nZ-10\nX30\nZ-11\nX40\nZ-20\nG40 X60\nM30\n", 6, 3605),
         // Going straight back: no corner angle left (α < 0.1°).
         ("T0101\nG00 X20 Z5\nG42 G01 Z0 F0.1\nZ-10\nZ0\nM30\n", 5, 3607),
         // Five blocks of M codes behind one held move: more than the look-ahead holds.
@@ -246,13 +247,75 @@ fn alarms_of_2_18() {
     }
 }
 
+/// Runs `text` like the board: up to the first alarm, then stops. Returns the
+/// actions that ran and the alarm (line, code).
+fn until_alarm(text: &str, tip: u8) -> (Vec<Canon>, Option<(u32, u16)>) {
+    let mut interp = interp_core::Interpreter::new(machine(tip));
+    let mut sink = host_tests::VecSink::default();
+    let store = interp_core::SingleProgram(text.as_bytes());
+    for _ in 0..100_000 {
+        match interp.step(&store, &Panel::default(), &mut sink) {
+            Ok(interp_core::Progress::Ended) => break,
+            Ok(_) => {}
+            Err(a) => return (sink.0, Some((a.line, a.kind.code()))),
+        }
+    }
+    (sink.0, None)
+}
+
+/// The last move that ran before the alarm: its line and tip end point (Z, r).
+fn last_move(actions: &[Canon]) -> (u32, (f64, f64)) {
+    let c = actions.iter().rfind(|c| c.action.endpoint().is_some()).unwrap();
+    (c.line, zr(c.action.endpoint().unwrap()))
+}
+
 #[test]
-fn an_alarm_leaves_the_held_move_and_the_mode_as_they_were() {
-    let good = ok("T0101\nG00 X0 Z5\nG42 G01 Z0 F0.1\nX20\nG40 G00 X40\nM30\n", 0);
+fn an_alarm_in_the_next_block_lets_the_held_move_run_to_its_normal_first() {
+    // Line 3 (start-up onto the face, −Z under G42: the centre is R on +X) waits
+    // for line 4, which is faulty (G41 without G40, 3576): line 3 runs and ends
+    // on its normal at (Z0, r0.8); line 4 moves nothing.
+    let (acts, alarm) = until_alarm("T0101\nG00 X0 Z5\nG42 G01 Z0 F0.1\nG41 X20\nX20\nG40 G00 X40\nM30\n", 0);
+    assert_eq!(alarm, Some((4, 3576)));
+    let (line, end) = last_move(&acts);
+    assert_eq!(line, 3);
+    assert!(near(end, (0.0, R)), "{end:?}");
+    assert!(acts.iter().all(|c| c.line < 4), "{acts:?}");
+    // A block that is no G code (G07, 0010) after a ,C block: the chamfered face
+    // runs to its programmed end (the chamfer needs the faulty block) on its
+    // normal (+Z for +X travel under G42).
+    let (acts, alarm) = until_alarm("T0101\nG00 X0 Z5\nG42 G01 Z0 F0.1\nX20 ,C1\nG07 Z-10\nM30\n", 0);
+    assert_eq!(alarm, Some((5, 10)));
+    let (line, end) = last_move(&acts);
+    assert_eq!(line, 4);
+    assert!(near(end, (R, 10.0)), "{end:?}");
+    assert!(acts.iter().all(|c| c.line < 5));
+}
+
+#[test]
+fn interference_stops_before_the_block_whose_offset_runs_backwards() {
+    // The groove bottom (line 6, 1 mm) is narrower than the nose (1.6 mm): its
+    // offset would run +Z. The machine stops at the end of line 5 — the corner of
+    // the wall's offset (Z−10−R) and the bottom's (r15+R) — and the alarm names
+    // line 6; neither line 6 nor line 7 moves.
+    let text = "T0101\nG00 X40 Z5\nG42 G01 Z0 F0.1\nZ-10\nX30\nZ-11\nX40\nZ-20\nG40 X60\nM30\n";
+    let (acts, alarm) = until_alarm(text, 0);
+    assert_eq!(alarm, Some((6, 3605)));
+    let (line, end) = last_move(&acts);
+    assert_eq!(line, 5);
+    assert!(near(end, (-10.0 - R, 15.0 + R)), "{end:?}");
+    assert!(acts.iter().all(|c| c.line < 6));
+}
+
+#[test]
+fn a_faulty_block_leaves_the_mode_and_the_next_move_starts_up_again() {
+    // Going on after the alarm (as `lathe check` does): G42 is still in force and
+    // line 5 starts up from the uncompensated point (Z0, r0): its offset is r10+R...
     let bad =
-        run_with("T0101\nG00 X0 Z5\nG42 G01 Z0 F0.1\nG41 X20\nX20\nG40 G00 X40\nM30\n", machine(0), Panel::default());
+        run_with("T0101\nG00 X0 Z5\nG42 G01 Z0 F0.1\nG41 X20\nZ-10\nG40 G00 X40\nM30\n", machine(0), Panel::default());
     assert_eq!(bad.alarm_codes(), vec![(4, 3576)]);
-    assert_eq!(host_tests::moves(&good), host_tests::moves(&bad));
+    let mv = centre_moves(&bad, 0);
+    let z = mv.iter().find(|m| m.line == 5).unwrap();
+    assert!((z.end.1 - R).abs() < 1e-6, "{z:?}");
 }
 
 #[test]

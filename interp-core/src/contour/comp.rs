@@ -262,7 +262,10 @@ fn emit_to_corner(buf: &mut Buffer, comp: &Comp, e2: Option<&Elem>, out: &mut St
             Join { end1: o1.end(), mids: heapless::Vec::new(), start2: o1.end() }
         }
     };
-    check_direction(&e1, comp, V2::of(comp.centre), join.end1)?;
+    if let Err(e) = check_direction(&e1, comp, V2::of(comp.centre), join.end1) {
+        out.faulty_move = Some(held.line);
+        return Err(e);
+    }
     let tip = comp.tip_vector();
     // Nothing is emitted for a piece of no length (a corner point on top of the last).
     let mut last = V2::of(comp.centre);

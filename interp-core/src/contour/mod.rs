@@ -58,6 +58,7 @@ enum Aside {
     Aux { m: u16 },
     Stop { optional: bool },
     End { rewind: bool },
+    Polygon(Option<crate::canon::PolygonSync>),
 }
 
 impl Aside {
@@ -69,6 +70,7 @@ impl Aside {
             Action::Aux { m } => Aside::Aux { m },
             Action::Stop { optional } => Aside::Stop { optional },
             Action::End { rewind } => Aside::End { rewind },
+            Action::Polygon(p) => Aside::Polygon(p),
             _ => return None,
         })
     }
@@ -81,6 +83,7 @@ impl Aside {
             Aside::Aux { m } => Action::Aux { m },
             Aside::Stop { optional } => Action::Stop { optional },
             Aside::End { rewind } => Action::End { rewind },
+            Aside::Polygon(p) => Action::Polygon(p),
         }
     }
 }
@@ -458,6 +461,48 @@ pub fn flush(st: &mut State, out: &mut Staged<'_>) -> Result<(), AlarmKind> {
         to_offset(st, c, start, out)?;
     }
     comp::end_here(&mut st.contour.offset, &mut st.contour.comp, out)
+}
+
+/// The look-ahead when a block raised an alarm (the block undone, the held moves
+/// as before it). The moves held back belong to earlier, good blocks, so the
+/// machine runs them before it stops, the last one ending on its normal as
+/// compensation does before a block it cannot look past (2.18.3; a `,C`/`,R`
+/// waiting for this block is left out: its corner needs the faulty block). If a
+/// held move is itself the fault (`faulty`: the line of a move whose offset runs
+/// against it, 2.18.4 criterion 1), the machine stops before that move, as FANUC
+/// stops before the block where the nose would cut in; what was held behind it is
+/// dropped. Compensation stays in force (the next move starts up again).
+pub fn stop_on_alarm(st: &mut State, faulty: Option<u32>, out: &mut Staged<'_>) {
+    if !st.contour.is_holding() {
+        return;
+    }
+    let line_of = |b: &Buffer| b.held.map(|c| c.line);
+    let at_fault = |b: &Buffer| faulty.is_some() && line_of(b) == faulty;
+    if at_fault(&st.contour.offset) {
+        st.contour.offset = Buffer::default();
+    } else {
+        st.contour.corner = None;
+        let before = st.contour;
+        let mark = out.actions.len();
+        let shape_ok = !at_fault(&st.contour.shape);
+        if !shape_ok || flush(st, out).is_err() {
+            st.contour = before;
+            while out.actions.len() > mark {
+                out.actions.pop_back();
+            }
+            // Only stage 2's move: stage 1's (or the corner to it) is the fault.
+            if comp::end_here(&mut st.contour.offset, &mut st.contour.comp, out).is_err() {
+                while out.actions.len() > mark {
+                    out.actions.pop_back();
+                }
+            }
+        }
+    }
+    st.contour.shape = Buffer::default();
+    st.contour.offset = Buffer::default();
+    st.contour.corner = None;
+    st.contour.idle_blocks = 0;
+    st.contour.comp.engaged = false;
 }
 
 /// Stage 1's held move meets `next` (starting at `from`): shapes the corner, passes
