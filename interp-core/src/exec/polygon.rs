@@ -1,6 +1,6 @@
 //! Polygon turning, G51.2/G50.2 (2.8), in the interpreter: the mode, its words and
 //! alarms, and what the block emits. The C axis drive is the tool spindle; the
-//! motion core locks it to the spindle encoder ([`crate::motion::polygon`]).
+//! motion core (`motion_core::motion::polygon`) locks it to the spindle encoder.
 //!
 //! G51.2 P Q R S starts the work spindle (M03) at S if it stands (the manual's
 //! EX3 has no M03), turns C forward to the phase angle R (modulo a turn: C's
