@@ -195,6 +195,10 @@ fn g28_cancels_the_offset_for_its_moves_and_the_next_move_starts_up() {
     let prog = "T0101\nG00 X0 Z5\nG42 G01 Z0 F0.1\nX20\nG28 U0\nG00 X30 Z-10\nG01 Z-20\nX40\nG40 G00 X60\nM30\n";
     let r = ok(prog, 0);
     let mv = centre_moves(&r, 0);
+    // The held facing move runs before the G28 move (not after it, from the
+    // reference point back to the part).
+    let lines: Vec<u32> = mv.iter().map(|m| m.line).collect();
+    assert!(lines.windows(2).all(|w| w[0] <= w[1]), "{lines:?}");
     // The facing move ends on its normal (Z+R); the G28 move is not offset.
     let face = mv.iter().rfind(|m| m.line == 4).unwrap();
     assert!(near(face.end, (R, 10.0)), "{face:?}");

@@ -107,3 +107,21 @@ fn the_polygon_example_runs_in_the_simulator_with_c_back_on_its_angle() {
     assert_eq!(sim.core.steps()[c], 1800);
     assert!(sim.axes.iter().all(|a| a.violations == 0));
 }
+
+#[test]
+fn g51_2_under_g42_ends_the_held_move_first() {
+    // The phase move of C is a temporary cancel: the held X50 move ends on its
+    // normal before it, and the Z cut after it starts the offset up again.
+    let mut cfg = machine();
+    let row = cfg.tools.get_mut(1).unwrap();
+    row.radius = 800_000;
+    row.tip = 3;
+    let r = run_with(
+        "T0101\nG00 X60 Z2\nG42 G01 X50 F0.2\nG51.2 P1 Q2 R60 S500\nG01 Z-10\nG50.2\nG40 G00 X70\nM30\n",
+        cfg,
+        Panel::default(),
+    );
+    assert!(r.alarms.is_empty(), "{:?}", r.alarms);
+    let lines: Vec<u32> = r.actions.iter().map(|c| c.line).collect();
+    assert!(lines.windows(2).all(|w| w[0] <= w[1]), "{lines:?}");
+}

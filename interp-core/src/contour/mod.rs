@@ -253,7 +253,7 @@ fn check_follower(cmd: &Command, st: &State) -> Result<bool, AlarmKind> {
 struct CompPlan {
     /// G40 in this block while compensating: the block's first move cancels.
     cancel: bool,
-    /// A temporary cancel before the block's moves (G28, G30, G50, G52, G53).
+    /// A temporary cancel before the block's moves (G28, G30, G50, G52, G53, G51.2).
     pause: bool,
 }
 
@@ -296,10 +296,11 @@ fn plan_comp(cmd: &Command, st: &mut State) -> Result<CompPlan, AlarmKind> {
         };
         st.contour.comp = comp;
     }
+    // G51.2 turns C to its phase: a move outside the plane, run uncompensated.
     let pause = matches!(
         cmd.g.one_shot,
         Some(ReferenceReturn | ReferenceReturnN | SetCoordinates | LocalFrame | MachineCoordinates)
-    );
+    ) || cmd.g.polygon == Some(true);
     Ok(CompPlan { cancel: was.is_some() && now.is_none(), pause: was.is_some() && now.is_some() && pause })
 }
 
@@ -327,12 +328,13 @@ pub fn after_block(
         Some(_) => check_follower(cmd, st)?,
         None => false,
     };
-    if plan.pause {
-        flush(st, out)?;
-    }
     let mut acts: heapless::Vec<Canon, STAGE> = heapless::Vec::new();
     while let Some(c) = out.actions.pop_front() {
         acts.push(c).map_err(|_| AlarmKind::Overflow)?;
+    }
+    if plan.pause {
+        // The held moves end before the block's own actions (the G28 move …).
+        flush(st, out)?;
     }
     let split = out.split.unwrap_or(acts.len());
     let last_move = acts[..split].iter().rposition(|c| c.action.endpoint().is_some());
