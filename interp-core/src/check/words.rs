@@ -289,7 +289,11 @@ fn corner_word(block: &Block, fmt: &NumberFormat) -> Result<Option<crate::check:
 /// 1–9999 rev/min. Polygon turning needs a tool spindle in position control
 /// synchronised to the work spindle (note 6, "否则报警"): the C axis drive is it, so
 /// a machine without a C axis raises alarm 4047.
-fn polygon(block: &Block, fmt: &NumberFormat, cfg: &MachineConfig) -> Result<crate::cycles::CycleArgs, AlarmKind> {
+fn polygon(
+    block: &Block,
+    fmt: &NumberFormat,
+    cfg: &MachineConfig,
+) -> Result<crate::check::cycle_args::CycleArgs, AlarmKind> {
     let mut pq = [1u16; 2];
     for (i, l) in [b'P', b'Q'].into_iter().enumerate() {
         if let Some(n) = block.get(l) {
@@ -316,5 +320,5 @@ fn polygon(block: &Block, fmt: &NumberFormat, cfg: &MachineConfig) -> Result<cra
     if !cfg.axis(crate::axis::Axis::C).present {
         return Err(AlarmKind::PolygonNoToolSpindle);
     }
-    Ok(crate::cycles::CycleArgs::Polygon { p: pq[0], q: pq[1], phase_udeg })
+    Ok(crate::check::cycle_args::CycleArgs::Polygon { p: pq[0], q: pq[1], phase_udeg })
 }
