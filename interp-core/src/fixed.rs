@@ -47,6 +47,37 @@ pub fn inverse62(len: u64) -> i64 {
     (if z >= 33 { x << (z - 33) } else { x >> (33 - z) }) as i64
 }
 
+/// `v as f32`, the same value, by the FPU's 32-bit conversion when `v` fits an
+/// `i32` (the `i64` conversion is a software routine on the Cortex-M4).
+#[inline]
+pub fn f32_of(v: i64) -> f32 {
+    match i32::try_from(v) {
+        Ok(v) => v as f32,
+        // Written so that the compiler cannot fold both arms into the i64 routine:
+        // below 2^53 the f64 sum is exact and rounds once, as `v as f32` does.
+        Err(_) if v.unsigned_abs() < 1 << 53 => ((v >> 32) as f64 * 4_294_967_296.0 + (v as u32) as f64) as f32,
+        Err(_) => v as f32,
+    }
+}
+
+/// `x as u64` (saturating, NaN → 0), by the FPU's 32-bit conversion below 2^32.
+#[inline]
+pub fn u64_of(x: f32) -> u64 {
+    if x < 4_294_967_296.0 { u64::from(x as u32) } else { x as u64 }
+}
+
+/// `a.min(b)` (a NaN loses) without the `fminf` call the Cortex-M4 build makes.
+#[inline]
+pub fn minf(a: f32, b: f32) -> f32 {
+    if b < a || a.is_nan() { b } else { a }
+}
+
+/// `a.max(b)` (a NaN loses) without the `fmaxf` call.
+#[inline]
+pub fn maxf(a: f32, b: f32) -> f32 {
+    if b > a || a.is_nan() { b } else { a }
+}
+
 /// `√x` for finite `x ≥ 0` (0 for anything else) to within 2^-22 relative, by
 /// multiplications only: the reciprocal square root from the bit pattern, refined
 /// three times by Newton's method, times `x`. The planner's speeds and lengths need

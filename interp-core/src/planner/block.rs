@@ -6,7 +6,7 @@ use super::machine::MotionParams;
 use crate::alarm::AlarmKind;
 use crate::axis::{AXIS_COUNT, Axis, Pos};
 use crate::canon::{ArcMove, FeedMode, Move, SpindleDir, SpindleSpeed, TapMove, ThreadMove, ThreadSync};
-use crate::fixed::{PATH_FRAC, inverse62, sqrtf};
+use crate::fixed::{PATH_FRAC, f32_of, inverse62, minf, sqrtf, u64_of};
 use crate::interpolator::cordic;
 use crate::sync::ramp_counts;
 
@@ -182,7 +182,7 @@ pub struct Prepared {
 /// Length (nm) and unit direction of a straight move. f32 on the FPU: the length
 /// only times the move (to 1e-7), the end point comes from the exact nanometres.
 fn straight(start: &Pos, end: &Pos) -> (f32, Dir) {
-    let d: [f32; AXIS_COUNT] = core::array::from_fn(|i| end.0[i].wrapping_sub(start.0[i]) as f32);
+    let d: [f32; AXIS_COUNT] = core::array::from_fn(|i| f32_of(end.0[i].wrapping_sub(start.0[i])));
     let len = sqrtf(d.iter().map(|v| v * v).sum());
     let inv = if len > 0.0 { 1.0 / len } else { 0.0 };
     (len, d.map(|v| v * inv))
@@ -194,8 +194,8 @@ fn axis_caps(dir: &Dir, p: &MotionParams, rapid: bool) -> (f32, f32) {
     for (u, lim) in dir.iter().zip(&p.limits) {
         let u = u.abs();
         if u > 1e-9 && lim.present {
-            cap = cap.min(if rapid { lim.rapid } else { lim.feed } / u);
-            accel = accel.min(lim.accel / u);
+            cap = minf(cap, if rapid { lim.rapid } else { lim.feed } / u);
+            accel = minf(accel, lim.accel / u);
         }
     }
     (cap, accel)
@@ -206,16 +206,16 @@ fn len_q8(len: f32) -> Result<u64, AlarmKind> {
     if !(q >= 1.0 && q < (1u64 << 50) as f32) {
         return Err(AlarmKind::Overflow);
     }
-    Ok(q as u64)
+    Ok(u64_of(q))
 }
 
 fn plan(len: u64, accel: f32, cap: f32, nominal: f32) -> Plan {
-    let len_nm = len as f32 / (1u32 << PATH_FRAC) as f32;
+    let len_nm = f32_of(len as i64) / (1u32 << PATH_FRAC) as f32;
     Plan {
         len_q8: len,
         accel,
         cap,
-        nominal: nominal.min(cap),
+        nominal: minf(nominal, cap),
         max_entry_sq: 0.0,
         entry_sq: 0.0,
         entry_q8: 0,
@@ -227,8 +227,8 @@ fn plan(len: u64, accel: f32, cap: f32, nominal: f32) -> Plan {
 fn nominal(feed: FeedSpec, spindle: &SpindleSpeed, p: &MotionParams, cap: f32) -> f32 {
     match feed {
         FeedSpec::Rapid => cap,
-        FeedSpec::PerMin(f) => p.per_tick(f as f32),
-        FeedSpec::PerRev(f) => p.per_tick(f as f32 * spindle.rpm.unwrap_or(0) as f32),
+        FeedSpec::PerMin(f) => p.per_tick(f32_of(f)),
+        FeedSpec::PerRev(f) => p.per_tick(f32_of(f) * spindle.rpm.unwrap_or(0) as f32),
     }
 }
 
@@ -242,7 +242,7 @@ pub fn line(start: &Pos, m: &Move, rapid: bool, p: &MotionParams, line: u32) -> 
     };
     let (mut cap, accel) = axis_caps(&dir, p, rapid);
     if !rapid {
-        cap = cap.min(p.path_feed);
+        cap = minf(cap, p.path_feed);
     }
     let kind = if rapid && m.independent { BlockKind::Independent } else { BlockKind::Line };
     let block = Block {

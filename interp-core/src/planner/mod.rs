@@ -18,6 +18,7 @@ pub use machine::{AxisLimits, AxisScale, MotionParams};
 use crate::alarm::AlarmKind;
 use crate::axis::{AXIS_COUNT, Axis, Pos};
 use crate::canon::{Action, Canon, SpindleCommand, ThreadSync};
+use crate::fixed::minf;
 use block::{Dir, Prepared};
 
 /// A non-motion action, run when the motion before it has finished.
@@ -245,10 +246,8 @@ impl<const N: usize> Planner<N> {
         b.exec = block::Exec::new(b, &self.tail.end, &prep.end, p);
         let blends = matches!(b.kind, BlockKind::Line | BlockKind::Arc(_)) && b.feed != FeedSpec::Rapid;
         if self.tail.blend && blends {
-            let v = lookahead::junction_speed(&self.tail.dir, &prep.dir_in, p)
-                .min(self.tail.nominal)
-                .min(b.plan.nominal)
-                .min(b.plan.cap);
+            let v = lookahead::junction_speed(&self.tail.dir, &prep.dir_in, p);
+            let v = minf(minf(v, self.tail.nominal), minf(b.plan.nominal, b.plan.cap));
             b.plan.max_entry_sq = v * v;
         }
         self.tail = Tail {

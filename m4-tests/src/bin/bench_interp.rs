@@ -53,7 +53,15 @@ fn main() -> ! {
         "G01 under G96",
         "G01 under G96",
     ];
-    for label in labels {
+    // `BENCH_ONLY=K` (at build time) measures only the K-th step, for a profile of it.
+    let only = option_env!("BENCH_ONLY").and_then(|k| k.parse::<usize>().ok());
+    for (k, label) in labels.into_iter().enumerate() {
+        if only.is_some_and(|o| o != k) {
+            if !step(&mut b) {
+                exit(false);
+            }
+            continue;
+        }
         hprintln!("bench step: {}", label);
         if !measure(step, &mut b) {
             hprintln!("unexpected result");
