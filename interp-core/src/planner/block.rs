@@ -312,20 +312,56 @@ fn turns(rad: f64) -> i64 {
 /// centre (`r` its length): the radius turned a quarter, `(−sin θ, cos θ)` with
 /// `sin θ = v_b / r`, `cos θ = v_a / r` — no trigonometry (f32 on the FPU, as the
 /// directions are kept).
-fn tangent(axes: (Axis, Axis), v: (f64, f64), r: f64, ccw: bool) -> Dir {
+fn tangent(axes: (Axis, Axis), v: (i64, i64), r: f32, ccw: bool) -> Dir {
     let mut d = [0.0; AXIS_COUNT];
     if r > 0.0 {
-        let s = (if ccw { 1.0 } else { -1.0 }) / r as f32;
-        d[axes.0.index()] = -s * v.1 as f32;
-        d[axes.1.index()] = s * v.0 as f32;
+        let s = (if ccw { 1.0 } else { -1.0 }) / r;
+        d[axes.0.index()] = -s * f32_of(v.1);
+        d[axes.1.index()] = s * f32_of(v.0);
     }
     d
 }
 
-/// `√(a² + b²)`: plane distances in nm are far from f64's range, so `hypot`'s
-/// overflow scaling (~40 soft-float operations on the M4) buys nothing.
-fn norm(a: f64, b: f64) -> f64 {
-    libm::sqrt(a * a + b * b)
+/// The length of `v` in f64 (a square root of the exact integer sum of squares)
+/// and rounded to whole nanometres, exactly: `round(√(a² + b²))`.
+fn radius(v: (i64, i64)) -> (f64, i64) {
+    let sq = |x: u64| u128::from(x) * u128::from(x);
+    let r2 = sq(v.0.unsigned_abs()) + sq(v.1.unsigned_abs());
+    let r = libm::sqrt(u128_f64(r2));
+    (r, round_sqrt(r2, r))
+}
+
+/// `v as f64`, by the 64-bit conversion when it fits.
+fn u128_f64(v: u128) -> f64 {
+    match u64::try_from(v) {
+        Ok(x) => x as f64,
+        Err(_) => wide_f64(v),
+    }
+}
+
+/// `v as f64` out of line (the compiler would otherwise fold [`u128_f64`] into
+/// the 128-bit routine).
+#[cold]
+#[inline(never)]
+fn wide_f64(v: u128) -> f64 {
+    v as f64
+}
+
+/// The integer nearest to `√x` (never a tie: `(f + ½)²` is not an integer), from
+/// `r ≈ √x` corrected in integers: no soft-float rounding.
+fn round_sqrt(x: u128, r: f64) -> i64 {
+    let sq = |f: u64| u128::from(f) * u128::from(f);
+    // The f64 root is within an ulp; the corrections run once at most.
+    let mut f = if r < 4_294_967_296.0 { u64::from(r as u32) } else { (r as u64).min(u64::MAX >> 1) };
+    while f > 0 && sq(f) > x {
+        f -= 1;
+    }
+    while sq(f + 1) <= x {
+        f += 1;
+    }
+    // √x rounds up when x ≥ (f + ½)², i.e. x − f² > f.
+    let up = x - sq(f) > u128::from(f);
+    (f + u64::from(up)).min(i64::MAX as u64) as i64
 }
 
 /// A circular move from `start`.
@@ -333,15 +369,18 @@ pub fn arc(start: &Pos, a: &ArcMove, p: &MotionParams, line: u32) -> Result<Prep
     let axes = a.plane.axes();
     let (ia, ib) = (axes.0.index(), axes.1.index());
     let c = (a.center.machine.0[ia], a.center.machine.0[ib]);
-    let rel = |q: &Pos| ((q.0[ia] - c.0) as f64, (q.0[ib] - c.1) as f64);
+    let rel = |q: &Pos| (q.0[ia].saturating_sub(c.0), q.0[ib].saturating_sub(c.1));
     let (s, e) = (rel(start), rel(&a.to.machine));
-    let (r0, r1) = (norm(s.0, s.1), norm(e.0, e.1));
-    let irel = |q: &Pos| (q.0[ia].saturating_sub(c.0), q.0[ib].saturating_sub(c.1));
-    let (theta0, sweep) = match sweep_turns(irel(start), irel(&a.to.machine), a.cw, a.full_circle) {
+    let ((r0, r0_nm), (r1, r1_nm)) = (radius(s), radius(e));
+    let (theta0, sweep) = match sweep_turns(s, e, a.cw, a.full_circle) {
         Some(t) => t,
-        None => sweep_f64(s, e, a.cw, a.full_circle),
+        None => {
+            let f = |v: (i64, i64)| (v.0 as f64, v.1 as f64);
+            sweep_f64(f(s), f(e), a.cw, a.full_circle)
+        }
     };
-    let len = ((sweep as f64).abs() * (core::f64::consts::TAU / 4_294_967_296.0) * (r0 + r1) / 2.0) as f32;
+    // |sweep| ≤ 2^32: a u64 conversion.
+    let len = (sweep.unsigned_abs() as f64 * (core::f64::consts::TAU / 8_589_934_592.0) * (r0 + r1)) as f32;
     let feed = match a.feed.mode {
         FeedMode::PerMin => FeedSpec::PerMin(a.feed.value),
         FeedMode::PerRev => FeedSpec::PerRev(a.feed.value),
@@ -349,12 +388,13 @@ pub fn arc(start: &Pos, a: &ArcMove, p: &MotionParams, line: u32) -> Result<Prep
     let (la, lb) = (&p.limits[ia], &p.limits[ib]);
     // Half the acceleration for the normal (v²/r), half along the path; the chord of
     // one period may stray from the arc by at most the chord tolerance.
-    let accel = la.accel.min(lb.accel) / 2.0;
-    let r = r0.min(r1) as f32;
+    let accel = minf(la.accel, lb.accel) / 2.0;
+    let (r0f, r1f) = (r0 as f32, r1 as f32);
+    let r = minf(r0f, r1f);
     let centripetal = sqrtf(accel * r);
     let chord = sqrtf(8.0 * r * p.chord_tolerance);
-    let cap = la.feed.min(lb.feed).min(p.path_feed).min(centripetal).min(chord);
-    let geom = ArcGeom { axes, center: c, r0: libm::round(r0) as i64, r1: libm::round(r1) as i64, theta0, sweep };
+    let cap = minf(minf(minf(la.feed, lb.feed), p.path_feed), minf(centripetal, chord));
+    let geom = ArcGeom { axes, center: c, r0: r0_nm, r1: r1_nm, theta0, sweep };
     let block = Block {
         line,
         kind: BlockKind::Arc(geom),
@@ -366,7 +406,7 @@ pub fn arc(start: &Pos, a: &ArcMove, p: &MotionParams, line: u32) -> Result<Prep
         exec: Exec::default(),
     };
     let ccw = sweep > 0;
-    Ok(Prepared { block, dir_in: tangent(axes, s, r0, ccw), dir_out: tangent(axes, e, r1, ccw), end: a.to.machine })
+    Ok(Prepared { block, dir_in: tangent(axes, s, r0f, ccw), dir_out: tangent(axes, e, r1f, ccw), end: a.to.machine })
 }
 
 /// The axis that travels furthest (the thread's or tap's long axis).
@@ -525,6 +565,44 @@ pub fn tap(start: &Pos, t: &TapMove, p: &MotionParams, line: u32) -> Result<Prep
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Radii rounded exactly from the integer square sum against the former
+    /// `round(√(a² + b²))` in f64, and the new length against the former formula.
+    #[test]
+    fn integer_radii_match_the_f64_ones() {
+        let mut seed: u64 = 0x9e37_79b9_7f4a_7c15;
+        let mut next = |m: i64| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed % (2 * m as u64)) as i64 - m
+        };
+        let mut differ = 0;
+        for i in 0..40_000 {
+            let m = [1_000, 1_000_000, 100_000_000, 2_000_000_000][i % 4];
+            let v = (next(m), next(m));
+            let (r, nm) = radius(v);
+            let old = libm::sqrt((v.0 as f64) * (v.0 as f64) + (v.1 as f64) * (v.1 as f64));
+            assert!((r - old).abs() <= old * 1e-15, "{v:?}");
+            let exact = libm::round(old) as i64;
+            assert!((nm - exact).abs() <= 1, "{v:?}: {nm} vs {exact}");
+            differ += usize::from(nm != exact);
+            // √x never lies on a half: the exact rounding is the nearest integer.
+            let x = |f: i64| (f as i128 * 2 - 1).pow(2);
+            let four_x = 4 * (v.0 as i128 * v.0 as i128 + v.1 as i128 * v.1 as i128);
+            assert!(x(nm) <= four_x && four_x < x(nm + 1), "{v:?}: {nm}");
+            let sweep = next(1 << 31);
+            let len = (sweep.unsigned_abs() as f64 * (core::f64::consts::TAU / 8_589_934_592.0) * (r + r)) as f32;
+            let before = ((sweep as f64).abs() * (core::f64::consts::TAU / 4_294_967_296.0) * (old + old) / 2.0) as f32;
+            assert!((len - before).abs() <= before * 2e-7, "{len} vs {before}");
+        }
+        // Up to 2 m radii: the f64 root rounded the same way in every case.
+        assert_eq!(differ, 0);
+        assert_eq!(radius((0, 0)), (0.0, 0));
+        assert_eq!(radius((3, 4)).1, 5);
+        assert_eq!(radius((1, 1)).1, 1);
+        assert_eq!(radius((2, 2)).1, 3);
+    }
 
     /// The CORDIC start angle and sweep against the f64 ones, over arcs of every
     /// size and direction: within 16 units of 2^-32 turn, or handed to f64.
