@@ -2,6 +2,7 @@
 //! length, speed limits and the directions it starts and ends in (per-block
 //! geometry in floating point, as the team rules allow; nothing here runs per tick).
 
+use super::Item;
 use super::machine::MotionParams;
 use crate::alarm::AlarmKind;
 use crate::axis::{AXIS_COUNT, Axis, Pos};
@@ -166,11 +167,11 @@ impl Exec {
     }
 }
 
-/// A prepared block together with the directions it starts and ends in.
+/// What preparing a block tells besides the block itself, which is written straight
+/// into its queue slot (a block is ~250 bytes; a move of it is a memcpy on the M4):
+/// the directions it starts and ends in and its end point.
 #[derive(Clone, Copy, Debug)]
 pub struct Prepared {
-    /// The block (its entry speeds not planned yet).
-    pub block: Block,
     /// Unit direction at the start.
     pub dir_in: Dir,
     /// Unit direction at the end.
@@ -233,7 +234,14 @@ fn nominal(feed: FeedSpec, spindle: &SpindleSpeed, p: &MotionParams, cap: f32) -
 }
 
 /// A straight move from `start` (rapid or cutting).
-pub fn line(start: &Pos, m: &Move, rapid: bool, p: &MotionParams, line: u32) -> Result<Prepared, AlarmKind> {
+pub fn line(
+    start: &Pos,
+    m: &Move,
+    rapid: bool,
+    p: &MotionParams,
+    line: u32,
+    slot: &mut Item,
+) -> Result<Prepared, AlarmKind> {
     let (len, dir) = straight(start, &m.to.machine);
     let feed = match (rapid, m.feed.mode) {
         (true, _) => FeedSpec::Rapid,
@@ -245,7 +253,7 @@ pub fn line(start: &Pos, m: &Move, rapid: bool, p: &MotionParams, line: u32) -> 
         cap = minf(cap, p.path_feed);
     }
     let kind = if rapid && m.independent { BlockKind::Independent } else { BlockKind::Line };
-    let block = Block {
+    *slot = Item::Motion(Block {
         line,
         kind,
         offset: m.to.machine - m.to.work,
@@ -254,8 +262,8 @@ pub fn line(start: &Pos, m: &Move, rapid: bool, p: &MotionParams, line: u32) -> 
         exact_stop: m.exact_stop || rapid,
         plan: plan(len_q8(len)?, accel, cap, nominal(feed, &m.spindle, p, cap)),
         exec: Exec::default(),
-    };
-    Ok(Prepared { block, dir_in: dir, dir_out: dir, end: m.to.machine })
+    });
+    Ok(Prepared { dir_in: dir, dir_out: dir, end: m.to.machine })
 }
 
 /// Start angle and signed sweep of an arc in turns × 2^32 from the radius vectors
@@ -365,7 +373,7 @@ fn round_sqrt(x: u128, r: f64) -> i64 {
 }
 
 /// A circular move from `start`.
-pub fn arc(start: &Pos, a: &ArcMove, p: &MotionParams, line: u32) -> Result<Prepared, AlarmKind> {
+pub fn arc(start: &Pos, a: &ArcMove, p: &MotionParams, line: u32, slot: &mut Item) -> Result<Prepared, AlarmKind> {
     let axes = a.plane.axes();
     let (ia, ib) = (axes.0.index(), axes.1.index());
     let c = (a.center.machine.0[ia], a.center.machine.0[ib]);
@@ -395,7 +403,7 @@ pub fn arc(start: &Pos, a: &ArcMove, p: &MotionParams, line: u32) -> Result<Prep
     let chord = sqrtf(8.0 * r * p.chord_tolerance);
     let cap = minf(minf(minf(la.feed, lb.feed), p.path_feed), minf(centripetal, chord));
     let geom = ArcGeom { axes, center: c, r0: r0_nm, r1: r1_nm, theta0, sweep };
-    let block = Block {
+    *slot = Item::Motion(Block {
         line,
         kind: BlockKind::Arc(geom),
         offset: a.to.machine - a.to.work,
@@ -404,9 +412,9 @@ pub fn arc(start: &Pos, a: &ArcMove, p: &MotionParams, line: u32) -> Result<Prep
         exact_stop: a.exact_stop,
         plan: plan(len_q8(len)?, accel, cap, nominal(feed, &a.spindle, p, cap)),
         exec: Exec::default(),
-    };
+    });
     let ccw = sweep > 0;
-    Ok(Prepared { block, dir_in: tangent(axes, s, r0f, ccw), dir_out: tangent(axes, e, r1f, ccw), end: a.to.machine })
+    Ok(Prepared { dir_in: tangent(axes, s, r0f, ccw), dir_out: tangent(axes, e, r1f, ccw), end: a.to.machine })
 }
 
 /// The axis that travels furthest (the thread's or tap's long axis).
@@ -449,6 +457,7 @@ pub fn thread(
     keep_lead: Option<i64>,
     p: &MotionParams,
     line: u32,
+    slot: &mut Item,
 ) -> Result<Prepared, AlarmKind> {
     let continues = t.sync == ThreadSync::Continue;
     let keep_lead = keep_lead.filter(|_| continues);
@@ -482,7 +491,7 @@ pub fn thread(
     if t.sync == ThreadSync::Index && ramp_up_nm(&spec, ramp, p.cpr) > len * along {
         return Err(AlarmKind::ThreadRampTooLong);
     }
-    let block = Block {
+    *slot = Item::Motion(Block {
         line,
         kind: BlockKind::Thread(spec),
         offset: t.to.machine - t.to.work,
@@ -491,8 +500,8 @@ pub fn thread(
         exact_stop: true,
         plan: plan(len_q8(len)?, accel, v.max(1.0), v),
         exec: Exec::default(),
-    };
-    Ok(Prepared { block, dir_in: dir, dir_out: dir, end: t.to.machine })
+    });
+    Ok(Prepared { dir_in: dir, dir_out: dir, end: t.to.machine })
 }
 
 /// The lead after `length` nm along the long axis of a thread starting at `lead`
@@ -531,7 +540,7 @@ fn ramp_up_nm(t: &ThreadSpec, ramp: i64, cpr: u32) -> f32 {
 
 /// A rigid-tapping move from `start`: lead × rpm and lead × the spindle's
 /// acceleration must be within the tapping axis's limits.
-pub fn tap(start: &Pos, t: &TapMove, p: &MotionParams, line: u32) -> Result<Prepared, AlarmKind> {
+pub fn tap(start: &Pos, t: &TapMove, p: &MotionParams, line: u32, slot: &mut Item) -> Result<Prepared, AlarmKind> {
     if t.lead <= 0 {
         return Err(AlarmKind::FeedZero);
     }
@@ -549,7 +558,7 @@ pub fn tap(start: &Pos, t: &TapMove, p: &MotionParams, line: u32) -> Result<Prep
     if t.lead as f32 * rev_per_tick2 / along > accel {
         return Err(too_fast(long));
     }
-    let block = Block {
+    *slot = Item::Motion(Block {
         line,
         kind: BlockKind::Tap(TapSpec { lead: t.lead, dir: t.dir, long }),
         offset: t.to.machine - t.to.work,
@@ -558,8 +567,8 @@ pub fn tap(start: &Pos, t: &TapMove, p: &MotionParams, line: u32) -> Result<Prep
         exact_stop: true,
         plan: plan(len_q8(len)?, accel, v.max(1.0), v),
         exec: Exec::default(),
-    };
-    Ok(Prepared { block, dir_in: dir, dir_out: dir, end: t.to.machine })
+    });
+    Ok(Prepared { dir_in: dir, dir_out: dir, end: t.to.machine })
 }
 
 #[cfg(test)]
