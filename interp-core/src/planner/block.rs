@@ -360,7 +360,7 @@ fn wide_f64(v: u128) -> f64 {
 fn round_sqrt(x: u128, r: f64) -> i64 {
     let sq = |f: u64| u128::from(f) * u128::from(f);
     // The f64 root is within an ulp; the corrections run once at most.
-    let mut f = if r < 4_294_967_296.0 { u64::from(r as u32) } else { (r as u64).min(u64::MAX >> 1) };
+    let mut f = trunc_u64(r).min(u64::MAX >> 1);
     while f > 0 && sq(f) > x {
         f -= 1;
     }
@@ -370,6 +370,20 @@ fn round_sqrt(x: u128, r: f64) -> i64 {
     // √x rounds up when x ≥ (f + ½)², i.e. x − f² > f.
     let up = x - sq(f) > u128::from(f);
     (f + u64::from(up)).min(i64::MAX as u64) as i64
+}
+
+/// `r as u64` for a finite `r ≥ 0`, from the bits (the float conversion and its
+/// range checks are software routines on the Cortex-M4).
+fn trunc_u64(r: f64) -> u64 {
+    let bits = r.to_bits();
+    let e = ((bits >> 52) & 0x7ff) as i32 - 1023;
+    let m = (bits & ((1 << 52) - 1)) | 1 << 52;
+    match e {
+        ..0 => 0,
+        0..52 => m >> (52 - e),
+        52..64 => m << (e - 52),
+        _ => u64::MAX,
+    }
 }
 
 /// A circular move from `start`.
@@ -611,6 +625,9 @@ mod tests {
         assert_eq!(radius((3, 4)).1, 5);
         assert_eq!(radius((1, 1)).1, 1);
         assert_eq!(radius((2, 2)).1, 3);
+        for r in [0.0, 0.4, 1.0, 1.9, 2.5e7 + 0.75, 4_294_967_295.9, 4_294_967_296.0, 1e15 + 0.5, 1.8e19] {
+            assert_eq!(trunc_u64(r), r as u64, "{r}");
+        }
     }
 
     /// The CORDIC start angle and sweep against the f64 ones, over arcs of every
