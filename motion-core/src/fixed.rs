@@ -47,18 +47,7 @@ pub fn inverse62(len: u64) -> i64 {
     (if z >= 33 { x << (z - 33) } else { x >> (33 - z) }) as i64
 }
 
-/// `v as f32`, the same value, by the FPU's 32-bit conversion when `v` fits an
-/// `i32` (the `i64` conversion is a software routine on the Cortex-M4).
-#[inline]
-pub fn f32_of(v: i64) -> f32 {
-    match i32::try_from(v) {
-        Ok(v) => v as f32,
-        // Written so that the compiler cannot fold both arms into the i64 routine:
-        // below 2^53 the f64 sum is exact and rounds once, as `v as f32` does.
-        Err(_) if v.unsigned_abs() < 1 << 53 => ((v >> 32) as f64 * 4_294_967_296.0 + (v as u32) as f64) as f32,
-        Err(_) => v as f32,
-    }
-}
+pub use canon::units::f32_of;
 
 /// `x as u64` (saturating, NaN → 0), by the FPU's 32-bit conversion below 2^32.
 #[inline]

@@ -2,7 +2,7 @@
 //! order of [`crate::canon::Plane::axes`], so G02 is clockwise with `a` right, `b` up.
 
 use crate::alarm::AlarmKind;
-use crate::fixed::f32_of;
+use canon::units::f32_of;
 
 /// A point in a plane, nanometres.
 pub type P2 = (i64, i64);

@@ -10,10 +10,10 @@ use cortex_m_rt::entry;
 use cortex_m_semihosting::hprintln;
 use interp_core::axis::Pos;
 use interp_core::canon::{Canon, CanonSink, Full};
-use interp_core::motion::QUEUE;
-use interp_core::planner::{MotionParams, Planner, PushError};
 use interp_core::{Interpreter, MachineConfig, Panel, Progress, SingleProgram};
 use m4_tests::{exit, measure};
+use motion_core::motion::QUEUE;
+use motion_core::planner::{MotionParams, Planner, PushError};
 
 /// A CAM-style stretch: setup blocks, then the blocks measured one by one.
 const PROGRAM: &[u8] = b"G00 X40. Z2.\nG99 M3 S1200\nG01 Z0 F0.12\n\
