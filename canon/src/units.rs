@@ -61,6 +61,7 @@ impl Number {
 
     /// The value multiplied by `10^shift`, rounded half away from zero.
     /// `None` if the result does not fit in an `i64`.
+    #[inline]
     pub fn scaled(&self, shift: u8) -> Option<i64> {
         if shift >= self.frac_digits {
             self.mantissa.checked_mul(pow10(shift - self.frac_digits)?)
