@@ -356,20 +356,25 @@ fn wide_f64(v: u128) -> f64 {
 }
 
 /// The integer nearest to `√x` (never a tie: `(f + ½)²` is not an integer), from
-/// `r ≈ √x` corrected in integers: no soft-float rounding.
+/// `r ≈ √x` corrected in integers: no soft-float rounding. Beyond 2^52 nm, where
+/// an ulp of `r` exceeds 1, it is `round(r)` (no machine comes near).
 fn round_sqrt(x: u128, r: f64) -> i64 {
-    let sq = |f: u64| u128::from(f) * u128::from(f);
-    // The f64 root is within an ulp; the corrections run once at most.
-    let mut f = trunc_u64(r).min(u64::MAX >> 1);
-    while f > 0 && sq(f) > x {
-        f -= 1;
+    // √x ≥ 2^52 (compared in integers: a float compare is a software call).
+    if x >= 1 << 104 {
+        return libm::round(r) as i64;
     }
-    while sq(f + 1) <= x {
+    let sq = |f: u64| u128::from(f) * u128::from(f);
+    // Below 2^52 the f64 root is within 1 of √x (x rounded to 53 bits, then the
+    // root to half an ulp ≤ ½): its integer part is ⌊√x⌋ or one off.
+    let mut f = trunc_u64(r);
+    if sq(f) > x {
+        f = f.saturating_sub(1);
+    } else if sq(f + 1) <= x {
         f += 1;
     }
     // √x rounds up when x ≥ (f + ½)², i.e. x − f² > f.
-    let up = x - sq(f) > u128::from(f);
-    (f + u64::from(up)).min(i64::MAX as u64) as i64
+    let up = x.saturating_sub(sq(f)) > u128::from(f);
+    (f + u64::from(up)) as i64
 }
 
 /// `r as u64` for a finite `r ≥ 0`, from the bits (the float conversion and its
@@ -627,6 +632,11 @@ mod tests {
         assert_eq!(radius((2, 2)).1, 3);
         for r in [0.0, 0.4, 1.0, 1.9, 2.5e7 + 0.75, 4_294_967_295.9, 4_294_967_296.0, 1e15 + 0.5, 1.8e19] {
             assert_eq!(trunc_u64(r), r as u64, "{r}");
+        }
+        // Vectors anywhere in the i64 range end at once (no long correction loop).
+        for v in [(i64::MAX, i64::MAX), (i64::MIN, 0), (1 << 52, 1 << 52), ((1 << 52) - 1, 7), (-(1 << 40), 1 << 40)] {
+            let (r, nm) = radius(v);
+            assert!(nm.abs_diff(libm::round(r) as i64) <= 1, "{v:?}: {nm} vs {r}");
         }
     }
 

@@ -228,7 +228,11 @@ impl<const N: usize> Planner<N> {
                 block::thread(&start, &t, thread, thread_lead, p, c.line, slot)
             }
             Action::Tap(t) => block::tap(&start, t, p, c.line, slot),
-            _ => Ok(Prepared { dir_in: [0.0; AXIS_COUNT], dir_out: [0.0; AXIS_COUNT], end: start }),
+            // Not reached: only motion gets here.
+            _ => {
+                self.queue.pop_back();
+                return Ok(());
+            }
         };
         match prepared {
             Ok(prep) => {
