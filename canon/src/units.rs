@@ -13,6 +13,20 @@ pub const NM_PER_INCH: i64 = 25_400_000;
 /// Micro-degrees per degree.
 pub const UDEG_PER_DEG: i64 = 1_000_000;
 
+/// `v as f32`, the same value, by the FPU's 32-bit conversion when `v` fits an
+/// `i32` (the `i64` conversion is a software routine on the Cortex-M4). For the
+/// per-block geometry of the interpreter and the planner that works in f32.
+#[inline]
+pub fn f32_of(v: i64) -> f32 {
+    match i32::try_from(v) {
+        Ok(v) => v as f32,
+        // Written so that the compiler cannot fold both arms into the i64 routine:
+        // below 2^53 the f64 sum is exact and rounds once, as `v as f32` does.
+        Err(_) if v.unsigned_abs() < 1 << 53 => ((v >> 32) as f64 * 4_294_967_296.0 + (v as u32) as f64) as f32,
+        Err(_) => v as f32,
+    }
+}
+
 /// A decimal number exactly as written in a program word: `mantissa × 10^-frac_digits`.
 ///
 /// Keeping the decimal form (instead of a float) makes every conversion exact and
@@ -284,6 +298,21 @@ pub fn nm_to_mm(nm: i64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn f32_of_equals_the_i64_conversion() {
+        let mut seed: u64 = 0x2545_f491_4f6c_dd1d;
+        for i in 0..100_000 {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            let v = (seed as i64) >> (i % 64);
+            assert_eq!(f32_of(v).to_bits(), (v as f32).to_bits(), "{v}");
+        }
+        for v in [0, 1, -1, i64::from(i32::MAX) + 1, (1 << 53) - 1, 1 << 53, -(1 << 53) - 3, i64::MIN, i64::MAX] {
+            assert_eq!(f32_of(v).to_bits(), (v as f32).to_bits(), "{v}");
+        }
+    }
 
     fn num(m: i64, f: u8, p: bool) -> Number {
         Number { mantissa: m, frac_digits: f, has_point: p }

@@ -48,6 +48,26 @@ pub fn inverse62(len: u64) -> i64 {
     (if z >= 33 { x << (z - 33) } else { x >> (33 - z) }) as i64
 }
 
+pub use canon::units::f32_of;
+
+/// `x as u64` (saturating, NaN → 0), by the FPU's 32-bit conversion below 2^32.
+#[inline]
+pub fn u64_of(x: f32) -> u64 {
+    if x < 4_294_967_296.0 { u64::from(x as u32) } else { x as u64 }
+}
+
+/// `a.min(b)` (a NaN loses) without the `fminf` call the Cortex-M4 build makes.
+#[inline]
+pub fn minf(a: f32, b: f32) -> f32 {
+    if b < a || a.is_nan() { b } else { a }
+}
+
+/// `a.max(b)` (a NaN loses) without the `fmaxf` call.
+#[inline]
+pub fn maxf(a: f32, b: f32) -> f32 {
+    if b > a || a.is_nan() { b } else { a }
+}
+
 /// `√x` for finite `x ≥ 0` (0 for anything else) to within 2^-22 relative, by
 /// multiplications only: the reciprocal square root from the bit pattern, refined
 /// three times by Newton's method, times `x`. The planner's speeds and lengths need

@@ -17,8 +17,8 @@ use crate::alarm::AlarmKind;
 use crate::axis::Axis;
 use crate::canon::{Action, Endpoint, Move, PolygonSync, SpindleCommand, SpindleDir};
 use crate::check::Command;
+use crate::check::cycle_args::CycleArgs;
 use crate::config::MachineConfig;
-use crate::cycles::CycleArgs;
 
 /// One turn of C, µdeg.
 const TURN_UDEG: i64 = 360_000_000;

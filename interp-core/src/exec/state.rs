@@ -331,6 +331,7 @@ impl State {
     }
 
     /// What is added to a work position to get the machine position of the axes.
+    #[inline]
     pub fn work_to_machine(&self, cfg: &MachineConfig) -> Pos {
         self.frame_origin(cfg) + self.tool.offset
     }

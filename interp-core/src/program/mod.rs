@@ -111,6 +111,16 @@ pub struct RawBlock<'a> {
     pub percent: bool,
 }
 
+/// The bytes [`next_block`] stops at: end of block, `;`, and the comment brackets.
+const MARKS: [bool; 256] = {
+    let mut t = [false; 256];
+    t[b'\n' as usize] = true;
+    t[b';' as usize] = true;
+    t[b'(' as usize] = true;
+    t[b')' as usize] = true;
+    t
+};
+
 /// Cuts the next block out of `text` at `cur` and advances the cursor past it.
 ///
 /// A block ends at LF or `;` (a `;` inside a comment is comment text). `None` at the
@@ -123,17 +133,20 @@ pub fn next_block<'a>(text: &'a [u8], cur: &mut Cursor) -> Option<RawBlock<'a>> 
     let line = cur.line;
     let mut in_comment = false;
     let mut end = start;
-    while end < text.len() {
-        match text[end] {
-            b'\n' => break,
-            b'(' => in_comment = true,
-            b')' => in_comment = false,
-            b';' if !in_comment => break,
-            _ => {}
+    // One table look-up per byte; only the four bytes that matter are looked at.
+    while let Some(&c) = text.get(end) {
+        if MARKS[usize::from(c)] {
+            match c {
+                b'\n' => break,
+                b'(' => in_comment = true,
+                b')' => in_comment = false,
+                _ if !in_comment => break,
+                _ => {}
+            }
         }
         end += 1;
     }
-    if end < text.len() && text[end] == b'\n' {
+    if text.get(end) == Some(&b'\n') {
         cur.line += 1;
     }
     cur.offset = end + 1;
