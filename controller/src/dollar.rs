@@ -24,7 +24,7 @@ fn read_only(cmd: &[u8]) -> bool {
 
 /// A decimal number.
 fn number(s: &[u8]) -> Option<f64> {
-    core::str::from_utf8(s).ok()?.trim().parse::<f64>().ok().filter(|v| v.is_finite())
+    crate::decimal::decimal(s)
 }
 
 /// A whole number.

@@ -37,6 +37,7 @@ pub mod motion;
 pub mod parse;
 pub mod planner;
 pub mod program;
+mod sort;
 pub mod stepgen;
 pub mod sync;
 pub mod units;
