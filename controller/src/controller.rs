@@ -543,7 +543,10 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
     // ----- job control -----
 
     /// Soft reset (0x18): motion reset, interpreter reset, window and buffers
-    /// cleared, welcome line.
+    /// cleared, welcome line. Never inlined (nor are the line handling and the
+    /// status report): their locals stay out of `poll`'s frame, which is on the
+    /// stack under the interpreter's deepest step.
+    #[inline(never)]
     fn soft_reset<M: MotionPort + ?Sized>(&mut self, port: &mut M, inputs: Inputs) {
         port.reset();
         self.interp.reset();
@@ -812,11 +815,11 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
                 return;
             }
             let store = Store { window: &self.window, memory: &self.memory };
-            let r = if self.check {
-                self.interp.step(&store, &self.panel, &mut Discard)
-            } else {
-                self.interp.step(&store, &self.panel, &mut PortSink(&mut *port))
-            };
+            // One interpreter for both sinks (a `dyn` sink: the interpreter's code
+            // is not duplicated for check mode; a call per action delivered).
+            let (mut discard, mut to_port) = (Discard, PortSink(&mut *port));
+            let sink: &mut dyn CanonSink = if self.check { &mut discard } else { &mut to_port };
+            let r = self.interp.step(&store, &self.panel, sink);
             match r {
                 Ok(Progress::Blocked | Progress::Paused) => return,
                 Ok(Progress::Ended) => {
@@ -892,6 +895,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
     }
 
     /// Sends `<…>` with the motion core's snapshot.
+    #[inline(never)]
     fn status_report<M: MotionPort + ?Sized>(&mut self, port: &mut M, inputs: Inputs) {
         let st: MotionStatus = port.status();
         let cfg = self.interp.config();
