@@ -33,6 +33,11 @@ pub struct BoardArgs {
     /// the format of `lathe sim --format jsonl` (to compare a streamed run with it).
     #[arg(long, value_name = "FILE")]
     pub record: Option<PathBuf>,
+    /// Keep the board's store (settings, parameters, offsets, common variables
+    /// #401–#600, programs) in the flash image FILE, created if missing: read at
+    /// start, written while the machine is at rest, as the board keeps its flash.
+    #[arg(long, value_name = "FILE")]
+    pub flash: Option<PathBuf>,
     /// Line noise: corrupt this percentage of the bytes received (half of them get one
     /// bit flipped, half are dropped), to test link checksums (`lathe send --checksum`).
     #[arg(long, default_value_t = 0.0, value_name = "PERCENT")]
@@ -94,16 +99,27 @@ pub fn run(args: &BoardArgs, out: &mut dyn Write) -> Result<u8, Error> {
         return Err(Error::Write { target: "the virtual board".into(), source: std::io::Error::other(message) });
     }
     let cfg = machine::load_or_default(args.machine.as_deref())?;
-    let mut board = VirtualBoard::new(cfg).map_err(|k| Error::Machine {
+    let machine_error = |message: String| Error::Machine {
         path: args.machine.clone().unwrap_or_else(|| "built-in machine".into()),
-        message: format!("the motion core refuses it: {k}"),
-    })?;
+        message,
+    };
+    let (mut board, restored) = match &args.flash {
+        Some(path) => VirtualBoard::with_flash(cfg, path)
+            .map(|(b, r)| (b, Some(r)))
+            .map_err(|e| Error::Library { path: path.display().to_string(), message: format!("flash image: {e}") })?,
+        None => (VirtualBoard::new(cfg).map_err(|k| machine_error(format!("the motion core refuses it: {k}")))?, None),
+    };
     let (mut master, slave) = TTYPort::pair().map_err(|e| link_error("pseudo-terminal", e))?;
     let name = slave.name().unwrap_or_default();
     if let Some(link) = &args.pty {
         make_link(link, &name)?;
     }
     let shown = args.pty.as_ref().map_or(name.clone(), |l| format!("{} -> {name}", l.display()));
+    if let (Some(path), Some(r)) = (&args.flash, &restored) {
+        let refused = if r.refused.is_empty() { String::new() } else { format!(", settings refused: {:?}", r.refused) };
+        writeln!(out, "lathe board: store {}: {} programs{refused}", path.display(), r.programs)
+            .map_err(|source| Error::Write { target: "standard output".into(), source })?;
+    }
     writeln!(out, "lathe board: listening on {shown} (grbl 1.1 / FANUC tape, any baud rate)")
         .and_then(|()| out.flush())
         .map_err(|source| Error::Write { target: "standard output".into(), source })?;

@@ -64,4 +64,7 @@ pub use settings::Settings;
 /// The board's controller: an 8 KiB stream window, 24 KiB of program memory for
 /// 64 programs with 1024 indexed sequence numbers; about 76 KB in all (the
 /// STM32F405 has 128 KB of SRAM and 64 KB of CCM; the motion core takes 21 KB).
-pub type Board = Controller<8192, 24576, 64, 1024>;
+pub type Board = Controller<8192, BOARD_TEXT, 64, 1024>;
+
+/// Program memory of [`Board`], bytes (also the longest program it can hold).
+pub const BOARD_TEXT: usize = 24576;

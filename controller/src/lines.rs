@@ -89,7 +89,11 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             Link::Plain => (raw, None),
         };
         if let Some(k) = k {
-            if k == 1 {
+            // Line 1 restarts the numbering for a new job, but never inside a
+            // streamed job: there it is a stale resend (answers to noise that
+            // arrive after the sender went on), and restarting would run the job's
+            // first lines twice. `$LN=1` restarts the numbering explicitly.
+            if k == 1 && self.job != Job::Stream {
                 self.link.expected = 1;
             }
             if k < self.link.expected {

@@ -79,6 +79,26 @@ fn common_variables_and_link_numbers() {
     assert_eq!(r.command(&controller::frame_line(5, "G00 X1")), vec!["ok"]);
 }
 
+/// A late resend of line 1 inside a streamed job is a duplicate (answered `ok`,
+/// dropped), not a restart that would run the job's first lines twice; once the
+/// job has ended, line 1 starts the next job's numbering.
+#[test]
+fn line_one_inside_a_job_is_a_duplicate_not_a_restart() {
+    let mut r = idle_rig();
+    assert_eq!(r.command(&controller::frame_line(1, "G98 G01 F600")), vec!["ok"]);
+    assert_eq!(r.command(&controller::frame_line(2, "W-1")), vec!["ok"]);
+    assert_eq!(r.command(&controller::frame_line(1, "G98 G01 F600")), vec!["ok"]);
+    assert_eq!(r.command(&controller::frame_line(2, "W-1")), vec!["ok"]);
+    assert_eq!(r.command(&controller::frame_line(3, "M30")), vec!["ok"]);
+    assert!(r.run_until(20_000, |r| r.port.core.is_idle() && r.status().starts_with("<Idle")));
+    // One W-1 ran, not two.
+    assert!(r.status().contains("MPos:0.000,0.000,-1.000"), "{}", r.status());
+    assert_eq!(r.command(&controller::frame_line(1, "G00 W-1")), vec!["ok"], "a new job numbers from 1");
+    assert_eq!(r.command(&controller::frame_line(2, "M30")), vec!["ok"]);
+    assert!(r.run_until(20_000, |r| r.port.core.is_idle() && r.status().starts_with("<Idle")));
+    assert!(r.status().contains("MPos:0.000,0.000,-2.000"), "{}", r.status());
+}
+
 #[test]
 fn jogging_moves_and_jog_cancel_brakes() {
     let mut r = idle_rig();

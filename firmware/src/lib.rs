@@ -13,7 +13,6 @@ compile_error!("`qemu` replaces `hw`: build with `--no-default-features --featur
 
 pub mod board;
 pub mod io;
-pub mod keep;
 pub mod motion;
 #[cfg(feature = "qemu")]
 pub mod qemu;

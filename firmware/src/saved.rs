@@ -1,14 +1,14 @@
 //! What survives power-off on the board: `controller::persist` on the flash store
 //! region (F405 sectors 10–11; `memory.x` keeps code out), with what is kept and
-//! how in [`crate::keep`].
+//! how in [`controller::persist::keep`] (the same code `lathe board --flash` runs).
 //!
 //! At boot [`load_config`] reads the numbered parameters, the grbl `$n` settings
 //! and the offsets (before the motion core is built from them), [`load_rest`] the
 //! common variables #401–#600 and the programs into the controller. The controller
 //! has no "something changed" hook, so [`Saver`] keeps a fingerprint of everything
 //! stored; while the machine is at rest (controller Idle, motion core idle) it
-//! compares every [`CHECK_NS`] and, if it (or a common variable) changed, writes
-//! what changed: every store call writes only records that differ.
+//! compares every [`keep::CHECK_NS`] and, if it (or a common variable) changed,
+//! writes what changed: every store call writes only records that differ.
 //!
 //! Erasing a 128 KB sector stalls the CPU (interrupts included) for 1–2 s, which is
 //! why this runs only at rest; during a save the watchdog timeout is raised to
@@ -18,6 +18,7 @@
 //! uploading a program until it answers `?` again.
 
 use controller::Settings;
+use controller::persist::keep;
 use controller::persist::{Error, Persist, Rewritable};
 use defmt::{Display2Format, info, warn};
 use embassy_stm32::flash::{Blocking, Flash};
@@ -26,14 +27,11 @@ use embassy_stm32::pac::iwdg::vals::{Key, Pr};
 use interp_core::MachineConfig;
 
 use crate::board::{STORE_SIZE, STORE_START, WATCHDOG_TIMEOUT_US};
-use crate::keep;
 use crate::shell::{Ctl, TEXT, at_rest};
 
 /// The persistent store on the board's flash.
 pub type Store = Persist<Rewritable<Flash<'static, Blocking>>>;
 
-/// How often the saver looks for changes while at rest, ns.
-pub const CHECK_NS: u64 = 500_000_000;
 /// Watchdog timeout while the flash is written: a sector erase takes up to 2 s
 /// (4 s at low supply voltage); the normal timeout is back right after.
 pub const SAVE_WATCHDOG_US: u32 = 8_000_000;
@@ -64,41 +62,29 @@ pub fn load_rest(store: &mut Store, ctl: &mut Ctl) -> Result<usize, Error> {
     keep::load_rest(store, ctl, &mut scratch)
 }
 
-/// Writes what changed to the store while the machine is at rest.
-pub struct Saver {
-    store: Store,
-    saved: u64,
-    next_check: u64,
-}
+/// Writes what changed to the store while the machine is at rest, the watchdog
+/// stretched around the write.
+pub struct Saver(keep::Saver<Rewritable<Flash<'static, Blocking>>>);
 
 impl Saver {
     /// A saver that takes what the controller holds now as saved.
     pub fn new(store: Store, ctl: &Ctl) -> Self {
-        Saver { store, saved: keep::fingerprint(ctl), next_check: 0 }
+        Saver(keep::Saver::new(store, ctl))
     }
 
-    /// Called after every poll at time `now` (ns): every [`CHECK_NS`] at rest,
-    /// saves what changed. Blocks while the flash is written.
+    /// Called after every poll at time `now` (ns): every [`keep::CHECK_NS`] at
+    /// rest, saves what changed. Blocks while the flash is written.
     pub fn tick(&mut self, now: u64, ctl: &mut Ctl, port: &crate::motion::MotionPort) {
-        if now < self.next_check {
-            return;
-        }
-        self.next_check = now + CHECK_NS;
-        if !at_rest(ctl, port) {
-            return;
-        }
-        let fp = keep::fingerprint(ctl);
-        if fp == self.saved && !ctl.interpreter().variables().commons_dirty() {
+        if !self.0.due(now, ctl, || at_rest(ctl, port)) {
             return;
         }
         watchdog_timeout(SAVE_WATCHDOG_US);
-        match keep::save(&mut self.store, ctl) {
+        match self.0.save(ctl) {
             Ok(()) => info!("persist: saved"),
             // Not retried until something changes again (a full store stays full).
             Err(e) => warn!("persist: {}", Display2Format(&e)),
         }
         watchdog_timeout(WATCHDOG_TIMEOUT_US);
-        self.saved = fp;
     }
 }
 

@@ -7,12 +7,17 @@
 //! controller task is); between polls the motion core runs its interpolation
 //! periods on the simulated machine, exactly as [`Sim`] runs a program.
 
-use controller::{Inputs, MachineIo, MotionPort, MotionStatus};
+use std::path::Path;
+
+use controller::persist::keep::{self, Saver};
+use controller::persist::{self, Persist};
+use controller::{Inputs, MachineIo, Mode, MotionPort, MotionStatus};
 use interp_core::axis::{Axis, Pos};
 use interp_core::canon::{Canon, Full, SpindleDir};
 use interp_core::motion::{Event, MotionCore, QUEUE};
 use interp_core::{AlarmKind, MachineConfig};
 
+use crate::file_flash::{self, FileFlash, FileFlashError};
 use crate::{Sim, SimOptions, SpindleModel};
 
 /// How often the controller is polled, ns of simulated time.
@@ -120,6 +125,41 @@ pub struct VirtualBoard {
     next_poll: u64,
     /// Home switches trip at reference position 1 (homing toward plus).
     home: Pos,
+    /// The store on a flash file, when the board has one ([`VirtualBoard::with_flash`]).
+    saver: Option<Saver<FileFlash>>,
+    /// Saves written to the flash file so far, and the last one's failure.
+    pub saves: u32,
+    pub save_error: Option<persist::Error>,
+}
+
+/// Why [`VirtualBoard::with_flash`] could not start.
+#[derive(Debug)]
+pub enum FlashBoardError {
+    /// The flash file.
+    File(FileFlashError),
+    /// The store in it (after a power cut it repairs itself; this is worse).
+    Store(persist::Error),
+    /// The motion core refuses the stored machine description.
+    Machine(AlarmKind),
+}
+
+impl core::fmt::Display for FlashBoardError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            FlashBoardError::File(e) => write!(f, "{e}"),
+            FlashBoardError::Store(e) => write!(f, "the store: {e}"),
+            FlashBoardError::Machine(k) => write!(f, "the motion core refuses the stored machine description: {k}"),
+        }
+    }
+}
+
+/// What a board with a flash file found there at power-on.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Restored {
+    /// Programs read into memory.
+    pub programs: usize,
+    /// Stored grbl settings the controller refused (left at their defaults).
+    pub refused: Vec<u16>,
 }
 
 impl VirtualBoard {
@@ -144,7 +184,27 @@ impl VirtualBoard {
             pending: Vec::new(),
             next_poll: 0,
             home: start,
+            saver: None,
+            saves: 0,
+            save_error: None,
         })
+    }
+
+    /// A board whose store (settings, parameters, offsets, common variables #401–
+    /// #600, programs) is the flash image `path` (created erased if missing), read
+    /// at power-on as the firmware reads its flash, and written while the machine
+    /// is at rest as the firmware writes it.
+    pub fn with_flash(mut cfg: MachineConfig, path: &Path) -> Result<(Self, Restored), FlashBoardError> {
+        let flash = FileFlash::open(path).map_err(FlashBoardError::File)?;
+        let mut store = Persist::new(flash, 0..file_flash::SIZE as u32).map_err(FlashBoardError::Store)?;
+        let mut settings = controller::Settings::default();
+        let refused = keep::load_config(&mut store, &mut cfg, &mut settings).map_err(FlashBoardError::Store)?;
+        let mut board = VirtualBoard::new(cfg).map_err(FlashBoardError::Machine)?;
+        *board.ctl.settings_mut() = settings;
+        let mut scratch = vec![0u8; controller::BOARD_TEXT];
+        let programs = keep::load_rest(&mut store, &mut board.ctl, &mut scratch).map_err(FlashBoardError::Store)?;
+        board.saver = Some(Saver::new(store, &board.ctl));
+        Ok((board, Restored { programs, refused: refused.to_vec() }))
     }
 
     /// Keeps every canonical action the motion core accepts from now on.
@@ -224,6 +284,17 @@ impl VirtualBoard {
         let mut port = Recorder { core: &mut self.sim.core, log: self.executed.as_mut() };
         self.ctl.poll(self.sim.clock.0, &mut port, &mut self.outputs, inputs);
         self.offer();
+        self.keep();
+    }
+
+    /// Writes what changed to the flash file while the machine is at rest.
+    fn keep(&mut self) {
+        let Some(saver) = self.saver.as_mut() else { return };
+        let (ctl, core) = (&mut self.ctl, &*self.sim.core);
+        if saver.due(self.sim.clock.0, ctl, || ctl.mode(core) == Mode::Idle && MotionPort::status(core).idle) {
+            self.saves += 1;
+            self.save_error = saver.save(ctl).err();
+        }
     }
 
     /// The switch inputs as the machine shows them now: the operator's switches,

@@ -12,6 +12,7 @@
 
 pub mod board;
 pub mod faults;
+pub mod file_flash;
 pub mod path;
 pub mod spindle;
 

@@ -163,6 +163,7 @@ fn display<'a>(port: &PortArgs, total: usize, out: &'a mut dyn Write) -> (Box<dy
 /// Connects, runs `feeder` to its verdict, reports it; returns the exit status.
 fn job(
     port: &PortArgs,
+    preamble: &[&str],
     feeder: Feeder,
     origin: Origin,
     out: &mut dyn Write,
@@ -178,6 +179,9 @@ fn job(
         // The board chooses tape mode only when nothing grbl-like came since its last
         // reset, and connecting asked for a status report.
         board.link.reset(WELCOME_WAIT)?;
+    }
+    for command in preamble {
+        settle(&mut board.link, command)?;
     }
     let started = Instant::now();
     let verdict = Session::new(&mut board.link, ui.as_mut(), feeder, origin.clone(), board.empty)
@@ -238,7 +242,25 @@ pub fn send(args: &SendArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result
         })?;
         (Feeder::Counting(streamer), lines)
     };
-    job(&args.port, feeder, origin(&src.name, &lines), out, err).map(|(status, _)| status)
+    // With checksums the board is told first (`$LN=1`), so the very first program
+    // line is already checked: before it, a line whose framing noise has destroyed
+    // would be read as plain text.
+    let preamble: &[&str] = if args.checksum && !args.tape { &["$LN=1"] } else { &[] };
+    job(&args.port, preamble, feeder, origin(&src.name, &lines), out, err).map(|(status, _)| status)
+}
+
+/// Sends the `$` command `command` until the board answers `ok` (a line noise can
+/// spoil a command too: three tries).
+fn settle(link: &mut Link, command: &str) -> Result<(), Error> {
+    let mut tries = 0;
+    loop {
+        tries += 1;
+        match link.command(command, COMMAND_WAIT) {
+            Ok(_) => return Ok(()),
+            Err(LinkError::Refused { .. }) if tries < 3 => {}
+            Err(e) => return Err(e.into()),
+        }
+    }
 }
 
 /// `lathe upload`: punches the program into the board's memory in tape mode, then
@@ -254,7 +276,7 @@ pub fn upload(args: &UploadArgs, out: &mut dyn Write, err: &mut dyn Write) -> Re
     };
     let lines = src.upload_lines(number);
     let feeder = Feeder::Tape(Tape::new(&texts(&lines), TAPE_CHUNK));
-    let (status, board) = job(&args.port, feeder, origin(&src.name, &lines), out, err)?;
+    let (status, board) = job(&args.port, &[], feeder, origin(&src.name, &lines), out, err)?;
     match board {
         Some(mut b) if status == 0 => verify_stored(&mut b.link, number, out, err),
         _ => Ok(status),
@@ -288,7 +310,7 @@ pub fn run(args: &RunArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result<u
         message: "longer than the board's receive buffer".into(),
     })?;
     let origin = Origin { name: format!("O{:04}", args.number), file_lines: Vec::new(), command: Some(command) };
-    job(&args.port, Feeder::Counting(streamer), origin, out, err).map(|(status, _)| status)
+    job(&args.port, &[], Feeder::Counting(streamer), origin, out, err).map(|(status, _)| status)
 }
 
 /// `lathe status`: one report, pretty-printed; with `--watch` one line per change.

@@ -69,6 +69,9 @@ pub struct Link {
 /// How long one read waits for bytes.
 const READ_SLICE: Duration = Duration::from_millis(10);
 
+/// How long a request (`?`, soft reset) waits for its answer before it is sent again.
+const ASK_AGAIN: Duration = Duration::from_millis(300);
+
 impl Link {
     /// Opens `path` at `baud` 8N1 without flow control (the tape's XON/XOFF is
     /// handled here, not by the driver).
@@ -155,10 +158,30 @@ impl Link {
         }
     }
 
-    /// Soft reset (0x18), then the welcome line within `wait`; returns it.
+    /// Soft reset (0x18), then the welcome line within `wait`; returns it. On a
+    /// noisy line the 0x18 itself can be lost: it is sent again after
+    /// [`ASK_AGAIN`] without a welcome, and the welcome lines of the extra resets
+    /// are read here, not left for the job to see.
     pub fn reset(&mut self, wait: Duration) -> Result<String, LinkError> {
-        self.write(&[0x18])?;
-        self.welcome(wait)
+        let deadline = Instant::now() + wait;
+        let mut sent = 0;
+        loop {
+            self.write(&[0x18])?;
+            sent += 1;
+            let turn = deadline.min(Instant::now() + ASK_AGAIN);
+            match self.wait_for(turn, "the welcome line `Grbl 1.1h`", |r| matches!(r, Response::Welcome(_))) {
+                Ok(Response::Welcome(w)) => {
+                    if sent > 1 {
+                        self.drain(ASK_AGAIN);
+                    }
+                    return Ok(w);
+                }
+                Ok(_) => {}
+                Err(e) if Instant::now() >= deadline => return Err(e),
+                Err(LinkError::Timeout { .. }) => {}
+                Err(e) => return Err(e),
+            }
+        }
     }
 
     /// Waits for the welcome line `Grbl 1.1…` within `wait`, passing over anything else.
@@ -171,15 +194,42 @@ impl Link {
         }
     }
 
-    /// One status report: writes `?` and waits for the `<…>` line within `wait`.
+    /// One status report: writes `?` and waits for the `<…>` line within `wait`
+    /// (asking again after [`ASK_AGAIN`]: a `?` can be lost on a noisy line).
     pub fn status(&mut self, wait: Duration) -> Result<response::Status, LinkError> {
-        self.write(b"?")?;
         let deadline = Instant::now() + wait;
         loop {
-            if let Response::Status(s) = self.line_until(deadline, "a status report")? {
-                return Ok(s);
+            self.write(b"?")?;
+            let turn = deadline.min(Instant::now() + ASK_AGAIN);
+            match self.wait_for(turn, "a status report", |r| matches!(r, Response::Status(_))) {
+                Ok(Response::Status(s)) => return Ok(s),
+                Ok(_) => {}
+                Err(e) if Instant::now() >= deadline => return Err(e),
+                Err(LinkError::Timeout { .. }) => {}
+                Err(e) => return Err(e),
             }
         }
+    }
+
+    /// Reads lines until one satisfies `wanted` (returned) or `deadline` passes.
+    fn wait_for(
+        &mut self,
+        deadline: Instant,
+        what: &str,
+        wanted: impl Fn(&Response) -> bool,
+    ) -> Result<Response, LinkError> {
+        loop {
+            let r = self.line_until(deadline, what)?;
+            if wanted(&r) {
+                return Ok(r);
+            }
+        }
+    }
+
+    /// Reads and drops whatever arrives for `quiet` (answers to repeated requests).
+    fn drain(&mut self, quiet: Duration) {
+        let deadline = Instant::now() + quiet;
+        while self.line_until(deadline, "nothing").is_ok() {}
     }
 
     /// Sends the command `line` (a `$` command) and collects the lines before its

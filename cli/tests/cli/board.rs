@@ -29,8 +29,13 @@ impl Board {
             .stderr(Stdio::inherit())
             .spawn()
             .expect("lathe board starts");
+        let mut out = BufReader::new(child.stdout.take().expect("stdout"));
         let mut first = String::new();
-        BufReader::new(child.stdout.take().expect("stdout")).read_line(&mut first).expect("banner");
+        out.read_line(&mut first).expect("banner");
+        if first.starts_with("lathe board: store ") {
+            first.clear();
+            out.read_line(&mut first).expect("banner");
+        }
         assert!(first.starts_with("lathe board: listening on"), "{first}");
         Board { child, link }
     }
@@ -117,6 +122,31 @@ fn ten_thousand_blocks_through_one_percent_line_noise_lose_nothing() {
     }
 }
 
+/// Heavy noise on the very first lines: `lathe send --checksum` switches the board's
+/// checksums on (`$LN=1`) before the program, so even a first line whose framing the
+/// noise destroyed is resent, never run or refused as plain text.
+#[test]
+fn heavy_noise_on_the_first_line_is_resent_too() {
+    let mut text = String::from("%\nO0001\nG98 G01 F3000\n");
+    for i in 0..20 {
+        text.push_str(&format!("X{}.5 Z-{}.25\n", 20 + i, i));
+    }
+    text.push_str("M30\n%\n");
+    let program = scratch("first-line.nc", text);
+    let want = sim_jsonl(&program);
+    for seed in ["11", "12", "13", "14", "15", "16"] {
+        let record = scratch(&format!("first-line-{seed}.jsonl"), "");
+        let board = Board::start(
+            &format!("first-{seed}"),
+            &["--speed", "50", "--record", &record, "--corrupt", "6", "--seed", seed],
+        );
+        let o = lathe(&["send", &program, "--port", &board.link, "--quiet", "--checksum"]);
+        assert_eq!(o.status.code(), Some(0), "seed {seed}: {}{}", stdout(&o), stderr(&o));
+        let got = wait_lines(&record, want.lines().count());
+        assert!(got == want, "seed {seed}: the executed actions differ from lathe sim's");
+    }
+}
+
 #[test]
 fn tape_upload_then_run_from_memory_and_drip_feed() {
     let record = scratch("tape.jsonl", "");
@@ -149,6 +179,49 @@ fn tape_upload_then_run_from_memory_and_drip_feed() {
     let got = wait_lines(&record, before + want.lines().count());
     let dripped: Vec<&str> = got.lines().skip(before).collect();
     assert_eq!(dripped, want.lines().collect::<Vec<_>>());
+}
+
+/// `lathe board --flash`: programs uploaded into the board's memory are still
+/// there after the board is switched off and on, and run from memory.
+#[test]
+fn uploaded_programs_survive_a_restart_with_a_flash_file() {
+    let image = scratch("board.flash", "");
+    std::fs::remove_file(&image).expect("no image yet");
+    let board = Board::start("flash-1", &["--speed", "20", "--flash", &image]);
+    for program in [example("lib/O0201.nc"), example("groove_series.nc")] {
+        let o = lathe(&["upload", &program, "--port", &board.link, "--quiet"]);
+        assert_eq!(o.status.code(), Some(0), "{}{}", stdout(&o), stderr(&o));
+    }
+    // Saved at rest within 0.5 s of machine time (25 ms at --speed 20).
+    std::thread::sleep(Duration::from_millis(500));
+    drop(board);
+
+    let record = scratch("flash.jsonl", "");
+    let board = Board::start("flash-2", &["--speed", "20", "--flash", &image, "--record", &record]);
+    let o = lathe(&["settings", "--port", &board.link, "--programs"]);
+    assert!(stdout(&o).contains("O0002") && stdout(&o).contains("O0201"), "{}", stdout(&o));
+    let o = lathe(&["run", "2", "--port", &board.link, "--quiet"]);
+    assert_eq!(o.status.code(), Some(0), "{}{}", stdout(&o), stderr(&o));
+    let main = example("groove_series.nc");
+    let want = lathe(&["sim", &main, "--lib", &example("lib"), "--format", "jsonl"]);
+    let want = stdout(&want);
+    let got = wait_lines(&record, want.lines().count());
+    // Run from memory, line numbers count from the stored text (without the
+    // file's leading `%`) and the subprogram is not tagged: compare the rest.
+    assert_eq!(without_lines(&got), without_lines(&want));
+}
+
+/// JSON lines without their `"line"` and `"program"` fields.
+fn without_lines(jsonl: &str) -> Vec<String> {
+    let drop_field = |l: &str, key: &str| match l.find(key) {
+        Some(at) => {
+            let rest = &l[at + key.len()..];
+            let end = rest.find(',').map_or(rest.len(), |e| e + 1);
+            format!("{}{}", &l[..at], &rest[end..])
+        }
+        None => l.to_string(),
+    };
+    jsonl.lines().map(|l| drop_field(&drop_field(l, "\"line\":"), "\"program\":")).collect()
 }
 
 /// Raw bytes on the pty: answers collected until `until` appears (or 10 s).

@@ -381,6 +381,10 @@ impl State {
 
     /// `$PR=n` and `$n=value`.
     fn dollar_with_value(&mut self, cmd: &str) {
+        if let Some(n) = cmd.strip_prefix("LN=").and_then(|n| n.parse::<u32>().ok()) {
+            self.expected = n.max(1);
+            return self.line("ok");
+        }
         if let Some(n) = cmd.strip_prefix("PR=").and_then(|n| n.parse::<u32>().ok()) {
             if !self.seen().programs.contains_key(&n) {
                 self.line(&format!("[MSG:O{n:04} is not in memory]"));

@@ -51,7 +51,9 @@ fn send_with_checksums_resends_a_damaged_line_and_still_exits_0() {
     let out = stdout(&o);
     assert!(out.contains("board asks to resend from line 7\n"), "{out}");
     assert!(out.contains("resending from line 7\n"), "{out}");
-    assert!(seen.lines.iter().all(|l| l.starts_with('N') && l.contains('*')));
+    // `$LN=1` first switches the board's checksums on, then every line is framed.
+    assert_eq!(seen.lines.first().map(String::as_str), Some("$LN=1"));
+    assert!(seen.lines.iter().skip(1).all(|l| l.starts_with('N') && l.contains('*')));
     // Line 7 arrived twice (damaged, then resent), everything after it at least twice
     // up to what was in flight; the last line arrived once the sequence was whole.
     let sevens = seen.lines.iter().filter(|l| l.starts_with("N7 ")).count();

@@ -79,6 +79,7 @@
 //! ```
 
 mod flash;
+pub mod keep;
 pub mod keys;
 mod programs;
 mod records;

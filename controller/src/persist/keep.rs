@@ -1,15 +1,16 @@
-//! What the board keeps on flash, independent of the flash driver (host-tested in
-//! `motion-driver/tests/keep.rs`, which includes this file): reading the stored
-//! parameters, grbl settings, offsets, common variables and programs into a
-//! controller, writing back what changed, and the fingerprint that tells when
-//! something did. `saved.rs` runs it on the board's flash.
+//! What a board keeps on flash, independent of the flash driver: reading the
+//! stored parameters, grbl settings, offsets, common variables and programs into a
+//! controller, writing back what changed, the fingerprint that tells when
+//! something did, and the [`Saver`] that writes while the machine is at rest. The
+//! firmware runs it on the STM32's flash (`firmware/src/saved.rs`), `lathe board
+//! --flash` on a file (`sim::board`); `tests/persist_keep.rs` tests it.
 //!
 //! grbl settings are stored as parameter records numbered [`SETTING_KEY`]` + n`
 //! (the value's `f64` bits). Not stored: the startup blocks `$N0`/`$N1`.
 
-use controller::persist::{Error, Offsets, Persist};
-use controller::settings::{self, NUMBERS};
-use controller::{Controller, Settings};
+use crate::persist::{Error, Offsets, Persist};
+use crate::settings::{self, NUMBERS};
+use crate::{Controller, Settings};
 use embedded_storage::nor_flash::{MultiwriteNorFlash, NorFlash};
 use interp_core::MachineConfig;
 use interp_core::ProgramStore;
@@ -148,6 +149,60 @@ pub fn fingerprint<const W: usize, const T: usize, const P: usize, const S: usiz
         h.bytes(memory.text(n).unwrap_or(&[]));
     }
     h.0
+}
+
+/// How often a [`Saver`] looks for changes while the machine is at rest, ns.
+pub const CHECK_NS: u64 = 500_000_000;
+
+/// Writes what changed to a store, only while the machine is at rest (an erase
+/// can stall the CPU for seconds on a board). Split in two so that a board can
+/// prepare for the write (stretch its watchdog) between [`Saver::due`] and
+/// [`Saver::save`].
+pub struct Saver<F: NorFlash + MultiwriteNorFlash> {
+    store: Persist<F>,
+    saved: u64,
+    pending: u64,
+    next_check: u64,
+}
+
+impl<F: NorFlash + MultiwriteNorFlash> Saver<F> {
+    /// A saver over `store` that takes what `ctl` holds now as saved.
+    pub fn new<const W: usize, const T: usize, const P: usize, const S: usize>(
+        store: Persist<F>,
+        ctl: &Controller<W, T, P, S>,
+    ) -> Self {
+        let saved = fingerprint(ctl);
+        Saver { store, saved, pending: saved, next_check: 0 }
+    }
+
+    /// At time `now` (ns), every [`CHECK_NS`]: whether something changed and the
+    /// machine is at rest (asked only then), so that [`Saver::save`] should run now.
+    pub fn due<const W: usize, const T: usize, const P: usize, const S: usize>(
+        &mut self,
+        now: u64,
+        ctl: &Controller<W, T, P, S>,
+        at_rest: impl FnOnce() -> bool,
+    ) -> bool {
+        if now < self.next_check {
+            return false;
+        }
+        self.next_check = now.saturating_add(CHECK_NS);
+        if !at_rest() {
+            return false;
+        }
+        self.pending = fingerprint(ctl);
+        self.pending != self.saved || ctl.interpreter().variables().commons_dirty()
+    }
+
+    /// Writes what changed. A failure is not retried until something changes
+    /// again (a full store stays full).
+    pub fn save<const W: usize, const T: usize, const P: usize, const S: usize>(
+        &mut self,
+        ctl: &mut Controller<W, T, P, S>,
+    ) -> Result<(), Error> {
+        self.saved = self.pending;
+        save(&mut self.store, ctl)
+    }
 }
 
 /// FNV-1a, 64 bits.

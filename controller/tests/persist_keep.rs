@@ -1,11 +1,9 @@
-//! The firmware's persistence logic (`firmware/src/keep.rs`, included here: the
-//! firmware crate itself builds only for the board) on the controller's simulated
-//! NOR flash: what a board saves at rest comes back after a restart.
-
-#[path = "../../src/keep.rs"]
-mod keep;
+//! What a board keeps (`controller::persist::keep`, run by the firmware and by
+//! `lathe board --flash`) on the controller's simulated NOR flash: what a board
+//! saves at rest comes back after a restart.
 
 use controller::persist::Persist;
+use controller::persist::keep;
 use controller::persist::sim::SimFlash;
 use controller::{Controller, Inputs, Settings};
 use interp_core::MachineConfig;
