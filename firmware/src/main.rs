@@ -129,7 +129,7 @@ async fn main(spawner: Spawner) {
     let mut cfg = MachineConfig::default();
     let mut settings = controller::Settings::default();
     #[cfg(persist)]
-    let mut store = open_store(flash, &mut cfg, &mut settings);
+    let store = open_store(flash, &mut cfg, &mut settings);
     #[cfg(not(persist))]
     let _ = flash; // Nothing persists on the F446RE or in QEMU (build.rs).
     let (port, cfg) = match start_motion(&cfg) {
@@ -146,13 +146,7 @@ async fn main(spawner: Spawner) {
     let ctl = shell::build(controller_slot(), cfg, pos);
     *ctl.settings_mut() = settings;
     #[cfg(persist)]
-    let saving: Saving = store.take().map(|mut s| {
-        if let Err(e) = firmware::saved::load_rest(&mut s, ctl) {
-            warn!("persist: stored variables/programs: {}", defmt::Display2Format(&e));
-        }
-        info!("persist: {} programs in memory", ctl.memory().numbers().count());
-        &mut *SAVER.init_with(|| firmware::saved::Saver::new(s, ctl))
-    });
+    let saving: Saving = start_saving(store, ctl);
     #[cfg(not(persist))]
     let saving: Saving = ();
     info!("controller: {} bytes", core::mem::size_of::<Ctl>());
@@ -175,6 +169,21 @@ type Saving = Option<&'static mut firmware::saved::Saver>;
 static SAVER: StaticCell<firmware::saved::Saver> = StaticCell::new();
 #[cfg(not(persist))]
 type Saving = ();
+
+/// Reads the stored variables and programs into the controller and starts the
+/// saver on the store. Never inlined: its locals stay out of `main`'s frame, which
+/// is on the stack while the controller and the motion core are built.
+#[cfg(persist)]
+#[inline(never)]
+fn start_saving(store: Option<firmware::saved::Store>, ctl: &mut Ctl) -> Saving {
+    store.map(|mut s| {
+        if let Err(e) = firmware::saved::load_rest(&mut s, ctl) {
+            warn!("persist: stored variables/programs: {}", defmt::Display2Format(&e));
+        }
+        info!("persist: {} programs in memory", ctl.memory().numbers().count());
+        &mut *SAVER.init_with(|| firmware::saved::Saver::new(s, ctl))
+    })
+}
 
 /// Opens the store and reads the stored parameters, settings and offsets into
 /// `cfg` and `settings`. A store beyond repair is formatted (everything stored is
@@ -294,8 +303,11 @@ async fn control(
     }
 }
 
-/// Saves what changed while the machine is at rest (see `firmware::saved`).
+/// Saves what changed while the machine is at rest (see `firmware::saved`). Never
+/// inlined: the saver's locals stay out of the control task's frame, which is on
+/// the stack under the interpreter's deepest step.
 #[cfg(persist)]
+#[inline(never)]
 fn save(saving: &mut Saving, now: u64, ctl: &mut Ctl, port: &MotionPort) {
     if let Some(s) = saving.as_mut() {
         s.tick(now, ctl, port);

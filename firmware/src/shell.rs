@@ -57,7 +57,7 @@ pub type Ctl = controller::Controller<WINDOW, TEXT, PROGRAMS, SEQUENCES>;
 /// copying it (the stack has no room for a second copy).
 #[inline(never)]
 pub fn build(slot: &'static mut MaybeUninit<Ctl>, cfg: MachineConfig, pos: Pos) -> &'static mut Ctl {
-    slot.write(Ctl::new(cfg, pos))
+    Ctl::new_in(slot, cfg, pos)
 }
 
 /// The motion core behind the board's handle: every call is one critical section
@@ -109,14 +109,8 @@ impl controller::MotionPort for MotionPort {
             if !m.core.is_idle() {
                 return Err(AlarmKind::MotionConfigInvalid { what: "the machine is moving" });
             }
-            // One temporary core on the stack (~21 KB), moved into place.
-            match crate::motion::Core::new(cfg, m.core.position()) {
-                Ok(core) => {
-                    m.core = core;
-                    Ok(())
-                }
-                Err(e) => Err(e),
-            }
+            // In place: no second ~21 KB core on the stack.
+            m.core.rebuild(cfg)
         })
         .unwrap_or(Err(AlarmKind::MotionConfigInvalid { what: "motion core not started" }))
     }
