@@ -32,19 +32,21 @@ pub const PROGRAMS: usize = 32;
 #[cfg(feature = "f405")]
 pub const SEQUENCES: usize = 512;
 
-/// Stream window, bytes: the F446RE has no CCM for the stack, so its controller is
-/// smaller (a G71 takes ~60 KB of stack out of its 128 KB SRAM).
+/// Stream window, bytes: as on the F405, so a program streams the same way (its
+/// G70–G73 shapes, loops and jump targets must lie in the window).
 #[cfg(feature = "f446")]
-pub const WINDOW: usize = 1024;
-/// Program memory text, bytes.
+pub const WINDOW: usize = 4096;
+/// Program memory text, bytes: the F446RE has no CCM, so the controller shares the
+/// 128 KB SRAM with the other statics and the stack (a G71 and boot take ~33 KB of
+/// it), and program memory is half the F405's.
 #[cfg(feature = "f446")]
-pub const TEXT: usize = 2048;
+pub const TEXT: usize = 8192;
 /// Programs in memory.
 #[cfg(feature = "f446")]
-pub const PROGRAMS: usize = 8;
+pub const PROGRAMS: usize = 16;
 /// Indexed sequence numbers in program memory.
 #[cfg(feature = "f446")]
-pub const SEQUENCES: usize = 64;
+pub const SEQUENCES: usize = 256;
 
 /// The controller the firmware runs. `controller::Board` (8 KB window, 48 KB program
 /// memory, 113 KB in all) does not fit beside the motion core in the 128 KB SRAM
