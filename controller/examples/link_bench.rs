@@ -11,7 +11,7 @@ use std::collections::VecDeque;
 use controller::{Board, Inputs};
 use interp_core::MachineConfig;
 use interp_core::axis::Pos;
-use interp_core::motion::{Feedback, MotionCore};
+use motion_core::motion::{Feedback, MotionCore};
 
 /// A link: bytes per millisecond (fractional) each way.
 struct Link {

@@ -5,9 +5,9 @@
 
 use interp_core::axis::Pos;
 use interp_core::canon::{Canon, CanonSink, Full};
-use interp_core::motion::{EventKind, State};
 use interp_core::program::{Cursor, ProgramMemory};
 use interp_core::{Alarm, AlarmKind, Interpreter, MachineConfig, Panel, Progress};
+use motion_core::motion::{EventKind, State};
 
 use crate::io::{Inputs, MachineIo};
 use crate::outq::{Class, OutQueue};

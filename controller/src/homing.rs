@@ -99,7 +99,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             self.refuse(9, "Alarm: $X or reset first");
             return Handled::Done;
         }
-        if port.status().state == interp_core::motion::State::Stopping {
+        if port.status().state == motion_core::motion::State::Stopping {
             // Braking after a reset or unlock: the jog waits (in the buffer).
             return Handled::Wait;
         }

@@ -9,8 +9,8 @@
 
 use interp_core::axis::Pos;
 use interp_core::canon::{Canon, CanonSink, Full};
-use interp_core::motion::{Event, MotionCore, State};
 use interp_core::{Alarm, AlarmKind, MachineConfig};
+use motion_core::motion::{Event, MotionCore, State};
 
 /// A snapshot of the motion core for status reports and job control.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -9,7 +9,7 @@ use controller::{Controller, Inputs, Settings};
 use interp_core::MachineConfig;
 use interp_core::ProgramStore;
 use interp_core::config::Param;
-use interp_core::motion::MotionCore;
+use motion_core::motion::MotionCore;
 
 /// The firmware's F446 controller size (small enough for the test thread's stack).
 type Ctl = Controller<1024, 2048, 8, 64>;

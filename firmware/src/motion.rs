@@ -26,7 +26,7 @@ use embassy_stm32::interrupt::Priority;
 use interp_core::axis::{Axis, Pos};
 use interp_core::canon::{Canon, CanonSink, Full};
 use interp_core::config::MachineConfig;
-use interp_core::motion::{MotionCore, QUEUE};
+use motion_core::motion::{MotionCore, QUEUE};
 use motion_driver::engine::{Engine, EngineAxis, RING};
 use motion_driver::playback::{PlayTiming, Player};
 use motion_driver::ring::EdgeRing;

@@ -11,8 +11,8 @@ use core::mem::MaybeUninit;
 use controller::{Mode, MotionStatus};
 use interp_core::axis::Pos;
 use interp_core::canon::{Canon, CanonSink, Full, SpindleDir};
-use interp_core::motion::Event;
 use interp_core::{AlarmKind, MachineConfig};
+use motion_core::motion::Event;
 use motion_driver::io::Switch;
 
 use crate::io::{InputLevels, Outputs, rotation};
@@ -123,7 +123,7 @@ impl controller::MotionPort for MotionPort {
 
     fn status(&self) -> MotionStatus {
         self.peek(|m| controller::MotionPort::status(&m.core)).unwrap_or(MotionStatus {
-            state: interp_core::motion::State::Stopped,
+            state: motion_core::motion::State::Stopped,
             position: Pos::default(),
             work_offset: Pos::default(),
             feed: 0,

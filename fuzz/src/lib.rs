@@ -16,9 +16,9 @@ use std::fmt::Write as _;
 
 use interp_core::axis::{AXIS_COUNT, Pos};
 use interp_core::canon::{Canon, CanonSink, Full};
-use interp_core::motion::{Feedback, MotionCore};
 use interp_core::program::ProgramMemory;
 use interp_core::{Interpreter, MachineConfig, Panel, Progress, SingleProgram};
+use motion_core::motion::{Feedback, MotionCore};
 
 /// Interpreter steps per input (a WHILE loop that never ends stops here).
 pub const MAX_STEPS: usize = 2_000;

@@ -13,10 +13,10 @@ use std::time::Instant;
 use interp_core::MachineConfig;
 use interp_core::axis::{AXIS_COUNT, Pos};
 use interp_core::canon::{Action, Canon, CanonSink, Endpoint, Feed, FeedMode, Move, SpindleSpeed};
-use interp_core::fixed::STEP_ONE;
-use interp_core::motion::{Feedback, MotionCore, QUEUE};
-use interp_core::planner::{Item, MotionParams, Planner};
-use interp_core::stepgen::AxisStepGen;
+use motion_core::fixed::STEP_ONE;
+use motion_core::motion::{Feedback, MotionCore, QUEUE};
+use motion_core::planner::{Item, MotionParams, Planner};
+use motion_core::stepgen::AxisStepGen;
 use sim::{Sim, SimOptions};
 
 const MM: i64 = 1_000_000;

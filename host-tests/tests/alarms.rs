@@ -7,8 +7,8 @@ use host_tests::{VecSink, run, run_lib, run_with};
 use interp_core::alarm::CATALOG;
 use interp_core::canon::{Action, Canon, ThreadSync};
 use interp_core::config::Param;
-use interp_core::motion::{MotionCore, QUEUE};
 use interp_core::{Axis, Interpreter, MachineConfig, Panel, Pos};
+use motion_core::motion::{MotionCore, QUEUE};
 use sim::{Sim, SimOptions, SpindleModel};
 
 /// Codes documented but raised only by features still to come.

@@ -5,9 +5,9 @@
 use interp_core::axis::{Axis, Pos};
 use interp_core::canon::css_rpm;
 use interp_core::canon::{Action, Canon, CanonSink, Endpoint, Feed, FeedMode, Move, SpindleDir, SpindleSpeed};
-use interp_core::fixed::STEP_ONE;
-use interp_core::motion::{EventKind, MotionCore, QUEUE, State};
 use interp_core::{MachineConfig, Panel};
+use motion_core::fixed::STEP_ONE;
+use motion_core::motion::{EventKind, MotionCore, QUEUE, State};
 use sim::{Report, Sim, SimOptions, SpindleModel, TickSample};
 
 fn sim_with(model: SpindleModel) -> Sim {

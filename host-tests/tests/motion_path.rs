@@ -3,8 +3,8 @@
 
 use interp_core::MachineConfig;
 use interp_core::axis::{AXIS_COUNT, Pos};
-use interp_core::fixed::STEP_ONE;
-use interp_core::motion::State;
+use motion_core::fixed::STEP_ONE;
+use motion_core::motion::State;
 use proptest::prelude::*;
 use sim::{Report, Sim, SimOptions, TickSample};
 

@@ -4,10 +4,10 @@
 
 use interp_core::axis::{AXIS_COUNT, Pos};
 use interp_core::canon::{Action, Canon, CanonSink as _, Endpoint, Feed, FeedMode, Move, SpindleSpeed};
-use interp_core::fixed::round_steps;
 use interp_core::macros::Variables;
-use interp_core::motion::{Feedback, MotionCore, QUEUE, State};
 use interp_core::{Axis, MachineConfig};
+use motion_core::fixed::round_steps;
+use motion_core::motion::{Feedback, MotionCore, QUEUE, State};
 use sim::{Report, Sim, SimOptions, SpindleModel, TraceRow};
 
 const CPR: i64 = 4_096;

@@ -8,7 +8,7 @@ use interp_core::canon::{
     Action, Canon, Endpoint, Feed, FeedMode, Move, SpindleCommand, SpindleDir, SpindleSpeed, TapMove, ThreadMove,
     ThreadSync,
 };
-use interp_core::motion::State;
+use motion_core::motion::State;
 use sim::{Report, Sim, SimOptions, SpindleModel, TraceRow};
 
 const MM: i64 = 1_000_000;

@@ -1,7 +1,7 @@
 //! The language tables: G codes of table 1.1 in systems A/B/C with their modal
 //! groups, and the M codes of tables 1.2 and 3.1 with their timing.
 
-use crate::config::{GCodeSystem, MTiming, MachineConfig};
+use crate::config::{ConfigError, GCodeSystem, MTiming, MachineConfig};
 
 /// A G code by meaning, independent of the G-code system it was written in.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -307,6 +307,20 @@ pub fn m_function(m: u16, cfg: &MachineConfig) -> Option<MFunction> {
     })
 }
 
+/// Checks the machine's user M codes (after [`MachineConfig::validate`]): none of
+/// them a code the manual's tables already define, none listed twice.
+pub fn check_user_m_codes(cfg: &MachineConfig) -> Result<(), ConfigError> {
+    for (i, u) in cfg.user_m_codes.iter().enumerate() {
+        if m_function(u.m, &MachineConfig::default()).is_some() {
+            return Err(ConfigError::UserMStandard { m: u.m });
+        }
+        if cfg.user_m_codes[..i].iter().any(|o| o.m == u.m) {
+            return Err(ConfigError::UserMTwice { m: u.m });
+        }
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -341,5 +355,18 @@ mod tests {
         assert!(m_codes_conflict(98, 30));
         assert!(m_codes_conflict(91, 99));
         assert!(!m_codes_conflict(98, 8));
+    }
+
+    #[test]
+    fn user_m_codes_must_be_new_and_unique() {
+        use crate::config::UserMCode;
+        assert_eq!(check_user_m_codes(&MachineConfig::default()), Ok(()));
+        let mut c = MachineConfig::default();
+        c.user_m_codes.push(UserMCode { m: 8, timing: MTiming::After }).unwrap();
+        assert_eq!(check_user_m_codes(&c), Err(ConfigError::UserMStandard { m: 8 }));
+        let mut c = MachineConfig::default();
+        c.user_m_codes.push(UserMCode { m: 50, timing: MTiming::After }).unwrap();
+        c.user_m_codes.push(UserMCode { m: 50, timing: MTiming::Before }).unwrap();
+        assert_eq!(check_user_m_codes(&c), Err(ConfigError::UserMTwice { m: 50 }));
     }
 }

@@ -18,33 +18,28 @@
 #[cfg(test)]
 extern crate std;
 
-pub mod alarm;
-pub mod axis;
-pub mod canon;
 pub mod check;
 pub mod codes;
-pub mod config;
 pub mod contour;
 pub mod cycles;
 pub mod env;
 pub mod exec;
-pub mod fixed;
 pub mod geom;
-pub mod interpolator;
 pub mod interpreter;
 pub mod macros;
-pub mod motion;
 pub mod parse;
-pub mod planner;
 pub mod program;
 mod sort;
-pub mod stepgen;
-pub mod sync;
-pub mod units;
 
+// The vocabulary shared with the motion core lives in the `canon` crate; its
+// modules are re-exported under their old paths (`interp_core::axis::Pos`,
+// `interp_core::canon::Action`, `interp_core::config::MachineConfig` …).
+pub use ::canon;
+pub use ::canon::{alarm, axis, config, units};
+
+pub use ::canon::{Action, Canon, CanonSink};
 pub use alarm::{Alarm, AlarmKind};
 pub use axis::{Axis, Pos};
-pub use canon::{Action, Canon, CanonSink};
 pub use config::MachineConfig;
 pub use env::{Environment, Panel};
 pub use interpreter::{Interpreter, Progress};

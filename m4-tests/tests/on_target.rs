@@ -227,7 +227,7 @@ fn macro_loop_through_the_interpreter() -> Result<(), &'static str> {
 /// interpreted into the core, every period's steps issued, ends exactly on the
 /// programmed point with every step accounted for.
 fn motion_core_runs_a_contour_to_its_exact_end() -> Result<(), &'static str> {
-    use interp_core::motion::{Feedback, MotionCore, QUEUE};
+    use motion_core::motion::{Feedback, MotionCore, QUEUE};
     let cfg = MachineConfig::default();
     let text = b"G00 X0 Z0\nG01 X20 Z-10 F800\nG02 X40 Z-20 R10\nG03 X60 Z-30 I10 K0\nG01 Z-35\nM30\n";
     let mut interp = Interpreter::new(cfg.clone());
@@ -239,7 +239,7 @@ fn motion_core_runs_a_contour_to_its_exact_end() -> Result<(), &'static str> {
         now += 1_000_000;
         for (axis, s) in steps.iter_mut().enumerate() {
             while let Some(e) = core.next_step(axis, now) {
-                if let interp_core::stepgen::EdgeKind::Step(up) = e.kind {
+                if let motion_core::stepgen::EdgeKind::Step(up) = e.kind {
                     *s += if up { 1 } else { -1 };
                 }
             }
@@ -257,7 +257,7 @@ fn motion_core_runs_a_contour_to_its_exact_end() -> Result<(), &'static str> {
 /// The thread gearbox on the target: 2 mm lead at 5/32 step per count with a ramp;
 /// after it Z is exactly round((count − sync) × 5/32) and the pass ends on its end.
 fn motion_thread_gearbox_counts_exactly() -> Result<(), &'static str> {
-    use interp_core::sync::{Gear, Leg, Ratio};
+    use motion_core::sync::{Gear, Leg, Ratio};
     let leg = Leg { start: [0; 4], end: [0, 0, -6_400, 0], long: 2 };
     let mut g = Gear::thread(leg, Ratio { n: 5, d: 32 }, 1_000, 1, 0).map_err(|_| "gear")?;
     let mut pos = [0i64; 4];
@@ -275,7 +275,7 @@ fn motion_thread_gearbox_counts_exactly() -> Result<(), &'static str> {
 /// (`Gearing::new` reduces in 128 bits); after the ramp Z is exactly
 /// round((n1·c + n2·c²)/den) and the pass ends on its end point.
 fn motion_g34_gearbox_counts_exactly() -> Result<(), &'static str> {
-    use interp_core::sync::{Gear, Gearing, Leg};
+    use motion_core::sync::{Gear, Gearing, Leg};
     let g = Gearing::new(2_000_000, 100_000, 1, 3_125, 4_096).map_err(|_| "gearing")?;
     check(g == Gearing { n1: 163_840, n2: 1, den: 1_048_576 }, "F 2 K 0.1 on 3.125 um steps, 4096 counts")?;
     let leg = Leg { start: [0; 4], end: [0, 0, -20_000, 0], long: 2 };

@@ -14,8 +14,8 @@ use controller::persist::{self, Persist};
 use controller::{Inputs, MachineIo, Mode, MotionPort, MotionStatus};
 use interp_core::axis::{Axis, Pos};
 use interp_core::canon::{Canon, Full, SpindleDir};
-use interp_core::motion::{Event, MotionCore, QUEUE};
 use interp_core::{AlarmKind, MachineConfig};
+use motion_core::motion::{Event, MotionCore, QUEUE};
 
 use crate::file_flash::{self, FileFlash, FileFlashError};
 use crate::{Sim, SimOptions, SpindleModel};

@@ -9,7 +9,7 @@
 //! encoder count and index), on the spindle drive, on the wire, on the axes.
 
 use interp_core::axis::Axis;
-use interp_core::motion::Feedback;
+use motion_core::motion::Feedback;
 
 use crate::Sim;
 

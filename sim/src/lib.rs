@@ -26,10 +26,10 @@ use hal::{DigitalInputs, DigitalOutputs, MonotonicClock, Rotation, SpindleDrive,
 use interp_core::axis::{AXIS_COUNT, Axis, Pos};
 use interp_core::canon::{Canon, CanonSink, Full, SpindleDir};
 use interp_core::macros::Variables;
-use interp_core::motion::{Event, EventKind, Feedback, MotionCore, QUEUE, State};
 use interp_core::program::{ProgramId, ProgramStore};
-use interp_core::stepgen::{DriverTiming, EdgeKind};
 use interp_core::{Alarm, Interpreter, MachineConfig, Panel, Progress, SingleProgram};
+use motion_core::motion::{Event, EventKind, Feedback, MotionCore, QUEUE, State};
+use motion_core::stepgen::{DriverTiming, EdgeKind};
 
 /// A simulated step/dir driver: counts steps and checks the timing it is given.
 #[derive(Clone, Copy, Debug)]

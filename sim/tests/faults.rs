@@ -7,8 +7,8 @@
 
 use interp_core::alarm::AlarmKind;
 use interp_core::axis::Axis;
-use interp_core::motion::State;
 use interp_core::{Alarm, MachineConfig};
+use motion_core::motion::State;
 use sim::board::VirtualBoard;
 use sim::{Faults, Span};
 

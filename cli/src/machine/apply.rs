@@ -61,7 +61,10 @@ pub(super) fn apply(file: &MachineFile, cfg: &mut MachineConfig) -> Result<(), S
         apply_motion(m, &mut cfg.motion)?;
     }
     apply_input(file, &mut cfg.params)?;
-    cfg.validate().map_err(|e| e.to_string())
+    cfg.validate()
+        .and_then(|()| motion_core::planner::machine::check_config(cfg))
+        .and_then(|()| interp_core::codes::check_user_m_codes(cfg))
+        .map_err(|e| e.to_string())
 }
 
 /// G-code system, increments, diameter programming, rapid mode, tool count.
@@ -234,7 +237,7 @@ fn apply_spindle(s: &Spindle, cfg: &mut MachineConfig) {
     sp.accel_rpm_per_s = s.accel.unwrap_or(sp.accel_rpm_per_s);
 }
 
-/// User M codes (checked with the whole machine by `MachineConfig::validate`).
+/// User M codes (checked with the whole machine by `codes::check_user_m_codes`).
 fn apply_user_m_codes(list: &[UserM], cfg: &mut MachineConfig) -> Result<(), String> {
     cfg.user_m_codes.clear();
     for u in list {

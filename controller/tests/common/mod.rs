@@ -8,9 +8,9 @@ use std::collections::VecDeque;
 use controller::{Controller, Inputs, MachineIo, MotionPort, MotionStatus};
 use interp_core::axis::Pos;
 use interp_core::canon::{Canon, CanonSink, Full, SpindleDir};
-use interp_core::motion::{Event, Feedback, MotionCore};
 use interp_core::program::ProgramMemory;
 use interp_core::{AlarmKind, Interpreter, MachineConfig, Panel, ProgramStore, Progress, SingleProgram};
+use motion_core::motion::{Event, Feedback, MotionCore};
 
 /// The controller under test: 8 KiB window, 16 KiB program memory.
 pub type Ctl = Controller<8192, 16384, 16, 512>;

@@ -16,8 +16,8 @@
 //! The e-stop input is read in the period: its rising level calls the core's
 //! `emergency_stop` (the step player already raises no STEP pin while it is active).
 
-use interp_core::motion::{Feedback, MotionCore};
-use interp_core::stepgen::{EdgeKind, StepEvent};
+use motion_core::motion::{Feedback, MotionCore};
+use motion_core::stepgen::{EdgeKind, StepEvent};
 
 use crate::encoder::Encoder;
 use crate::ring::{Edge, Producer, Timed};
@@ -66,7 +66,7 @@ pub struct EngineAxis {
 }
 
 impl EngineAxis {
-    /// Axis `core_axis` of the motion core (`interp_core::axis::Axis as usize`) fed
+    /// Axis `core_axis` of the motion core (`motion_core::canon::Axis as usize`) fed
     /// into ring end `tx`.
     pub fn new(core_axis: usize, tx: Producer<RING>) -> Self {
         EngineAxis { core_axis, tx, carry: None }
@@ -248,9 +248,9 @@ mod tests {
     use super::*;
     use crate::playback::{AxisPins, PlayTiming, Player};
     use crate::ring::EdgeRing;
-    use interp_core::axis::Pos;
-    use interp_core::canon::{Action, Canon, CanonSink as _, Endpoint, Feed, FeedMode, Move, SpindleSpeed};
-    use interp_core::config::MachineConfig;
+    use motion_core::canon::axis::Pos;
+    use motion_core::canon::config::MachineConfig;
+    use motion_core::canon::{Action, Canon, CanonSink as _, Endpoint, Feed, FeedMode, Move, SpindleSpeed};
     use std::boxed::Box;
     use std::vec::Vec;
 
@@ -337,7 +337,7 @@ mod tests {
     /// interrupt, every count through [`Engine::encoder`] at its time, edges played
     /// at theirs. Returns, for each Z step played, the encoder count at that moment.
     fn thread_at(rpm: u32, rings: &'static [EdgeRing<RING>; 1]) -> (Vec<u32>, Box<MotionCore<64>>) {
-        use interp_core::canon::{SpindleCommand, SpindleDir, ThreadMove, ThreadSync};
+        use motion_core::canon::{SpindleCommand, SpindleDir, ThreadMove, ThreadSync};
         let cfg = MachineConfig::default();
         let mut core: Box<MotionCore<64>> = Box::new(MotionCore::new(&cfg, Pos::xz(20 * MM, 5 * MM)).unwrap());
         let on = SpindleCommand { dir: SpindleDir::Cw, rpm: Some(rpm), css: None };

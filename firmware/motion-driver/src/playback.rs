@@ -4,7 +4,7 @@
 //! timing even when an edge comes late. While the e-stop input is active it raises
 //! no STEP pin at all. Nothing here divides, allocates or touches the motion core.
 
-use interp_core::stepgen::DriverTiming;
+use motion_core::stepgen::DriverTiming;
 
 use crate::ring::{Consumer, Edge, Timed};
 use crate::timebase::TimeBase;

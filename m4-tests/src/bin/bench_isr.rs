@@ -24,8 +24,8 @@ use interp_core::canon::{
     SpindleSpeed, ThreadMove, ThreadSync,
 };
 use interp_core::config::MachineConfig;
-use interp_core::motion::{MotionCore, QUEUE, State};
 use m4_tests::{exit, measure};
+use motion_core::motion::{MotionCore, QUEUE, State};
 use motion_driver::engine::{Engine, EngineAxis, RING, Sample};
 use motion_driver::playback::{AxisPins, PlayTiming, Player};
 use motion_driver::ring::{Edge, EdgeRing, Timed};

@@ -15,13 +15,13 @@ use cortex_m_semihosting::hprintln;
 use interp_core::axis::{AXIS_COUNT, Pos};
 use interp_core::canon::{Action, ArcMove, Canon, CanonSink as _, Endpoint, Feed, FeedMode, Move, Plane, SpindleSpeed};
 use interp_core::config::MachineConfig;
-use interp_core::fixed::STEP_ONE;
-use interp_core::interpolator::Segment;
-use interp_core::motion::{Feedback, MotionCore, QUEUE};
-use interp_core::planner::{Block, Item, MotionParams, Planner};
-use interp_core::stepgen::{AxisStepGen, StepEvent};
-use interp_core::sync::{Gear, Gearing, Leg, Phase, Ratio};
 use m4_tests::{exit, measure};
+use motion_core::fixed::STEP_ONE;
+use motion_core::interpolator::Segment;
+use motion_core::motion::{Feedback, MotionCore, QUEUE};
+use motion_core::planner::{Block, Item, MotionParams, Planner};
+use motion_core::stepgen::{AxisStepGen, StepEvent};
+use motion_core::sync::{Gear, Gearing, Leg, Phase, Ratio};
 
 const MM: i64 = 1_000_000;
 

@@ -1,4 +1,11 @@
-//! The canonical machining actions: the only way the interpreter affects the world.
+//! The vocabulary the lathe interpreter and the motion core share, and nothing else:
+//! the canonical machining actions (this module), the axes and positions
+//! ([`axis`]), the alarms ([`alarm`]), the machine description ([`config`]) and the
+//! internal units ([`units`]). `no_std`, no allocation, no unsafe code; it depends
+//! on no other crate of the workspace, and both `interp-core` (the language) and
+//! `motion-core` (planner to step events) depend on it.
+//!
+//! # The canonical machining actions: the only way the interpreter affects the world
 //!
 //! The interpreter turns blocks into a stream of [`Canon`] actions and offers them
 //! to a [`CanonSink`]. A recording sink makes golden tests trivial, the motion
@@ -6,11 +13,24 @@
 //! in machine coordinates (what the axes must do, tool offset included) and in work
 //! coordinates (what the program said), so no consumer has to track frames.
 
+#![no_std]
+#![forbid(unsafe_code)]
+
+#[cfg(test)]
+extern crate std;
+
+pub mod alarm;
+pub mod axis;
+pub mod config;
+pub mod units;
+
 mod record;
 
 pub use record::RecordingSink;
 
-use crate::axis::{Axis, Pos};
+pub use alarm::{Alarm, AlarmKind};
+pub use axis::{Axis, Pos};
+pub use config::MachineConfig;
 
 /// One canonical action and the program line that produced it.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -199,9 +199,11 @@ impl MachineConfig {
         self.user_m_codes.iter().copied().find(|u| u.m == m)
     }
 
-    /// Checks what the interpreter and the planner rely on: X and Z present, every
-    /// present linear axis with travel (min below max) and positive rates, spindle
-    /// speeds set, user M codes new and unique.
+    /// Checks the machine's shape: X and Z present, every present linear axis with
+    /// travel (min below max) and positive rates, spindle speeds set. The layers
+    /// above check what only they know, in this order after it: the motion core's
+    /// settings (`motion_core::planner::machine::check_config`), then the user M
+    /// codes new and unique (`interp_core::codes::check_user_m_codes`).
     pub fn validate(&self) -> Result<(), ConfigError> {
         for a in [Axis::X, Axis::Z] {
             if !self.axis(a).present {
@@ -222,17 +224,6 @@ impl MachineConfig {
         }
         if self.spindle.max_rpm == 0 {
             return Err(ConfigError::SpindleMaxZero);
-        }
-        if let Err(crate::alarm::AlarmKind::MotionConfigInvalid { what }) = crate::planner::MotionParams::new(self) {
-            return Err(ConfigError::Motion { what });
-        }
-        for (i, u) in self.user_m_codes.iter().enumerate() {
-            if crate::codes::m_function(u.m, &MachineConfig::default()).is_some() {
-                return Err(ConfigError::UserMStandard { m: u.m });
-            }
-            if self.user_m_codes[..i].iter().any(|o| o.m == u.m) {
-                return Err(ConfigError::UserMTwice { m: u.m });
-            }
         }
         Ok(())
     }
@@ -306,9 +297,6 @@ mod tests {
         let mut c = MachineConfig::default();
         c.axes[Axis::X.index()].rapid_per_min = 0;
         assert_eq!(c.validate(), Err(ConfigError::RateNotPositive { axis: Axis::X }));
-        let mut c = MachineConfig::default();
-        c.user_m_codes.push(UserMCode { m: 8, timing: MTiming::After }).unwrap();
-        assert_eq!(c.validate(), Err(ConfigError::UserMStandard { m: 8 }));
         let mut c = MachineConfig::default();
         c.axes[Axis::Z.index()] = AxisConfig::ABSENT;
         assert_eq!(c.validate(), Err(ConfigError::AxisMissing { axis: Axis::Z }));

@@ -4,7 +4,7 @@
 
 use crate::alarm::AlarmKind;
 use crate::axis::AXIS_COUNT;
-use crate::config::{Drive, MachineConfig, Param};
+use crate::config::{ConfigError, Drive, MachineConfig, Param};
 use crate::fixed::{Divisor, STEP_FRAC, mul_shr};
 use crate::stepgen::DriverTiming;
 
@@ -218,6 +218,15 @@ impl MotionParams {
     }
 }
 
+/// Checks the motion settings of `cfg` (after [`MachineConfig::validate`]): what
+/// [`MotionParams::new`] refuses, as the machine file's error.
+pub fn check_config(cfg: &MachineConfig) -> Result<(), ConfigError> {
+    match MotionParams::new(cfg) {
+        Err(AlarmKind::MotionConfigInvalid { what }) => Err(ConfigError::Motion { what }),
+        _ => Ok(()),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -247,5 +256,16 @@ mod tests {
         assert!((p.limits[0].feed - 83_333.33).abs() < 1.0);
         assert!(!p.limits[1].present);
         assert_eq!(p.cpr, 4_096);
+    }
+
+    #[test]
+    fn check_config_names_what_the_motion_core_refuses() {
+        assert_eq!(check_config(&MachineConfig::default()), Ok(()));
+        let mut c = MachineConfig::default();
+        c.spindle.encoder_cpr = 0;
+        assert_eq!(
+            check_config(&c),
+            Err(ConfigError::Motion { what: "spindle encoder counts per revolution is zero" })
+        );
     }
 }
