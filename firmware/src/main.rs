@@ -33,7 +33,7 @@ use {defmt_rtt as _, panic_probe as _};
 /// On the F405 it lives in the 64 KB core-coupled memory (CPU only, no DMA: the
 /// controller is never a DMA buffer), so the 128 KB SRAM holds the other statics and
 /// the stack, which the interpreter's deepest step (a G71 through the contour layer)
-/// needs more than 64 KB of. `memory.x` puts `.ccmram` in the CCM, not initialised:
+/// needs more than 64 KB of. `memory-f405/memory.x` puts `.ccmram` in the CCM, not initialised:
 /// the slot is `MaybeUninit` and written once at boot.
 #[cfg(feature = "f405")]
 #[unsafe(link_section = ".ccmram")]
@@ -131,7 +131,7 @@ async fn main(spawner: Spawner) {
     #[cfg(persist)]
     let store = open_store(flash, &mut cfg, &mut settings);
     #[cfg(not(persist))]
-    let _ = flash; // Nothing persists on the F446RE or in QEMU (build.rs).
+    let _ = flash; // Nothing persists in QEMU (build.rs).
     let (port, cfg) = match start_motion(&cfg) {
         Ok(port) => (port, cfg),
         Err(e) => {
@@ -159,7 +159,7 @@ async fn main(spawner: Spawner) {
     spawner.spawn(unwrap!(heartbeat(status_led)));
 }
 
-/// The persistence the control task runs (none on the F446RE and in QEMU).
+/// The persistence the control task runs (none in QEMU).
 #[cfg(persist)]
 type Saving = Option<&'static mut firmware::saved::Saver>;
 
@@ -314,7 +314,7 @@ fn save(saving: &mut Saving, now: u64, ctl: &mut Ctl, port: &MotionPort) {
     }
 }
 
-/// Nothing persists on the F446RE and in QEMU.
+/// Nothing persists in QEMU.
 #[cfg(not(persist))]
 fn save(_: &mut Saving, _: u64, _: &mut Ctl, _: &MotionPort) {}
 
