@@ -132,13 +132,15 @@ async fn main(spawner: Spawner) {
     let store = open_store(flash, &mut cfg, &mut settings);
     #[cfg(not(persist))]
     let _ = flash; // Nothing persists in QEMU (build.rs).
-    let (port, cfg) = match start_motion(&cfg) {
-        Ok(port) => (port, cfg),
+    // One machine description in this frame (it is on the stack under every
+    // call below): refused, it is reset in place.
+    let port = match start_motion(&cfg) {
+        Ok(port) => port,
         Err(e) => {
             warn!("stored machine description refused ({}): defaults", e);
             cfg = MachineConfig::default();
             settings = controller::Settings::default();
-            (unwrap!(start_motion(&cfg)), cfg)
+            unwrap!(start_motion(&cfg))
         }
     };
     let outputs = Outputs::new(aux, cw, ccw, speed, drive_enable, cfg.spindle.max_rpm);
