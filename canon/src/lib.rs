@@ -85,6 +85,21 @@ pub enum Action {
         /// True for M30 (rewind).
         rewind: bool,
     },
+    /// Polygon turning (G51.2/G50.2, 2.8): from the next spindle index on, the C
+    /// axis (the tool spindle) turns Q/P revolutions per work-spindle revolution,
+    /// locked to the encoder; `None` (G50.2) ends it once C is a whole number of
+    /// revolutions from where it locked.
+    Polygon(Option<PolygonSync>),
+}
+
+/// The ratio of polygon turning (G51.2 P Q, 2.8).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct PolygonSync {
+    /// P: work-spindle turns (1–999).
+    pub p: u16,
+    /// Q: tool-spindle turns (1–999) for P work-spindle turns.
+    pub q: u16,
 }
 
 /// Where a move ends, in both coordinate systems (internal units, X radius).

@@ -52,6 +52,8 @@ pub enum Command {
         /// M30.
         rewind: bool,
     },
+    /// G51.2/G50.2: the C axis locked to the spindle at Q/P, or released.
+    Polygon(Option<crate::canon::PolygonSync>),
 }
 
 /// One entry of the queue. Entries live inline in the fixed-capacity queue (no
@@ -231,6 +233,7 @@ impl<const N: usize> Planner<N> {
             Action::Aux { m } => Command::Aux { m },
             Action::Stop { optional } => Command::Stop { optional },
             Action::End { rewind } => Command::End { rewind },
+            Action::Polygon(p) => Command::Polygon(p),
             _ => return Ok(()),
         };
         self.queue.push_back(Item::Command { line, cmd }).map_err(|_| PushError::Full)?;
