@@ -256,6 +256,7 @@ impl<const N: usize> MotionCore<N> {
             steppers,
             spindle,
             gear,
+            polygon,
             locked,
             legs_taken,
             ramp_lead,
@@ -287,6 +288,7 @@ impl<const N: usize> MotionCore<N> {
         *steppers = core::array::from_fn(|i| AxisStepGen::new(p.timing[i], steps[i]));
         *spindle = Spindle::new(&p, cfg.motion.speed_window_ticks);
         (*gear, *locked, *pending, *alarm) = (None, None, None, None);
+        *polygon = polygon::Polygon::default();
         (*legs_taken, *ramp_lead, *state, *spindle_wait) = (0, 0, State::Idle, false);
         (*feed_ovr, *rapid_ovr, *spindle_ovr, *spindle_max) = (256, 256, 100, cfg.spindle.max_rpm);
         (*hold, *single_block, *streaming, *starved) = (false, false, false, false);
