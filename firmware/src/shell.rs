@@ -37,7 +37,7 @@ pub const SEQUENCES: usize = 512;
 #[cfg(feature = "f446")]
 pub const WINDOW: usize = 4096;
 /// Program memory text, bytes: the F446RE has no CCM, so the controller shares the
-/// 128 KB SRAM with the other statics and the stack (a G71 and boot take ~33 KB of
+/// 128 KB SRAM with the other statics and the stack (a G71 and boot take ~28-35 KB of
 /// it), and program memory is half the F405's.
 #[cfg(feature = "f446")]
 pub const TEXT: usize = 8192;
