@@ -642,15 +642,10 @@ impl Interpreter {
         }
         match done.and_then(|flow| route(self, flow)) {
             Ok(go) => {
-                if let Some(exp) = &self.cycle {
-                    // The state stays as it was until the dry run has ended.
-                    let (at, line) = (self.cursor, self.block.line);
-                    let dry = exp.clone();
-                    let state = self.state;
-                    self.state.restore(&before, held.as_ref());
+                if self.cycle.is_some() {
+                    self.set_aside(&before, held.as_ref(), cycle, go);
                     #[cfg(debug_assertions)]
                     debug_assert_eq!(self.state, whole, "a cycle block was not set aside completely");
-                    self.validating = Some(Validating { state, block: cycle, next: go, dry, at, line });
                     return Ok(None);
                 }
                 self.commit_cycle(&cycle);
@@ -666,6 +661,27 @@ impl Interpreter {
                 Err(e)
             }
         }
+    }
+
+    /// Sets the cycle block just executed aside for its dry run (`validating`, with
+    /// a copy of its expansion); the state stays as it was (`before`, `held`) until
+    /// the dry run has ended. Never inlined: the copy (~6 KB with the state) stays
+    /// out of the frame of [`Interpreter::nc_block`], which is on the stack under
+    /// every block's execution.
+    #[inline(never)]
+    fn set_aside(
+        &mut self,
+        before: &crate::exec::Saved,
+        held: Option<&crate::contour::Contour>,
+        block: BlockCycle,
+        next: Next,
+    ) {
+        let Some(exp) = &self.cycle else { return };
+        let (at, line) = (self.cursor, self.block.line);
+        let dry = exp.clone();
+        let state = self.state;
+        self.state.restore(before, held);
+        self.validating = Some(Validating { state, block, next, dry, at, line });
     }
 
     /// After a block's alarm (the block undone, the outbox empty): the moves the

@@ -84,13 +84,14 @@ impl<'a> Staged<'a> {
         Staged { program, slot: Some(slot), ..Staged::new(line, outbox) }
     }
 
-    /// Hands the block's cycle to the interpreter; its moves come after the actions
-    /// staged so far.
-    pub fn start_cycle(&mut self, exp: Expansion) -> Result<(), AlarmKind> {
-        let slot = self.slot.as_mut().ok_or(AlarmKind::ProfileForbiddenCode { what: "a cycle" })?;
-        **slot = Some(exp);
+    /// The interpreter's expansion slot, for the block's cycle to be built in place
+    /// (an expansion is ~5 KB: built here it is never moved through the frames of
+    /// its callers, which are on the stack under the shape's blocks). The cycle's
+    /// moves come after the actions staged so far.
+    pub fn cycle_slot(&mut self) -> Result<&mut Option<Expansion>, AlarmKind> {
+        let slot = self.slot.as_deref_mut().ok_or(AlarmKind::ProfileForbiddenCode { what: "a cycle" })?;
         self.split = Some(self.actions.len());
-        Ok(())
+        Ok(slot)
     }
 
     /// Stages one action.

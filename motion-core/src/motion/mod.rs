@@ -238,6 +238,66 @@ impl<const N: usize> MotionCore<N> {
         })
     }
 
+    /// Rebuilds the core for machine `cfg` with the axes where they are: what
+    /// `*self = MotionCore::new(cfg, self.position())?` does, field by field in
+    /// place, so no second ~21 KB core is built on the stack (the board rebuilds
+    /// its core when a setting changes, under the controller's deepest frames).
+    /// On an error the core is left as it was.
+    pub fn rebuild(&mut self, cfg: &MachineConfig) -> Result<(), AlarmKind> {
+        let pos = self.position();
+        let p = MotionParams::new(cfg)?;
+        let steps: [i64; AXIS_COUNT] = core::array::from_fn(|i| p.scale[i].steps(pos.0[i]));
+        // Destructured so that a new field cannot be forgotten here.
+        let MotionCore {
+            p: params,
+            mc,
+            planner,
+            interp,
+            steppers,
+            spindle,
+            gear,
+            polygon,
+            locked,
+            legs_taken,
+            ramp_lead,
+            pending,
+            state,
+            spindle_wait,
+            feed_ovr,
+            rapid_ovr,
+            spindle_ovr,
+            spindle_max,
+            hold,
+            single_block,
+            events,
+            alarm,
+            stats,
+            now,
+            streaming,
+            starved,
+            line,
+            offset_memory,
+            css_phase,
+            watch_count,
+            watch_since,
+        } = self;
+        *params = p;
+        *mc = cfg.motion;
+        *planner = Planner::new(pos);
+        *interp = Interpolator::new(steps);
+        *steppers = core::array::from_fn(|i| AxisStepGen::new(p.timing[i], steps[i]));
+        *spindle = Spindle::new(&p, cfg.motion.speed_window_ticks);
+        (*gear, *locked, *pending, *alarm) = (None, None, None, None);
+        *polygon = polygon::Polygon::default();
+        (*legs_taken, *ramp_lead, *state, *spindle_wait) = (0, 0, State::Idle, false);
+        (*feed_ovr, *rapid_ovr, *spindle_ovr, *spindle_max) = (256, 256, 100, cfg.spindle.max_rpm);
+        (*hold, *single_block, *streaming, *starved) = (false, false, false, false);
+        events.clear();
+        (*stats, *now, *line, *offset_memory) = (Stats::default(), 0, 0, Pos::ZERO);
+        (*css_phase, *watch_count, *watch_since) = (0, 0, 0);
+        Ok(())
+    }
+
     /// The machine in motion units.
     pub fn params(&self) -> &MotionParams {
         &self.p
