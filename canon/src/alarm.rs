@@ -277,6 +277,14 @@ pub enum AlarmKind {
     PolarArcNeedsR,
     /// 4047: G51.2 polygon turning on a machine without a synchronised tool spindle (2.8 note 6).
     PolygonNoToolSpindle,
+    /// 0220: a C (tool-spindle) move programmed in polygon turning (2.8 note 11).
+    PolygonAxisCommanded,
+    /// 0221: a function that needs the C axis or the spindle in position control
+    /// while polygon turning runs, or G51.2 during it (2.8 notes 6, 9).
+    PolygonModeConflict {
+        /// What conflicts.
+        what: &'static str,
+    },
     /// 4044: more actions wait behind a held move than the look-ahead holds.
     ContourBufferFull,
     /// 0034: nose compensation starting up or cancelling in an arc block (2.18.3).
@@ -395,6 +403,8 @@ impl AlarmKind {
             PolarCodeNotAllowed { .. } => 4045,
             PolarArcNeedsR => 4046,
             PolygonNoToolSpindle => 4047,
+            PolygonAxisCommanded => 220,
+            PolygonModeConflict { .. } => 221,
             NoseCompArc => 34,
             NoseCompPlaneChange => 37,
             NoseCompReversed => 3576,
@@ -566,6 +576,8 @@ impl fmt::Display for AlarmKind {
             PolygonNoToolSpindle => {
                 write!(f, "polygon turning (G51.2) needs a tool spindle synchronised to the work spindle")
             }
+            PolygonAxisCommanded => write!(f, "the tool spindle (C) cannot be moved in polygon turning (G51.2)"),
+            PolygonModeConflict { what } => write!(f, "{what} in polygon turning (G51.2)"),
             NoseCompArc => write!(f, "nose compensation cannot start up or cancel in an arc block"),
             NoseCompPlaneChange => write!(f, "plane selection while nose compensation is active"),
             NoseCompReversed => write!(f, "G41/G42 reversed while nose compensation is active"),
@@ -755,6 +767,16 @@ pub const CATALOG: &[CatalogEntry] = &[
         when: "G17/G18/G19 in the block after a ,C/,R block, or a chamfered move leaving the plane (2.23 note 4)",
     },
     CatalogEntry {
+        code: 220,
+        title: "tool spindle moved in polygon turning",
+        when: "a block moves C (the tool spindle) between G51.2 and G50.2 (2.8 note 11)",
+    },
+    CatalogEntry {
+        code: 221,
+        title: "illegal command in polygon turning",
+        when: "G12.1, M29 rigid tapping or another use of the spindle or C in position control between G51.2 and G50.2, or G51.2 in G12.1 (2.8 notes 6, 9)",
+    },
+    CatalogEntry {
         code: 224,
         title: "reference not established",
         when: "G28/G30 on an axis that has not been homed (2.11.2 note 2)",
@@ -789,7 +811,9 @@ pub const CATALOG: &[CatalogEntry] = &[
     CatalogEntry {
         code: 3605,
         title: "nose compensation gouge",
-        when: "interference check finds overcutting (2.18.4)",
+        when: "interference check finds overcutting (2.18.4): a move whose offset runs against it (named by the \
+               alarm; the machine stops before it), an inside arc smaller than the nose, a G90/G94 cut shorter \
+               than the nose",
     },
     CatalogEntry {
         code: 3607,
@@ -930,7 +954,7 @@ pub const CATALOG: &[CatalogEntry] = &[
     CatalogEntry {
         code: 4047,
         title: "no tool spindle for polygon turning",
-        when: "G51.2 (its P/Q/R/S valid) on this controller, which drives one spindle: the synchronised tool spindle in position control that 2.8 note 6 requires is missing",
+        when: "G51.2 (its P/Q/R/S valid) on a machine without a C axis: the C axis drive is the tool spindle that 2.8 note 6 requires",
     },
     CatalogEntry {
         code: 4501,
@@ -1113,6 +1137,8 @@ mod tests {
             PolarCodeNotAllowed { code: GNum(0) },
             PolarArcNeedsR,
             PolygonNoToolSpindle,
+            PolygonAxisCommanded,
+            PolygonModeConflict { what: "x" },
             NoseCompArc,
             NoseCompPlaneChange,
             NoseCompReversed,

@@ -25,6 +25,7 @@ impl Axis {
     pub const ALL: [Axis; AXIS_COUNT] = [Axis::X, Axis::Y, Axis::Z, Axis::C];
 
     /// The absolute-address letter (`X`, `Y`, `Z`, `C`).
+    #[inline]
     pub const fn letter(self) -> u8 {
         match self {
             Axis::X => b'X',
@@ -35,6 +36,7 @@ impl Axis {
     }
 
     /// The incremental-address letter of system A (`U`, `V`, `W`, `H`).
+    #[inline]
     pub const fn incremental_letter(self) -> u8 {
         match self {
             Axis::X => b'U',
@@ -45,6 +47,7 @@ impl Axis {
     }
 
     /// The arc-centre letter of this axis (`I`, `J`, `K`), none for C.
+    #[inline]
     pub const fn center_letter(self) -> Option<u8> {
         match self {
             Axis::X => Some(b'I'),
@@ -55,11 +58,13 @@ impl Axis {
     }
 
     /// Whether the axis is rotary (values in micro-degrees).
+    #[inline]
     pub const fn is_rotary(self) -> bool {
         matches!(self, Axis::C)
     }
 
     /// Index into a [`Pos`].
+    #[inline]
     pub const fn index(self) -> usize {
         self as usize
     }
@@ -74,6 +79,7 @@ pub struct Pos(pub [i64; AXIS_COUNT]);
 /// `memcmp` call (~40 instructions on the M4) and positions are compared for
 /// every move.
 impl PartialEq for Pos {
+    #[inline]
     fn eq(&self, other: &Pos) -> bool {
         let mut diff = 0;
         for (a, b) in self.0.iter().zip(&other.0) {
@@ -88,11 +94,13 @@ impl Pos {
     pub const ZERO: Pos = Pos([0; AXIS_COUNT]);
 
     /// A position with X and Z set, the other axes zero.
+    #[inline]
     pub const fn xz(x: i64, z: i64) -> Pos {
         Pos([x, 0, z, 0])
     }
 
     /// Component-wise checked addition.
+    #[inline]
     pub fn checked_add(self, o: Pos) -> Option<Pos> {
         let mut r = [0; AXIS_COUNT];
         for (i, v) in r.iter_mut().enumerate() {
@@ -104,12 +112,14 @@ impl Pos {
 
 impl Index<Axis> for Pos {
     type Output = i64;
+    #[inline]
     fn index(&self, a: Axis) -> &i64 {
         &self.0[a.index()]
     }
 }
 
 impl IndexMut<Axis> for Pos {
+    #[inline]
     fn index_mut(&mut self, a: Axis) -> &mut i64 {
         &mut self.0[a.index()]
     }
@@ -117,6 +127,7 @@ impl IndexMut<Axis> for Pos {
 
 impl Add for Pos {
     type Output = Pos;
+    #[inline]
     fn add(self, o: Pos) -> Pos {
         Pos(core::array::from_fn(|i| self.0[i].wrapping_add(o.0[i])))
     }
@@ -124,6 +135,7 @@ impl Add for Pos {
 
 impl Sub for Pos {
     type Output = Pos;
+    #[inline]
     fn sub(self, o: Pos) -> Pos {
         Pos(core::array::from_fn(|i| self.0[i].wrapping_sub(o.0[i])))
     }
@@ -139,21 +151,25 @@ impl AxisSet {
     pub const EMPTY: AxisSet = AxisSet(0);
 
     /// Adds an axis.
+    #[inline]
     pub fn insert(&mut self, a: Axis) {
         self.0 |= 1 << a.index();
     }
 
     /// Whether the set holds `a`.
+    #[inline]
     pub const fn contains(self, a: Axis) -> bool {
         self.0 & (1 << a as u8) != 0
     }
 
     /// Whether the set is empty.
+    #[inline]
     pub const fn is_empty(self) -> bool {
         self.0 == 0
     }
 
     /// The axes of the set, in index order.
+    #[inline]
     pub fn iter(self) -> impl Iterator<Item = Axis> {
         Axis::ALL.into_iter().filter(move |a| self.contains(*a))
     }

@@ -85,6 +85,21 @@ pub enum Action {
         /// True for M30 (rewind).
         rewind: bool,
     },
+    /// Polygon turning (G51.2/G50.2, 2.8): from the next spindle index on, the C
+    /// axis (the tool spindle) turns Q/P revolutions per work-spindle revolution,
+    /// locked to the encoder; `None` (G50.2) ends it once C is a whole number of
+    /// revolutions from where it locked.
+    Polygon(Option<PolygonSync>),
+}
+
+/// The ratio of polygon turning (G51.2 P Q, 2.8).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct PolygonSync {
+    /// P: work-spindle turns (1–999).
+    pub p: u16,
+    /// Q: tool-spindle turns (1–999) for P work-spindle turns.
+    pub q: u16,
 }
 
 /// Where a move ends, in both coordinate systems (internal units, X radius).
@@ -189,6 +204,7 @@ pub enum Plane {
 impl Plane {
     /// The plane's two axes in the order that makes G02 clockwise when the plane is
     /// seen from the positive side of its normal (G18: Z right, X up, Y towards you).
+    #[inline]
     pub const fn axes(self) -> (Axis, Axis) {
         match self {
             Plane::Xy => (Axis::X, Axis::Y),
@@ -198,6 +214,7 @@ impl Plane {
     }
 
     /// Whether `a` lies in the plane.
+    #[inline]
     pub fn contains(self, a: Axis) -> bool {
         let (p, q) = self.axes();
         a == p || a == q
@@ -307,6 +324,7 @@ pub struct SpindleCommand {
 
 impl Action {
     /// The end point of a motion action.
+    #[inline]
     pub fn endpoint(&self) -> Option<&Endpoint> {
         match self {
             Action::Rapid(m) | Action::Linear(m) => Some(&m.to),

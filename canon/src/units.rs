@@ -13,6 +13,20 @@ pub const NM_PER_INCH: i64 = 25_400_000;
 /// Micro-degrees per degree.
 pub const UDEG_PER_DEG: i64 = 1_000_000;
 
+/// `v as f32`, the same value, by the FPU's 32-bit conversion when `v` fits an
+/// `i32` (the `i64` conversion is a software routine on the Cortex-M4). For the
+/// per-block geometry of the interpreter and the planner that works in f32.
+#[inline]
+pub fn f32_of(v: i64) -> f32 {
+    match i32::try_from(v) {
+        Ok(v) => v as f32,
+        // Written so that the compiler cannot fold both arms into the i64 routine:
+        // below 2^53 the f64 sum is exact and rounds once, as `v as f32` does.
+        Err(_) if v.unsigned_abs() < 1 << 53 => ((v >> 32) as f64 * 4_294_967_296.0 + (v as u32) as f64) as f32,
+        Err(_) => v as f32,
+    }
+}
+
 /// A decimal number exactly as written in a program word: `mantissa × 10^-frac_digits`.
 ///
 /// Keeping the decimal form (instead of a float) makes every conversion exact and
@@ -35,11 +49,13 @@ pub const MAX_FRAC_DIGITS: u8 = 9;
 
 impl Number {
     /// An integer written without a decimal point.
+    #[inline]
     pub const fn int(value: i64) -> Self {
         Number { mantissa: value, frac_digits: 0, has_point: false }
     }
 
     /// The exact integer value, if the number has no non-zero fraction.
+    #[inline]
     pub fn as_integer(&self) -> Option<i64> {
         let p = pow10(self.frac_digits)?;
         if self.mantissa % p == 0 { Some(self.mantissa / p) } else { None }
@@ -47,6 +63,7 @@ impl Number {
 
     /// The value multiplied by `10^shift`, rounded half away from zero.
     /// `None` if the result does not fit in an `i64`.
+    #[inline]
     pub fn scaled(&self, shift: u8) -> Option<i64> {
         if shift >= self.frac_digits {
             self.mantissa.checked_mul(pow10(shift - self.frac_digits)?)
@@ -56,6 +73,7 @@ impl Number {
     }
 
     /// The value as a float (for geometry and macro arithmetic only).
+    #[inline]
     pub fn to_f64(&self) -> f64 {
         self.mantissa as f64 / libm::pow(10.0, f64::from(self.frac_digits))
     }
@@ -63,6 +81,7 @@ impl Number {
     /// The number nearest to `value` with [`MAX_FRAC_DIGITS`] fraction digits,
     /// marked as having a decimal point (macro values are real numbers).
     /// `None` for NaN, infinities and values beyond ±9.2e9.
+    #[inline]
     pub fn from_f64(value: f64) -> Option<Self> {
         let m = libm::round(value * 1e9);
         if !m.is_finite() || m.abs() >= 9.2e18 {
@@ -77,6 +96,7 @@ impl Number {
     }
 
     /// True if the value is negative.
+    #[inline]
     pub fn is_negative(&self) -> bool {
         self.mantissa < 0
     }
@@ -94,11 +114,13 @@ const POW10: [i64; 19] = {
 };
 
 /// `10^n` as an `i64`, `None` above `10^18`.
+#[inline]
 pub const fn pow10(n: u8) -> Option<i64> {
     if n > 18 { None } else { Some(POW10[n as usize]) }
 }
 
 /// Integer division rounding half away from zero (`d > 0`).
+#[inline]
 pub const fn div_round(n: i64, d: i64) -> i64 {
     let q = n / d;
     let r = n - q * d;
@@ -106,6 +128,7 @@ pub const fn div_round(n: i64, d: i64) -> i64 {
 }
 
 /// Round `v` to the nearest multiple of `step` (half away from zero).
+#[inline]
 pub const fn round_to(v: i64, step: i64) -> i64 {
     div_round(v, step) * step
 }
@@ -122,6 +145,7 @@ pub enum Units {
 
 impl Units {
     /// Nanometres in one program unit (1 mm or 1 in).
+    #[inline]
     pub const fn nm_per_unit(self) -> i64 {
         match self {
             Units::Metric => NM_PER_MM,
@@ -130,6 +154,7 @@ impl Units {
     }
 
     /// One program unit as a [`Scale`] of nanometres.
+    #[inline]
     const fn scale(self) -> Scale {
         match self {
             Units::Metric => Scale { factor: 1, exp: 6 },
@@ -173,6 +198,7 @@ pub enum IncrementSystem {
 impl IncrementSystem {
     /// Fraction digits a value may have and still be a whole number of increments
     /// (IS-B metric: 3, i.e. 0.001 mm).
+    #[inline]
     const fn linear_digits(self, units: Units) -> u8 {
         match (self, units) {
             (IncrementSystem::IsB, Units::Metric) => 3,
@@ -182,6 +208,7 @@ impl IncrementSystem {
     }
 
     /// Least input increment of a linear word, in nanometres.
+    #[inline]
     pub const fn linear_nm(self, units: Units) -> i64 {
         match (self, units) {
             (IncrementSystem::IsB, Units::Metric) => 1_000,
@@ -192,6 +219,7 @@ impl IncrementSystem {
     }
 
     /// Least input increment of an angle, in micro-degrees.
+    #[inline]
     pub const fn angle_udeg(self) -> i64 {
         match self {
             IncrementSystem::IsB => 1_000,
@@ -214,6 +242,7 @@ pub struct NumberFormat {
 impl NumberFormat {
     /// A length word (`X Z U W I K R …`) in nanometres, rounded to the least input
     /// increment as the manual requires for macro values (2.24.1). `None` on overflow.
+    #[inline]
     pub fn length_nm(&self, n: &Number) -> Option<i64> {
         let inc = self.increments.linear_nm(self.units);
         if !n.has_point && self.input == InputMode::LeastIncrement {
@@ -225,6 +254,7 @@ impl NumberFormat {
     }
 
     /// An angle word (`C`, degrees) in micro-degrees, rounded to the least increment.
+    #[inline]
     pub fn angle_udeg(&self, n: &Number) -> Option<i64> {
         let inc = self.increments.angle_udeg();
         let u = if n.has_point || self.input == InputMode::Calculator {
@@ -236,18 +266,21 @@ impl NumberFormat {
     }
 
     /// A time in seconds written with X/U in `G04` (0.001 s least increment), in ms.
+    #[inline]
     pub fn seconds_ms(&self, n: &Number) -> Option<i64> {
         if n.has_point || self.input == InputMode::Calculator { n.scaled(3) } else { Some(n.mantissa) }
     }
 
     /// A feed value (`F`) in nanometres per minute or per revolution. F is always read
     /// as written (F500 = 500 mm/min, F0.15 = 0.15 mm/rev) in both input modes.
+    #[inline]
     pub fn feed_nm(&self, n: &Number) -> Option<i64> {
         scale_to(n, self.units.scale())
     }
 }
 
 /// `n × scale`, rounded half away from zero; `None` on overflow.
+#[inline]
 fn scale_to(n: &Number, s: Scale) -> Option<i64> {
     let m = n.mantissa.checked_mul(s.factor)?;
     if n.frac_digits <= s.exp {
@@ -265,6 +298,21 @@ pub fn nm_to_mm(nm: i64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn f32_of_equals_the_i64_conversion() {
+        let mut seed: u64 = 0x2545_f491_4f6c_dd1d;
+        for i in 0..100_000 {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            let v = (seed as i64) >> (i % 64);
+            assert_eq!(f32_of(v).to_bits(), (v as f32).to_bits(), "{v}");
+        }
+        for v in [0, 1, -1, i64::from(i32::MAX) + 1, (1 << 53) - 1, 1 << 53, -(1 << 53) - 3, i64::MIN, i64::MAX] {
+            assert_eq!(f32_of(v).to_bits(), (v as f32).to_bits(), "{v}");
+        }
+    }
 
     fn num(m: i64, f: u8, p: bool) -> Number {
         Number { mantissa: m, frac_digits: f, has_point: p }

@@ -14,7 +14,12 @@ pub fn alarms_markdown() -> String {
         "# Alarms\n\n\
          Every alarm the lathe interpreter raises. A block that raises an alarm changes nothing: \
          the control stops there, `lathe sim` stops there too, and `lathe check` reports it as \
-         `PROGRAM:LINE: alarm CODE: message` and goes on with the next block. Codes follow the \
+         `PROGRAM:LINE: alarm CODE: message` and goes on with the next block. Under nose radius \
+         compensation (G41/G42) or with a `,C`/`,R` waiting, the moves held back from the good \
+         blocks before it run first, the last one ending on its normal (2.18.3; a waiting \
+         chamfer or corner R is left out), and the faulty block moves nothing; when the held move \
+         is itself the fault (3605, its offset would run backwards) the machine stops before it \
+         and the alarm names its line. Codes follow the \
          manual where it numbers an alarm, FANUC's numbers where it has an equivalent, and \
          4000-4999 for alarms of this controller alone. This file is generated from \
          `interp_core::alarm::CATALOG` and the tables of `cli/src/docs.rs` by \
@@ -278,7 +283,7 @@ pub const PROOFS: &[Proof] = &[
         "groove_narrower_than_nose",
         3605,
         "T0101\nG00 X40 Z5\nG42 G01 Z0 F0.1\nZ-10\nX30\nZ-11\nX40\nZ-20\nG40 X60\nM30\n",
-        7,
+        6,
     ),
     on(NOSE, "corner_under_0_1_degree", 3607, "T0101\nG00 X20 Z5\nG42 G01 Z0 F0.1\nZ-10\nZ0\nM30\n", 5),
     plain("g20_with_a_move", 4001, "G20 X1\nM30\n", 1),
@@ -338,6 +343,8 @@ pub const PROOFS: &[Proof] = &[
     on(C_AXIS, "polar_arc_with_i", 4046, "G00 X60 C0\nG12.1\nG02 X40 C10 I5 F100\nM30\n", 3),
     plain("m99_with_x", 4042, "G00 X1\nM99 X1\nM30\n", 2),
     plain("g51_2_without_tool_spindle", 4047, "G00 X1\nG51.2 P1 Q2\nM30\n", 2),
+    on(C_AXIS, "c_move_in_polygon_turning", 220, "G51.2 P1 Q2 S300\nG00 X50\nG00 C10\nG50.2\nM30\n", 3),
+    on(C_AXIS, "polar_in_polygon_turning", 221, "G51.2 P1 Q2 S300\nG00 X50\nG12.1\nG13.1\nG50.2\nM30\n", 3),
     plain("no_m30", 5010, "G00 X10\n", 2),
 ];
 

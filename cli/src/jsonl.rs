@@ -82,6 +82,13 @@ pub enum Body {
         /// True for M30.
         rewind: bool,
     },
+    /// G51.2 (P, Q) or G50.2 (both null): polygon turning.
+    Polygon {
+        /// Work-spindle turns P.
+        p: Option<u16>,
+        /// Tool-spindle turns Q.
+        q: Option<u16>,
+    },
 }
 
 /// Where a move ends: work X (diameter), Y, Z, C, and machine X (diameter), Z.
@@ -213,6 +220,7 @@ pub fn record(c: &Canon, cfg: &MachineConfig) -> Record {
         Action::Aux { m } => Body::Aux { m: *m },
         Action::Stop { optional } => Body::Stop { optional: *optional },
         Action::End { rewind } => Body::End { rewind: *rewind },
+        Action::Polygon(p) => Body::Polygon { p: p.map(|s| s.p), q: p.map(|s| s.q) },
     };
     Record { line: c.line, program: None, body }
 }

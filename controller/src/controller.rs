@@ -229,25 +229,40 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
     /// A controller for machine `cfg` with the axes at machine position `pos`
     /// (where the motion core was built). The welcome line is queued.
     pub fn new(cfg: MachineConfig, pos: Pos) -> Self {
-        // Built from its parts and returned as one expression, never borrowed as a
-        // whole: the compiler then builds it in its destination (a firmware static)
-        // instead of on the stack and copying it. Same state as `rewind_stream` and
-        // `welcome` leave.
-        let mut interp = Interpreter::new(cfg);
-        interp.set_machine_position(pos);
-        let window = Window::new();
-        interp.resume_at(Cursor { program: 0, offset: 0, line: window.first_line() });
-        let mut out = OutQueue::default();
-        out.line(Class::Reply, WELCOME);
+        let mut c = Self::parts(cfg, pos);
+        c.place(pos);
+        c
+    }
+
+    /// [`Controller::new`] built in `slot` (a static on the board): the parts are
+    /// written as one expression straight into the slot and positioned there, so
+    /// the controller (tens of KB) is never built on the stack and copied.
+    pub fn new_in(slot: &mut core::mem::MaybeUninit<Self>, cfg: MachineConfig, pos: Pos) -> &mut Self {
+        let c = slot.write(Self::parts(cfg, pos));
+        c.place(pos);
+        c
+    }
+
+    /// The state `rewind_stream` and `welcome` leave: the interpreter at the
+    /// machine position and at the window's start, the welcome line queued.
+    fn place(&mut self, pos: Pos) {
+        self.interp.set_machine_position(pos);
+        self.interp.resume_at(Cursor { program: 0, offset: 0, line: self.window.first_line() });
+        self.out.line(Class::Reply, WELCOME);
+    }
+
+    /// The controller's parts as one expression, never borrowed as a whole (so the
+    /// compiler can build it in its destination); [`Controller::place`] finishes it.
+    fn parts(cfg: MachineConfig, pos: Pos) -> Self {
         Controller {
-            interp,
-            window,
+            interp: Interpreter::new(cfg),
+            window: Window::new(),
             memory: ProgramMemory::new(),
             settings: Settings::default(),
             startup: [heapless::String::new(), heapless::String::new()],
             rx: heapless::Vec::new(),
             discarding: false,
-            out,
+            out: OutQueue::default(),
             rt: Latched::default(),
             ovr: [100; 3],
             alarm: None,
@@ -558,7 +573,10 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
     // ----- job control -----
 
     /// Soft reset (0x18): motion reset, interpreter reset, window and buffers
-    /// cleared, welcome line.
+    /// cleared, welcome line. Never inlined (nor are the line handling and the
+    /// status report): their locals stay out of `poll`'s frame, which is on the
+    /// stack under the interpreter's deepest step.
+    #[inline(never)]
     fn soft_reset<M: MotionPort + ?Sized>(&mut self, port: &mut M, inputs: Inputs) {
         port.reset();
         self.interp.reset();
@@ -831,11 +849,11 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
                 return;
             }
             let store = Store { window: &self.window, memory: &self.memory };
-            let r = if self.check {
-                self.interp.step(&store, &self.panel, &mut Discard)
-            } else {
-                self.interp.step(&store, &self.panel, &mut PortSink(&mut *port))
-            };
+            // One interpreter for both sinks (a `dyn` sink: the interpreter's code
+            // is not duplicated for check mode; a call per action delivered).
+            let (mut discard, mut to_port) = (Discard, PortSink(&mut *port));
+            let sink: &mut dyn CanonSink = if self.check { &mut discard } else { &mut to_port };
+            let r = self.interp.step(&store, &self.panel, sink);
             match r {
                 Ok(Progress::Blocked | Progress::Paused) => return,
                 Ok(Progress::Executed { .. }) => self.job_worked = true,
@@ -912,6 +930,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
     }
 
     /// Sends `<…>` with the motion core's snapshot.
+    #[inline(never)]
     fn status_report<M: MotionPort + ?Sized>(&mut self, port: &mut M, inputs: Inputs) {
         let st: MotionStatus = port.status();
         let cfg = self.interp.config();

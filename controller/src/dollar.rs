@@ -24,7 +24,7 @@ fn read_only(cmd: &[u8]) -> bool {
 
 /// A decimal number.
 fn number(s: &[u8]) -> Option<f64> {
-    core::str::from_utf8(s).ok()?.trim().parse::<f64>().ok().filter(|v| v.is_finite())
+    crate::decimal::decimal(s)
 }
 
 /// A whole number.
@@ -175,6 +175,19 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
 
     /// `$RST=$` settings, `$RST=#` offsets, `$RST=*` everything.
     fn restore<M: MotionPort + ?Sized>(&mut self, what: &[u8], port: &mut M) -> Result<(), (u8, &'static str)> {
+        // One machine description in this frame, which is on the stack while the
+        // motion core is rebuilt.
+        let cfg = self.restored(what)?;
+        port.reconfigure(&cfg).map_err(|_| (2, "The motion core cannot run with the defaults"))?;
+        *self.interp.config_mut() = cfg;
+        Ok(())
+    }
+
+    /// The machine description `$RST=` `what` leads to (the settings, startup
+    /// blocks and programs it clears are cleared here). Never inlined: the defaults
+    /// it starts from stay out of `restore`'s frame.
+    #[inline(never)]
+    fn restored(&mut self, what: &[u8]) -> Result<interp_core::MachineConfig, (u8, &'static str)> {
         let fresh = interp_core::MachineConfig::default();
         let mut cfg = self.interp.config().clone();
         match what {
@@ -200,9 +213,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             }
             _ => return Err((3, "$RST= takes $, # or *")),
         }
-        port.reconfigure(&cfg).map_err(|_| (2, "The motion core cannot run with the defaults"))?;
-        *self.interp.config_mut() = cfg;
-        Ok(())
+        Ok(cfg)
     }
 
     /// `$PR=n`: runs O`n` from memory.

@@ -63,7 +63,7 @@ fn parse_jog(text: &[u8]) -> Option<Jog> {
         while i < text.len() && matches!(text[i], b'0'..=b'9' | b'.' | b'-' | b'+') {
             i += 1;
         }
-        let v: f64 = core::str::from_utf8(&text[start..i]).ok()?.parse().ok().filter(|v: &f64| v.is_finite())?;
+        let v = crate::decimal::decimal(&text[start..i])?;
         match (c, v as i32) {
             (b'G', 20) => j.inch = true,
             (b'G', 21) => j.inch = false,

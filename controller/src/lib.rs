@@ -42,6 +42,7 @@ extern crate std;
 
 mod controller;
 pub mod crc;
+mod decimal;
 mod dollar;
 mod homing;
 pub mod io;

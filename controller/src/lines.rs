@@ -60,7 +60,9 @@ fn bad_byte(line: &[u8]) -> Option<u8> {
 }
 
 impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<W, T, P, S> {
-    /// Handles complete lines in the receive buffer (a few per poll).
+    /// Handles complete lines in the receive buffer (a few per poll). Never inlined:
+    /// see `soft_reset`.
+    #[inline(never)]
     pub(crate) fn handle_lines<M: MotionPort + ?Sized>(&mut self, port: &mut M) {
         for _ in 0..crate::controller::LINES_PER_POLL {
             let Some(end) = self.rx.iter().position(|&b| b == b'\n') else { return };

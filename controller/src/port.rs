@@ -111,8 +111,7 @@ impl<const N: usize> MotionPort for MotionCore<N> {
         if !self.is_idle() {
             return Err(AlarmKind::MotionConfigInvalid { what: "the machine is moving" });
         }
-        *self = MotionCore::new(cfg, self.position())?;
-        Ok(())
+        self.rebuild(cfg)
     }
 
     fn pop_event(&mut self) -> Option<Event> {

@@ -87,3 +87,51 @@ fn a_deleted_program_is_deleted_from_the_store() {
     keep::save(&mut store, &mut ctl).unwrap();
     assert!(store.programs::<8>().unwrap().is_empty());
 }
+
+/// The F446RE board's store: its three 16 KB sectors (1–3) hold a full program
+/// memory of its controller (8 KB), every common variable, the settings and
+/// offsets, and still have room to replace the largest program.
+#[test]
+fn the_f446_store_holds_a_full_program_memory_and_can_replace_a_program() {
+    type F446 = Controller<4096, 8192, 16, 256>;
+    type Sectors = SimFlash<{ 3 * 16384 }, 16384, 4>;
+    let program = |n: u32, blocks: usize| {
+        let mut t = format!("O{n:04}\n");
+        for i in 0..blocks {
+            t += &format!("N{} G01 X{}.5 Z-{}.25 F1000. M08\n", (i + 1) * 10, i % 50, i % 30);
+        }
+        t + "M30\n"
+    };
+    let cfg = MachineConfig::default();
+    let pos = cfg.reference[0];
+    let mut ctl = Box::new(F446::new(cfg, pos));
+    // 4 × 60 sequence numbers of the 256 indexed.
+    let texts: Vec<String> = (1..=4).map(|n| program(n, 60)).collect();
+    for t in &texts {
+        ctl.memory_mut().load(t.as_bytes(), None).unwrap();
+    }
+    assert!(texts.iter().map(String::len).sum::<usize>() > 7 * 1024);
+    for n in 401..=600 {
+        ctl.interpreter_mut().variables_mut().set(n, Some(f64::from(n) + 0.5)).unwrap();
+    }
+    let mut flash = Sectors::new();
+    {
+        let mut store = Persist::new(&mut flash, 0..3 * 16384).unwrap();
+        keep::save(&mut store, &mut ctl).unwrap();
+        // The largest program replaced by another as long: old and new text at once.
+        let id = ctl.memory().numbers().next().unwrap();
+        assert!(ctl.memory_mut().remove(id));
+        let replaced = program(id, 59);
+        ctl.memory_mut().load(replaced.as_bytes(), None).unwrap();
+        keep::save(&mut store, &mut ctl).unwrap();
+    }
+    let before = keep::fingerprint(&ctl);
+    let mut store = Persist::new(&mut flash, 0..3 * 16384).unwrap();
+    let (mut cfg, mut settings) = (MachineConfig::default(), Settings::default());
+    assert!(keep::load_config(&mut store, &mut cfg, &mut settings).unwrap().is_empty());
+    let mut again = Box::new(F446::new(cfg, pos));
+    let mut scratch = vec![0u8; 8192];
+    assert_eq!(keep::load_rest(&mut store, &mut again, &mut scratch).unwrap(), 4);
+    assert_eq!(again.interpreter().variables().get(600).unwrap(), Some(600.5));
+    assert_eq!(keep::fingerprint(&again), before);
+}

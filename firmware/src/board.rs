@@ -55,8 +55,8 @@
 //!
 //! Flash: sectors 0–9 (768 KB) program, sectors 10–11 (0x080C0000..0x08100000,
 //! 256 KB) the controller's store ([`STORE_START`], `saved.rs`); on the F446RE
-//! (512 KB) all of it is program (the firmware outgrew sectors 0–5, so nothing
-//! persists there). See `memory.x`.
+//! (512 KB) sector 0 holds the vector table, sectors 1–3 (48 KB) the store and
+//! sectors 4–7 (448 KB) the program. See `memory-f405/memory.x` and `memory-f446/memory.x`.
 
 use defmt::unwrap;
 use embassy_stm32::flash::{Blocking, Flash};
@@ -103,11 +103,21 @@ pub const STEP_TIMER: pac::timer::TimGp32 = pac::TIM2;
 /// The interpolation period timer (TIM7).
 pub const PERIOD_TIMER: pac::timer::TimBasic = pac::TIM7;
 
-/// First byte of the flash region reserved for the controller's store (see memory.x):
+/// First byte of the flash region reserved for the controller's store (see
+/// `memory-f405/memory.x`):
 /// STM32F405 sectors 10–11.
+#[cfg(feature = "f405")]
 pub const STORE_START: u32 = 0x080C_0000;
 /// Size of the store region: two 128 KB sectors.
+#[cfg(feature = "f405")]
 pub const STORE_SIZE: u32 = 256 * 1024;
+/// First byte of the store on the STM32F446RE (`memory-f446/memory.x`): sectors
+/// 1–3, between the vector table in sector 0 and the program from sector 4 on.
+#[cfg(feature = "f446")]
+pub const STORE_START: u32 = 0x0800_4000;
+/// Size of the F446RE's store: three 16 KB sectors.
+#[cfg(feature = "f446")]
+pub const STORE_SIZE: u32 = 48 * 1024;
 
 bind_interrupts!(
     /// Interrupt vectors bound to embassy drivers (the motion interrupts are in

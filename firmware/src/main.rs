@@ -33,7 +33,7 @@ use {defmt_rtt as _, panic_probe as _};
 /// On the F405 it lives in the 64 KB core-coupled memory (CPU only, no DMA: the
 /// controller is never a DMA buffer), so the 128 KB SRAM holds the other statics and
 /// the stack, which the interpreter's deepest step (a G71 through the contour layer)
-/// needs more than 64 KB of. `memory.x` puts `.ccmram` in the CCM, not initialised:
+/// needs more than 64 KB of. `memory-f405/memory.x` puts `.ccmram` in the CCM, not initialised:
 /// the slot is `MaybeUninit` and written once at boot.
 #[cfg(feature = "f405")]
 #[unsafe(link_section = ".ccmram")]
@@ -129,16 +129,18 @@ async fn main(spawner: Spawner) {
     let mut cfg = MachineConfig::default();
     let mut settings = controller::Settings::default();
     #[cfg(persist)]
-    let mut store = open_store(flash, &mut cfg, &mut settings);
+    let store = open_store(flash, &mut cfg, &mut settings);
     #[cfg(not(persist))]
-    let _ = flash; // Nothing persists on the F446RE or in QEMU (build.rs).
-    let (port, cfg) = match start_motion(&cfg) {
-        Ok(port) => (port, cfg),
+    let _ = flash; // Nothing persists in QEMU (build.rs).
+    // One machine description in this frame (it is on the stack under every
+    // call below): refused, it is reset in place.
+    let port = match start_motion(&cfg) {
+        Ok(port) => port,
         Err(e) => {
             warn!("stored machine description refused ({}): defaults", e);
             cfg = MachineConfig::default();
             settings = controller::Settings::default();
-            (unwrap!(start_motion(&cfg)), cfg)
+            unwrap!(start_motion(&cfg))
         }
     };
     let outputs = Outputs::new(aux, cw, ccw, speed, drive_enable, cfg.spindle.max_rpm);
@@ -146,13 +148,7 @@ async fn main(spawner: Spawner) {
     let ctl = shell::build(controller_slot(), cfg, pos);
     *ctl.settings_mut() = settings;
     #[cfg(persist)]
-    let saving: Saving = store.take().map(|mut s| {
-        if let Err(e) = firmware::saved::load_rest(&mut s, ctl) {
-            warn!("persist: stored variables/programs: {}", defmt::Display2Format(&e));
-        }
-        info!("persist: {} programs in memory", ctl.memory().numbers().count());
-        &mut *SAVER.init_with(|| firmware::saved::Saver::new(s, ctl))
-    });
+    let saving: Saving = start_saving(store, ctl);
     #[cfg(not(persist))]
     let saving: Saving = ();
     info!("controller: {} bytes", core::mem::size_of::<Ctl>());
@@ -165,7 +161,7 @@ async fn main(spawner: Spawner) {
     spawner.spawn(unwrap!(heartbeat(status_led)));
 }
 
-/// The persistence the control task runs (none on the F446RE and in QEMU).
+/// The persistence the control task runs (none in QEMU).
 #[cfg(persist)]
 type Saving = Option<&'static mut firmware::saved::Saver>;
 
@@ -175,6 +171,21 @@ type Saving = Option<&'static mut firmware::saved::Saver>;
 static SAVER: StaticCell<firmware::saved::Saver> = StaticCell::new();
 #[cfg(not(persist))]
 type Saving = ();
+
+/// Reads the stored variables and programs into the controller and starts the
+/// saver on the store. Never inlined: its locals stay out of `main`'s frame, which
+/// is on the stack while the controller and the motion core are built.
+#[cfg(persist)]
+#[inline(never)]
+fn start_saving(store: Option<firmware::saved::Store>, ctl: &mut Ctl) -> Saving {
+    store.map(|mut s| {
+        if let Err(e) = firmware::saved::load_rest(&mut s, ctl) {
+            warn!("persist: stored variables/programs: {}", defmt::Display2Format(&e));
+        }
+        info!("persist: {} programs in memory", ctl.memory().numbers().count());
+        &mut *SAVER.init_with(|| firmware::saved::Saver::new(s, ctl))
+    })
+}
 
 /// Opens the store and reads the stored parameters, settings and offsets into
 /// `cfg` and `settings`. A store beyond repair is formatted (everything stored is
@@ -294,15 +305,18 @@ async fn control(
     }
 }
 
-/// Saves what changed while the machine is at rest (see `firmware::saved`).
+/// Saves what changed while the machine is at rest (see `firmware::saved`). Never
+/// inlined: the saver's locals stay out of the control task's frame, which is on
+/// the stack under the interpreter's deepest step.
 #[cfg(persist)]
+#[inline(never)]
 fn save(saving: &mut Saving, now: u64, ctl: &mut Ctl, port: &MotionPort) {
     if let Some(s) = saving.as_mut() {
         s.tick(now, ctl, port);
     }
 }
 
-/// Nothing persists on the F446RE and in QEMU.
+/// Nothing persists in QEMU.
 #[cfg(not(persist))]
 fn save(_: &mut Saving, _: u64, _: &mut Ctl, _: &MotionPort) {}
 

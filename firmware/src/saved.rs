@@ -1,5 +1,5 @@
 //! What survives power-off on the board: `controller::persist` on the flash store
-//! region (F405 sectors 10–11; `memory.x` keeps code out), with what is kept and
+//! region (F405 sectors 10–11, F446 sectors 1–3; the memory.x files keep code out), with what is kept and
 //! how in [`controller::persist::keep`] (the same code `lathe board --flash` runs).
 //!
 //! At boot [`load_config`] reads the numbered parameters, the grbl `$n` settings
@@ -10,7 +10,8 @@
 //! compares every [`keep::CHECK_NS`] and, if it (or a common variable) changed,
 //! writes what changed: every store call writes only records that differ.
 //!
-//! Erasing a 128 KB sector stalls the CPU (interrupts included) for 1–2 s, which is
+//! Erasing a 128 KB sector stalls the CPU (interrupts included) for 1–2 s (a 16 KB
+//! one on the F446 about 0.25–0.5 s), which is
 //! why this runs only at rest; during a save the watchdog timeout is raised to
 //! [`SAVE_WATCHDOG_US`] and put back to the normal timeout afterwards. Bytes that
 //! arrive on the link during an erase can be lost (the UART interrupt is stalled
@@ -29,8 +30,17 @@ use interp_core::MachineConfig;
 use crate::board::{STORE_SIZE, STORE_START, WATCHDOG_TIMEOUT_US};
 use crate::shell::{Ctl, TEXT, at_rest};
 
+/// The flash the store is on: on the F405 embassy's whole-flash driver (its erase
+/// unit is the 128 KB sector the store uses); on the F446 the region of its four
+/// 16 KB sectors (0–3), whose offsets also count from the flash's first byte.
+#[cfg(feature = "f405")]
+pub type StoreFlash = Flash<'static, Blocking>;
+/// The flash the store is on (see the F405's).
+#[cfg(feature = "f446")]
+pub type StoreFlash = embassy_stm32::flash::Bank1Region1<'static, Blocking>;
+
 /// The persistent store on the board's flash.
-pub type Store = Persist<Rewritable<Flash<'static, Blocking>>>;
+pub type Store = Persist<Rewritable<StoreFlash>>;
 
 /// Watchdog timeout while the flash is written: a sector erase takes up to 2 s
 /// (4 s at low supply voltage); the normal timeout is back right after.
@@ -41,6 +51,8 @@ const FLASH_BASE: u32 = 0x0800_0000;
 
 /// The store over the board's store region.
 pub fn open(flash: Flash<'static, Blocking>) -> Result<Store, Error> {
+    #[cfg(feature = "f446")]
+    let flash = flash.into_blocking_regions().bank1_region1;
     let start = STORE_START - FLASH_BASE;
     Persist::new(Rewritable(flash), start..start + STORE_SIZE)
 }
@@ -64,7 +76,7 @@ pub fn load_rest(store: &mut Store, ctl: &mut Ctl) -> Result<usize, Error> {
 
 /// Writes what changed to the store while the machine is at rest, the watchdog
 /// stretched around the write.
-pub struct Saver(keep::Saver<Rewritable<Flash<'static, Blocking>>>);
+pub struct Saver(keep::Saver<Rewritable<StoreFlash>>);
 
 impl Saver {
     /// A saver that takes what the controller holds now as saved.

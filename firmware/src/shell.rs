@@ -32,19 +32,21 @@ pub const PROGRAMS: usize = 32;
 #[cfg(feature = "f405")]
 pub const SEQUENCES: usize = 512;
 
-/// Stream window, bytes: the F446RE has no CCM for the stack, so its controller is
-/// smaller (a G71 takes ~60 KB of stack out of its 128 KB SRAM).
+/// Stream window, bytes: as on the F405, so a program streams the same way (its
+/// G70–G73 shapes, loops and jump targets must lie in the window).
 #[cfg(feature = "f446")]
-pub const WINDOW: usize = 1024;
-/// Program memory text, bytes.
+pub const WINDOW: usize = 4096;
+/// Program memory text, bytes: the F446RE has no CCM, so the controller shares the
+/// 128 KB SRAM with the other statics and the stack (a G71 and boot take ~28-35 KB of
+/// it), and program memory is half the F405's.
 #[cfg(feature = "f446")]
-pub const TEXT: usize = 2048;
+pub const TEXT: usize = 8192;
 /// Programs in memory.
 #[cfg(feature = "f446")]
-pub const PROGRAMS: usize = 8;
+pub const PROGRAMS: usize = 16;
 /// Indexed sequence numbers in program memory.
 #[cfg(feature = "f446")]
-pub const SEQUENCES: usize = 64;
+pub const SEQUENCES: usize = 256;
 
 /// The controller the firmware runs. `controller::Board` (8 KB window, 48 KB program
 /// memory, 113 KB in all) does not fit beside the motion core in the 128 KB SRAM
@@ -57,7 +59,7 @@ pub type Ctl = controller::Controller<WINDOW, TEXT, PROGRAMS, SEQUENCES>;
 /// copying it (the stack has no room for a second copy).
 #[inline(never)]
 pub fn build(slot: &'static mut MaybeUninit<Ctl>, cfg: MachineConfig, pos: Pos) -> &'static mut Ctl {
-    slot.write(Ctl::new(cfg, pos))
+    Ctl::new_in(slot, cfg, pos)
 }
 
 /// The motion core behind the board's handle: every call is one critical section
@@ -109,14 +111,8 @@ impl controller::MotionPort for MotionPort {
             if !m.core.is_idle() {
                 return Err(AlarmKind::MotionConfigInvalid { what: "the machine is moving" });
             }
-            // One temporary core on the stack (~21 KB), moved into place.
-            match crate::motion::Core::new(cfg, m.core.position()) {
-                Ok(core) => {
-                    m.core = core;
-                    Ok(())
-                }
-                Err(e) => Err(e),
-            }
+            // In place: no second ~21 KB core on the stack.
+            m.core.rebuild(cfg)
         })
         .unwrap_or(Err(AlarmKind::MotionConfigInvalid { what: "motion core not started" }))
     }

@@ -140,6 +140,8 @@ pub fn kind_names(r: &Run) -> Vec<String> {
             Action::Aux { m } => format!("M{m:02}"),
             Action::Stop { optional } => format!("stop {optional}"),
             Action::End { rewind } => format!("end {rewind}"),
+            Action::Polygon(Some(p)) => format!("polygon {}/{}", p.q, p.p),
+            Action::Polygon(None) => "polygon off".into(),
         })
         .collect()
 }

@@ -112,8 +112,10 @@ fn check(p: &Proof) {
         let earlier: Vec<Canon> = clean.all.iter().filter(|c| c.line < p.line).copied().collect();
         if holds_a_move(p) {
             // Compensation holds the move before the faulty block back to see its
-            // corner; the alarm comes before it is released.
-            assert_eq!(faulty.before, earlier[..faulty.before.len().min(earlier.len())], "{}", p.case);
+            // corner; on the alarm it runs to its normal (or, if it is itself the
+            // fault, not at all), so only its end point may differ from the clean run.
+            let n = faulty.before.iter().rposition(|c| c.action.endpoint().is_some()).unwrap_or(0);
+            assert_eq!(faulty.before[..n], earlier[..n.min(earlier.len())], "{}", p.case);
         } else {
             assert_eq!(faulty.before, earlier, "{}: actions before the alarm", p.case);
         }

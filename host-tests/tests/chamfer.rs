@@ -210,11 +210,14 @@ fn alarms_of_the_notes() {
 }
 
 #[test]
-fn an_alarm_after_a_chamfer_block_keeps_the_held_move() {
-    // The failed G00 block changes nothing; the corrected block still gets its chamfer.
+fn an_alarm_after_a_chamfer_block_runs_the_held_move_to_its_end_first() {
+    // The held Z-20 belongs to a good block: it runs before the machine stops, to
+    // its programmed end (its chamfer needed the faulty G00 block), and the failed
+    // block changes nothing else: going on (as `lathe check` does), G01 is in force.
     let r = run("G00 X20 Z0\nG01 Z-20 ,C2 F100\nG00 X40\nX40\nM30\n");
     assert_eq!(r.alarm_codes(), vec![(3, 51)]);
-    assert_eq!(moves(&r)[1..], [('l', 20.0, -18.0), ('l', 24.0, -20.0), ('l', 40.0, -20.0)]);
+    assert_eq!(moves(&r)[1..], [('l', 20.0, -20.0), ('l', 40.0, -20.0)]);
+    assert_eq!(r.actions.iter().filter(|c| c.action.endpoint().is_some()).nth(1).map(|c| c.line), Some(2));
 }
 
 #[test]

@@ -253,3 +253,25 @@ fn spindle_that_never_gets_to_speed_is_alarm_4504() {
     assert_eq!(r.end, Pos::xz(20_000_000, 0), "no motion from the cut");
     let _ = Panel::default();
 }
+
+#[test]
+fn rebuilding_in_place_is_building_anew() {
+    // After a program ran (queue used, counters, overrides, events), rebuilding for
+    // another machine leaves exactly what a new core at that position would be.
+    let mut s = sim();
+    let r = s.run_program("G0 X40 Z0\nM3 S500\nG1 Z-5 F900\nM5\nM30\n");
+    assert_clean(&r);
+    s.core.set_feed_override(150);
+    let mut cfg = MachineConfig::default();
+    cfg.spindle.max_rpm = 2500;
+    cfg.motion.speed_window_ticks = 7;
+    let fresh: MotionCore<QUEUE> = MotionCore::new(&cfg, s.core.position()).unwrap();
+    s.core.rebuild(&cfg).unwrap();
+    assert_eq!(format!("{:?}", s.core), format!("{fresh:?}"));
+    // A machine the core refuses leaves it as it was.
+    let before = format!("{:?}", s.core);
+    let mut bad = cfg.clone();
+    bad.axes[Axis::Z.index()].drive.steps = 0;
+    assert!(s.core.rebuild(&bad).is_err());
+    assert_eq!(format!("{:?}", s.core), before);
+}

@@ -195,6 +195,10 @@ fn g28_cancels_the_offset_for_its_moves_and_the_next_move_starts_up() {
     let prog = "T0101\nG00 X0 Z5\nG42 G01 Z0 F0.1\nX20\nG28 U0\nG00 X30 Z-10\nG01 Z-20\nX40\nG40 G00 X60\nM30\n";
     let r = ok(prog, 0);
     let mv = centre_moves(&r, 0);
+    // The held facing move runs before the G28 move (not after it, from the
+    // reference point back to the part).
+    let lines: Vec<u32> = mv.iter().map(|m| m.line).collect();
+    assert!(lines.windows(2).all(|w| w[0] <= w[1]), "{lines:?}");
     // The facing move ends on its normal (Z+R); the G28 move is not offset.
     let face = mv.iter().rfind(|m| m.line == 4).unwrap();
     assert!(near(face.end, (R, 10.0)), "{face:?}");
@@ -233,8 +237,9 @@ fn alarms_of_2_18() {
         // An inside arc smaller than the nose (R0.5 < 0.8): the nose cannot follow it.
         ("T0101\nG00 X20 Z5\nG41 G01 Z0 F0.1\nZ-10\nG03 X21 Z-10.5 R0.5\nG01 Z-20\nG40 X40\nM30\n", 5, 3605),
         // A groove 1 mm wide is narrower than the nose (1.6 mm): the groove bottom's
-        // offset runs backwards, found when the block after it is read.
-        ("T0101\nG00 X40 Z5\nG42 G01 Z0 F0.1\nZ-10\nX30\nZ-11\nX40\nZ-20\nG40 X60\nM30\n", 7, 3605),
+        // offset runs backwards, found when the block after it is read; the alarm
+        // names the groove bottom.
+        ("T0101\nG00 X40 Z5\nG42 G01 Z0 F0.1\nZ-10\nX30\nZ-11\nX40\nZ-20\nG40 X60\nM30\n", 6, 3605),
         // Going straight back: no corner angle left (α < 0.1°).
         ("T0101\nG00 X20 Z5\nG42 G01 Z0 F0.1\nZ-10\nZ0\nM30\n", 5, 3607),
         // Five blocks of M codes behind one held move: more than the look-ahead holds.
@@ -246,13 +251,75 @@ fn alarms_of_2_18() {
     }
 }
 
+/// Runs `text` like the board: up to the first alarm, then stops. Returns the
+/// actions that ran and the alarm (line, code).
+fn until_alarm(text: &str, tip: u8) -> (Vec<Canon>, Option<(u32, u16)>) {
+    let mut interp = interp_core::Interpreter::new(machine(tip));
+    let mut sink = host_tests::VecSink::default();
+    let store = interp_core::SingleProgram(text.as_bytes());
+    for _ in 0..100_000 {
+        match interp.step(&store, &Panel::default(), &mut sink) {
+            Ok(interp_core::Progress::Ended) => break,
+            Ok(_) => {}
+            Err(a) => return (sink.0, Some((a.line, a.kind.code()))),
+        }
+    }
+    (sink.0, None)
+}
+
+/// The last move that ran before the alarm: its line and tip end point (Z, r).
+fn last_move(actions: &[Canon]) -> (u32, (f64, f64)) {
+    let c = actions.iter().rfind(|c| c.action.endpoint().is_some()).unwrap();
+    (c.line, zr(c.action.endpoint().unwrap()))
+}
+
 #[test]
-fn an_alarm_leaves_the_held_move_and_the_mode_as_they_were() {
-    let good = ok("T0101\nG00 X0 Z5\nG42 G01 Z0 F0.1\nX20\nG40 G00 X40\nM30\n", 0);
+fn an_alarm_in_the_next_block_lets_the_held_move_run_to_its_normal_first() {
+    // Line 3 (start-up onto the face, −Z under G42: the centre is R on +X) waits
+    // for line 4, which is faulty (G41 without G40, 3576): line 3 runs and ends
+    // on its normal at (Z0, r0.8); line 4 moves nothing.
+    let (acts, alarm) = until_alarm("T0101\nG00 X0 Z5\nG42 G01 Z0 F0.1\nG41 X20\nX20\nG40 G00 X40\nM30\n", 0);
+    assert_eq!(alarm, Some((4, 3576)));
+    let (line, end) = last_move(&acts);
+    assert_eq!(line, 3);
+    assert!(near(end, (0.0, R)), "{end:?}");
+    assert!(acts.iter().all(|c| c.line < 4), "{acts:?}");
+    // A block that is no G code (G07, 0010) after a ,C block: the chamfered face
+    // runs to its programmed end (the chamfer needs the faulty block) on its
+    // normal (+Z for +X travel under G42).
+    let (acts, alarm) = until_alarm("T0101\nG00 X0 Z5\nG42 G01 Z0 F0.1\nX20 ,C1\nG07 Z-10\nM30\n", 0);
+    assert_eq!(alarm, Some((5, 10)));
+    let (line, end) = last_move(&acts);
+    assert_eq!(line, 4);
+    assert!(near(end, (R, 10.0)), "{end:?}");
+    assert!(acts.iter().all(|c| c.line < 5));
+}
+
+#[test]
+fn interference_stops_before_the_block_whose_offset_runs_backwards() {
+    // The groove bottom (line 6, 1 mm) is narrower than the nose (1.6 mm): its
+    // offset would run +Z. The machine stops at the end of line 5 — the corner of
+    // the wall's offset (Z−10−R) and the bottom's (r15+R) — and the alarm names
+    // line 6; neither line 6 nor line 7 moves.
+    let text = "T0101\nG00 X40 Z5\nG42 G01 Z0 F0.1\nZ-10\nX30\nZ-11\nX40\nZ-20\nG40 X60\nM30\n";
+    let (acts, alarm) = until_alarm(text, 0);
+    assert_eq!(alarm, Some((6, 3605)));
+    let (line, end) = last_move(&acts);
+    assert_eq!(line, 5);
+    assert!(near(end, (-10.0 - R, 15.0 + R)), "{end:?}");
+    assert!(acts.iter().all(|c| c.line < 6));
+}
+
+#[test]
+fn a_faulty_block_leaves_the_mode_and_the_next_move_starts_up_again() {
+    // Going on after the alarm (as `lathe check` does): G42 is still in force and
+    // line 5 starts up from the uncompensated point (Z0, r0): its offset is r10+R...
     let bad =
-        run_with("T0101\nG00 X0 Z5\nG42 G01 Z0 F0.1\nG41 X20\nX20\nG40 G00 X40\nM30\n", machine(0), Panel::default());
+        run_with("T0101\nG00 X0 Z5\nG42 G01 Z0 F0.1\nG41 X20\nZ-10\nG40 G00 X40\nM30\n", machine(0), Panel::default());
     assert_eq!(bad.alarm_codes(), vec![(4, 3576)]);
-    assert_eq!(host_tests::moves(&good), host_tests::moves(&bad));
+    let mv = centre_moves(&bad, 0);
+    let z = mv.iter().find(|m| m.line == 5).unwrap();
+    assert!((z.end.1 - R).abs() < 1e-6, "{z:?}");
 }
 
 #[test]
@@ -301,4 +368,105 @@ fn a_start_up_shorter_than_the_radius_is_not_interference() {
     let r = ok("T0101\nG00 X0 Z0.5\nG42 G01 Z0 F0.1\nX20\nZ-10\nG40 G00 X40\nM30\n", 0);
     let first = centre_moves(&r, 0).into_iter().find(|m| m.line == 3).unwrap();
     assert!(near(first.end, (R, R)), "{first:?}");
+}
+
+/// The tip positions (Z, X radius) of the moves of `line`, work coordinates.
+fn tips_of(r: &Run, line: u32) -> Vec<(f64, f64)> {
+    r.actions.iter().filter(|c| c.line == line).filter_map(host_tests::xz).map(|(x, z)| (z, x / 2.0)).collect()
+}
+
+/// Signed distance of `p` from the line `a`→`b` (positive on its left, Z right
+/// and X up).
+fn side_dist(p: (f64, f64), a: (f64, f64), b: (f64, f64)) -> f64 {
+    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+    (dx * (p.1 - a.1) - dy * (p.0 - a.0)) / dx.hypot(dy)
+}
+
+fn close(a: f64, b: f64) -> bool {
+    (a - b).abs() < 2e-6
+}
+
+#[test]
+fn g90_taper_under_g42_cuts_one_radius_inside_the_cycle_for_every_tip() {
+    // A = (Z2, r25); B = (Z2, r20 − 5); C = (Z−20, r20); D = (Z−20, r25).
+    let (a, b, c) = ((2.0, 25.0), (2.0, 15.0), (-20.0, 20.0));
+    for tip in [0, 2, 3, 8] {
+        let r = ok("T0101\nG42 G00 X50 Z2\nG90 X40 Z-20 R-5 F0.2\nG40 G00 X60 Z10\nM30\n", tip);
+        let tips = tips_of(&r, 3);
+        assert_eq!(tips.len(), 4, "tip {tip}: {tips:?}");
+        let t = tip_vec(tip);
+        let centre = |p: (f64, f64)| (p.0 - t.0, p.1 - t.1);
+        let (bc, cc, dc) = (centre(tips[0]), centre(tips[1]), centre(tips[2]));
+        // ② The cut's nose centre runs R off the taper, on the stock side
+        // (left of B→C: the cycle runs clockwise, the stock is inside it).
+        for p in [bc, cc] {
+            assert!(close(side_dist(p, b, c), -R), "tip {tip}: {p:?} is {} off the taper", side_dist(p, b, c));
+        }
+        // ③ The retract runs R off the shoulder Z−20, at the cycle's side.
+        assert!(close(cc.0, -20.0 + R) && close(dc.0, -20.0 + R), "tip {tip}: {cc:?} {dc:?}");
+        // ① approach and ③ retract stay X moves, ④ returns to A exactly.
+        assert!(close(tips[0].0, a.0), "tip {tip}: approach {tips:?}");
+        assert!(close(tips[2].1, a.1), "tip {tip}: retract {tips:?}");
+        assert_eq!(tips[3], a, "tip {tip}");
+    }
+}
+
+#[test]
+fn g90_and_g94_straight_with_tip_3_run_as_programmed() {
+    let r = ok("T0101\nG42 G00 X50 Z2\nG90 X40 Z-20 F0.2\nG94 X20 Z-2\nG40 G00 X60 Z10\nM30\n", 3);
+    assert_eq!(tips_of(&r, 3), [(2.0, 20.0), (-20.0, 20.0), (-20.0, 25.0), (2.0, 25.0)]);
+    assert_eq!(tips_of(&r, 4), [(-2.0, 25.0), (-2.0, 10.0), (2.0, 10.0), (2.0, 25.0)]);
+}
+
+#[test]
+fn g94_taper_under_g41_faces_one_radius_off_the_cone() {
+    // G41 or G42 alike: the side comes from the cycle. A = (Z2, r25), B = (Z−3, r25),
+    // C = (Z−2, r10), D = (Z2, r10); the cycle runs counter-clockwise.
+    let (a, b, c) = ((2.0, 25.0), (-3.0, 25.0), (-2.0, 10.0));
+    for tip in [0, 3] {
+        let r = ok("T0101\nG41 G00 X50 Z2\nG94 X20 Z-2 R-1 F0.2\nG40 G00 X60 Z10\nM30\n", tip);
+        let tips = tips_of(&r, 3);
+        let t = tip_vec(tip);
+        let centre = |p: (f64, f64)| (p.0 - t.0, p.1 - t.1);
+        for p in [centre(tips[0]), centre(tips[1])] {
+            assert!(close(side_dist(p, b, c), R), "tip {tip}: {p:?}");
+        }
+        assert!(close(centre(tips[1]).1, 10.0 + R) && close(centre(tips[2]).1, 10.0 + R), "{tips:?}");
+        assert!(close(tips[0].1, a.1) && close(tips[2].0, a.0), "{tips:?}");
+        assert_eq!(tips[3], a);
+    }
+}
+
+#[test]
+fn g90_boring_taper_keeps_the_nose_inside_the_bore() {
+    // Inside: A = (Z2, r10), B = (Z2, r14), C = (Z−15, r15), D = (Z−15, r10).
+    let (b, c) = ((2.0, 14.0), (-15.0, 15.0));
+    let r = ok("T0101\nG41 G00 X20 Z2\nG90 X30 Z-15 R-1 F0.2\nG40 G00 X10 Z10\nM30\n", 2);
+    let t = tip_vec(2);
+    let tips = tips_of(&r, 3);
+    let centre = |p: (f64, f64)| (p.0 - t.0, p.1 - t.1);
+    for p in [centre(tips[0]), centre(tips[1])] {
+        // Left of B→C (going −Z) is −X: the centre is below the bore wall.
+        assert!(close(side_dist(p, b, c), R), "{p:?}");
+    }
+    assert!(close(centre(tips[1]).0, -15.0 + R), "{tips:?}");
+}
+
+#[test]
+fn g90_whose_cut_is_shorter_than_the_nose_is_interference_before_any_motion() {
+    // A 0.5 mm cut with R0.8: the offset cut would run backwards.
+    let text = "T0101\nG42 G00 X50 Z2\nG90 X40 Z1.5 F0.2\nM30\n";
+    let r = run_with(text, machine(0), Panel::default());
+    assert_eq!(r.alarm_codes().first(), Some(&(3, 3605)));
+    assert!(r.actions.iter().all(|c| c.line != 3 || c.action.endpoint().is_none()));
+}
+
+#[test]
+fn g92_threads_on_the_programmed_path_under_g42() {
+    // The manual compensates no thread cycle: G92 runs as programmed.
+    let r = ok("T0101 M03 S500\nG42 G00 X50 Z2\nG92 X38 Z-20 F1.5\nG40 G00 X60 Z10\nM30\n", 0);
+    let tips = tips_of(&r, 3);
+    assert_eq!(tips.first(), Some(&(2.0, 19.0)), "{tips:?}");
+    // The thread runs at r19 (to the pull-out chamfer), not R off it.
+    assert_eq!(tips.get(1).map(|p| p.1), Some(19.0), "{tips:?}");
 }

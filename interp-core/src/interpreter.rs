@@ -178,6 +178,9 @@ pub struct Interpreter {
     validating: Option<Validating>,
     /// Where the block the last step read (or failed to read) begins.
     last_block: Cursor,
+    /// A held move that nose compensation found faulty while the failed block ran
+    /// (its line), for [`Interpreter::alarm_stop`].
+    fault_line: Option<u32>,
 }
 
 impl Interpreter {
@@ -203,6 +206,7 @@ impl Interpreter {
             cycle: None,
             validating: None,
             last_block: Cursor::start(0),
+            fault_line: None,
         }
     }
 
@@ -433,7 +437,6 @@ impl Interpreter {
         loop {
             let at = self.cursor;
             self.last_block = at;
-            let alarm = |line, kind| Alarm::in_program(at.program, line, kind);
             let text = programs.text(at.program).unwrap_or(&[]);
             let Some(raw) = next_block(text, &mut self.cursor) else {
                 return Err(self.end_of_record(at));
@@ -447,12 +450,15 @@ impl Interpreter {
             }
             let fmt = self.number_format();
             let read = read_statement_into(raw.text, line, &self.vars, &fmt, &mut self.block);
-            match read.map_err(|k| alarm(line, k))? {
-                Read::Nc => return self.nc_block(at, fmt, programs, env, sink),
-                Read::Macro(m) => {
+            match read {
+                Ok(Read::Nc) => return self.nc_block(at, fmt, programs, env, sink),
+                Ok(Read::Macro(m)) => {
                     self.started = true;
-                    self.macro_statement(&m, at, programs).map_err(|k| alarm(line, k))?;
+                    if let Err(k) = self.macro_statement(&m, at, programs) {
+                        return Err(self.alarm_stop(sink, at.program, line, k));
+                    }
                 }
+                Err(k) => return Err(self.alarm_stop(sink, at.program, line, k)),
             }
             budget -= 1;
             if budget == 0 {
@@ -493,7 +499,9 @@ impl Interpreter {
                 if self.block.is_empty() {
                     return Ok(Progress::Skipped { line: 0 });
                 }
-                self.run_block(env, None, |_, _| Ok(Next::Go)).map_err(alarm)?;
+                if let Err(k) = self.run_block(env, None, |_, _| Ok(Next::Go)) {
+                    return Err(self.alarm_stop(sink, 0, 0, k));
+                }
             }
         }
         self.deliver(sink);
@@ -530,9 +538,10 @@ impl Interpreter {
             vars: None,
             fmt: Some(fmt),
         };
-        let next = self
-            .run_block(env, Some(program), |me, flow| me.route(flow, programs))
-            .map_err(|k| Alarm::in_program(at.program, line, k))?;
+        let next = match self.run_block(env, Some(program), |me, flow| me.route(flow, programs)) {
+            Ok(next) => next,
+            Err(k) => return Err(self.alarm_stop(sink, at.program, line, k)),
+        };
         match next {
             Some(next) => self.go(next),
             None => {
@@ -574,7 +583,7 @@ impl Interpreter {
                 self.validating = None;
                 self.outbox.clear();
                 self.cycle = None;
-                Err(Alarm::in_program(at.program, line, k))
+                Err(self.alarm_stop(sink, at.program, line, k))
             }
         }
     }
@@ -622,6 +631,7 @@ impl Interpreter {
             None => Staged::new(self.block.line, &mut self.outbox),
         };
         let done = execute(cmd, &mut self.state, &self.cfg, env, &mut staged);
+        let faulty = staged.faulty_move;
         if done.is_ok() {
             cycle.split = staged.split.unwrap_or(staged.actions.len());
             if !staged.params.is_empty() {
@@ -632,15 +642,10 @@ impl Interpreter {
         }
         match done.and_then(|flow| route(self, flow)) {
             Ok(go) => {
-                if let Some(exp) = &self.cycle {
-                    // The state stays as it was until the dry run has ended.
-                    let (at, line) = (self.cursor, self.block.line);
-                    let dry = exp.clone();
-                    let state = self.state;
-                    self.state.restore(&before, held.as_ref());
+                if self.cycle.is_some() {
+                    self.set_aside(&before, held.as_ref(), cycle, go);
                     #[cfg(debug_assertions)]
                     debug_assert_eq!(self.state, whole, "a cycle block was not set aside completely");
-                    self.validating = Some(Validating { state, block: cycle, next: go, dry, at, line });
                     return Ok(None);
                 }
                 self.commit_cycle(&cycle);
@@ -652,9 +657,65 @@ impl Interpreter {
                 debug_assert_eq!(self.state, whole, "a failed block was not undone completely");
                 self.outbox.clear();
                 self.cycle = None;
+                self.fault_line = faulty;
                 Err(e)
             }
         }
+    }
+
+    /// Sets the cycle block just executed aside for its dry run (`validating`, with
+    /// a copy of its expansion); the state stays as it was (`before`, `held`) until
+    /// the dry run has ended. Never inlined: the copy (~6 KB with the state) stays
+    /// out of the frame of [`Interpreter::nc_block`], which is on the stack under
+    /// every block's execution.
+    #[inline(never)]
+    fn set_aside(
+        &mut self,
+        before: &crate::exec::Saved,
+        held: Option<&crate::contour::Contour>,
+        block: BlockCycle,
+        next: Next,
+    ) {
+        let Some(exp) = &self.cycle else { return };
+        let (at, line) = (self.cursor, self.block.line);
+        let dry = exp.clone();
+        let state = self.state;
+        self.state.restore(before, held);
+        self.validating = Some(Validating { state, block, next, dry, at, line });
+    }
+
+    /// After a block's alarm (the block undone, the outbox empty): the moves the
+    /// contour layer holds back go into the outbox to run before the machine stops,
+    /// or, if compensation found one of them faulty (`faulty`, its line), the
+    /// machine stops before it and the alarm names that line
+    /// ([`crate::contour::stop_on_alarm`]). An alarm that only means the stream has
+    /// not delivered the text yet (a jump target, an END further on) leaves the
+    /// look-ahead as it is: the board waits for the text and reads the block again.
+    fn stop_lookahead(&mut self, faulty: Option<u32>, kind: &AlarmKind) -> Option<u32> {
+        let waits_for_text = matches!(
+            kind,
+            AlarmKind::EndOfRecord
+                | AlarmKind::JumpTargetNotFound { .. }
+                | AlarmKind::MissingEnd { .. }
+                | AlarmKind::SequenceNotFound { .. }
+        );
+        if waits_for_text || !self.state.contour.is_holding() {
+            return None;
+        }
+        let mut out = Staged::new(self.block.line, &mut self.outbox);
+        crate::contour::stop_on_alarm(&mut self.state, faulty, &mut out);
+        faulty
+    }
+
+    /// The alarm `kind` of the block on `line` of `program`, after the look-ahead
+    /// has let go of its held moves ([`Interpreter::stop_lookahead`]) and they have
+    /// been offered to `sink`: the alarm names the faulty held move's line if
+    /// compensation found one.
+    fn alarm_stop<S: CanonSink + ?Sized>(&mut self, sink: &mut S, program: u32, line: u32, kind: AlarmKind) -> Alarm {
+        let faulty = self.fault_line.take();
+        let line = self.stop_lookahead(faulty, &kind).unwrap_or(line);
+        self.deliver(sink);
+        Alarm::in_program(program, line, kind)
     }
 
     /// What a successful cycle block hands over: its expansion (taking the actions

@@ -25,10 +25,12 @@ pub mod cycles;
 pub mod env;
 pub mod exec;
 pub mod geom;
+mod head;
 pub mod interpreter;
 pub mod macros;
 pub mod parse;
 pub mod program;
+mod sort;
 
 // The vocabulary shared with the motion core lives in the `canon` crate; its
 // modules are re-exported under their old paths (`interp_core::axis::Pos`,

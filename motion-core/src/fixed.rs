@@ -1,7 +1,8 @@
 //! Fixed-point arithmetic for the motion layers: the formats, a widening multiply
 //! and a multiply-only reciprocal. Nothing here divides, so the per-tick and
 //! per-step paths that use it stay free of division (and of the slow `i64`
-//! division library call on the Cortex-M4).
+//! division library call on the Cortex-M4) — except [`gcd`], which reduces the step
+//! and gear ratios once, when the machine is configured or a thread is set up.
 //!
 //! Formats used by the motion core:
 //! - path lengths and speeds: nanometres with [`PATH_FRAC`] fraction bits (Q8 nm,
@@ -45,6 +46,26 @@ pub fn inverse62(len: u64) -> i64 {
     // 2^62 / len = (2^63 / top) · 2^(z − 33).
     let x = recip_normalised(top);
     (if z >= 33 { x << (z - 33) } else { x >> (33 - z) }) as i64
+}
+
+pub use canon::units::f32_of;
+
+/// `x as u64` (saturating, NaN → 0), by the FPU's 32-bit conversion below 2^32.
+#[inline]
+pub fn u64_of(x: f32) -> u64 {
+    if x < 4_294_967_296.0 { u64::from(x as u32) } else { x as u64 }
+}
+
+/// `a.min(b)` (a NaN loses) without the `fminf` call the Cortex-M4 build makes.
+#[inline]
+pub fn minf(a: f32, b: f32) -> f32 {
+    if b < a || a.is_nan() { b } else { a }
+}
+
+/// `a.max(b)` (a NaN loses) without the `fmaxf` call.
+#[inline]
+pub fn maxf(a: f32, b: f32) -> f32 {
+    if b > a || a.is_nan() { b } else { a }
 }
 
 /// `√x` for finite `x ≥ 0` (0 for anything else) to within 2^-22 relative, by
@@ -135,6 +156,14 @@ pub fn scaled_reciprocal(scale: u32, d: u32) -> u64 {
     let x = recip_normalised(d << n);
     // 2^32/d = x · 2^(n+32) / 2^63.
     (u64::from(scale) * x) >> (31 - n)
+}
+
+/// Greatest common divisor of two positive numbers.
+pub fn gcd(mut a: i64, mut b: i64) -> i64 {
+    while b != 0 {
+        (a, b) = (b, a % b);
+    }
+    a.abs().max(1)
 }
 
 #[cfg(test)]

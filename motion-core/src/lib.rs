@@ -4,7 +4,8 @@
 //! it depends only on the shared vocabulary of the [`canon`] crate.
 //!
 //! Layers, one module each, each using only the ones below it:
-//! - [`fixed`]: fixed-point helpers (Q formats, division by multiplication);
+//! - [`fixed`]: fixed-point helpers (Q formats, division by multiplication, gcd);
+//! - [`cordic`]: integer angle, cosine and sine (arcs);
 //! - [`planner`]: canonical actions into planned blocks with look-ahead speeds, in
 //!   the motion units of [`planner::MotionParams`];
 //! - [`interpolator`]: the head block into axis targets per interpolation period;
@@ -24,6 +25,7 @@ extern crate std;
 pub use ::canon;
 use ::canon::{alarm, axis, config};
 
+pub mod cordic;
 pub mod fixed;
 pub mod interpolator;
 pub mod motion;

@@ -355,6 +355,11 @@ impl Sim {
         self.spindle.index_count().unwrap_or(0)
     }
 
+    /// The spindle encoder's count now.
+    pub fn spindle_count(&self) -> i64 {
+        self.spindle.count()
+    }
+
     /// Simulated time, s.
     pub fn time_s(&self) -> f64 {
         self.clock.0 as f64 / 1e9
@@ -534,7 +539,20 @@ impl Sim {
         if self.external && !self.opts.trace && self.trace_out.is_none() {
             return;
         }
-        let pos = self.machine_pos();
+        let mut pos = self.machine_pos();
+        let c = Axis::C.index();
+        if self.core.params().limits[c].present {
+            // C is rotary: the core renumbers it by whole turns after polygon
+            // turning (G50.2), the drive does not. While polygon turning runs C
+            // follows the spindle, not the path: its path position is where it locked.
+            let p = self.core.params();
+            let core_c = self.core.steps()[c];
+            let rev = p.scale[c].steps(360_000_000).max(1);
+            let lag = self.axes[c].steps - core_c;
+            let lag = lag - rev * (lag as f64 / rev as f64).round() as i64;
+            let turned = self.core.polygon_steps().unwrap_or(0);
+            pos.0[c] = p.scale[c].nm(core_c + lag - turned);
+        }
         let err = self.path.error(&pos, self.core.stats().blocks as usize);
         let p = self.core.params();
         let nm = err.iter().map(|e| e * e).sum::<f64>().sqrt();

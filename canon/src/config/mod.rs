@@ -143,7 +143,7 @@ pub struct MachineConfig {
     /// M codes configured as user outputs.
     pub user_m_codes: heapless::Vec<UserMCode, MAX_USER_M>,
     /// The external input M91/M92 test (3.1.5 speaks of "the input signal" without
-    /// naming one; this machine wires it to [`crate::Environment::input`] number
+    /// naming one; this machine wires it to `interp_core::Environment::input` number
     /// `jump_input`, 0 by default).
     pub jump_input: u16,
     /// Numbered parameters.
@@ -185,16 +185,19 @@ impl Default for MachineConfig {
 
 impl MachineConfig {
     /// The configuration of axis `a`.
+    #[inline]
     pub fn axis(&self, a: Axis) -> &AxisConfig {
         &self.axes[a.index()]
     }
 
     /// Input mode from parameter 3401.
+    #[inline]
     pub fn input_mode(&self) -> InputMode {
         if self.params.flag(Param::CalculatorInput) { InputMode::Calculator } else { InputMode::LeastIncrement }
     }
 
     /// The user M code `m`, if configured.
+    #[inline]
     pub fn user_m(&self, m: u16) -> Option<UserMCode> {
         self.user_m_codes.iter().copied().find(|u| u.m == m)
     }

@@ -170,6 +170,7 @@ pub const PARAM_COUNT: usize = PARAMS.len();
 
 impl Param {
     /// The definition row.
+    #[inline]
     pub fn def(self) -> &'static ParamDef {
         &PARAMS[self as usize]
     }
@@ -207,16 +208,19 @@ fn to_internal(unit: ParamUnit, v: f64) -> i64 {
 
 impl Parameters {
     /// The value in internal units.
+    #[inline]
     pub fn get(&self, p: Param) -> i64 {
         self.values[p as usize]
     }
 
     /// Whether a Bool parameter is 1.
+    #[inline]
     pub fn flag(&self, p: Param) -> bool {
         self.get(p) != 0
     }
 
     /// Sets a value in internal units (what a program's G71 U(Δd) does to 5147).
+    #[inline]
     pub fn set(&mut self, p: Param, internal: i64) {
         self.values[p as usize] = internal;
     }

@@ -23,11 +23,13 @@ pub struct ToolOffset {
 
 impl ToolOffset {
     /// Total shift of X (geometry + wear).
+    #[inline]
     pub const fn total_x(&self) -> i64 {
         self.x + self.x_wear
     }
 
     /// Total shift of Z (geometry + wear).
+    #[inline]
     pub const fn total_z(&self) -> i64 {
         self.z + self.z_wear
     }
@@ -47,12 +49,14 @@ impl Default for ToolTable {
 
 impl ToolTable {
     /// Row `number` (1-based); `None` for 0 or past the table.
+    #[inline]
     pub fn get(&self, number: u16) -> Option<&ToolOffset> {
         let i = usize::from(number).checked_sub(1)?;
         self.rows.get(i)
     }
 
     /// Mutable row `number` (1-based).
+    #[inline]
     pub fn get_mut(&mut self, number: u16) -> Option<&mut ToolOffset> {
         let i = usize::from(number).checked_sub(1)?;
         self.rows.get_mut(i)

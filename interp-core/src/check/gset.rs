@@ -49,7 +49,7 @@ pub struct GSet {
 pub(crate) fn uses_axes(c: GCode) -> bool {
     use GCode::*;
     matches!(c, Dwell | ReferenceReturn | ReferenceReturnN | SetCoordinates | LocalFrame | MachineCoordinates)
-        || crate::cycles::args::is_multiple(c)
+        || crate::check::cycle_args::is_multiple(c)
 }
 
 impl GSet {
@@ -75,14 +75,21 @@ impl GSet {
     /// Looks up every G code of `block` and sorts it into its group.
     pub fn resolve(block: &Block, state: &State, cfg: &MachineConfig) -> Result<GSet, AlarmKind> {
         let mut set = GSet::NONE;
-        let mut seen: [Option<u16>; 16] = [None; 16];
+        // Groups seen so far, a bit each; the codes themselves are looked up again
+        // only for an alarm.
+        let mut seen = 0u32;
+        let first = |group: Group| {
+            let of = |t: &&u16| GCode::from_tenths(cfg.gcode_system, **t).is_some_and(|c| c.group() == group);
+            block.g.iter().find(of).copied().unwrap_or(0)
+        };
         for &tenths in &block.g {
             let code =
                 GCode::from_tenths(cfg.gcode_system, tenths).ok_or(AlarmKind::ImproperGCode { code: GNum(tenths) })?;
-            let slot = &mut seen[code.group() as usize];
-            if let Some(first) = slot.replace(tenths) {
-                return Err(AlarmKind::DuplicateGroup { first: GNum(first), second: GNum(tenths) });
+            let bit = 1u32 << (code.group() as u32);
+            if seen & bit != 0 {
+                return Err(AlarmKind::DuplicateGroup { first: GNum(first(code.group())), second: GNum(tenths) });
             }
+            seen |= bit;
             supported(code)?;
             set.assign(code);
         }
@@ -97,15 +104,13 @@ impl GSet {
             (set.polygon.is_some(), Group::Polygon),
         ] {
             if on && (block.g.len() > 1 || (group == Group::Polygon && polygon_not_alone)) {
-                let tenths = seen[group as usize].unwrap_or(0);
-                return Err(AlarmKind::CodeMustBeAlone { code: GNum(tenths) });
+                return Err(AlarmKind::CodeMustBeAlone { code: GNum(first(group)) });
             }
         }
         if let (Some(one), Some(_)) = (set.one_shot, set.motion)
             && uses_axes(one)
         {
-            let tenths = seen[Group::NonModal as usize].unwrap_or(0);
-            return Err(AlarmKind::CodeMustBeAlone { code: GNum(tenths) });
+            return Err(AlarmKind::CodeMustBeAlone { code: GNum(first(Group::NonModal)) });
         }
         Ok(set)
     }

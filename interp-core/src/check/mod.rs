@@ -2,6 +2,7 @@
 //! every word verified to belong to the block, values converted to internal units.
 //! Nothing here changes state; a block that fails never reaches execution.
 
+pub mod cycle_args;
 mod gset;
 mod words;
 
@@ -14,6 +15,17 @@ use crate::config::MachineConfig;
 use crate::exec::State;
 use crate::parse::{Block, MAX_M};
 use crate::units::NumberFormat;
+
+/// What `,C` or `,R` asks for at the end of a block's move (2.23).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Corner {
+    /// `,C`: a straight chamfer from the point this far (nm, straight line) before
+    /// the imaginary corner to the point this far after it.
+    Chamfer(i64),
+    /// `,R`: a corner arc of this radius (nm) tangent to both moves.
+    Round(i64),
+}
 
 /// One axis word converted to internal units (X as radius).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -80,9 +92,9 @@ pub struct Command {
     /// M98/M99/M91/M92 with their words.
     pub flow: Option<FlowWord>,
     /// `,C`/`,R`: the corner to insert after the block's move (2.23).
-    pub corner: Option<crate::contour::Corner>,
+    pub corner: Option<Corner>,
     /// Cycle words (G70–G76, G90/G92/G94, G32/G34, G83–G89), internal units.
-    pub cycle: crate::cycles::CycleArgs,
+    pub cycle: crate::check::cycle_args::CycleArgs,
 }
 
 impl Command {
@@ -102,12 +114,12 @@ impl Command {
         tool: None,
         flow: None,
         corner: None,
-        cycle: crate::cycles::CycleArgs::None,
+        cycle: crate::check::cycle_args::CycleArgs::None,
     };
 
     /// The code that consumes the block's axis words.
     pub fn axis_user(&self, state: &State) -> GCode {
-        use crate::cycles::args::{is_hole, is_multiple};
+        use crate::check::cycle_args::{is_hole, is_multiple};
         match (self.g.stroke, self.g.polar) {
             (Some(true), _) => return GCode::StrokeCheckOn,
             (Some(false), _) => return GCode::StrokeCheckOff,
@@ -166,7 +178,7 @@ pub fn check_into(block: &Block, state: &State, cfg: &MachineConfig, cmd: &mut C
     cmd.tool = None;
     cmd.flow = None;
     cmd.corner = None;
-    cmd.cycle = crate::cycles::CycleArgs::None;
+    cmd.cycle = crate::check::cycle_args::CycleArgs::None;
     let flow_m = cmd.m.iter().map(|&(_, f)| f).find(|f| f.is_flow());
     let user = cmd.axis_user(state);
     words::check_letters(block, user, flow_m, cfg)?;

@@ -70,7 +70,7 @@ pub(super) fn check_letters(
     flow: Option<MFunction>,
     cfg: &MachineConfig,
 ) -> Result<(), AlarmKind> {
-    let (mut allowed, name) = match crate::cycles::args::letters_of(user) {
+    let (mut allowed, name) = match crate::check::cycle_args::letters_of(user) {
         Some((l, name)) => (Letters::of(l), name),
         None => words_of(user),
     };
@@ -92,7 +92,7 @@ pub(super) fn check_letters(
         }
         if user != GCode::Dwell
             && !(user == GCode::ThreadCycle && letter == b'H')
-            && crate::cycles::args::axes_are_points(user)
+            && crate::check::cycle_args::axes_are_points(user)
             && let Some((axis, _)) = axis_of(letter)
             && !cfg.axis(axis).present
         {
@@ -111,7 +111,7 @@ pub(super) fn convert(
     fmt: &NumberFormat,
     cmd: &mut Command,
 ) -> Result<(), AlarmKind> {
-    use crate::cycles::args;
+    use crate::check::cycle_args as args;
     if user == GCode::Dwell {
         cmd.dwell_ms = Some(dwell_ms(block, fmt)?);
     } else if args::axes_are_points(user) {
@@ -121,7 +121,7 @@ pub(super) fn convert(
         cmd.cycle = args::read(user, block, fmt, cfg.diameter_x)?;
     }
     if user == GCode::PolygonOn {
-        polygon(block, fmt)?;
+        cmd.cycle = polygon(block, fmt, cfg)?;
     }
     if matches!(user, GCode::EllipseCw | GCode::EllipseCcw | GCode::ParabolaCw | GCode::ParabolaCcw) {
         cmd.cycle = args::read_curve(block, fmt)?;
@@ -270,8 +270,8 @@ fn tool_word(t: &Number, cfg: &MachineConfig) -> Result<(u16, u16), AlarmKind> {
 }
 
 /// `,C` / `,R` (2.23): a length, never negative; zero asks for nothing.
-fn corner_word(block: &Block, fmt: &NumberFormat) -> Result<Option<crate::contour::Corner>, AlarmKind> {
-    use crate::contour::Corner;
+fn corner_word(block: &Block, fmt: &NumberFormat) -> Result<Option<crate::check::Corner>, AlarmKind> {
+    use crate::check::Corner;
     let (n, letter, make): (_, u8, fn(i64) -> Corner) = match (&block.chamfer, &block.corner) {
         (_, Some(r)) if block.corner_last => (r, b'R', Corner::Round),
         (Some(c), _) => (c, b'C', Corner::Chamfer),
@@ -285,29 +285,40 @@ fn corner_word(block: &Block, fmt: &NumberFormat) -> Result<Option<crate::contou
     Ok((v > 0).then(|| make(v)))
 }
 
-/// G51.2 P Q R S (2.8): P and Q whole 1–999, R 0–359.999°, S 1–9999 rev/min. Polygon
-/// turning needs a tool spindle in position control synchronised to the work
-/// spindle (note 6, "否则报警"); this controller drives one spindle, so a valid G51.2
-/// raises alarm 4047.
-fn polygon(block: &Block, fmt: &NumberFormat) -> Result<(), AlarmKind> {
-    for l in [b'P', b'Q'] {
+/// G51.2 P Q R S (2.8): P and Q whole 1–999 (1 when omitted), R 0–359.999°, S
+/// 1–9999 rev/min. Polygon turning needs a tool spindle in position control
+/// synchronised to the work spindle (note 6, "否则报警"): the C axis drive is it, so
+/// a machine without a C axis raises alarm 4047.
+fn polygon(
+    block: &Block,
+    fmt: &NumberFormat,
+    cfg: &MachineConfig,
+) -> Result<crate::check::cycle_args::CycleArgs, AlarmKind> {
+    let mut pq = [1u16; 2];
+    for (i, l) in [b'P', b'Q'].into_iter().enumerate() {
         if let Some(n) = block.get(l) {
             let v = whole(l, &n, 999)?;
             if v == 0 {
                 return Err(AlarmKind::ValueOutOfRange { letter: l });
             }
+            pq[i] = u16::try_from(v).map_err(|_| AlarmKind::ValueOutOfRange { letter: l })?;
         }
     }
+    let mut phase_udeg = 0;
     if let Some(r) = block.get(b'R') {
         let u = fmt.angle_udeg(&r).ok_or(AlarmKind::Overflow)?;
         if !(0..360_000_000).contains(&u) {
             return Err(AlarmKind::ValueOutOfRange { letter: b'R' });
         }
+        phase_udeg = u;
     }
     if let Some(s) = block.get(b'S')
         && !(1..=9_999).contains(&whole(b'S', &s, 99_999)?)
     {
         return Err(AlarmKind::ValueOutOfRange { letter: b'S' });
     }
-    Err(AlarmKind::PolygonNoToolSpindle)
+    if !cfg.axis(crate::axis::Axis::C).present {
+        return Err(AlarmKind::PolygonNoToolSpindle);
+    }
+    Ok(crate::check::cycle_args::CycleArgs::Polygon { p: pq[0], q: pq[1], phase_udeg })
 }

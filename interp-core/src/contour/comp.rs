@@ -85,22 +85,10 @@ impl Comp {
     /// The vector from the nose centre to the imaginary tip in plane coordinates
     /// (tips 1–8 only in G18, 2.18.1 note).
     fn tip_vector(&self) -> V2 {
-        let (x, z) = match self.tip {
-            1 => (1.0, 1.0),
-            2 => (1.0, -1.0),
-            3 => (-1.0, -1.0),
-            4 => (-1.0, 1.0),
-            5 => (0.0, 1.0),
-            6 => (1.0, 0.0),
-            7 => (0.0, -1.0),
-            8 => (-1.0, 0.0),
-            _ => (0.0, 0.0),
-        };
         if self.plane != Plane::Zx {
             return V2::new(0.0, 0.0);
         }
-        // G18's plane axes are (Z, X).
-        V2::new(z, x).scale(self.radius as f64)
+        tip_vector(self.tip, self.radius)
     }
 
     /// The corner between `e1` and `e2` (2.18.3).
@@ -150,6 +138,23 @@ impl Comp {
         let start2 = if line2 { b } else { p2 };
         Ok(Join { end1, mids, start2 })
     }
+}
+
+/// The vector (G18 plane coordinates: Z, X) from the nose centre to the
+/// imaginary tip of direction `tip` for a nose of `radius` nm (figure 2.63).
+pub(crate) fn tip_vector(tip: u8, radius: i64) -> V2 {
+    let (x, z) = match tip {
+        1 => (1.0, 1.0),
+        2 => (1.0, -1.0),
+        3 => (-1.0, -1.0),
+        4 => (-1.0, 1.0),
+        5 => (0.0, 1.0),
+        6 => (1.0, 0.0),
+        7 => (0.0, -1.0),
+        8 => (-1.0, 0.0),
+        _ => (0.0, 0.0),
+    };
+    V2::new(z, x).scale(radius as f64)
 }
 
 /// The offset of `e` (alarm 3605 if an arc's radius would vanish: the nose does
@@ -257,7 +262,10 @@ fn emit_to_corner(buf: &mut Buffer, comp: &Comp, e2: Option<&Elem>, out: &mut St
             Join { end1: o1.end(), mids: heapless::Vec::new(), start2: o1.end() }
         }
     };
-    check_direction(&e1, comp, V2::of(comp.centre), join.end1)?;
+    if let Err(e) = check_direction(&e1, comp, V2::of(comp.centre), join.end1) {
+        out.faulty_move = Some(held.line);
+        return Err(e);
+    }
     let tip = comp.tip_vector();
     // Nothing is emitted for a piece of no length (a corner point on top of the last).
     let mut last = V2::of(comp.centre);

@@ -8,6 +8,9 @@
 //! 2. tool-nose radius compensation (G40/G41/G42, 2.18; [`comp`]): that path offset
 //!    by the nose radius, with the corner types of the manual.
 //!
+//! The G90/G94 single cycles are compensated as a whole when they are planned
+//! ([`cycle`]); the look-ahead treats them as a temporary cancel.
+//!
 //! The held actions live in the [`State`] (fixed arrays, no allocation), so they
 //! follow the interpreter's rule that a failed block is undone: a block that
 //! raises an alarm leaves the held moves exactly as they were ([`Contour::save`]
@@ -17,8 +20,11 @@
 
 pub mod comp;
 mod corner;
+pub mod cycle;
 
 pub use comp::{Comp, Side};
+// The `,C`/`,R` request is a word of the block: checked (and defined) in `check`.
+pub use crate::check::Corner;
 
 use crate::alarm::AlarmKind;
 use crate::axis::{Axis, Pos};
@@ -32,17 +38,6 @@ use crate::geom::path::V2;
 /// chamfered block and its follower, M codes of blocks without motion …).
 pub const HOLD: usize = 4;
 
-/// What `,C` or `,R` asks for at the end of a block's move (2.23).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub enum Corner {
-    /// `,C`: a straight chamfer from the point this far (nm, straight line) before
-    /// the imaginary corner to the point this far after it.
-    Chamfer(i64),
-    /// `,R`: a corner arc of this radius (nm) tangent to both moves.
-    Round(i64),
-}
-
 /// A non-motion action waiting behind a held move, kept small (the state is
 /// copied for every block).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -54,6 +49,7 @@ enum Aside {
     Aux { m: u16 },
     Stop { optional: bool },
     End { rewind: bool },
+    Polygon(Option<crate::canon::PolygonSync>),
 }
 
 impl Aside {
@@ -65,6 +61,7 @@ impl Aside {
             Action::Aux { m } => Aside::Aux { m },
             Action::Stop { optional } => Aside::Stop { optional },
             Action::End { rewind } => Aside::End { rewind },
+            Action::Polygon(p) => Aside::Polygon(p),
             _ => return None,
         })
     }
@@ -77,6 +74,7 @@ impl Aside {
             Aside::Aux { m } => Action::Aux { m },
             Aside::Stop { optional } => Action::Stop { optional },
             Aside::End { rewind } => Action::End { rewind },
+            Aside::Polygon(p) => Action::Polygon(p),
         }
     }
 }
@@ -246,7 +244,7 @@ fn check_follower(cmd: &Command, st: &State) -> Result<bool, AlarmKind> {
 struct CompPlan {
     /// G40 in this block while compensating: the block's first move cancels.
     cancel: bool,
-    /// A temporary cancel before the block's moves (G28, G30, G50, G52, G53).
+    /// A temporary cancel before the block's moves (G28, G30, G50, G52, G53, G51.2).
     pause: bool,
 }
 
@@ -289,18 +287,20 @@ fn plan_comp(cmd: &Command, st: &mut State) -> Result<CompPlan, AlarmKind> {
         };
         st.contour.comp = comp;
     }
+    // G51.2 turns C to its phase: a move outside the plane, run uncompensated.
     let pause = matches!(
         cmd.g.one_shot,
         Some(ReferenceReturn | ReferenceReturnN | SetCoordinates | LocalFrame | MachineCoordinates)
-    );
+    ) || cmd.g.polygon == Some(true);
     Ok(CompPlan { cancel: was.is_some() && now.is_none(), pause: was.is_some() && now.is_some() && pause })
 }
 
 /// Passes the actions the block just staged in `out` through both stages. `from`
 /// is the machine position before the block, `flow` what the block does next (a
 /// stop or the end of the program empties the look-ahead). Actions after a
-/// cycle's place (`out.split`) come after everything held; the cycle itself runs
-/// uncompensated and the next move starts the offset up again.
+/// cycle's place (`out.split`) come after everything held; the cycle itself is a
+/// temporary cancel (G90/G94 offset their own moves, [`cycle`]) and the next move
+/// starts the offset up again.
 pub fn after_block(
     cmd: &Command,
     st: &mut State,
@@ -319,12 +319,13 @@ pub fn after_block(
         Some(_) => check_follower(cmd, st)?,
         None => false,
     };
-    if plan.pause {
-        flush(st, out)?;
-    }
     let mut acts: heapless::Vec<Canon, STAGE> = heapless::Vec::new();
     while let Some(c) = out.actions.pop_front() {
         acts.push(c).map_err(|_| AlarmKind::Overflow)?;
+    }
+    if plan.pause {
+        // The held moves end before the block's own actions (the G28 move …).
+        flush(st, out)?;
     }
     let split = out.split.unwrap_or(acts.len());
     let last_move = acts[..split].iter().rposition(|c| c.action.endpoint().is_some());
@@ -453,6 +454,48 @@ pub fn flush(st: &mut State, out: &mut Staged<'_>) -> Result<(), AlarmKind> {
         to_offset(st, c, start, out)?;
     }
     comp::end_here(&mut st.contour.offset, &mut st.contour.comp, out)
+}
+
+/// The look-ahead when a block raised an alarm (the block undone, the held moves
+/// as before it). The moves held back belong to earlier, good blocks, so the
+/// machine runs them before it stops, the last one ending on its normal as
+/// compensation does before a block it cannot look past (2.18.3; a `,C`/`,R`
+/// waiting for this block is left out: its corner needs the faulty block). If a
+/// held move is itself the fault (`faulty`: the line of a move whose offset runs
+/// against it, 2.18.4 criterion 1), the machine stops before that move, as FANUC
+/// stops before the block where the nose would cut in; what was held behind it is
+/// dropped. Compensation stays in force (the next move starts up again).
+pub fn stop_on_alarm(st: &mut State, faulty: Option<u32>, out: &mut Staged<'_>) {
+    if !st.contour.is_holding() {
+        return;
+    }
+    let line_of = |b: &Buffer| b.held.map(|c| c.line);
+    let at_fault = |b: &Buffer| faulty.is_some() && line_of(b) == faulty;
+    if at_fault(&st.contour.offset) {
+        st.contour.offset = Buffer::default();
+    } else {
+        st.contour.corner = None;
+        let before = st.contour;
+        let mark = out.actions.len();
+        let shape_ok = !at_fault(&st.contour.shape);
+        if !shape_ok || flush(st, out).is_err() {
+            st.contour = before;
+            while out.actions.len() > mark {
+                out.actions.pop_back();
+            }
+            // Only stage 2's move: stage 1's (or the corner to it) is the fault.
+            if comp::end_here(&mut st.contour.offset, &mut st.contour.comp, out).is_err() {
+                while out.actions.len() > mark {
+                    out.actions.pop_back();
+                }
+            }
+        }
+    }
+    st.contour.shape = Buffer::default();
+    st.contour.offset = Buffer::default();
+    st.contour.corner = None;
+    st.contour.idle_blocks = 0;
+    st.contour.comp.engaged = false;
 }
 
 /// Stage 1's held move meets `next` (starting at `from`): shapes the corner, passes

@@ -23,7 +23,6 @@
 //! first; the ones after the motion (M05, M09, M30 …) are kept in the expansion
 //! and delivered after its last move. Every action carries the cycle block's line.
 
-pub mod args;
 pub mod curve;
 mod emit;
 mod finish;
@@ -36,12 +35,13 @@ mod rough;
 mod single;
 mod thread;
 
-pub use args::CycleArgs;
+pub use crate::check::cycle_args::CycleArgs;
 pub use emit::{Emitter, Out, Pt, Step};
 
 use crate::alarm::AlarmKind;
 use crate::canon::{Canon, Plane, SpindleDir};
 use crate::check::Command;
+use crate::check::cycle_args as args;
 use crate::codes::GCode;
 use crate::config::{MachineConfig, Param};
 use crate::env::Environment;
@@ -272,7 +272,7 @@ pub fn execute(cmd: &Command, st: &mut State, ctx: &mut Ctx<'_, '_>, chained: bo
     }
     if args::is_hole(code) {
         if let Some(generator) = single::hole_block(code, cmd, st, ctx.cfg)? {
-            start(Expansion::new(Emitter::new(*st, cmd.line), Gen::Hole(generator), Profile::default()), ctx)?;
+            start_cycle(Emitter::new(*st, cmd.line), Gen::Hole(generator), ctx.out)?;
         }
         return Ok(true);
     }
@@ -284,19 +284,20 @@ pub fn execute(cmd: &Command, st: &mut State, ctx: &mut Ctx<'_, '_>, chained: bo
             return Err(AlarmKind::CycleOtherAxis { letter: a.letter() });
         }
     }
-    let exp = match code {
-        GCode::TurningCycle | GCode::FacingCycle | GCode::ThreadCycle => single::single_block(code, cmd, st, ctx.cfg)?
-            .map(|generator| Expansion::new(Emitter::new(*st, cmd.line), generator, Profile::default())),
+    match code {
+        GCode::TurningCycle | GCode::FacingCycle | GCode::ThreadCycle => {
+            if let Some(generator) = single::single_block(code, cmd, st, ctx.cfg)? {
+                start_cycle(Emitter::new(*st, cmd.line), generator, ctx.out)?;
+            }
+        }
         _ => multiple(code, cmd, st, ctx)?,
-    };
-    if let Some(exp) = exp {
-        start(exp, ctx)?;
     }
     Ok(true)
 }
 
-/// G70–G76.
-fn multiple(code: GCode, cmd: &Command, st: &mut State, ctx: &mut Ctx<'_, '_>) -> Result<Option<Expansion>, AlarmKind> {
+/// G70–G76: the setup blocks write their parameters, the cycles start their
+/// expansion (G71–G73 read their shape straight into it).
+fn multiple(code: GCode, cmd: &Command, st: &mut State, ctx: &mut Ctx<'_, '_>) -> Result<(), AlarmKind> {
     use CycleArgs::{Finish, Groove, GrooveSetup, MultiThread, PatternSetup, RoughSetup, Shape, ThreadSetup};
     let cfg = ctx.cfg;
     let p = |id| cfg.params.get(id);
@@ -306,17 +307,17 @@ fn multiple(code: GCode, cmd: &Command, st: &mut State, ctx: &mut Ctx<'_, '_>) -
         RoughSetup { depth, retract } => {
             write(ctx, Param::RoughingDepth, depth)?;
             write(ctx, Param::RoughingRetract, retract)?;
-            return Ok(None);
+            return Ok(());
         }
         PatternSetup { di, dk, count } => {
             write(ctx, Param::PatternReliefX, di)?;
             write(ctx, Param::PatternReliefZ, dk)?;
             write(ctx, Param::PatternDivisions, count.map(i64::from))?;
-            return Ok(None);
+            return Ok(());
         }
         GrooveSetup { retract } => {
             write(ctx, Param::GrooveRetract, retract)?;
-            return Ok(None);
+            return Ok(());
         }
         ThreadSetup { packed, min_depth, allowance } => {
             if let Some((m, r, a)) = packed {
@@ -326,19 +327,20 @@ fn multiple(code: GCode, cmd: &Command, st: &mut State, ctx: &mut Ctx<'_, '_>) -
             }
             write(ctx, Param::ThreadMinDepth, min_depth)?;
             write(ctx, Param::ThreadFinishAllowance, allowance)?;
-            return Ok(None);
+            return Ok(());
         }
         Finish { ns, nf } => {
             let src = ShapeSource { program: ctx.out.program, ns, nf };
             Gen::Finish(FinishGen::new(profile::start_of(&src)?, ns, nf, here))
         }
         Shape { ns, nf, du, dw } => {
-            let src = ShapeSource { program: ctx.out.program, ns, nf };
-            let mut shape = profile::read_profile(&src, st, cfg, ctx.env)?;
-            // The shape's blocks only describe it: the program goes on after nf.
-            ctx.out.resume = Some(shape.resume);
+            let (src, env) = (ShapeSource { program: ctx.out.program, ns, nf }, ctx.env);
+            // The shape is read straight into the expansion (its generator follows).
+            let exp = start_cycle(em, Gen::Plan(heapless::Vec::new()), ctx.out)?;
+            let shape = &mut exp.profile;
+            profile::read_profile(&src, st, cfg, env, shape)?;
             let allowance = Pt::new(du, dw);
-            let generator = if code == GCode::PatternCycle {
+            exp.generator = if code == GCode::PatternCycle {
                 let count = u32::try_from(p(Param::PatternDivisions)).unwrap_or(0);
                 let relief = Pt::new(p(Param::PatternReliefX), p(Param::PatternReliefZ));
                 Gen::Pattern(PatternGen::new(here, relief, count, allowance)?)
@@ -350,9 +352,12 @@ fn multiple(code: GCode, cmd: &Command, st: &mut State, ctx: &mut Ctx<'_, '_>) -
                     retract: p(Param::RoughingRetract),
                     allowance,
                 };
-                Gen::Rough(RoughGen::new(&spec, &mut shape)?)
+                Gen::Rough(RoughGen::new(&spec, shape)?)
             };
-            return Ok(Some(Expansion::new(em, generator, shape)));
+            // The shape's blocks only describe it: the program goes on after nf.
+            let resume = exp.profile.resume;
+            ctx.out.resume = Some(resume);
+            return Ok(());
         }
         Groove { p: di, q: dk, relief } => {
             let end = target(cmd, st, cfg)?;
@@ -378,9 +383,9 @@ fn multiple(code: GCode, cmd: &Command, st: &mut State, ctx: &mut Ctx<'_, '_>) -
             };
             Gen::MultiThread(MultiThreadGen::new(spec)?)
         }
-        _ => return Ok(None),
+        _ => return Ok(()),
     };
-    Ok(Some(Expansion::new(em, generator, Profile::default())))
+    start_cycle(em, generator, ctx.out).map(|_| ())
 }
 
 /// G02.1/G03.1 and G02.2/G03.2 (2.4, 2.5): the curve's cuts as an expansion.
@@ -410,7 +415,7 @@ pub fn curve_block(cmd: &Command, st: &mut State, cfg: &MachineConfig, out: &mut
         }
         _ => curve::CurveGen::parabola(start, end, p.ok_or(missing(b'P'))?, q_udeg, code == ParabolaCw, tol)?,
     };
-    out.start_cycle(Expansion::new(em, Gen::Curve(generator), Profile::default()))
+    start_cycle(em, Gen::Curve(generator), out).map(|_| ())
 }
 
 /// Polar interpolation (2.7): the virtual moves the contour layer let out for this
@@ -438,7 +443,7 @@ pub fn polar_block(st: &mut State, cfg: &MachineConfig, out: &mut Staged<'_>) ->
     let _ = before;
     let line = moves.first().map_or(0, |c| c.line);
     let generator = polar::PolarGen::new(&moves, st.work_pos(cfg), cfg.motion.chord_tolerance)?;
-    out.start_cycle(Expansion::new(Emitter::new(*st, line), Gen::Polar(generator), Profile::default()))?;
+    start_cycle(Emitter::new(*st, line), Gen::Polar(generator), out)?;
     for c in after {
         out.actions.push_back(c).map_err(|_| AlarmKind::Overflow)?;
     }
@@ -459,10 +464,13 @@ fn write(ctx: &mut Ctx<'_, '_>, id: Param, v: Option<i64>) -> Result<(), AlarmKi
     Ok(())
 }
 
-/// Hands `exp` to the interpreter, which dry-runs it ([`Expansion::dry_run`]) before
-/// the block commits.
-fn start(exp: Expansion, ctx: &mut Ctx<'_, '_>) -> Result<(), AlarmKind> {
-    ctx.out.start_cycle(exp)
+/// Hands the cycle to the interpreter, which dry-runs it ([`Expansion::dry_run`])
+/// before the block commits: the expansion is built in the interpreter's slot
+/// (never inlined: the ~5 KB value it builds stays out of the callers' frames,
+/// which are on the stack while a shape's blocks run).
+#[inline(never)]
+fn start_cycle<'s>(em: Emitter, generator: Gen, out: &'s mut Staged<'_>) -> Result<&'s mut Expansion, AlarmKind> {
+    Ok(out.cycle_slot()?.insert(Expansion::new(em, generator, Profile::default())))
 }
 
 /// Actions one dry-run chunk covers: a step of the interpreter validates at most

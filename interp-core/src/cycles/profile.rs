@@ -316,15 +316,17 @@ impl<E: Environment + ?Sized> Environment for EnvRef<'_, E> {
     }
 }
 
-/// Reads the shape ns–nf starting at the state `st` (the cycle's start point A).
-/// Roughing ignores the shape's F, S and T, so the scratch state gets a feed and a
-/// turning spindle: geometry must not fail on a feed that roughing never uses.
+/// Reads the shape ns–nf starting at the state `st` (the cycle's start point A)
+/// into `profile` (in the expansion itself: a profile is ~3 KB). Roughing ignores
+/// the shape's F, S and T, so the scratch state gets a feed and a turning spindle:
+/// geometry must not fail on a feed that roughing never uses.
 pub fn read_profile<E: Environment + ?Sized>(
     src: &ShapeSource<'_>,
     st: &State,
     cfg: &MachineConfig,
     env: &E,
-) -> Result<Profile, AlarmKind> {
+    profile: &mut Profile,
+) -> Result<(), AlarmKind> {
     let mut scratch = *st;
     // Roughing follows the programmed shape: no nose compensation (2.16.7 note 5).
     scratch.contour.clear();
@@ -336,7 +338,7 @@ pub fn read_profile<E: Environment + ?Sized>(
     }
     scratch.spindle.rpm = scratch.spindle.rpm.max(1);
     let mut cur = start_of(src)?;
-    let mut profile = Profile::default();
+    profile.segs.clear();
     let mut first = true;
     loop {
         let Some(sb) = next_shape_block(src, &mut cur, env)? else { break };
@@ -386,7 +388,7 @@ pub fn read_profile<E: Environment + ?Sized>(
         first = false;
         if sb.last {
             profile.resume = cur;
-            return Ok(profile);
+            return Ok(());
         }
     }
     Err(AlarmKind::SequenceNotFound { n: src.nf })

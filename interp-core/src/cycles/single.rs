@@ -12,6 +12,7 @@ use crate::canon::{FeedMode, SpindleDir};
 use crate::check::Command;
 use crate::codes::GCode;
 use crate::config::{MachineConfig, Param};
+use crate::contour::cycle::{Nose, single};
 use crate::exec::{RigidTap, SingleMemory, State, motion};
 
 /// G90/G94/G92: the end point and taper, completed from the retained values when
@@ -51,6 +52,18 @@ fn check_taper(r: i64, travel: i64) -> Result<(), AlarmKind> {
     Ok(())
 }
 
+/// The nose a G90/G94 cycle is compensated for: G41/G42 in force (and not
+/// suppressed in a G71–G73 shape), with the radius and tip the offset started up
+/// with, or the offset row's when it starts in this block.
+fn cycle_nose(st: &State) -> Option<Nose> {
+    if st.contour.no_comp || !matches!(st.modal.nose_comp, GCode::NoseCompLeft | GCode::NoseCompRight) {
+        return None;
+    }
+    let c = st.contour.comp;
+    let (radius, tip) = if c.side.is_some() { (c.radius, c.tip) } else { (st.tool.nose_radius, st.tool.tip) };
+    Some(Nose { radius, tip })
+}
+
 /// G90, G94, G92 blocks.
 pub fn single_block(code: GCode, cmd: &Command, st: &mut State, cfg: &MachineConfig) -> Result<Option<Gen>, AlarmKind> {
     let here = Emitter::new(*st, cmd.line).here(cfg);
@@ -69,20 +82,27 @@ pub fn single_block(code: GCode, cmd: &Command, st: &mut State, cfg: &MachineCon
     let mut plan = heapless::Vec::new();
     let mut add = |s| plan.push(s).map_err(|_| AlarmKind::Overflow);
     match code {
-        GCode::TurningCycle => {
-            // ① X rapid to B, ② cut to C, ③ X feed back to D, ④ Z rapid to A.
-            check_taper(r, c.x - a.x)?;
-            add(Step::Rapid(Pt::new(c.x + r, a.z)))?;
+        GCode::TurningCycle | GCode::FacingCycle => {
+            // G90: ① X rapid to B, ② cut to C, ③ X feed back to D, ④ Z rapid to A.
+            // G94: ① Z rapid to B, ② cut to C, ③ Z feed back to D, ④ X rapid to A.
+            let turning = code == GCode::TurningCycle;
+            let (b, d) = if turning {
+                check_taper(r, c.x - a.x)?;
+                (Pt::new(c.x + r, a.z), Pt::new(a.x, c.z))
+            } else {
+                check_taper(r, c.z - a.z)?;
+                (Pt::new(a.x, c.z + r), Pt::new(c.x, a.z))
+            };
+            let [b, c, d] = match cycle_nose(st) {
+                Some(nose) => {
+                    let xz = |p: Pt| (p.x, p.z);
+                    single(xz(a), xz(b), xz(c), xz(d), turning, nose)?.map(|(x, z)| Pt::new(x, z))
+                }
+                None => [b, c, d],
+            };
+            add(Step::Rapid(b))?;
             add(Step::Feed(c))?;
-            add(Step::Feed(Pt::new(a.x, c.z)))?;
-            add(Step::Rapid(a))?;
-        }
-        GCode::FacingCycle => {
-            // ① Z rapid to B, ② cut to C, ③ Z feed back to D, ④ X rapid to A.
-            check_taper(r, c.z - a.z)?;
-            add(Step::Rapid(Pt::new(a.x, c.z + r)))?;
-            add(Step::Feed(c))?;
-            add(Step::Feed(Pt::new(c.x, a.z)))?;
+            add(Step::Feed(d))?;
             add(Step::Rapid(a))?;
         }
         _ => {

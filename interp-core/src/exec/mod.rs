@@ -6,6 +6,7 @@
 mod coords;
 pub(crate) mod motion;
 pub mod polar;
+mod polygon;
 mod spindle;
 mod state;
 pub mod stroke;
@@ -52,6 +53,10 @@ pub struct Staged<'a> {
     /// Where the program goes on after the block if not with the next block: after
     /// the nf block of G71–G73 (the shape's blocks are not executed).
     pub resume: Option<crate::program::Cursor>,
+    /// Line of a held move that nose compensation found faulty (its offset runs
+    /// against it, 3605) while the block ran: on the alarm the machine stops before
+    /// that move instead of after it ([`crate::contour::stop_on_alarm`]).
+    pub faulty_move: Option<u32>,
 }
 
 impl<'a> Staged<'a> {
@@ -65,6 +70,7 @@ impl<'a> Staged<'a> {
             split: None,
             params: heapless::Vec::new(),
             resume: None,
+            faulty_move: None,
         }
     }
 
@@ -78,13 +84,14 @@ impl<'a> Staged<'a> {
         Staged { program, slot: Some(slot), ..Staged::new(line, outbox) }
     }
 
-    /// Hands the block's cycle to the interpreter; its moves come after the actions
-    /// staged so far.
-    pub fn start_cycle(&mut self, exp: Expansion) -> Result<(), AlarmKind> {
-        let slot = self.slot.as_mut().ok_or(AlarmKind::ProfileForbiddenCode { what: "a cycle" })?;
-        **slot = Some(exp);
+    /// The interpreter's expansion slot, for the block's cycle to be built in place
+    /// (an expansion is ~5 KB: built here it is never moved through the frames of
+    /// its callers, which are on the stack under the shape's blocks). The cycle's
+    /// moves come after the actions staged so far.
+    pub fn cycle_slot(&mut self) -> Result<&mut Option<Expansion>, AlarmKind> {
+        let slot = self.slot.as_deref_mut().ok_or(AlarmKind::ProfileForbiddenCode { what: "a cycle" })?;
         self.split = Some(self.actions.len());
-        Ok(())
+        Ok(slot)
     }
 
     /// Stages one action.
@@ -131,6 +138,7 @@ pub fn execute(
     out: &mut Staged<'_>,
 ) -> Result<Flow, AlarmKind> {
     polar::check_codes(cmd, st)?;
+    polygon::check_block(cmd, st)?;
     let from = st.polar.map_or(st.pos, |p| p.virtual_pos());
     let chained = cycles::before_block(cmd, st)?;
     apply_modal(cmd, st);
@@ -146,6 +154,7 @@ pub fn execute(
         Some(GCode::MachineCoordinates) => coords::machine_move(cmd, st, cfg, out)?,
         Some(GCode::ReferenceReturn | GCode::ReferenceReturnN) => coords::reference_return(cmd, st, cfg, env, out)?,
         _ if cmd.g.stroke.is_some() => {}
+        _ if cmd.g.polygon.is_some() => polygon::switch(cmd, st, cfg, out)?,
         _ if polar::mode_change(cmd, st, cfg)? => {}
         _ if st.polar.is_some() => polar::execute(cmd, st, cfg, out)?,
         _ => {
@@ -161,6 +170,10 @@ pub fn execute(
     }
     aux(cmd, MTiming::After, out)?;
     spindle::after_motion(cmd, st, out)?;
+    if cmd.m.iter().any(|&(_, f)| matches!(f, MFunction::End | MFunction::EndRewind)) {
+        // M02/M30 end polygon turning with the program.
+        polygon::stop(st, out)?;
+    }
     let flow = program_flow(cmd, cfg, env, out)?;
     if st.polar.is_none() {
         stroke::check_actions(st, from, out.actions.iter())?;

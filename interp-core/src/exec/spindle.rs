@@ -39,6 +39,10 @@ pub(super) fn before_motion(
     cfg: &MachineConfig,
     out: &mut Staged<'_>,
 ) -> Result<(), AlarmKind> {
+    if cmd.g.css.is_none() && cmd.speed.is_none() && cmd.m.is_empty() {
+        // Nothing here can change the spindle (most motion blocks).
+        return Ok(());
+    }
     let x = st.work_axis(cfg, Axis::X);
     let before = spindle_speed(st, cfg, x);
     if let Some(css) = cmd.g.css {

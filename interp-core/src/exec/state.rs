@@ -33,6 +33,8 @@ pub struct Modal {
     pub drilling: GCode,
     /// Group 11 (systems B/C): G99 return to R level; G98 at power-on.
     pub return_to_r: bool,
+    /// Polygon turning in force (G51.2, 2.8): its ratio; `None` = G50.2.
+    pub polygon: Option<crate::canon::PolygonSync>,
 }
 
 /// Shifts that together with the work offsets make up the work frame.
@@ -256,6 +258,7 @@ impl State {
                 exact_stop_mode: false,
                 drilling: GCode::DrillCancel,
                 return_to_r: false,
+                polygon: None,
             },
             pos,
             frames: Frames::default(),
@@ -328,6 +331,7 @@ impl State {
     }
 
     /// What is added to a work position to get the machine position of the axes.
+    #[inline]
     pub fn work_to_machine(&self, cfg: &MachineConfig) -> Pos {
         self.frame_origin(cfg) + self.tool.offset
     }

@@ -137,7 +137,7 @@ pub fn check_move(area: &StrokeArea, from: Pos, action: &Action) -> Result<(), A
             }
         }
     }
-    cuts.sort_unstable_by(f64::total_cmp);
+    crate::sort::heap_sort_by(&mut cuts, |a, b| a.total_cmp(b).is_lt());
     for w in cuts.windows(2) {
         if w[1] - w[0] > 1e-12 && strictly_inside(area, &path.at((w[0] + w[1]) / 2.0)) {
             return Err(if w[0] > 0.0 { face_alarm(area, &path.at(w[0])) } else { start_alarm(&from, &to) });

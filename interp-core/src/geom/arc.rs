@@ -2,6 +2,7 @@
 //! order of [`crate::canon::Plane::axes`], so G02 is clockwise with `a` right, `b` up.
 
 use crate::alarm::AlarmKind;
+use canon::units::f32_of;
 
 /// A point in a plane, nanometres.
 pub type P2 = (i64, i64);
@@ -29,21 +30,64 @@ pub fn center_from_radius(start: P2, end: P2, r: i64, cw: bool, tol: i64) -> Res
         return Err(AlarmKind::ArcRadiusTolerance { excess_nm: excess as i64 });
     }
     let disc = (4 * sq(radius)).saturating_sub(c2);
-    let k = libm::sqrt(to_f64(disc) / to_f64(c2)) / 2.0;
+    // s = 2h / chord; the centre is the chord's middle plus s/2 times the chord
+    // turned a quarter: (db, −da) to the right of it.
+    let s = libm::sqrt(to_f64(disc) / to_f64(c2));
     // Clockwise arcs of up to 180° have their centre to the right of the chord.
-    let k = if cw == (r > 0) { k } else { -k };
-    let (da, db) = (da as f64, db as f64);
-    let ca = start.0 as f64 + da / 2.0 + k * db;
-    let cb = start.1 as f64 + db / 2.0 - k * da;
-    Ok((libm::round(ca) as i64, libm::round(cb) as i64))
+    let right = cw == (r > 0);
+    let (na, nb) = if right { (db, da.wrapping_neg()) } else { (db.wrapping_neg(), da) };
+    Ok((
+        half_sum(start.0, da, na, s).unwrap_or_else(|| half_sum_f64(start.0, da, na, s)),
+        half_sum(start.1, db, nb, s).unwrap_or_else(|| half_sum_f64(start.1, db, nb, s)),
+    ))
 }
 
-/// An integer as f64, the cheap way when it fits in a u64 (the usual case).
+/// `round(p + (d + s·n) / 2)`, half away from zero, exactly (`s` as the f64 it is,
+/// `s ≥ 0`): `s` is its 53-bit mantissa times a power of two, so the sum is an
+/// integer over that power of two in 128 bits — no soft-float arithmetic.
+/// `None` when it does not fit (then [`half_sum_f64`]).
+fn half_sum(p: i64, d: i64, n: i64, s: f64) -> Option<i64> {
+    let bits = s.to_bits();
+    let exp = ((bits >> 52) & 0x7ff) as i32;
+    let (m, sh) = match exp {
+        0 => (bits & ((1 << 52) - 1), 1074),
+        0x7ff => return None,
+        _ => ((bits & ((1 << 52) - 1)) | 1 << 52, 1075 - exp),
+    };
+    let base = 2 * i128::from(p) + i128::from(d);
+    // `base · 2^sh` below 2^126, `n·m` below 2^117: the sum fits.
+    if !(0..=120).contains(&sh) || base.unsigned_abs().leading_zeros() < 2 + sh as u32 {
+        return None;
+    }
+    let total = (base << sh) + i128::from(n) * i128::from(m);
+    let half = 1u128 << sh;
+    let q = ((total.unsigned_abs() + half) >> (sh + 1)) as i128;
+    let q = if total < 0 { -q } else { q };
+    Some(q.clamp(i128::from(i64::MIN), i128::from(i64::MAX)) as i64)
+}
+
+/// [`half_sum`] in f64 (how it was computed before), for what does not fit in 128
+/// bits: coordinates near 2^63 nm or `s` beyond 2^-120..2^52.
+#[cold]
+#[inline(never)]
+fn half_sum_f64(p: i64, d: i64, n: i64, s: f64) -> i64 {
+    libm::round(p as f64 + d as f64 / 2.0 + s / 2.0 * n as f64) as i64
+}
+
+/// An integer as f64, by the 64-bit conversion when it fits (the usual case).
 fn to_f64(v: u128) -> f64 {
     match u64::try_from(v) {
         Ok(x) => x as f64,
-        Err(_) => v as f64,
+        Err(_) => wide_to_f64(v),
     }
+}
+
+/// `v as f64` out of line, so that the compiler keeps the 64-bit conversion above
+/// instead of folding both arms into the 128-bit routine.
+#[cold]
+#[inline(never)]
+fn wide_to_f64(v: u128) -> f64 {
+    v as f64
 }
 
 /// Centre from I/J/K offsets; the end point must lie on the circle within `tol`
@@ -69,6 +113,15 @@ fn dist(p: P2, q: P2) -> f64 {
 /// rounded to whole nanometres.
 fn norm(a: f64, b: f64) -> f64 {
     libm::sqrt(a * a + b * b)
+}
+
+/// `|p − q|` rounded to whole nanometres: the squares summed exactly in 128 bits,
+/// then one f64 square root (what `round(dist(p, q))` gives, with one rounding
+/// instead of four before the root).
+fn radius_nm(p: P2, q: P2) -> i64 {
+    let sq = |v: u64| u128::from(v) * u128::from(v);
+    let d2 = sq(p.0.abs_diff(q.0)) + sq(p.1.abs_diff(q.1));
+    libm::round(libm::sqrt(to_f64(d2))) as i64
 }
 
 /// Bounding box of a path in the plane.
@@ -97,7 +150,7 @@ pub fn arc_extents(start: P2, end: P2, center: P2, cw: bool, full: bool) -> Exte
     let mut r = None;
     for (q, (da, db)) in [(1, 0), (0, 1), (-1, 0), (0, -1)].into_iter().enumerate() {
         if wrap4(q as f32 - from) <= sweep {
-            let r = *r.get_or_insert_with(|| libm::round(dist(start, center)) as i64);
+            let r = *r.get_or_insert_with(|| radius_nm(start, center));
             let (pa, pb) = (center.0 + da * r, center.1 + db * r);
             e.a = (e.a.0.min(pa), e.a.1.max(pa));
             e.b = (e.b.0.min(pb), e.b.1.max(pb));
@@ -110,7 +163,7 @@ pub fn arc_extents(start: P2, end: P2, center: P2, cw: bool, full: bool) -> Exte
 /// the four axis directions, which is all the extents need. f32 is enough (it only
 /// classifies directions) and is hardware on the Cortex-M4F.
 fn pseudo_angle(v: P2) -> f32 {
-    let (x, y) = (v.0 as f32, v.1 as f32);
+    let (x, y) = (f32_of(v.0), f32_of(v.1));
     let (ax, ay) = (x.abs(), y.abs());
     if ax + ay == 0.0 {
         return 0.0;
@@ -205,6 +258,56 @@ mod tests {
         (libm::round(sa + da / 2.0 + s * h * ua) as i64, libm::round(sb + db / 2.0 + s * h * ub) as i64)
     }
 
+    /// The centre as computed before the sum went to 128-bit integers (f64 throughout).
+    fn centre_f64(start: P2, end: P2, r: i64, cw: bool) -> P2 {
+        let (da, db) = (end.0.saturating_sub(start.0), end.1.saturating_sub(start.1));
+        let sq = |v: u64| u128::from(v) * u128::from(v);
+        let c2 = sq(da.unsigned_abs()) + sq(db.unsigned_abs());
+        let disc = (4 * sq(r.unsigned_abs())).saturating_sub(c2);
+        let k = libm::sqrt(disc as f64 / c2 as f64) / 2.0;
+        let k = if cw == (r > 0) { k } else { -k };
+        let (da, db) = (da as f64, db as f64);
+        let ca = start.0 as f64 + da / 2.0 + k * db;
+        let cb = start.1 as f64 + db / 2.0 - k * da;
+        (libm::round(ca) as i64, libm::round(cb) as i64)
+    }
+
+    #[test]
+    fn integer_centres_equal_the_f64_ones() {
+        // The same spread as below plus near half circles and exact ties.
+        let mut seed: u64 = 0x9e37_79b9_7f4a_7c15;
+        let mut next = |m: i64| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed % (2 * m as u64)) as i64 - m
+        };
+        let mut differ = 0;
+        for i in 0..40_000 {
+            let scale = [1_000, 100_000, 10 * MM, 1_000 * MM][i % 4];
+            let start = (next(500 * MM), next(500 * MM));
+            let end = (start.0 + next(scale), start.1 + next(scale));
+            if start == end {
+                continue;
+            }
+            let chord = libm::hypot((end.0 - start.0) as f64, (end.1 - start.1) as f64);
+            let spread = if i % 5 == 0 { 1e-6 * next(1_000).abs() as f64 } else { (next(1_000) + 1_000) as f64 / 20.0 };
+            let r = (chord / 2.0 * (1.0 + spread)) as i64 + 1;
+            let r = if i % 3 == 0 { -r } else { r };
+            let cw = i % 2 == 0;
+            let c = center_from_radius(start, end, r, cw, 2).unwrap_or((i64::MAX, 0));
+            let want = centre_f64(start, end, r, cw);
+            assert!((c.0 - want.0).abs() <= 1 && (c.1 - want.1).abs() <= 1, "{start:?} {end:?} R{r}");
+            if c != want {
+                differ += 1;
+            }
+        }
+        // Half circles with an odd chord: the centre is a tie, rounded away from zero.
+        assert_eq!(center_from_radius((0, 0), (-3, 0), 1, true, 1), Ok((-2, 0)));
+        assert_eq!(center_from_radius((0, 1), (3, 1), 1, true, 1), Ok((2, 1)));
+        assert_eq!(differ, 0, "integer centres differ from the f64 ones");
+    }
+
     #[test]
     fn centres_and_extents_match_hypot_within_a_nanometre() {
         // A deterministic spread of arcs: chords from 1 µm to 1 m, radii from just
@@ -241,6 +344,7 @@ mod tests {
             if !close {
                 far += 1;
             }
+            assert_eq!(radius_nm(start, c), libm::round(dist(start, c)) as i64, "{start:?} {c:?}");
             let rel = (start.0 - c.0, start.1 - c.1);
             let radius = libm::round(libm::hypot(rel.0 as f64, rel.1 as f64)) as i64;
             assert!((libm::round(dist(start, c)) as i64 - radius).abs() <= 1);

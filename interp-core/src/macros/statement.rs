@@ -192,7 +192,7 @@ pub(crate) enum LoopMark {
 /// Whether the block `text` is a DO or END statement, without evaluating anything
 /// (used to find the END of a loop). The block's `/` and N are skipped.
 pub(crate) fn loop_mark(text: &[u8]) -> Option<LoopMark> {
-    let mut e = Eval::new(text, crate::program::statement_start(text), None, super::expr::Rounding::Macro);
+    let mut e = Eval::new(text, crate::head::statement_start(text), None, super::expr::Rounding::Macro);
     e.live = false;
     if !starts_statement(text, e.pos) {
         return None;

@@ -154,7 +154,7 @@ impl Reader<'_, '_> {
     }
 
     fn skip_blanks(&mut self) {
-        while matches!(self.peek(), Some(b' ' | b'\t' | b'\r')) {
+        while self.text.get(self.pos).is_some_and(|&c| is_blank(c)) {
             self.pos += 1;
         }
     }
@@ -222,7 +222,7 @@ impl Reader<'_, '_> {
         let negative = match self.peek() {
             Some(s @ (b'+' | b'-')) => {
                 at += 1;
-                while matches!(self.text.get(at), Some(b' ' | b'\t' | b'\r')) {
+                while self.text.get(at).is_some_and(|&c| is_blank(c)) {
                     at += 1;
                 }
                 s == b'-'
@@ -256,56 +256,74 @@ impl Reader<'_, '_> {
         Rounding::Nc { step_e9 }
     }
 
-    /// A signed decimal number after an address letter.
+    /// A signed decimal number after an address letter: at most 9 digits before the
+    /// point (leading zeros not counted) and 9 after it.
+    /// The caller has skipped the blanks before it.
+    #[inline(always)]
     fn number(&mut self, letter: u8) -> Result<Number, AlarmKind> {
-        self.skip_blanks();
-        let negative = match self.peek() {
+        let text = self.text;
+        let mut i = self.pos;
+        let negative = match text.get(i) {
             Some(b'-') => {
-                self.pos += 1;
+                i += 1;
                 true
             }
             Some(b'+') => {
-                self.pos += 1;
+                i += 1;
                 false
             }
             _ => false,
         };
-        let (mut mantissa, mut int_digits, mut frac_digits, mut has_point, mut any) = (0i64, 0u8, 0u8, false, false);
-        while let Some(c) = self.peek() {
-            match c {
-                b'0'..=b'9' => {
-                    any = true;
-                    let significant = mantissa != 0 || c != b'0' || has_point;
-                    if has_point {
-                        frac_digits += 1;
-                        if frac_digits > MAX_FRAC_DIGITS {
-                            return Err(AlarmKind::TooManyDigits { letter });
-                        }
-                    } else if significant {
-                        int_digits += 1;
-                        if int_digits > MAX_INT_DIGITS {
-                            return Err(AlarmKind::TooManyDigits { letter });
-                        }
-                    }
-                    mantissa = mantissa * 10 + i64::from(c - b'0');
-                }
-                b'.' if !has_point => {
-                    has_point = true;
-                    any = true;
-                }
-                b'.' => return Err(AlarmKind::IllegalDecimalPoint { letter }),
-                _ => break,
-            }
-            self.pos += 1;
+        let first = i;
+        while text.get(i) == Some(&b'0') {
+            i += 1;
         }
-        if !any {
+        let mut mantissa = 0u64;
+        if digits(text, &mut i, &mut mantissa) > u32::from(MAX_INT_DIGITS) {
+            return Err(AlarmKind::TooManyDigits { letter });
+        }
+        let has_point = text.get(i) == Some(&b'.');
+        let mut frac_digits = 0;
+        if has_point {
+            i += 1;
+            frac_digits = digits(text, &mut i, &mut mantissa);
+            if frac_digits > u32::from(MAX_FRAC_DIGITS) {
+                return Err(AlarmKind::TooManyDigits { letter });
+            }
+            if text.get(i) == Some(&b'.') {
+                return Err(AlarmKind::IllegalDecimalPoint { letter });
+            }
+        }
+        if i == first {
             return Err(AlarmKind::NoDataAfterAddress { letter });
         }
-        if negative {
-            mantissa = -mantissa;
-        }
-        Ok(Number { mantissa, frac_digits, has_point })
+        self.pos = i;
+        // At most 18 digits: below 10^18, which fits an i64.
+        let mantissa = mantissa as i64;
+        Ok(Number { mantissa: if negative { -mantissa } else { mantissa }, frac_digits: frac_digits as u8, has_point })
     }
+}
+
+/// A blank between and inside words: space, tab, CR (one compare for most bytes).
+#[inline(always)]
+fn is_blank(c: u8) -> bool {
+    c == b' ' || c < b' ' && (1u32 << c) & (1 << b'\t' | 1 << b'\r') != 0
+}
+
+/// Reads the decimal digits from `text[*i]` on into `mantissa`, returns how many.
+/// Past 19 digits the mantissa wraps (the caller refuses that many anyway).
+fn digits(text: &[u8], i: &mut usize, mantissa: &mut u64) -> u32 {
+    let mut n = 0;
+    while let Some(&c) = text.get(*i) {
+        let d = c.wrapping_sub(b'0');
+        if d > 9 {
+            break;
+        }
+        *mantissa = mantissa.wrapping_mul(10).wrapping_add(u64::from(d));
+        *i += 1;
+        n += 1;
+    }
+    n
 }
 
 /// A macro value as the word of `letter`. Addresses that take whole numbers

@@ -185,7 +185,9 @@ impl<const P: usize, const S: usize> ProgramIndex<P, S> {
                 self.sequences.push(e).map_err(|_| LoadError::TooManySequences)?;
             }
         }
-        self.sequences[seq_first..].sort_unstable_by_key(|e| (e.n, e.offset));
+        if let Some(entries) = self.sequences.get_mut(seq_first..) {
+            crate::sort::heap_sort_by(entries, |a, b| (a.n, a.offset) < (b.n, b.offset));
+        }
         let stored = Stored {
             number: n,
             file: file as u32,

@@ -12,6 +12,7 @@ mod memory;
 pub use memory::{LoadError, ProgramArea, ProgramIndex, ProgramMemory};
 
 use crate::alarm::AlarmKind;
+pub(crate) use crate::head::leading_sequence;
 use crate::macros::{LoopMark, Variables, loop_mark};
 use crate::units::NumberFormat;
 
@@ -110,6 +111,16 @@ pub struct RawBlock<'a> {
     pub percent: bool,
 }
 
+/// The bytes [`next_block`] stops at: end of block, `;`, and the comment brackets.
+const MARKS: [bool; 256] = {
+    let mut t = [false; 256];
+    t[b'\n' as usize] = true;
+    t[b';' as usize] = true;
+    t[b'(' as usize] = true;
+    t[b')' as usize] = true;
+    t
+};
+
 /// Cuts the next block out of `text` at `cur` and advances the cursor past it.
 ///
 /// A block ends at LF or `;` (a `;` inside a comment is comment text). `None` at the
@@ -122,17 +133,20 @@ pub fn next_block<'a>(text: &'a [u8], cur: &mut Cursor) -> Option<RawBlock<'a>> 
     let line = cur.line;
     let mut in_comment = false;
     let mut end = start;
-    while end < text.len() {
-        match text[end] {
-            b'\n' => break,
-            b'(' => in_comment = true,
-            b')' => in_comment = false,
-            b';' if !in_comment => break,
-            _ => {}
+    // One table look-up per byte; only the four bytes that matter are looked at.
+    while let Some(&c) = text.get(end) {
+        if MARKS[usize::from(c)] {
+            match c {
+                b'\n' => break,
+                b'(' => in_comment = true,
+                b')' => in_comment = false,
+                _ if !in_comment => break,
+                _ => {}
+            }
         }
         end += 1;
     }
-    if end < text.len() && text[end] == b'\n' {
+    if text.get(end) == Some(&b'\n') {
         cur.line += 1;
     }
     cur.offset = end + 1;
@@ -204,63 +218,6 @@ pub(crate) fn starts_program(text: &[u8]) -> bool {
     let i = text.iter().position(|c| !matches!(c, b' ' | b'\t' | b'\r')).unwrap_or(text.len());
     matches!(text.get(i), Some(b'O' | b'o'))
         && text.get(i + 1..).is_some_and(|r| r.iter().find(|c| **c != b' ').is_some_and(u8::is_ascii_digit))
-}
-
-/// Where the statement of a block begins: after blanks, comments, a `/n` skip mark
-/// and a sequence number.
-pub(crate) fn statement_start(text: &[u8]) -> usize {
-    block_head(text).1
-}
-
-/// The N number a block starts with, if any (after blanks, comments and a `/n`
-/// skip mark, as FANUC searches it).
-pub(crate) fn leading_sequence(text: &[u8]) -> Option<u32> {
-    block_head(text).0
-}
-
-/// Reads the head of a block — blanks, comments, a `/n` skip mark, `N` and its
-/// digits — and returns the sequence number and where the statement begins.
-fn block_head(text: &[u8]) -> (Option<u32>, usize) {
-    let mut i = 0;
-    let skip = |i: &mut usize| {
-        loop {
-            while matches!(text.get(*i), Some(b' ' | b'\t' | b'\r')) {
-                *i += 1;
-            }
-            if text.get(*i) != Some(&b'(') {
-                return;
-            }
-            match text[*i..].iter().position(|&c| c == b')') {
-                Some(n) => *i += n + 1,
-                None => return,
-            }
-        }
-    };
-    skip(&mut i);
-    if text.get(i) == Some(&b'/') {
-        i += 1;
-        if text.get(i).is_some_and(u8::is_ascii_digit) {
-            i += 1;
-        }
-        skip(&mut i);
-    }
-    let mut seq = None;
-    if matches!(text.get(i), Some(b'N' | b'n')) {
-        i += 1;
-        skip(&mut i);
-        let mut v: u32 = 0;
-        let mut digits = 0;
-        while let Some(d) = text.get(i).filter(|c| c.is_ascii_digit()) {
-            if digits < 6 {
-                v = v * 10 + u32::from(d - b'0');
-            }
-            digits += 1;
-            i += 1;
-        }
-        seq = (digits > 0).then_some(v);
-        skip(&mut i);
-    }
-    (seq, i)
 }
 
 #[cfg(test)]

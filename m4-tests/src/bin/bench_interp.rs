@@ -1,14 +1,19 @@
 //! Instructions per interpreted block on the Cortex-M4F: one `Interpreter::step` for
 //! a G01 block, a G02 block with R, and a G01 block under G96 (surface speed), each
-//! read, checked and executed into a sink. Run through `bench.sh bench_interp`.
+//! read, checked and executed into a sink; then the same steps into the motion
+//! planner (text to planned block: the step with its action queued, prepared and
+//! look-ahead planned). Run through `bench.sh bench_interp`.
 #![no_std]
 #![no_main]
 
 use cortex_m_rt::entry;
 use cortex_m_semihosting::hprintln;
+use interp_core::axis::Pos;
 use interp_core::canon::{Canon, CanonSink, Full};
 use interp_core::{Interpreter, MachineConfig, Panel, Progress, SingleProgram};
 use m4_tests::{exit, measure};
+use motion_core::motion::QUEUE;
+use motion_core::planner::{MotionParams, Planner, PushError};
 
 /// A CAM-style stretch: setup blocks, then the blocks measured one by one.
 const PROGRAM: &[u8] = b"G00 X40. Z2.\nG99 M3 S1200\nG01 Z0 F0.12\n\
@@ -26,40 +31,86 @@ impl CanonSink for Last {
     }
 }
 
+/// The motion planner as the sink: each action is prepared and queued (what the
+/// motion core's `push` does with it).
+struct Plan {
+    planner: Planner<QUEUE>,
+    params: MotionParams,
+}
+
+impl CanonSink for Plan {
+    fn push(&mut self, c: Canon) -> Result<(), Full> {
+        match self.planner.push(&c, &self.params) {
+            Err(PushError::Full) => Err(Full),
+            // An alarm would stop the motion core; the benchmark's blocks raise none.
+            Err(PushError::Alarm(_)) => exit(false),
+            Ok(()) => Ok(()),
+        }
+    }
+}
+
 /// The interpreter, its sink and its program, carried through `measure`.
-struct Bench {
+struct Bench<S> {
     interp: Interpreter,
-    sink: Last,
+    sink: S,
 }
 
 /// Runs one step.
-fn step(b: &mut Bench) -> bool {
+fn step<S: CanonSink>(b: &mut Bench<S>) -> bool {
     matches!(b.interp.step(&SingleProgram(PROGRAM), &Panel::default(), &mut b.sink), Ok(Progress::Executed { .. }))
 }
 
-#[entry]
-fn main() -> ! {
-    let mut b = Bench { interp: Interpreter::new(MachineConfig::default()), sink: Last(None) };
-    let labels = [
-        "setup G00",
-        "setup G99 M3 S",
-        "setup G01 F",
-        "G01",
-        "G01",
-        "G01",
-        "G02 R",
-        "G03 R",
-        "G96 S",
-        "G01 under G96",
-        "G01 under G96",
-    ];
-    for label in labels {
-        hprintln!("bench step: {}", label);
-        if !measure(step, &mut b) {
+/// Runs the program's steps, measuring each (`only`: just the one at that index)
+/// with the label `what: label`.
+fn run<S: CanonSink>(b: &mut Bench<S>, what: &str, only: Option<usize>) {
+    for (k, label) in LABELS.into_iter().enumerate() {
+        if only.is_some_and(|o| o != k) {
+            if !step(b) {
+                exit(false);
+            }
+            continue;
+        }
+        hprintln!("bench {}: {}", what, label);
+        if !measure(step, &mut *b) {
             hprintln!("unexpected result");
             exit(false);
         }
     }
+}
+
+/// What the steps of [`PROGRAM`] read, in order.
+const LABELS: [&str; 11] = [
+    "setup G00",
+    "setup G99 M3 S",
+    "setup G01 F",
+    "G01",
+    "G01",
+    "G01",
+    "G02 R",
+    "G03 R",
+    "G96 S",
+    "G01 under G96",
+    "G01 under G96",
+];
+
+#[entry]
+fn main() -> ! {
+    // `BENCH_ONLY=K` (at build time) measures only the K-th step, for a profile of
+    // it; `BENCH_ONLY=pK` only the K-th step into the planner.
+    let only = option_env!("BENCH_ONLY");
+    let pick = |prefix: &str| only.and_then(|k| k.strip_prefix(prefix)?.parse::<usize>().ok());
+    let (steps, planned) = match only {
+        Some(k) if k.starts_with('p') => (Some(usize::MAX), pick("p")),
+        Some(_) => (pick(""), Some(usize::MAX)),
+        None => (None, None),
+    };
+    let cfg = MachineConfig::default();
+    let mut b = Bench { interp: Interpreter::new(cfg.clone()), sink: Last(None) };
+    run(&mut b, "step", steps);
     hprintln!("size of Interpreter: {} bytes", core::mem::size_of::<Interpreter>());
+    let Ok(params) = MotionParams::new(&cfg) else { exit(false) };
+    let plan = Plan { planner: Planner::new(Pos::ZERO), params };
+    let mut b = Bench { interp: Interpreter::new(cfg), sink: plan };
+    run(&mut b, "text to planned block", planned);
     exit(true)
 }

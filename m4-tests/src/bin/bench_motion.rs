@@ -25,6 +25,10 @@ use motion_core::sync::{Gear, Gearing, Leg, Phase, Ratio};
 
 const MM: i64 = 1_000_000;
 
+/// `BENCH_ONLY=g01` or `g02` (at build time) measures only the pushes of one short
+/// G01 or G02 block (for a profile of planning it: `profile.sh bench_motion`).
+const ONLY: Option<&str> = option_env!("BENCH_ONLY");
+
 fn at(x: i64, z: i64) -> Endpoint {
     let p = Pos::xz(x, z);
     Endpoint { machine: p, work: p }
@@ -130,7 +134,7 @@ fn plan_blocks(label: &str, first: i64, n: i64, depth: usize) {
             exit(false);
         }
         let Some(Item::Motion(b)) = planner.pop() else { exit(false) };
-        let seg = measure(start, (&b, &from, &p));
+        let seg = if ONLY.is_some() { start((&b, &from, &p)) } else { measure(start, (&b, &from, &p)) };
         from = *black_box(&seg).end_steps();
     }
 }
@@ -171,7 +175,7 @@ fn plan_arcs(n: i64, depth: usize) {
             exit(false);
         }
         let Some(Item::Motion(b)) = planner.pop() else { exit(false) };
-        let seg = measure(start, (&b, &from, &p));
+        let seg = if ONLY.is_some() { start((&b, &from, &p)) } else { measure(start, (&b, &from, &p)) };
         from = *black_box(&seg).end_steps();
     }
 }
@@ -181,6 +185,17 @@ fn main() -> ! {
     // Planning: a polyline at steady speed (the look-ahead pass stops after a block
     // or two), then a worst case: a queue of blocks too short to reach speed, where
     // each new block raises the entry speed of every block before it.
+    match ONLY {
+        Some("g01") => {
+            plan_blocks("short G01 block planned (push)", 1, 1, 32);
+            exit(true)
+        }
+        Some("g02") => {
+            plan_arcs(1, 32);
+            exit(true)
+        }
+        _ => {}
+    }
     plan_blocks("short G01 block planned (push) and started", 1, 6, 32);
     plan_worst_case();
     plan_arcs(3, 32);

@@ -5,7 +5,7 @@
 //! ([`profile::next_speed`]) advances the path position `s` (Q8 nm); the progress
 //! `s / length` is one multiply by a reciprocal taken when the block started; a
 //! line is `start + Δ·progress`, an arc `centre + r·(cos θ, sin θ)` with the angle
-//! and radius linear in the progress and cos/sin by CORDIC ([`cordic`]). The end
+//! and radius linear in the progress and cos/sin by CORDIC ([`cordic`](crate::cordic)). The end
 //! of a block is its exact whole-step end point, computed from its nanometre end
 //! point, so nothing accumulates from block to block.
 //!
@@ -13,14 +13,13 @@
 //! planned entry speed above zero), the rest of the period's distance runs on the
 //! next block, so the speed carries through the junction.
 
-pub mod cordic;
 pub mod profile;
 
 use crate::axis::{AXIS_COUNT, Pos};
 use crate::canon::SpindleSpeed;
+use crate::cordic::{TRIG_FRAC, cos_sin};
 use crate::fixed::{FRAC_BITS, PATH_FRAC, STEP_FRAC, mul_q32, mul_shr};
 use crate::planner::{ArcGeom, AxisScale, Block, BlockKind, FeedSpec, Item, MotionParams, Planner};
-use cordic::{TRIG_FRAC, cos_sin};
 use profile::next_speed;
 
 /// What the operator and the spindle do to the speed this period.

@@ -21,6 +21,7 @@
 //! 2.17.1 note 5) and drop the queue.
 
 mod locked;
+pub mod polygon;
 pub mod spindle;
 
 pub use spindle::Spindle;
@@ -157,6 +158,8 @@ pub struct MotionCore<const N: usize> {
     spindle: Spindle,
     /// The gearbox while axes are locked to the spindle.
     gear: Option<Gear>,
+    /// Polygon turning: C locked to the spindle (G51.2).
+    polygon: polygon::Polygon,
     /// The spindle-locked block running (or whose sequence is open, for taps).
     locked: Option<Block>,
     /// Thread legs taken from the queue since the pass started.
@@ -208,6 +211,7 @@ impl<const N: usize> MotionCore<N> {
             steppers: core::array::from_fn(|i| AxisStepGen::new(p.timing[i], steps[i])),
             spindle: Spindle::new(&p, cfg.motion.speed_window_ticks),
             gear: None,
+            polygon: polygon::Polygon::default(),
             locked: None,
             legs_taken: 0,
             ramp_lead: 0,
@@ -232,6 +236,66 @@ impl<const N: usize> MotionCore<N> {
             watch_count: 0,
             watch_since: 0,
         })
+    }
+
+    /// Rebuilds the core for machine `cfg` with the axes where they are: what
+    /// `*self = MotionCore::new(cfg, self.position())?` does, field by field in
+    /// place, so no second ~21 KB core is built on the stack (the board rebuilds
+    /// its core when a setting changes, under the controller's deepest frames).
+    /// On an error the core is left as it was.
+    pub fn rebuild(&mut self, cfg: &MachineConfig) -> Result<(), AlarmKind> {
+        let pos = self.position();
+        let p = MotionParams::new(cfg)?;
+        let steps: [i64; AXIS_COUNT] = core::array::from_fn(|i| p.scale[i].steps(pos.0[i]));
+        // Destructured so that a new field cannot be forgotten here.
+        let MotionCore {
+            p: params,
+            mc,
+            planner,
+            interp,
+            steppers,
+            spindle,
+            gear,
+            polygon,
+            locked,
+            legs_taken,
+            ramp_lead,
+            pending,
+            state,
+            spindle_wait,
+            feed_ovr,
+            rapid_ovr,
+            spindle_ovr,
+            spindle_max,
+            hold,
+            single_block,
+            events,
+            alarm,
+            stats,
+            now,
+            streaming,
+            starved,
+            line,
+            offset_memory,
+            css_phase,
+            watch_count,
+            watch_since,
+        } = self;
+        *params = p;
+        *mc = cfg.motion;
+        *planner = Planner::new(pos);
+        *interp = Interpolator::new(steps);
+        *steppers = core::array::from_fn(|i| AxisStepGen::new(p.timing[i], steps[i]));
+        *spindle = Spindle::new(&p, cfg.motion.speed_window_ticks);
+        (*gear, *locked, *pending, *alarm) = (None, None, None, None);
+        *polygon = polygon::Polygon::default();
+        (*legs_taken, *ramp_lead, *state, *spindle_wait) = (0, 0, State::Idle, false);
+        (*feed_ovr, *rapid_ovr, *spindle_ovr, *spindle_max) = (256, 256, 100, cfg.spindle.max_rpm);
+        (*hold, *single_block, *streaming, *starved) = (false, false, false, false);
+        events.clear();
+        (*stats, *now, *line, *offset_memory) = (Stats::default(), 0, 0, Pos::ZERO);
+        (*css_phase, *watch_count, *watch_since) = (0, 0, 0);
+        Ok(())
     }
 
     /// The machine in motion units.
@@ -281,6 +345,18 @@ impl<const N: usize> MotionCore<N> {
     /// M02/M30 has run.
     pub fn ended(&self) -> bool {
         self.state == State::Ended
+    }
+
+    /// Polygon turning (G51.2): the C steps the tool spindle has turned since it
+    /// locked to the spindle; `None` when C is not locked.
+    pub fn polygon_steps(&self) -> Option<i64> {
+        self.polygon.gear.map(|g| g.steps())
+    }
+
+    /// Polygon turning (G51.2): the raw encoder count (an index) C locks at and
+    /// C's step position there; `None` when it is off.
+    pub fn polygon_lock(&self) -> Option<(i64, i64)> {
+        self.polygon.gear.map(|g| (g.origin(), self.polygon.base))
     }
 
     /// Steps issued per axis (the axes' real positions).
@@ -434,6 +510,7 @@ impl<const N: usize> MotionCore<N> {
         self.spindle.sample(fb.count, fb.index);
         self.watch_encoder(fb.count);
         self.watch_thread_speed();
+        self.polygon_start();
         let mut ticked = false;
         for _ in 0..8 {
             if !self.advance(&mut ticked) {
@@ -480,12 +557,13 @@ impl<const N: usize> MotionCore<N> {
     /// ([`MotionCore::on_encoder`]): while axes are locked to the spindle or a thread
     /// pass waits for its start count. Otherwise the count of each period is enough.
     pub fn wants_encoder_edges(&self) -> bool {
-        self.gear.is_some() || matches!(self.state, State::SyncWait { .. })
+        self.gear.is_some() || self.polygon.active() || matches!(self.state, State::SyncWait { .. })
     }
 
     /// An encoder count at time `now`: while axes are locked to the spindle they
     /// move to the gearbox's position for it at once.
     pub fn on_encoder(&mut self, now: u64, count: i64) {
+        self.polygon_count(now, count);
         let Some(g) = self.gear.as_mut() else { return };
         if g.on_count(count) {
             let mut pos = *self.interp.start_steps();
@@ -505,8 +583,9 @@ impl<const N: usize> MotionCore<N> {
             return;
         }
         let pos = *self.interp.position();
+        let polygon = self.polygon.active();
         for (i, st) in self.steppers.iter_mut().enumerate() {
-            if self.p.limits[i].present {
+            if self.p.limits[i].present && !(polygon && i == Axis::C.index()) {
                 st.ramp(now, self.p.tick_ns, pos[i]);
             }
         }
@@ -574,6 +653,10 @@ impl<const N: usize> MotionCore<N> {
     /// Takes the next queue entry (Idle).
     #[inline(never)]
     fn next_entry(&mut self) -> bool {
+        if self.polygon_stopping() {
+            // G50.2: nothing after it before C stands on its whole turn.
+            return false;
+        }
         if self.hold && self.gear.is_none() {
             self.state = State::Held;
             return false;
@@ -614,6 +697,7 @@ impl<const N: usize> MotionCore<N> {
                 self.emit(line, EventKind::Stop { optional });
                 self.state = State::Stopped;
             }
+            Command::Polygon(sync) => self.polygon_command(sync),
             Command::End { rewind } => {
                 self.set_spindle(SpindleDir::Stop, 0);
                 self.emit(line, EventKind::End { rewind });
@@ -769,6 +853,11 @@ impl<const N: usize> MotionCore<N> {
             }
         }
         self.interp.abandon();
+        if self.polygon.active() {
+            // Reset in polygon turning: C stops with the spindle, where it is.
+            self.polygon_release();
+            self.interp = Interpolator::new(self.steps());
+        }
         self.planner.clear(self.commanded_position());
         self.streaming = false;
         self.starved = false;

@@ -2,12 +2,13 @@
 //! length, speed limits and the directions it starts and ends in (per-block
 //! geometry in floating point, as the team rules allow; nothing here runs per tick).
 
+use super::Item;
 use super::machine::MotionParams;
 use crate::alarm::AlarmKind;
 use crate::axis::{AXIS_COUNT, Axis, Pos};
 use crate::canon::{ArcMove, FeedMode, Move, SpindleDir, SpindleSpeed, TapMove, ThreadMove, ThreadSync};
-use crate::fixed::{PATH_FRAC, inverse62, sqrtf};
-use crate::interpolator::cordic;
+use crate::cordic;
+use crate::fixed::{PATH_FRAC, f32_of, inverse62, minf, sqrtf, u64_of};
 use crate::sync::ramp_counts;
 
 /// Unit direction of a path, per axis.
@@ -166,11 +167,11 @@ impl Exec {
     }
 }
 
-/// A prepared block together with the directions it starts and ends in.
+/// What preparing a block tells besides the block itself, which is written straight
+/// into its queue slot (a block is ~250 bytes; a move of it is a memcpy on the M4):
+/// the directions it starts and ends in and its end point.
 #[derive(Clone, Copy, Debug)]
 pub struct Prepared {
-    /// The block (its entry speeds not planned yet).
-    pub block: Block,
     /// Unit direction at the start.
     pub dir_in: Dir,
     /// Unit direction at the end.
@@ -182,7 +183,7 @@ pub struct Prepared {
 /// Length (nm) and unit direction of a straight move. f32 on the FPU: the length
 /// only times the move (to 1e-7), the end point comes from the exact nanometres.
 fn straight(start: &Pos, end: &Pos) -> (f32, Dir) {
-    let d: [f32; AXIS_COUNT] = core::array::from_fn(|i| end.0[i].wrapping_sub(start.0[i]) as f32);
+    let d: [f32; AXIS_COUNT] = core::array::from_fn(|i| f32_of(end.0[i].wrapping_sub(start.0[i])));
     let len = sqrtf(d.iter().map(|v| v * v).sum());
     let inv = if len > 0.0 { 1.0 / len } else { 0.0 };
     (len, d.map(|v| v * inv))
@@ -194,8 +195,8 @@ fn axis_caps(dir: &Dir, p: &MotionParams, rapid: bool) -> (f32, f32) {
     for (u, lim) in dir.iter().zip(&p.limits) {
         let u = u.abs();
         if u > 1e-9 && lim.present {
-            cap = cap.min(if rapid { lim.rapid } else { lim.feed } / u);
-            accel = accel.min(lim.accel / u);
+            cap = minf(cap, if rapid { lim.rapid } else { lim.feed } / u);
+            accel = minf(accel, lim.accel / u);
         }
     }
     (cap, accel)
@@ -206,16 +207,16 @@ fn len_q8(len: f32) -> Result<u64, AlarmKind> {
     if !(q >= 1.0 && q < (1u64 << 50) as f32) {
         return Err(AlarmKind::Overflow);
     }
-    Ok(q as u64)
+    Ok(u64_of(q))
 }
 
 fn plan(len: u64, accel: f32, cap: f32, nominal: f32) -> Plan {
-    let len_nm = len as f32 / (1u32 << PATH_FRAC) as f32;
+    let len_nm = f32_of(len as i64) / (1u32 << PATH_FRAC) as f32;
     Plan {
         len_q8: len,
         accel,
         cap,
-        nominal: nominal.min(cap),
+        nominal: minf(nominal, cap),
         max_entry_sq: 0.0,
         entry_sq: 0.0,
         entry_q8: 0,
@@ -227,13 +228,20 @@ fn plan(len: u64, accel: f32, cap: f32, nominal: f32) -> Plan {
 fn nominal(feed: FeedSpec, spindle: &SpindleSpeed, p: &MotionParams, cap: f32) -> f32 {
     match feed {
         FeedSpec::Rapid => cap,
-        FeedSpec::PerMin(f) => p.per_tick(f as f32),
-        FeedSpec::PerRev(f) => p.per_tick(f as f32 * spindle.rpm.unwrap_or(0) as f32),
+        FeedSpec::PerMin(f) => p.per_tick(f32_of(f)),
+        FeedSpec::PerRev(f) => p.per_tick(f32_of(f) * spindle.rpm.unwrap_or(0) as f32),
     }
 }
 
 /// A straight move from `start` (rapid or cutting).
-pub fn line(start: &Pos, m: &Move, rapid: bool, p: &MotionParams, line: u32) -> Result<Prepared, AlarmKind> {
+pub fn line(
+    start: &Pos,
+    m: &Move,
+    rapid: bool,
+    p: &MotionParams,
+    line: u32,
+    slot: &mut Item,
+) -> Result<Prepared, AlarmKind> {
     let (len, dir) = straight(start, &m.to.machine);
     let feed = match (rapid, m.feed.mode) {
         (true, _) => FeedSpec::Rapid,
@@ -242,10 +250,10 @@ pub fn line(start: &Pos, m: &Move, rapid: bool, p: &MotionParams, line: u32) -> 
     };
     let (mut cap, accel) = axis_caps(&dir, p, rapid);
     if !rapid {
-        cap = cap.min(p.path_feed);
+        cap = minf(cap, p.path_feed);
     }
     let kind = if rapid && m.independent { BlockKind::Independent } else { BlockKind::Line };
-    let block = Block {
+    *slot = Item::Motion(Block {
         line,
         kind,
         offset: m.to.machine - m.to.work,
@@ -254,8 +262,8 @@ pub fn line(start: &Pos, m: &Move, rapid: bool, p: &MotionParams, line: u32) -> 
         exact_stop: m.exact_stop || rapid,
         plan: plan(len_q8(len)?, accel, cap, nominal(feed, &m.spindle, p, cap)),
         exec: Exec::default(),
-    };
-    Ok(Prepared { block, dir_in: dir, dir_out: dir, end: m.to.machine })
+    });
+    Ok(Prepared { dir_in: dir, dir_out: dir, end: m.to.machine })
 }
 
 /// Start angle and signed sweep of an arc in turns × 2^32 from the radius vectors
@@ -312,36 +320,94 @@ fn turns(rad: f64) -> i64 {
 /// centre (`r` its length): the radius turned a quarter, `(−sin θ, cos θ)` with
 /// `sin θ = v_b / r`, `cos θ = v_a / r` — no trigonometry (f32 on the FPU, as the
 /// directions are kept).
-fn tangent(axes: (Axis, Axis), v: (f64, f64), r: f64, ccw: bool) -> Dir {
+fn tangent(axes: (Axis, Axis), v: (i64, i64), r: f32, ccw: bool) -> Dir {
     let mut d = [0.0; AXIS_COUNT];
     if r > 0.0 {
-        let s = (if ccw { 1.0 } else { -1.0 }) / r as f32;
-        d[axes.0.index()] = -s * v.1 as f32;
-        d[axes.1.index()] = s * v.0 as f32;
+        let s = (if ccw { 1.0 } else { -1.0 }) / r;
+        d[axes.0.index()] = -s * f32_of(v.1);
+        d[axes.1.index()] = s * f32_of(v.0);
     }
     d
 }
 
-/// `√(a² + b²)`: plane distances in nm are far from f64's range, so `hypot`'s
-/// overflow scaling (~40 soft-float operations on the M4) buys nothing.
-fn norm(a: f64, b: f64) -> f64 {
-    libm::sqrt(a * a + b * b)
+/// The length of `v` in f64 (a square root of the exact integer sum of squares)
+/// and rounded to whole nanometres, exactly: `round(√(a² + b²))`.
+fn radius(v: (i64, i64)) -> (f64, i64) {
+    let sq = |x: u64| u128::from(x) * u128::from(x);
+    let r2 = sq(v.0.unsigned_abs()) + sq(v.1.unsigned_abs());
+    let r = libm::sqrt(u128_f64(r2));
+    (r, round_sqrt(r2, r))
+}
+
+/// `v as f64`, by the 64-bit conversion when it fits.
+fn u128_f64(v: u128) -> f64 {
+    match u64::try_from(v) {
+        Ok(x) => x as f64,
+        Err(_) => wide_f64(v),
+    }
+}
+
+/// `v as f64` out of line (the compiler would otherwise fold [`u128_f64`] into
+/// the 128-bit routine).
+#[cold]
+#[inline(never)]
+fn wide_f64(v: u128) -> f64 {
+    v as f64
+}
+
+/// The integer nearest to `√x` (never a tie: `(f + ½)²` is not an integer), from
+/// `r ≈ √x` corrected in integers: no soft-float rounding. Beyond 2^52 nm, where
+/// an ulp of `r` exceeds 1, it is `round(r)` (no machine comes near).
+fn round_sqrt(x: u128, r: f64) -> i64 {
+    // √x ≥ 2^52 (compared in integers: a float compare is a software call).
+    if x >= 1 << 104 {
+        return libm::round(r) as i64;
+    }
+    let sq = |f: u64| u128::from(f) * u128::from(f);
+    // Below 2^52 the f64 root is within 1 of √x (x rounded to 53 bits, then the
+    // root to half an ulp ≤ ½): its integer part is ⌊√x⌋ or one off.
+    let mut f = trunc_u64(r);
+    if sq(f) > x {
+        f = f.saturating_sub(1);
+    } else if sq(f + 1) <= x {
+        f += 1;
+    }
+    // √x rounds up when x ≥ (f + ½)², i.e. x − f² > f.
+    let up = x.saturating_sub(sq(f)) > u128::from(f);
+    (f + u64::from(up)) as i64
+}
+
+/// `r as u64` for a finite `r ≥ 0`, from the bits (the float conversion and its
+/// range checks are software routines on the Cortex-M4).
+fn trunc_u64(r: f64) -> u64 {
+    let bits = r.to_bits();
+    let e = ((bits >> 52) & 0x7ff) as i32 - 1023;
+    let m = (bits & ((1 << 52) - 1)) | 1 << 52;
+    match e {
+        ..0 => 0,
+        0..52 => m >> (52 - e),
+        52..64 => m << (e - 52),
+        _ => u64::MAX,
+    }
 }
 
 /// A circular move from `start`.
-pub fn arc(start: &Pos, a: &ArcMove, p: &MotionParams, line: u32) -> Result<Prepared, AlarmKind> {
+pub fn arc(start: &Pos, a: &ArcMove, p: &MotionParams, line: u32, slot: &mut Item) -> Result<Prepared, AlarmKind> {
     let axes = a.plane.axes();
     let (ia, ib) = (axes.0.index(), axes.1.index());
     let c = (a.center.machine.0[ia], a.center.machine.0[ib]);
-    let rel = |q: &Pos| ((q.0[ia] - c.0) as f64, (q.0[ib] - c.1) as f64);
+    let rel = |q: &Pos| (q.0[ia].saturating_sub(c.0), q.0[ib].saturating_sub(c.1));
     let (s, e) = (rel(start), rel(&a.to.machine));
-    let (r0, r1) = (norm(s.0, s.1), norm(e.0, e.1));
-    let irel = |q: &Pos| (q.0[ia].saturating_sub(c.0), q.0[ib].saturating_sub(c.1));
-    let (theta0, sweep) = match sweep_turns(irel(start), irel(&a.to.machine), a.cw, a.full_circle) {
+    let ((r0, r0_nm), (r1, r1_nm)) = (radius(s), radius(e));
+    let (theta0, sweep) = match sweep_turns(s, e, a.cw, a.full_circle) {
         Some(t) => t,
-        None => sweep_f64(s, e, a.cw, a.full_circle),
+        None => {
+            let f = |v: (i64, i64)| (v.0 as f64, v.1 as f64);
+            sweep_f64(f(s), f(e), a.cw, a.full_circle)
+        }
     };
-    let len = ((sweep as f64).abs() * (core::f64::consts::TAU / 4_294_967_296.0) * (r0 + r1) / 2.0) as f32;
+    // |sweep| ≤ 2^32: a u64 conversion.
+    let len = (sweep.unsigned_abs() as f64 * (core::f64::consts::TAU / 8_589_934_592.0) * (r0 + r1)) as f32;
     let feed = match a.feed.mode {
         FeedMode::PerMin => FeedSpec::PerMin(a.feed.value),
         FeedMode::PerRev => FeedSpec::PerRev(a.feed.value),
@@ -349,13 +415,14 @@ pub fn arc(start: &Pos, a: &ArcMove, p: &MotionParams, line: u32) -> Result<Prep
     let (la, lb) = (&p.limits[ia], &p.limits[ib]);
     // Half the acceleration for the normal (v²/r), half along the path; the chord of
     // one period may stray from the arc by at most the chord tolerance.
-    let accel = la.accel.min(lb.accel) / 2.0;
-    let r = r0.min(r1) as f32;
+    let accel = minf(la.accel, lb.accel) / 2.0;
+    let (r0f, r1f) = (r0 as f32, r1 as f32);
+    let r = minf(r0f, r1f);
     let centripetal = sqrtf(accel * r);
     let chord = sqrtf(8.0 * r * p.chord_tolerance);
-    let cap = la.feed.min(lb.feed).min(p.path_feed).min(centripetal).min(chord);
-    let geom = ArcGeom { axes, center: c, r0: libm::round(r0) as i64, r1: libm::round(r1) as i64, theta0, sweep };
-    let block = Block {
+    let cap = minf(minf(minf(la.feed, lb.feed), p.path_feed), minf(centripetal, chord));
+    let geom = ArcGeom { axes, center: c, r0: r0_nm, r1: r1_nm, theta0, sweep };
+    *slot = Item::Motion(Block {
         line,
         kind: BlockKind::Arc(geom),
         offset: a.to.machine - a.to.work,
@@ -364,9 +431,9 @@ pub fn arc(start: &Pos, a: &ArcMove, p: &MotionParams, line: u32) -> Result<Prep
         exact_stop: a.exact_stop,
         plan: plan(len_q8(len)?, accel, cap, nominal(feed, &a.spindle, p, cap)),
         exec: Exec::default(),
-    };
+    });
     let ccw = sweep > 0;
-    Ok(Prepared { block, dir_in: tangent(axes, s, r0, ccw), dir_out: tangent(axes, e, r1, ccw), end: a.to.machine })
+    Ok(Prepared { dir_in: tangent(axes, s, r0f, ccw), dir_out: tangent(axes, e, r1f, ccw), end: a.to.machine })
 }
 
 /// The axis that travels furthest (the thread's or tap's long axis).
@@ -409,6 +476,7 @@ pub fn thread(
     keep_lead: Option<i64>,
     p: &MotionParams,
     line: u32,
+    slot: &mut Item,
 ) -> Result<Prepared, AlarmKind> {
     let continues = t.sync == ThreadSync::Continue;
     let keep_lead = keep_lead.filter(|_| continues);
@@ -442,7 +510,7 @@ pub fn thread(
     if t.sync == ThreadSync::Index && ramp_up_nm(&spec, ramp, p.cpr) > len * along {
         return Err(AlarmKind::ThreadRampTooLong);
     }
-    let block = Block {
+    *slot = Item::Motion(Block {
         line,
         kind: BlockKind::Thread(spec),
         offset: t.to.machine - t.to.work,
@@ -451,8 +519,8 @@ pub fn thread(
         exact_stop: true,
         plan: plan(len_q8(len)?, accel, v.max(1.0), v),
         exec: Exec::default(),
-    };
-    Ok(Prepared { block, dir_in: dir, dir_out: dir, end: t.to.machine })
+    });
+    Ok(Prepared { dir_in: dir, dir_out: dir, end: t.to.machine })
 }
 
 /// The lead after `length` nm along the long axis of a thread starting at `lead`
@@ -491,7 +559,7 @@ fn ramp_up_nm(t: &ThreadSpec, ramp: i64, cpr: u32) -> f32 {
 
 /// A rigid-tapping move from `start`: lead × rpm and lead × the spindle's
 /// acceleration must be within the tapping axis's limits.
-pub fn tap(start: &Pos, t: &TapMove, p: &MotionParams, line: u32) -> Result<Prepared, AlarmKind> {
+pub fn tap(start: &Pos, t: &TapMove, p: &MotionParams, line: u32, slot: &mut Item) -> Result<Prepared, AlarmKind> {
     if t.lead <= 0 {
         return Err(AlarmKind::FeedZero);
     }
@@ -509,7 +577,7 @@ pub fn tap(start: &Pos, t: &TapMove, p: &MotionParams, line: u32) -> Result<Prep
     if t.lead as f32 * rev_per_tick2 / along > accel {
         return Err(too_fast(long));
     }
-    let block = Block {
+    *slot = Item::Motion(Block {
         line,
         kind: BlockKind::Tap(TapSpec { lead: t.lead, dir: t.dir, long }),
         offset: t.to.machine - t.to.work,
@@ -518,13 +586,59 @@ pub fn tap(start: &Pos, t: &TapMove, p: &MotionParams, line: u32) -> Result<Prep
         exact_stop: true,
         plan: plan(len_q8(len)?, accel, v.max(1.0), v),
         exec: Exec::default(),
-    };
-    Ok(Prepared { block, dir_in: dir, dir_out: dir, end: t.to.machine })
+    });
+    Ok(Prepared { dir_in: dir, dir_out: dir, end: t.to.machine })
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Radii rounded exactly from the integer square sum against the former
+    /// `round(√(a² + b²))` in f64, and the new length against the former formula.
+    #[test]
+    fn integer_radii_match_the_f64_ones() {
+        let mut seed: u64 = 0x9e37_79b9_7f4a_7c15;
+        let mut next = |m: i64| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed % (2 * m as u64)) as i64 - m
+        };
+        let mut differ = 0;
+        for i in 0..40_000 {
+            let m = [1_000, 1_000_000, 100_000_000, 2_000_000_000][i % 4];
+            let v = (next(m), next(m));
+            let (r, nm) = radius(v);
+            let old = libm::sqrt((v.0 as f64) * (v.0 as f64) + (v.1 as f64) * (v.1 as f64));
+            assert!((r - old).abs() <= old * 1e-15, "{v:?}");
+            let exact = libm::round(old) as i64;
+            assert!((nm - exact).abs() <= 1, "{v:?}: {nm} vs {exact}");
+            differ += usize::from(nm != exact);
+            // √x never lies on a half: the exact rounding is the nearest integer.
+            let x = |f: i64| (f as i128 * 2 - 1).pow(2);
+            let four_x = 4 * (v.0 as i128 * v.0 as i128 + v.1 as i128 * v.1 as i128);
+            assert!(x(nm) <= four_x && four_x < x(nm + 1), "{v:?}: {nm}");
+            let sweep = next(1 << 31);
+            let len = (sweep.unsigned_abs() as f64 * (core::f64::consts::TAU / 8_589_934_592.0) * (r + r)) as f32;
+            let before = ((sweep as f64).abs() * (core::f64::consts::TAU / 4_294_967_296.0) * (old + old) / 2.0) as f32;
+            assert!((len - before).abs() <= before * 2e-7, "{len} vs {before}");
+        }
+        // Up to 2 m radii: the f64 root rounded the same way in every case.
+        assert_eq!(differ, 0);
+        assert_eq!(radius((0, 0)), (0.0, 0));
+        assert_eq!(radius((3, 4)).1, 5);
+        assert_eq!(radius((1, 1)).1, 1);
+        assert_eq!(radius((2, 2)).1, 3);
+        for r in [0.0, 0.4, 1.0, 1.9, 2.5e7 + 0.75, 4_294_967_295.9, 4_294_967_296.0, 1e15 + 0.5, 1.8e19] {
+            assert_eq!(trunc_u64(r), r as u64, "{r}");
+        }
+        // Vectors anywhere in the i64 range end at once (no long correction loop).
+        for v in [(i64::MAX, i64::MAX), (i64::MIN, 0), (1 << 52, 1 << 52), ((1 << 52) - 1, 7), (-(1 << 40), 1 << 40)] {
+            let (r, nm) = radius(v);
+            assert!(nm.abs_diff(libm::round(r) as i64) <= 1, "{v:?}: {nm} vs {r}");
+        }
+    }
 
     /// The CORDIC start angle and sweep against the f64 ones, over arcs of every
     /// size and direction: within 16 units of 2^-32 turn, or handed to f64.

@@ -16,7 +16,7 @@
 
 use super::block::{Block, Dir, Plan};
 use super::machine::MotionParams;
-use crate::fixed::{PATH_FRAC, sqrtf};
+use crate::fixed::{PATH_FRAC, maxf, minf, sqrtf, u64_of};
 
 /// Highest speed (nm/period) through the junction from direction `a` into `b`.
 pub fn junction_speed(a: &Dir, b: &Dir, p: &MotionParams) -> f32 {
@@ -29,12 +29,12 @@ pub fn junction_speed(a: &Dir, b: &Dir, p: &MotionParams) -> f32 {
         let cos_half = sqrtf((1.0 + cos_phi) / 2.0);
         let sin_half = sqrtf((1.0 - cos_phi) / 2.0);
         let jd = p.accel_min * p.junction_deviation * cos_half / (1.0 - cos_half);
-        v = sqrtf(jd).min(2.0 * p.chord_tolerance / sin_half);
+        v = minf(sqrtf(jd), 2.0 * p.chord_tolerance / sin_half);
     }
     for ((x, y), lim) in a.iter().zip(b).zip(&p.limits) {
         let jump = (y - x).abs();
         if lim.present && jump > 1e-7 {
-            v = v.min(lim.jump / jump);
+            v = minf(v, lim.jump / jump);
         }
     }
     v
@@ -47,11 +47,11 @@ pub fn junction_speed(a: &Dir, b: &Dir, p: &MotionParams) -> f32 {
 fn set_entry(plan: &mut Plan, exit_sq: f32) -> bool {
     let reach = exit_sq + plan.two_a_len;
     let entry =
-        if reach >= plan.max_entry_sq { sqrtf(plan.max_entry_sq) } else { (sqrtf(reach) - plan.accel).max(0.0) };
+        if reach >= plan.max_entry_sq { sqrtf(plan.max_entry_sq) } else { maxf(sqrtf(reach) - plan.accel, 0.0) };
     let entry_sq = entry * entry;
     let changed = entry_sq != plan.entry_sq;
     plan.entry_sq = entry_sq;
-    plan.entry_q8 = (entry * (1u32 << PATH_FRAC) as f32) as u64;
+    plan.entry_q8 = u64_of(entry * (1u32 << PATH_FRAC) as f32);
     changed
 }
 

@@ -5,7 +5,7 @@
 use crate::alarm::AlarmKind;
 use crate::axis::AXIS_COUNT;
 use crate::config::{ConfigError, Drive, MachineConfig, Param};
-use crate::fixed::{Divisor, STEP_FRAC, mul_shr};
+use crate::fixed::{Divisor, STEP_FRAC, gcd, mul_shr};
 use crate::stepgen::DriverTiming;
 
 /// Exact conversion between nanometres (µdeg for C) and motor steps of one axis.
@@ -86,14 +86,6 @@ impl AxisScale {
     pub fn ratio(&self) -> (i64, i64) {
         (self.steps, self.per_nm)
     }
-}
-
-/// Greatest common divisor of two positive numbers.
-pub fn gcd(mut a: i64, mut b: i64) -> i64 {
-    while b != 0 {
-        (a, b) = (b, a % b);
-    }
-    a.abs().max(1)
 }
 
 /// Speed and acceleration limits of one axis per interpolation period.

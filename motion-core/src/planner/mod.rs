@@ -18,6 +18,7 @@ pub use machine::{AxisLimits, AxisScale, MotionParams};
 use crate::alarm::AlarmKind;
 use crate::axis::{AXIS_COUNT, Axis, Pos};
 use crate::canon::{Action, Canon, SpindleCommand, ThreadSync};
+use crate::fixed::minf;
 use block::{Dir, Prepared};
 
 /// A non-motion action, run when the motion before it has finished.
@@ -52,6 +53,8 @@ pub enum Command {
         /// M30.
         rewind: bool,
     },
+    /// G51.2/G50.2: the C axis locked to the spindle at Q/P, or released.
+    Polygon(Option<crate::canon::PolygonSync>),
 }
 
 /// One entry of the queue. Entries live inline in the fixed-capacity queue (no
@@ -200,27 +203,49 @@ impl<const N: usize> Planner<N> {
         if c.action.endpoint().is_some_and(|e| e.machine == start) && !full_circle {
             return Ok(()); // no motion
         }
-        let mut prepared = match &c.action {
-            Action::Rapid(m) => block::line(&start, m, true, p, c.line),
-            Action::Linear(m) => block::line(&start, m, false, p, c.line),
-            Action::Arc(a) => block::arc(&start, a, p, c.line),
+        if !matches!(
+            c.action,
+            Action::Rapid(_) | Action::Linear(_) | Action::Arc(_) | Action::Thread(_) | Action::Tap(_)
+        ) {
+            return self.push_command(c.line, &c.action);
+        }
+        // The block is prepared in its queue slot, held meanwhile by a small
+        // placeholder and given up again if the block is refused.
+        let placeholder = Item::Command { line: c.line, cmd: Command::Dwell { ms: 0 } };
+        if self.queue.push_back(placeholder).is_err() {
+            return Err(PushError::Full);
+        }
+        let Some(slot) = self.queue.back_mut() else { return Err(PushError::Full) };
+        let (thread, thread_lead) = (self.tail.thread, self.tail.thread_lead);
+        let prepared = match &c.action {
+            Action::Rapid(m) => block::line(&start, m, true, p, c.line, slot),
+            Action::Linear(m) => block::line(&start, m, false, p, c.line, slot),
+            Action::Arc(a) => block::arc(&start, a, p, c.line, slot),
             Action::Thread(t) => {
                 let mut t = *t;
                 // A continuing thread needs a thread to continue (2.17.1 note 2).
-                if self.tail.thread.is_none() {
+                if thread.is_none() {
                     t.sync = ThreadSync::Index;
                 }
-                block::thread(&start, &t, self.tail.thread, self.tail.thread_lead, p, c.line)
+                block::thread(&start, &t, thread, thread_lead, p, c.line, slot)
             }
-            Action::Tap(t) => block::tap(&start, t, p, c.line),
-            other => return self.push_command(c.line, other),
+            Action::Tap(t) => block::tap(&start, t, p, c.line, slot),
+            // Not reached: only motion gets here.
+            _ => {
+                self.queue.pop_back();
+                return Ok(());
+            }
         };
-        // Worked on where it lies (a block is ~250 bytes; moves are memcpys on the M4).
-        match &mut prepared {
-            Ok(prep) => self.push_motion(prep, p),
-            Err(e) => return Err(PushError::Alarm(*e)),
+        match prepared {
+            Ok(prep) => {
+                self.push_motion(&prep, p);
+                Ok(())
+            }
+            Err(e) => {
+                self.queue.pop_back();
+                Err(PushError::Alarm(e))
+            }
         }
-        Ok(())
     }
 
     fn push_command(&mut self, line: u32, a: &Action) -> Result<(), PushError> {
@@ -231,6 +256,7 @@ impl<const N: usize> Planner<N> {
             Action::Aux { m } => Command::Aux { m },
             Action::Stop { optional } => Command::Stop { optional },
             Action::End { rewind } => Command::End { rewind },
+            Action::Polygon(p) => Command::Polygon(p),
             _ => return Ok(()),
         };
         self.queue.push_back(Item::Command { line, cmd }).map_err(|_| PushError::Full)?;
@@ -240,15 +266,15 @@ impl<const N: usize> Planner<N> {
         Ok(())
     }
 
-    fn push_motion(&mut self, prep: &mut Prepared, p: &MotionParams) {
-        let b = &mut prep.block;
+    /// Plans the block just written into the queue's last slot, which ends at
+    /// `prep.end`.
+    fn push_motion(&mut self, prep: &Prepared, p: &MotionParams) {
+        let Some(Item::Motion(b)) = self.queue.back_mut() else { return };
         b.exec = block::Exec::new(b, &self.tail.end, &prep.end, p);
         let blends = matches!(b.kind, BlockKind::Line | BlockKind::Arc(_)) && b.feed != FeedSpec::Rapid;
         if self.tail.blend && blends {
-            let v = lookahead::junction_speed(&self.tail.dir, &prep.dir_in, p)
-                .min(self.tail.nominal)
-                .min(b.plan.nominal)
-                .min(b.plan.cap);
+            let v = lookahead::junction_speed(&self.tail.dir, &prep.dir_in, p);
+            let v = minf(minf(v, self.tail.nominal), minf(b.plan.nominal, b.plan.cap));
             b.plan.max_entry_sq = v * v;
         }
         self.tail = Tail {
@@ -262,8 +288,6 @@ impl<const N: usize> Planner<N> {
                 _ => None,
             },
         };
-        // Never fails: fullness was checked before preparing.
-        let _ = self.queue.push_back(Item::Motion(*b));
         lookahead::backward_pass(self.queue.iter_mut().rev().map(|item| match item {
             Item::Motion(b) => Some(b),
             Item::Command { .. } => None,

@@ -154,6 +154,15 @@ impl AxisStepGen {
         self.fresh = true;
     }
 
+    /// Renumbers the axis by `delta` whole steps without moving it (a rotary axis
+    /// that turned whole revolutions is at the same angle).
+    pub fn rebase(&mut self, delta: i64) {
+        self.pos += delta;
+        self.target += delta;
+        self.p0 += delta << STEP_FRAC;
+        self.p1 += delta << STEP_FRAC;
+    }
+
     /// Commands position `p` (Q16 steps) from time `t` on (the gearbox's output):
     /// any step it needs is due at once.
     pub fn jump(&mut self, t: u64, p: i64) {

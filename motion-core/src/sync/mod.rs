@@ -39,7 +39,7 @@
 
 use crate::alarm::AlarmKind;
 use crate::axis::AXIS_COUNT;
-use crate::planner::machine::gcd;
+use crate::fixed::gcd;
 
 /// One leg of a locked sequence: whole-step start and end points and the long axis.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

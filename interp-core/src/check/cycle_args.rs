@@ -19,6 +19,16 @@ pub enum CycleArgs {
     /// Not a cycle block.
     #[default]
     None,
+    /// G51.2 P Q R (2.8): work- and tool-spindle turns (1 when omitted) and the
+    /// phase R of the tool spindle at the work spindle's index, µdeg.
+    Polygon {
+        /// P.
+        p: u16,
+        /// Q.
+        q: u16,
+        /// R, µdeg.
+        phase_udeg: i64,
+    },
     /// G90/G94: taper R (seed 003's I for G90), radius for G90, Z for G94.
     Single {
         /// Taper, if given.
