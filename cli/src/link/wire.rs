@@ -69,7 +69,7 @@ pub struct Link {
 /// How long one read waits for bytes.
 const READ_SLICE: Duration = Duration::from_millis(10);
 
-/// How long a request (`?`, soft reset) waits for its answer before it is sent again.
+/// How long a status request waits for its answer before `?` is sent again.
 const ASK_AGAIN: Duration = Duration::from_millis(300);
 
 impl Link {
@@ -158,30 +158,11 @@ impl Link {
         }
     }
 
-    /// Soft reset (0x18), then the welcome line within `wait`; returns it. On a
-    /// noisy line the 0x18 itself can be lost: it is sent again after
-    /// [`ASK_AGAIN`] without a welcome, and the welcome lines of the extra resets
-    /// are read here, not left for the job to see.
+    /// Soft reset (0x18), then the welcome line within `wait`; returns it. (Sent
+    /// once: a second reset's late welcome would be taken for the next one's.)
     pub fn reset(&mut self, wait: Duration) -> Result<String, LinkError> {
-        let deadline = Instant::now() + wait;
-        let mut sent = 0;
-        loop {
-            self.write(&[0x18])?;
-            sent += 1;
-            let turn = deadline.min(Instant::now() + ASK_AGAIN);
-            match self.wait_for(turn, "the welcome line `Grbl 1.1h`", |r| matches!(r, Response::Welcome(_))) {
-                Ok(Response::Welcome(w)) => {
-                    if sent > 1 {
-                        self.drain(ASK_AGAIN);
-                    }
-                    return Ok(w);
-                }
-                Ok(_) => {}
-                Err(e) if Instant::now() >= deadline => return Err(e),
-                Err(LinkError::Timeout { .. }) => {}
-                Err(e) => return Err(e),
-            }
-        }
+        self.write(&[0x18])?;
+        self.welcome(wait)
     }
 
     /// Waits for the welcome line `Grbl 1.1…` within `wait`, passing over anything else.
@@ -224,12 +205,6 @@ impl Link {
                 return Ok(r);
             }
         }
-    }
-
-    /// Reads and drops whatever arrives for `quiet` (answers to repeated requests).
-    fn drain(&mut self, quiet: Duration) {
-        let deadline = Instant::now() + quiet;
-        while self.line_until(deadline, "nothing").is_ok() {}
     }
 
     /// Sends the command `line` (a `$` command) and collects the lines before its

@@ -141,6 +141,14 @@ fn heavy_noise_on_the_first_line_is_resent_too() {
             &["--speed", "50", "--record", &record, "--corrupt", "6", "--seed", seed],
         );
         let o = lathe(&["send", &program, "--port", &board.link, "--quiet", "--checksum"]);
+        if stderr(&o).contains("no answer from the board: waited for the welcome line") {
+            // The noise ate the connection's soft reset (not checksummed): the
+            // sender gives up before a single line, and nothing ran.
+            assert_eq!(o.status.code(), Some(2), "seed {seed}: {}", stderr(&o));
+            std::thread::sleep(Duration::from_millis(200));
+            assert_eq!(std::fs::read_to_string(&record).unwrap_or_default(), "", "seed {seed}");
+            continue;
+        }
         assert_eq!(o.status.code(), Some(0), "seed {seed}: {}{}", stdout(&o), stderr(&o));
         let got = wait_lines(&record, want.lines().count());
         assert!(got == want, "seed {seed}: the executed actions differ from lathe sim's");

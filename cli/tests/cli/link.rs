@@ -112,7 +112,9 @@ fn tape_mode_honours_xoff_and_drip_feeds_without_the_o_number() {
     // sat in the pty when it sent it: on a loaded machine (tests run in parallel on 2
     // cores) the fake itself lags. The sender stops within a chunk of seeing DC3.
     assert!(seen.after_xoff <= 384, "{} bytes came after XOFF", seen.after_xoff);
-    assert!(seen.max_buffered <= 128, "{}", seen.max_buffered);
+    // For the same reason the fake's buffer can hold what came after its XOFF on top
+    // of the 128 bytes at which it sends it (seen with 6 busy processes on 2 cores).
+    assert!(seen.max_buffered <= 128 + 384, "{}", seen.max_buffered);
 }
 
 #[test]
