@@ -27,6 +27,24 @@ pub fn f32_of(v: i64) -> f32 {
     }
 }
 
+/// `v as f64`, by the 64-bit conversion when `v` fits a `u64` (the usual case in
+/// per-block geometry: squared lengths in nm²); the 128-bit routine otherwise.
+#[inline]
+pub fn f64_of_u128(v: u128) -> f64 {
+    match u64::try_from(v) {
+        Ok(x) => x as f64,
+        Err(_) => wide_f64(v),
+    }
+}
+
+/// `v as f64` out of line, so that the compiler keeps the 64-bit conversion of
+/// [`f64_of_u128`] instead of folding both arms into the 128-bit routine.
+#[cold]
+#[inline(never)]
+fn wide_f64(v: u128) -> f64 {
+    v as f64
+}
+
 /// A decimal number exactly as written in a program word: `mantissa × 10^-frac_digits`.
 ///
 /// Keeping the decimal form (instead of a float) makes every conversion exact and
@@ -298,6 +316,13 @@ pub fn nm_to_mm(nm: i64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn f64_of_u128_equals_the_u128_conversion() {
+        for v in [0u128, 1, u128::from(u64::MAX), u128::from(u64::MAX) + 1, 1 << 100, u128::MAX] {
+            assert_eq!(f64_of_u128(v).to_bits(), (v as f64).to_bits(), "{v}");
+        }
+    }
 
     #[test]
     fn f32_of_equals_the_i64_conversion() {

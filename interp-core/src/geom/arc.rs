@@ -2,7 +2,7 @@
 //! order of [`crate::canon::Plane::axes`], so G02 is clockwise with `a` right, `b` up.
 
 use crate::alarm::AlarmKind;
-use canon::units::f32_of;
+use canon::units::{f32_of, f64_of_u128};
 
 /// A point in a plane, nanometres.
 pub type P2 = (i64, i64);
@@ -26,13 +26,13 @@ pub fn center_from_radius(start: P2, end: P2, r: i64, cw: bool, tol: i64) -> Res
     let reach = i128::from(radius) + i128::from(tol);
     // Alarm when half the chord exceeds the radius by more than `tol`.
     if reach < 0 || c2 > 4 * sq(reach.min(i128::from(CAP)) as u64) {
-        let excess = libm::sqrt(to_f64(c2)) / 2.0 - radius as f64;
+        let excess = libm::sqrt(f64_of_u128(c2)) / 2.0 - radius as f64;
         return Err(AlarmKind::ArcRadiusTolerance { excess_nm: excess as i64 });
     }
     let disc = (4 * sq(radius)).saturating_sub(c2);
     // s = 2h / chord; the centre is the chord's middle plus s/2 times the chord
     // turned a quarter: (db, −da) to the right of it.
-    let s = libm::sqrt(to_f64(disc) / to_f64(c2));
+    let s = libm::sqrt(f64_of_u128(disc) / f64_of_u128(c2));
     // Clockwise arcs of up to 180° have their centre to the right of the chord.
     let right = cw == (r > 0);
     let (na, nb) = if right { (db, da.wrapping_neg()) } else { (db.wrapping_neg(), da) };
@@ -74,22 +74,6 @@ fn half_sum_f64(p: i64, d: i64, n: i64, s: f64) -> i64 {
     libm::round(p as f64 + d as f64 / 2.0 + s / 2.0 * n as f64) as i64
 }
 
-/// An integer as f64, by the 64-bit conversion when it fits (the usual case).
-fn to_f64(v: u128) -> f64 {
-    match u64::try_from(v) {
-        Ok(x) => x as f64,
-        Err(_) => wide_to_f64(v),
-    }
-}
-
-/// `v as f64` out of line, so that the compiler keeps the 64-bit conversion above
-/// instead of folding both arms into the 128-bit routine.
-#[cold]
-#[inline(never)]
-fn wide_to_f64(v: u128) -> f64 {
-    v as f64
-}
-
 /// Centre from I/J/K offsets; the end point must lie on the circle within `tol`
 /// (alarm 0020 otherwise).
 pub fn center_from_offsets(start: P2, end: P2, off: P2, tol: i64) -> Result<P2, AlarmKind> {
@@ -121,7 +105,7 @@ fn norm(a: f64, b: f64) -> f64 {
 fn radius_nm(p: P2, q: P2) -> i64 {
     let sq = |v: u64| u128::from(v) * u128::from(v);
     let d2 = sq(p.0.abs_diff(q.0)) + sq(p.1.abs_diff(q.1));
-    libm::round(libm::sqrt(to_f64(d2))) as i64
+    libm::round(libm::sqrt(f64_of_u128(d2))) as i64
 }
 
 /// Bounding box of a path in the plane.

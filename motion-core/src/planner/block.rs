@@ -10,6 +10,7 @@ use crate::canon::{ArcMove, FeedMode, Move, SpindleDir, SpindleSpeed, TapMove, T
 use crate::cordic;
 use crate::fixed::{PATH_FRAC, f32_of, inverse62, minf, sqrtf, u64_of};
 use crate::sync::ramp_counts;
+use canon::units::f64_of_u128;
 
 /// Unit direction of a path, per axis.
 pub type Dir = [f32; AXIS_COUNT];
@@ -335,24 +336,8 @@ fn tangent(axes: (Axis, Axis), v: (i64, i64), r: f32, ccw: bool) -> Dir {
 fn radius(v: (i64, i64)) -> (f64, i64) {
     let sq = |x: u64| u128::from(x) * u128::from(x);
     let r2 = sq(v.0.unsigned_abs()) + sq(v.1.unsigned_abs());
-    let r = libm::sqrt(u128_f64(r2));
+    let r = libm::sqrt(f64_of_u128(r2));
     (r, round_sqrt(r2, r))
-}
-
-/// `v as f64`, by the 64-bit conversion when it fits.
-fn u128_f64(v: u128) -> f64 {
-    match u64::try_from(v) {
-        Ok(x) => x as f64,
-        Err(_) => wide_f64(v),
-    }
-}
-
-/// `v as f64` out of line (the compiler would otherwise fold [`u128_f64`] into
-/// the 128-bit routine).
-#[cold]
-#[inline(never)]
-fn wide_f64(v: u128) -> f64 {
-    v as f64
 }
 
 /// The integer nearest to `√x` (never a tie: `(f + ½)²` is not an integer), from
