@@ -125,3 +125,48 @@ fn g51_2_under_g42_ends_the_held_move_first() {
     let lines: Vec<u32> = r.actions.iter().map(|c| c.line).collect();
     assert!(lines.windows(2).all(|w| w[0] <= w[1]), "{lines:?}");
 }
+
+/// Note 7: in feed hold the work spindle and the tool spindle keep turning (their
+/// speeds do not drop to 0): the path stops, C goes on following the encoder at
+/// Q/P, and after cycle start the cut goes on.
+#[test]
+fn feed_hold_stops_the_path_but_not_the_two_spindles() {
+    let cfg = machine();
+    let cpr = i64::from(cfg.spindle.encoder_cpr);
+    let mut sim = Sim::new(cfg, SimOptions::default()).unwrap();
+    let prog = "G51.2 P2 Q3 R60 S600\nG00 X50 Z2\nG98 G01 W-20 F300\nG50.2\nM30\n";
+    const S: u64 = 1_000_000_000;
+    let (c, z) = (Axis::C.index(), Axis::Z.index());
+    let mut held_z = None;
+    let mut during_hold = 0;
+    let mut hold_at = None;
+    let report = sim.run_program_with(prog, |s| {
+        let now = s.clock.0;
+        let locked = s.core.polygon_lock();
+        if hold_at.is_none() && locked.is_some() && s.axes[z].steps < 0 {
+            hold_at = Some(now);
+            s.core.feed_hold();
+        }
+        let Some(t0) = hold_at else { return };
+        // After 0.5 s of braking the path stands; C still follows for 1 s more.
+        if (t0 + S / 2..t0 + 3 * S / 2).contains(&now) {
+            let z_now = s.axes[z].steps;
+            assert_eq!(*held_z.get_or_insert(z_now), z_now, "the path stands in feed hold");
+            let (origin, base) = locked.expect("still locked in feed hold");
+            let n = s.spindle_count() - origin;
+            let expect = base + (2 * n * 3 * REV + 2 * cpr) / (2 * 2 * cpr);
+            assert!((s.axes[c].steps - expect).abs() <= 1, "C follows in feed hold");
+            assert!(s.spindle.rpm() > 590.0, "the work spindle keeps its speed: {}", s.spindle.rpm());
+            during_hold += 1;
+        } else if now >= t0 + 3 * S / 2 {
+            s.core.cycle_start();
+        }
+    });
+    assert!(report.alarms.is_empty(), "{:?}", report.alarms);
+    assert!(during_hold > 500, "{during_hold} periods checked in feed hold");
+    // The cut went on after cycle start (W-20 from Z2 ends at Z-18).
+    let held_z = held_z.expect("the path stood");
+    assert!(sim.axes[z].steps < held_z, "{} after {held_z}", sim.axes[z].steps);
+    assert_eq!(sim.machine_pos()[Axis::Z], -18_000_000);
+    assert!(sim.core.polygon_steps().is_none());
+}
