@@ -204,6 +204,10 @@ pub struct Controller<const W: usize, const T: usize, const P: usize, const S: u
     pub(crate) counters: Counters,
     /// grbl traffic (`?`, a real-time byte, a `$` line) since power-on or reset.
     pub(crate) grbl_seen: bool,
+    /// A real-time byte arrived behind this many received bytes not yet handled:
+    /// it counts as grbl traffic only once they are (a `?` right behind a tape's
+    /// opening `%` must not make that `%` a record mark).
+    pub(crate) grbl_after: Option<usize>,
     pub(crate) dirty: Dirty,
 }
 
@@ -298,6 +302,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             startup_next: 0,
             counters: Counters::default(),
             grbl_seen: false,
+            grbl_after: None,
             dirty: Dirty::default(),
         }
     }
@@ -401,6 +406,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
                     return i;
                 }
                 // A line longer than the buffer: drop it up to its LF.
+                self.rx_consumed(self.rx.len());
                 self.rx.clear();
                 self.discarding = b != b'\n';
                 if b == b'\n' {
@@ -435,6 +441,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
         let partial = !self.discarding && self.rx.last().is_some_and(|&b| b != b'\n');
         let stale = self.link.active && partial && self.now.saturating_sub(self.last_rx) >= STALE_LINE_NS;
         if stale && self.rx.push(b'\n').is_err() {
+            self.rx_consumed(self.rx.len());
             self.rx.clear();
             self.refuse(11, "line longer than 127 characters");
         }
@@ -471,8 +478,28 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             0xA1 => rt.mist = true,
             _ => return false,
         }
-        self.grbl_seen = b != 0x18;
+        if b == 0x18 {
+            self.grbl_seen = false;
+            self.grbl_after = None;
+        } else if self.rx.is_empty() {
+            self.grbl_seen = true;
+        } else {
+            self.grbl_after.get_or_insert(self.rx.len());
+        }
         true
+    }
+
+    /// `n` received bytes were handled (or dropped): a real-time byte behind them
+    /// now counts as grbl traffic.
+    pub(crate) fn rx_consumed(&mut self, n: usize) {
+        match self.grbl_after {
+            Some(k) if k > n => self.grbl_after = Some(k - n),
+            Some(_) => {
+                self.grbl_seen = true;
+                self.grbl_after = None;
+            }
+            None => {}
+        }
     }
 
     /// Runs a bounded amount of work at time `now` (ns): soft reset, inputs,

@@ -74,6 +74,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             }
             self.rx.copy_within(end + 1.., 0);
             self.rx.truncate(self.rx.len() - end - 1);
+            self.rx_consumed(end + 1);
         }
     }
 

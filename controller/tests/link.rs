@@ -170,6 +170,31 @@ fn tape_punch_stores_a_program_that_m98_then_calls() {
     assert_eq!(r.command("$PL"), vec!["ok"]);
 }
 
+/// A sender that polls `?` as soon as its opening `%` is written: when both arrive
+/// together the `%` still starts tape mode (the `?` came after it), so an upload is
+/// stored, not run; a `?` before the `%` makes it a grbl record mark as before.
+#[test]
+fn a_status_poll_right_behind_the_opening_percent_does_not_undo_tape_mode() {
+    let mut r = Rig::new();
+    r.run_ms(2);
+    r.take_lines();
+    r.send(b"%\n?");
+    r.send(b"O0012 (SUB)\nG00 U2\nW-1\nM99\n%\n");
+    r.run_ms(20);
+    let got = r.take_lines();
+    assert!(got.iter().any(|l| l == "[MSG:Stored O0012]"), "{got:?}");
+    assert!(r.port.pushed.is_empty(), "nothing ran");
+
+    let mut r = Rig::new();
+    r.run_ms(2);
+    r.take_lines();
+    r.send(b"?%\n");
+    r.run_ms(5);
+    let got = r.take_lines();
+    assert!(!got.iter().any(|l| l.contains("Stored")), "{got:?}");
+    assert!(got.iter().any(|l| l == "ok"), "a record mark, answered ok: {got:?}");
+}
+
 #[test]
 fn tape_drip_feed_runs_under_xon_xoff() {
     let mut program = String::from("G98 G00 X20 Z0\n");

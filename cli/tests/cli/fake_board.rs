@@ -146,6 +146,9 @@ struct State {
     /// Something grbl-like (`?`, a real-time byte, a `$` line) came since the last
     /// reset: a `%` is then a record mark, not the start of tape mode ($301=0).
     grbl_spoken: bool,
+    /// A real-time byte came behind this many buffered bytes: it counts once they
+    /// are taken (as on the board: a `?` right behind `%` leaves it tape mode's).
+    grbl_after: Option<usize>,
     settings: BTreeMap<u32, String>,
 }
 
@@ -170,6 +173,7 @@ impl State {
             tape: TapeMode::Off,
             xoff: false,
             grbl_spoken: false,
+            grbl_after: None,
             settings,
         }
     }
@@ -208,6 +212,15 @@ impl State {
             let text = String::from_utf8_lossy(&raw).trim_end_matches(['\n', '\r']).to_owned();
             self.next_line_at = now + self.script.line_period;
             self.take(&text);
+            // A real-time byte that came behind this line counts from now on.
+            match self.grbl_after {
+                Some(k) if k > raw.len() => self.grbl_after = Some(k - raw.len()),
+                Some(_) => {
+                    self.grbl_after = None;
+                    self.grbl_spoken = true;
+                }
+                None => {}
+            }
         }
     }
 
@@ -215,16 +228,16 @@ impl State {
     fn byte(&mut self, b: u8) {
         match b {
             b'?' => {
-                self.grbl_spoken = true;
+                self.spoke();
                 self.report();
             }
             b'!' => {
-                self.grbl_spoken = true;
+                self.spoke();
                 self.held = true;
                 self.seen().holds += 1;
             }
             b'~' => {
-                self.grbl_spoken = true;
+                self.spoke();
                 self.held = false;
             }
             0x18 => self.reset(),
@@ -237,6 +250,15 @@ impl State {
         }
     }
 
+    /// A real-time byte: grbl traffic, behind what is buffered.
+    fn spoke(&mut self) {
+        if self.rx.is_empty() {
+            self.grbl_spoken = true;
+        } else {
+            self.grbl_after.get_or_insert(self.rx.len());
+        }
+    }
+
     fn reset(&mut self) {
         self.seen().resets += 1;
         self.rx.clear();
@@ -245,6 +267,7 @@ impl State {
         self.tape = TapeMode::Off;
         self.xoff = false;
         self.grbl_spoken = false;
+        self.grbl_after = None;
         self.line_no = 0;
         self.expected = 1;
         self.machine = if self.script.locked { Machine::Alarm } else { Machine::Idle };
