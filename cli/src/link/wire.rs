@@ -182,27 +182,14 @@ impl Link {
         loop {
             self.write(b"?")?;
             let turn = deadline.min(Instant::now() + ASK_AGAIN);
-            match self.wait_for(turn, "a status report", |r| matches!(r, Response::Status(_))) {
-                Ok(Response::Status(s)) => return Ok(s),
-                Ok(_) => {}
-                Err(e) if Instant::now() >= deadline => return Err(e),
-                Err(LinkError::Timeout { .. }) => {}
-                Err(e) => return Err(e),
-            }
-        }
-    }
-
-    /// Reads lines until one satisfies `wanted` (returned) or `deadline` passes.
-    fn wait_for(
-        &mut self,
-        deadline: Instant,
-        what: &str,
-        wanted: impl Fn(&Response) -> bool,
-    ) -> Result<Response, LinkError> {
-        loop {
-            let r = self.line_until(deadline, what)?;
-            if wanted(&r) {
-                return Ok(r);
+            loop {
+                match self.line_until(turn, "a status report") {
+                    Ok(Response::Status(s)) => return Ok(s),
+                    Ok(_) => {}
+                    // No answer this turn: ask again until the deadline.
+                    Err(LinkError::Timeout { .. }) if Instant::now() < deadline => break,
+                    Err(e) => return Err(e),
+                }
             }
         }
     }
