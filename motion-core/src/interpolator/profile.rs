@@ -33,9 +33,10 @@ pub fn next_speed(v: u64, cap: u64, exit: u64, a: u64, rem: u64) -> u64 {
     } else {
         floor.min(wanted)
     };
-    // Creep the last bit of a block that must end at rest.
+    // Creep the last bit of a block that must end at rest (never above the cap:
+    // with a slow feed the acceleration per period can exceed it).
     if next == 0 && cap > 0 && rem > 0 {
-        next = rem.min(a);
+        next = rem.min(a).min(cap);
     }
     next
 }
@@ -84,6 +85,8 @@ mod tests {
         assert_eq!(next_speed(500, 0, 0, 10, u64::MAX), 490);
         assert_eq!(next_speed(5, 0, 0, 10, u64::MAX), 0);
         assert_eq!(next_speed(0, 0, 0, 10, 100), 0, "held: no creeping");
+        // proptest's case: braked to rest short of the end, a > cap: creep at the cap.
+        assert_eq!(next_speed(0, 183, 16, 194, 1_000), 183);
     }
 
     proptest! {
