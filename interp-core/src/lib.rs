@@ -28,9 +28,12 @@ pub mod geom;
 mod head;
 pub mod interpreter;
 pub mod macros;
+pub mod modal;
+pub mod moves;
 pub mod parse;
 pub mod program;
 mod sort;
+pub mod stage;
 
 // The vocabulary shared with the motion core lives in the `canon` crate; its
 // modules are re-exported under their old paths (`interp_core::axis::Pos`,
