@@ -20,26 +20,26 @@ pub struct FinishGen {
     start: Pt,
     done: bool,
     /// How the blocks are executed (`exec::execute`).
-    execute: Executor,
+    execute: ExecuteFn,
 }
 
 /// [`Execute`] kept in the generator: the same when it is the same function.
 #[derive(Clone, Copy, Debug)]
-struct Executor(Execute);
+struct ExecuteFn(Execute);
 
-impl PartialEq for Executor {
+impl PartialEq for ExecuteFn {
     fn eq(&self, other: &Self) -> bool {
         core::ptr::fn_addr_eq(self.0, other.0)
     }
 }
 
-impl Eq for Executor {}
+impl Eq for ExecuteFn {}
 
 impl FinishGen {
     /// G70 reading from block ns at `cur`, returning to `start`, running the
     /// blocks through `execute`.
     pub fn new(cur: Cursor, ns: u32, nf: u32, start: Pt, execute: Execute) -> Self {
-        FinishGen { cur, ns, nf, first: true, start, done: false, execute: Executor(execute) }
+        FinishGen { cur, ns, nf, first: true, start, done: false, execute: ExecuteFn(execute) }
     }
 
     /// Runs the next block into `out` (which has room for a whole block); after nf

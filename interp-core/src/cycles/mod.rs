@@ -205,9 +205,6 @@ pub struct Ctx<'a, 'b> {
     pub env: &'a dyn Environment,
     /// The block's stage (program text, expansion slot, parameter writes).
     pub out: &'a mut CycleStage<'b>,
-    /// How a block is executed (`exec::execute`): G70–G73 run their shape's blocks
-    /// through it.
-    pub execute: Execute,
 }
 
 /// Executes a checked block on the state, staging its actions: `exec::execute`,
@@ -215,6 +212,20 @@ pub struct Ctx<'a, 'b> {
 /// `exec`, which dispatches to them).
 pub type Execute =
     fn(&Command, &mut State, &MachineConfig, &dyn Environment, &mut CycleStage<'_>) -> Result<Flow, AlarmKind>;
+
+/// How blocks are executed, given to [`execute`] as a type by `exec`
+/// (`exec::Blocks`): G70–G73 run their shape's blocks through it. A type and not a
+/// value, so that a block that is no cycle carries nothing for it.
+pub trait Executor {
+    /// Executes `cmd` on `st`, staging the actions in `out` (an [`Execute`]).
+    fn execute(
+        cmd: &Command,
+        st: &mut State,
+        cfg: &MachineConfig,
+        env: &dyn Environment,
+        out: &mut CycleStage<'_>,
+    ) -> Result<Flow, AlarmKind>;
+}
 
 /// A block's [`Staged`] actions with the interpreter's expansion slot, where a
 /// cycle the block starts goes. Derefs to the [`Staged`] actions.
@@ -327,7 +338,12 @@ pub fn cycle_of(cmd: &Command, st: &State) -> Option<GCode> {
 
 /// Executes the block's cycle, if it has one; false if the block is not a cycle
 /// block (plain motion goes on as usual).
-pub fn execute(cmd: &Command, st: &mut State, ctx: &mut Ctx<'_, '_>, chained: bool) -> Result<bool, AlarmKind> {
+pub fn execute<X: Executor>(
+    cmd: &Command,
+    st: &mut State,
+    ctx: &mut Ctx<'_, '_>,
+    chained: bool,
+) -> Result<bool, AlarmKind> {
     let Some(code) = cycle_of(cmd, st) else { return Ok(false) };
     if args::is_thread(code) {
         single::thread_block(cmd, st, ctx, chained)?;
@@ -353,14 +369,14 @@ pub fn execute(cmd: &Command, st: &mut State, ctx: &mut Ctx<'_, '_>, chained: bo
                 start_cycle(Emitter::new(*st, cmd.line), generator, ctx.out)?;
             }
         }
-        _ => multiple(code, cmd, st, ctx)?,
+        _ => multiple::<X>(code, cmd, st, ctx)?,
     }
     Ok(true)
 }
 
 /// G70–G76: the setup blocks write their parameters, the cycles start their
 /// expansion (G71–G73 read their shape straight into it).
-fn multiple(code: GCode, cmd: &Command, st: &mut State, ctx: &mut Ctx<'_, '_>) -> Result<(), AlarmKind> {
+fn multiple<X: Executor>(code: GCode, cmd: &Command, st: &mut State, ctx: &mut Ctx<'_, '_>) -> Result<(), AlarmKind> {
     use CycleArgs::{Finish, Groove, GrooveSetup, MultiThread, PatternSetup, RoughSetup, Shape, ThreadSetup};
     let cfg = ctx.cfg;
     let p = |id| cfg.params.get(id);
@@ -394,14 +410,14 @@ fn multiple(code: GCode, cmd: &Command, st: &mut State, ctx: &mut Ctx<'_, '_>) -
         }
         Finish { ns, nf } => {
             let src = ShapeSource { program: ctx.out.program, ns, nf };
-            Gen::Finish(FinishGen::new(profile::start_of(&src)?, ns, nf, here, ctx.execute))
+            Gen::Finish(FinishGen::new(profile::start_of(&src)?, ns, nf, here, X::execute))
         }
         Shape { ns, nf, du, dw } => {
             let (src, env) = (ShapeSource { program: ctx.out.program, ns, nf }, ctx.env);
             // The shape is read straight into the expansion (its generator follows).
             let exp = start_cycle(em, Gen::Plan(heapless::Vec::new()), ctx.out)?;
             let shape = &mut exp.profile;
-            profile::read_profile(&src, st, cfg, env, ctx.execute, shape)?;
+            profile::read_profile(&src, st, cfg, env, X::execute, shape)?;
             let allowance = Pt::new(du, dw);
             exp.generator = if code == GCode::PatternCycle {
                 let count = u32::try_from(p(Param::PatternDivisions)).unwrap_or(0);

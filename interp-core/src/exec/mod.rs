@@ -48,8 +48,8 @@ pub fn execute(
         _ if polar::mode_change(cmd, st, cfg)? => {}
         _ if st.polar.is_some() => polar::execute(cmd, st, cfg, out)?,
         _ => {
-            let mut ctx = cycles::Ctx { cfg, env, out, execute };
-            if !cycles::execute(cmd, st, &mut ctx, chained)? {
+            let mut ctx = cycles::Ctx { cfg, env, out };
+            if !cycles::execute::<Blocks>(cmd, st, &mut ctx, chained)? {
                 motion_or_curve(cmd, st, cfg, ctx.out)?;
             }
         }
@@ -73,6 +73,21 @@ pub fn execute(
         cycles::polar_block(st, cfg, out)?;
     }
     Ok(flow)
+}
+
+/// [`execute`] for the cycles below, which run the blocks of a G70–G73 shape.
+pub struct Blocks;
+
+impl cycles::Executor for Blocks {
+    fn execute(
+        cmd: &Command,
+        st: &mut State,
+        cfg: &MachineConfig,
+        env: &dyn Environment,
+        out: &mut CycleStage<'_>,
+    ) -> Result<Flow, AlarmKind> {
+        execute(cmd, st, cfg, env, out)
+    }
 }
 
 /// Executes the block's motion in the modal motion mode: G02.1/G03.1 and
