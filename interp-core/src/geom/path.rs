@@ -179,6 +179,7 @@ impl Elem {
     }
 
     /// Length of the element along its path (a closed arc is a full circle).
+    #[inline(never)]
     pub fn length(&self) -> f64 {
         match *self {
             Elem::Line { start, end } => end.minus(start).len(),
@@ -194,6 +195,7 @@ impl Elem {
 
     /// How far along the element (0 at the start, path length) the point `p` lies,
     /// `p` being on the element's line or circle.
+    #[inline(never)]
     pub fn along(&self, p: V2) -> f64 {
         match *self {
             Elem::Line { start, end } => p.minus(start).dot(end.minus(start).unit()),
