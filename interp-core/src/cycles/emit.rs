@@ -9,7 +9,20 @@ use crate::canon::{
     Action, ArcMove, Canon, Feed, FeedMode, Move, Plane, SpindleCommand, SpindleDir, TapMove, ThreadMove, ThreadSync,
 };
 use crate::config::MachineConfig;
-use crate::exec::{State, motion, spindle_speed};
+use crate::exec::{State, motion};
+
+/// The plain blocks' soft-limit check, out of line for the cycles' many moves (inlined
+/// at each of them it cost flash; a plain block keeps its inlined copy).
+#[inline(never)]
+fn check_limits(machine: &Pos, cfg: &MachineConfig) -> Result<(), AlarmKind> {
+    motion::check_limits(machine, cfg)
+}
+
+/// The plain blocks' spindle speed, out of line for the cycles (as `check_limits`).
+#[inline(never)]
+fn spindle_speed(st: &State, cfg: &MachineConfig, x: i64) -> crate::canon::SpindleSpeed {
+    crate::exec::spindle_speed(st, cfg, x)
+}
 
 /// A point of the ZX plane in work coordinates: X as a radius, nm.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -186,7 +199,7 @@ impl Emitter {
             }
             Step::RapidTo(w) => {
                 let to = motion::endpoint(w, &self.st, cfg)?;
-                motion::check_limits(&to.machine, cfg)?;
+                check_limits(&to.machine, cfg)?;
                 if to.machine == self.st.pos {
                     return Ok(());
                 }
@@ -228,7 +241,7 @@ impl Emitter {
                 (work[Axis::X], work[Axis::C], work[Axis::Z]) = (x, c, z);
                 let feed = Feed { value: feed, ..self.feed };
                 let to = motion::endpoint(work, &self.st, cfg)?;
-                motion::check_limits(&to.machine, cfg)?;
+                check_limits(&to.machine, cfg)?;
                 if to.machine == self.st.pos {
                     return Ok(());
                 }
@@ -262,7 +275,7 @@ impl Emitter {
         w[Axis::X] = p.x;
         w[Axis::Z] = p.z;
         let to = motion::endpoint(w, &self.st, cfg)?;
-        motion::check_limits(&to.machine, cfg)?;
+        check_limits(&to.machine, cfg)?;
         Ok((to.machine != self.st.pos).then_some(to))
     }
 
@@ -296,8 +309,8 @@ impl Emitter {
         let shift = self.st.work_to_machine(cfg);
         let lo = Pos::xz(ext.b.0 + shift[Axis::X], ext.a.0 + shift[Axis::Z]);
         let hi = Pos::xz(ext.b.1 + shift[Axis::X], ext.a.1 + shift[Axis::Z]);
-        motion::check_limits(&lo.with_others(&self.st.pos), cfg)?;
-        motion::check_limits(&hi.with_others(&self.st.pos), cfg)?;
+        check_limits(&lo.with_others(&self.st.pos), cfg)?;
+        check_limits(&hi.with_others(&self.st.pos), cfg)?;
         let spindle = self.speed(cfg, to);
         let exact_stop = self.st.modal.exact_stop_mode;
         Ok(Action::Arc(ArcMove {
