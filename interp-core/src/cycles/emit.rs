@@ -284,6 +284,7 @@ impl Emitter {
     }
 
     /// The cycle's feed, with the alarms of a cutting move (F0, G99 without spindle).
+    #[inline(never)]
     fn cutting_feed(&self, cfg: &MachineConfig) -> Result<Feed, AlarmKind> {
         if self.feed.value <= 0 {
             return Err(AlarmKind::FeedZero);

@@ -173,6 +173,7 @@ impl Elem {
     }
 
     /// Angle travelled along an arc from `from` to `to` in its direction, `[0, 2π)`.
+    #[inline(never)]
     fn travel(center: V2, ccw: bool, from: V2, to: V2) -> f64 {
         let d = to.minus(center).angle() - from.minus(center).angle();
         wrap_tau(if ccw { d } else { -d })
