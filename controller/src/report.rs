@@ -12,7 +12,10 @@ pub struct Mm(pub i64);
 
 impl fmt::Display for Mm {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let um = (i128::from(self.0) + if self.0 < 0 { -500 } else { 500 }) / 1000;
+        // Rounded half away from zero, in i64 (no overflow: |nm / 1000| + 1 fits);
+        // u64 digits, not u128 (whose formatting and division cost 2 KB of flash).
+        let (whole, rest) = (self.0 / 1000, self.0 % 1000);
+        let um = whole + i64::from(rest >= 500) - i64::from(rest <= -500);
         let sign = if um < 0 { "-" } else { "" };
         let um = um.unsigned_abs();
         write!(f, "{sign}{}.{:03}", um / 1000, um % 1000)
@@ -82,6 +85,11 @@ mod tests {
         assert_eq!(format!("{}", Mm(12_345_678)), "12.346");
         assert_eq!(format!("{}", Mm(-1_499)), "-0.001");
         assert_eq!(format!("{}", Mm(-400)), "0.000");
+        assert_eq!(format!("{}", Mm(500)), "0.001");
+        assert_eq!(format!("{}", Mm(-500)), "-0.001");
+        assert_eq!(format!("{}", Mm(-499)), "0.000");
+        assert_eq!(format!("{}", Mm(i64::MAX)), "9223372036854.776");
+        assert_eq!(format!("{}", Mm(i64::MIN)), "-9223372036854.776");
         assert_eq!(format!("{}", Xyz { x: 10_000_000, z: -5_000_000, diameter: true }), "20.000,0.000,-5.000");
         assert_eq!(format!("{}", Value(640.5)), "640.5");
         assert_eq!(format!("{}", Value(0.01)), "0.01");

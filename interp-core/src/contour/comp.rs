@@ -105,6 +105,7 @@ impl Comp {
 
 /// The vector (G18 plane coordinates: Z, X) from the nose centre to the
 /// imaginary tip of direction `tip` for a nose of `radius` nm (figure 2.63).
+#[inline(never)]
 pub(crate) fn tip_vector(tip: u8, radius: i64) -> V2 {
     let (x, z) = match tip {
         1 => (1.0, 1.0),
@@ -122,6 +123,7 @@ pub(crate) fn tip_vector(tip: u8, radius: i64) -> V2 {
 
 /// The offset of `e` (alarm 3605 if an arc's radius would vanish: the nose does
 /// not fit inside it).
+#[inline(never)]
 fn offset(e: &Elem, d: f64) -> Result<Elem, AlarmKind> {
     e.offset(d).ok_or(AlarmKind::NoseCompGouge)
 }

@@ -369,6 +369,7 @@ fn put(out: &mut Staged<'_>, c: Canon) -> Result<(), AlarmKind> {
 }
 
 /// The plane coordinates of a machine position.
+#[inline(never)]
 pub(crate) fn in_plane(p: &Pos, plane: Plane) -> V2 {
     let (a, b) = plane.axes();
     V2::new(p[a] as f64, p[b] as f64)
@@ -376,6 +377,7 @@ pub(crate) fn in_plane(p: &Pos, plane: Plane) -> V2 {
 
 /// `ep` with its plane coordinates (machine) replaced by `p`, the work coordinates
 /// shifted alike.
+#[inline(never)]
 pub(crate) fn moved_to(ep: Endpoint, plane: Plane, p: V2) -> Endpoint {
     let (a, b) = plane.axes();
     let (pa, pb) = p.round();

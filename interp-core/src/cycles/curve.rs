@@ -133,6 +133,7 @@ impl CurveGen {
 }
 
 /// Number of cuts for `n` tolerance steps (at least one).
+#[inline(never)]
 fn count(n: f64) -> Result<u32, AlarmKind> {
     if !n.is_finite() || n > MAX_STEPS {
         return Err(AlarmKind::CycleTooLong);
@@ -148,6 +149,7 @@ fn rotation(q_udeg: i64) -> (f64, f64) {
 
 /// A work point (X radius) in the frame whose first axis is +Z turned clockwise by
 /// Q (in the Z-right, X-up view): (s along the turned axis, t across it).
+#[inline(never)]
 fn turn(rot: (f64, f64), p: Pt) -> (f64, f64) {
     let (z, x) = (p.z as f64, p.x as f64);
     let (c, s) = rot;

@@ -10,7 +10,20 @@ use crate::canon::{
 };
 use crate::config::MachineConfig;
 use crate::modal::State;
-use crate::moves::{motion, spindle_speed};
+use crate::moves::motion;
+
+/// The plain blocks' soft-limit check, out of line for the cycles' many moves (inlined
+/// at each of them it cost flash; a plain block keeps its inlined copy).
+#[inline(never)]
+fn check_limits(machine: &Pos, cfg: &MachineConfig) -> Result<(), AlarmKind> {
+    motion::check_limits(machine, cfg)
+}
+
+/// The plain blocks' spindle speed, out of line for the cycles (as `check_limits`).
+#[inline(never)]
+fn spindle_speed(st: &State, cfg: &MachineConfig, x: i64) -> crate::canon::SpindleSpeed {
+    crate::moves::spindle_speed(st, cfg, x)
+}
 
 /// A point of the ZX plane in work coordinates: X as a radius, nm.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -187,7 +200,7 @@ impl Emitter {
             }
             Step::RapidTo(w) => {
                 let to = motion::endpoint(w, &self.st, cfg)?;
-                motion::check_limits(&to.machine, cfg)?;
+                check_limits(&to.machine, cfg)?;
                 if to.machine == self.st.pos {
                     return Ok(());
                 }
@@ -229,7 +242,7 @@ impl Emitter {
                 (work[Axis::X], work[Axis::C], work[Axis::Z]) = (x, c, z);
                 let feed = Feed { value: feed, ..self.feed };
                 let to = motion::endpoint(work, &self.st, cfg)?;
-                motion::check_limits(&to.machine, cfg)?;
+                check_limits(&to.machine, cfg)?;
                 if to.machine == self.st.pos {
                     return Ok(());
                 }
@@ -263,7 +276,7 @@ impl Emitter {
         w[Axis::X] = p.x;
         w[Axis::Z] = p.z;
         let to = motion::endpoint(w, &self.st, cfg)?;
-        motion::check_limits(&to.machine, cfg)?;
+        check_limits(&to.machine, cfg)?;
         Ok((to.machine != self.st.pos).then_some(to))
     }
 
@@ -272,6 +285,7 @@ impl Emitter {
     }
 
     /// The cycle's feed, with the alarms of a cutting move (F0, G99 without spindle).
+    #[inline(never)]
     fn cutting_feed(&self, cfg: &MachineConfig) -> Result<Feed, AlarmKind> {
         if self.feed.value <= 0 {
             return Err(AlarmKind::FeedZero);
@@ -297,8 +311,8 @@ impl Emitter {
         let shift = self.st.work_to_machine(cfg);
         let lo = Pos::xz(ext.b.0 + shift[Axis::X], ext.a.0 + shift[Axis::Z]);
         let hi = Pos::xz(ext.b.1 + shift[Axis::X], ext.a.1 + shift[Axis::Z]);
-        motion::check_limits(&lo.with_others(&self.st.pos), cfg)?;
-        motion::check_limits(&hi.with_others(&self.st.pos), cfg)?;
+        check_limits(&lo.with_others(&self.st.pos), cfg)?;
+        check_limits(&hi.with_others(&self.st.pos), cfg)?;
         let spindle = self.speed(cfg, to);
         let exact_stop = self.st.modal.exact_stop_mode;
         Ok(Action::Arc(ArcMove {

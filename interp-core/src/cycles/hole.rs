@@ -129,6 +129,7 @@ impl HoleGen {
         }
     }
 
+    #[inline(never)]
     fn at(&self, v: i64) -> Pos {
         let mut p = self.here_pos();
         p[self.axis] = v;
@@ -245,6 +246,7 @@ impl HoleGen {
         Ok(())
     }
 
+    #[inline(never)]
     fn pt(&self, v: i64) -> super::emit::Pt {
         let p = self.at(v);
         super::emit::Pt::new(p[Axis::X], p[Axis::Z])
@@ -260,6 +262,7 @@ pub fn reverse(d: SpindleDir) -> SpindleDir {
     }
 }
 
+#[inline(never)]
 fn push(out: &mut StepQueue, s: Step) -> Result<(), AlarmKind> {
     out.push_back(s).map_err(|_| AlarmKind::Overflow)
 }

@@ -159,6 +159,7 @@ impl Path {
     }
 
     /// The Cartesian point at parameter `t`.
+    #[inline(never)]
     fn at(&self, t: f64) -> V2 {
         self.elem.point_at(t * self.elem.length())
     }

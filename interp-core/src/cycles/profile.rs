@@ -66,6 +66,7 @@ pub struct Profile {
 
 impl Seg {
     /// The segment moved by `d`.
+    #[inline(never)]
     pub fn shifted(self, d: Pt) -> Seg {
         let mv = |p: Pt| Pt::new(p.x + d.x, p.z + d.z);
         let kind = match self.kind {
@@ -150,6 +151,7 @@ impl Seg {
     }
 
     /// Smallest and largest value of `axis` along the segment.
+    #[inline(never)]
     pub fn extent(&self, axis: Axis) -> (i64, i64) {
         match self.kind {
             SegKind::Arc { center, cw } => {

@@ -47,6 +47,7 @@ impl Frame {
     }
 
     /// The work point of (u, w).
+    #[inline(never)]
     pub fn work(&self, u: i64, w: i64) -> Pt {
         Pt::default().with(self.level, self.out * u).with(self.cut, self.dir * w)
     }
@@ -401,6 +402,7 @@ fn lowest(f: &Frame, s: &Seg) -> i64 {
     if f.out > 0 { lo } else { -hi }
 }
 
+#[inline(never)]
 fn inside(r: &Run, p: &Run) -> bool {
     r.w0 >= p.w0 - 0.5 && r.w1 <= p.w1 + 0.5
 }

@@ -59,6 +59,7 @@ impl Pullout {
     }
 }
 
+#[inline(never)]
 fn lerp(a: i64, b: i64, t: f64) -> i64 {
     a + libm::round((b - a) as f64 * t) as i64
 }

@@ -2,6 +2,12 @@
 //! points at a distance, offsets and intersections — for the contour layer
 //! (chamfers, corner rounding, tool-nose compensation). Coordinates are the
 //! plane's `(a, b)` axes ([`crate::canon::Plane::axes`]): G03 is counter-clockwise.
+//!
+//! The vector helpers marked `#[inline(never)]` (as are a few small helpers of the
+//! cycles) stay out of line for flash: each is a handful of soft-f64 calls (the
+//! Cortex-M4F has no f64 unit), and inlined at every use in the contour and cycle
+//! code they cost the firmware ~12 KB. None runs for a plain motion block (the
+//! m4-tests `bench_interp`/`bench_macro` counts are the same either way).
 
 /// A point or vector in the plane, nm.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -24,31 +30,37 @@ impl V2 {
     }
 
     /// Rounded to integer nanometres.
+    #[inline(never)]
     pub fn round(self) -> (i64, i64) {
         (libm::round(self.a) as i64, libm::round(self.b) as i64)
     }
 
     /// Sum.
+    #[inline(never)]
     pub fn plus(self, o: V2) -> V2 {
         V2::new(self.a + o.a, self.b + o.b)
     }
 
     /// Difference.
+    #[inline(never)]
     pub fn minus(self, o: V2) -> V2 {
         V2::new(self.a - o.a, self.b - o.b)
     }
 
     /// Scaled.
+    #[inline(never)]
     pub fn scale(self, k: f64) -> V2 {
         V2::new(self.a * k, self.b * k)
     }
 
     /// Dot product.
+    #[inline(never)]
     pub fn dot(self, o: V2) -> f64 {
         self.a * o.a + self.b * o.b
     }
 
     /// Cross product (positive when `o` is counter-clockwise of `self`).
+    #[inline(never)]
     pub fn cross(self, o: V2) -> f64 {
         self.a * o.b - self.b * o.a
     }
@@ -59,6 +71,7 @@ impl V2 {
     }
 
     /// Unit vector (zero stays zero).
+    #[inline(never)]
     pub fn unit(self) -> V2 {
         let l = self.len();
         if l == 0.0 { self } else { self.scale(1.0 / l) }
@@ -75,6 +88,7 @@ impl V2 {
     }
 
     /// Rotated counter-clockwise by `t` radians.
+    #[inline(never)]
     pub fn rotate(self, t: f64) -> V2 {
         let (s, c) = (libm::sin(t), libm::cos(t));
         V2::new(self.a * c - self.b * s, self.a * s + self.b * c)
@@ -105,6 +119,7 @@ pub enum Elem {
 }
 
 /// `x` wrapped into `[0, 2π)`.
+#[inline(never)]
 pub fn wrap_tau(x: f64) -> f64 {
     let tau = core::f64::consts::TAU;
     let r = libm::fmod(x, tau);
@@ -127,6 +142,7 @@ impl Elem {
     }
 
     /// Unit direction of travel at point `p` (on the element).
+    #[inline(never)]
     pub fn tangent_at(&self, p: V2) -> V2 {
         match *self {
             Elem::Line { start, end } => end.minus(start).unit(),
@@ -148,6 +164,7 @@ impl Elem {
     }
 
     /// Arc radius (0 for a line).
+    #[inline(never)]
     pub fn radius(&self) -> f64 {
         match *self {
             Elem::Line { .. } => 0.0,
@@ -156,12 +173,14 @@ impl Elem {
     }
 
     /// Angle travelled along an arc from `from` to `to` in its direction, `[0, 2π)`.
+    #[inline(never)]
     fn travel(center: V2, ccw: bool, from: V2, to: V2) -> f64 {
         let d = to.minus(center).angle() - from.minus(center).angle();
         wrap_tau(if ccw { d } else { -d })
     }
 
     /// Length of the element along its path (a closed arc is a full circle).
+    #[inline(never)]
     pub fn length(&self) -> f64 {
         match *self {
             Elem::Line { start, end } => end.minus(start).len(),
@@ -177,6 +196,7 @@ impl Elem {
 
     /// How far along the element (0 at the start, path length) the point `p` lies,
     /// `p` being on the element's line or circle.
+    #[inline(never)]
     pub fn along(&self, p: V2) -> f64 {
         match *self {
             Elem::Line { start, end } => p.minus(start).dot(end.minus(start).unit()),

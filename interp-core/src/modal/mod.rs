@@ -261,6 +261,7 @@ pub struct State {
 
 impl State {
     /// The power-on state for machine `cfg` with the axes at machine position `pos`.
+    #[inline(never)]
     pub fn power_on(cfg: &MachineConfig, pos: Pos) -> Self {
         let p = &cfg.params;
         let f0 = p.get(Param::InitialFeed);

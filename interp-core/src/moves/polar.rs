@@ -157,6 +157,7 @@ fn feed(st: &State) -> Result<Feed, AlarmKind> {
 }
 
 /// The polar point (X radius, C µdeg) of a virtual point, C taken nearest to `near`.
+#[inline(never)]
 pub fn to_polar(v: V2, near_udeg: f64) -> (f64, f64) {
     let r = libm::hypot(v.a, v.b);
     let raw = libm::atan2(v.b, v.a).to_degrees() * 1e6;

@@ -200,6 +200,7 @@ impl Path {
         }
     }
 
+    #[inline(never)]
     fn at(&self, t: f64) -> [f64; 3] {
         match self {
             Path::Line { a, b } => core::array::from_fn(|i| a[i] + t * (b[i] - a[i])),

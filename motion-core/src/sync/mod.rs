@@ -110,8 +110,7 @@ impl Gearing {
         let n2 = mul(i128::from(delta), i128::from(steps))?;
         let den = mul(mul(2 * i128::from(per_nm), cpr)?, cpr)?;
         let g = gcd_u128(gcd_u128(n1.unsigned_abs(), n2.unsigned_abs()), den.unsigned_abs()) as i128;
-        let fit = |v: i128| i64::try_from(v / g).map_err(|_| AlarmKind::Overflow);
-        Ok(Gearing { n1: fit(n1)?, n2: fit(n2)?, den: fit(den)? })
+        Ok(Gearing { n1: reduced(n1, g)?, n2: reduced(n2, g)?, den: reduced(den, g)? })
     }
 
     /// Speed at the synchronised start, steps per count (checks and reports only).
@@ -128,6 +127,13 @@ impl Gearing {
     fn scaled(self, f: i64) -> Option<Self> {
         Some(Gearing { n1: self.n1.checked_mul(f)?, n2: self.n2.checked_mul(f)?, den: self.den.checked_mul(f)? })
     }
+}
+
+/// `v / g` as an i64 (alarm 4017 when it does not fit). Out of line: a 128-bit
+/// division inlined three times in `Gearing::new` cost 3 KB of firmware flash.
+#[inline(never)]
+fn reduced(v: i128, g: i128) -> Result<i64, AlarmKind> {
+    i64::try_from(v / g).map_err(|_| AlarmKind::Overflow)
 }
 
 impl From<Ratio> for Gearing {
