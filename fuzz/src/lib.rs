@@ -151,10 +151,10 @@ fn parser_vars() -> &'static interp_core::macros::Variables {
 /// One line through the reader and, when it is an NC block, the block check.
 fn parse_line(line: &[u8], n: u32, fmt: &interp_core::units::NumberFormat) {
     use interp_core::parse::{Block, Read, read_block_into, read_statement_into, skip_level};
-    static CFG: OnceLock<(MachineConfig, interp_core::exec::State)> = OnceLock::new();
+    static CFG: OnceLock<(MachineConfig, interp_core::modal::State)> = OnceLock::new();
     let (cfg, state) = CFG.get_or_init(|| {
         let cfg = MachineConfig::default();
-        let state = interp_core::exec::State::power_on(&cfg, Pos::ZERO);
+        let state = interp_core::modal::State::power_on(&cfg, Pos::ZERO);
         (cfg, state)
     });
     let _ = skip_level(line);

@@ -7,7 +7,7 @@ use std::hint::black_box;
 use std::time::Instant;
 
 use interp_core::canon::{Canon, CanonSink, Full};
-use interp_core::exec::State;
+use interp_core::modal::State;
 use interp_core::{Interpreter, MachineConfig, Panel, Progress, SingleProgram};
 
 /// Counts actions and drops them.

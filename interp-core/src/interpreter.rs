@@ -18,12 +18,14 @@ use crate::axis::Pos;
 use crate::canon::CanonSink;
 use crate::check::{Command, check_into};
 use crate::config::{MachineConfig, Param};
-use crate::cycles::Expansion;
+use crate::cycles::{CycleStage, Expansion};
 use crate::env::Environment;
-use crate::exec::{Flow, Outbox, Staged, State, execute};
+use crate::exec::execute;
 use crate::macros::{MacroStatement, Variables};
+use crate::modal::State;
 use crate::parse::{Block, MacroBlock, Read, read_statement_into, skip_level};
 use crate::program::{Cursor, ProgramId, ProgramStore, ProgramText, find_loop_end, next_block};
+use crate::stage::{Flow, Outbox, Staged};
 use crate::units::NumberFormat;
 
 /// Subprogram nesting: the main program may call 12 levels deep (3.1.6).
@@ -627,8 +629,8 @@ impl Interpreter {
         // cycle is delivered completely before the next block is read), so the
         // expansion is never moved.
         let mut staged = match program {
-            Some(p) => Staged::in_program(self.block.line, &mut self.outbox, p, &mut self.cycle),
-            None => Staged::new(self.block.line, &mut self.outbox),
+            Some(p) => CycleStage::in_program(self.block.line, &mut self.outbox, p, &mut self.cycle),
+            None => CycleStage::new(self.block.line, &mut self.outbox),
         };
         let done = execute(cmd, &mut self.state, &self.cfg, env, &mut staged);
         let faulty = staged.faulty_move;
@@ -671,7 +673,7 @@ impl Interpreter {
     #[inline(never)]
     fn set_aside(
         &mut self,
-        before: &crate::exec::Saved,
+        before: &crate::stage::Saved,
         held: Option<&crate::contour::Contour>,
         block: BlockCycle,
         next: Next,

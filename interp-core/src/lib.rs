@@ -6,8 +6,12 @@
 //! - [`program`]: program text and the cursor that cuts blocks out of it;
 //! - [`parse`]: one block of text into words (syntax), or an evaluated macro
 //!   statement ([`macros`]: variables, expressions, GOTO/IF/WHILE);
+//! - [`modal`]: the modal state a block is read against (below `check`);
 //! - [`check`]: words into a validated command in internal units (meaning);
-//! - [`exec`]: the command applied to the modal state, emitting [`canon`] actions;
+//! - [`stage`], [`moves`], [`contour`], [`cycles`], [`exec`]: the command applied to
+//!   the modal state, emitting [`canon`] actions — staging (all or nothing), the
+//!   move helpers, the contour look-ahead, the canned cycles, and `exec` on top
+//!   dispatching to them (docs/STRUCTURE.md);
 //! - [`interpreter`]: the incremental driver, one NC block (and a bounded number of
 //!   macro statements) per step, with the subprogram and loop stacks.
 //!
@@ -28,9 +32,12 @@ pub mod geom;
 mod head;
 pub mod interpreter;
 pub mod macros;
+pub mod modal;
+pub mod moves;
 pub mod parse;
 pub mod program;
 mod sort;
+pub mod stage;
 
 // The vocabulary shared with the motion core lives in the `canon` crate; its
 // modules are re-exported under their old paths (`interp_core::axis::Pos`,

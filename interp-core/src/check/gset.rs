@@ -5,7 +5,7 @@ use crate::alarm::{AlarmKind, GNum};
 use crate::canon::{FeedMode, Plane};
 use crate::codes::{GCode, Group};
 use crate::config::MachineConfig;
-use crate::exec::State;
+use crate::modal::State;
 use crate::parse::Block;
 use crate::units::Units;
 

@@ -7,25 +7,16 @@ mod gset;
 mod words;
 
 pub use gset::GSet;
+// The `,C`/`,R` request is held by the contour look-ahead: defined with it.
+pub use crate::modal::Corner;
 
 use crate::alarm::AlarmKind;
 use crate::axis::{AXIS_COUNT, Axis};
 use crate::codes::{GCode, MFunction, m_codes_conflict, m_function};
 use crate::config::MachineConfig;
-use crate::exec::State;
+use crate::modal::State;
 use crate::parse::{Block, MAX_M};
 use crate::units::NumberFormat;
-
-/// What `,C` or `,R` asks for at the end of a block's move (2.23).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub enum Corner {
-    /// `,C`: a straight chamfer from the point this far (nm, straight line) before
-    /// the imaginary corner to the point this far after it.
-    Chamfer(i64),
-    /// `,R`: a corner arc of this radius (nm) tangent to both moves.
-    Round(i64),
-}
 
 /// One axis word converted to internal units (X as radius).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -5,7 +5,7 @@ use crate::alarm::AlarmKind;
 use crate::axis::Axis;
 use crate::codes::{GCode, MFunction};
 use crate::config::{MAX_OFFSETS, MachineConfig, Param};
-use crate::exec::State;
+use crate::modal::State;
 use crate::parse::{Block, whole};
 use crate::units::{Number, NumberFormat};
 

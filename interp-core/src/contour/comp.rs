@@ -19,46 +19,9 @@ use super::{Buffer, in_plane, moved_to};
 use crate::alarm::AlarmKind;
 use crate::axis::Pos;
 use crate::canon::{Action, ArcMove, Canon, Move, Plane};
-use crate::exec::Staged;
 use crate::geom::path::{Elem, V2, intersect, nearest, wrap_tau};
-
-/// G41 or G42.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub enum Side {
-    /// G41: the tool left of the direction of travel.
-    Left,
-    /// G42: the tool right of it.
-    Right,
-}
-
-/// The compensation's own state in the contour layer.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct Comp {
-    /// G41/G42 in force (`None` = G40).
-    pub side: Option<Side>,
-    /// Nose radius (nm), taken when the offset starts up.
-    pub radius: i64,
-    /// Imaginary tip direction 0–9.
-    pub tip: u8,
-    /// The plane the offset works in.
-    pub plane: Plane,
-    /// Whether the tool is on the offset path; `false` before start-up and after a
-    /// temporary cancel (the next move starts up again).
-    pub engaged: bool,
-    /// Nose-centre start (plane, nm) of the held move.
-    pub centre: (i64, i64),
-    /// The held move is the start-up move (it starts off the offset path: no
-    /// interference check on it).
-    pub starting: bool,
-}
-
-impl Default for Comp {
-    fn default() -> Self {
-        Comp { side: None, radius: 0, tip: 0, plane: Plane::Zx, engaged: false, centre: (0, 0), starting: false }
-    }
-}
+pub use crate::modal::lookahead::{Comp, Side};
+use crate::stage::Staged;
 
 /// Most vertices one corner inserts between two elements.
 const MIDS: usize = 3;

@@ -13,7 +13,7 @@
 //!
 //! The held actions live in the [`State`] (fixed arrays, no allocation), so they
 //! follow the interpreter's rule that a failed block is undone: a block that
-//! raises an alarm leaves the held moves exactly as they were ([`Contour::save`]
+//! raises an alarm leaves the held moves exactly as they were ([`State::save`]
 //! copies them only while a move is held). All geometry is
 //! done in machine coordinates (the path the tool really follows) with f64
 //! ([`crate::geom::path`]), results rounded to whole nanometres.
@@ -23,175 +23,17 @@ mod corner;
 pub mod cycle;
 
 pub use comp::{Comp, Side};
-// The `,C`/`,R` request is a word of the block: checked (and defined) in `check`.
-pub use crate::check::Corner;
+// The look-ahead's data is part of the modal state, below `check`.
+pub use crate::modal::lookahead::{Buffer, Contour, Corner, HOLD, Marks};
 
 use crate::alarm::AlarmKind;
 use crate::axis::{Axis, Pos};
 use crate::canon::{Action, Canon, Endpoint, Plane};
 use crate::check::Command;
 use crate::codes::GCode;
-use crate::exec::{Flow, STAGE, Staged, State};
 use crate::geom::path::V2;
-
-/// Most non-motion actions one stage holds behind its move (a G04 between a
-/// chamfered block and its follower, M codes of blocks without motion …).
-pub const HOLD: usize = 4;
-
-/// A non-motion action waiting behind a held move, kept small (the state is
-/// copied for every block).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-enum Aside {
-    Dwell { ms: u32 },
-    Spindle(crate::canon::SpindleCommand),
-    Tool { tool: u16, offset: u16 },
-    Aux { m: u16 },
-    Stop { optional: bool },
-    End { rewind: bool },
-    Polygon(Option<crate::canon::PolygonSync>),
-}
-
-impl Aside {
-    fn of(a: &Action) -> Option<Aside> {
-        Some(match *a {
-            Action::Dwell { ms } => Aside::Dwell { ms },
-            Action::Spindle(s) => Aside::Spindle(s),
-            Action::Tool { tool, offset } => Aside::Tool { tool, offset },
-            Action::Aux { m } => Aside::Aux { m },
-            Action::Stop { optional } => Aside::Stop { optional },
-            Action::End { rewind } => Aside::End { rewind },
-            Action::Polygon(p) => Aside::Polygon(p),
-            _ => return None,
-        })
-    }
-
-    fn action(self) -> Action {
-        match self {
-            Aside::Dwell { ms } => Action::Dwell { ms },
-            Aside::Spindle(s) => Action::Spindle(s),
-            Aside::Tool { tool, offset } => Action::Tool { tool, offset },
-            Aside::Aux { m } => Action::Aux { m },
-            Aside::Stop { optional } => Action::Stop { optional },
-            Aside::End { rewind } => Action::End { rewind },
-            Aside::Polygon(p) => Action::Polygon(p),
-        }
-    }
-}
-
-/// One stage's buffer: a held move, where it starts, and the actions after it.
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct Buffer {
-    /// The held move.
-    held: Option<Canon>,
-    /// Machine position where the held move starts (as programmed).
-    start: Pos,
-    /// The actions after it (with their lines), in order.
-    after: [Option<(u32, Aside)>; HOLD],
-}
-
-impl Default for Buffer {
-    fn default() -> Self {
-        Buffer { held: None, start: Pos::ZERO, after: [None; HOLD] }
-    }
-}
-
-impl Buffer {
-    /// Whether a move is held back.
-    pub fn is_holding(&self) -> bool {
-        self.held.is_some()
-    }
-
-    fn hold(&mut self, c: Canon, start: Pos) {
-        *self = Buffer { held: Some(c), start, after: [None; HOLD] };
-    }
-
-    /// Appends a non-motion action behind the held move (alarm 4044 when full).
-    fn push(&mut self, c: Canon) -> Result<(), AlarmKind> {
-        let aside = Aside::of(&c.action).ok_or(AlarmKind::ContourBufferFull)?;
-        let slot = self.after.iter_mut().find(|s| s.is_none()).ok_or(AlarmKind::ContourBufferFull)?;
-        *slot = Some((c.line, aside));
-        Ok(())
-    }
-
-    /// Takes the held move and the actions after it, leaving the buffer empty.
-    fn take(&mut self) -> (Option<Canon>, impl Iterator<Item = Canon> + use<>) {
-        let (held, after) = (self.held, self.after);
-        *self = Buffer::default();
-        (held, after.into_iter().flatten().map(|(line, a)| Canon { line, action: a.action() }))
-    }
-}
-
-/// The look-ahead of both stages.
-#[derive(Clone, Copy, Debug, PartialEq, Default)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct Contour {
-    /// Stage 1: the move waiting for its chamfer or corner R.
-    shape: Buffer,
-    /// The corner requested at the end of stage 1's held move.
-    corner: Option<Corner>,
-    /// Blocks without motion read since stage 1's held move (2.23 note 2 allows one G04).
-    idle_blocks: u8,
-    /// Stage 2: the move waiting for its compensated corner.
-    offset: Buffer,
-    /// Nose radius compensation in force.
-    pub comp: Comp,
-    /// Compensation suppressed: G71–G73 read their shape without it (2.16.7 note 5).
-    pub no_comp: bool,
-}
-
-// Every field compares exactly (integers only).
-impl Eq for Contour {}
-
-impl Contour {
-    /// Whether a move is held back in either stage.
-    pub fn is_holding(&self) -> bool {
-        self.shape.is_holding() || self.offset.is_holding()
-    }
-
-    /// The corner the held move waits for, if any.
-    pub fn pending_corner(&self) -> Option<Corner> {
-        self.corner
-    }
-
-    /// Drops everything held and cancels compensation (rewind, reset).
-    pub fn clear(&mut self) {
-        *self = Contour::default();
-    }
-
-    /// The small fields [`Contour::restore`] needs to undo a block. While a move
-    /// is held, the caller keeps a copy of the whole look-ahead as well.
-    pub fn marks(&self) -> Marks {
-        Marks { corner: self.corner, idle_blocks: self.idle_blocks, comp: self.comp, no_comp: self.no_comp }
-    }
-
-    /// Puts the look-ahead back as it was when `marks` were taken: `held` is the
-    /// copy taken then if a move was held; otherwise both buffers were empty.
-    pub fn restore(&mut self, marks: &Marks, held: Option<&Contour>) {
-        if let Some(c) = held {
-            *self = *c;
-            return;
-        }
-        if self.is_holding() {
-            self.shape = Buffer::default();
-            self.offset = Buffer::default();
-        }
-        self.corner = marks.corner;
-        self.idle_blocks = marks.idle_blocks;
-        self.comp = marks.comp;
-        self.no_comp = marks.no_comp;
-    }
-}
-
-/// The small fields of a [`Contour`], to undo a block (see [`Contour::marks`]).
-#[derive(Clone, Copy, Debug)]
-pub struct Marks {
-    corner: Option<Corner>,
-    idle_blocks: u8,
-    comp: Comp,
-    no_comp: bool,
-}
+use crate::modal::State;
+use crate::stage::{Flow, STAGE, Staged};
 
 /// The corner a block asks for, checked against 2.23 notes 1, 7 and 8: thread
 /// blocks refuse `,C`/`,R` (alarm 0050), group 00 codes other than G04 may not share
@@ -386,7 +228,7 @@ pub fn after_block(
         // The shaped and offset points must respect the soft limits too.
         for c in out.actions.iter() {
             if let Some(e) = c.action.endpoint() {
-                crate::exec::motion::check_limits(&e.machine, cfg)?;
+                crate::moves::motion::check_limits(&e.machine, cfg)?;
             }
         }
     }

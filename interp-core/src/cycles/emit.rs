@@ -9,7 +9,8 @@ use crate::canon::{
     Action, ArcMove, Canon, Feed, FeedMode, Move, Plane, SpindleCommand, SpindleDir, TapMove, ThreadMove, ThreadSync,
 };
 use crate::config::MachineConfig;
-use crate::exec::{State, motion, spindle_speed};
+use crate::modal::State;
+use crate::moves::{motion, spindle_speed};
 
 /// A point of the ZX plane in work coordinates: X as a radius, nm.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -142,12 +143,12 @@ impl Out for Dry {
     }
 }
 
-impl Out for crate::exec::Staged<'_> {
+impl Out for crate::stage::Staged<'_> {
     fn put(&mut self, c: Canon) -> Result<(), AlarmKind> {
         self.actions.push_back(c).map_err(|_| AlarmKind::Overflow)
     }
     fn room(&self) -> usize {
-        crate::exec::STAGE - self.actions.len()
+        crate::stage::STAGE - self.actions.len()
     }
 }
 
@@ -246,7 +247,7 @@ impl Emitter {
             }
         };
         if let Some(area) = self.st.stroke {
-            crate::exec::stroke::check_move(&area, self.st.pos, &action)?;
+            crate::moves::stroke::check_move(&area, self.st.pos, &action)?;
         }
         if let Some(e) = action.endpoint() {
             self.st.pos = e.machine;

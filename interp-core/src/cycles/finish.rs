@@ -2,13 +2,12 @@
 //! effect — one block per refill through the normal check/exec pipeline, then a
 //! rapid back to the start point.
 
-use super::StepQueue;
 use super::emit::{Emitter, Out, Pt, Step};
 use super::profile::{ShapeSource, next_shape_block, run_shape_block};
+use super::{CycleStage, Execute, StepQueue};
 use crate::alarm::AlarmKind;
 use crate::config::MachineConfig;
 use crate::env::Environment;
-use crate::exec::Staged;
 use crate::program::Cursor;
 
 /// Where G70 is in its blocks.
@@ -20,12 +19,27 @@ pub struct FinishGen {
     first: bool,
     start: Pt,
     done: bool,
+    /// How the blocks are executed (`exec::execute`).
+    execute: ExecuteFn,
 }
 
+/// [`Execute`] kept in the generator: the same when it is the same function.
+#[derive(Clone, Copy, Debug)]
+struct ExecuteFn(Execute);
+
+impl PartialEq for ExecuteFn {
+    fn eq(&self, other: &Self) -> bool {
+        core::ptr::fn_addr_eq(self.0, other.0)
+    }
+}
+
+impl Eq for ExecuteFn {}
+
 impl FinishGen {
-    /// G70 reading from block ns at `cur`, returning to `start`.
-    pub fn new(cur: Cursor, ns: u32, nf: u32, start: Pt) -> Self {
-        FinishGen { cur, ns, nf, first: true, start, done: false }
+    /// G70 reading from block ns at `cur`, returning to `start`, running the
+    /// blocks through `execute`.
+    pub fn new(cur: Cursor, ns: u32, nf: u32, start: Pt, execute: Execute) -> Self {
+        FinishGen { cur, ns, nf, first: true, start, done: false, execute: ExecuteFn(execute) }
     }
 
     /// Runs the next block into `out` (which has room for a whole block); after nf
@@ -46,9 +60,9 @@ impl FinishGen {
         let Some(sb) = next_shape_block(&src, &mut self.cur, env)? else {
             return Err(AlarmKind::SequenceNotFound { n: self.nf });
         };
-        let mut outbox = crate::exec::Outbox::new();
-        let mut staged = Staged::new(em.line, &mut outbox);
-        run_shape_block(&sb, self.first, &mut em.st, cfg, env, &mut staged)?;
+        let mut outbox = crate::stage::Outbox::new();
+        let mut staged = CycleStage::new(em.line, &mut outbox);
+        run_shape_block(&sb, self.first, &mut em.st, cfg, env, self.execute.0, &mut staged)?;
         if sb.last {
             crate::contour::flush(&mut em.st, &mut staged)?;
         }

@@ -45,7 +45,8 @@ use crate::check::cycle_args as args;
 use crate::codes::GCode;
 use crate::config::{MachineConfig, Param};
 use crate::env::Environment;
-use crate::exec::{RigidTap, Staged, State};
+use crate::modal::{RigidTap, State};
+use crate::stage::{Flow, Outbox, Staged};
 use emit::Dry;
 use finish::FinishGen;
 use groove::GrooveGen;
@@ -120,7 +121,7 @@ impl Expansion {
 
     /// Moves the block's actions staged after the cycle's place (`split`) out of
     /// `outbox`, to deliver them after the cycle's last move.
-    pub fn take_tail(&mut self, outbox: &mut crate::exec::Outbox, split: usize) {
+    pub fn take_tail(&mut self, outbox: &mut Outbox, split: usize) {
         let mut tail: heapless::Vec<Canon, TAIL> = heapless::Vec::new();
         while outbox.len() > split {
             // At most the block's after-motion actions (M codes, M05, M30): they fit.
@@ -164,7 +165,7 @@ impl Expansion {
                         false
                     }
                     Gen::Finish(f) => {
-                        if out.room() < crate::exec::STAGE {
+                        if out.room() < crate::stage::STAGE {
                             return Ok(false);
                         }
                         f.step(&mut self.em, cfg, program, env, out, &mut self.queue)?
@@ -203,7 +204,80 @@ pub struct Ctx<'a, 'b> {
     /// Switches.
     pub env: &'a dyn Environment,
     /// The block's stage (program text, expansion slot, parameter writes).
-    pub out: &'a mut Staged<'b>,
+    pub out: &'a mut CycleStage<'b>,
+}
+
+/// Executes a checked block on the state, staging its actions: `exec::execute`,
+/// handed down to the cycles that run the blocks of a shape (the cycles sit below
+/// `exec`, which dispatches to them).
+pub type Execute =
+    fn(&Command, &mut State, &MachineConfig, &dyn Environment, &mut CycleStage<'_>) -> Result<Flow, AlarmKind>;
+
+/// How blocks are executed, given to [`execute`] as a type by `exec`
+/// (`exec::Blocks`): G70–G73 run their shape's blocks through it. A type and not a
+/// value, so that a block that is no cycle carries nothing for it.
+pub trait Executor {
+    /// Executes `cmd` on `st`, staging the actions in `out` (an [`Execute`]).
+    fn execute(
+        cmd: &Command,
+        st: &mut State,
+        cfg: &MachineConfig,
+        env: &dyn Environment,
+        out: &mut CycleStage<'_>,
+    ) -> Result<Flow, AlarmKind>;
+}
+
+/// A block's [`Staged`] actions with the interpreter's expansion slot, where a
+/// cycle the block starts goes. Derefs to the [`Staged`] actions.
+#[derive(Debug)]
+pub struct CycleStage<'a> {
+    /// The block's staged actions.
+    pub staged: Staged<'a>,
+    /// Where a cycle started by this block goes (the interpreter's expansion slot);
+    /// `None` where no cycle may start (inside a cycle's own blocks).
+    slot: Option<&'a mut Option<Expansion>>,
+}
+
+impl<'a> CycleStage<'a> {
+    /// Stages the actions of the block on `line` in `outbox` (no cycle may start).
+    pub fn new(line: u32, outbox: &'a mut Outbox) -> Self {
+        CycleStage { staged: Staged::new(line, outbox), slot: None }
+    }
+
+    /// A stage for a block of `program` that may start a cycle into `slot`.
+    pub fn in_program(
+        line: u32,
+        outbox: &'a mut Outbox,
+        program: crate::program::ProgramText<'a>,
+        slot: &'a mut Option<Expansion>,
+    ) -> Self {
+        let mut staged = Staged::new(line, outbox);
+        staged.program = program;
+        CycleStage { staged, slot: Some(slot) }
+    }
+
+    /// The interpreter's expansion slot, for the block's cycle to be built in place
+    /// (an expansion is ~5 KB: built here it is never moved through the frames of
+    /// its callers, which are on the stack under the shape's blocks). The cycle's
+    /// moves come after the actions staged so far.
+    pub fn cycle_slot(&mut self) -> Result<&mut Option<Expansion>, AlarmKind> {
+        let slot = self.slot.as_deref_mut().ok_or(AlarmKind::ProfileForbiddenCode { what: "a cycle" })?;
+        self.staged.split = Some(self.staged.actions.len());
+        Ok(slot)
+    }
+}
+
+impl<'a> core::ops::Deref for CycleStage<'a> {
+    type Target = Staged<'a>;
+    fn deref(&self) -> &Staged<'a> {
+        &self.staged
+    }
+}
+
+impl<'a> core::ops::DerefMut for CycleStage<'a> {
+    fn deref_mut(&mut self) -> &mut Staged<'a> {
+        &mut self.staged
+    }
 }
 
 /// Bookkeeping before a block runs: the thread chain, the clearing of retained
@@ -264,7 +338,12 @@ pub fn cycle_of(cmd: &Command, st: &State) -> Option<GCode> {
 
 /// Executes the block's cycle, if it has one; false if the block is not a cycle
 /// block (plain motion goes on as usual).
-pub fn execute(cmd: &Command, st: &mut State, ctx: &mut Ctx<'_, '_>, chained: bool) -> Result<bool, AlarmKind> {
+pub fn execute<X: Executor>(
+    cmd: &Command,
+    st: &mut State,
+    ctx: &mut Ctx<'_, '_>,
+    chained: bool,
+) -> Result<bool, AlarmKind> {
     let Some(code) = cycle_of(cmd, st) else { return Ok(false) };
     if args::is_thread(code) {
         single::thread_block(cmd, st, ctx, chained)?;
@@ -290,14 +369,14 @@ pub fn execute(cmd: &Command, st: &mut State, ctx: &mut Ctx<'_, '_>, chained: bo
                 start_cycle(Emitter::new(*st, cmd.line), generator, ctx.out)?;
             }
         }
-        _ => multiple(code, cmd, st, ctx)?,
+        _ => multiple::<X>(code, cmd, st, ctx)?,
     }
     Ok(true)
 }
 
 /// G70–G76: the setup blocks write their parameters, the cycles start their
 /// expansion (G71–G73 read their shape straight into it).
-fn multiple(code: GCode, cmd: &Command, st: &mut State, ctx: &mut Ctx<'_, '_>) -> Result<(), AlarmKind> {
+fn multiple<X: Executor>(code: GCode, cmd: &Command, st: &mut State, ctx: &mut Ctx<'_, '_>) -> Result<(), AlarmKind> {
     use CycleArgs::{Finish, Groove, GrooveSetup, MultiThread, PatternSetup, RoughSetup, Shape, ThreadSetup};
     let cfg = ctx.cfg;
     let p = |id| cfg.params.get(id);
@@ -331,14 +410,14 @@ fn multiple(code: GCode, cmd: &Command, st: &mut State, ctx: &mut Ctx<'_, '_>) -
         }
         Finish { ns, nf } => {
             let src = ShapeSource { program: ctx.out.program, ns, nf };
-            Gen::Finish(FinishGen::new(profile::start_of(&src)?, ns, nf, here))
+            Gen::Finish(FinishGen::new(profile::start_of(&src)?, ns, nf, here, X::execute))
         }
         Shape { ns, nf, du, dw } => {
             let (src, env) = (ShapeSource { program: ctx.out.program, ns, nf }, ctx.env);
             // The shape is read straight into the expansion (its generator follows).
             let exp = start_cycle(em, Gen::Plan(heapless::Vec::new()), ctx.out)?;
             let shape = &mut exp.profile;
-            profile::read_profile(&src, st, cfg, env, shape)?;
+            profile::read_profile(&src, st, cfg, env, X::execute, shape)?;
             let allowance = Pt::new(du, dw);
             exp.generator = if code == GCode::PatternCycle {
                 let count = u32::try_from(p(Param::PatternDivisions)).unwrap_or(0);
@@ -389,7 +468,12 @@ fn multiple(code: GCode, cmd: &Command, st: &mut State, ctx: &mut Ctx<'_, '_>) -
 }
 
 /// G02.1/G03.1 and G02.2/G03.2 (2.4, 2.5): the curve's cuts as an expansion.
-pub fn curve_block(cmd: &Command, st: &mut State, cfg: &MachineConfig, out: &mut Staged<'_>) -> Result<(), AlarmKind> {
+pub fn curve_block(
+    cmd: &Command,
+    st: &mut State,
+    cfg: &MachineConfig,
+    out: &mut CycleStage<'_>,
+) -> Result<(), AlarmKind> {
     use GCode::*;
     if st.modal.plane != Plane::Zx {
         return Err(AlarmKind::CycleNotInZxPlane);
@@ -421,14 +505,14 @@ pub fn curve_block(cmd: &Command, st: &mut State, cfg: &MachineConfig, out: &mut
 /// Polar interpolation (2.7): the virtual moves the contour layer let out for this
 /// block become an expansion of real X/C moves. Actions before the first move stay
 /// before it; the others follow the moves.
-pub fn polar_block(st: &mut State, cfg: &MachineConfig, out: &mut Staged<'_>) -> Result<(), AlarmKind> {
+pub fn polar_block(st: &mut State, cfg: &MachineConfig, out: &mut CycleStage<'_>) -> Result<(), AlarmKind> {
     if !out.actions.iter().any(|c| c.action.endpoint().is_some()) {
         return Ok(());
     }
     let mut moves: heapless::Vec<Canon, { polar::MOVES }> = heapless::Vec::new();
-    let mut after: heapless::Vec<Canon, { crate::exec::STAGE }> = heapless::Vec::new();
+    let mut after: heapless::Vec<Canon, { crate::stage::STAGE }> = heapless::Vec::new();
     let mut before = 0;
-    let all: heapless::Vec<Canon, { crate::exec::STAGE }> = out.actions.iter().copied().collect();
+    let all: heapless::Vec<Canon, { crate::stage::STAGE }> = out.actions.iter().copied().collect();
     out.actions.clear();
     for c in all {
         if c.action.endpoint().is_some() {
@@ -452,7 +536,7 @@ pub fn polar_block(st: &mut State, cfg: &MachineConfig, out: &mut Staged<'_>) ->
 
 /// The block's X/Z target in work coordinates.
 fn target(cmd: &Command, st: &State, cfg: &MachineConfig) -> Result<Pt, AlarmKind> {
-    let w = crate::exec::motion::target(cmd, st, cfg)?;
+    let w = crate::moves::motion::target(cmd, st, cfg)?;
     Ok(Pt::new(w[crate::axis::Axis::X], w[crate::axis::Axis::Z]))
 }
 
@@ -469,7 +553,7 @@ fn write(ctx: &mut Ctx<'_, '_>, id: Param, v: Option<i64>) -> Result<(), AlarmKi
 /// (never inlined: the ~5 KB value it builds stays out of the callers' frames,
 /// which are on the stack while a shape's blocks run).
 #[inline(never)]
-fn start_cycle<'s>(em: Emitter, generator: Gen, out: &'s mut Staged<'_>) -> Result<&'s mut Expansion, AlarmKind> {
+fn start_cycle<'s>(em: Emitter, generator: Gen, out: &'s mut CycleStage<'_>) -> Result<&'s mut Expansion, AlarmKind> {
     Ok(out.cycle_slot()?.insert(Expansion::new(em, generator, Profile::default())))
 }
 

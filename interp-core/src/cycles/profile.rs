@@ -4,6 +4,7 @@
 //! (points along a segment, crossings with a level, extents).
 
 use super::emit::Pt;
+use super::{CycleStage, Execute};
 use crate::alarm::AlarmKind;
 use crate::axis::Axis;
 use crate::canon::{Action, SpindleDir};
@@ -11,9 +12,10 @@ use crate::check::check;
 use crate::codes::{GCode, MFunction};
 use crate::config::MachineConfig;
 use crate::env::Environment;
-use crate::exec::{Flow, Staged, State, execute};
+use crate::modal::State;
 use crate::parse::{Block, Read, read_with};
 use crate::program::{Cursor, ProgramText, find_sequence_from, next_block};
+use crate::stage::Flow;
 
 /// Most segments a finishing shape may have (alarm 4035 beyond).
 pub const PROFILE_MAX: usize = 48;
@@ -274,14 +276,15 @@ pub fn check_shape_command(cmd: &crate::check::Command, first: bool) -> Result<(
     Ok(())
 }
 
-/// Runs one shape block on `st` through check and exec into `staged`.
+/// Runs one shape block on `st` through check and `execute` (exec) into `staged`.
 pub fn run_shape_block<E: Environment + ?Sized>(
     sb: &ShapeBlock,
     first: bool,
     st: &mut State,
     cfg: &MachineConfig,
     env: &E,
-    staged: &mut Staged<'_>,
+    execute: Execute,
+    staged: &mut CycleStage<'_>,
 ) -> Result<crate::check::Command, AlarmKind> {
     let units = |t: &u16| matches!(GCode::from_tenths(cfg.gcode_system, *t), Some(GCode::Inch | GCode::Metric));
     if sb.block.g.iter().any(units) {
@@ -325,6 +328,7 @@ pub fn read_profile<E: Environment + ?Sized>(
     st: &State,
     cfg: &MachineConfig,
     env: &E,
+    execute: Execute,
     profile: &mut Profile,
 ) -> Result<(), AlarmKind> {
     let mut scratch = *st;
@@ -342,13 +346,13 @@ pub fn read_profile<E: Environment + ?Sized>(
     let mut first = true;
     loop {
         let Some(sb) = next_shape_block(src, &mut cur, env)? else { break };
-        let mut outbox = crate::exec::Outbox::new();
-        let mut staged = Staged::new(sb.block.line, &mut outbox);
+        let mut outbox = crate::stage::Outbox::new();
+        let mut staged = CycleStage::new(sb.block.line, &mut outbox);
         let here = scratch.work_pos(cfg);
         // A move held back for a corner (2.23) comes out with this block: it
         // starts where the last segment ended.
         let held = scratch.contour.is_holding();
-        let cmd = run_shape_block(&sb, first, &mut scratch, cfg, env, &mut staged)?;
+        let cmd = run_shape_block(&sb, first, &mut scratch, cfg, env, execute, &mut staged)?;
         if first {
             profile.ns_x = cmd.axes[Axis::X.index()].is_some();
             profile.ns_z = cmd.axes[Axis::Z.index()].is_some();

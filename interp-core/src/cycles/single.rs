@@ -13,7 +13,8 @@ use crate::check::Command;
 use crate::codes::GCode;
 use crate::config::{MachineConfig, Param};
 use crate::contour::cycle::{Nose, single};
-use crate::exec::{RigidTap, SingleMemory, State, motion};
+use crate::modal::{RigidTap, SingleMemory, State};
+use crate::moves::motion;
 
 /// G90/G94/G92: the end point and taper, completed from the retained values when
 /// the block does not repeat the cycle code (2.15 note 2); `None` without axis words.
@@ -144,7 +145,7 @@ pub fn thread_block(cmd: &Command, st: &mut State, ctx: &mut Ctx<'_, '_>, chaine
         check_variable_lead(lead, delta, to.get(long) - from.get(long), max)?;
     }
     let angle = if chained { 0 } else { start_udeg.unwrap_or(0) };
-    em.emit(super::thread::single(to, lead, delta, angle, chained), ctx.cfg, ctx.out)?;
+    em.emit(super::thread::single(to, lead, delta, angle, chained), ctx.cfg, &mut ctx.out.staged)?;
     *st = State { cycle: st.cycle, ..em.st };
     st.cycle.thread_chain = true;
     Ok(())

@@ -1,14 +1,15 @@
 //! Coordinate systems: G50 coordinate setting, G52 local frame, G53 machine
 //! coordinates, G28/G30 reference returns (2.11, 2.12).
 
-use super::motion::{endpoint, rapid_to, target};
-use super::{Staged, State};
 use crate::alarm::AlarmKind;
 use crate::axis::Axis;
 use crate::canon::Endpoint;
 use crate::check::Command;
 use crate::config::{MachineConfig, Param};
 use crate::env::Environment;
+use crate::modal::State;
+use crate::moves::motion::{endpoint, rapid_to, target};
+use crate::stage::Staged;
 
 /// G50 X/Z (U/W): the current point gets the given work coordinates by shifting
 /// all six work frames alike (2.12.2 notes 3–4); the local frame of an axis named

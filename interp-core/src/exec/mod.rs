@@ -1,133 +1,23 @@
 //! Execution: a checked [`Command`] applied to the [`State`], emitting canonical
 //! actions in the order the control performs them. Runs on the state in place;
 //! the caller undoes the block ([`State::save`], [`State::restore`]) unless the
-//! whole block succeeded.
+//! whole block succeeded. The top of the execution layers: it dispatches to the
+//! cycles, the contour look-ahead and the move helpers ([`crate::moves`]) below it.
 
 mod coords;
-pub(crate) mod motion;
-pub mod polar;
 mod polygon;
-mod spindle;
-mod state;
-pub mod stroke;
-
-pub use spindle::spindle_speed;
-pub use state::{
-    CycleMemory, FeedMemory, Frames, HoleMemory, Modal, RigidTap, Saved, SingleMemory, SpindleState, State, ToolState,
-};
 
 use crate::alarm::AlarmKind;
 use crate::axis::Pos;
-use crate::canon::{Action, Canon, SpindleDir};
+use crate::canon::Action;
 use crate::check::{Command, FlowWord};
 use crate::codes::{GCode, MFunction};
-use crate::config::{MTiming, MachineConfig, Param, ToolOffset};
-use crate::cycles::{self, Expansion};
+use crate::config::{MTiming, MachineConfig, ToolOffset};
+use crate::cycles::{self, CycleStage};
 use crate::env::Environment;
-
-/// Most actions one block produces.
-pub const STAGE: usize = 16;
-
-/// The queue a block's actions are staged in. The interpreter runs a block only
-/// when its outbox is empty and empties it again if the block fails, so staged
-/// actions reach the sink only when the whole block succeeded.
-pub type Outbox = heapless::Deque<Canon, STAGE>;
-
-/// Actions of the block being executed, staged in the (empty) outbox, and what a
-/// cycle block hands to the interpreter.
-#[derive(Debug)]
-pub struct Staged<'a> {
-    line: u32,
-    /// The staged actions, in order.
-    pub actions: &'a mut Outbox,
-    /// The program the block is in: G70–G73 read their ns–nf blocks from it.
-    pub program: crate::program::ProgramText<'a>,
-    /// Where a cycle started by this block goes (the interpreter's expansion slot);
-    /// `None` where no cycle may start (inside a cycle's own blocks).
-    slot: Option<&'a mut Option<Expansion>>,
-    /// Index in `actions` where the cycle's moves belong: actions staged after it
-    /// (M05, M30 …) are delivered after the cycle.
-    pub split: Option<usize>,
-    /// Parameters the block sets (G71 U(Δd) → 5147 …), written only if it succeeds.
-    pub params: heapless::Vec<(Param, i64), 8>,
-    /// Where the program goes on after the block if not with the next block: after
-    /// the nf block of G71–G73 (the shape's blocks are not executed).
-    pub resume: Option<crate::program::Cursor>,
-    /// Line of a held move that nose compensation found faulty (its offset runs
-    /// against it, 3605) while the block ran: on the alarm the machine stops before
-    /// that move instead of after it ([`crate::contour::stop_on_alarm`]).
-    pub faulty_move: Option<u32>,
-}
-
-impl<'a> Staged<'a> {
-    /// Stages the actions of the block on `line` in `outbox` (no cycle may start).
-    pub fn new(line: u32, outbox: &'a mut Outbox) -> Self {
-        Staged {
-            line,
-            actions: outbox,
-            program: crate::program::ProgramText::NONE,
-            slot: None,
-            split: None,
-            params: heapless::Vec::new(),
-            resume: None,
-            faulty_move: None,
-        }
-    }
-
-    /// A stage for a block of `program` that may start a cycle into `slot`.
-    pub fn in_program(
-        line: u32,
-        outbox: &'a mut Outbox,
-        program: crate::program::ProgramText<'a>,
-        slot: &'a mut Option<Expansion>,
-    ) -> Self {
-        Staged { program, slot: Some(slot), ..Staged::new(line, outbox) }
-    }
-
-    /// The interpreter's expansion slot, for the block's cycle to be built in place
-    /// (an expansion is ~5 KB: built here it is never moved through the frames of
-    /// its callers, which are on the stack under the shape's blocks). The cycle's
-    /// moves come after the actions staged so far.
-    pub fn cycle_slot(&mut self) -> Result<&mut Option<Expansion>, AlarmKind> {
-        let slot = self.slot.as_deref_mut().ok_or(AlarmKind::ProfileForbiddenCode { what: "a cycle" })?;
-        self.split = Some(self.actions.len());
-        Ok(slot)
-    }
-
-    /// Stages one action.
-    pub fn emit(&mut self, action: Action) -> Result<(), AlarmKind> {
-        self.actions.push_back(Canon { line: self.line, action }).map_err(|_| AlarmKind::Overflow)
-    }
-}
-
-/// What the interpreter does after a block.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub enum Flow {
-    /// Go on with the next block.
-    Continue,
-    /// M00, or M01 with the optional-stop switch on: wait for cycle start.
-    Stop,
-    /// M02/M30.
-    End,
-    /// M98: call subprogram `program` `repeats` times, after the block's other codes.
-    Call {
-        /// O number.
-        program: u32,
-        /// Repetitions.
-        repeats: u16,
-    },
-    /// M99: return to the caller (at sequence `seq`), or restart a main program.
-    Return {
-        /// Sequence number in the caller.
-        seq: Option<u32>,
-    },
-    /// M91/M92 whose input condition held: go to sequence `seq`.
-    Jump {
-        /// Sequence number in this program.
-        seq: u32,
-    },
-}
+use crate::modal::{State, ToolState};
+use crate::moves::{motion, polar, spindle, stroke};
+use crate::stage::{Flow, Staged};
 
 /// Executes `cmd` on `st`, staging the actions in `out`.
 pub fn execute(
@@ -135,7 +25,7 @@ pub fn execute(
     st: &mut State,
     cfg: &MachineConfig,
     env: &dyn Environment,
-    out: &mut Staged<'_>,
+    out: &mut CycleStage<'_>,
 ) -> Result<Flow, AlarmKind> {
     polar::check_codes(cmd, st)?;
     polygon::check_block(cmd, st)?;
@@ -159,8 +49,8 @@ pub fn execute(
         _ if st.polar.is_some() => polar::execute(cmd, st, cfg, out)?,
         _ => {
             let mut ctx = cycles::Ctx { cfg, env, out };
-            if !cycles::execute(cmd, st, &mut ctx, chained)? {
-                motion::execute(cmd, st, cfg, ctx.out)?;
+            if !cycles::execute::<Blocks>(cmd, st, &mut ctx, chained)? {
+                motion_or_curve(cmd, st, cfg, ctx.out)?;
             }
         }
     }
@@ -183,6 +73,36 @@ pub fn execute(
         cycles::polar_block(st, cfg, out)?;
     }
     Ok(flow)
+}
+
+/// [`execute`] for the cycles below, which run the blocks of a G70–G73 shape.
+pub struct Blocks;
+
+impl cycles::Executor for Blocks {
+    fn execute(
+        cmd: &Command,
+        st: &mut State,
+        cfg: &MachineConfig,
+        env: &dyn Environment,
+        out: &mut CycleStage<'_>,
+    ) -> Result<Flow, AlarmKind> {
+        execute(cmd, st, cfg, env, out)
+    }
+}
+
+/// Executes the block's motion in the modal motion mode: G02.1/G03.1 and
+/// G02.2/G03.2 (with axis words) as a curve expansion, the others as moves.
+fn motion_or_curve(
+    cmd: &Command,
+    st: &mut State,
+    cfg: &MachineConfig,
+    out: &mut CycleStage<'_>,
+) -> Result<(), AlarmKind> {
+    let code = st.modal.motion;
+    if matches!(code, GCode::EllipseCw | GCode::EllipseCcw | GCode::ParabolaCw | GCode::ParabolaCcw) {
+        return if cmd.has_axes() { cycles::curve_block(cmd, st, cfg, out) } else { Ok(()) };
+    }
+    motion::execute(cmd, st, cfg, out)
 }
 
 /// Modal codes that govern how the rest of the block is read.
@@ -284,14 +204,4 @@ fn program_flow(
             if level == high { Flow::Jump { seq } } else { Flow::Continue }
         }
     })
-}
-
-/// Direction a spindle M code commands, if it is one.
-pub(crate) fn spindle_dir(f: MFunction) -> Option<SpindleDir> {
-    match f {
-        MFunction::SpindleCw => Some(SpindleDir::Cw),
-        MFunction::SpindleCcw => Some(SpindleDir::Ccw),
-        MFunction::SpindleStop => Some(SpindleDir::Stop),
-        _ => None,
-    }
 }

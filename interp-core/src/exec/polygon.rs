@@ -12,13 +12,15 @@
 //! G51.2 in G12.1 (0221: the spindle or C in position control for something else,
 //! notes 6 and 9); no C axis (4047).
 
-use super::{Staged, State, motion, spindle_speed};
 use crate::alarm::AlarmKind;
 use crate::axis::Axis;
 use crate::canon::{Action, Endpoint, Move, PolygonSync, SpindleCommand, SpindleDir};
 use crate::check::Command;
 use crate::check::cycle_args::CycleArgs;
 use crate::config::MachineConfig;
+use crate::modal::State;
+use crate::moves::{motion, spindle_speed};
+use crate::stage::Staged;
 
 /// One turn of C, µdeg.
 const TURN_UDEG: i64 = 360_000_000;

@@ -11,39 +11,19 @@
 //! that the real path stays within the chord tolerance of the Cartesian one, each
 //! with the feed that makes the Cartesian (tangential) speed F (note 5).
 
-use super::{Staged, State};
 use crate::alarm::{AlarmKind, GNum};
-use crate::axis::{Axis, Pos};
+use crate::axis::Axis;
 use crate::canon::{Action, ArcMove, Endpoint, Feed, FeedMode, Move, Plane, SpindleDir};
 use crate::check::Command;
 use crate::codes::GCode;
 use crate::config::MachineConfig;
 use crate::geom::{center_from_radius, path::V2};
-
-/// Polar interpolation in force.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct Polar {
-    /// The plane before G12.1, restored by G13.1 (note 2).
-    pub plane: Plane,
-    /// The programmed point in the polar plane: x (radius, nm), c (nm), work Z.
-    pub x: i64,
-    /// Second coordinate of the polar plane, nm.
-    pub c: i64,
-    /// Z (work), nm.
-    pub z: i64,
-}
-
-impl Polar {
-    /// The programmed point as a virtual position (X, Y = c, Z).
-    pub fn virtual_pos(&self) -> Pos {
-        Pos([self.x, self.c, self.z, 0])
-    }
-}
+use crate::modal::{Polar, State};
+use crate::stage::Staged;
 
 /// G12.1 / G13.1 of the block (they stand alone, note 4 lists what may follow):
 /// returns true when the block was one of them.
-pub(super) fn mode_change(cmd: &Command, st: &mut State, cfg: &MachineConfig) -> Result<bool, AlarmKind> {
+pub(crate) fn mode_change(cmd: &Command, st: &mut State, cfg: &MachineConfig) -> Result<bool, AlarmKind> {
     let Some(on) = cmd.g.polar else { return Ok(false) };
     if st.modal.nose_comp != GCode::NoseCompOff || st.contour.comp.side.is_some() {
         // Note 8: only in G40.
@@ -100,7 +80,7 @@ pub(crate) fn check_codes(cmd: &Command, st: &State) -> Result<(), AlarmKind> {
 
 /// A G01/G02/G03 block in the polar plane: the virtual move, staged for the
 /// contour layer; the programmed point moves on.
-pub(super) fn execute(
+pub(crate) fn execute(
     cmd: &Command,
     st: &mut State,
     cfg: &MachineConfig,

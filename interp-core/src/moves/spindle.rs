@@ -1,13 +1,14 @@
 //! Spindle speed: S, G96/G97, G50 S clamp and gears (2.19), and the spindle
 //! actions of M03/M04/M05.
 
-use super::{Staged, State, spindle_dir};
 use crate::alarm::AlarmKind;
 use crate::axis::Axis;
 use crate::canon::{Action, SpindleCommand, SpindleDir, SpindleSpeed, css_rpm};
 use crate::check::Command;
-use crate::codes::GCode;
+use crate::codes::{GCode, MFunction};
 use crate::config::MachineConfig;
+use crate::modal::State;
+use crate::stage::Staged;
 use crate::units::{Units, div_round};
 
 /// The speed the control commands with the tool at work X radius `x` (nm):
@@ -33,7 +34,7 @@ pub fn spindle_speed(st: &State, cfg: &MachineConfig, x: i64) -> SpindleSpeed {
 }
 
 /// S, G96/G97, G50 S, gears and M03/M04 before the block's motion.
-pub(super) fn before_motion(
+pub(crate) fn before_motion(
     cmd: &Command,
     st: &mut State,
     cfg: &MachineConfig,
@@ -78,7 +79,7 @@ pub(super) fn before_motion(
 }
 
 /// M05 after the block's motion.
-pub(super) fn after_motion(cmd: &Command, st: &mut State, out: &mut Staged<'_>) -> Result<(), AlarmKind> {
+pub(crate) fn after_motion(cmd: &Command, st: &mut State, out: &mut Staged<'_>) -> Result<(), AlarmKind> {
     if cmd.m.iter().any(|&(_, f)| spindle_dir(f) == Some(SpindleDir::Stop)) {
         st.spindle.dir = SpindleDir::Stop;
         let css = if st.modal.css { st.spindle.css } else { None };
@@ -94,6 +95,16 @@ fn surface_speed_mm_min(s: u32, units: Units) -> u32 {
         Units::Inch => div_round(i64::from(s) * 3048, 10),
     };
     u32::try_from(mm).unwrap_or(u32::MAX)
+}
+
+/// Direction a spindle M code commands, if it is one.
+pub(crate) fn spindle_dir(f: MFunction) -> Option<SpindleDir> {
+    match f {
+        MFunction::SpindleCw => Some(SpindleDir::Cw),
+        MFunction::SpindleCcw => Some(SpindleDir::Ccw),
+        MFunction::SpindleStop => Some(SpindleDir::Stop),
+        _ => None,
+    }
 }
 
 #[cfg(test)]

@@ -1,6 +1,6 @@
 //! G00, G01, G02, G03: targets, soft limits, feeds and arc geometry.
 
-use super::{Staged, State, spindle_speed};
+use super::spindle_speed;
 use crate::alarm::AlarmKind;
 use crate::axis::{Axis, Pos};
 use crate::canon::{Action, ArcMove, Endpoint, Feed, FeedMode, Move, Plane, SpindleDir};
@@ -8,19 +8,19 @@ use crate::check::Command;
 use crate::codes::GCode;
 use crate::config::{MachineConfig, Param};
 use crate::geom::{P2, arc_extents, center_from_offsets, center_from_radius};
+use crate::modal::State;
+use crate::stage::Staged;
 
 /// Executes the block's motion in the modal motion mode, if it has axis words
-/// (or is an arc, which may omit them: 2.3 note 1).
-pub(super) fn execute(
+/// (or is an arc, which may omit them: 2.3 note 1). G02.1/G03.1 and G02.2/G03.2
+/// are cycles (`exec` sends them to [`crate::cycles::curve_block`]).
+pub(crate) fn execute(
     cmd: &Command,
     st: &mut State,
     cfg: &MachineConfig,
     out: &mut Staged<'_>,
 ) -> Result<(), AlarmKind> {
     let code = st.modal.motion;
-    if matches!(code, GCode::EllipseCw | GCode::EllipseCcw | GCode::ParabolaCw | GCode::ParabolaCcw) {
-        return if cmd.has_axes() { crate::cycles::curve_block(cmd, st, cfg, out) } else { Ok(()) };
-    }
     let is_arc = matches!(code, GCode::ArcCw | GCode::ArcCcw);
     let arc_words = cmd.radius.is_some() || cmd.center.iter().any(Option::is_some);
     if !(cmd.has_axes() || is_arc && arc_words) {
@@ -107,7 +107,7 @@ fn check_axis_range(a: Axis, lo: i64, hi: i64, cfg: &MachineConfig) -> Result<()
 }
 
 /// A rapid to a resolved end point.
-pub(super) fn rapid_to(
+pub(crate) fn rapid_to(
     to: Endpoint,
     st: &mut State,
     cfg: &MachineConfig,

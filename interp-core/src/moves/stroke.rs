@@ -4,13 +4,13 @@
 //! soft limits; a block that would enter the forbidden area raises alarm 0502/0503
 //! and does not move.
 
-use super::State;
 use crate::alarm::AlarmKind;
 use crate::axis::{Axis, Pos};
 use crate::canon::{Action, Canon};
 use crate::check::Command;
 use crate::config::{MachineConfig, Param};
 use crate::geom::path::{Elem, V2};
+use crate::modal::{State, StrokeArea};
 
 /// The linear axes the check covers.
 const LINEAR: [Axis; 3] = [Axis::X, Axis::Y, Axis::Z];
@@ -19,24 +19,12 @@ const LINEAR: [Axis; 3] = [Axis::X, Axis::Y, Axis::Z];
 /// enough for exact f64 arithmetic).
 const UNLIMITED: i64 = 1 << 52;
 
-/// The area of stored stroke check 2 in force.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct StrokeArea {
-    /// Minus corner (I, J, K), machine coordinates, X as a radius.
-    pub lo: Pos,
-    /// Plus corner (X, Y, Z).
-    pub hi: Pos,
-    /// True: the outside of the box is forbidden (parameter 1002 = 1).
-    pub outside: bool,
-}
-
 /// G22 / G23 of `cmd` applied to `st` (2.10): G22 takes the box from the block's
 /// X/Y/Z (plus) and I/J/K (minus) words, axis by axis, else from parameters
 /// 1360–1362 / 1370–1372. A box given in the wrong order switches the check off
 /// (note 8). With the outside forbidden and the tool already there, the alarm
 /// comes at once (note 7).
-pub(super) fn apply(cmd: &Command, st: &mut State, cfg: &MachineConfig) -> Result<(), AlarmKind> {
+pub(crate) fn apply(cmd: &Command, st: &mut State, cfg: &MachineConfig) -> Result<(), AlarmKind> {
     match cmd.g.stroke {
         Some(false) => st.stroke = None,
         Some(true) => {
@@ -97,7 +85,7 @@ fn strictly_inside(a: &StrokeArea, p: &[f64; 3]) -> bool {
 }
 
 /// Checks the moves staged in `acts`, the first starting at `from`.
-pub(super) fn check_actions<'a, I>(st: &State, from: Pos, acts: I) -> Result<(), AlarmKind>
+pub(crate) fn check_actions<'a, I>(st: &State, from: Pos, acts: I) -> Result<(), AlarmKind>
 where
     I: Iterator<Item = &'a Canon>,
 {

@@ -1,5 +1,13 @@
 //! The interpreter's state: one field per modal group, the current position, the
 //! coordinate frames, the tool, and the remembered feed and spindle values.
+//! Below every layer that uses it: `check` reads a block against it, `stage` saves
+//! and restores it around a block, the execution layers change it. It holds the
+//! data of the layers above (polar mode, the stroke check area, the contour
+//! look-ahead's buffers in [`lookahead`]); their logic stays with them.
+
+pub mod lookahead;
+
+pub use lookahead::{Buffer, Comp, Contour, Corner, HOLD, Marks, Side};
 
 use crate::axis::{Axis, Pos};
 use crate::canon::{FeedMode, Plane, SpindleDir};
@@ -190,6 +198,39 @@ impl Default for CycleMemory {
     }
 }
 
+/// Polar interpolation in force (G12.1, [`crate::moves::polar`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Polar {
+    /// The plane before G12.1, restored by G13.1 (note 2).
+    pub plane: Plane,
+    /// The programmed point in the polar plane: x (radius, nm), c (nm), work Z.
+    pub x: i64,
+    /// Second coordinate of the polar plane, nm.
+    pub c: i64,
+    /// Z (work), nm.
+    pub z: i64,
+}
+
+impl Polar {
+    /// The programmed point as a virtual position (X, Y = c, Z).
+    pub fn virtual_pos(&self) -> Pos {
+        Pos([self.x, self.c, self.z, 0])
+    }
+}
+
+/// The area of stored stroke check 2 in force (G22, [`crate::moves::stroke`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct StrokeArea {
+    /// Minus corner (I, J, K), machine coordinates, X as a radius.
+    pub lo: Pos,
+    /// Plus corner (X, Y, Z).
+    pub hi: Pos,
+    /// True: the outside of the box is forbidden (parameter 1002 = 1).
+    pub outside: bool,
+}
+
 /// Everything that persists from one block to the next.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -211,52 +252,11 @@ pub struct State {
     /// Canned cycle memory.
     pub cycle: CycleMemory,
     /// Polar coordinate interpolation (G12.1) in force.
-    pub polar: Option<super::polar::Polar>,
+    pub polar: Option<Polar>,
     /// Stored stroke check 2 (G22) in force; `None` under G23.
-    pub stroke: Option<super::stroke::StrokeArea>,
+    pub stroke: Option<StrokeArea>,
     /// The contour look-ahead: a move held back until the next one is known.
-    pub contour: crate::contour::Contour,
-}
-
-/// A [`State`] as it was before a block (see [`State::save`]).
-#[derive(Clone, Copy, Debug)]
-pub struct Saved {
-    modal: Modal,
-    pos: Pos,
-    feed: FeedMemory,
-    spindle: SpindleState,
-    moved: bool,
-    cycle: Option<CycleMemory>,
-    rare: Option<Rare>,
-    contour: crate::contour::Marks,
-}
-
-/// Whether block `cmd` leaves the canned-cycle memory `cycle` as it is: a G00–G03
-/// block (no group 00 code, no drilling code in the block or in force, no M29)
-/// runs no cycle, and with no G90/G92/G94 values kept, no thread chained and no
-/// rigid tapping pending, [`crate::cycles::before_block`] changes nothing either
-/// (it clears exactly those). Debug builds check every undone block against a
-/// whole copy of the state.
-fn plain_for_cycles(cmd: &crate::check::Command, modal: &Modal, cycle: &CycleMemory) -> bool {
-    use crate::check::cycle_args::is_hole;
-    let motion = cmd.g.motion.unwrap_or(modal.motion);
-    matches!(motion, GCode::Rapid | GCode::Linear | GCode::ArcCw | GCode::ArcCcw)
-        && cmd.g.one_shot.is_none()
-        && cmd.g.drilling.is_none()
-        && !is_hole(modal.drilling)
-        && cycle.single.is_none()
-        && !cycle.thread_chain
-        && cycle.rigid == RigidTap::Off
-        && !cmd.m.iter().any(|&(m, _)| m == 29)
-}
-
-/// The parts of a [`State`] few blocks change (see [`State::save`]).
-#[derive(Clone, Copy, Debug)]
-struct Rare {
-    frames: Frames,
-    tool: ToolState,
-    polar: Option<super::polar::Polar>,
-    stroke: Option<super::stroke::StrokeArea>,
+    pub contour: Contour,
 }
 
 impl State {
@@ -288,64 +288,8 @@ impl State {
             cycle: CycleMemory::default(),
             polar: None,
             stroke: None,
-            contour: crate::contour::Contour::default(),
+            contour: Contour::default(),
         }
-    }
-
-    /// What [`State::restore`] needs to undo block `cmd` executed in place:
-    /// everything but the contour look-ahead's buffers, which the caller copies
-    /// only while a move is held ([`Contour::is_holding`](crate::contour::Contour::is_holding)),
-    /// and the frames, tool, polar and stroke-check state, which only a block
-    /// with G50/G52, T, G22/G23 or G12.1/G13.1 (or any block in polar mode) changes.
-    ///
-    /// The canned-cycle memory (96 bytes) is saved only when the block can change
-    /// it: see [`plain_for_cycles`].
-    pub fn save(&self, cmd: &crate::check::Command) -> Saved {
-        use crate::codes::GCode::{LocalFrame, SetCoordinates};
-        // Destructured so that a new field cannot be forgotten here.
-        let State { modal, pos, frames, tool, feed, spindle, moved, cycle, polar, stroke, contour } = self;
-        let rare = matches!(cmd.g.one_shot, Some(SetCoordinates | LocalFrame))
-            || cmd.tool.is_some()
-            || cmd.g.stroke.is_some()
-            || cmd.g.polar.is_some()
-            || polar.is_some();
-        let mut saved = Saved {
-            modal: *modal,
-            pos: *pos,
-            feed: *feed,
-            spindle: *spindle,
-            moved: *moved,
-            cycle: None,
-            rare: None,
-            contour: contour.marks(),
-        };
-        if rare || !plain_for_cycles(cmd, modal, cycle) {
-            saved.cycle = Some(*cycle);
-        }
-        if rare {
-            saved.rare = Some(Rare { frames: *frames, tool: *tool, polar: *polar, stroke: *stroke });
-        }
-        saved
-    }
-
-    /// Puts the state back as it was when `saved` was taken; `held` is the copy of
-    /// the contour look-ahead taken then if it held a move.
-    pub fn restore(&mut self, saved: &Saved, held: Option<&crate::contour::Contour>) {
-        self.modal = saved.modal;
-        self.pos = saved.pos;
-        self.feed = saved.feed;
-        self.spindle = saved.spindle;
-        self.moved = saved.moved;
-        if let Some(c) = &saved.cycle {
-            self.cycle = *c;
-        }
-        if let Some(r) = &saved.rare {
-            self.frames = r.frames;
-            self.tool = r.tool;
-            self.polar = r.polar;
-            self.stroke = r.stroke;
-        }
-        self.contour.restore(&saved.contour, held);
     }
 
     /// Machine position of the work frame's origin, without the tool offset:
