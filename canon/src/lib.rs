@@ -346,4 +346,13 @@ pub trait CanonSink {
     /// Takes one action, or returns [`Full`] to apply back-pressure; the
     /// interpreter keeps the action and offers it again on its next step.
     fn push(&mut self, action: Canon) -> Result<(), Full>;
+
+    /// [`CanonSink::push`] of an action the caller keeps (the interpreter offers
+    /// its waiting actions in place). A sink that only reads the action (the motion
+    /// planner) overrides this to skip the copy — 176 bytes for an arc, about as
+    /// many instructions on the Cortex-M4; the default copies it into `push`.
+    #[inline]
+    fn push_ref(&mut self, action: &Canon) -> Result<(), Full> {
+        self.push(*action)
+    }
 }

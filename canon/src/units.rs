@@ -45,6 +45,62 @@ fn wide_f64(v: u128) -> f64 {
     v as f64
 }
 
+/// `v as f32` by the FPU's 32-bit conversions (the 64-bit one is a software
+/// routine on the Cortex-M4): the high and low halves converted and summed, within
+/// 2^-23 relative. For per-block geometry in f32, never for positions.
+#[inline]
+pub fn f32_of_u64(v: u64) -> f32 {
+    ((v >> 32) as u32) as f32 * 4_294_967_296.0 + (v as u32) as f32
+}
+
+/// `round(√x)` exactly (never a tie: `(n + ½)²` is not an integer) and `√x` in
+/// f32 (within 2^-22 relative), without soft-float arithmetic: the f32 reciprocal
+/// root from the bit pattern, refined by Newton's method, seeds `f ≈ √x`; one
+/// Newton step with the exact integer residue `x − f²` gives `⌊√x⌋` or one off, and
+/// integer compares settle it and the rounding. The radii of arcs are such roots of
+/// exact integer sums of squares (nm², below 2^64 for radii up to 4.29 m); on the
+/// Cortex-M4 this is about a tenth of an f64 root.
+pub fn sqrt_u64(x: u64) -> (u64, f32) {
+    if x == 0 {
+        return (0, 0.0);
+    }
+    let xf = f32_of_u64(x);
+    let mut y = f32::from_bits(0x5f37_5a86 - (xf.to_bits() >> 1));
+    for _ in 0..3 {
+        y *= 1.5 - 0.5 * xf * y * y;
+    }
+    // `f` within 2^-21 relative of √x < 2^32 (about 2,000 at most), so x − f² is
+    // below 2^44 in size: the wrapping difference is the true one.
+    let root = xf * y;
+    let f = (root as u32).max(1);
+    let e = x.wrapping_sub(u64::from(f) * u64::from(f)) as i64;
+    // The Newton step √x − f ≈ (x − f²)/2f: its error δ²/2f is below 2^-11 for
+    // large roots and below ½ for small ones (δ < 1 there).
+    let c = f32_of(e) * (0.5 * y);
+    // ⌊c⌋ for c > −2^14 (a truncation of the shifted value); anything outside
+    // is caught by the check below.
+    let fc = i64::from((c + 16_384.0) as u32) - 16_384;
+    // Squares of u32 roots fit a u64 (one multiply on the M4): `g` is ⌊√x⌋ when
+    // g² ≤ x and x − g² ≤ 2g, i.e. x < (g + 1)².
+    let sq = |g: u32| u64::from(g) * u64::from(g);
+    let mut g = (i64::from(f) + fc).clamp(0, i64::from(u32::MAX)) as u32;
+    if sq(g) > x {
+        g -= 1;
+    } else if x - sq(g) > 2 * u64::from(g) {
+        g = g.saturating_add(1);
+    }
+    let rem = match x.checked_sub(sq(g)) {
+        Some(r) if r <= 2 * u64::from(g) => r,
+        _ => {
+            // Not reached (the seed is never that far off); exact all the same.
+            g = x.isqrt() as u32;
+            x - sq(g)
+        }
+    };
+    // √x rounds up when x ≥ (g + ½)², i.e. x − g² > g.
+    (u64::from(g) + u64::from(rem > u64::from(g)), root)
+}
+
 /// A decimal number exactly as written in a program word: `mantissa × 10^-frac_digits`.
 ///
 /// Keeping the decimal form (instead of a float) makes every conversion exact and
@@ -84,7 +140,7 @@ impl Number {
     #[inline]
     pub fn scaled(&self, shift: u8) -> Option<i64> {
         if shift >= self.frac_digits {
-            self.mantissa.checked_mul(pow10(shift - self.frac_digits)?)
+            mul_i64(self.mantissa, pow10(shift - self.frac_digits)?)
         } else {
             Some(div_round(self.mantissa, pow10(self.frac_digits - shift)?))
         }
@@ -264,7 +320,7 @@ impl NumberFormat {
     pub fn length_nm(&self, n: &Number) -> Option<i64> {
         let inc = self.increments.linear_nm(self.units);
         if !n.has_point && self.input == InputMode::LeastIncrement {
-            return n.mantissa.checked_mul(inc);
+            return mul_i64(n.mantissa, inc);
         }
         let nm = scale_to(n, self.units.scale())?;
         // A value with no more fraction digits than the increment is already whole.
@@ -278,7 +334,7 @@ impl NumberFormat {
         let u = if n.has_point || self.input == InputMode::Calculator {
             scale_to(n, DEGREES)?
         } else {
-            n.mantissa.checked_mul(inc)?
+            mul_i64(n.mantissa, inc)?
         };
         Some(round_to(u, inc))
     }
@@ -300,11 +356,22 @@ impl NumberFormat {
 /// `n × scale`, rounded half away from zero; `None` on overflow.
 #[inline]
 fn scale_to(n: &Number, s: Scale) -> Option<i64> {
-    let m = n.mantissa.checked_mul(s.factor)?;
+    let m = mul_i64(n.mantissa, s.factor)?;
     if n.frac_digits <= s.exp {
-        m.checked_mul(POW10[usize::from(s.exp - n.frac_digits)])
+        mul_i64(m, POW10[usize::from(s.exp - n.frac_digits)])
     } else {
         Some(div_round(m, pow10(n.frac_digits - s.exp)?))
+    }
+}
+
+/// `a.checked_mul(b)`, by one 32 × 32 → 64-bit multiply when both fit an `i32`
+/// (program numbers mostly do): the checked 64-bit product is ~25 instructions on
+/// the Cortex-M4.
+#[inline]
+fn mul_i64(a: i64, b: i64) -> Option<i64> {
+    match (i32::try_from(a), i32::try_from(b)) {
+        (Ok(x), Ok(y)) => Some(i64::from(x) * i64::from(y)),
+        _ => a.checked_mul(b),
     }
 }
 
@@ -402,5 +469,52 @@ mod tests {
         assert_eq!(Number::from_f64(f64::NAN), None);
         assert_eq!(div_round(-7, 2), -4);
         assert_eq!(round_to(1_234_567, 1000), 1_235_000);
+    }
+
+    /// The integer root against the exact one and the f32 root against f64 over
+    /// random squares of every size up to 2^64, the edges included.
+    #[test]
+    fn sqrt_u64_rounds_exactly() {
+        let mut seed: u64 = 0x2545_f491_4f6c_dd1d;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        let check = |x: u64| {
+            let (n, r) = sqrt_u64(x);
+            let lo = |k: u64| (2 * u128::from(k)).saturating_sub(1).pow(2);
+            // (n − ½)² ≤ x < (n + ½)², times four.
+            assert!(n == 0 || lo(n) <= 4 * u128::from(x), "{x}: {n}");
+            assert!(4 * u128::from(x) < (2 * u128::from(n) + 1).pow(2), "{x}: {n}");
+            let exact = (x as f64).sqrt();
+            assert!((f64::from(r) - exact).abs() <= exact * 2.4e-7, "{x}: {r} vs {exact}");
+        };
+        for _ in 0..200_000 {
+            let v = next();
+            check(v >> (v % 64));
+            let k = v >> 32;
+            check(k * k);
+            check((k * k).saturating_sub(1));
+            check(k * k + k);
+            check(k * k + k + 1);
+        }
+        for x in [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, u64::MAX, u64::MAX - 1, 1 << 63, (1 << 32) - 1, 1 << 32] {
+            check(x);
+        }
+        assert_eq!(sqrt_u64(0), (0, 0.0));
+        assert_eq!(sqrt_u64(25).0, 5);
+        assert_eq!(sqrt_u64(2).0, 1);
+        assert_eq!(sqrt_u64(8).0, 3);
+        assert_eq!(sqrt_u64(u64::MAX).0, 1 << 32);
+    }
+
+    #[test]
+    fn f32_of_u64_is_close() {
+        for v in [0, 1, 12_345, u64::from(u32::MAX), 1 << 40, u64::MAX, 0x1234_5678_9abc_def0] {
+            let f = f32_of_u64(v);
+            assert!((f64::from(f) - v as f64).abs() <= v as f64 * 1.2e-7, "{v}");
+        }
     }
 }

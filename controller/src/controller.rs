@@ -218,6 +218,10 @@ impl<M: MotionPort + ?Sized> CanonSink for PortSink<'_, M> {
     fn push(&mut self, c: Canon) -> Result<(), Full> {
         self.0.push(c)
     }
+
+    fn push_ref(&mut self, c: &Canon) -> Result<(), Full> {
+        self.0.push_ref(c)
+    }
 }
 
 /// Check mode: takes everything, moves nothing.

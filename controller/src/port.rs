@@ -44,6 +44,12 @@ pub struct MotionStatus {
 pub trait MotionPort {
     /// Queues a canonical action; [`Full`] is back-pressure (offer it again later).
     fn push(&mut self, c: Canon) -> Result<(), Full>;
+    /// [`MotionPort::push`] of an action the caller keeps: the motion core reads it
+    /// where it is instead of taking a copy (an arc is 176 bytes).
+    #[inline]
+    fn push_ref(&mut self, c: &Canon) -> Result<(), Full> {
+        self.push(*c)
+    }
     /// Feed hold: brake on the path.
     fn feed_hold(&mut self);
     /// Cycle start: resume after feed hold or M00/M01.
@@ -73,6 +79,10 @@ pub trait MotionPort {
 impl<const N: usize> MotionPort for MotionCore<N> {
     fn push(&mut self, c: Canon) -> Result<(), Full> {
         CanonSink::push(self, c)
+    }
+
+    fn push_ref(&mut self, c: &Canon) -> Result<(), Full> {
+        CanonSink::push_ref(self, c)
     }
 
     fn feed_hold(&mut self) {

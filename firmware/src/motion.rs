@@ -261,6 +261,11 @@ impl CanonSink for MotionPort {
     fn push(&mut self, action: Canon) -> Result<(), Full> {
         self.lock(|m| m.core.push(action)).unwrap_or(Err(Full))
     }
+
+    /// As [`CanonSink::push`], the action read where the interpreter keeps it.
+    fn push_ref(&mut self, action: &Canon) -> Result<(), Full> {
+        self.lock(|m| m.core.push_ref(action)).unwrap_or(Err(Full))
+    }
 }
 
 /// The hardware motion interrupts (not in the QEMU build: QEMU models neither the

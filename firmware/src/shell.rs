@@ -70,6 +70,10 @@ impl controller::MotionPort for MotionPort {
         self.lock(|m| CanonSink::push(&mut m.core, c)).unwrap_or(Err(Full))
     }
 
+    fn push_ref(&mut self, c: &Canon) -> Result<(), Full> {
+        self.lock(|m| CanonSink::push_ref(&mut m.core, c)).unwrap_or(Err(Full))
+    }
+
     fn feed_hold(&mut self) {
         self.lock(|m| m.core.feed_hold());
     }

@@ -914,7 +914,7 @@ impl Interpreter {
     /// Offers waiting actions to the sink; true when the outbox is empty.
     fn deliver<S: CanonSink + ?Sized>(&mut self, sink: &mut S) -> bool {
         while let Some(c) = self.outbox.front() {
-            if sink.push(*c).is_err() {
+            if sink.push_ref(c).is_err() {
                 return false;
             }
             self.outbox.pop_front();

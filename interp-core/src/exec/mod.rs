@@ -27,6 +27,9 @@ pub fn execute(
     env: &dyn Environment,
     out: &mut CycleStage<'_>,
 ) -> Result<Flow, AlarmKind> {
+    if is_plain(cmd, st) {
+        return plain(cmd, st, cfg, env, out);
+    }
     polar::check_codes(cmd, st)?;
     polygon::check_block(cmd, st)?;
     let from = st.polar.map_or(st.pos, |p| p.virtual_pos());
@@ -73,6 +76,50 @@ pub fn execute(
         cycles::polar_block(st, cfg, out)?;
     }
     Ok(flow)
+}
+
+/// Whether [`execute`] may take the short way of [`plain`]: no M, T or flow
+/// word, no group 00, stroke check, polygon or polar code in the block, neither
+/// polar interpolation nor polygon turning in force — most blocks of a contour.
+fn is_plain(cmd: &Command, st: &State) -> bool {
+    let g = &cmd.g;
+    cmd.m.is_empty()
+        && cmd.tool.is_none()
+        && cmd.flow.is_none()
+        && g.one_shot.is_none()
+        && g.stroke.is_none()
+        && g.polygon.is_none()
+        && g.polar.is_none()
+        && st.polar.is_none()
+        && st.modal.polygon.is_none()
+}
+
+/// [`execute`] of a block [`is_plain`] accepts, without the stages that have
+/// nothing to do for it (polar and polygon checks, stroke-check switching, M
+/// codes, tool change, group 00 codes, program flow): the same actions, state
+/// and alarms, about a hundred Cortex-M4 instructions sooner.
+fn plain(
+    cmd: &Command,
+    st: &mut State,
+    cfg: &MachineConfig,
+    env: &dyn Environment,
+    out: &mut CycleStage<'_>,
+) -> Result<Flow, AlarmKind> {
+    let from = st.pos;
+    let chained = cycles::before_block(cmd, st)?;
+    apply_modal(cmd, st);
+    spindle::before_motion(cmd, st, cfg, out)?;
+    let mut ctx = cycles::Ctx { cfg, env, out };
+    if !cycles::execute::<Blocks>(cmd, st, &mut ctx, chained)? {
+        motion_or_curve(cmd, st, cfg, ctx.out)?;
+    }
+    if let Some(e) = cmd.g.exact_stop_mode {
+        st.modal.exact_stop_mode = e;
+    }
+    spindle::after_motion(cmd, st, out)?;
+    stroke::check_actions(st, from, out.actions.iter())?;
+    crate::contour::after_block(cmd, st, cfg, from, Flow::Continue, out)?;
+    Ok(Flow::Continue)
 }
 
 /// [`execute`] for the cycles below, which run the blocks of a G70–G73 shape.

@@ -200,13 +200,15 @@ fn arc(
         return Err(AlarmKind::ArcCenterMissing);
     };
     let to = at.endpoint(work)?;
-    let mut cwork = work;
-    cwork[pa] = center.0;
-    cwork[pb] = center.1;
-    let center_ep = at.endpoint(cwork)?;
+    let shift = at.shift;
+    // The centre is the end point but in the plane's two axes.
+    let mut center_ep = to;
+    for (axis, c) in [(pa, center.0), (pb, center.1)] {
+        center_ep.work[axis] = c;
+        center_ep.machine[axis] = c.checked_add(shift[axis]).ok_or(AlarmKind::Overflow)?;
+    }
     check_limits(&to.machine, cfg)?;
     let ext = arc_extents(start, end, center, cw, full);
-    let shift = at.shift;
     check_axis_range(pa, ext.a.0 + shift[pa], ext.a.1 + shift[pa], cfg)?;
     check_axis_range(pb, ext.b.0 + shift[pb], ext.b.1 + shift[pb], cfg)?;
     let feed = cutting_feed(st, cfg, at.here[Axis::X])?;

@@ -8,7 +8,7 @@ use crate::axis::Pos;
 use crate::canon::{Action, Canon};
 use crate::config::Param;
 use crate::modal::{
-    Contour, CycleMemory, FeedMemory, Frames, Marks, Modal, Polar, SpindleState, State, StrokeArea, ToolState,
+    Contour, CycleMemory, FeedMemory, Frames, Marks, Modal, Polar, RigidTap, SpindleState, State, StrokeArea, ToolState,
 };
 
 /// Most actions one block produces.
@@ -100,9 +100,29 @@ pub struct Saved {
     feed: FeedMemory,
     spindle: SpindleState,
     moved: bool,
-    cycle: CycleMemory,
+    cycle: Option<CycleMemory>,
     rare: Option<Rare>,
     contour: Marks,
+}
+
+/// Whether block `cmd` leaves the canned-cycle memory `cycle` as it is: a G00–G03
+/// block (no group 00 code, no drilling code in the block or in force, no M29)
+/// runs no cycle, and with no G90/G92/G94 values kept, no thread chained and no
+/// rigid tapping pending, [`crate::cycles::before_block`] changes nothing either
+/// (it clears exactly those). Debug builds check every undone block against a
+/// whole copy of the state.
+fn plain_for_cycles(cmd: &crate::check::Command, modal: &Modal, cycle: &CycleMemory) -> bool {
+    use crate::check::cycle_args::is_hole;
+    use crate::codes::GCode;
+    let motion = cmd.g.motion.unwrap_or(modal.motion);
+    matches!(motion, GCode::Rapid | GCode::Linear | GCode::ArcCw | GCode::ArcCcw)
+        && cmd.g.one_shot.is_none()
+        && cmd.g.drilling.is_none()
+        && !is_hole(modal.drilling)
+        && cycle.single.is_none()
+        && !cycle.thread_chain
+        && cycle.rigid == RigidTap::Off
+        && !cmd.m.iter().any(|&(m, _)| m == 29)
 }
 
 /// The parts of a [`State`] few blocks change (see [`State::save`]).
@@ -120,6 +140,9 @@ impl State {
     /// only while a move is held ([`Contour::is_holding`]),
     /// and the frames, tool, polar and stroke-check state, which only a block
     /// with G50/G52, T, G22/G23 or G12.1/G13.1 (or any block in polar mode) changes.
+    ///
+    /// The canned-cycle memory (96 bytes) is saved only when the block can change
+    /// it: see [`plain_for_cycles`].
     pub fn save(&self, cmd: &crate::check::Command) -> Saved {
         use crate::codes::GCode::{LocalFrame, SetCoordinates};
         // Destructured so that a new field cannot be forgotten here.
@@ -135,10 +158,13 @@ impl State {
             feed: *feed,
             spindle: *spindle,
             moved: *moved,
-            cycle: *cycle,
+            cycle: None,
             rare: None,
             contour: contour.marks(),
         };
+        if rare || !plain_for_cycles(cmd, modal, cycle) {
+            saved.cycle = Some(*cycle);
+        }
         if rare {
             saved.rare = Some(Rare { frames: *frames, tool: *tool, polar: *polar, stroke: *stroke });
         }
@@ -153,7 +179,9 @@ impl State {
         self.feed = saved.feed;
         self.spindle = saved.spindle;
         self.moved = saved.moved;
-        self.cycle = saved.cycle;
+        if let Some(c) = &saved.cycle {
+            self.cycle = *c;
+        }
         if let Some(r) = &saved.rare {
             self.frames = r.frames;
             self.tool = r.tool;

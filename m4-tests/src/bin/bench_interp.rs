@@ -40,7 +40,12 @@ struct Plan {
 
 impl CanonSink for Plan {
     fn push(&mut self, c: Canon) -> Result<(), Full> {
-        match self.planner.push(&c, &self.params) {
+        self.push_ref(&c)
+    }
+
+    /// As `MotionCore`'s: the action read where the interpreter keeps it.
+    fn push_ref(&mut self, c: &Canon) -> Result<(), Full> {
+        match self.planner.push(c, &self.params) {
             Err(PushError::Full) => Err(Full),
             // An alarm would stop the motion core; the benchmark's blocks raise none.
             Err(PushError::Alarm(_)) => exit(false),

@@ -878,13 +878,18 @@ impl<const N: usize> CanonSink for MotionCore<N> {
     /// cannot run raises its alarm (the action is consumed, nothing moves for it)
     /// and every later action is refused until reset.
     fn push(&mut self, action: Canon) -> Result<(), Full> {
+        self.push_ref(&action)
+    }
+
+    /// As [`CanonSink::push`], reading the action where it is.
+    fn push_ref(&mut self, action: &Canon) -> Result<(), Full> {
         if self.alarm.is_some() {
             return Err(Full);
         }
         if self.state == State::Ended {
             self.state = State::Idle;
         }
-        match self.planner.push(&action, &self.p) {
+        match self.planner.push(action, &self.p) {
             Ok(()) => {
                 self.streaming = true;
                 Ok(())

@@ -10,7 +10,7 @@ use crate::canon::{ArcMove, FeedMode, Move, SpindleDir, SpindleSpeed, TapMove, T
 use crate::cordic;
 use crate::fixed::{PATH_FRAC, f32_of, inverse62, minf, sqrtf, u64_of};
 use crate::sync::ramp_counts;
-use canon::units::f64_of_u128;
+use canon::units::{f32_of_u64, f64_of_u128, sqrt_u64};
 
 /// Unit direction of a path, per axis.
 pub type Dir = [f32; AXIS_COUNT];
@@ -340,6 +340,30 @@ fn radius(v: (i64, i64)) -> (f64, i64) {
     (r, round_sqrt(r2, r))
 }
 
+/// The length of `v` in f32 (within 2^-22 relative) and rounded to whole
+/// nanometres exactly, `round(√(a² + b²))`: by integer arithmetic and f32 below
+/// 2^64 nm² (radii up to 4.29 m, [`sqrt_u64`]), else as [`radius`] does.
+fn radius_f32(v: (i64, i64)) -> (f32, i64) {
+    let sq = |x: u64| u128::from(x) * u128::from(x);
+    let r2 = sq(v.0.unsigned_abs()) + sq(v.1.unsigned_abs());
+    match u64::try_from(r2) {
+        Ok(x) => {
+            let (nm, r) = sqrt_u64(x);
+            (r, nm as i64)
+        }
+        Err(_) => {
+            let (r, nm) = radius(v);
+            (r as f32, nm)
+        }
+    }
+}
+
+/// The length of an arc of `sweep` (turns × 2^32) over radii `r0` and `r1` (their
+/// mean), in f32: within 4·10⁻⁷ of the f64 product rounded to f32.
+fn arc_len(sweep: i64, r0: f32, r1: f32) -> f32 {
+    f32_of_u64(sweep.unsigned_abs()) * (core::f32::consts::TAU / 8_589_934_592.0) * (r0 + r1)
+}
+
 /// The integer nearest to `√x` (never a tie: `(f + ½)²` is not an integer), from
 /// `r ≈ √x` corrected in integers: no soft-float rounding. Beyond 2^52 nm, where
 /// an ulp of `r` exceeds 1, it is `round(r)` (no machine comes near).
@@ -383,7 +407,7 @@ pub fn arc(start: &Pos, a: &ArcMove, p: &MotionParams, line: u32, slot: &mut Ite
     let c = (a.center.machine.0[ia], a.center.machine.0[ib]);
     let rel = |q: &Pos| (q.0[ia].saturating_sub(c.0), q.0[ib].saturating_sub(c.1));
     let (s, e) = (rel(start), rel(&a.to.machine));
-    let ((r0, r0_nm), (r1, r1_nm)) = (radius(s), radius(e));
+    let ((r0f, r0_nm), (r1f, r1_nm)) = (radius_f32(s), radius_f32(e));
     let (theta0, sweep) = match sweep_turns(s, e, a.cw, a.full_circle) {
         Some(t) => t,
         None => {
@@ -391,8 +415,7 @@ pub fn arc(start: &Pos, a: &ArcMove, p: &MotionParams, line: u32, slot: &mut Ite
             sweep_f64(f(s), f(e), a.cw, a.full_circle)
         }
     };
-    // |sweep| ≤ 2^32: a u64 conversion.
-    let len = (sweep.unsigned_abs() as f64 * (core::f64::consts::TAU / 8_589_934_592.0) * (r0 + r1)) as f32;
+    let len = arc_len(sweep, r0f, r1f);
     let feed = match a.feed.mode {
         FeedMode::PerMin => FeedSpec::PerMin(a.feed.value),
         FeedMode::PerRev => FeedSpec::PerRev(a.feed.value),
@@ -401,7 +424,6 @@ pub fn arc(start: &Pos, a: &ArcMove, p: &MotionParams, line: u32, slot: &mut Ite
     // Half the acceleration for the normal (v²/r), half along the path; the chord of
     // one period may stray from the arc by at most the chord tolerance.
     let accel = minf(la.accel, lb.accel) / 2.0;
-    let (r0f, r1f) = (r0 as f32, r1 as f32);
     let r = minf(r0f, r1f);
     let centripetal = sqrtf(accel * r);
     let chord = sqrtf(8.0 * r * p.chord_tolerance);
@@ -623,6 +645,36 @@ mod tests {
             let (r, nm) = radius(v);
             assert!(nm.abs_diff(libm::round(r) as i64) <= 1, "{v:?}: {nm} vs {r}");
         }
+    }
+
+    /// The f32 radii and arc lengths against the f64 ones they replaced (the
+    /// rounded radii equal exactly, the f32 radii within 2^-22, the lengths within
+    /// 4·10⁻⁷), over vectors up to 2 m and beyond 2^32 nm.
+    #[test]
+    fn f32_radii_and_lengths_match_the_f64_ones() {
+        let mut seed: u64 = 0x9e37_79b9_7f4a_7c15;
+        let mut next = |m: i64| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed % (2 * m as u64)) as i64 - m
+        };
+        for i in 0..40_000 {
+            let m = [1_000, 1_000_000, 100_000_000, 2_000_000_000, 1 << 40][i % 5];
+            let (v, w) = ((next(m), next(m)), (next(m), next(m)));
+            let ((r, nm), (r1, nm1)) = (radius(v), radius(w));
+            let ((rf, nmf), (r1f, nm1f)) = (radius_f32(v), radius_f32(w));
+            assert_eq!((nmf, nm1f), (nm, nm1), "{v:?} {w:?}");
+            assert!((f64::from(rf) - r).abs() <= r * 2.4e-7, "{v:?}: {rf} vs {r}");
+            let sweep = next(1 << 32);
+            let before = (sweep.unsigned_abs() as f64 * (core::f64::consts::TAU / 8_589_934_592.0) * (r + r1)) as f32;
+            let len = arc_len(sweep, rf, r1f);
+            assert!((len - before).abs() <= before * 4e-7, "{len} vs {before}");
+        }
+        assert_eq!(radius_f32((0, 0)), (0.0, 0));
+        let (r, nm) = radius_f32((3, 4));
+        assert!(nm == 5 && (r - 5.0).abs() <= 5.0 * 2.4e-7, "{r}");
+        assert_eq!(radius_f32((i64::MIN, i64::MAX)).1, radius((i64::MIN, i64::MAX)).1);
     }
 
     /// The CORDIC start angle and sweep against the f64 ones, over arcs of every
