@@ -273,7 +273,7 @@ impl VirtualBoard {
         if self.pending.is_empty() {
             return;
         }
-        let n = self.ctl.receive(&self.pending, self.sim.clock.0);
+        let n = self.ctl.receive(&mut self.pending, self.sim.clock.0);
         self.pending.drain(..n.min(self.pending.len()));
     }
 
