@@ -171,3 +171,46 @@ mod tail {
         assert_eq!(c.rx_free(), controller::RX - b"G0 X1\n".len());
     }
 }
+
+/// Jogs sent without character counting, in bursts, with real-time bytes between
+/// the lines: every line arrives whole and in order (each answered `ok`, none
+/// refused) however often the tail behind the full buffer is picked over.
+#[test]
+fn picking_real_time_bytes_out_of_the_tail_loses_no_line_data() {
+    let mut r = Rig::new();
+    r.run_ms(5);
+    let jog = b"$J=G91 X0.02 F200\n";
+    let lines = 300;
+    let mut text = Vec::new();
+    for i in 0..lines {
+        text.extend_from_slice(jog);
+        match i % 7 {
+            0 => text.push(b'?'),
+            3 => text.extend_from_slice(&[0x91, 0x90]),
+            5 => text.extend_from_slice(b"?\x11"),
+            _ => {}
+        }
+    }
+    let (mut sent, mut burst, mut most_waiting) = (0, 1, 0);
+    for _ in 0..20_000 {
+        if sent < text.len() {
+            burst = (burst * 7 + 3) % 97 + 1;
+            let end = (sent + burst).min(text.len());
+            r.send(&text[sent..end]);
+            sent = end;
+        }
+        r.step();
+        most_waiting = most_waiting.max(r.pending.len());
+        if sent == text.len() && r.pending.is_empty() && r.port.core.is_idle() {
+            break;
+        }
+    }
+    assert!(most_waiting > 1_000, "the buffer was full, bytes waited behind it: {most_waiting}");
+    r.run_ms(50);
+    let got = r.take_lines();
+    let oks = got.iter().filter(|l| *l == "ok").count();
+    assert!(!got.iter().any(|l| l.starts_with("error") || l.starts_with("[MSG")), "{got:?}");
+    assert_eq!(oks, lines);
+    assert!(reports(&got) > 20, "{} reports", reports(&got));
+    assert!(r.status().contains("MPos:6.000,"), "{}", r.status());
+}
