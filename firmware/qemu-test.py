@@ -7,8 +7,9 @@ with grbl character counting (128-byte receive buffer; every line must get `ok`)
 run by the motion core on the software time base (with a simulated spindle encoder)
 until the status shows Idle at the position `lathe sim` gives for the program's end;
 then a program with an illegal G code: the alarm message names its line, ALARM:20,
-`$X` unlocks; and the welcome again after a soft reset (0x18). Exits non-zero on the
-first failure. Used by .ci/run.
+`$X` unlocks; a `?` answered and a soft reset (0x18) acted on at once (the welcome
+again) behind a receive buffer overfilled with slow jogs by a sender that ignores
+character counting. Exits non-zero on the first failure. Used by .ci/run.
 """
 import os
 import socket
@@ -46,6 +47,8 @@ M30
 # Where `cargo run -p lathe -- sim PROGRAM --format jsonl | tail` ends: the last rapid
 # to X50 Z20 (machine coordinates, diameter; no work offset), 18.6 s simulated.
 PROGRAM_END = b"MPos:50.000,0.000,20.000|"
+# A jog of 6 s (1 mm on the diameter at F5), 13 bytes.
+SLOW_JOG = b"$J=G91 X1 F5\n"
 # The second line has a G code the lathe system does not have (alarm 0010).
 ALARM_PROGRAM = b"G00 X60. Z30.\nG123 X10.\nG00 X70.\n"
 
@@ -227,8 +230,15 @@ def main():
         link.send(b"$X\n")
         link.expect(b"ok\r\n", "unlocked")
         wait_status(link, b"<Idle|", "idle after $X", TIMEOUT)
+        # A sender that ignores character counting: 64 jogs fill the planner, the
+        # next 128 bytes the receive buffer, the rest waits in the link task (each
+        # jog takes 6 s). A `?` and a 0x18 behind them act at once all the same.
+        link.send(SLOW_JOG * 100 + b"?")
+        report = link.expect(b">\r\n", "status report behind a full receive buffer")
+        if b"<Jog|" not in report:
+            raise SystemExit(f"qemu-test: not jogging behind a full receive buffer ({report!r})")
         link.send(b"\x18")
-        link.expect(WELCOME, "welcome after soft reset")
+        link.expect(WELCOME, "welcome after soft reset behind a full receive buffer")
         stack_check(monitor, elf)
         print("qemu-test: passed")
     finally:

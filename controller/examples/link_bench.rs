@@ -70,7 +70,7 @@ fn run(link: &Link, block: &str, blocks: usize) -> Result {
         if wire.is_empty() {
             credit = credit.min(1.0);
         }
-        let n = ctl.receive(&held, now);
+        let n = ctl.receive(&mut held, now);
         held.drain(..n);
         ctl.poll(now, &mut *core, &mut (), Inputs::default());
         core.tick(now, Feedback::default());

@@ -91,6 +91,15 @@ pub(crate) struct Latched {
     pub mist: bool,
 }
 
+/// What [`Controller::receive`] did with the tail behind a full receive buffer.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Picked {
+    /// Its real-time bytes were acted on; this many bytes are kept, at its end.
+    Kept(usize),
+    /// A 0x18 at this index: the tail up to it is consumed (the reset drops it).
+    Reset(usize),
+}
+
 /// A look-ahead waiting for text still to come.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Wait {
@@ -384,16 +393,37 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
         self.alarm
     }
 
-    /// Takes bytes from the link: real-time commands are latched at once (even
-    /// with the receive buffer full) for the next [`Controller::poll`]; other bytes
-    /// go into the receive buffer. Returns how many bytes were consumed: the shell
-    /// keeps the rest and offers it again (the buffer is full until a line leaves
-    /// it). Never blocks, never panics.
-    pub fn receive(&mut self, bytes: &[u8], now: u64) -> usize {
+    /// Takes bytes from the link: real-time commands are latched at once for the
+    /// next [`Controller::poll`]; other bytes go into the receive buffer. Returns how
+    /// many bytes were consumed: the shell keeps `bytes[n..]` and offers it again
+    /// (the buffer is full until a line leaves it). Real-time bytes are picked out
+    /// of that unconsumed tail too, as grbl's receive interrupt picks them out of the
+    /// stream whatever the buffer holds: a `?`, `!` or 0x18 behind bytes the buffer
+    /// cannot take yet acts now, not when the buffer has room. The ones picked are
+    /// removed from the tail, which is rewritten in place (what is kept moves to
+    /// the end of `bytes`), so offering it again never acts on them twice; a 0x18
+    /// in the tail consumes the tail up to it (it drops what came before it).
+    /// Never blocks, never panics.
+    pub fn receive(&mut self, bytes: &mut [u8], now: u64) -> usize {
+        let mut start = 0;
+        loop {
+            let Some(rest) = bytes.get_mut(start..) else { return bytes.len() };
+            let taken = self.take(rest, now);
+            let Some(tail) = rest.get_mut(taken..).filter(|t| !t.is_empty()) else { return bytes.len() };
+            match self.pick_realtime(tail, now) {
+                Picked::Kept(kept) => return bytes.len() - kept,
+                Picked::Reset(at) => start += taken + at + 1,
+            }
+        }
+    }
+
+    /// Takes bytes in order while the receive buffer has room (see
+    /// [`Controller::receive`]); how many were consumed.
+    fn take(&mut self, bytes: &[u8], now: u64) -> usize {
         for (i, &raw) in bytes.iter().enumerate() {
             self.last_byte = now;
-            let b = if self.tape.is_some() && self.settings.parity_strip { raw & 0x7f } else { raw };
-            if (self.at_line_boundary() && self.realtime(b)) || b == XON || b == XOFF {
+            let b = self.stripped(raw);
+            if (self.at_line_boundary() && self.realtime(b, self.rx.len())) || b == XON || b == XOFF {
                 continue;
             }
             // Line data (not status polls) is what keeps the link from being quiet.
@@ -427,6 +457,44 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
         bytes.len()
     }
 
+    /// The unconsumed `tail` behind a full receive buffer: its real-time bytes
+    /// (and XON/XOFF) are latched and removed, the rest is moved to the end of
+    /// `tail`. A tail byte is between lines when the line data before it in the
+    /// stream (the buffer's last byte, then the tail's kept bytes) ends with a LF
+    /// (see [`Controller::at_line_boundary`]). Stops at a 0x18: its index.
+    fn pick_realtime(&mut self, tail: &mut [u8], now: u64) -> Picked {
+        let mut between = !self.discarding && self.rx.last().is_none_or(|&b| b == b'\n');
+        let mut kept = 0;
+        for i in 0..tail.len() {
+            let Some(&raw) = tail.get(i) else { break };
+            self.last_byte = now;
+            let b = self.stripped(raw);
+            if b == XON || b == XOFF {
+                continue;
+            }
+            if (!self.link.active || between) && self.realtime(b, self.rx.len() + kept) {
+                if b == 0x18 {
+                    return Picked::Reset(i);
+                }
+                continue;
+            }
+            self.last_rx = now;
+            if let Some(slot) = tail.get_mut(kept) {
+                *slot = raw;
+            }
+            kept += 1;
+            between = b == b'\n';
+        }
+        tail.copy_within(..kept, tail.len() - kept);
+        Picked::Kept(kept)
+    }
+
+    /// `raw` as the controller reads it: bit 7 stripped for a tape reader that
+    /// sends parity.
+    fn stripped(&self, raw: u8) -> u8 {
+        if self.tape.is_some() && self.settings.parity_strip { raw & 0x7f } else { raw }
+    }
+
     /// Whether a real-time byte would be acted on now. Always, except while link
     /// checksums are in use: then only between lines (the first byte after a LF),
     /// so that line noise turning a byte of a line into `!`, `~` or 0x18 (a flipped
@@ -456,8 +524,9 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
         self.out.drain(out)
     }
 
-    /// A real-time byte: latched, true; any other byte: false.
-    fn realtime(&mut self, b: u8) -> bool {
+    /// A real-time byte: latched, true; any other byte: false. `behind`: received
+    /// bytes not yet handled that came before it.
+    fn realtime(&mut self, b: u8, behind: usize) -> bool {
         let rt = &mut self.rt;
         match b {
             b'?' => rt.status = true,
@@ -485,10 +554,10 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
         if b == 0x18 {
             self.grbl_seen = false;
             self.grbl_after = None;
-        } else if self.rx.is_empty() {
+        } else if behind == 0 {
             self.grbl_seen = true;
         } else {
-            self.grbl_after.get_or_insert(self.rx.len());
+            self.grbl_after.get_or_insert(behind);
         }
         true
     }

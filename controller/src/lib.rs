@@ -9,7 +9,7 @@
 //!
 //! ```text
 //! loop {
-//!     let n = ctl.receive(&rx_bytes, now);      // keep rx_bytes[n..] for later
+//!     let n = ctl.receive(&mut rx_bytes, now);  // keep rx_bytes[n..] for later
 //!     ctl.poll(now, &mut port, &mut io, inputs); // bounded work
 //!     let m = ctl.transmit(&mut tx_buf);        // send tx_buf[..m]
 //! }
@@ -22,7 +22,9 @@
 //! What a shell must honour:
 //! - `receive`, `poll` and `transmit` are called from one task (the UART
 //!   interrupt or DMA only fills a byte ring the task empties into `receive`);
-//!   bytes `receive` did not take are offered again later, in order.
+//!   bytes `receive` did not take are offered again later, in order, as `receive`
+//!   left them in the slice (it removes the real-time bytes it acted on, which
+//!   may sit behind bytes the full receive buffer cannot take yet).
 //! - `poll` every millisecond or so (and soon after `receive`): real-time
 //!   commands act at the next poll; one poll does bounded work (≤ 4 lines,
 //!   ≤ 8 interpreter steps of ≤ 32 macro statements each, one status report).

@@ -26,7 +26,7 @@ fn controller_after(lines: &[&str]) -> (Box<Ctl>, MotionCore<64>) {
     let mut ctl = Box::new(Ctl::new(cfg, pos));
     let mut now = 0;
     for line in lines {
-        assert_eq!(ctl.receive(line.as_bytes(), now), line.len());
+        assert_eq!(ctl.receive(&mut line.as_bytes().to_vec(), now), line.len());
         for _ in 0..5 {
             now += 1_000_000;
             ctl.poll(now, &mut core, &mut (), Inputs::default());

@@ -9,6 +9,7 @@ use core::cell::RefCell;
 
 use defmt::{info, unwrap, warn};
 use embassy_executor::Spawner;
+use embassy_futures::select::{Either, select};
 use embassy_stm32::gpio::{Input, Output};
 use embassy_stm32::peripherals::{IWDG, TIM5};
 use embassy_stm32::timer::qei::Qei;
@@ -320,31 +321,52 @@ fn save(saving: &mut Saving, now: u64, ctl: &mut Ctl, port: &MotionPort) {
 #[cfg(not(persist))]
 fn save(_: &mut Saving, _: u64, _: &mut Ctl, _: &MotionPort) {}
 
+/// Bytes the link receive task holds for the controller: what arrived and its
+/// receive buffer could not take yet. The task keeps reading while it holds bytes,
+/// so a real-time byte (`!`, 0x18, `?`) behind a buffer that a sender ignoring
+/// character counting overfilled still acts at once — up to this many bytes behind
+/// it (beyond that, bytes wait in the UART's ring until there is room here).
+const HELD: usize = 512;
+
 /// Link receive: bytes from USART2 into the controller as they arrive. What its
-/// receive buffer cannot take yet is offered again after the next poll (the rest
-/// waits in the UART's ring buffer).
+/// receive buffer cannot take yet is held and offered again after every poll and
+/// with every new byte; the controller removes the real-time bytes it acted on
+/// from what is held (`Controller::receive`).
 #[embassy_executor::task]
 async fn link_rx(mut rx: BufferedUartRx<'static>) {
-    let mut buf = [0u8; 64];
+    let mut buf = [0u8; HELD];
+    let mut len = 0;
     loop {
-        let n = match rx.read(&mut buf).await {
-            Ok(n) => n,
-            Err(e) => {
-                warn!("link receive: {}", e);
-                continue;
-            }
-        };
-        let mut rest = buf.get(..n).unwrap_or(&[]);
-        while !rest.is_empty() {
-            let now = now_ns();
-            let taken = CONTROLLER.lock(|c| c.borrow_mut().as_deref_mut().map_or(0, |c| c.receive(rest, now)));
-            rest = rest.get(taken..).unwrap_or(&[]);
-            TX_READY.signal(());
-            if !rest.is_empty() {
-                POLLED.wait().await;
-            }
-        }
+        len += arrived(&mut rx, buf.get_mut(len..).unwrap_or(&mut []), len > 0).await;
+        let now = now_ns();
+        let held = buf.get_mut(..len).unwrap_or(&mut []);
+        let taken = CONTROLLER.lock(|c| c.borrow_mut().as_deref_mut().map_or(0, |c| c.receive(held, now)));
+        let taken = taken.min(len);
+        buf.copy_within(taken..len, 0);
+        len -= taken;
+        TX_READY.signal(());
     }
+}
+
+/// Waits for bytes from the UART into `free` — or, while bytes are `held`, also
+/// for the next poll (it may have made room) — and returns how many arrived. With
+/// `free` empty only a poll ends the wait.
+async fn arrived(rx: &mut BufferedUartRx<'static>, free: &mut [u8], held: bool) -> usize {
+    let got = match (held, free.is_empty()) {
+        (true, true) => {
+            POLLED.wait().await;
+            return 0;
+        }
+        (true, false) => match select(POLLED.wait(), rx.read(free)).await {
+            Either::First(()) => return 0,
+            Either::Second(r) => r,
+        },
+        (false, _) => rx.read(free).await,
+    };
+    got.unwrap_or_else(|e| {
+        warn!("link receive: {}", e);
+        0
+    })
 }
 
 /// Link transmit: whatever the controller has to say, to USART2.

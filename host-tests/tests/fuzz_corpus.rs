@@ -50,6 +50,17 @@ fn board_corpus_replays() {
     replay("board", 5, harness::board);
 }
 
+/// Fuzz finding (board): a sender that ignores character counting overfills the
+/// receive buffer with jogs of a minute each; the final `?` sits behind bytes the
+/// buffer cannot take and must still be answered within the harness's second.
+#[test]
+fn status_behind_a_buffer_overfilled_with_slow_jogs_is_answered() {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../fuzz/corpus/board");
+    let data = std::fs::read(dir.join("finding_status_behind_backpressure")).expect("finding file");
+    assert!(data.windows(13).any(|w| w == b"$J=G91 X5 F5\n"), "slow jogs");
+    harness::board(&data);
+}
+
 #[test]
 fn cycle_programs_cover_every_cycle() {
     let heads: Vec<String> = (0u8..9).map(|h| harness::cycle_program(&[h, 100, 0, 40, 0, 20, 0, 30])).collect();

@@ -218,8 +218,10 @@ impl VirtualBoard {
     }
 
     /// Bytes from the link. The controller takes what fits; the rest waits here
-    /// (as it waits in the UART's ring buffer on the board) and is offered again at
-    /// every poll. Lost while the link is down ([`crate::Faults::link_down`]).
+    /// (as it waits in the link task's buffer on the board) and is offered again at
+    /// every poll — without the real-time bytes among it, which the controller
+    /// acts on at once and removes. Lost while the link is down
+    /// ([`crate::Faults::link_down`]).
     pub fn receive(&mut self, bytes: &[u8]) {
         if self.sim.faults.link_down_at(self.now()) {
             return;
@@ -273,7 +275,7 @@ impl VirtualBoard {
         if self.pending.is_empty() {
             return;
         }
-        let n = self.ctl.receive(&self.pending, self.sim.clock.0);
+        let n = self.ctl.receive(&mut self.pending, self.sim.clock.0);
         self.pending.drain(..n.min(self.pending.len()));
     }
 

@@ -104,14 +104,14 @@ pub const TICK: u64 = 1_000_000;
 
 /// The trait the rig needs of a controller type (any capacities).
 pub trait Drive {
-    fn receive(&mut self, b: &[u8], now: u64) -> usize;
+    fn receive(&mut self, b: &mut [u8], now: u64) -> usize;
     fn poll(&mut self, now: u64, port: &mut Rec, io: &mut Io, inputs: Inputs);
     fn transmit(&mut self, out: &mut [u8]) -> usize;
     fn make(cfg: MachineConfig) -> Box<Self>;
 }
 
 impl<const W: usize, const T: usize, const P: usize, const S: usize> Drive for Controller<W, T, P, S> {
-    fn receive(&mut self, b: &[u8], now: u64) -> usize {
+    fn receive(&mut self, b: &mut [u8], now: u64) -> usize {
         Controller::receive(self, b, now)
     }
     fn poll(&mut self, now: u64, port: &mut Rec, io: &mut Io, inputs: Inputs) {
@@ -155,9 +155,10 @@ impl<C: Drive> Rig<C> {
 
     /// Offers the pending bytes; how many it took.
     pub fn feed(&mut self) -> usize {
-        let buf: Vec<u8> = self.pending.iter().copied().collect();
-        let n = self.ctl.receive(&buf, self.now);
-        self.pending.drain(..n);
+        let mut buf: Vec<u8> = self.pending.iter().copied().collect();
+        let n = self.ctl.receive(&mut buf, self.now);
+        // What was not taken, with the real-time bytes picked out of it.
+        self.pending = buf.get(n..).unwrap_or_default().iter().copied().collect();
         n
     }
 
