@@ -4,8 +4,11 @@
 //! reads — in soft float on the Cortex-M4 that addition is a call of ~80
 //! instructions, as much as the root itself.
 //!
-//! The root is libm's (musl's, MIT): a 7-bit table estimate of `1/√m`, two
-//! Goldschmidt iterations in 32 bits and two in 64, and an exact rounding test.
+//! The root is libm's: a 7-bit table estimate of `1/√m`, two Goldschmidt
+//! iterations in 32 bits and two in 64, and an exact rounding test — ported from
+//! the `libm` crate 0.2.16, `src/math/generic/sqrt.rs` (SPDX-License-Identifier:
+//! MIT; the Rust libm authors, from musl's `src/math/sqrt.c`, Copyright © 2005-2020
+//! Rich Felker, et al., MIT), specialised to f64 and positive normal arguments.
 
 /// `√x`, the same bits as `libm::sqrt(x)`: for positive normal `x` by the
 /// integer iterations below, for anything else (zero, subnormal, infinite, NaN,
