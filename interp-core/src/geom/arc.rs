@@ -32,7 +32,7 @@ pub fn center_from_radius(start: P2, end: P2, r: i64, cw: bool, tol: i64) -> Res
     let disc = (4 * sq(radius)).saturating_sub(c2);
     // s = 2h / chord; the centre is the chord's middle plus s/2 times the chord
     // turned a quarter: (db, −da) to the right of it.
-    let s = libm::sqrt(f64_of_u128(disc) / f64_of_u128(c2));
+    let s = super::sqrt::sqrt(f64_of_u128(disc) / f64_of_u128(c2));
     // Clockwise arcs of up to 180° have their centre to the right of the chord.
     let right = cw == (r > 0);
     let (na, nb) = if right { (db, da.wrapping_neg()) } else { (db.wrapping_neg(), da) };

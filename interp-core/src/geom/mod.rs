@@ -3,5 +3,6 @@
 
 mod arc;
 pub mod path;
+mod sqrt;
 
 pub use arc::{Extents, P2, arc_extents, center_from_offsets, center_from_radius};
