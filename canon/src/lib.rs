@@ -23,6 +23,7 @@ pub mod alarm;
 pub mod axis;
 pub mod config;
 pub mod units;
+pub mod xorshift;
 
 mod record;
 

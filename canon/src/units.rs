@@ -383,6 +383,7 @@ pub fn nm_to_mm(nm: i64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::xorshift::XorShift;
 
     #[test]
     fn f64_of_u128_equals_the_u128_conversion() {
@@ -393,11 +394,9 @@ mod tests {
 
     #[test]
     fn f32_of_equals_the_i64_conversion() {
-        let mut seed: u64 = 0x2545_f491_4f6c_dd1d;
+        let mut rng = XorShift::new(0x2545_f491_4f6c_dd1d);
         for i in 0..100_000 {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
+            let seed = rng.next_u64();
             let v = (seed as i64) >> (i % 64);
             assert_eq!(f32_of(v).to_bits(), (v as f32).to_bits(), "{v}");
         }
@@ -475,13 +474,8 @@ mod tests {
     /// random squares of every size up to 2^64, the edges included.
     #[test]
     fn sqrt_u64_rounds_exactly() {
-        let mut seed: u64 = 0x2545_f491_4f6c_dd1d;
-        let mut next = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
+        let mut rng = XorShift::new(0x2545_f491_4f6c_dd1d);
+        let mut next = || rng.next_u64();
         let check = |x: u64| {
             let (n, r) = sqrt_u64(x);
             let lo = |k: u64| (2 * u128::from(k)).saturating_sub(1).pow(2);

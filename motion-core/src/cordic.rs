@@ -127,16 +127,12 @@ fn small_atan(y: i32, x: i32) -> i32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use canon::xorshift::XorShift;
 
     #[test]
     fn angle_matches_atan2() {
-        let mut seed: u64 = 0x9e37_79b9_7f4a_7c15;
-        let mut next = |m: u64| {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed % (2 * m)) as i64 - m as i64
-        };
+        let mut rng = XorShift::new(0x9e37_79b9_7f4a_7c15);
+        let mut next = |m: u64| rng.signed(m as i64);
         let mut worst = 0i64;
         for i in 0..20_000 {
             let m = [1_000, 1_000_000, 100_000_000, 2_000_000_000_000][i % 4];

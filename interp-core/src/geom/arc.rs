@@ -184,6 +184,7 @@ fn wrap4(x: f32) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use canon::xorshift::XorShift;
 
     const MM: i64 = 1_000_000;
 
@@ -191,13 +192,8 @@ mod tests {
     /// 2 m: the same in every case.
     #[test]
     fn integer_radius_equals_the_f64_one() {
-        let mut seed: u64 = 0x9e37_79b9_7f4a_7c15;
-        let mut next = |m: i64| {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed % (2 * m as u64)) as i64 - m
-        };
+        let mut rng = XorShift::new(0x9e37_79b9_7f4a_7c15);
+        let mut next = |m: i64| rng.signed(m);
         for i in 0..40_000 {
             let m = [1_000, 1_000_000, 100_000_000, 2_000_000_000][i % 4];
             let (p, q) = ((next(m), next(m)), (next(m), next(m)));
@@ -313,13 +309,8 @@ mod tests {
     /// and factors of every size, and the ties.
     #[test]
     fn half_sum_equals_the_whole_sum() {
-        let mut seed: u64 = 0x2545_f491_4f6c_dd1d;
-        let mut next = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
+        let mut rng = XorShift::new(0x2545_f491_4f6c_dd1d);
+        let mut next = || rng.next_u64();
         let mut compared = 0;
         for i in 0..200_000 {
             let size = |v: u64, k: u32| (v as i64) >> (v % u64::from(k)) as u32;
@@ -342,13 +333,8 @@ mod tests {
     #[test]
     fn integer_centres_equal_the_f64_ones() {
         // The same spread as below plus near half circles and exact ties.
-        let mut seed: u64 = 0x9e37_79b9_7f4a_7c15;
-        let mut next = |m: i64| {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed % (2 * m as u64)) as i64 - m
-        };
+        let mut rng = XorShift::new(0x9e37_79b9_7f4a_7c15);
+        let mut next = |m: i64| rng.signed(m);
         let mut differ = 0;
         for i in 0..40_000 {
             let scale = [1_000, 100_000, 10 * MM, 1_000 * MM][i % 4];
@@ -379,13 +365,8 @@ mod tests {
     fn centres_and_extents_match_hypot_within_a_nanometre() {
         // A deterministic spread of arcs: chords from 1 µm to 1 m, radii from just
         // over half the chord to 100 times it, both directions and signs.
-        let mut seed: u64 = 0x2545_f491_4f6c_dd1d;
-        let mut next = |m: i64| {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed % (2 * m as u64)) as i64 - m
-        };
+        let mut rng = XorShift::new(0x2545_f491_4f6c_dd1d);
+        let mut next = |m: i64| rng.signed(m);
         let mut far = 0;
         for i in 0..20_000 {
             let scale = [1_000, 100_000, 10 * MM, 1_000 * MM][i % 4];

@@ -101,16 +101,12 @@ static RSQRT_TAB: [u16; 128] = [
 #[cfg(test)]
 mod tests {
     use super::*;
+    use canon::xorshift::XorShift;
 
     #[test]
     fn same_bits_as_libm() {
-        let mut seed: u64 = 0x9e37_79b9_7f4a_7c15;
-        let mut next = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
+        let mut rng = XorShift::new(0x9e37_79b9_7f4a_7c15);
+        let mut next = || rng.next_u64();
         let check = |x: f64| assert_eq!(sqrt(x).to_bits(), libm::sqrt(x).to_bits(), "{x:e}");
         for x in [0.0, -0.0, 1.0, 2.0, 4.0, 0.25, f64::MIN_POSITIVE, 5e-324, f64::MAX, f64::INFINITY, -1.0, f64::NAN] {
             check(x);

@@ -600,18 +600,14 @@ pub fn tap(start: &Pos, t: &TapMove, p: &MotionParams, line: u32, slot: &mut Ite
 #[cfg(test)]
 mod tests {
     use super::*;
+    use canon::xorshift::XorShift;
 
     /// Radii rounded exactly from the integer square sum against the former
     /// `round(√(a² + b²))` in f64, and the new length against the former formula.
     #[test]
     fn integer_radii_match_the_f64_ones() {
-        let mut seed: u64 = 0x9e37_79b9_7f4a_7c15;
-        let mut next = |m: i64| {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed % (2 * m as u64)) as i64 - m
-        };
+        let mut rng = XorShift::new(0x9e37_79b9_7f4a_7c15);
+        let mut next = |m: i64| rng.signed(m);
         let mut differ = 0;
         for i in 0..40_000 {
             let m = [1_000, 1_000_000, 100_000_000, 2_000_000_000][i % 4];
@@ -652,13 +648,8 @@ mod tests {
     /// 4·10⁻⁷), over vectors up to 2 m and beyond 2^32 nm.
     #[test]
     fn f32_radii_and_lengths_match_the_f64_ones() {
-        let mut seed: u64 = 0x9e37_79b9_7f4a_7c15;
-        let mut next = |m: i64| {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed % (2 * m as u64)) as i64 - m
-        };
+        let mut rng = XorShift::new(0x9e37_79b9_7f4a_7c15);
+        let mut next = |m: i64| rng.signed(m);
         for i in 0..40_000 {
             let m = [1_000, 1_000_000, 100_000_000, 2_000_000_000, 1 << 40][i % 5];
             let (v, w) = ((next(m), next(m)), (next(m), next(m)));
@@ -681,13 +672,8 @@ mod tests {
     /// size and direction: within 16 units of 2^-32 turn, or handed to f64.
     #[test]
     fn cordic_sweeps_match_atan2() {
-        let mut seed: u64 = 0x2545_f491_4f6c_dd1d;
-        let mut next = |m: i64| {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed % (2 * m as u64)) as i64 - m
-        };
+        let mut rng = XorShift::new(0x2545_f491_4f6c_dd1d);
+        let mut next = |m: i64| rng.signed(m);
         let mut fallbacks = 0;
         for i in 0..20_000 {
             let m = [1_000, 1_000_000, 100_000_000, 1_000_000_000][i % 4];
