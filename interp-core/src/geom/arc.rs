@@ -129,7 +129,7 @@ pub struct Extents {
 /// Bounding box of the arc from `start` to `end` around `center`: the end points
 /// plus every quadrant point (0°, 90°, 180°, 270°) the arc passes.
 pub fn arc_extents(start: P2, end: P2, center: P2, cw: bool, full: bool) -> Extents {
-    let mut e = Extents { a: (start.0.min(end.0), start.0.max(end.0)), b: (start.1.min(end.1), start.1.max(end.1)) };
+    let e = Extents { a: (start.0.min(end.0), start.0.max(end.0)), b: (start.1.min(end.1), start.1.max(end.1)) };
     let rel = |p: P2| (p.0 - center.0, p.1 - center.1);
     let (s, t) = (pseudo_angle(rel(start)), pseudo_angle(rel(end)));
     // Sweep counter-clockwise from `from` to `to`, in quarter turns.
@@ -138,12 +138,28 @@ pub fn arc_extents(start: P2, end: P2, center: P2, cw: bool, full: bool) -> Exte
     if full || sweep == 0.0 {
         sweep = 4.0;
     }
-    // The radius (a square root) only when the arc passes a quadrant point:
-    // short arcs mostly pass none.
-    let mut r = None;
+    // Which quadrant points the arc passes (bit q: the point at q quarter turns),
+    // decided in f32 alone; short arcs mostly pass none, and then neither the
+    // radius (a square root) nor the loop below is paid.
+    let mut passed = 0u8;
+    for q in 0..4u8 {
+        if wrap4(f32::from(q) - from) <= sweep {
+            passed |= 1 << q;
+        }
+    }
+    if passed == 0 {
+        return e;
+    }
+    with_quadrant_points(e, start, center, passed)
+}
+
+/// `e` grown by the quadrant points in `passed` (bit q: the point at q quarter
+/// turns) of the circle around `center` through `start`.
+#[inline(never)]
+fn with_quadrant_points(mut e: Extents, start: P2, center: P2, passed: u8) -> Extents {
+    let r = radius_nm(start, center);
     for (q, (da, db)) in [(1, 0), (0, 1), (-1, 0), (0, -1)].into_iter().enumerate() {
-        if wrap4(q as f32 - from) <= sweep {
-            let r = *r.get_or_insert_with(|| radius_nm(start, center));
+        if passed & (1 << q) != 0 {
             let (pa, pb) = (center.0 + da * r, center.1 + db * r);
             e.a = (e.a.0.min(pa), e.a.1.max(pa));
             e.b = (e.b.0.min(pb), e.b.1.max(pb));
