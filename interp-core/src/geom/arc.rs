@@ -59,7 +59,10 @@ fn half_sum(p: i64, d: i64, n: i64, s: f64) -> Option<i64> {
     if !(0..=120).contains(&sh) {
         return None;
     }
-    let t = i128::from(n) * i128::from(m);
+    // |n|·m as a 64 × 64 → 128-bit unsigned product (four multiplies on the M4;
+    // the signed 128-bit product is a full 128 × 128 multiplication), then signed.
+    let t = (u128::from(n.unsigned_abs()) * u128::from(m)) as i128;
+    let t = if n < 0 { -t } else { t };
     // |U| < 2^65 + 2^116: no overflow.
     let u = 2 * i128::from(p) + i128::from(d) + (t >> sh);
     let q = if u >= 0 {

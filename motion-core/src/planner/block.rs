@@ -425,9 +425,10 @@ pub fn arc(start: &Pos, a: &ArcMove, p: &MotionParams, line: u32, slot: &mut Ite
     // one period may stray from the arc by at most the chord tolerance.
     let accel = minf(la.accel, lb.accel) / 2.0;
     let r = minf(r0f, r1f);
-    let centripetal = sqrtf(accel * r);
-    let chord = sqrtf(8.0 * r * p.chord_tolerance);
-    let cap = minf(minf(minf(la.feed, lb.feed), p.path_feed), minf(centripetal, chord));
+    // The smaller of the centripetal (√(a·r)) and chord (√(8·r·tol)) caps: one
+    // root of the smaller square.
+    let bend = sqrtf(minf(accel * r, 8.0 * r * p.chord_tolerance));
+    let cap = minf(minf(minf(la.feed, lb.feed), p.path_feed), bend);
     let geom = ArcGeom { axes, center: c, r0: r0_nm, r1: r1_nm, theta0, sweep };
     *slot = Item::Motion(Block {
         line,
