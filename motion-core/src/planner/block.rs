@@ -344,6 +344,15 @@ fn radius(v: (i64, i64)) -> (f64, i64) {
 /// nanometres exactly, `round(√(a² + b²))`: by integer arithmetic and f32 below
 /// 2^64 nm² (radii up to 4.29 m, [`sqrt_u64`]), else as [`radius`] does.
 fn radius_f32(v: (i64, i64)) -> (f32, i64) {
+    // Both sides below 2^32 nm (4.29 m): 32-bit squares, one multiply each on the
+    // Cortex-M4, summed in 64 bits when that does not carry.
+    if let (Ok(a), Ok(b)) = (u32::try_from(v.0.unsigned_abs()), u32::try_from(v.1.unsigned_abs())) {
+        let sq = |x: u32| u64::from(x) * u64::from(x);
+        if let Some(x) = sq(a).checked_add(sq(b)) {
+            let (nm, r) = sqrt_u64(x);
+            return (r, nm as i64);
+        }
+    }
     let sq = |x: u64| u128::from(x) * u128::from(x);
     let r2 = sq(v.0.unsigned_abs()) + sq(v.1.unsigned_abs());
     match u64::try_from(r2) {
