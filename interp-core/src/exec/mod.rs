@@ -50,12 +50,7 @@ pub fn execute(
         _ if cmd.g.polygon.is_some() => polygon::switch(cmd, st, cfg, out)?,
         _ if polar::mode_change(cmd, st, cfg)? => {}
         _ if st.polar.is_some() => polar::execute(cmd, st, cfg, out)?,
-        _ => {
-            let mut ctx = cycles::Ctx { cfg, env, out };
-            if !cycles::execute::<Blocks>(cmd, st, &mut ctx, chained)? {
-                motion_or_curve(cmd, st, cfg, ctx.out)?;
-            }
-        }
+        _ => cycle_or_motion(cmd, st, cfg, env, out, chained)?,
     }
     // 2.14 item 5: G61/G64 take effect from the next block.
     if let Some(e) = cmd.g.exact_stop_mode {
@@ -109,10 +104,7 @@ fn plain(
     let chained = cycles::before_block(cmd, st)?;
     apply_modal(cmd, st);
     spindle::before_motion(cmd, st, cfg, out)?;
-    let mut ctx = cycles::Ctx { cfg, env, out };
-    if !cycles::execute::<Blocks>(cmd, st, &mut ctx, chained)? {
-        motion_or_curve(cmd, st, cfg, ctx.out)?;
-    }
+    cycle_or_motion(cmd, st, cfg, env, out, chained)?;
     if let Some(e) = cmd.g.exact_stop_mode {
         st.modal.exact_stop_mode = e;
     }
@@ -135,6 +127,25 @@ impl cycles::Executor for Blocks {
     ) -> Result<Flow, AlarmKind> {
         execute(cmd, st, cfg, env, out)
     }
+}
+
+/// The block's cycle (a canned cycle it starts or continues, `chained` from
+/// [`cycles::before_block`]) or else its motion: the part of a block both
+/// [`execute`] and its short way [`plain`] run.
+#[inline(always)]
+fn cycle_or_motion(
+    cmd: &Command,
+    st: &mut State,
+    cfg: &MachineConfig,
+    env: &dyn Environment,
+    out: &mut CycleStage<'_>,
+    chained: bool,
+) -> Result<(), AlarmKind> {
+    let mut ctx = cycles::Ctx { cfg, env, out };
+    if !cycles::execute::<Blocks>(cmd, st, &mut ctx, chained)? {
+        motion_or_curve(cmd, st, cfg, ctx.out)?;
+    }
+    Ok(())
 }
 
 /// Executes the block's motion in the modal motion mode: G02.1/G03.1 and
