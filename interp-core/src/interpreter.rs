@@ -743,6 +743,11 @@ impl Interpreter {
         P: ProgramStore + ?Sized,
         E: Environment,
     {
+        // Most steps have no cycle in progress: they leave before the program's
+        // text is looked up.
+        if self.cycle.is_none() {
+            return Ok(None);
+        }
         let here = self.cursor.program;
         let program = program_text(programs, here, &self.vars, self.number_format());
         let Some(exp) = self.cycle.as_mut() else { return Ok(None) };

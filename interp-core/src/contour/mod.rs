@@ -137,13 +137,40 @@ fn plan_comp(cmd: &Command, st: &mut State) -> Result<CompPlan, AlarmKind> {
     Ok(CompPlan { cancel: was.is_some() && now.is_none(), pause: was.is_some() && now.is_some() && pause })
 }
 
+/// Whether [`after_block`] has nothing to do for the block: no corner asked for,
+/// nothing held, compensation neither in force nor being started. Then
+/// [`corner_request`] and [`plan_comp`] would return nothing and change nothing
+/// (most blocks of a program without G41/G42 and chamfers).
+#[inline]
+fn idle(cmd: &Command, st: &State) -> bool {
+    let starts_comp = !st.contour.no_comp && matches!(st.modal.nose_comp, GCode::NoseCompLeft | GCode::NoseCompRight);
+    cmd.corner.is_none() && st.contour.comp.side.is_none() && !starts_comp && !st.contour.is_holding()
+}
+
 /// Passes the actions the block just staged in `out` through both stages. `from`
 /// is the machine position before the block, `flow` what the block does next (a
 /// stop or the end of the program empties the look-ahead). Actions after a
 /// cycle's place (`out.split`) come after everything held; the cycle itself is a
 /// temporary cancel (G90/G94 offset their own moves, [`cycle`]) and the next move
 /// starts the offset up again.
+#[inline]
 pub fn after_block(
+    cmd: &Command,
+    st: &mut State,
+    cfg: &crate::config::MachineConfig,
+    from: Pos,
+    flow: Flow,
+    out: &mut Staged<'_>,
+) -> Result<(), AlarmKind> {
+    if idle(cmd, st) {
+        return Ok(());
+    }
+    through_stages(cmd, st, cfg, from, flow, out)
+}
+
+/// [`after_block`] for a block the stages have work for.
+#[inline(never)]
+fn through_stages(
     cmd: &Command,
     st: &mut State,
     cfg: &crate::config::MachineConfig,
