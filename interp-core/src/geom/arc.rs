@@ -133,7 +133,17 @@ pub struct Extents {
 /// plus every quadrant point (0°, 90°, 180°, 270°) the arc passes.
 pub fn arc_extents(start: P2, end: P2, center: P2, cw: bool, full: bool) -> Extents {
     let e = Extents { a: (start.0.min(end.0), start.0.max(end.0)), b: (start.1.min(end.1), start.1.max(end.1)) };
-    let rel = |p: P2| (p.0 - center.0, p.1 - center.1);
+    let rel = |p: P2| (p.0.wrapping_sub(center.0), p.1.wrapping_sub(center.1));
+    if !full && inside_one_quadrant(rel(start), rel(end), cw) {
+        return e;
+    }
+    by_quarter_turns(e, start, end, center, cw, full)
+}
+
+/// [`arc_extents`] from the end points' box `e`, with the quadrant points passed
+/// found by the ends' pseudo-angles in f32.
+fn by_quarter_turns(e: Extents, start: P2, end: P2, center: P2, cw: bool, full: bool) -> Extents {
+    let rel = |p: P2| (p.0.wrapping_sub(center.0), p.1.wrapping_sub(center.1));
     let (s, t) = (pseudo_angle(rel(start)), pseudo_angle(rel(end)));
     // Sweep counter-clockwise from `from` to `to`, in quarter turns.
     let (from, to) = if cw { (t, s) } else { (s, t) };
@@ -169,6 +179,28 @@ fn with_quadrant_points(mut e: Extents, start: P2, center: P2, passed: u8) -> Ex
         }
     }
     e
+}
+
+/// Whether the arc from `s` to `t` (both relative to the centre) stays inside one
+/// open quadrant: both off the axes in the same quadrant, and the arc going the
+/// short way from one to the other (clockwise if `cw`), decided exactly by the
+/// sign of the cross product in integers (|s×t| < 2^62: no overflow). Such an arc passes no quadrant point,
+/// and most short arcs of a contour are such arcs. The f32 test below agrees
+/// except for arcs too short for f32 to order their ends, which it takes for full
+/// circles; this test gives them their own box.
+fn inside_one_quadrant(s: P2, t: P2, cw: bool) -> bool {
+    // Radii under 2^31 nm (2.1 m) — every lathe arc — keep the products in 64
+    // bits (two 32 × 32 multiplies); larger ones go the f32 way.
+    let small = |v: i64| i32::try_from(v).ok().filter(|&v| v != 0).map(i64::from);
+    let (Some(sa), Some(sb), Some(ta), Some(tb)) = (small(s.0), small(s.1), small(t.0), small(t.1)) else {
+        return false;
+    };
+    if (sa > 0, sb > 0) != (ta > 0, tb > 0) {
+        return false;
+    }
+    // The cross product s × t: positive when t lies counter-clockwise of s.
+    let cross = (sa * tb).cmp(&(sb * ta));
+    cross == if cw { core::cmp::Ordering::Less } else { core::cmp::Ordering::Greater }
 }
 
 /// A monotonic stand-in for the angle of `v` in quarter turns, `[0, 4)`: exact at
@@ -378,6 +410,46 @@ mod tests {
         assert_eq!(center_from_radius((0, 0), (-3, 0), 1, true, 1), Ok((-2, 0)));
         assert_eq!(center_from_radius((0, 1), (3, 1), 1, true, 1), Ok((2, 1)));
         assert_eq!(differ, 0, "integer centres differ from the f64 ones");
+    }
+
+    /// The integer test for arcs inside one quadrant against the f32 pseudo-angles:
+    /// the same box for every arc it takes, except arcs too short for f32 to order
+    /// their ends (the f32 way then boxes the whole circle).
+    #[test]
+    fn quadrant_test_agrees_with_the_f32_one() {
+        let mut rng = XorShift::new(0x6a09_e667_f3bc_c908);
+        let (mut inside, mut tiny) = (0, 0);
+        for i in 0..100_000 {
+            let r = [2_000, 200_000, 20 * MM, 1_000 * MM][i % 4] + rng.signed(1_000).abs();
+            let centre = (rng.signed(300 * MM), rng.signed(300 * MM));
+            let on_circle = |rng: &mut XorShift| {
+                let a = rng.signed(1 << 30) as f64 / f64::from(1u32 << 30) * core::f64::consts::PI;
+                let p = (centre.0 + (r as f64 * libm::cos(a)) as i64, centre.1 + (r as f64 * libm::sin(a)) as i64);
+                (p, a)
+            };
+            let ((start, a0), (end, a1)) = (on_circle(&mut rng), on_circle(&mut rng));
+            let cw = i % 2 == 1;
+            let e =
+                Extents { a: (start.0.min(end.0), start.0.max(end.0)), b: (start.1.min(end.1), start.1.max(end.1)) };
+            let rel = |p: P2| (p.0 - centre.0, p.1 - centre.1);
+            if !inside_one_quadrant(rel(start), rel(end), cw) {
+                continue;
+            }
+            inside += 1;
+            let by_f32 = by_quarter_turns(e, start, end, centre, cw, false);
+            if (a1 - a0).abs() < 1e-6 && by_f32 != e {
+                tiny += 1;
+                continue;
+            }
+            assert_eq!(arc_extents(start, end, centre, cw, false), e);
+            assert_eq!(by_f32, e, "{start:?} {end:?} around {centre:?}, cw {cw}");
+        }
+        assert!(inside > 10_000, "{inside} arcs inside one quadrant");
+        assert!(tiny < 10, "{tiny} arcs too short for f32");
+        // Through the axes, or the long way round: the quadrant points count.
+        let e = arc_extents((10 * MM, 1), (1, 10 * MM), (0, 0), true, false);
+        assert_eq!(e, Extents { a: (-10 * MM, 10 * MM), b: (-10 * MM, 10 * MM) });
+        assert_eq!(arc_extents((10 * MM, 1), (1, 10 * MM), (0, 0), false, false).a, (1, 10 * MM));
     }
 
     #[test]
