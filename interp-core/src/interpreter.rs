@@ -298,6 +298,7 @@ impl Interpreter {
         if keep_local {
             self.state.frames.local = old.frames.local;
         }
+        self.state.sum_own_offsets();
         self.rewind();
     }
 

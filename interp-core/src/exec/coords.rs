@@ -33,6 +33,7 @@ pub(super) fn set_coordinates(cmd: &Command, st: &mut State, cfg: &MachineConfig
             st.frames.local[a] = 0;
         }
     }
+    st.sum_own_offsets();
     Ok(())
 }
 
@@ -44,6 +45,7 @@ pub(super) fn local_frame(cmd: &Command, st: &mut State) {
             st.frames.local[a] = w.value;
         }
     }
+    st.sum_own_offsets();
 }
 
 /// G53: rapid to machine coordinates, tool offset not applied, one block only.

@@ -214,6 +214,7 @@ fn tool_change(cmd: &Command, st: &mut State, cfg: &MachineConfig, out: &mut Sta
         nose_radius: row.radius,
         tip: row.tip,
     };
+    st.sum_own_offsets();
     out.emit(Action::Tool { tool, offset: offset_number })
 }
 

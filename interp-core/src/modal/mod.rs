@@ -243,6 +243,10 @@ pub struct State {
     pub frames: Frames,
     /// Tool and offset.
     pub tool: ToolState,
+    /// `frames.shift + frames.local + tool.offset`: the part of
+    /// [`State::work_to_machine`] the state owns, summed when one of them changes
+    /// ([`State::sum_own_offsets`]) instead of in every move.
+    pub own_offsets: Pos,
     /// Remembered F values.
     pub feed: FeedMemory,
     /// Spindle memory.
@@ -283,6 +287,7 @@ impl State {
             pos,
             frames: Frames::default(),
             tool: ToolState::default(),
+            own_offsets: Pos::ZERO,
             feed: FeedMemory { per_min: f0 * NM_PER_MM, per_rev: f0 * NM_PER_MM },
             spindle: SpindleState { dir: SpindleDir::Stop, rpm: 0, css: None, clamp: None, gear: 0 },
             moved: false,
@@ -302,10 +307,22 @@ impl State {
             + self.frames.local
     }
 
+    /// Sums [`State::own_offsets`] again; called wherever the G50 shift, the G52
+    /// frame or the tool offset change.
+    pub fn sum_own_offsets(&mut self) {
+        self.own_offsets = self.frames.shift + self.frames.local + self.tool.offset;
+    }
+
     /// What is added to a work position to get the machine position of the axes.
     #[inline]
     pub fn work_to_machine(&self, cfg: &MachineConfig) -> Pos {
-        self.frame_origin(cfg) + self.tool.offset
+        // Tests (debug builds) check the kept sum at every use.
+        debug_assert_eq!(
+            self.own_offsets,
+            self.frames.shift + self.frames.local + self.tool.offset,
+            "own offsets not summed again after a change"
+        );
+        cfg.work_offsets[usize::from(self.modal.work_frame)] + cfg.external_offset + self.own_offsets
     }
 
     /// The current position in work coordinates.

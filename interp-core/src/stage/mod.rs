@@ -146,7 +146,8 @@ impl State {
     pub fn save(&self, cmd: &crate::check::Command) -> Saved {
         use crate::codes::GCode::{LocalFrame, SetCoordinates};
         // Destructured so that a new field cannot be forgotten here.
-        let State { modal, pos, frames, tool, feed, spindle, moved, cycle, polar, stroke, contour } = self;
+        let State { modal, pos, frames, tool, own_offsets: _, feed, spindle, moved, cycle, polar, stroke, contour } =
+            self;
         let rare = matches!(cmd.g.one_shot, Some(SetCoordinates | LocalFrame))
             || cmd.tool.is_some()
             || cmd.g.stroke.is_some()
@@ -187,6 +188,7 @@ impl State {
             self.tool = r.tool;
             self.polar = r.polar;
             self.stroke = r.stroke;
+            self.sum_own_offsets();
         }
         self.contour.restore(&saved.contour, held);
     }
