@@ -284,7 +284,29 @@ impl<'a> core::ops::DerefMut for CycleStage<'a> {
 /// cycle data (2.15 note 2), G80 and group-01 codes cancelling hole cycles and rigid
 /// tapping, and the M29 rules (2.22.1). Returns whether the previous block was a
 /// thread block.
+#[inline]
 pub fn before_block(cmd: &Command, st: &mut State) -> Result<bool, AlarmKind> {
+    let quiet = cmd.m.is_empty()
+        && cmd.g.drilling.is_none()
+        && cmd.g.one_shot.is_none()
+        && !st.cycle.thread_chain
+        && st.cycle.rigid == RigidTap::Off;
+    if quiet {
+        // No M29, no rigid tap pending, no G80, no chain: only a motion code
+        // ends the single cycle and the drilling mode (most blocks).
+        if cmd.g.motion.is_some() {
+            st.cycle.single = None;
+            st.modal.drilling = GCode::DrillCancel;
+        }
+        return Ok(false);
+    }
+    cycle_words(cmd, st)
+}
+
+/// [`before_block`] for a block with M words, a drilling or group 00 code, or
+/// with a thread chain or a rigid tap in progress.
+#[inline(never)]
+fn cycle_words(cmd: &Command, st: &mut State) -> Result<bool, AlarmKind> {
     let chained = core::mem::replace(&mut st.cycle.thread_chain, false);
     if cmd.g.one_shot.is_some_and(|c| c != GCode::Dwell) || cmd.g.motion.is_some() {
         st.cycle.single = None;
@@ -338,6 +360,7 @@ pub fn cycle_of(cmd: &Command, st: &State) -> Option<GCode> {
 
 /// Executes the block's cycle, if it has one; false if the block is not a cycle
 /// block (plain motion goes on as usual).
+#[inline]
 pub fn execute<X: Executor>(
     cmd: &Command,
     st: &mut State,
@@ -345,6 +368,18 @@ pub fn execute<X: Executor>(
     chained: bool,
 ) -> Result<bool, AlarmKind> {
     let Some(code) = cycle_of(cmd, st) else { return Ok(false) };
+    cycle_block::<X>(code, cmd, st, ctx, chained)
+}
+
+/// [`execute`] of the block's cycle `code`.
+#[inline(never)]
+fn cycle_block<X: Executor>(
+    code: GCode,
+    cmd: &Command,
+    st: &mut State,
+    ctx: &mut Ctx<'_, '_>,
+    chained: bool,
+) -> Result<bool, AlarmKind> {
     if args::is_thread(code) {
         single::thread_block(cmd, st, ctx, chained)?;
         return Ok(true);

@@ -34,6 +34,7 @@ pub fn spindle_speed(st: &State, cfg: &MachineConfig, x: i64) -> SpindleSpeed {
 }
 
 /// S, G96/G97, G50 S, gears and M03/M04 before the block's motion.
+#[inline]
 pub(crate) fn before_motion(
     cmd: &Command,
     st: &mut State,
@@ -44,6 +45,12 @@ pub(crate) fn before_motion(
         // Nothing here can change the spindle (most motion blocks).
         return Ok(());
     }
+    spindle_words(cmd, st, cfg, out)
+}
+
+/// [`before_motion`] for a block with G96/G97, S or M words.
+#[inline(never)]
+fn spindle_words(cmd: &Command, st: &mut State, cfg: &MachineConfig, out: &mut Staged<'_>) -> Result<(), AlarmKind> {
     let x = st.work_axis(cfg, Axis::X);
     let before = spindle_speed(st, cfg, x);
     if let Some(css) = cmd.g.css {
