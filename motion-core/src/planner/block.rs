@@ -151,20 +151,36 @@ pub struct Exec {
 }
 
 impl Exec {
-    /// The interpolator's data of `b`, which moves from `start` to `end` (machine, nm).
-    pub fn new(b: &Block, start: &Pos, end: &Pos, p: &MotionParams) -> Self {
+    /// The interpolator's data of a block of `kind`, `feed` and length `len_q8`
+    /// (Q8 nm) that moves from `start` to `end` (machine, nm). Computed as the block
+    /// is written into its queue slot: inlined there, the fields go straight into the
+    /// slot (as a call, the result was built on the stack and copied; zeroed in the
+    /// slot and filled later, it cost a `memclr` of 80 bytes and two copies).
+    #[inline(always)]
+    pub fn new(kind: &BlockKind, feed: FeedSpec, len_q8: u64, start: &Pos, end: &Pos, p: &MotionParams) -> Self {
         let present = |i: usize| p.limits[i].present;
         let end_steps = core::array::from_fn(|i| if present(i) { p.scale[i].steps(end.0[i]) } else { 0 });
-        let rate_q8 = match b.feed {
+        let rate_q8 = match feed {
             FeedSpec::Rapid => 0,
             FeedSpec::PerMin(f) => p.rate_q8(f),
             FeedSpec::PerRev(f) => f.saturating_mul(1 << PATH_FRAC),
         };
-        let axis_inv = core::array::from_fn(|i| {
-            let d = end.0[i].abs_diff(start.0[i]);
-            if b.kind == BlockKind::Independent && present(i) && d > 0 { inverse62(d << PATH_FRAC) } else { 0 }
-        });
-        Exec { end_steps, inv_len: inverse62(b.plan.len_q8), rate_q8, axis_inv }
+        let axis_inv = if *kind == BlockKind::Independent {
+            core::array::from_fn(|i| {
+                let d = end.0[i].abs_diff(start.0[i]);
+                if present(i) && d > 0 { inverse62(d << PATH_FRAC) } else { 0 }
+            })
+        } else {
+            [0; AXIS_COUNT]
+        };
+        Exec { end_steps, inv_len: inverse62(len_q8), rate_q8, axis_inv }
+    }
+
+    /// [`Exec::new`] as a call (threads and taps: rare blocks, no need to grow the
+    /// code by another inlined copy).
+    #[inline(never)]
+    fn outlined(kind: &BlockKind, feed: FeedSpec, len_q8: u64, start: &Pos, end: &Pos, p: &MotionParams) -> Self {
+        Self::new(kind, feed, len_q8, start, end, p)
     }
 }
 
@@ -254,6 +270,7 @@ pub fn line(
         cap = minf(cap, p.path_feed);
     }
     let kind = if rapid && m.independent { BlockKind::Independent } else { BlockKind::Line };
+    let len = len_q8(len)?;
     *slot = Item::Motion(Block {
         line,
         kind,
@@ -261,8 +278,8 @@ pub fn line(
         feed,
         spindle: m.spindle,
         exact_stop: m.exact_stop || rapid,
-        plan: plan(len_q8(len)?, accel, cap, nominal(feed, &m.spindle, p, cap)),
-        exec: Exec::default(),
+        plan: plan(len, accel, cap, nominal(feed, &m.spindle, p, cap)),
+        exec: Exec::new(&kind, feed, len, start, &m.to.machine, p),
     });
     Ok(Prepared { dir_in: dir, dir_out: dir, end: m.to.machine })
 }
@@ -439,6 +456,7 @@ pub fn arc(start: &Pos, a: &ArcMove, p: &MotionParams, line: u32, slot: &mut Ite
     let bend = sqrtf(minf(accel * r, 8.0 * r * p.chord_tolerance));
     let cap = minf(minf(minf(la.feed, lb.feed), p.path_feed), bend);
     let geom = ArcGeom { axes, center: c, r0: r0_nm, r1: r1_nm, theta0, sweep };
+    let len = len_q8(len)?;
     *slot = Item::Motion(Block {
         line,
         kind: BlockKind::Arc(geom),
@@ -446,8 +464,8 @@ pub fn arc(start: &Pos, a: &ArcMove, p: &MotionParams, line: u32, slot: &mut Ite
         feed,
         spindle: a.spindle,
         exact_stop: a.exact_stop,
-        plan: plan(len_q8(len)?, accel, cap, nominal(feed, &a.spindle, p, cap)),
-        exec: Exec::default(),
+        plan: plan(len, accel, cap, nominal(feed, &a.spindle, p, cap)),
+        exec: Exec::new(&BlockKind::Arc(geom), feed, len, start, &a.to.machine, p),
     });
     let ccw = sweep > 0;
     Ok(Prepared { dir_in: tangent(axes, s, r0f, ccw), dir_out: tangent(axes, e, r1f, ccw), end: a.to.machine })
@@ -527,6 +545,7 @@ pub fn thread(
     if t.sync == ThreadSync::Index && ramp_up_nm(&spec, ramp, p.cpr) > len * along {
         return Err(AlarmKind::ThreadRampTooLong);
     }
+    let len = len_q8(len)?;
     *slot = Item::Motion(Block {
         line,
         kind: BlockKind::Thread(spec),
@@ -534,8 +553,8 @@ pub fn thread(
         feed: FeedSpec::PerRev(lead),
         spindle: t.spindle,
         exact_stop: true,
-        plan: plan(len_q8(len)?, accel, v.max(1.0), v),
-        exec: Exec::default(),
+        plan: plan(len, accel, v.max(1.0), v),
+        exec: Exec::outlined(&BlockKind::Thread(spec), FeedSpec::PerRev(lead), len, start, &t.to.machine, p),
     });
     Ok(Prepared { dir_in: dir, dir_out: dir, end: t.to.machine })
 }
@@ -594,6 +613,7 @@ pub fn tap(start: &Pos, t: &TapMove, p: &MotionParams, line: u32, slot: &mut Ite
     if t.lead as f32 * rev_per_tick2 / along > accel {
         return Err(too_fast(long));
     }
+    let len = len_q8(len)?;
     *slot = Item::Motion(Block {
         line,
         kind: BlockKind::Tap(TapSpec { lead: t.lead, dir: t.dir, long }),
@@ -601,8 +621,15 @@ pub fn tap(start: &Pos, t: &TapMove, p: &MotionParams, line: u32, slot: &mut Ite
         feed: FeedSpec::PerRev(t.lead),
         spindle: t.spindle,
         exact_stop: true,
-        plan: plan(len_q8(len)?, accel, v.max(1.0), v),
-        exec: Exec::default(),
+        plan: plan(len, accel, v.max(1.0), v),
+        exec: Exec::outlined(
+            &BlockKind::Tap(TapSpec { lead: t.lead, dir: t.dir, long }),
+            FeedSpec::PerRev(t.lead),
+            len,
+            start,
+            &t.to.machine,
+            p,
+        ),
     });
     Ok(Prepared { dir_in: dir, dir_out: dir, end: t.to.machine })
 }

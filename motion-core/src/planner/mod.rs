@@ -270,7 +270,6 @@ impl<const N: usize> Planner<N> {
     /// `prep.end`.
     fn push_motion(&mut self, prep: &Prepared, p: &MotionParams) {
         let Some(Item::Motion(b)) = self.queue.back_mut() else { return };
-        b.exec = block::Exec::new(b, &self.tail.end, &prep.end, p);
         let blends = matches!(b.kind, BlockKind::Line | BlockKind::Arc(_)) && b.feed != FeedSpec::Rapid;
         if self.tail.blend && blends {
             let v = lookahead::junction_speed(&self.tail.dir, &prep.dir_in, p);
