@@ -199,14 +199,19 @@ pub struct Prepared {
 
 /// Length (nm) and unit direction of a straight move. f32 on the FPU: the length
 /// only times the move (to 1e-7), the end point comes from the exact nanometres.
+#[inline(always)]
 fn straight(start: &Pos, end: &Pos) -> (f32, Dir) {
-    let d: [f32; AXIS_COUNT] = core::array::from_fn(|i| f32_of(end.0[i].wrapping_sub(start.0[i])));
+    let mut d = [0.0f32; AXIS_COUNT];
+    for ((v, e), s) in d.iter_mut().zip(&end.0).zip(&start.0) {
+        *v = f32_of(e.wrapping_sub(*s));
+    }
     let len = sqrtf(d.iter().map(|v| v * v).sum());
     let inv = if len > 0.0 { 1.0 / len } else { 0.0 };
     (len, d.map(|v| v * inv))
 }
 
 /// The fastest path speed and acceleration the axes allow along `dir`.
+#[inline(always)]
 fn axis_caps(dir: &Dir, p: &MotionParams, rapid: bool) -> (f32, f32) {
     let (mut cap, mut accel) = (f32::MAX, f32::MAX);
     for (u, lim) in dir.iter().zip(&p.limits) {
@@ -242,6 +247,7 @@ fn plan(len: u64, accel: f32, cap: f32, nominal: f32) -> Plan {
 }
 
 /// The speed a feed commands, nm/period, at 100 % (per rev: at the commanded rpm).
+#[inline(always)]
 fn nominal(feed: FeedSpec, spindle: &SpindleSpeed, p: &MotionParams, cap: f32) -> f32 {
     match feed {
         FeedSpec::Rapid => cap,
