@@ -344,6 +344,7 @@ fn turns(rad: f64) -> i64 {
 /// centre (`r` its length): the radius turned a quarter, `(−sin θ, cos θ)` with
 /// `sin θ = v_b / r`, `cos θ = v_a / r` — no trigonometry (f32 on the FPU, as the
 /// directions are kept).
+#[inline(always)]
 fn tangent(axes: (Axis, Axis), v: (i64, i64), r: f32, ccw: bool) -> Dir {
     let mut d = [0.0; AXIS_COUNT];
     if r > 0.0 {
