@@ -128,6 +128,9 @@ pub struct Block {
     pub spindle: SpindleSpeed,
     /// Stop exactly at the end.
     pub exact_stop: bool,
+    /// The planned entry is the junction's limit `√max_entry_sq` (the look-ahead
+    /// pass stops here: a later block can only raise this block's exit).
+    pub entry_at_max: bool,
     /// Look-ahead data.
     pub plan: Plan,
     /// What the interpolator needs, ready to run.
@@ -284,6 +287,7 @@ pub fn line(
         feed,
         spindle: m.spindle,
         exact_stop: m.exact_stop || rapid,
+        entry_at_max: false,
         plan: plan(len, accel, cap, nominal(feed, &m.spindle, p, cap)),
         exec: Exec::new(&kind, feed, len, start, &m.to.machine, p),
     });
@@ -471,6 +475,7 @@ pub fn arc(start: &Pos, a: &ArcMove, p: &MotionParams, line: u32, slot: &mut Ite
         feed,
         spindle: a.spindle,
         exact_stop: a.exact_stop,
+        entry_at_max: false,
         plan: plan(len, accel, cap, nominal(feed, &a.spindle, p, cap)),
         exec: Exec::new(&BlockKind::Arc(geom), feed, len, start, &a.to.machine, p),
     });
@@ -560,6 +565,7 @@ pub fn thread(
         feed: FeedSpec::PerRev(lead),
         spindle: t.spindle,
         exact_stop: true,
+        entry_at_max: false,
         plan: plan(len, accel, v.max(1.0), v),
         exec: Exec::outlined(&BlockKind::Thread(spec), FeedSpec::PerRev(lead), len, start, &t.to.machine, p),
     });
@@ -628,6 +634,7 @@ pub fn tap(start: &Pos, t: &TapMove, p: &MotionParams, line: u32, slot: &mut Ite
         feed: FeedSpec::PerRev(t.lead),
         spindle: t.spindle,
         exact_stop: true,
+        entry_at_max: false,
         plan: plan(len, accel, v.max(1.0), v),
         exec: Exec::outlined(
             &BlockKind::Tap(TapSpec { lead: t.lead, dir: t.dir, long }),
