@@ -168,14 +168,7 @@ impl Exec {
             FeedSpec::PerMin(f) => p.rate_q8(f),
             FeedSpec::PerRev(f) => f.saturating_mul(1 << PATH_FRAC),
         };
-        let axis_inv = if *kind == BlockKind::Independent {
-            core::array::from_fn(|i| {
-                let d = end.0[i].abs_diff(start.0[i]);
-                if present(i) && d > 0 { inverse62(d << PATH_FRAC) } else { 0 }
-            })
-        } else {
-            [0; AXIS_COUNT]
-        };
+        let axis_inv = if *kind == BlockKind::Independent { axis_inverses(start, end, p) } else { [0; AXIS_COUNT] };
         Exec { end_steps, inv_len: inverse62(len_q8), rate_q8, axis_inv }
     }
 
@@ -185,6 +178,16 @@ impl Exec {
     fn outlined(kind: &BlockKind, feed: FeedSpec, len_q8: u64, start: &Pos, end: &Pos, p: &MotionParams) -> Self {
         Self::new(kind, feed, len_q8, start, end, p)
     }
+}
+
+/// `2^62 / length` of each present axis's own move from `start` to `end` (an
+/// independent rapid's; a call: rare blocks, and four inlined reciprocals are large).
+#[inline(never)]
+fn axis_inverses(start: &Pos, end: &Pos, p: &MotionParams) -> [i64; AXIS_COUNT] {
+    core::array::from_fn(|i| {
+        let d = end.0[i].abs_diff(start.0[i]);
+        if p.limits[i].present && d > 0 { inverse62(d << PATH_FRAC) } else { 0 }
+    })
 }
 
 /// What preparing a block tells besides the block itself, which is written straight
