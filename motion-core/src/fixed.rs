@@ -114,7 +114,16 @@ impl Divisor {
             return n;
         }
         let a = n.unsigned_abs();
-        let mut q = ((u128::from(a) * u128::from(self.m)) >> 64) as u64;
+        let mut q = match u32::try_from(a) {
+            // ⌊a·m / 2^64⌋ from two 32 × 32-bit products (a position's steps,
+            // |n| < 2^32): ⌊(a·m_hi + ⌊a·m_lo / 2^32⌋) / 2^32⌋, no 128-bit multiply;
+            // the sum stays below 2^64 − 2^32.
+            Ok(a) => {
+                let a = u64::from(a);
+                (a * (self.m >> 32) + ((a * (self.m & 0xffff_ffff)) >> 32)) >> 32
+            }
+            Err(_) => ((u128::from(a) * u128::from(self.m)) >> 64) as u64,
+        };
         // The estimate is low by at most one or two.
         let mut r = a - q * self.d;
         while r >= self.d {
@@ -187,6 +196,26 @@ mod tests {
             let div = Divisor::new(d);
             for n in [0i64, 1, -1, 5, -5, 3_124, 3_125, -3_125, -3_126, 123_456_789_012, -987_654_321_098, i64::MAX / 4]
             {
+                assert_eq!(div.div_floor(n), n.div_euclid(d as i64), "{n} / {d}");
+            }
+        }
+    }
+
+    /// Both ways of `div_floor` (below and above 2^32) against `div_euclid`.
+    #[test]
+    fn division_by_reciprocal_over_random_values() {
+        let mut rng = canon::xorshift::XorShift::new(0x2545_f491_4f6c_dd1d);
+        for d in [2u64, 3, 10, 3_125, 65_537, (1 << 32) - 1, 1 << 32, (1 << 32) + 1, 999_999_999_989, 1 << 62] {
+            let div = Divisor::new(d);
+            for i in 0..50_000 {
+                let m = [1i64 << 10, 1 << 31, 1 << 32, 1 << 33, 1 << 62][i % 5];
+                let n = match i % 101 {
+                    0 => u32::MAX as i64,
+                    1 => -(u32::MAX as i64),
+                    2 => 1 << 32,
+                    3 => i64::MIN + 1,
+                    _ => rng.signed(m),
+                };
                 assert_eq!(div.div_floor(n), n.div_euclid(d as i64), "{n} / {d}");
             }
         }

@@ -128,6 +128,9 @@ pub struct Block {
     pub spindle: SpindleSpeed,
     /// Stop exactly at the end.
     pub exact_stop: bool,
+    /// The planned entry is the junction's limit `√max_entry_sq` (the look-ahead
+    /// pass stops here: a later block can only raise this block's exit).
+    pub entry_at_max: bool,
     /// Look-ahead data.
     pub plan: Plan,
     /// What the interpolator needs, ready to run.
@@ -151,21 +154,40 @@ pub struct Exec {
 }
 
 impl Exec {
-    /// The interpolator's data of `b`, which moves from `start` to `end` (machine, nm).
-    pub fn new(b: &Block, start: &Pos, end: &Pos, p: &MotionParams) -> Self {
+    /// The interpolator's data of a block of `kind`, `feed` and length `len_q8`
+    /// (Q8 nm) that moves from `start` to `end` (machine, nm). Computed as the block
+    /// is written into its queue slot: inlined there, the fields go straight into the
+    /// slot (as a call, the result was built on the stack and copied; zeroed in the
+    /// slot and filled later, it cost a `memclr` of 80 bytes and two copies).
+    #[inline(always)]
+    pub fn new(kind: &BlockKind, feed: FeedSpec, len_q8: u64, start: &Pos, end: &Pos, p: &MotionParams) -> Self {
         let present = |i: usize| p.limits[i].present;
         let end_steps = core::array::from_fn(|i| if present(i) { p.scale[i].steps(end.0[i]) } else { 0 });
-        let rate_q8 = match b.feed {
+        let rate_q8 = match feed {
             FeedSpec::Rapid => 0,
             FeedSpec::PerMin(f) => p.rate_q8(f),
             FeedSpec::PerRev(f) => f.saturating_mul(1 << PATH_FRAC),
         };
-        let axis_inv = core::array::from_fn(|i| {
-            let d = end.0[i].abs_diff(start.0[i]);
-            if b.kind == BlockKind::Independent && present(i) && d > 0 { inverse62(d << PATH_FRAC) } else { 0 }
-        });
-        Exec { end_steps, inv_len: inverse62(b.plan.len_q8), rate_q8, axis_inv }
+        let axis_inv = if *kind == BlockKind::Independent { axis_inverses(start, end, p) } else { [0; AXIS_COUNT] };
+        Exec { end_steps, inv_len: inverse62(len_q8), rate_q8, axis_inv }
     }
+
+    /// [`Exec::new`] as a call (threads and taps: rare blocks, no need to grow the
+    /// code by another inlined copy).
+    #[inline(never)]
+    fn outlined(kind: &BlockKind, feed: FeedSpec, len_q8: u64, start: &Pos, end: &Pos, p: &MotionParams) -> Self {
+        Self::new(kind, feed, len_q8, start, end, p)
+    }
+}
+
+/// `2^62 / length` of each present axis's own move from `start` to `end` (an
+/// independent rapid's; a call: rare blocks, and four inlined reciprocals are large).
+#[inline(never)]
+fn axis_inverses(start: &Pos, end: &Pos, p: &MotionParams) -> [i64; AXIS_COUNT] {
+    core::array::from_fn(|i| {
+        let d = end.0[i].abs_diff(start.0[i]);
+        if p.limits[i].present && d > 0 { inverse62(d << PATH_FRAC) } else { 0 }
+    })
 }
 
 /// What preparing a block tells besides the block itself, which is written straight
@@ -183,14 +205,19 @@ pub struct Prepared {
 
 /// Length (nm) and unit direction of a straight move. f32 on the FPU: the length
 /// only times the move (to 1e-7), the end point comes from the exact nanometres.
+#[inline(always)]
 fn straight(start: &Pos, end: &Pos) -> (f32, Dir) {
-    let d: [f32; AXIS_COUNT] = core::array::from_fn(|i| f32_of(end.0[i].wrapping_sub(start.0[i])));
+    let mut d = [0.0f32; AXIS_COUNT];
+    for ((v, e), s) in d.iter_mut().zip(&end.0).zip(&start.0) {
+        *v = f32_of(e.wrapping_sub(*s));
+    }
     let len = sqrtf(d.iter().map(|v| v * v).sum());
     let inv = if len > 0.0 { 1.0 / len } else { 0.0 };
     (len, d.map(|v| v * inv))
 }
 
 /// The fastest path speed and acceleration the axes allow along `dir`.
+#[inline(always)]
 fn axis_caps(dir: &Dir, p: &MotionParams, rapid: bool) -> (f32, f32) {
     let (mut cap, mut accel) = (f32::MAX, f32::MAX);
     for (u, lim) in dir.iter().zip(&p.limits) {
@@ -226,6 +253,7 @@ fn plan(len: u64, accel: f32, cap: f32, nominal: f32) -> Plan {
 }
 
 /// The speed a feed commands, nm/period, at 100 % (per rev: at the commanded rpm).
+#[inline(always)]
 fn nominal(feed: FeedSpec, spindle: &SpindleSpeed, p: &MotionParams, cap: f32) -> f32 {
     match feed {
         FeedSpec::Rapid => cap,
@@ -254,6 +282,7 @@ pub fn line(
         cap = minf(cap, p.path_feed);
     }
     let kind = if rapid && m.independent { BlockKind::Independent } else { BlockKind::Line };
+    let len = len_q8(len)?;
     *slot = Item::Motion(Block {
         line,
         kind,
@@ -261,8 +290,9 @@ pub fn line(
         feed,
         spindle: m.spindle,
         exact_stop: m.exact_stop || rapid,
-        plan: plan(len_q8(len)?, accel, cap, nominal(feed, &m.spindle, p, cap)),
-        exec: Exec::default(),
+        entry_at_max: false,
+        plan: plan(len, accel, cap, nominal(feed, &m.spindle, p, cap)),
+        exec: Exec::new(&kind, feed, len, start, &m.to.machine, p),
     });
     Ok(Prepared { dir_in: dir, dir_out: dir, end: m.to.machine })
 }
@@ -321,6 +351,7 @@ fn turns(rad: f64) -> i64 {
 /// centre (`r` its length): the radius turned a quarter, `(−sin θ, cos θ)` with
 /// `sin θ = v_b / r`, `cos θ = v_a / r` — no trigonometry (f32 on the FPU, as the
 /// directions are kept).
+#[inline(always)]
 fn tangent(axes: (Axis, Axis), v: (i64, i64), r: f32, ccw: bool) -> Dir {
     let mut d = [0.0; AXIS_COUNT];
     if r > 0.0 {
@@ -439,6 +470,7 @@ pub fn arc(start: &Pos, a: &ArcMove, p: &MotionParams, line: u32, slot: &mut Ite
     let bend = sqrtf(minf(accel * r, 8.0 * r * p.chord_tolerance));
     let cap = minf(minf(minf(la.feed, lb.feed), p.path_feed), bend);
     let geom = ArcGeom { axes, center: c, r0: r0_nm, r1: r1_nm, theta0, sweep };
+    let len = len_q8(len)?;
     *slot = Item::Motion(Block {
         line,
         kind: BlockKind::Arc(geom),
@@ -446,8 +478,9 @@ pub fn arc(start: &Pos, a: &ArcMove, p: &MotionParams, line: u32, slot: &mut Ite
         feed,
         spindle: a.spindle,
         exact_stop: a.exact_stop,
-        plan: plan(len_q8(len)?, accel, cap, nominal(feed, &a.spindle, p, cap)),
-        exec: Exec::default(),
+        entry_at_max: false,
+        plan: plan(len, accel, cap, nominal(feed, &a.spindle, p, cap)),
+        exec: Exec::new(&BlockKind::Arc(geom), feed, len, start, &a.to.machine, p),
     });
     let ccw = sweep > 0;
     Ok(Prepared { dir_in: tangent(axes, s, r0f, ccw), dir_out: tangent(axes, e, r1f, ccw), end: a.to.machine })
@@ -527,6 +560,7 @@ pub fn thread(
     if t.sync == ThreadSync::Index && ramp_up_nm(&spec, ramp, p.cpr) > len * along {
         return Err(AlarmKind::ThreadRampTooLong);
     }
+    let len = len_q8(len)?;
     *slot = Item::Motion(Block {
         line,
         kind: BlockKind::Thread(spec),
@@ -534,8 +568,9 @@ pub fn thread(
         feed: FeedSpec::PerRev(lead),
         spindle: t.spindle,
         exact_stop: true,
-        plan: plan(len_q8(len)?, accel, v.max(1.0), v),
-        exec: Exec::default(),
+        entry_at_max: false,
+        plan: plan(len, accel, v.max(1.0), v),
+        exec: Exec::outlined(&BlockKind::Thread(spec), FeedSpec::PerRev(lead), len, start, &t.to.machine, p),
     });
     Ok(Prepared { dir_in: dir, dir_out: dir, end: t.to.machine })
 }
@@ -594,6 +629,7 @@ pub fn tap(start: &Pos, t: &TapMove, p: &MotionParams, line: u32, slot: &mut Ite
     if t.lead as f32 * rev_per_tick2 / along > accel {
         return Err(too_fast(long));
     }
+    let len = len_q8(len)?;
     *slot = Item::Motion(Block {
         line,
         kind: BlockKind::Tap(TapSpec { lead: t.lead, dir: t.dir, long }),
@@ -601,8 +637,16 @@ pub fn tap(start: &Pos, t: &TapMove, p: &MotionParams, line: u32, slot: &mut Ite
         feed: FeedSpec::PerRev(t.lead),
         spindle: t.spindle,
         exact_stop: true,
-        plan: plan(len_q8(len)?, accel, v.max(1.0), v),
-        exec: Exec::default(),
+        entry_at_max: false,
+        plan: plan(len, accel, v.max(1.0), v),
+        exec: Exec::outlined(
+            &BlockKind::Tap(TapSpec { lead: t.lead, dir: t.dir, long }),
+            FeedSpec::PerRev(t.lead),
+            len,
+            start,
+            &t.to.machine,
+            p,
+        ),
     });
     Ok(Prepared { dir_in: dir, dir_out: dir, end: t.to.machine })
 }

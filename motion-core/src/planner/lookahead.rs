@@ -14,7 +14,7 @@
 //! The backward pass works with squared speeds (no roots) from the newest block
 //! back to the first one whose entry speed it does not change.
 
-use super::block::{Block, Dir, Plan};
+use super::block::{Block, Dir};
 use super::machine::MotionParams;
 use crate::fixed::{PATH_FRAC, maxf, minf, sqrtf, u64_of};
 
@@ -40,14 +40,22 @@ pub fn junction_speed(a: &Dir, b: &Dir, p: &MotionParams) -> f32 {
     v
 }
 
-/// Sets `plan`'s entry from the square of the highest entry that still lets the
+/// Sets `block`'s entry from the square of the highest entry that still lets the
 /// block brake to `exit_sq` by its end. The discrete profile brakes one period
 /// late at worst, so a braking-bound entry gives up one period of acceleration.
 /// Returns whether the entry changed.
-fn set_entry(plan: &mut Plan, exit_sq: f32) -> bool {
+///
+/// An entry already at the junction's limit stays there when the exit still
+/// reaches it: the same `sqrtf(max_entry_sq)` as before, not computed again.
+fn set_entry(block: &mut Block, exit_sq: f32) -> bool {
+    let plan = &mut block.plan;
     let reach = exit_sq + plan.two_a_len;
-    let entry =
-        if reach >= plan.max_entry_sq { sqrtf(plan.max_entry_sq) } else { maxf(sqrtf(reach) - plan.accel, 0.0) };
+    let at_max = reach >= plan.max_entry_sq;
+    if at_max && block.entry_at_max {
+        return false;
+    }
+    block.entry_at_max = at_max;
+    let entry = if at_max { sqrtf(plan.max_entry_sq) } else { maxf(sqrtf(reach) - plan.accel, 0.0) };
     let entry_sq = entry * entry;
     let changed = entry_sq != plan.entry_sq;
     plan.entry_sq = entry_sq;
@@ -65,7 +73,7 @@ where
     let mut exit_sq = 0.0f32;
     for (k, item) in newest_first.enumerate() {
         let Some(block) = item else { return };
-        if !set_entry(&mut block.plan, exit_sq) && k >= 1 {
+        if !set_entry(block, exit_sq) && k >= 1 {
             return;
         }
         exit_sq = block.plan.entry_sq;

@@ -14,6 +14,8 @@ pub struct AxisScale {
     /// Steps per `per_nm` nanometres, reduced.
     steps: i64,
     per_nm: i64,
+    /// `per_nm / 2` (rounds a position to the nearest step).
+    half: i64,
     /// Steps per nanometre in Q48 (for interpolated points).
     spn_q48: i64,
     /// Nanometres per step in Q32.
@@ -40,6 +42,7 @@ impl AxisScale {
         Ok(AxisScale {
             steps,
             per_nm,
+            half: per_nm / 2,
             spn_q48,
             nm_q32,
             div: Divisor::new(per_nm as u64),
@@ -49,7 +52,14 @@ impl AxisScale {
 
     /// The whole step nearest to position `nm` (halves away from −∞): exact, no drift.
     pub fn steps(&self, nm: i64) -> i64 {
-        self.div.div_floor(nm.saturating_mul(self.steps).saturating_add(self.per_nm / 2))
+        // Within ±2^31 nm (±2.1 m) and below 2^31 steps per `per_nm` the product and
+        // the half (below 2^62 each) cannot overflow: no saturating 128-bit checks.
+        if let Ok(n) = i32::try_from(nm)
+            && self.steps < 1 << 31
+        {
+            return self.div.div_floor(i64::from(n) * self.steps + self.half);
+        }
+        self.div.div_floor(nm.saturating_mul(self.steps).saturating_add(self.half))
     }
 
     /// The nanometre nearest to whole step `s`.
@@ -237,6 +247,40 @@ mod tests {
         // A million blocks of 1.000001 mm end where the nanometres say: no drift.
         assert_eq!(s.steps(1_000_001 * 1_000_000), 320_000_320);
         assert!(AxisScale::new(&Drive { steps: 0, ..Drive::per_mm(1) }).is_err());
+    }
+
+    /// The short path of `steps` (positions within ±2^31 nm) against the exact
+    /// `⌊(nm·steps + ⌊per_nm/2⌋) / per_nm⌋` in 128 bits, for ratios of every size.
+    #[test]
+    fn steps_equal_the_exact_rounding() {
+        let mut rng = canon::xorshift::XorShift::new(0x5851_f42d_4c95_7f2d);
+        let ratios = [
+            (320, 1_000_000),
+            (1, 1),
+            (3, 7),
+            (200, 5_000_000),
+            (1_073_741_823, 131_073),
+            (7_000, 1 << 40),
+            (4_294_967_311, 1 << 20),
+        ];
+        for (k, (steps, per)) in ratios.into_iter().enumerate() {
+            let s = AxisScale::new(&Drive { steps, per_nm: per, ..Drive::per_mm(1) }).unwrap();
+            let (st, pn) = s.ratio();
+            for i in 0..20_000 {
+                let m = [1_000i64, 1 << 20, i32::MAX as i64, 1 << 33, 1 << 50][i % 5];
+                let nm = match i % 97 {
+                    0 => i32::MAX as i64,
+                    1 => i32::MIN as i64,
+                    2 => i32::MIN as i64 - 1,
+                    _ => rng.signed(m),
+                };
+                let exact = (i128::from(nm) * i128::from(st) + i128::from(pn / 2)).div_euclid(i128::from(pn));
+                let exact = exact.clamp(i128::from(i64::MIN), i128::from(i64::MAX)) as i64;
+                if nm.checked_mul(st).and_then(|v| v.checked_add(pn / 2)).is_some() {
+                    assert_eq!(s.steps(nm), exact, "ratio {k}: {nm}");
+                }
+            }
+        }
     }
 
     #[test]

@@ -270,7 +270,6 @@ impl<const N: usize> Planner<N> {
     /// `prep.end`.
     fn push_motion(&mut self, prep: &Prepared, p: &MotionParams) {
         let Some(Item::Motion(b)) = self.queue.back_mut() else { return };
-        b.exec = block::Exec::new(b, &self.tail.end, &prep.end, p);
         let blends = matches!(b.kind, BlockKind::Line | BlockKind::Arc(_)) && b.feed != FeedSpec::Rapid;
         if self.tail.blend && blends {
             let v = lookahead::junction_speed(&self.tail.dir, &prep.dir_in, p);
@@ -292,5 +291,76 @@ impl<const N: usize> Planner<N> {
             Item::Motion(b) => Some(b),
             Item::Command { .. } => None,
         }));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::canon::{Endpoint, Feed, FeedMode, Move, SpindleSpeed};
+    use crate::config::MachineConfig;
+    use crate::fixed::{maxf, sqrtf};
+    use canon::xorshift::XorShift;
+
+    /// The entries of `queue` re-planned from rest at its end without stopping
+    /// early (the pass as it was before its early stops).
+    fn full_replan(queue: &[Block]) -> std::vec::Vec<(f32, u64)> {
+        let mut exit_sq = 0.0f32;
+        let mut out = std::vec::Vec::new();
+        for b in queue.iter().rev() {
+            let reach = exit_sq + b.plan.two_a_len;
+            let entry = if reach >= b.plan.max_entry_sq {
+                sqrtf(b.plan.max_entry_sq)
+            } else {
+                maxf(sqrtf(reach) - b.plan.accel, 0.0)
+            };
+            exit_sq = entry * entry;
+            out.push((entry * entry, crate::fixed::u64_of(entry * (1u32 << crate::fixed::PATH_FRAC) as f32)));
+        }
+        out.reverse();
+        out
+    }
+
+    /// Random chains of short and long cutting moves (gentle and sharp corners):
+    /// after every push each entry equals the full re-plan's, so stopping at an
+    /// unchanged or junction-limited entry loses nothing.
+    #[test]
+    fn early_stops_equal_a_full_replan() {
+        let p = MotionParams::new(&MachineConfig::default()).unwrap();
+        let mut rng = XorShift::new(0x1234_5678_9abc_def1);
+        let mut capped = 0;
+        for _ in 0..40 {
+            let mut planner: Planner<16> = Planner::new(Pos::ZERO);
+            let mut at = (40_000_000i64, 0i64);
+            for k in 0..15 {
+                let len = [50_000, 400_000, 5_000_000][k % 3];
+                at = (at.0 + rng.signed(len), at.1 - rng.signed(len).abs() - 1);
+                let to = Pos::xz(at.0, at.1);
+                let feed = Feed { mode: FeedMode::PerMin, value: 100_000 * (1 + rng.signed(40).abs()) * 1_000 };
+                let spindle = SpindleSpeed { rpm: Some(1_000), css: None, max_rpm: 3_000 };
+                let m = Move {
+                    to: Endpoint { machine: to, work: to },
+                    feed,
+                    spindle,
+                    exact_stop: false,
+                    independent: false,
+                };
+                planner.push(&Canon { line: k as u32, action: Action::Linear(m) }, &p).unwrap();
+                let blocks: std::vec::Vec<Block> = planner
+                    .iter()
+                    .filter_map(|i| match i {
+                        Item::Motion(b) => Some(*b),
+                        Item::Command { .. } => None,
+                    })
+                    .collect();
+                let want = full_replan(&blocks);
+                for (b, w) in blocks.iter().zip(&want) {
+                    assert_eq!((b.plan.entry_sq, b.plan.entry_q8), *w, "push {k}");
+                    capped += usize::from(b.entry_at_max && b.plan.max_entry_sq > 0.0);
+                }
+            }
+        }
+        // Junction-limited entries were met (the early stop was exercised).
+        assert!(capped > 100, "{capped}");
     }
 }
