@@ -725,7 +725,17 @@ impl Interpreter {
     /// staged after the cycle's place as its tail), parameter writes (G71 U → 5147
     /// …) and, after G71–G73, the place after the shape's nf block (a shape after
     /// the cycle block is skipped; one before it leaves the program where it is).
+    #[inline]
     fn commit_cycle(&mut self, c: &BlockCycle) {
+        // Most blocks start no cycle and write no parameter.
+        if self.cycle.is_some() || !c.params.is_empty() || c.resume.is_some() {
+            self.hand_over(c);
+        }
+    }
+
+    /// [`Interpreter::commit_cycle`] for a block that has something to hand over.
+    #[inline(never)]
+    fn hand_over(&mut self, c: &BlockCycle) {
         if let Some(exp) = self.cycle.as_mut() {
             exp.take_tail(&mut self.outbox, c.split);
         }
@@ -766,7 +776,17 @@ impl Interpreter {
     }
 
     /// Where `flow` leads, with every target looked up and checked.
+    #[inline]
     fn route<P: ProgramStore + ?Sized>(&self, flow: Flow, programs: &P) -> Result<Next, AlarmKind> {
+        match flow {
+            Flow::Continue => Ok(Next::Go),
+            _ => self.route_flow(flow, programs),
+        }
+    }
+
+    /// [`Interpreter::route`] for a block that stops, ends, calls, returns or jumps.
+    #[inline(never)]
+    fn route_flow<P: ProgramStore + ?Sized>(&self, flow: Flow, programs: &P) -> Result<Next, AlarmKind> {
         let here = self.cursor.program;
         let start_of = |id| programs.start(id).ok_or(AlarmKind::ProgramNotFound { program: id });
         Ok(match flow {
@@ -804,7 +824,16 @@ impl Interpreter {
     }
 
     /// Moves the run on as `next` says.
+    #[inline]
     fn go(&mut self, next: Next) {
+        if !matches!(next, Next::Go) {
+            self.go_elsewhere(next);
+        }
+    }
+
+    /// [`Interpreter::go`] anywhere but on to the next block.
+    #[inline(never)]
+    fn go_elsewhere(&mut self, next: Next) {
         match next {
             Next::Go => {}
             Next::Pause => self.phase = Phase::Paused,
