@@ -22,8 +22,8 @@ pub(crate) fn execute(
 ) -> Result<(), AlarmKind> {
     let code = st.modal.motion;
     let is_arc = matches!(code, GCode::ArcCw | GCode::ArcCcw);
-    let arc_words = cmd.radius.is_some() || cmd.center.iter().any(Option::is_some);
-    if !(cmd.has_axes() || is_arc && arc_words) {
+    let arc_words = || cmd.radius.is_some() || cmd.center.iter().any(Option::is_some);
+    if !(cmd.has_axes() || is_arc && arc_words()) {
         return Ok(());
     }
     // The work frame once per block (it sums five offsets).
@@ -166,6 +166,7 @@ fn cutting_feed(st: &State, cfg: &MachineConfig, x: i64) -> Result<Feed, AlarmKi
 }
 
 /// G02/G03 in the selected plane, with R or I/J/K (2.3 and its notes).
+#[inline(never)]
 fn arc(
     cmd: &Command,
     work: Pos,
