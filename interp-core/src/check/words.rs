@@ -83,6 +83,10 @@ pub(super) fn check_letters(
         }
         allowed = allowed.with(if f == MFunction::Call { Letters::of(b"PL") } else { Letters::of(b"P") });
     }
+    if !any_letter_refused(block.present(), allowed, user, cfg) {
+        return Ok(());
+    }
+    // Some letter is refused: the first in alphabetical order names the alarm.
     for letter in block.letters() {
         if UNUSED.contains(letter) {
             return Err(AlarmKind::ImproperAddress { letter });
@@ -100,6 +104,30 @@ pub(super) fn check_letters(
         }
     }
     Ok(())
+}
+
+/// Whether the per-letter rules of [`check_letters`] refuse any of the letters
+/// `present`, tested on all letters at once.
+#[inline(always)]
+fn any_letter_refused(present: u32, allowed: Letters, user: GCode, cfg: &MachineConfig) -> bool {
+    if present & (UNUSED.0 | !allowed.with(ALWAYS).0) != 0 {
+        return true;
+    }
+    if user == GCode::Dwell || !crate::check::cycle_args::axes_are_points(user) {
+        return false;
+    }
+    // G92 H is the number of starts, not the C axis.
+    let h = if user == GCode::ThreadCycle { Letters::of(b"H").0 } else { 0 };
+    Axis::ALL.into_iter().any(|axis| {
+        let letters = axis_letters(axis) & !h;
+        present & letters != 0 && !cfg.axis(axis).present
+    })
+}
+
+/// The absolute and incremental letters of `axis`.
+#[inline(always)]
+fn axis_letters(axis: Axis) -> u32 {
+    (1 << (axis.letter() - b'A')) | (1 << (axis.incremental_letter() - b'A'))
 }
 
 /// Converts the block's values into `cmd`.
@@ -164,9 +192,10 @@ fn convert_axes(
     h_is_count: bool,
 ) -> Result<(), AlarmKind> {
     let g91 = cmd.g.incremental.unwrap_or(state.modal.incremental);
+    let present = block.present();
     for axis in Axis::ALL {
-        if h_is_count && axis == Axis::C {
-            // G92 H is the number of starts, not the C axis.
+        if present & axis_letters(axis) == 0 || h_is_count && axis == Axis::C {
+            // No word of this axis (G92 H is the number of starts, not the C axis).
             continue;
         }
         let abs = block.get(axis.letter());

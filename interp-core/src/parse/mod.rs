@@ -143,6 +143,12 @@ impl Block {
         (i < 26 && self.present & (1 << i) != 0).then(|| self.values[usize::from(i)])
     }
 
+    /// The addresses given, bit `letter - 'A'` each (beyond N, O, G, M).
+    #[inline]
+    pub(crate) fn present(&self) -> u32 {
+        self.present
+    }
+
     /// Whether address `letter` is given.
     pub fn has(&self, letter: u8) -> bool {
         self.get(letter).is_some()
