@@ -7,7 +7,7 @@ use crate::codes::{GCode, MFunction};
 use crate::config::{MAX_OFFSETS, MachineConfig, Param};
 use crate::modal::State;
 use crate::parse::{Block, whole};
-use crate::units::{Number, NumberFormat};
+use crate::units::{InputMode, Number, NumberFormat, Units};
 
 /// A set of address letters, one bit per letter A–Z.
 #[derive(Clone, Copy)]
@@ -191,26 +191,27 @@ fn convert_axes(
     cmd: &mut Command,
     h_is_count: bool,
 ) -> Result<(), AlarmKind> {
-    let g91 = cmd.g.incremental.unwrap_or(state.modal.incremental);
     let present = block.present();
+    if present & AXES.0 == 0 {
+        return Ok(());
+    }
+    let g91 = cmd.g.incremental.unwrap_or(state.modal.incremental);
     for axis in Axis::ALL {
-        if present & axis_letters(axis) == 0 || h_is_count && axis == Axis::C {
+        let (abs, inc) = (axis.letter(), axis.incremental_letter());
+        let (abs_bit, inc_bit) = (1u32 << (abs - b'A'), 1u32 << (inc - b'A'));
+        let given = present & (abs_bit | inc_bit);
+        if given == 0 || h_is_count && axis == Axis::C {
             // No word of this axis (G92 H is the number of starts, not the C axis).
             continue;
         }
-        let abs = block.get(axis.letter());
-        let inc = block.get(axis.incremental_letter());
-        let (n, incremental) = match (abs, inc) {
-            (Some(_), Some(_)) => {
-                return Err(AlarmKind::AxisTwice { absolute: axis.letter(), incremental: axis.incremental_letter() });
-            }
-            (Some(n), None) => (n, g91),
-            (None, Some(n)) => (n, true),
-            (None, None) => continue,
-        };
+        if given == abs_bit | inc_bit {
+            return Err(AlarmKind::AxisTwice { absolute: abs, incremental: inc });
+        }
+        let (letter, incremental) = if given == abs_bit { (abs, g91) } else { (inc, true) };
+        let n = block.value(letter);
         let value = if axis == Axis::C && state.polar.is_some() {
             // 2.7: in polar interpolation C is the plane's second axis, a length.
-            fmt.length_nm(&n).ok_or(AlarmKind::Overflow)?
+            length_nm(fmt, &n).ok_or(AlarmKind::Overflow)?
         } else {
             axis_value(axis, &n, cfg, fmt)?
         };
@@ -220,10 +221,29 @@ fn convert_axes(
 }
 
 /// One axis value in internal units.
+#[inline(always)]
 fn axis_value(axis: Axis, n: &Number, cfg: &MachineConfig, fmt: &NumberFormat) -> Result<i64, AlarmKind> {
-    let v = if axis.is_rotary() { fmt.angle_udeg(n) } else { fmt.length_nm(n) };
+    let v = if axis.is_rotary() { fmt.angle_udeg(n) } else { length_nm(fmt, n) };
     let v = v.ok_or(AlarmKind::Overflow)?;
     Ok(if axis == Axis::X && cfg.diameter_x { v / 2 } else { v })
+}
+
+/// [`NumberFormat::length_nm`], with the usual word (metric, read as written, no
+/// more fraction digits than the least increment: nothing to round) as one
+/// multiply.
+#[inline(always)]
+fn length_nm(fmt: &NumberFormat, n: &Number) -> Option<i64> {
+    /// `10^(6 - f)`: millimetres with `f` fraction digits to nanometres.
+    const NM_PER_DIGIT: [i32; 4] = [1_000_000, 100_000, 10_000, 1_000];
+    if fmt.units == Units::Metric
+        && (n.has_point || fmt.input == InputMode::Calculator)
+        && let (Some(&scale), Ok(m)) = (NM_PER_DIGIT.get(usize::from(n.frac_digits)), i32::try_from(n.mantissa))
+    {
+        // IS-B and IS-C metric keep at least 3 fraction digits: exact, and an i32
+        // times at most 10^6 fits an i64.
+        return Some(i64::from(m) * i64::from(scale));
+    }
+    fmt.length_nm(n)
 }
 
 /// I/J/K (radius values) and R of an arc.
@@ -350,4 +370,38 @@ fn polygon(
         return Err(AlarmKind::PolygonNoToolSpindle);
     }
     Ok(crate::check::cycle_args::CycleArgs::Polygon { p: pq[0], q: pq[1], phase_udeg })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::units::IncrementSystem;
+
+    /// The one-multiply length agrees with `NumberFormat::length_nm` everywhere:
+    /// both units, both input modes, both increment systems, with and without a
+    /// point, every fraction length, values at the edges of an i32.
+    #[test]
+    fn short_length_conversion_matches_the_general_one() {
+        let mantissas =
+            [0, 1, -1, 5, 40_824, -100, 999_999_999, -999_999_999, 2_147_483_647, -2_147_483_648, 2_147_483_648];
+        for units in [Units::Metric, Units::Inch] {
+            for input in [InputMode::Calculator, InputMode::LeastIncrement] {
+                for increments in [IncrementSystem::IsB, IncrementSystem::IsC] {
+                    let fmt = NumberFormat { units, input, increments };
+                    for mantissa in mantissas {
+                        for frac_digits in 0..=9 {
+                            for has_point in [false, true] {
+                                let n = Number { mantissa, frac_digits, has_point };
+                                assert_eq!(length_nm(&fmt, &n), fmt.length_nm(&n), "{fmt:?} {n:?}");
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        let metric =
+            NumberFormat { units: Units::Metric, input: InputMode::Calculator, increments: IncrementSystem::IsB };
+        assert_eq!(length_nm(&metric, &Number { mantissa: 40_824, frac_digits: 3, has_point: true }), Some(40_824_000));
+        assert_eq!(length_nm(&metric, &Number { mantissa: -1, frac_digits: 1, has_point: true }), Some(-100_000));
+    }
 }
