@@ -196,27 +196,47 @@ fn convert_axes(
         return Ok(());
     }
     let g91 = cmd.g.incremental.unwrap_or(state.modal.incremental);
-    for axis in Axis::ALL {
-        let (abs, inc) = (axis.letter(), axis.incremental_letter());
-        let (abs_bit, inc_bit) = (1u32 << (abs - b'A'), 1u32 << (inc - b'A'));
-        let given = present & (abs_bit | inc_bit);
-        if given == 0 || h_is_count && axis == Axis::C {
-            // No word of this axis (G92 H is the number of starts, not the C axis).
-            continue;
-        }
-        if given == abs_bit | inc_bit {
-            return Err(AlarmKind::AxisTwice { absolute: abs, incremental: inc });
-        }
-        let (letter, incremental) = if given == abs_bit { (abs, g91) } else { (inc, true) };
-        let n = block.value(letter);
-        let value = if axis == Axis::C && state.polar.is_some() {
-            // 2.7: in polar interpolation C is the plane's second axis, a length.
-            length_nm(fmt, &n).ok_or(AlarmKind::Overflow)?
-        } else {
-            axis_value(axis, &n, cfg, fmt)?
-        };
-        cmd.axes[axis.index()] = Some(AxisWord { value, incremental });
+    // One call per axis, in axis order (the first bad axis names the alarm), each
+    // with constant letters.
+    axis_word(Axis::X, block, g91, state, cfg, fmt, cmd)?;
+    axis_word(Axis::Y, block, g91, state, cfg, fmt, cmd)?;
+    axis_word(Axis::Z, block, g91, state, cfg, fmt, cmd)?;
+    if !h_is_count {
+        // G92 H is the number of starts, not the C axis.
+        axis_word(Axis::C, block, g91, state, cfg, fmt, cmd)?;
     }
+    Ok(())
+}
+
+/// The word of `axis` (absolute or incremental), if given, into `cmd.axes`.
+#[inline(always)]
+fn axis_word(
+    axis: Axis,
+    block: &Block,
+    g91: bool,
+    state: &State,
+    cfg: &MachineConfig,
+    fmt: &NumberFormat,
+    cmd: &mut Command,
+) -> Result<(), AlarmKind> {
+    let (abs, inc) = (axis.letter(), axis.incremental_letter());
+    let (abs_bit, inc_bit) = (1u32 << (abs - b'A'), 1u32 << (inc - b'A'));
+    let given = block.present() & (abs_bit | inc_bit);
+    if given == 0 {
+        return Ok(());
+    }
+    if given == abs_bit | inc_bit {
+        return Err(AlarmKind::AxisTwice { absolute: abs, incremental: inc });
+    }
+    let (letter, incremental) = if given == abs_bit { (abs, g91) } else { (inc, true) };
+    let n = block.value(letter);
+    let value = if axis == Axis::C && state.polar.is_some() {
+        // 2.7: in polar interpolation C is the plane's second axis, a length.
+        length_nm(fmt, &n).ok_or(AlarmKind::Overflow)?
+    } else {
+        axis_value(axis, &n, cfg, fmt)?
+    };
+    cmd.axes[axis.index()] = Some(AxisWord { value, incremental });
     Ok(())
 }
 
