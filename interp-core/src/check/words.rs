@@ -268,15 +268,18 @@ fn length_nm(fmt: &NumberFormat, n: &Number) -> Option<i64> {
 
 /// I/J/K (radius values) and R of an arc.
 fn convert_arc_words(block: &Block, fmt: &NumberFormat, cmd: &mut Command) -> Result<(), AlarmKind> {
-    for axis in Axis::ALL {
-        if let Some(l) = axis.center_letter()
-            && let Some(n) = block.get(l)
-        {
-            cmd.center[axis.index()] = Some(fmt.length_nm(&n).ok_or(AlarmKind::Overflow)?);
+    // Written out per axis (constant letters), in axis order: X, Y, Z (C has none).
+    let mut center = |axis: Axis, letter: u8| -> Result<(), AlarmKind> {
+        if let Some(n) = block.get(letter) {
+            cmd.center[axis.index()] = Some(length_nm(fmt, &n).ok_or(AlarmKind::Overflow)?);
         }
-    }
+        Ok(())
+    };
+    center(Axis::X, b'I')?;
+    center(Axis::Y, b'J')?;
+    center(Axis::Z, b'K')?;
     if let Some(r) = block.get(b'R') {
-        let r = fmt.length_nm(&r).ok_or(AlarmKind::Overflow)?;
+        let r = length_nm(fmt, &r).ok_or(AlarmKind::Overflow)?;
         if r == 0 {
             return Err(AlarmKind::ArcRadiusZero);
         }
