@@ -356,11 +356,11 @@ fn is_blank(c: u8) -> bool {
 fn digits(text: &[u8], i: &mut usize) -> u32 {
     let mut v = 0u32;
     while let Some(&c) = text.get(*i) {
-        let d = c.wrapping_sub(b'0');
+        let d = u32::from(c).wrapping_sub(u32::from(b'0'));
         if d > 9 {
             break;
         }
-        v = v.wrapping_mul(10).wrapping_add(u32::from(d));
+        v = v.wrapping_mul(10).wrapping_add(d);
         *i += 1;
     }
     v
