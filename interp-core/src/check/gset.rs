@@ -75,6 +75,16 @@ impl GSet {
     /// Looks up every G code of `block` and sorts it into its group.
     pub fn resolve(block: &Block, state: &State, cfg: &MachineConfig) -> Result<GSet, AlarmKind> {
         let mut set = GSet::NONE;
+        set.resolve_into(block, state, cfg)?;
+        Ok(set)
+    }
+
+    /// [`GSet::resolve`] in place (the command's set, reused block after block:
+    /// nothing is copied). On an alarm the set holds a partial result.
+    #[inline]
+    pub(crate) fn resolve_into(&mut self, block: &Block, state: &State, cfg: &MachineConfig) -> Result<(), AlarmKind> {
+        *self = GSet::NONE;
+        let set = self;
         // Groups seen so far, a bit each; the codes themselves are looked up again
         // only for an alarm.
         let mut seen = 0u32;
@@ -112,7 +122,7 @@ impl GSet {
         {
             return Err(AlarmKind::CodeMustBeAlone { code: GNum(first(Group::NonModal)) });
         }
-        Ok(set)
+        Ok(())
     }
 
     fn assign(&mut self, code: GCode) {

@@ -149,15 +149,14 @@ pub fn check(block: &Block, state: &State, cfg: &MachineConfig) -> Result<Comman
 /// [`check`] into a command reused from block to block (nothing ~300 bytes large
 /// is returned and copied per block). On an alarm `cmd` holds a partial result.
 pub fn check_into(block: &Block, state: &State, cfg: &MachineConfig, cmd: &mut Command) -> Result<(), AlarmKind> {
-    let g = GSet::resolve(block, state, cfg)?;
+    cmd.g.resolve_into(block, state, cfg)?;
     let fmt = NumberFormat {
-        units: g.units.unwrap_or(state.modal.units),
+        units: cmd.g.units.unwrap_or(state.modal.units),
         input: cfg.input_mode(),
         increments: cfg.increments,
     };
     cmd.line = block.line;
     cmd.seq = block.seq;
-    cmd.g = g;
     resolve_m(block, cfg, &mut cmd.m)?;
     cmd.axes = [None; AXIS_COUNT];
     cmd.center = [None; AXIS_COUNT];

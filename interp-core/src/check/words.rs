@@ -7,7 +7,7 @@ use crate::codes::{GCode, MFunction};
 use crate::config::{MAX_OFFSETS, MachineConfig, Param};
 use crate::modal::State;
 use crate::parse::{Block, whole};
-use crate::units::{Number, NumberFormat};
+use crate::units::{InputMode, Number, NumberFormat, Units};
 
 /// A set of address letters, one bit per letter A–Z.
 #[derive(Clone, Copy)]
@@ -83,6 +83,10 @@ pub(super) fn check_letters(
         }
         allowed = allowed.with(if f == MFunction::Call { Letters::of(b"PL") } else { Letters::of(b"P") });
     }
+    if !any_letter_refused(block.present(), allowed, user, cfg) {
+        return Ok(());
+    }
+    // Some letter is refused: the first in alphabetical order names the alarm.
     for letter in block.letters() {
         if UNUSED.contains(letter) {
             return Err(AlarmKind::ImproperAddress { letter });
@@ -100,6 +104,30 @@ pub(super) fn check_letters(
         }
     }
     Ok(())
+}
+
+/// Whether the per-letter rules of [`check_letters`] refuse any of the letters
+/// `present`, tested on all letters at once.
+#[inline(always)]
+fn any_letter_refused(present: u32, allowed: Letters, user: GCode, cfg: &MachineConfig) -> bool {
+    if present & (UNUSED.0 | !allowed.with(ALWAYS).0) != 0 {
+        return true;
+    }
+    if user == GCode::Dwell || !crate::check::cycle_args::axes_are_points(user) {
+        return false;
+    }
+    // G92 H is the number of starts, not the C axis.
+    let h = if user == GCode::ThreadCycle { Letters::of(b"H").0 } else { 0 };
+    Axis::ALL.into_iter().any(|axis| {
+        let letters = axis_letters(axis) & !h;
+        present & letters != 0 && !cfg.axis(axis).present
+    })
+}
+
+/// The absolute and incremental letters of `axis`.
+#[inline(always)]
+fn axis_letters(axis: Axis) -> u32 {
+    (1 << (axis.letter() - b'A')) | (1 << (axis.incremental_letter() - b'A'))
 }
 
 /// Converts the block's values into `cmd`.
@@ -163,51 +191,95 @@ fn convert_axes(
     cmd: &mut Command,
     h_is_count: bool,
 ) -> Result<(), AlarmKind> {
+    let present = block.present();
+    if present & AXES.0 == 0 {
+        return Ok(());
+    }
     let g91 = cmd.g.incremental.unwrap_or(state.modal.incremental);
-    for axis in Axis::ALL {
-        if h_is_count && axis == Axis::C {
-            // G92 H is the number of starts, not the C axis.
-            continue;
-        }
-        let abs = block.get(axis.letter());
-        let inc = block.get(axis.incremental_letter());
-        let (n, incremental) = match (abs, inc) {
-            (Some(_), Some(_)) => {
-                return Err(AlarmKind::AxisTwice { absolute: axis.letter(), incremental: axis.incremental_letter() });
-            }
-            (Some(n), None) => (n, g91),
-            (None, Some(n)) => (n, true),
-            (None, None) => continue,
-        };
-        let value = if axis == Axis::C && state.polar.is_some() {
-            // 2.7: in polar interpolation C is the plane's second axis, a length.
-            fmt.length_nm(&n).ok_or(AlarmKind::Overflow)?
-        } else {
-            axis_value(axis, &n, cfg, fmt)?
-        };
-        cmd.axes[axis.index()] = Some(AxisWord { value, incremental });
+    // One call per axis, in axis order (the first bad axis names the alarm), each
+    // with constant letters.
+    axis_word(Axis::X, block, g91, state, cfg, fmt, cmd)?;
+    axis_word(Axis::Y, block, g91, state, cfg, fmt, cmd)?;
+    axis_word(Axis::Z, block, g91, state, cfg, fmt, cmd)?;
+    if !h_is_count {
+        // G92 H is the number of starts, not the C axis.
+        axis_word(Axis::C, block, g91, state, cfg, fmt, cmd)?;
     }
     Ok(())
 }
 
+/// The word of `axis` (absolute or incremental), if given, into `cmd.axes`.
+#[inline(always)]
+fn axis_word(
+    axis: Axis,
+    block: &Block,
+    g91: bool,
+    state: &State,
+    cfg: &MachineConfig,
+    fmt: &NumberFormat,
+    cmd: &mut Command,
+) -> Result<(), AlarmKind> {
+    let (abs, inc) = (axis.letter(), axis.incremental_letter());
+    let (abs_bit, inc_bit) = (1u32 << (abs - b'A'), 1u32 << (inc - b'A'));
+    let given = block.present() & (abs_bit | inc_bit);
+    if given == 0 {
+        return Ok(());
+    }
+    if given == abs_bit | inc_bit {
+        return Err(AlarmKind::AxisTwice { absolute: abs, incremental: inc });
+    }
+    let (letter, incremental) = if given == abs_bit { (abs, g91) } else { (inc, true) };
+    let n = block.value(letter);
+    let value = if axis == Axis::C && state.polar.is_some() {
+        // 2.7: in polar interpolation C is the plane's second axis, a length.
+        length_nm(fmt, &n).ok_or(AlarmKind::Overflow)?
+    } else {
+        axis_value(axis, &n, cfg, fmt)?
+    };
+    cmd.axes[axis.index()] = Some(AxisWord { value, incremental });
+    Ok(())
+}
+
 /// One axis value in internal units.
+#[inline(always)]
 fn axis_value(axis: Axis, n: &Number, cfg: &MachineConfig, fmt: &NumberFormat) -> Result<i64, AlarmKind> {
-    let v = if axis.is_rotary() { fmt.angle_udeg(n) } else { fmt.length_nm(n) };
+    let v = if axis.is_rotary() { fmt.angle_udeg(n) } else { length_nm(fmt, n) };
     let v = v.ok_or(AlarmKind::Overflow)?;
     Ok(if axis == Axis::X && cfg.diameter_x { v / 2 } else { v })
 }
 
+/// [`NumberFormat::length_nm`], with the usual word (metric, read as written, no
+/// more fraction digits than the least increment: nothing to round) as one
+/// multiply.
+#[inline(always)]
+fn length_nm(fmt: &NumberFormat, n: &Number) -> Option<i64> {
+    /// `10^(6 - f)`: millimetres with `f` fraction digits to nanometres.
+    const NM_PER_DIGIT: [i32; 4] = [1_000_000, 100_000, 10_000, 1_000];
+    if fmt.units == Units::Metric
+        && (n.has_point || fmt.input == InputMode::Calculator)
+        && let (Some(&scale), Ok(m)) = (NM_PER_DIGIT.get(usize::from(n.frac_digits)), i32::try_from(n.mantissa))
+    {
+        // IS-B and IS-C metric keep at least 3 fraction digits: exact, and an i32
+        // times at most 10^6 fits an i64.
+        return Some(i64::from(m) * i64::from(scale));
+    }
+    fmt.length_nm(n)
+}
+
 /// I/J/K (radius values) and R of an arc.
 fn convert_arc_words(block: &Block, fmt: &NumberFormat, cmd: &mut Command) -> Result<(), AlarmKind> {
-    for axis in Axis::ALL {
-        if let Some(l) = axis.center_letter()
-            && let Some(n) = block.get(l)
-        {
-            cmd.center[axis.index()] = Some(fmt.length_nm(&n).ok_or(AlarmKind::Overflow)?);
+    // Written out per axis (constant letters), in axis order: X, Y, Z (C has none).
+    let mut center = |axis: Axis, letter: u8| -> Result<(), AlarmKind> {
+        if let Some(n) = block.get(letter) {
+            cmd.center[axis.index()] = Some(length_nm(fmt, &n).ok_or(AlarmKind::Overflow)?);
         }
-    }
+        Ok(())
+    };
+    center(Axis::X, b'I')?;
+    center(Axis::Y, b'J')?;
+    center(Axis::Z, b'K')?;
     if let Some(r) = block.get(b'R') {
-        let r = fmt.length_nm(&r).ok_or(AlarmKind::Overflow)?;
+        let r = length_nm(fmt, &r).ok_or(AlarmKind::Overflow)?;
         if r == 0 {
             return Err(AlarmKind::ArcRadiusZero);
         }
@@ -321,4 +393,38 @@ fn polygon(
         return Err(AlarmKind::PolygonNoToolSpindle);
     }
     Ok(crate::check::cycle_args::CycleArgs::Polygon { p: pq[0], q: pq[1], phase_udeg })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::units::IncrementSystem;
+
+    /// The one-multiply length agrees with `NumberFormat::length_nm` everywhere:
+    /// both units, both input modes, both increment systems, with and without a
+    /// point, every fraction length, values at the edges of an i32.
+    #[test]
+    fn short_length_conversion_matches_the_general_one() {
+        let mantissas =
+            [0, 1, -1, 5, 40_824, -100, 999_999_999, -999_999_999, 2_147_483_647, -2_147_483_648, 2_147_483_648];
+        for units in [Units::Metric, Units::Inch] {
+            for input in [InputMode::Calculator, InputMode::LeastIncrement] {
+                for increments in [IncrementSystem::IsB, IncrementSystem::IsC] {
+                    let fmt = NumberFormat { units, input, increments };
+                    for mantissa in mantissas {
+                        for frac_digits in 0..=9 {
+                            for has_point in [false, true] {
+                                let n = Number { mantissa, frac_digits, has_point };
+                                assert_eq!(length_nm(&fmt, &n), fmt.length_nm(&n), "{fmt:?} {n:?}");
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        let metric =
+            NumberFormat { units: Units::Metric, input: InputMode::Calculator, increments: IncrementSystem::IsB };
+        assert_eq!(length_nm(&metric, &Number { mantissa: 40_824, frac_digits: 3, has_point: true }), Some(40_824_000));
+        assert_eq!(length_nm(&metric, &Number { mantissa: -1, frac_digits: 1, has_point: true }), Some(-100_000));
+    }
 }

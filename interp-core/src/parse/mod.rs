@@ -143,6 +143,19 @@ impl Block {
         (i < 26 && self.present & (1 << i) != 0).then(|| self.values[usize::from(i)])
     }
 
+    /// The addresses given, bit `letter - 'A'` each (beyond N, O, G, M).
+    #[inline]
+    pub(crate) fn present(&self) -> u32 {
+        self.present
+    }
+
+    /// The value stored for address `letter` (uppercase ASCII), meaningful only
+    /// where [`Block::present`] says it is given.
+    #[inline]
+    pub(crate) fn value(&self, letter: u8) -> Number {
+        self.values.get(usize::from(letter.wrapping_sub(b'A'))).copied().unwrap_or(Number::int(0))
+    }
+
     /// Whether address `letter` is given.
     pub fn has(&self, letter: u8) -> bool {
         self.get(letter).is_some()

@@ -95,7 +95,12 @@ impl Reader<'_, '_> {
         self.skip_blanks_and_comments()?;
         if matches!(self.peek(), Some(b'N' | b'n')) {
             self.pos += 1;
-            self.word(b'N', block)?;
+            if starts_number(self.text, self.pos) {
+                let n = self.number(b'N')?;
+                self.store(b'N', n, block)?;
+            } else {
+                self.word(b'N', block)?;
+            }
             self.skip_blanks_and_comments()?;
         }
         if starts_statement(self.text, self.pos) {
@@ -129,6 +134,15 @@ impl Reader<'_, '_> {
         loop {
             self.skip_blanks_and_comments()?;
             let Some(c) = self.peek() else { return Ok(()) };
+            // The common word: a letter right before its plain number (`X40.8`,
+            // `Z-0.1`): no keyword, no macro value, no blanks to skip.
+            let letter = c & !0x20;
+            if letter.wrapping_sub(b'A') < 26 && starts_number(self.text, self.pos + 1) {
+                self.pos += 1;
+                let n = self.number(letter)?;
+                self.store(letter, n, block)?;
+                continue;
+            }
             // Keywords start with two letters (checked here first: it is cheap).
             let two_letters =
                 c.is_ascii_alphabetic() && self.text.get(self.pos + 1).is_some_and(u8::is_ascii_alphabetic);
@@ -176,6 +190,12 @@ impl Reader<'_, '_> {
     /// is a null variable is ignored with its address (2.24.1).
     fn word(&mut self, letter: u8, block: &mut Block) -> Result<(), AlarmKind> {
         let Some(n) = self.value(letter)? else { return Ok(()) };
+        self.store(letter, n, block)
+    }
+
+    /// Stores the value `n` of address `letter` in the block.
+    #[inline(always)]
+    fn store(&self, letter: u8, n: Number, block: &mut Block) -> Result<(), AlarmKind> {
         match letter {
             b'G' => {
                 let tenths = g_tenths(&n)?;
@@ -278,21 +298,27 @@ impl Reader<'_, '_> {
         while text.get(i) == Some(&b'0') {
             i += 1;
         }
-        let mut mantissa = 0u64;
-        if digits(text, &mut i, &mut mantissa) > u32::from(MAX_INT_DIGITS) {
+        // Each part has at most 9 digits: it fits a u32 (more wrap, and are refused).
+        let start = i;
+        let int = digits(text, &mut i);
+        if i - start > usize::from(MAX_INT_DIGITS) {
             return Err(AlarmKind::TooManyDigits { letter });
         }
         let has_point = text.get(i) == Some(&b'.');
+        let mut mantissa = u64::from(int);
         let mut frac_digits = 0;
         if has_point {
             i += 1;
-            frac_digits = digits(text, &mut i, &mut mantissa);
-            if frac_digits > u32::from(MAX_FRAC_DIGITS) {
+            let start = i;
+            let frac = digits(text, &mut i);
+            frac_digits = i - start;
+            if frac_digits > usize::from(MAX_FRAC_DIGITS) {
                 return Err(AlarmKind::TooManyDigits { letter });
             }
             if text.get(i) == Some(&b'.') {
                 return Err(AlarmKind::IllegalDecimalPoint { letter });
             }
+            mantissa = mantissa * POW10_U32[frac_digits] as u64 + u64::from(frac);
         }
         if i == first {
             return Err(AlarmKind::NoDataAfterAddress { letter });
@@ -304,26 +330,40 @@ impl Reader<'_, '_> {
     }
 }
 
+/// `10^n` for the fraction digits of a word (0–9).
+const POW10_U32: [u32; 10] = [1, 10, 100, 1_000, 10_000, 100_000, 1_000_000, 10_000_000, 100_000_000, 1_000_000_000];
+
+/// Whether a plain number (no macro value, no blanks) starts at `text[i]`: a digit
+/// or a point, after an optional sign.
+#[inline(always)]
+fn starts_number(text: &[u8], i: usize) -> bool {
+    let plain = |c: Option<&u8>| c.is_some_and(|&c| c.is_ascii_digit() || c == b'.');
+    match text.get(i) {
+        Some(b'-' | b'+') => plain(text.get(i + 1)),
+        c => plain(c),
+    }
+}
+
 /// A blank between and inside words: space, tab, CR (one compare for most bytes).
 #[inline(always)]
 fn is_blank(c: u8) -> bool {
     c == b' ' || c < b' ' && (1u32 << c) & (1 << b'\t' | 1 << b'\r') != 0
 }
 
-/// Reads the decimal digits from `text[*i]` on into `mantissa`, returns how many.
-/// Past 19 digits the mantissa wraps (the caller refuses that many anyway).
-fn digits(text: &[u8], i: &mut usize, mantissa: &mut u64) -> u32 {
-    let mut n = 0;
+/// Reads the decimal digits from `text[*i]` on, returns their value (wrapping past
+/// 9 digits: the caller refuses that many anyway).
+#[inline(always)]
+fn digits(text: &[u8], i: &mut usize) -> u32 {
+    let mut v = 0u32;
     while let Some(&c) = text.get(*i) {
-        let d = c.wrapping_sub(b'0');
+        let d = u32::from(c).wrapping_sub(u32::from(b'0'));
         if d > 9 {
             break;
         }
-        *mantissa = mantissa.wrapping_mul(10).wrapping_add(u64::from(d));
+        v = v.wrapping_mul(10).wrapping_add(d);
         *i += 1;
-        n += 1;
     }
-    n
+    v
 }
 
 /// A macro value as the word of `letter`. Addresses that take whole numbers
@@ -357,6 +397,12 @@ fn set_once(slot: &mut Option<u32>, letter: u8, v: u32) -> Result<(), AlarmKind>
 
 /// A G number in tenths: G1 → 10, G02.1 → 21, G12.1 → 121.
 fn g_tenths(n: &Number) -> Result<u16, AlarmKind> {
+    // The usual G01, G96, G02.1: no multiplication to check.
+    match (n.frac_digits, n.mantissa) {
+        (0, m @ 0..100) => return Ok(m as u16 * 10),
+        (1, m @ 0..1000) => return Ok(m as u16),
+        _ => {}
+    }
     if n.is_negative() {
         return Err(AlarmKind::IllegalMinusSign { letter: b'G' });
     }

@@ -121,6 +121,18 @@ const MARKS: [bool; 256] = {
     t
 };
 
+/// Whether any of the four bytes of `w` is one [`next_block`] stops at (LF, `;`,
+/// `(`, `)`).
+#[inline(always)]
+fn has_mark(w: u32) -> bool {
+    const ONES: u32 = 0x0101_0101;
+    const HIGHS: u32 = 0x8080_8080;
+    // A zero byte in `x` ⇔ the high bit of that byte in the result (exact for "any").
+    let zero = |x: u32| x.wrapping_sub(ONES) & !x & HIGHS;
+    // `(` and `)` differ only in bit 0.
+    zero(w ^ 0x0A0A_0A0A) | zero(w ^ 0x3B3B_3B3B) | zero((w | ONES) ^ 0x2929_2929) != 0
+}
+
 /// Cuts the next block out of `text` at `cur` and advances the cursor past it.
 ///
 /// A block ends at LF or `;` (a `;` inside a comment is comment text). `None` at the
@@ -133,7 +145,14 @@ pub fn next_block<'a>(text: &'a [u8], cur: &mut Cursor) -> Option<RawBlock<'a>> 
     let line = cur.line;
     let mut in_comment = false;
     let mut end = start;
-    // One table look-up per byte; only the four bytes that matter are looked at.
+    // Four bytes at a time up to the first that matters (most blocks hold none
+    // but their end), then one table look-up per byte.
+    for chunk in text[start..].chunks_exact(4) {
+        if has_mark(u32::from_le_bytes([chunk[0], chunk[1], chunk[2], chunk[3]])) {
+            break;
+        }
+        end += 4;
+    }
     while let Some(&c) = text.get(end) {
         if MARKS[usize::from(c)] {
             match c {
@@ -241,6 +260,57 @@ mod tests {
         assert_eq!(got[6], (&b"M30"[..], 5, false));
         assert_eq!(got[7], (&b"%"[..], 6, true));
         assert_eq!(got.len(), 8);
+    }
+
+    /// The four-bytes-at-a-time scan cuts blocks exactly as a byte-by-byte one,
+    /// whatever the alignment of the marks and comments.
+    #[test]
+    fn blocks_are_cut_as_byte_by_byte() {
+        fn reference<'a>(text: &'a [u8], cur: &mut Cursor) -> Option<(&'a [u8], u32)> {
+            let start = cur.offset;
+            if start >= text.len() {
+                return None;
+            }
+            let (mut end, mut in_comment) = (start, false);
+            while let Some(&c) = text.get(end) {
+                match c {
+                    b'\n' => break,
+                    b'(' => in_comment = true,
+                    b')' => in_comment = false,
+                    b';' if !in_comment => break,
+                    _ => {}
+                }
+                end += 1;
+            }
+            let line = cur.line;
+            if text.get(end) == Some(&b'\n') {
+                cur.line += 1;
+            }
+            cur.offset = end + 1;
+            Some((&text[start..end], line))
+        }
+        let alphabet = b"G1 X.;\n()%\r(;)";
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut text = [0u8; 40];
+        for _ in 0..20_000 {
+            let len = (seed % 41) as usize;
+            for b in text.iter_mut().take(len) {
+                seed ^= seed << 13;
+                seed ^= seed >> 7;
+                seed ^= seed << 17;
+                *b = alphabet[(seed % alphabet.len() as u64) as usize];
+            }
+            let t = &text[..len];
+            let (mut a, mut b) = (Cursor::start(0), Cursor::start(0));
+            loop {
+                let got = next_block(t, &mut a).map(|r| (r.text, r.line));
+                assert_eq!(got, reference(t, &mut b), "{t:?}");
+                assert_eq!(a, b);
+                if got.is_none() {
+                    break;
+                }
+            }
+        }
     }
 
     #[test]
