@@ -446,6 +446,14 @@ mod tests {
         }
         assert!(inside > 10_000, "{inside} arcs inside one quadrant");
         assert!(tiny < 10, "{tiny} arcs too short for f32");
+        // An arc of 1.4 nm at R100 ccw: its ends' pseudo-angles are the same f32
+        // (sweep 0), which the f32 way took for a whole circle. Its own box now.
+        let (c, s0, e0) = ((0, 0), (70_710_678, 70_710_678), (70_710_677, 70_710_679));
+        assert_eq!(by_quarter_turns(Extents { a: (0, 0), b: (0, 0) }, s0, e0, c, false, false).a.0, -100 * MM);
+        assert_eq!(
+            arc_extents(s0, e0, c, false, false),
+            Extents { a: (70_710_677, 70_710_678), b: (70_710_678, 70_710_679) }
+        );
         // Through the axes, or the long way round: the quadrant points count.
         let e = arc_extents((10 * MM, 1), (1, 10 * MM), (0, 0), true, false);
         assert_eq!(e, Extents { a: (-10 * MM, 10 * MM), b: (-10 * MM, 10 * MM) });
