@@ -121,11 +121,43 @@ pub const STORE_SIZE: u32 = 48 * 1024;
 
 bind_interrupts!(
     /// Interrupt vectors bound to embassy drivers (the motion interrupts are in
-    /// `motion.rs`).
+    /// `motion.rs`). USART2 runs [`TcGuard`] first, then embassy's handler.
     struct Irqs {
-        USART2 => usart::BufferedInterruptHandler<peripherals::USART2>;
+        USART2 => TcGuard, usart::BufferedInterruptHandler<peripherals::USART2>;
     }
 );
+
+/// TC (transmission complete) in USART_SR.
+const SR_TC: u32 = 1 << 6;
+
+/// Takes the transmission-complete interrupt of the DNC link away from embassy's
+/// `BufferedUart` handler, which loses received bytes. embassy-stm32 0.6 (usart
+/// v1/v2) clears TC with a read-modify-write of SR (`sr.modify(|w| w.set_tc(false))`):
+/// a byte received between its read (RXNE 0) and its write has RXNE written back 0,
+/// which clears it (RXNE is rc_w0), so the byte is never read and the next one
+/// overwrites it. That happens at the end of every transmission — every `ok` —
+/// while the sender streams the next line. In QEMU (its SR write takes the value
+/// written) a loaded host lost about one byte in 8 KB that way (a line's first
+/// byte cost `qemu-test.py` its G-code line: alarm 0004); on the board the window
+/// is a few cycles per `ok`.
+///
+/// Run before embassy's handler, this clears TC by writing every other SR bit as 1
+/// (as ST's HAL does, `SR = ~TC`: rc_w0 bits written 1 stay as they are, and QEMU
+/// ANDs a value above 0x3FF into SR) and TCIE, so embassy's TC branch never runs.
+/// That branch also woke a transmit waiting for room in the ring and set the flag
+/// `flush` waits for: `link_tx` retries a waiting write every millisecond and the
+/// firmware never calls `flush`.
+pub struct TcGuard;
+
+impl embassy_stm32::interrupt::typelevel::Handler<embassy_stm32::interrupt::typelevel::USART2> for TcGuard {
+    unsafe fn on_interrupt() {
+        let r = pac::USART2;
+        if r.sr().read().tc() && r.cr1().read().tcie() {
+            r.sr().write_value(pac::usart::regs::Sr(!SR_TC));
+            r.cr1().modify(|w| w.set_tcie(false));
+        }
+    }
+}
 
 /// Receive buffer of the DNC link: room for a few program blocks while the
 /// interpreter is busy.

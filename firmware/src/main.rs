@@ -18,7 +18,7 @@ use embassy_stm32::wdg::IndependentWatchdog;
 use embassy_sync::blocking_mutex::Mutex;
 use embassy_sync::blocking_mutex::raw::ThreadModeRawMutex;
 use embassy_sync::signal::Signal;
-use embassy_time::{Duration, Ticker, Timer};
+use embassy_time::{Duration, Ticker, Timer, with_timeout};
 use embedded_io_async::{Read as _, Write as _};
 use firmware::board::{Axis, Board, MotionTimers, Spindle};
 use firmware::io::{Clock, Inputs, Outputs};
@@ -380,9 +380,24 @@ async fn link_tx(mut tx: BufferedUartTx<'static>) {
             if n == 0 {
                 break;
             }
-            if tx.write_all(buf.get(..n).unwrap_or(&[])).await.is_err() {
+            send(&mut tx, buf.get(..n).unwrap_or(&[])).await;
+        }
+    }
+}
+
+/// Writes `bytes` (at most the transmit ring's 256) to the link. Nothing wakes a
+/// write waiting for room in the ring since [`firmware::board::TcGuard`] took the
+/// transmission-complete interrupt from embassy: it is retried every millisecond. A
+/// write takes all its bytes or none, so a retry never sends a byte twice.
+async fn send(tx: &mut BufferedUartTx<'static>, bytes: &[u8]) {
+    loop {
+        match with_timeout(Duration::from_millis(1), tx.write(bytes)).await {
+            Ok(Ok(_)) => return,
+            Ok(Err(_)) => {
                 warn!("link transmit failed");
+                return;
             }
+            Err(_) => {}
         }
     }
 }
