@@ -1,10 +1,9 @@
-//! qemu-test's lathe program (G71/G70; without its G76 thread, which stalls in this
-//! rig's simulated spindle — qemu-test runs it on the firmware) streamed with grbl character counting into
+//! qemu-test's lathe program (G71/G70 and a G76 thread) streamed with grbl character counting into
 //! the firmware's controller (4 KB window) the way a link delivers it: bytes in
 //! random chunks at random times, polls at random times, the motion core ticking
 //! every millisecond. Whatever the timing, every line is `ok`, nothing alarms, and
 //! the motion core gets exactly what the interpreter makes of the program run
-//! directly. `STREAM_SEEDS=n` runs n timings (default 12; a release build runs
+//! directly. `STREAM_SEEDS=n` runs n timings (default 4; a release build runs
 //! thousands in minutes).
 
 mod common;
@@ -16,7 +15,7 @@ use interp_core::MachineConfig;
 /// The firmware's controller (firmware/src/shell.rs).
 type Fw = Controller<4096, 16384, 32, 512>;
 
-/// firmware/qemu-test.py's PROGRAM without the G76 lines.
+/// firmware/qemu-test.py's PROGRAM.
 const PROGRAM: &str = "G21 G97 G98
 G00 X40. Z5. M03 S1000
 G71 U1.5 R0.5 F4000
@@ -27,6 +26,8 @@ X30. Z-15.
 N20 X40.
 G70 P10 Q20
 G00 X40. Z5.
+G76 P010060 Q0.1 R0.05
+G76 X22.2 Z-8. P0.9 Q0.4 F1.5
 G00 X50. Z20. M05
 M30
 ";
@@ -100,7 +101,7 @@ fn run(seed: u64) -> (Rig<Fw>, Vec<String>) {
 
 #[test]
 fn qemu_tests_program_streamed_with_any_timing_runs_as_written() {
-    let seeds: u64 = std::env::var("STREAM_SEEDS").ok().and_then(|s| s.parse().ok()).unwrap_or(12);
+    let seeds: u64 = std::env::var("STREAM_SEEDS").ok().and_then(|s| s.parse().ok()).unwrap_or(4);
     let want = direct(PROGRAM, None);
     assert!(want.len() > 30, "{} actions", want.len());
     for seed in 0..seeds {
@@ -114,7 +115,8 @@ fn qemu_tests_program_streamed_with_any_timing_runs_as_written() {
         // Where `lathe sim` ends the program (qemu-test's PROGRAM_END).
         let s = r.status();
         assert!(s.starts_with("<Idle|MPos:50.000,0.000,20.000|"), "seed {seed}: {s}");
-        assert!(ms > 3_000, "seed {seed}: {ms} ms");
+        // The G76 thread's passes take most of the ~17 s.
+        assert!(ms > 15_000, "seed {seed}: {ms} ms");
     }
 }
 

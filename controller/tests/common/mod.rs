@@ -182,12 +182,36 @@ impl<C: Drive> Rig<C> {
             SpindleDir::Ccw => -1.0,
             SpindleDir::Stop => 0.0,
         };
+        let before = self.spindle_count;
         self.spindle_count += sign * f64::from(rpm) * cpr * (TICK as f64 / 1e9) / 60.0;
         let count = self.spindle_count.floor() as i64;
         let index = Some(count.div_euclid(cpr as i64) * cpr as i64);
         self.port.core.tick(self.now, Feedback { count, index });
+        if self.port.core.wants_encoder_edges() {
+            // Locked to the spindle: each count of the period with its own time, as
+            // the firmware's count interrupt and sim's encoder deliver them.
+            self.encoder_edges(before, self.spindle_count);
+        }
+        self.drain_steps(self.now + TICK);
+    }
+
+    /// The counts from `from` to `to` (the encoder's position, counts) spread
+    /// evenly over the period, each given to the core after the steps due before it.
+    fn encoder_edges(&mut self, from: f64, to: f64) {
+        let (a, b) = (from.floor() as i64, to.floor() as i64);
+        let counts: Vec<i64> = if b >= a { (a + 1..=b).collect() } else { (b..a).rev().collect() };
+        let n = counts.len() as u64;
+        for (i, c) in counts.into_iter().enumerate() {
+            let t = self.now + TICK * (i as u64 + 1) / (n + 1);
+            self.drain_steps(t);
+            self.port.core.on_encoder(t, c);
+        }
+    }
+
+    /// Takes every step event due before `until`.
+    fn drain_steps(&mut self, until: u64) {
         for axis in 0..4 {
-            while self.port.core.next_step(axis, self.now + TICK).is_some() {}
+            while self.port.core.next_step(axis, until).is_some() {}
         }
     }
 
