@@ -298,22 +298,15 @@ impl State {
         }
     }
 
-    /// Machine position of the work frame's origin, without the tool offset:
-    /// work offset of G54–G59 + external offset + G50 shift + G52 local origin.
-    pub fn frame_origin(&self, cfg: &MachineConfig) -> Pos {
-        cfg.work_offsets[usize::from(self.modal.work_frame)]
-            + cfg.external_offset
-            + self.frames.shift
-            + self.frames.local
-    }
-
     /// Sums [`State::own_offsets`] again; called wherever the G50 shift, the G52
     /// frame or the tool offset change.
     pub fn sum_own_offsets(&mut self) {
         self.own_offsets = self.frames.shift + self.frames.local + self.tool.offset;
     }
 
-    /// What is added to a work position to get the machine position of the axes.
+    /// What is added to a work position to get the machine position of the axes:
+    /// work offset of G54–G59 + external offset + G50 shift + G52 local origin +
+    /// tool offset.
     #[inline]
     pub fn work_to_machine(&self, cfg: &MachineConfig) -> Pos {
         // Tests (debug builds) check the kept sum at every use.

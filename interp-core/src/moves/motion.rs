@@ -55,8 +55,7 @@ impl At {
 
     /// Both coordinates of a work target.
     fn endpoint(&self, work: Pos) -> Result<Endpoint, AlarmKind> {
-        let machine = work.checked_add(self.shift).ok_or(AlarmKind::Overflow)?;
-        Ok(Endpoint { machine, work })
+        shifted(work, self.shift)
     }
 }
 
@@ -80,7 +79,13 @@ fn target_from(cmd: &Command, here: Pos) -> Result<Pos, AlarmKind> {
 
 /// Both coordinates of a work target.
 pub(crate) fn endpoint(work: Pos, st: &State, cfg: &MachineConfig) -> Result<Endpoint, AlarmKind> {
-    let machine = work.checked_add(st.work_to_machine(cfg)).ok_or(AlarmKind::Overflow)?;
+    shifted(work, st.work_to_machine(cfg))
+}
+
+/// The end point of `work` whose machine position is `work + shift` (alarm on
+/// overflow).
+fn shifted(work: Pos, shift: Pos) -> Result<Endpoint, AlarmKind> {
+    let machine = work.checked_add(shift).ok_or(AlarmKind::Overflow)?;
     Ok(Endpoint { machine, work })
 }
 
