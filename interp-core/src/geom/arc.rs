@@ -49,13 +49,7 @@ pub fn center_from_radius(start: P2, end: P2, r: i64, cw: bool, tol: i64) -> Res
 /// one 128-bit product and one shift, no soft-float arithmetic. `None` for `s`
 /// beyond 2^-120..2^52 (then [`half_sum_f64`]).
 fn half_sum(p: i64, d: i64, n: i64, s: f64) -> Option<i64> {
-    let bits = s.to_bits();
-    let exp = ((bits >> 52) & 0x7ff) as i32;
-    let (m, sh) = match exp {
-        0 => (bits & ((1 << 52) - 1), 1074),
-        0x7ff => return None,
-        _ => ((bits & ((1 << 52) - 1)) | 1 << 52, 1075 - exp),
-    };
+    let (m, sh) = mantissa_shift(s)?;
     if !(0..=120).contains(&sh) {
         return None;
     }
@@ -73,6 +67,18 @@ fn half_sum(p: i64, d: i64, n: i64, s: f64) -> Option<i64> {
         -((-u) >> 1)
     };
     Some(q.clamp(i128::from(i64::MIN), i128::from(i64::MAX)) as i64)
+}
+
+/// `s ≥ 0` as `m / 2^sh`: its 53-bit mantissa and the power of two it is divided
+/// by (`None` for an infinity or NaN).
+fn mantissa_shift(s: f64) -> Option<(u64, i32)> {
+    let bits = s.to_bits();
+    let exp = ((bits >> 52) & 0x7ff) as i32;
+    match exp {
+        0 => Some((bits & ((1 << 52) - 1), 1074)),
+        0x7ff => None,
+        _ => Some(((bits & ((1 << 52) - 1)) | 1 << 52, 1075 - exp)),
+    }
 }
 
 /// [`half_sum`] in f64 (how it was computed before), for what does not fit in 128
@@ -337,13 +343,7 @@ mod tests {
     /// integer over that power of two in 128 bits — no soft-float arithmetic.
     /// `None` when it does not fit.
     fn half_sum_wide(p: i64, d: i64, n: i64, s: f64) -> Option<i64> {
-        let bits = s.to_bits();
-        let exp = ((bits >> 52) & 0x7ff) as i32;
-        let (m, sh) = match exp {
-            0 => (bits & ((1 << 52) - 1), 1074),
-            0x7ff => return None,
-            _ => ((bits & ((1 << 52) - 1)) | 1 << 52, 1075 - exp),
-        };
+        let (m, sh) = mantissa_shift(s)?;
         let base = 2 * i128::from(p) + i128::from(d);
         // `base · 2^sh` below 2^126, `n·m` below 2^117: the sum fits.
         if !(0..=120).contains(&sh) || base.unsigned_abs().leading_zeros() < 2 + sh as u32 {
