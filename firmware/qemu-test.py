@@ -31,23 +31,11 @@ RX_BUFFER = 128
 # Everything up to the shape's last block (N20) fits into the first 128 bytes, so
 # G71 finds its shape without waiting for text: the controller gives a look-ahead
 # up after 200 ms of link silence, which a loaded CI machine can stall QEMU for.
-PROGRAM = """\
-G21 G97 G98
-G00 X40. Z5. M03 S1000
-G71 U1.5 R0.5 F4000
-G71 P10 Q20 U0.4 W0.1
-N10 G00 X24.
-G01 Z-10. F3000
-X30. Z-15.
-N20 X40.
-G70 P10 Q20
-G00 X40. Z5.
-G76 P010060 Q0.1 R0.05
-G76 X22.2 Z-8. P0.9 Q0.4 F1.5
-G00 X50. Z20. M05
-M30
-"""
-# Where `cargo run -p lathe -- sim PROGRAM --format jsonl | tail` ends: the last rapid
+# The program's text is shared with the controller's host test of the same stream
+# (controller/tests/stream_chunks.rs).
+with open(os.path.join(HERE, "qemu-program.nc"), encoding="ascii") as f:
+    PROGRAM = f.read()
+# Where `cargo run -p lathe -- sim firmware/qemu-program.nc --format jsonl | tail` ends: the last rapid
 # to X50 Z20 (machine coordinates, diameter; no work offset), 18.6 s simulated.
 PROGRAM_END = b"MPos:50.000,0.000,20.000|"
 # Lines of which every byte matters: without any one of them (`#1=`, `#11`, `#=1`,

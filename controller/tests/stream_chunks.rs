@@ -11,46 +11,22 @@ mod common;
 use common::{Counting, Rig, TICK, direct};
 use controller::Controller;
 use interp_core::MachineConfig;
+use interp_core::canon::xorshift::XorShift;
 
 /// The firmware's controller (firmware/src/shell.rs).
 type Fw = Controller<4096, 16384, 32, 512>;
 
-/// firmware/qemu-test.py's PROGRAM.
-const PROGRAM: &str = "G21 G97 G98
-G00 X40. Z5. M03 S1000
-G71 U1.5 R0.5 F4000
-G71 P10 Q20 U0.4 W0.1
-N10 G00 X24.
-G01 Z-10. F3000
-X30. Z-15.
-N20 X40.
-G70 P10 Q20
-G00 X40. Z5.
-G76 P010060 Q0.1 R0.05
-G76 X22.2 Z-8. P0.9 Q0.4 F1.5
-G00 X50. Z20. M05
-M30
-";
+/// The program firmware/qemu-test.py streams.
+const PROGRAM: &str = include_str!("../../firmware/qemu-program.nc");
 
-/// xorshift64.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-
-    fn below(&mut self, n: u64) -> u64 {
-        self.next() % n.max(1)
-    }
+/// A value in `0..n` (0 for `n` = 0).
+fn below(rng: &mut XorShift, n: u64) -> u64 {
+    rng.next_u64() % n.max(1)
 }
 
 /// Streams PROGRAM with timing `seed`; the answers.
 fn run(seed: u64) -> (Rig<Fw>, Vec<String>) {
-    let mut rng = Rng(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1);
+    let mut rng = XorShift::new(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1);
     let mut r: Rig<Fw> = Rig::with(MachineConfig::default());
     let mut sender = Counting::new(PROGRAM.lines().map(String::from).collect());
     let mut answers = Vec::new();
@@ -58,10 +34,10 @@ fn run(seed: u64) -> (Rig<Fw>, Vec<String>) {
     for _ in 0..2_000_000 {
         sender.pump(&mut r);
         // A chunk of what the link has: nothing, a byte, a few, or all of it.
-        let k = match rng.below(4) {
+        let k = match below(&mut rng, 4) {
             0 => 0,
             1 => 1,
-            2 => rng.below(16) as usize,
+            2 => below(&mut rng, 16) as usize,
             _ => r.pending.len(),
         }
         .min(r.pending.len());
@@ -73,8 +49,8 @@ fn run(seed: u64) -> (Rig<Fw>, Vec<String>) {
             }
         }
         // Time moves on by 0-3 ms (0: a receive and a poll at the same instant).
-        r.now += rng.below(3_000_000);
-        if rng.below(3) != 0 {
+        r.now += below(&mut rng, 3_000_000);
+        if below(&mut rng, 3) != 0 {
             r.ctl.poll(r.now, &mut r.port, &mut r.io, r.inputs);
         }
         let now = r.now;
