@@ -6,7 +6,7 @@ mod reader;
 
 pub use reader::{read_block, read_block_into, read_statement, read_statement_into, read_with};
 
-use crate::macros::MacroStatement;
+use crate::lang::fanuc::macros::MacroStatement;
 use crate::units::Number;
 
 /// What one block of program text is (2.24.2 notes 7 and 8).
@@ -71,7 +71,7 @@ pub fn skip_level(text: &[u8]) -> Option<u8> {
 /// Most G codes one block may hold.
 pub const MAX_G: usize = 8;
 /// Most M codes one block may hold (alarm 4010 beyond).
-pub const MAX_M: usize = 3;
+pub use crate::command::MAX_M;
 
 /// The words of one block, as written.
 ///

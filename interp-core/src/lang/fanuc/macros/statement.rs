@@ -6,6 +6,7 @@
 use super::expr::{Eval, Val, format, nullable};
 use super::vars::Value;
 use crate::alarm::AlarmKind;
+use crate::program::{Cursor, next_block, starts_program};
 
 /// Highest sequence number a jump may name (2.24.2 note 1).
 pub const MAX_SEQUENCE: u32 = 99_999;
@@ -230,4 +231,35 @@ fn skip_brackets(e: &mut Eval) -> Option<()> {
         }
     }
     None
+}
+
+/// The cursor just after the `END label` that closes the loop whose range starts at
+/// `from` (the block after its WHILE/DO), skipping inner DO–END pairs. Alarm 0124
+/// if the END is missing (the program ends first) or the ranges overlap (note 4).
+///
+/// The work is bounded by the length of the loop's range; the interpreter does it
+/// when it enters the loop, so it knows the range for jumps out of it.
+pub fn find_loop_end(text: &[u8], from: Cursor, label: u8) -> Result<Cursor, AlarmKind> {
+    let mut cur = from;
+    let mut inner: heapless::Vec<u8, 8> = heapless::Vec::new();
+    while let Some(block) = next_block(text, &mut cur) {
+        if block.percent || starts_program(block.text) {
+            break;
+        }
+        match loop_mark(block.text) {
+            Some(LoopMark::Do(m)) if m == label || inner.contains(&m) => {
+                return Err(AlarmKind::LoopsCrossed { label });
+            }
+            Some(LoopMark::Do(m)) => inner.push(m).map_err(|_| AlarmKind::LoopsCrossed { label })?,
+            Some(LoopMark::End(m)) => match inner.last() {
+                Some(&top) if top == m => {
+                    inner.pop();
+                }
+                None if m == label => return Ok(cur),
+                _ => return Err(AlarmKind::LoopsCrossed { label }),
+            },
+            None => {}
+        }
+    }
+    Err(AlarmKind::MissingEnd { label })
 }

@@ -42,7 +42,7 @@ pub(crate) enum Rounding {
     Macro,
     /// In an NC word: to the address's least input increment, in 1e-9 program units.
     Nc { step_e9: i64 },
-    /// In an NC word read without a number format ([`crate::parse::read_block`]).
+    /// In an NC word read without a number format ([`crate::lang::fanuc::parse::read_block`]).
     Unknown,
 }
 

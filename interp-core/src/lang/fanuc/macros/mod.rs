@@ -19,7 +19,8 @@ pub use vars::{
 };
 
 pub(crate) use expr::{Eval, Rounding, format, nullable};
-pub(crate) use statement::{LoopMark, loop_mark, starts_statement, statement};
+pub use statement::find_loop_end;
+pub(crate) use statement::{starts_statement, statement};
 
 #[cfg(test)]
 mod tests;

@@ -6,7 +6,7 @@
 use super::{Block, MacroBlock, Read, Statement, whole};
 use crate::alarm::AlarmKind;
 use crate::alarm::GNum;
-use crate::macros::{Eval, Rounding, Variables, format, nullable, starts_statement, statement};
+use crate::lang::fanuc::macros::{Eval, Rounding, Variables, format, nullable, starts_statement, statement};
 use crate::units::{Number, NumberFormat, pow10};
 
 /// Most digits before the decimal point.
@@ -114,7 +114,7 @@ impl Reader<'_, '_> {
     }
 
     /// A macro statement, and nothing but comments after it (note 7).
-    fn macro_statement(&mut self) -> Result<crate::macros::MacroStatement, AlarmKind> {
+    fn macro_statement(&mut self) -> Result<crate::lang::fanuc::macros::MacroStatement, AlarmKind> {
         let Some(vars) = self.vars else {
             return Err(format("macro statement (use read_statement)"));
         };

@@ -6,9 +6,10 @@ extern crate std;
 
 use std::format;
 
+use super::statement::loop_mark;
 use super::*;
 use crate::alarm::AlarmKind::{self, *};
-use crate::parse::{Block, Statement, read_block, read_statement};
+use crate::lang::fanuc::parse::{Block, Statement, read_block, read_statement};
 use crate::units::{IncrementSystem, InputMode, Number, NumberFormat, Units};
 
 const METRIC: NumberFormat =

@@ -1,12 +1,13 @@
 //! Which words a block may hold, and their conversion into internal units.
 
-use super::{AxisWord, Command, axis_of};
+use super::axis_of;
 use crate::alarm::AlarmKind;
 use crate::axis::Axis;
 use crate::codes::{GCode, MFunction};
+use crate::command::{AxisWord, Command};
 use crate::config::{MAX_OFFSETS, MachineConfig, Param};
+use crate::lang::fanuc::parse::{Block, whole};
 use crate::modal::State;
-use crate::parse::{Block, whole};
 use crate::units::{InputMode, Number, NumberFormat, Units};
 
 /// A set of address letters, one bit per letter A–Z.
@@ -70,7 +71,7 @@ pub(super) fn check_letters(
     flow: Option<MFunction>,
     cfg: &MachineConfig,
 ) -> Result<(), AlarmKind> {
-    let (mut allowed, name) = match crate::check::cycle_args::letters_of(user) {
+    let (mut allowed, name) = match crate::lang::fanuc::check::cycle_args::letters_of(user) {
         Some((l, name)) => (Letters::of(l), name),
         None => words_of(user),
     };
@@ -96,7 +97,7 @@ pub(super) fn check_letters(
         }
         if user != GCode::Dwell
             && !(user == GCode::ThreadCycle && letter == b'H')
-            && crate::check::cycle_args::axes_are_points(user)
+            && crate::command::cycle::axes_are_points(user)
             && let Some((axis, _)) = axis_of(letter)
             && !cfg.axis(axis).present
         {
@@ -113,7 +114,7 @@ fn any_letter_refused(present: u32, allowed: Letters, user: GCode, cfg: &Machine
     if present & (UNUSED.0 | !allowed.with(ALWAYS).0) != 0 {
         return true;
     }
-    if user == GCode::Dwell || !crate::check::cycle_args::axes_are_points(user) {
+    if user == GCode::Dwell || !crate::command::cycle::axes_are_points(user) {
         return false;
     }
     // G92 H is the number of starts, not the C axis.
@@ -139,20 +140,20 @@ pub(super) fn convert(
     fmt: &NumberFormat,
     cmd: &mut Command,
 ) -> Result<(), AlarmKind> {
-    use crate::check::cycle_args as args;
+    use crate::command::cycle as args;
     if user == GCode::Dwell {
         cmd.dwell_ms = Some(dwell_ms(block, fmt)?);
     } else if args::axes_are_points(user) {
         convert_axes(block, state, cfg, fmt, cmd, user == GCode::ThreadCycle)?;
     }
     if args::is_cycle(user) {
-        cmd.cycle = args::read(user, block, fmt, cfg.diameter_x)?;
+        cmd.cycle = super::cycle_args::read(user, block, fmt, cfg.diameter_x)?;
     }
     if user == GCode::PolygonOn {
         cmd.cycle = polygon(block, fmt, cfg)?;
     }
     if matches!(user, GCode::EllipseCw | GCode::EllipseCcw | GCode::ParabolaCw | GCode::ParabolaCcw) {
-        cmd.cycle = args::read_curve(block, fmt)?;
+        cmd.cycle = super::cycle_args::read_curve(block, fmt)?;
     }
     if matches!(user, GCode::ArcCw | GCode::ArcCcw | GCode::StrokeCheckOn) {
         convert_arc_words(block, fmt, cmd)?;
@@ -342,8 +343,8 @@ fn tool_word(t: &Number, cfg: &MachineConfig) -> Result<(u16, u16), AlarmKind> {
 }
 
 /// `,C` / `,R` (2.23): a length, never negative; zero asks for nothing.
-fn corner_word(block: &Block, fmt: &NumberFormat) -> Result<Option<crate::check::Corner>, AlarmKind> {
-    use crate::check::Corner;
+fn corner_word(block: &Block, fmt: &NumberFormat) -> Result<Option<crate::command::Corner>, AlarmKind> {
+    use crate::command::Corner;
     let (n, letter, make): (_, u8, fn(i64) -> Corner) = match (&block.chamfer, &block.corner) {
         (_, Some(r)) if block.corner_last => (r, b'R', Corner::Round),
         (Some(c), _) => (c, b'C', Corner::Chamfer),
@@ -365,7 +366,7 @@ fn polygon(
     block: &Block,
     fmt: &NumberFormat,
     cfg: &MachineConfig,
-) -> Result<crate::check::cycle_args::CycleArgs, AlarmKind> {
+) -> Result<crate::command::cycle::CycleArgs, AlarmKind> {
     let mut pq = [1u16; 2];
     for (i, l) in [b'P', b'Q'].into_iter().enumerate() {
         if let Some(n) = block.get(l) {
@@ -392,7 +393,7 @@ fn polygon(
     if !cfg.axis(crate::axis::Axis::C).present {
         return Err(AlarmKind::PolygonNoToolSpindle);
     }
-    Ok(crate::check::cycle_args::CycleArgs::Polygon { p: pq[0], q: pq[1], phase_udeg })
+    Ok(crate::command::cycle::CycleArgs::Polygon { p: pq[0], q: pq[1], phase_udeg })
 }
 
 #[cfg(test)]
