@@ -408,9 +408,10 @@ fn g_tenths(n: &Number) -> Result<u16, AlarmKind> {
     }
     let tenths = n.scaled(1).unwrap_or(i64::MAX);
     let shown = GNum(u16::try_from(tenths).unwrap_or(u16::MAX));
-    // Fraction digits past the first must be zeros (G2.10 is G2.1; G2.15 is nothing).
+    // Fraction digits past the first must be zeros (G2.10 is G2.1; G2.15 is nothing);
+    // three-digit codes (G290, G291) are looked up, the tables hold no longer ones.
     let exact = n.frac_digits <= 1 || n.scaled(n.frac_digits) == Some(tenths * pow10(n.frac_digits - 1).unwrap_or(0));
-    if !exact || tenths >= 1000 {
+    if !exact || tenths >= 10_000 {
         return Err(AlarmKind::ImproperGCode { code: shown });
     }
     Ok(tenths as u16)
