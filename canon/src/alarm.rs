@@ -299,6 +299,48 @@ pub enum AlarmKind {
     NoseCompGouge,
     /// 3607: nose compensation corner angle under 0.1° (2.18.4).
     NoseCompCornerAngle,
+    /// 12080: a SINUMERIK block that cannot be read (the 840D's "syntax error").
+    SyntaxError { what: &'static str },
+    /// 12150: an operation or assignment the value's data type does not allow
+    /// (a string in arithmetic, a number for a STRING).
+    TypeMismatch,
+    /// 12160: a value outside the range of its type or use (INT beyond 32 bits, a
+    /// CHAR beyond 255, a number of passes beyond 9999).
+    ValueRange,
+    /// 12160: a string longer than its STRING variable or the call's argument space.
+    StringTooLong,
+    /// 12170: a name defined twice in one program level.
+    NameDefinedTwice,
+    /// 12330: a cycle or subprogram argument whose type does not convert to its
+    /// parameter's (seed 001 line 649); `index` counts from 1.
+    ParameterType { index: u8 },
+    /// 12340: more arguments than the cycle or subprogram has parameters (seed 001 line 596).
+    TooManyParameters,
+    /// 12460: more DEF variables (or names) than the controller holds.
+    TooManySymbols,
+    /// 12470: a G function the SINUMERIK table does not hold.
+    UnknownGFunction { code: u16 },
+    /// 12550: a name that is neither a variable, a keyword nor a program.
+    NameNotDefined,
+    /// 14011: a subprogram or contour program that is not in program memory.
+    SubprogramNotFound,
+    /// 14012: subprograms (and REPEAT sections) nested deeper than the controller holds.
+    SubprogramLevels,
+    /// 14080: a GOTOF/GOTOB/GOTO or REPEAT label (or contour label) not in the program.
+    LabelNotFound,
+    /// 14500: DEF after the program's first NC block, or PROC not at its start.
+    DefNotAtStart,
+    /// 14510: a subprogram called with arguments has no PROC statement with parameters.
+    ProcMissing,
+    /// 16420: an axis programmed twice in one block.
+    AxisProgrammedTwice { letter: Letter },
+    /// 17020: an array index (R[n], _ZSD[n], $TC_DP…[t,d]) outside the array.
+    IndexOutOfRange,
+    /// 17180: a D number (cutting edge) with no offset row.
+    IllegalDNumber { number: u16 },
+    /// 4048: MCALL inside a modally called subprogram (seed 001 line 3027: modal
+    /// calls do not nest).
+    ModalCallNested,
 }
 
 impl AlarmKind {
@@ -411,6 +453,24 @@ impl AlarmKind {
             ToolChangeInNoseComp => 3577,
             NoseCompGouge => 3605,
             NoseCompCornerAngle => 3607,
+            SyntaxError { .. } => 12080,
+            TypeMismatch => 12150,
+            ValueRange | StringTooLong => 12160,
+            NameDefinedTwice => 12170,
+            ParameterType { .. } => 12330,
+            TooManyParameters => 12340,
+            TooManySymbols => 12460,
+            UnknownGFunction { .. } => 12470,
+            NameNotDefined => 12550,
+            SubprogramNotFound => 14011,
+            SubprogramLevels => 14012,
+            LabelNotFound => 14080,
+            DefNotAtStart => 14500,
+            ProcMissing => 14510,
+            AxisProgrammedTwice { .. } => 16420,
+            IndexOutOfRange => 17020,
+            IllegalDNumber { .. } => 17180,
+            ModalCallNested => 4048,
         }
     }
 }
@@ -584,6 +644,25 @@ impl fmt::Display for AlarmKind {
             ToolChangeInNoseComp => write!(f, "T code while nose compensation is active"),
             NoseCompGouge => write!(f, "nose compensation would gouge the part"),
             NoseCompCornerAngle => write!(f, "nose compensation corner angle below 0.1 degrees"),
+            SyntaxError { what } => write!(f, "syntax error: {what}"),
+            TypeMismatch => write!(f, "value of the wrong data type for this operation or variable"),
+            ValueRange => write!(f, "value out of the range of its type or use"),
+            StringTooLong => write!(f, "string longer than its variable or the argument space"),
+            NameDefinedTwice => write!(f, "name defined twice in this program"),
+            ParameterType { index } => write!(f, "type of parameter {index} incorrect"),
+            TooManyParameters => write!(f, "too many parameters"),
+            TooManySymbols => write!(f, "too many variables defined (DEF)"),
+            UnknownGFunction { code } => write!(f, "G{code} is not a SINUMERIK G function of this controller"),
+            NameNotDefined => write!(f, "name not defined (not a variable, keyword, cycle or program)"),
+            SubprogramNotFound => write!(f, "subprogram not in program memory"),
+            SubprogramLevels => write!(f, "subprograms or REPEAT sections nested too deep"),
+            LabelNotFound => write!(f, "jump or section label not found"),
+            DefNotAtStart => write!(f, "DEF only before the first NC block, PROC only at the start of a program"),
+            ProcMissing => write!(f, "subprogram called with arguments has no PROC statement with parameters"),
+            AxisProgrammedTwice { letter } => write!(f, "axis {} programmed twice in the block", Ch(letter)),
+            IndexOutOfRange => write!(f, "array index out of range"),
+            IllegalDNumber { number } => write!(f, "D{number} has no tool offset row"),
+            ModalCallNested => write!(f, "MCALL inside a modally called subprogram"),
         }
     }
 }
@@ -957,6 +1036,11 @@ pub const CATALOG: &[CatalogEntry] = &[
         when: "G51.2 (its P/Q/R/S valid) on a machine without a C axis: the C axis drive is the tool spindle that 2.8 note 6 requires",
     },
     CatalogEntry {
+        code: 4048,
+        title: "MCALL nested",
+        when: "SINUMERIK: MCALL in a subprogram that MCALL called (modal calls do not nest, seed 001 line 3027)",
+    },
+    CatalogEntry {
         code: 4501,
         title: "thread too fast",
         when: "lead x spindle speed (with the ripple margin) above an axis's cutting feed or step-rate limit, \
@@ -1016,6 +1100,83 @@ pub const CATALOG: &[CatalogEntry] = &[
                for $304 seconds since before it ran out (default 10 s; $304=0 off)",
     },
     CatalogEntry { code: 5010, title: "end of record", when: "program text ends without M02, M30 or M99" },
+    CatalogEntry {
+        code: 12080,
+        title: "syntax error",
+        when: "SINUMERIK: a block that cannot be read (unknown word, unbalanced brackets or quotes, a keyword in the wrong place)",
+    },
+    CatalogEntry {
+        code: 12150,
+        title: "data type",
+        when: "SINUMERIK: a string in arithmetic or a comparison with a number, a number for a STRING variable",
+    },
+    CatalogEntry {
+        code: 12160,
+        title: "value range",
+        when: "SINUMERIK: INT beyond 32 bits, CHAR beyond 255, a string longer than its STRING[n] or than the 96 bytes of a call's string arguments",
+    },
+    CatalogEntry { code: 12170, title: "name defined twice", when: "SINUMERIK: DEF of a name the program level has" },
+    CatalogEntry {
+        code: 12330,
+        title: "parameter type",
+        when: "SINUMERIK: an argument of a cycle or subprogram call whose type does not convert to its parameter's (a string for REAL/INT, a number for STRING/CHAR; seed 001 line 649)",
+    },
+    CatalogEntry {
+        code: 12340,
+        title: "too many parameters",
+        when: "SINUMERIK: more arguments than the cycle or subprogram has parameters (seed 001 line 596)",
+    },
+    CatalogEntry {
+        code: 12460,
+        title: "too many variables",
+        when: "SINUMERIK: more than 48 DEF variables, 512 bytes of names or 256 bytes of STRING contents in all program levels",
+    },
+    CatalogEntry {
+        code: 12470,
+        title: "unknown G function",
+        when: "SINUMERIK: a G number the SINUMERIK table of this controller does not hold",
+    },
+    CatalogEntry {
+        code: 12550,
+        title: "name not defined",
+        when: "SINUMERIK: a word that is no variable, keyword, cycle or stored program",
+    },
+    CatalogEntry {
+        code: 14011,
+        title: "program not found",
+        when: "SINUMERIK: a subprogram call or a cycle's contour names a program that is not in program memory",
+    },
+    CatalogEntry {
+        code: 14012,
+        title: "subprogram levels",
+        when: "SINUMERIK: calls and REPEAT sections nested deeper than 12 levels",
+    },
+    CatalogEntry {
+        code: 14080,
+        title: "label not found",
+        when: "SINUMERIK: the label of GOTOF/GOTOB/GOTO, REPEAT or a contour range is not in the program (GOTOF searches forward, GOTOB backward)",
+    },
+    CatalogEntry {
+        code: 14500,
+        title: "DEF or PROC misplaced",
+        when: "SINUMERIK: DEF after the program's first NC block, PROC other than at a program's start",
+    },
+    CatalogEntry {
+        code: 14510,
+        title: "PROC missing",
+        when: "SINUMERIK: a subprogram is called with arguments but has no PROC statement with parameters",
+    },
+    CatalogEntry { code: 16420, title: "axis programmed twice", when: "SINUMERIK: one axis twice in a block" },
+    CatalogEntry {
+        code: 17020,
+        title: "array index",
+        when: "SINUMERIK: R[n] beyond R99, _ZSD[n] beyond 9, $TC_DP…[t,d] beyond the tool table",
+    },
+    CatalogEntry {
+        code: 17180,
+        title: "illegal D number",
+        when: "SINUMERIK: T t D d selects offset row t + (d-1) x tool count, which the offset table does not have",
+    },
 ];
 
 #[cfg(test)]
@@ -1145,6 +1306,25 @@ mod tests {
             ToolChangeInNoseComp,
             NoseCompGouge,
             NoseCompCornerAngle,
+            SyntaxError { what: "x" },
+            TypeMismatch,
+            ValueRange,
+            StringTooLong,
+            NameDefinedTwice,
+            ParameterType { index: 1 },
+            TooManyParameters,
+            TooManySymbols,
+            UnknownGFunction { code: 5 },
+            NameNotDefined,
+            SubprogramNotFound,
+            SubprogramLevels,
+            LabelNotFound,
+            DefNotAtStart,
+            ProcMissing,
+            AxisProgrammedTwice { letter: b'X' },
+            IndexOutOfRange,
+            IllegalDNumber { number: 99 },
+            ModalCallNested,
         ]
     };
 

@@ -75,6 +75,10 @@ pub enum GCode {
     /// G290 (to SINUMERIK mode) / G291 (to the FANUC-style ISO dialect): the
     /// language the following blocks are read in, in a block of its own.
     Language(Language),
+    /// A SINUMERIK standard cycle call (`CYCLE95("KONTUR_1", …)` in a block of its
+    /// own): no G number; the bound call itself reaches the engine in the block's
+    /// stage ([`crate::cycles::CycleStage::call`], [`crate::lang::siemens::call`]).
+    CycleCall,
 }
 
 /// Modal groups (FANUC numbering in the comments). Group 00 codes act in their block only.
@@ -252,7 +256,7 @@ impl GCode {
             | VariableLeadThread | TurningCycle | ThreadCycle | FacingCycle => Group::Motion,
             Dwell | ExactStopOnce | ReferenceReturn | ReferenceReturnN | LocalFrame | MachineCoordinates
             | SetCoordinates | FinishCycle | RoughTurnCycle | RoughFaceCycle | PatternCycle | FacePeckCycle
-            | GroovePeckCycle | MultiThreadCycle | Language(_) => Group::NonModal,
+            | GroovePeckCycle | MultiThreadCycle | Language(_) | CycleCall => Group::NonModal,
             CssOn | CssOff => Group::SpindleMode,
             Absolute | Incremental => Group::Distance,
             StrokeCheckOn | StrokeCheckOff => Group::StrokeCheck,

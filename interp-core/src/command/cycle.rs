@@ -143,9 +143,10 @@ pub enum CycleArgs {
     },
 }
 
-/// Whether `code` is one of the canned cycles of this module.
+/// Whether `code` is one of the canned cycles of this module, or a SINUMERIK
+/// cycle call.
 pub fn is_cycle(code: GCode) -> bool {
-    is_multiple(code) || is_single(code) || is_thread(code) || is_hole(code)
+    is_multiple(code) || is_single(code) || is_thread(code) || is_hole(code) || code == GCode::CycleCall
 }
 
 /// G70–G76.

@@ -225,6 +225,10 @@ pub trait Executor {
         env: &dyn Environment,
         out: &mut CycleStage<'_>,
     ) -> Result<Flow, AlarmKind>;
+
+    /// Starts the SINUMERIK cycle of a [`GCode::CycleCall`] block (the call is in
+    /// `ctx.out.call`): the language's cycles sit above this module.
+    fn cycle_call(cmd: &Command, st: &mut State, ctx: &mut Ctx<'_, '_>) -> Result<(), AlarmKind>;
 }
 
 /// A block's [`Staged`] actions with the interpreter's expansion slot, where a
@@ -236,12 +240,15 @@ pub struct CycleStage<'a> {
     /// Where a cycle started by this block goes (the interpreter's expansion slot);
     /// `None` where no cycle may start (inside a cycle's own blocks).
     slot: Option<&'a mut Option<Expansion>>,
+    /// The SINUMERIK cycle the block calls (its group-00 code is
+    /// [`GCode::CycleCall`]), bound by the front end.
+    pub call: Option<crate::lang::siemens::call::CycleCall<'a>>,
 }
 
 impl<'a> CycleStage<'a> {
     /// Stages the actions of the block on `line` in `outbox` (no cycle may start).
     pub fn new(line: u32, outbox: &'a mut Outbox) -> Self {
-        CycleStage { staged: Staged::new(line, outbox), slot: None }
+        CycleStage { staged: Staged::new(line, outbox), slot: None, call: None }
     }
 
     /// A stage for a block of `program` that may start a cycle into `slot`.
@@ -253,7 +260,7 @@ impl<'a> CycleStage<'a> {
     ) -> Self {
         let mut staged = Staged::new(line, outbox);
         staged.program = program;
-        CycleStage { staged, slot: Some(slot) }
+        CycleStage { staged, slot: Some(slot), call: None }
     }
 
     /// The interpreter's expansion slot, for the block's cycle to be built in place
@@ -380,6 +387,10 @@ fn cycle_block<X: Executor>(
     ctx: &mut Ctx<'_, '_>,
     chained: bool,
 ) -> Result<bool, AlarmKind> {
+    if code == GCode::CycleCall {
+        X::cycle_call(cmd, st, ctx)?;
+        return Ok(true);
+    }
     if args::is_thread(code) {
         single::thread_block(cmd, st, ctx, chained)?;
         return Ok(true);

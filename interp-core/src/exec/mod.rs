@@ -128,6 +128,15 @@ impl cycles::Executor for Blocks {
     ) -> Result<Flow, AlarmKind> {
         execute(cmd, st, cfg, env, out)
     }
+
+    fn cycle_call(cmd: &Command, st: &mut State, ctx: &mut cycles::Ctx<'_, '_>) -> Result<(), AlarmKind> {
+        use crate::lang::siemens::call::{Arg, MAX_ARGS};
+        // The driver puts the bound call into the stage of every cycle-call block.
+        let call = ctx.out.call.ok_or(AlarmKind::NotSupportedYet { what: "a cycle call without its arguments" })?;
+        let mut buf = [Arg::Empty; MAX_ARGS];
+        let args = call.args.args(&mut buf);
+        crate::lang::siemens::cycles::start(call.sig, args, cmd, st, ctx, call.contour)
+    }
 }
 
 /// The block's cycle (a canned cycle it starts or continues, `chained` from
@@ -267,4 +276,36 @@ fn program_flow(
             if level == high { Flow::Jump { seq } } else { Flow::Continue }
         }
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::lang::siemens::call::{Arg, CallArgs, CycleCall, Signature, Ty};
+    use crate::stage::Outbox;
+
+    /// A cycle-call block reaches the language's cycle start through
+    /// `cycles::execute` with its bound call; without one it is refused. Either way
+    /// a refused block stages nothing and starts no cycle.
+    #[test]
+    fn a_cycle_call_block_reaches_the_cycle_start() {
+        static NOT_A_CYCLE: Signature = Signature { name: "CYCLE100", params: &[("MID", Ty::Real)] };
+        let cfg = MachineConfig::default();
+        let mut st = State::power_on(&cfg, Pos::ZERO);
+        let mut cmd = Command::EMPTY;
+        cmd.g.one_shot = Some(GCode::CycleCall);
+        let mut args = CallArgs::new();
+        args.push(Arg::Real(5.0)).unwrap();
+        args.bind(NOT_A_CYCLE.params.iter().map(|p| p.1)).unwrap();
+        for call in [None, Some(CycleCall { sig: &NOT_A_CYCLE, args: &args, contour: None })] {
+            let mut outbox = Outbox::new();
+            let mut slot = None;
+            let mut stage =
+                CycleStage::in_program(1, &mut outbox, crate::lang::ProgramText::plain(b"CYCLE100(5)"), &mut slot);
+            stage.call = call;
+            assert!(execute(&cmd, &mut st, &cfg, &crate::env::Panel::default(), &mut stage).is_err());
+            assert!(stage.actions.is_empty());
+            assert!(slot.is_none());
+        }
+    }
 }

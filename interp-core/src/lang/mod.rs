@@ -8,8 +8,11 @@
 //!
 //! - [`fanuc`]: the FANUC-style dialect of the ELESY-E3TA manual (G-code systems
 //!   A/B/C on a lathe, the M series on a mill), with custom macro B.
+//! - [`siemens`]: SINUMERIK 840D (R parameters, DEF variables, labels, PROC
+//!   subprograms, MCALL and the standard cycles of seed 001).
 
 pub mod fanuc;
+pub mod siemens;
 
 use crate::lang::fanuc::macros::Variables;
 use crate::program::Cursor;

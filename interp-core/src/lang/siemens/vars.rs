@@ -1,0 +1,361 @@
+//! SINUMERIK variables: R parameters, the variables a program defines with `DEF`
+//! (local user data, one set per program level), and the cycle setting data
+//! `_ZSD[…]` of GUD7.
+//!
+//! Everything is in fixed capacity, sized for the document's programs (the CYCLE93
+//! example defines 17 variables, the CYCLE83 one 14): R0–R99 (the 840D's default
+//! of 100), 48 DEF variables in all levels together with 512 bytes of names and
+//! 256 bytes of STRING contents. Defining more is alarm 12460. A level's
+//! variables go when the level returns (LIFO, as the 840D's LUD).
+//!
+//! Names are compared without regard to case (the 840D reads them in capitals).
+
+use crate::alarm::AlarmKind;
+
+/// R parameters R0–R99.
+pub const R_PARAMS: usize = 100;
+/// Cycle setting data `_ZSD[0]`–`_ZSD[9]` (seed 001 lines 3522–3536).
+pub const ZSD_COUNT: usize = 10;
+/// DEF variables of all program levels together.
+pub const LOCALS: usize = 48;
+/// Bytes of variable names of all levels together.
+pub const NAME_BYTES: usize = 512;
+/// Bytes of STRING contents of all levels together.
+pub const STRING_BYTES: usize = 256;
+/// Longest name (the 840D allows 31 characters after the first).
+pub const MAX_NAME: usize = 32;
+/// Longest STRING the 840D allows (`STRING[200]`).
+pub const MAX_STRING: usize = 200;
+
+/// The type a variable was defined with.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum VarTy {
+    /// REAL.
+    Real,
+    /// INT (32 bits on the 840D).
+    Int,
+    /// BOOL.
+    Bool,
+    /// CHAR.
+    Char,
+    /// STRING[cap].
+    Str {
+        /// Most characters.
+        cap: u8,
+    },
+}
+
+/// A variable's value.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Value<'a> {
+    /// REAL.
+    Real(f64),
+    /// INT.
+    Int(i64),
+    /// BOOL.
+    Bool(bool),
+    /// CHAR.
+    Char(u8),
+    /// STRING.
+    Str(&'a [u8]),
+}
+
+impl Value<'_> {
+    /// The value as a number, if it is one (BOOL 0/1, CHAR its code).
+    pub fn num(&self) -> Option<f64> {
+        match *self {
+            Value::Real(v) => Some(v),
+            Value::Int(n) => Some(n as f64),
+            Value::Bool(b) => Some(if b { 1.0 } else { 0.0 }),
+            Value::Char(c) => Some(f64::from(c)),
+            Value::Str(_) => None,
+        }
+    }
+}
+
+/// One DEF variable.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Local {
+    /// Name: `names[name_at..name_at + name_len]`.
+    name_at: u16,
+    name_len: u8,
+    /// Program level that defined it.
+    level: u8,
+    ty: VarTy,
+    /// REAL/INT/BOOL/CHAR value; for a STRING the contents' offset in `strings`.
+    value: f64,
+    /// Length of a STRING's contents.
+    len: u8,
+}
+
+/// The SINUMERIK variables of one channel.
+#[derive(Clone, PartialEq)]
+pub struct Vars {
+    r: [f64; R_PARAMS],
+    zsd: [f64; ZSD_COUNT],
+    locals: heapless::Vec<Local, LOCALS>,
+    names: heapless::Vec<u8, NAME_BYTES>,
+    strings: heapless::Vec<u8, STRING_BYTES>,
+    /// The program level DEF defines in and names are looked up in (0 = main).
+    level: u8,
+}
+
+impl core::fmt::Debug for Vars {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        write!(f, "Vars {{ level {}, {} defined }}", self.level, self.locals.len())
+    }
+}
+
+impl Default for Vars {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// Whether two names are the same name.
+fn same(a: &[u8], b: &[u8]) -> bool {
+    a.eq_ignore_ascii_case(b)
+}
+
+impl Vars {
+    /// All R parameters and cycle setting data zero, nothing defined, level 0.
+    pub const fn new() -> Self {
+        Vars {
+            r: [0.0; R_PARAMS],
+            zsd: [0.0; ZSD_COUNT],
+            locals: heapless::Vec::new(),
+            names: heapless::Vec::new(),
+            strings: heapless::Vec::new(),
+            level: 0,
+        }
+    }
+
+    /// R parameter `n` (alarm 12160 past R99, as the 840D's value-range alarm).
+    pub fn r(&self, n: i64) -> Result<f64, AlarmKind> {
+        usize::try_from(n).ok().and_then(|i| self.r.get(i)).copied().ok_or(AlarmKind::IndexOutOfRange)
+    }
+
+    /// Sets R parameter `n`.
+    pub fn set_r(&mut self, n: i64, v: f64) -> Result<(), AlarmKind> {
+        let slot = usize::try_from(n).ok().and_then(|i| self.r.get_mut(i)).ok_or(AlarmKind::IndexOutOfRange)?;
+        *slot = v;
+        Ok(())
+    }
+
+    /// Cycle setting datum `_ZSD[i]`.
+    pub fn zsd(&self, i: i64) -> Result<f64, AlarmKind> {
+        usize::try_from(i).ok().and_then(|i| self.zsd.get(i)).copied().ok_or(AlarmKind::IndexOutOfRange)
+    }
+
+    /// Sets `_ZSD[i]`.
+    pub fn set_zsd(&mut self, i: i64, v: f64) -> Result<(), AlarmKind> {
+        let slot = usize::try_from(i).ok().and_then(|i| self.zsd.get_mut(i)).ok_or(AlarmKind::IndexOutOfRange)?;
+        *slot = v;
+        Ok(())
+    }
+
+    /// The program level names are defined and looked up in.
+    pub fn level(&self) -> u8 {
+        self.level
+    }
+
+    /// A subprogram level begins: names defined from now on are its own, the
+    /// caller's are out of sight until [`Vars::leave`].
+    pub fn enter(&mut self) {
+        self.level = self.level.saturating_add(1);
+    }
+
+    /// The current level returns: its variables go.
+    pub fn leave(&mut self) {
+        self.drop_level(self.level);
+        self.level = self.level.saturating_sub(1);
+    }
+
+    /// Back to level 0 with nothing defined (a new run). R parameters and the
+    /// cycle setting data keep their values, as on the 840D.
+    pub fn clear_locals(&mut self) {
+        self.locals.clear();
+        self.names.clear();
+        self.strings.clear();
+        self.level = 0;
+    }
+
+    /// Forgets the variables of levels `level` and deeper.
+    fn drop_level(&mut self, level: u8) {
+        let keep = self.locals.iter().position(|l| l.level >= level).unwrap_or(self.locals.len());
+        if let Some(first) = self.locals.get(keep).copied() {
+            self.names.truncate(usize::from(first.name_at));
+            let strings = self.locals[keep..].iter().find(|l| matches!(l.ty, VarTy::Str { .. }));
+            if let Some(s) = strings {
+                self.strings.truncate(s.value as usize);
+            }
+        }
+        self.locals.truncate(keep);
+    }
+
+    fn name_of(&self, l: &Local) -> &[u8] {
+        let at = usize::from(l.name_at);
+        self.names.get(at..at + usize::from(l.name_len)).unwrap_or(&[])
+    }
+
+    fn find(&self, name: &[u8]) -> Option<usize> {
+        let level = self.level;
+        self.locals.iter().rposition(|l| l.level == level && same(self.name_of(l), name))
+    }
+
+    /// Whether `name` is defined in the current level.
+    pub fn is_defined(&self, name: &[u8]) -> bool {
+        self.find(name).is_some()
+    }
+
+    /// The type of `name` in the current level.
+    pub fn type_of(&self, name: &[u8]) -> Option<VarTy> {
+        self.find(name).map(|i| self.locals[i].ty)
+    }
+
+    /// Defines `name` of type `ty` in the current level, zero (empty) at first:
+    /// alarm 12170 if the level has it already, 12460 when the storage is full.
+    pub fn define(&mut self, name: &[u8], ty: VarTy) -> Result<(), AlarmKind> {
+        if name.is_empty() || name.len() > MAX_NAME {
+            return Err(AlarmKind::SyntaxError { what: "variable name longer than 32 characters" });
+        }
+        if self.find(name).is_some() {
+            return Err(AlarmKind::NameDefinedTwice);
+        }
+        if self.locals.is_full() || self.names.len() + name.len() > NAME_BYTES {
+            return Err(AlarmKind::TooManySymbols);
+        }
+        let value = match ty {
+            VarTy::Str { cap } => {
+                let at = self.strings.len();
+                if at + usize::from(cap) > STRING_BYTES {
+                    return Err(AlarmKind::TooManySymbols);
+                }
+                self.strings.resize(at + usize::from(cap), 0).map_err(|_| AlarmKind::TooManySymbols)?;
+                at as f64
+            }
+            _ => 0.0,
+        };
+        let name_at = self.names.len() as u16;
+        self.names.extend_from_slice(name).map_err(|_| AlarmKind::TooManySymbols)?;
+        let local = Local { name_at, name_len: name.len() as u8, level: self.level, ty, value, len: 0 };
+        self.locals.push(local).map_err(|_| AlarmKind::TooManySymbols)
+    }
+
+    /// The value of `name` in the current level.
+    pub fn get(&self, name: &[u8]) -> Option<Value<'_>> {
+        let l = &self.locals[self.find(name)?];
+        Some(match l.ty {
+            VarTy::Real => Value::Real(l.value),
+            VarTy::Int => Value::Int(l.value as i64),
+            VarTy::Bool => Value::Bool(l.value != 0.0),
+            VarTy::Char => Value::Char(l.value as u8),
+            VarTy::Str { .. } => {
+                let at = l.value as usize;
+                Value::Str(self.strings.get(at..at + usize::from(l.len)).unwrap_or(&[]))
+            }
+        })
+    }
+
+    /// Assigns `value` to `name` with the 840D's conversions to the variable's type
+    /// (REAL→INT rounded, a number to BOOL ≠ 0, a one-character string to CHAR):
+    /// alarm 12550 if `name` is not defined, 12150 if the value does not convert,
+    /// 12160 if a STRING would exceed its length.
+    pub fn set(&mut self, name: &[u8], value: Value<'_>) -> Result<(), AlarmKind> {
+        let i = self.find(name).ok_or(AlarmKind::NameNotDefined)?;
+        let l = self.locals[i];
+        let (v, len) = match (l.ty, value) {
+            (VarTy::Str { cap }, Value::Str(s)) => {
+                if s.len() > usize::from(cap) {
+                    return Err(AlarmKind::StringTooLong);
+                }
+                let at = l.value as usize;
+                self.strings[at..at + s.len()].copy_from_slice(s);
+                (l.value, s.len() as u8)
+            }
+            (VarTy::Str { cap }, Value::Char(c)) if cap >= 1 => {
+                self.strings[l.value as usize] = c;
+                (l.value, 1)
+            }
+            (ty, v) => (convert(ty, v)?, 0),
+        };
+        self.locals[i].value = v;
+        self.locals[i].len = len;
+        Ok(())
+    }
+}
+
+/// A scalar value as a variable of type `ty` stores it (alarm 12150 if it does
+/// not convert).
+fn convert(ty: VarTy, v: Value<'_>) -> Result<f64, AlarmKind> {
+    let bad = Err(AlarmKind::TypeMismatch);
+    match (ty, v) {
+        (_, Value::Str(s)) if ty == VarTy::Char && s.len() == 1 => Ok(f64::from(s[0])),
+        (VarTy::Bool, Value::Str(s)) => Ok(if s.is_empty() { 0.0 } else { 1.0 }),
+        (_, Value::Str(_)) => bad,
+        (VarTy::Real, v) => v.num().ok_or(AlarmKind::TypeMismatch),
+        (VarTy::Int, v) => {
+            let x = libm::round(v.num().ok_or(AlarmKind::TypeMismatch)?);
+            if !(-2_147_483_648.0..=2_147_483_647.0).contains(&x) {
+                return Err(AlarmKind::ValueRange);
+            }
+            Ok(x)
+        }
+        (VarTy::Bool, v) => Ok(if v.num().unwrap_or(0.0) != 0.0 { 1.0 } else { 0.0 }),
+        (VarTy::Char, v) => {
+            let x = libm::round(v.num().ok_or(AlarmKind::TypeMismatch)?);
+            if !(0.0..=255.0).contains(&x) {
+                return Err(AlarmKind::ValueRange);
+            }
+            Ok(x)
+        }
+        (VarTy::Str { .. }, _) => bad,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn def_variables_belong_to_their_level() {
+        let mut v = Vars::new();
+        v.define(b"MID", VarTy::Real).unwrap();
+        v.set(b"mid", Value::Int(7)).unwrap();
+        assert_eq!(v.get(b"MID"), Some(Value::Real(7.0)));
+        assert_eq!(v.define(b"Mid", VarTy::Int), Err(AlarmKind::NameDefinedTwice));
+        v.enter();
+        assert_eq!(v.get(b"MID"), None);
+        v.define(b"MID", VarTy::Int).unwrap();
+        v.set(b"MID", Value::Real(2.5)).unwrap();
+        assert_eq!(v.get(b"MID"), Some(Value::Int(3)));
+        v.define(b"NAME", VarTy::Str { cap: 8 }).unwrap();
+        v.set(b"NAME", Value::Str(b"KONTUR_1")).unwrap();
+        assert_eq!(v.get(b"NAME"), Some(Value::Str(b"KONTUR_1")));
+        assert_eq!(v.set(b"NAME", Value::Str(b"KONTUR_10")), Err(AlarmKind::StringTooLong));
+        assert_eq!(v.set(b"NAME", Value::Real(1.0)), Err(AlarmKind::TypeMismatch));
+        v.leave();
+        assert_eq!(v.get(b"MID"), Some(Value::Real(7.0)));
+        assert_eq!(v.set(b"NAME", Value::Real(1.0)), Err(AlarmKind::NameNotDefined));
+        // The level's storage is free again.
+        assert_eq!(v.locals.len(), 1);
+        assert_eq!((v.names.len(), v.strings.len()), (3, 0));
+    }
+
+    #[test]
+    fn storage_is_bounded() {
+        let mut v = Vars::new();
+        for i in 0..LOCALS {
+            let name = [b'V', b'0' + (i / 10) as u8, b'0' + (i % 10) as u8];
+            v.define(&name, VarTy::Real).unwrap();
+        }
+        assert_eq!(v.define(b"ONE_MORE", VarTy::Real), Err(AlarmKind::TooManySymbols));
+        assert_eq!(v.r(100), Err(AlarmKind::IndexOutOfRange));
+        v.set_r(99, 1.5).unwrap();
+        assert_eq!(v.r(99), Ok(1.5));
+        let mut v = Vars::new();
+        assert_eq!(v.define(b"S", VarTy::Str { cap: 255 }), Ok(()));
+        assert_eq!(v.define(b"T", VarTy::Str { cap: 2 }), Err(AlarmKind::TooManySymbols));
+    }
+}
