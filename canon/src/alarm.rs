@@ -299,48 +299,8 @@ pub enum AlarmKind {
     NoseCompGouge,
     /// 3607: nose compensation corner angle under 0.1° (2.18.4).
     NoseCompCornerAngle,
-    /// 12080: a SINUMERIK block that cannot be read (the 840D's "syntax error").
-    SyntaxError { what: &'static str },
-    /// 12150: an operation or assignment the value's data type does not allow
-    /// (a string in arithmetic, a number for a STRING).
-    TypeMismatch,
-    /// 12160: a value outside the range of its type or use (INT beyond 32 bits, a
-    /// CHAR beyond 255, a number of passes beyond 9999).
-    ValueRange,
-    /// 12160: a string longer than its STRING variable or the call's argument space.
-    StringTooLong,
-    /// 12170: a name defined twice in one program level.
-    NameDefinedTwice,
-    /// 12330: a cycle or subprogram argument whose type does not convert to its
-    /// parameter's (seed 001 line 649); `index` counts from 1.
-    ParameterType { index: u8 },
-    /// 12340: more arguments than the cycle or subprogram has parameters (seed 001 line 596).
-    TooManyParameters,
-    /// 12460: more DEF variables (or names) than the controller holds.
-    TooManySymbols,
-    /// 12470: a G function the SINUMERIK table does not hold.
-    UnknownGFunction { code: u16 },
-    /// 12550: a name that is neither a variable, a keyword nor a program.
-    NameNotDefined,
-    /// 14011: a subprogram or contour program that is not in program memory.
-    SubprogramNotFound,
-    /// 14012: subprograms (and REPEAT sections) nested deeper than the controller holds.
-    SubprogramLevels,
-    /// 14080: a GOTOF/GOTOB/GOTO or REPEAT label (or contour label) not in the program.
-    LabelNotFound,
-    /// 14500: DEF after the program's first NC block, or PROC not at its start.
-    DefNotAtStart,
-    /// 14510: a subprogram called with arguments has no PROC statement with parameters.
-    ProcMissing,
-    /// 16420: an axis programmed twice in one block.
-    AxisProgrammedTwice { letter: Letter },
-    /// 17020: an array index (R[n], _ZSD[n], $TC_DP…[t,d]) outside the array.
-    IndexOutOfRange,
-    /// 17180: a D number (cutting edge) with no offset row.
-    IllegalDNumber { number: u16 },
-    /// 4048: MCALL inside a modally called subprogram (seed 001 line 3027: modal
-    /// calls do not nest).
-    ModalCallNested,
+    /// A SINUMERIK alarm ([`SiemensAlarm`]).
+    Siemens(SiemensAlarm),
 }
 
 impl AlarmKind {
@@ -453,24 +413,7 @@ impl AlarmKind {
             ToolChangeInNoseComp => 3577,
             NoseCompGouge => 3605,
             NoseCompCornerAngle => 3607,
-            SyntaxError { .. } => 12080,
-            TypeMismatch => 12150,
-            ValueRange | StringTooLong => 12160,
-            NameDefinedTwice => 12170,
-            ParameterType { .. } => 12330,
-            TooManyParameters => 12340,
-            TooManySymbols => 12460,
-            UnknownGFunction { .. } => 12470,
-            NameNotDefined => 12550,
-            SubprogramNotFound => 14011,
-            SubprogramLevels => 14012,
-            LabelNotFound => 14080,
-            DefNotAtStart => 14500,
-            ProcMissing => 14510,
-            AxisProgrammedTwice { .. } => 16420,
-            IndexOutOfRange => 17020,
-            IllegalDNumber { .. } => 17180,
-            ModalCallNested => 4048,
+            Siemens(k) => k.code(),
         }
     }
 }
@@ -644,6 +587,101 @@ impl fmt::Display for AlarmKind {
             ToolChangeInNoseComp => write!(f, "T code while nose compensation is active"),
             NoseCompGouge => write!(f, "nose compensation would gouge the part"),
             NoseCompCornerAngle => write!(f, "nose compensation corner angle below 0.1 degrees"),
+            Siemens(k) => k.fmt(f),
+        }
+    }
+}
+
+/// The alarms of the SINUMERIK front end and cycles, with the 840D's numbers
+/// (12xxx–17xxx of the NC, 61xxx/62xxx of the cycles; 4xxx where the 840D has no
+/// equivalent). Nested in [`AlarmKind::Siemens`]: [`AlarmKind`] stays under 128
+/// variants — past 128 every FANUC block costs 3 more Cortex-M4 instructions
+/// (measured with `m4-tests/bench.sh bench_interp`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
+pub enum SiemensAlarm {
+    /// 12080: a SINUMERIK block that cannot be read (the 840D's "syntax error").
+    SyntaxError { what: &'static str },
+    /// 12150: an operation or assignment the value's data type does not allow
+    /// (a string in arithmetic, a number for a STRING).
+    TypeMismatch,
+    /// 12160: a value outside the range of its type or use (INT beyond 32 bits, a
+    /// CHAR beyond 255, a number of passes beyond 9999).
+    ValueRange,
+    /// 12160: a string longer than its STRING variable or the call's argument space.
+    StringTooLong,
+    /// 12170: a name defined twice in one program level.
+    NameDefinedTwice,
+    /// 12330: a cycle or subprogram argument whose type does not convert to its
+    /// parameter's (seed 001 line 649); `index` counts from 1.
+    ParameterType { index: u8 },
+    /// 12340: more arguments than the cycle or subprogram has parameters (seed 001 line 596).
+    TooManyParameters,
+    /// 12460: more DEF variables (or names) than the controller holds.
+    TooManySymbols,
+    /// 12470: a G function the SINUMERIK table does not hold.
+    UnknownGFunction { code: u16 },
+    /// 12550: a name that is neither a variable, a keyword nor a program.
+    NameNotDefined,
+    /// 14011: a subprogram or contour program that is not in program memory.
+    SubprogramNotFound,
+    /// 14012: subprograms (and REPEAT sections) nested deeper than the controller holds.
+    SubprogramLevels,
+    /// 14080: a GOTOF/GOTOB/GOTO or REPEAT label (or contour label) not in the program.
+    LabelNotFound,
+    /// 14500: DEF after the program's first NC block, or PROC not at its start.
+    DefNotAtStart,
+    /// 14510: a subprogram called with arguments has no PROC statement with parameters.
+    ProcMissing,
+    /// 16420: an axis programmed twice in one block.
+    AxisProgrammedTwice { letter: Letter },
+    /// 17020: an array index (R[n], _ZSD[n], $TC_DP…[t,d]) outside the array.
+    IndexOutOfRange,
+    /// 17180: a D number (cutting edge) with no offset row.
+    IllegalDNumber { number: u16 },
+    /// 4048: MCALL inside a modally called subprogram (seed 001 line 3027: modal
+    /// calls do not nest).
+    ModalCallNested,
+}
+
+impl From<SiemensAlarm> for AlarmKind {
+    fn from(k: SiemensAlarm) -> Self {
+        AlarmKind::Siemens(k)
+    }
+}
+
+impl SiemensAlarm {
+    /// The alarm number.
+    pub fn code(&self) -> u16 {
+        use SiemensAlarm::*;
+        match self {
+            SyntaxError { .. } => 12080,
+            TypeMismatch => 12150,
+            ValueRange | StringTooLong => 12160,
+            NameDefinedTwice => 12170,
+            ParameterType { .. } => 12330,
+            TooManyParameters => 12340,
+            TooManySymbols => 12460,
+            UnknownGFunction { .. } => 12470,
+            NameNotDefined => 12550,
+            SubprogramNotFound => 14011,
+            SubprogramLevels => 14012,
+            LabelNotFound => 14080,
+            DefNotAtStart => 14500,
+            ProcMissing => 14510,
+            AxisProgrammedTwice { .. } => 16420,
+            IndexOutOfRange => 17020,
+            IllegalDNumber { .. } => 17180,
+            ModalCallNested => 4048,
+        }
+    }
+}
+
+impl fmt::Display for SiemensAlarm {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        use SiemensAlarm::*;
+        match *self {
             SyntaxError { what } => write!(f, "syntax error: {what}"),
             TypeMismatch => write!(f, "value of the wrong data type for this operation or variable"),
             ValueRange => write!(f, "value out of the range of its type or use"),
@@ -1306,25 +1344,25 @@ mod tests {
             ToolChangeInNoseComp,
             NoseCompGouge,
             NoseCompCornerAngle,
-            SyntaxError { what: "x" },
-            TypeMismatch,
-            ValueRange,
-            StringTooLong,
-            NameDefinedTwice,
-            ParameterType { index: 1 },
-            TooManyParameters,
-            TooManySymbols,
-            UnknownGFunction { code: 5 },
-            NameNotDefined,
-            SubprogramNotFound,
-            SubprogramLevels,
-            LabelNotFound,
-            DefNotAtStart,
-            ProcMissing,
-            AxisProgrammedTwice { letter: b'X' },
-            IndexOutOfRange,
-            IllegalDNumber { number: 99 },
-            ModalCallNested,
+            Siemens(SiemensAlarm::SyntaxError { what: "x" }),
+            Siemens(SiemensAlarm::TypeMismatch),
+            Siemens(SiemensAlarm::ValueRange),
+            Siemens(SiemensAlarm::StringTooLong),
+            Siemens(SiemensAlarm::NameDefinedTwice),
+            Siemens(SiemensAlarm::ParameterType { index: 1 }),
+            Siemens(SiemensAlarm::TooManyParameters),
+            Siemens(SiemensAlarm::TooManySymbols),
+            Siemens(SiemensAlarm::UnknownGFunction { code: 5 }),
+            Siemens(SiemensAlarm::NameNotDefined),
+            Siemens(SiemensAlarm::SubprogramNotFound),
+            Siemens(SiemensAlarm::SubprogramLevels),
+            Siemens(SiemensAlarm::LabelNotFound),
+            Siemens(SiemensAlarm::DefNotAtStart),
+            Siemens(SiemensAlarm::ProcMissing),
+            Siemens(SiemensAlarm::AxisProgrammedTwice { letter: b'X' }),
+            Siemens(SiemensAlarm::IndexOutOfRange),
+            Siemens(SiemensAlarm::IllegalDNumber { number: 99 }),
+            Siemens(SiemensAlarm::ModalCallNested),
         ]
     };
 

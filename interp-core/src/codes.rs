@@ -40,6 +40,12 @@ pub enum GCode {
     WorkFrame(u8),
     Inch,
     Metric,
+    /// A SINUMERIK standard cycle call (`CYCLE95("KONTUR_1", …)` in a block of its
+    /// own): no G number; to the engine one of the multiple cycles (next to them,
+    /// so that testing for them stays one range compare). The bound call reaches
+    /// the engine in the block's stage ([`crate::cycles::CycleStage::call`],
+    /// [`crate::lang::siemens::call`]).
+    CycleCall,
     FinishCycle,
     RoughTurnCycle,
     RoughFaceCycle,
@@ -75,10 +81,6 @@ pub enum GCode {
     /// G290 (to SINUMERIK mode) / G291 (to the FANUC-style ISO dialect): the
     /// language the following blocks are read in, in a block of its own.
     Language(Language),
-    /// A SINUMERIK standard cycle call (`CYCLE95("KONTUR_1", …)` in a block of its
-    /// own): no G number; the bound call itself reaches the engine in the block's
-    /// stage ([`crate::cycles::CycleStage::call`], [`crate::lang::siemens::call`]).
-    CycleCall,
 }
 
 /// Modal groups (FANUC numbering in the comments). Group 00 codes act in their block only.

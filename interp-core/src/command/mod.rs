@@ -130,7 +130,7 @@ impl Command {
             None => {}
         }
         match self.g.one_shot {
-            Some(c) if gset::uses_axes(c) || is_multiple(c) || c == GCode::CycleCall => c,
+            Some(c) if gset::uses_axes(c) || is_multiple(c) => c,
             _ => match self.g.drilling {
                 Some(d) if is_hole(d) => d,
                 None if self.g.motion.is_none() && is_hole(state.modal.drilling) => state.modal.drilling,

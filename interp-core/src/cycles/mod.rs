@@ -242,7 +242,7 @@ pub struct CycleStage<'a> {
     slot: Option<&'a mut Option<Expansion>>,
     /// The SINUMERIK cycle the block calls (its group-00 code is
     /// [`GCode::CycleCall`]), bound by the front end.
-    pub call: Option<crate::lang::siemens::call::CycleCall<'a>>,
+    pub call: Option<&'a crate::lang::siemens::call::CycleCall<'a>>,
 }
 
 impl<'a> CycleStage<'a> {

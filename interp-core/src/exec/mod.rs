@@ -132,7 +132,7 @@ impl cycles::Executor for Blocks {
     fn cycle_call(cmd: &Command, st: &mut State, ctx: &mut cycles::Ctx<'_, '_>) -> Result<(), AlarmKind> {
         use crate::lang::siemens::call::{Arg, MAX_ARGS};
         // The driver puts the bound call into the stage of every cycle-call block.
-        let call = ctx.out.call.ok_or(AlarmKind::NotSupportedYet { what: "a cycle call without its arguments" })?;
+        let call = *ctx.out.call.ok_or(AlarmKind::NotSupportedYet { what: "a cycle call without its arguments" })?;
         let mut buf = [Arg::Empty; MAX_ARGS];
         let args = call.args.args(&mut buf);
         crate::lang::siemens::cycles::start(call.sig, args, cmd, st, ctx, call.contour)
@@ -297,7 +297,8 @@ mod tests {
         let mut args = CallArgs::new();
         args.push(Arg::Real(5.0)).unwrap();
         args.bind(NOT_A_CYCLE.params.iter().map(|p| p.1)).unwrap();
-        for call in [None, Some(CycleCall { sig: &NOT_A_CYCLE, args: &args, contour: None })] {
+        let call = CycleCall { sig: &NOT_A_CYCLE, args: &args, contour: None };
+        for call in [None, Some(&call)] {
             let mut outbox = Outbox::new();
             let mut slot = None;
             let mut stage =

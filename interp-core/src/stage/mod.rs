@@ -146,12 +146,11 @@ impl State {
     /// The canned-cycle memory (96 bytes) is saved only when the block can change
     /// it: see [`plain_for_cycles`].
     pub fn save(&self, cmd: &crate::command::Command) -> Saved {
-        use crate::codes::GCode::{CycleCall, LocalFrame, SetCoordinates};
+        use crate::codes::GCode::{LocalFrame, SetCoordinates};
         // Destructured so that a new field cannot be forgotten here.
         let State { modal, pos, frames, tool, own_offsets: _, feed, spindle, moved, cycle, polar, stroke, contour } =
             self;
-        // A SINUMERIK cycle may select its own tool edge (CYCLE93's second D).
-        let rare = matches!(cmd.g.one_shot, Some(SetCoordinates | LocalFrame | CycleCall))
+        let rare = matches!(cmd.g.one_shot, Some(SetCoordinates | LocalFrame))
             || cmd.tool.is_some()
             || cmd.g.stroke.is_some()
             || cmd.g.polar.is_some()

@@ -17,7 +17,7 @@
 //! [`crate::lang::siemens::cycles::start`] with the arguments as [`Arg`]s. The
 //! block is then validated (dry run), committed or undone like any cycle block.
 
-use crate::alarm::AlarmKind;
+use crate::alarm::{AlarmKind, SiemensAlarm as S};
 use crate::lang::siemens::vars::Vars;
 use crate::program::{Cursor, ProgramId};
 
@@ -161,7 +161,7 @@ impl CallArgs {
     pub fn push(&mut self, arg: Arg<'_>) -> Result<(), AlarmKind> {
         let i = self.len();
         if i >= MAX_ARGS {
-            return Err(AlarmKind::TooManyParameters);
+            return Err(S::TooManyParameters.into());
         }
         let (tag, num) = match arg {
             Arg::Empty => (Tag::Empty, 0.0),
@@ -169,8 +169,8 @@ impl CallArgs {
             Arg::Int(n) => (Tag::Int, n as f64),
             Arg::Str(s) => {
                 let at = self.text.len();
-                let len = u8::try_from(s.len()).map_err(|_| AlarmKind::StringTooLong)?;
-                self.text.extend_from_slice(s).map_err(|_| AlarmKind::StringTooLong)?;
+                let len = u8::try_from(s.len()).map_err(|_| S::StringTooLong)?;
+                self.text.extend_from_slice(s).map_err(|_| S::StringTooLong)?;
                 (Tag::Str { at: at as u8, len }, 0.0)
             }
         };
@@ -214,10 +214,10 @@ impl CallArgs {
     pub fn bind(&mut self, params: impl ExactSizeIterator<Item = Ty>) -> Result<(), AlarmKind> {
         let n = params.len();
         if self.len() > n {
-            return Err(AlarmKind::TooManyParameters);
+            return Err(S::TooManyParameters.into());
         }
         if n > MAX_ARGS {
-            return Err(AlarmKind::TooManyParameters);
+            return Err(S::TooManyParameters.into());
         }
         for (i, ty) in params.enumerate() {
             let tag = if i < self.len() { self.tags[i] } else { Tag::Empty };
@@ -228,13 +228,13 @@ impl CallArgs {
                 (Ty::Int, Tag::Real) => {
                     let v = libm::round(self.nums[i]);
                     if !(-2_147_483_648.0..=2_147_483_647.0).contains(&v) {
-                        return Err(AlarmKind::ParameterType { index: i as u8 + 1 });
+                        return Err(S::ParameterType { index: i as u8 + 1 }.into());
                     }
                     (Tag::Int, v)
                 }
                 (Ty::Str, t @ Tag::Str { .. }) => (t, 0.0),
                 (Ty::Char, t @ Tag::Str { len: 1, .. }) => (t, 0.0),
-                _ => return Err(AlarmKind::ParameterType { index: i as u8 + 1 }),
+                _ => return Err(S::ParameterType { index: i as u8 + 1 }.into()),
             };
             self.tags[i] = tag;
             self.nums[i] = num;
@@ -320,13 +320,16 @@ mod tests {
     #[test]
     fn too_many_arguments_is_12340_and_a_wrong_type_12330() {
         let six = [Arg::Str(b"E"), Arg::Real(5.0), Arg::Real(0.1), Arg::Int(1), Arg::Real(0.0), Arg::Real(1.0)];
-        assert_eq!(bind(&six).unwrap_err(), AlarmKind::TooManyParameters);
-        assert_eq!(AlarmKind::TooManyParameters.code(), 12340);
+        assert_eq!(bind(&six).unwrap_err(), AlarmKind::from(S::TooManyParameters));
+        assert_eq!(AlarmKind::from(S::TooManyParameters).code(), 12340);
         // A number for the CHAR FORM, a string for the REAL MID, a long string for a CHAR.
-        assert_eq!(bind(&[Arg::Real(5.0)]).unwrap_err(), AlarmKind::ParameterType { index: 1 });
-        assert_eq!(bind(&[Arg::Str(b"E"), Arg::Str(b"5")]).unwrap_err(), AlarmKind::ParameterType { index: 2 });
-        assert_eq!(bind(&[Arg::Str(b"EF")]).unwrap_err(), AlarmKind::ParameterType { index: 1 });
-        assert_eq!(AlarmKind::ParameterType { index: 1 }.code(), 12330);
+        assert_eq!(bind(&[Arg::Real(5.0)]).unwrap_err(), AlarmKind::from(S::ParameterType { index: 1 }));
+        assert_eq!(
+            bind(&[Arg::Str(b"E"), Arg::Str(b"5")]).unwrap_err(),
+            AlarmKind::from(S::ParameterType { index: 2 })
+        );
+        assert_eq!(bind(&[Arg::Str(b"EF")]).unwrap_err(), AlarmKind::from(S::ParameterType { index: 1 }));
+        assert_eq!(AlarmKind::from(S::ParameterType { index: 1 }).code(), 12330);
         // REAL to INT rounds.
         let c = bind(&[Arg::Str(b"E"), Arg::Empty, Arg::Empty, Arg::Real(1.5)]).unwrap();
         assert_eq!(c.get(3), Arg::Int(2));
@@ -334,7 +337,7 @@ mod tests {
         for _ in 0..MAX_ARGS {
             c.push(Arg::Empty).unwrap();
         }
-        assert_eq!(c.push(Arg::Empty), Err(AlarmKind::TooManyParameters));
+        assert_eq!(c.push(Arg::Empty), Err(AlarmKind::from(S::TooManyParameters)));
     }
 
     #[test]

@@ -10,7 +10,7 @@
 //!
 //! Names are compared without regard to case (the 840D reads them in capitals).
 
-use crate::alarm::AlarmKind;
+use crate::alarm::{AlarmKind, SiemensAlarm as S};
 
 /// R parameters R0–R99.
 pub const R_PARAMS: usize = 100;
@@ -133,24 +133,26 @@ impl Vars {
 
     /// R parameter `n` (alarm 12160 past R99, as the 840D's value-range alarm).
     pub fn r(&self, n: i64) -> Result<f64, AlarmKind> {
-        usize::try_from(n).ok().and_then(|i| self.r.get(i)).copied().ok_or(AlarmKind::IndexOutOfRange)
+        usize::try_from(n).ok().and_then(|i| self.r.get(i)).copied().ok_or(AlarmKind::from(S::IndexOutOfRange))
     }
 
     /// Sets R parameter `n`.
     pub fn set_r(&mut self, n: i64, v: f64) -> Result<(), AlarmKind> {
-        let slot = usize::try_from(n).ok().and_then(|i| self.r.get_mut(i)).ok_or(AlarmKind::IndexOutOfRange)?;
+        let slot =
+            usize::try_from(n).ok().and_then(|i| self.r.get_mut(i)).ok_or(AlarmKind::from(S::IndexOutOfRange))?;
         *slot = v;
         Ok(())
     }
 
     /// Cycle setting datum `_ZSD[i]`.
     pub fn zsd(&self, i: i64) -> Result<f64, AlarmKind> {
-        usize::try_from(i).ok().and_then(|i| self.zsd.get(i)).copied().ok_or(AlarmKind::IndexOutOfRange)
+        usize::try_from(i).ok().and_then(|i| self.zsd.get(i)).copied().ok_or(AlarmKind::from(S::IndexOutOfRange))
     }
 
     /// Sets `_ZSD[i]`.
     pub fn set_zsd(&mut self, i: i64, v: f64) -> Result<(), AlarmKind> {
-        let slot = usize::try_from(i).ok().and_then(|i| self.zsd.get_mut(i)).ok_or(AlarmKind::IndexOutOfRange)?;
+        let slot =
+            usize::try_from(i).ok().and_then(|i| self.zsd.get_mut(i)).ok_or(AlarmKind::from(S::IndexOutOfRange))?;
         *slot = v;
         Ok(())
     }
@@ -218,29 +220,29 @@ impl Vars {
     /// alarm 12170 if the level has it already, 12460 when the storage is full.
     pub fn define(&mut self, name: &[u8], ty: VarTy) -> Result<(), AlarmKind> {
         if name.is_empty() || name.len() > MAX_NAME {
-            return Err(AlarmKind::SyntaxError { what: "variable name longer than 32 characters" });
+            return Err(S::SyntaxError { what: "variable name longer than 32 characters" }.into());
         }
         if self.find(name).is_some() {
-            return Err(AlarmKind::NameDefinedTwice);
+            return Err(S::NameDefinedTwice.into());
         }
         if self.locals.is_full() || self.names.len() + name.len() > NAME_BYTES {
-            return Err(AlarmKind::TooManySymbols);
+            return Err(S::TooManySymbols.into());
         }
         let value = match ty {
             VarTy::Str { cap } => {
                 let at = self.strings.len();
                 if at + usize::from(cap) > STRING_BYTES {
-                    return Err(AlarmKind::TooManySymbols);
+                    return Err(S::TooManySymbols.into());
                 }
-                self.strings.resize(at + usize::from(cap), 0).map_err(|_| AlarmKind::TooManySymbols)?;
+                self.strings.resize(at + usize::from(cap), 0).map_err(|_| S::TooManySymbols)?;
                 at as f64
             }
             _ => 0.0,
         };
         let name_at = self.names.len() as u16;
-        self.names.extend_from_slice(name).map_err(|_| AlarmKind::TooManySymbols)?;
+        self.names.extend_from_slice(name).map_err(|_| S::TooManySymbols)?;
         let local = Local { name_at, name_len: name.len() as u8, level: self.level, ty, value, len: 0 };
-        self.locals.push(local).map_err(|_| AlarmKind::TooManySymbols)
+        self.locals.push(local).map_err(|_| AlarmKind::from(S::TooManySymbols))
     }
 
     /// The value of `name` in the current level.
@@ -263,12 +265,12 @@ impl Vars {
     /// alarm 12550 if `name` is not defined, 12150 if the value does not convert,
     /// 12160 if a STRING would exceed its length.
     pub fn set(&mut self, name: &[u8], value: Value<'_>) -> Result<(), AlarmKind> {
-        let i = self.find(name).ok_or(AlarmKind::NameNotDefined)?;
+        let i = self.find(name).ok_or(AlarmKind::from(S::NameNotDefined))?;
         let l = self.locals[i];
         let (v, len) = match (l.ty, value) {
             (VarTy::Str { cap }, Value::Str(s)) => {
                 if s.len() > usize::from(cap) {
-                    return Err(AlarmKind::StringTooLong);
+                    return Err(S::StringTooLong.into());
                 }
                 let at = l.value as usize;
                 self.strings[at..at + s.len()].copy_from_slice(s);
@@ -289,24 +291,24 @@ impl Vars {
 /// A scalar value as a variable of type `ty` stores it (alarm 12150 if it does
 /// not convert).
 fn convert(ty: VarTy, v: Value<'_>) -> Result<f64, AlarmKind> {
-    let bad = Err(AlarmKind::TypeMismatch);
+    let bad = Err(AlarmKind::from(S::TypeMismatch));
     match (ty, v) {
         (_, Value::Str(s)) if ty == VarTy::Char && s.len() == 1 => Ok(f64::from(s[0])),
         (VarTy::Bool, Value::Str(s)) => Ok(if s.is_empty() { 0.0 } else { 1.0 }),
         (_, Value::Str(_)) => bad,
-        (VarTy::Real, v) => v.num().ok_or(AlarmKind::TypeMismatch),
+        (VarTy::Real, v) => v.num().ok_or(AlarmKind::from(S::TypeMismatch)),
         (VarTy::Int, v) => {
-            let x = libm::round(v.num().ok_or(AlarmKind::TypeMismatch)?);
+            let x = libm::round(v.num().ok_or(AlarmKind::from(S::TypeMismatch))?);
             if !(-2_147_483_648.0..=2_147_483_647.0).contains(&x) {
-                return Err(AlarmKind::ValueRange);
+                return Err(S::ValueRange.into());
             }
             Ok(x)
         }
         (VarTy::Bool, v) => Ok(if v.num().unwrap_or(0.0) != 0.0 { 1.0 } else { 0.0 }),
         (VarTy::Char, v) => {
-            let x = libm::round(v.num().ok_or(AlarmKind::TypeMismatch)?);
+            let x = libm::round(v.num().ok_or(AlarmKind::from(S::TypeMismatch))?);
             if !(0.0..=255.0).contains(&x) {
-                return Err(AlarmKind::ValueRange);
+                return Err(S::ValueRange.into());
             }
             Ok(x)
         }
@@ -324,7 +326,7 @@ mod tests {
         v.define(b"MID", VarTy::Real).unwrap();
         v.set(b"mid", Value::Int(7)).unwrap();
         assert_eq!(v.get(b"MID"), Some(Value::Real(7.0)));
-        assert_eq!(v.define(b"Mid", VarTy::Int), Err(AlarmKind::NameDefinedTwice));
+        assert_eq!(v.define(b"Mid", VarTy::Int), Err(AlarmKind::from(S::NameDefinedTwice)));
         v.enter();
         assert_eq!(v.get(b"MID"), None);
         v.define(b"MID", VarTy::Int).unwrap();
@@ -333,11 +335,11 @@ mod tests {
         v.define(b"NAME", VarTy::Str { cap: 8 }).unwrap();
         v.set(b"NAME", Value::Str(b"KONTUR_1")).unwrap();
         assert_eq!(v.get(b"NAME"), Some(Value::Str(b"KONTUR_1")));
-        assert_eq!(v.set(b"NAME", Value::Str(b"KONTUR_10")), Err(AlarmKind::StringTooLong));
-        assert_eq!(v.set(b"NAME", Value::Real(1.0)), Err(AlarmKind::TypeMismatch));
+        assert_eq!(v.set(b"NAME", Value::Str(b"KONTUR_10")), Err(AlarmKind::from(S::StringTooLong)));
+        assert_eq!(v.set(b"NAME", Value::Real(1.0)), Err(AlarmKind::from(S::TypeMismatch)));
         v.leave();
         assert_eq!(v.get(b"MID"), Some(Value::Real(7.0)));
-        assert_eq!(v.set(b"NAME", Value::Real(1.0)), Err(AlarmKind::NameNotDefined));
+        assert_eq!(v.set(b"NAME", Value::Real(1.0)), Err(AlarmKind::from(S::NameNotDefined)));
         // The level's storage is free again.
         assert_eq!(v.locals.len(), 1);
         assert_eq!((v.names.len(), v.strings.len()), (3, 0));
@@ -350,12 +352,12 @@ mod tests {
             let name = [b'V', b'0' + (i / 10) as u8, b'0' + (i % 10) as u8];
             v.define(&name, VarTy::Real).unwrap();
         }
-        assert_eq!(v.define(b"ONE_MORE", VarTy::Real), Err(AlarmKind::TooManySymbols));
-        assert_eq!(v.r(100), Err(AlarmKind::IndexOutOfRange));
+        assert_eq!(v.define(b"ONE_MORE", VarTy::Real), Err(AlarmKind::from(S::TooManySymbols)));
+        assert_eq!(v.r(100), Err(AlarmKind::from(S::IndexOutOfRange)));
         v.set_r(99, 1.5).unwrap();
         assert_eq!(v.r(99), Ok(1.5));
         let mut v = Vars::new();
         assert_eq!(v.define(b"S", VarTy::Str { cap: 255 }), Ok(()));
-        assert_eq!(v.define(b"T", VarTy::Str { cap: 2 }), Err(AlarmKind::TooManySymbols));
+        assert_eq!(v.define(b"T", VarTy::Str { cap: 2 }), Err(AlarmKind::from(S::TooManySymbols)));
     }
 }
