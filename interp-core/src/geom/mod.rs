@@ -1,7 +1,9 @@
-//! Per-block geometry in a plane: arc centres from R or I/J/K, arc extents.
+//! Per-block geometry in a plane: arc centres from R or I/J/K, arc extents; the
+//! numeric functions in degrees both languages share ([`deg`]).
 //! Uses f64 (libm) for the computation, returns integer nanometres.
 
 mod arc;
+pub mod deg;
 pub mod path;
 mod sqrt;
 

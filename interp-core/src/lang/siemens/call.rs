@@ -18,8 +18,9 @@
 //! block is then validated (dry run), committed or undone like any cycle block.
 
 use crate::alarm::{AlarmKind, SiemensAlarm as S};
+use crate::lang::ProgramText;
 use crate::lang::siemens::vars::Vars;
-use crate::program::{Cursor, ProgramId};
+use crate::program::Cursor;
 
 /// Most arguments a call may pass: the longest parameter list of the document
 /// (CYCLE950 and SLOT1, 24 parameters). A longer list is alarm 12340 whatever
@@ -77,7 +78,7 @@ pub enum Ty {
 }
 
 /// A cycle's parameter list as the manual gives it.
-#[derive(Debug)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Signature {
     /// The cycle's name (`"CYCLE95"`); calls match it case-insensitively.
     pub name: &'static str,
@@ -252,10 +253,8 @@ impl CallArgs {
 /// [`crate::lang::siemens::contour`], in the SINUMERIK language.
 #[derive(Clone, Copy, Debug)]
 pub struct ContourSource<'a> {
-    /// The program the contour is in.
-    pub program: ProgramId,
-    /// That program's text (the cursors index into it).
-    pub text: &'a [u8],
+    /// The program the contour is in (its text; the cursors index into it).
+    pub program: ProgramText<'a>,
     /// The first block of the contour (for a label range, the block of the start label).
     pub start: Cursor,
     /// The block of the end label (read as the contour's last block); `None`: the

@@ -11,4 +11,5 @@
 
 pub mod call;
 pub mod cycles;
+pub mod lex;
 pub mod vars;

@@ -1,6 +1,7 @@
-//! SINUMERIK variables: R parameters, the variables a program defines with `DEF`
-//! (local user data, one set per program level), and the cycle setting data
-//! `_ZSD[…]` of GUD7.
+//! SINUMERIK variables: R parameters and the variables a program defines with
+//! `DEF` (local user data, one set per program level). The cycle setting data
+//! `_ZSD[…]` of GUD7 live in the modal state (`State::cycle`), where the cycles
+//! read them.
 //!
 //! Everything is in fixed capacity, sized for the document's programs (the CYCLE93
 //! example defines 17 variables, the CYCLE83 one 14): R0–R99 (the 840D's default
@@ -14,8 +15,6 @@ use crate::alarm::{AlarmKind, SiemensAlarm as S};
 
 /// R parameters R0–R99.
 pub const R_PARAMS: usize = 100;
-/// Cycle setting data `_ZSD[0]`–`_ZSD[9]` (seed 001 lines 3522–3536).
-pub const ZSD_COUNT: usize = 10;
 /// DEF variables of all program levels together.
 pub const LOCALS: usize = 48;
 /// Bytes of variable names of all levels together.
@@ -93,7 +92,6 @@ struct Local {
 #[derive(Clone, PartialEq)]
 pub struct Vars {
     r: [f64; R_PARAMS],
-    zsd: [f64; ZSD_COUNT],
     locals: heapless::Vec<Local, LOCALS>,
     names: heapless::Vec<u8, NAME_BYTES>,
     strings: heapless::Vec<u8, STRING_BYTES>,
@@ -119,11 +117,10 @@ fn same(a: &[u8], b: &[u8]) -> bool {
 }
 
 impl Vars {
-    /// All R parameters and cycle setting data zero, nothing defined, level 0.
+    /// All R parameters zero, nothing defined, level 0.
     pub const fn new() -> Self {
         Vars {
             r: [0.0; R_PARAMS],
-            zsd: [0.0; ZSD_COUNT],
             locals: heapless::Vec::new(),
             names: heapless::Vec::new(),
             strings: heapless::Vec::new(),
@@ -140,19 +137,6 @@ impl Vars {
     pub fn set_r(&mut self, n: i64, v: f64) -> Result<(), AlarmKind> {
         let slot =
             usize::try_from(n).ok().and_then(|i| self.r.get_mut(i)).ok_or(AlarmKind::from(S::IndexOutOfRange))?;
-        *slot = v;
-        Ok(())
-    }
-
-    /// Cycle setting datum `_ZSD[i]`.
-    pub fn zsd(&self, i: i64) -> Result<f64, AlarmKind> {
-        usize::try_from(i).ok().and_then(|i| self.zsd.get(i)).copied().ok_or(AlarmKind::from(S::IndexOutOfRange))
-    }
-
-    /// Sets `_ZSD[i]`.
-    pub fn set_zsd(&mut self, i: i64, v: f64) -> Result<(), AlarmKind> {
-        let slot =
-            usize::try_from(i).ok().and_then(|i| self.zsd.get_mut(i)).ok_or(AlarmKind::from(S::IndexOutOfRange))?;
         *slot = v;
         Ok(())
     }
@@ -174,8 +158,8 @@ impl Vars {
         self.level = self.level.saturating_sub(1);
     }
 
-    /// Back to level 0 with nothing defined (a new run). R parameters and the
-    /// cycle setting data keep their values, as on the 840D.
+    /// Back to level 0 with nothing defined (a new run). R parameters keep their
+    /// values, as on the 840D.
     pub fn clear_locals(&mut self) {
         self.locals.clear();
         self.names.clear();
