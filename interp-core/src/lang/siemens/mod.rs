@@ -10,6 +10,9 @@
 //!   engine's generators.
 
 pub mod call;
+pub mod check;
 pub mod cycles;
+pub mod expr;
 pub mod lex;
+pub mod read;
 pub mod vars;

@@ -272,6 +272,31 @@ impl Vars {
     }
 }
 
+/// `v` converted to type `ty` as an assignment converts it: alarm 12150 if it does
+/// not convert, 12160 if it is out of the type's range (a STRING longer than its
+/// length).
+pub fn convert_to(ty: VarTy, v: Value<'_>) -> Result<Value<'_>, AlarmKind> {
+    Ok(match (ty, v) {
+        (VarTy::Str { cap }, Value::Str(s)) => {
+            if s.len() > usize::from(cap) {
+                return Err(S::StringTooLong.into());
+            }
+            Value::Str(s)
+        }
+        (VarTy::Str { cap }, Value::Char(c)) if cap >= 1 => Value::Char(c),
+        (ty, v) => {
+            let x = convert(ty, v)?;
+            match ty {
+                VarTy::Real => Value::Real(x),
+                VarTy::Int => Value::Int(x as i64),
+                VarTy::Bool => Value::Bool(x != 0.0),
+                VarTy::Char => Value::Char(x as u8),
+                VarTy::Str { .. } => return Err(S::TypeMismatch.into()),
+            }
+        }
+    })
+}
+
 /// A scalar value as a variable of type `ty` stores it (alarm 12150 if it does
 /// not convert).
 fn convert(ty: VarTy, v: Value<'_>) -> Result<f64, AlarmKind> {

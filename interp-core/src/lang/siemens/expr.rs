@@ -1,0 +1,509 @@
+//! SINUMERIK expressions: the operators with the 840D's precedence (comparisons
+//! bind loosest: `IF R1>5 AND R2<3` must be written `IF (R1>5) AND (R2<3)`), the
+//! arithmetic functions, R parameters, DEF variables and the indexed variables
+//! (`R[n]`, `_ZSD[n]`, `$TC_DPn[t,d]`). Values are typed (REAL, INT, BOOL, CHAR,
+//! STRING): INT stays INT through `+ - *` and `DIV`, `/` gives REAL.
+//!
+//! Precedence, loosest first (the 840D's list): `== <> < > <= >=`, `<<` (strings),
+//! `OR`, `XOR`, `AND`, `B_OR`, `B_XOR`, `B_AND`, `+ -`, `* / DIV MOD`, then `NOT`,
+//! `B_NOT` and signs. Angles are degrees. Division by zero is alarm 0112, a
+//! function outside its domain 0119, as in the FANUC language.
+
+use super::lex::{Src, is, syntax};
+use super::vars::Value;
+use crate::alarm::{AlarmKind, SiemensAlarm as S};
+use crate::geom::deg;
+
+/// Most brackets and nested calls in one expression (the board's stack is small).
+const MAX_DEPTH: u8 = 16;
+/// Most indices of an indexed variable.
+pub const MAX_INDICES: usize = 3;
+
+/// Where an expression's variables come from.
+pub trait Env {
+    /// DEF variable `name` of the current program level.
+    fn var(&self, name: &[u8]) -> Option<Value<'_>>;
+    /// R parameter `n`.
+    fn r(&self, n: i64) -> Result<f64, AlarmKind>;
+    /// Indexed variable `name[idx…]` (not R): `_ZSD[i]`, `$TC_DPn[t,d]`.
+    fn indexed(&self, name: &[u8], idx: &[i64]) -> Result<Value<'_>, AlarmKind>;
+}
+
+/// Evaluates the expression at `src` (up to the first thing that cannot continue
+/// it: a `,`, `)`, keyword …).
+pub fn eval<'t: 'x, 'x, E: Env>(src: &mut Src<'t>, env: &'x E) -> Result<Value<'x>, AlarmKind> {
+    Eval { src, env, depth: 0 }.expr()
+}
+
+/// Evaluates an expression that must give a number.
+pub fn eval_num<E: Env>(src: &mut Src<'_>, env: &E) -> Result<f64, AlarmKind> {
+    num(&eval(src, env)?)
+}
+
+/// A value as a number (12150 for a string).
+pub fn num(v: &Value<'_>) -> Result<f64, AlarmKind> {
+    let x = v.num().ok_or(AlarmKind::from(S::TypeMismatch))?;
+    if x.is_finite() { Ok(x) } else { Err(AlarmKind::MacroOverflow) }
+}
+
+/// A value as a condition: a number is true when not zero.
+pub fn truth(v: &Value<'_>) -> Result<bool, AlarmKind> {
+    Ok(num(v)? != 0.0)
+}
+
+/// A whole number from a value (an index, a count): rounded REAL, INT.
+pub fn whole(v: &Value<'_>) -> Result<i64, AlarmKind> {
+    let x = libm::round(num(v)?);
+    if x.abs() > 2_147_483_647.0 {
+        return Err(S::ValueRange.into());
+    }
+    Ok(x as i64)
+}
+
+struct Eval<'s, 't, 'x, E> {
+    src: &'s mut Src<'t>,
+    env: &'x E,
+    depth: u8,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Cmp {
+    Eq,
+    Ne,
+    Lt,
+    Gt,
+    Le,
+    Ge,
+}
+
+/// INT arithmetic when both sides are INT and the result fits, else REAL.
+fn arith(a: &Value<'_>, b: &Value<'_>, op: u8) -> Result<Value<'static>, AlarmKind> {
+    if let (Value::Int(x), Value::Int(y)) = (a, b) {
+        let r = match op {
+            b'+' => x.checked_add(*y),
+            b'-' => x.checked_sub(*y),
+            _ => x.checked_mul(*y),
+        };
+        if let Some(r) = r.filter(|r| (-2_147_483_648..=2_147_483_647).contains(r)) {
+            return Ok(Value::Int(r));
+        }
+    }
+    let (x, y) = (num(a)?, num(b)?);
+    let r = match op {
+        b'+' => x + y,
+        b'-' => x - y,
+        _ => x * y,
+    };
+    finite(r)
+}
+
+fn finite(r: f64) -> Result<Value<'static>, AlarmKind> {
+    if r.is_finite() { Ok(Value::Real(r + 0.0)) } else { Err(AlarmKind::MacroOverflow) }
+}
+
+impl<'t: 'x, 'x, E: Env> Eval<'_, 't, 'x, E> {
+    fn expr(&mut self) -> Result<Value<'x>, AlarmKind> {
+        self.depth += 1;
+        if self.depth > MAX_DEPTH {
+            return Err(syntax("expression nested too deep"));
+        }
+        let v = self.comparison();
+        self.depth -= 1;
+        v
+    }
+
+    fn comparison(&mut self) -> Result<Value<'x>, AlarmKind> {
+        let mut a = self.concat()?;
+        while let Some(op) = self.cmp_op() {
+            let b = self.concat()?;
+            let r = match (&a, &b) {
+                (Value::Str(x), Value::Str(y)) => match op {
+                    Cmp::Eq => x == y,
+                    Cmp::Ne => x != y,
+                    _ => return Err(S::TypeMismatch.into()),
+                },
+                _ => {
+                    let (x, y) = (num(&a)?, num(&b)?);
+                    match op {
+                        Cmp::Eq => x == y,
+                        Cmp::Ne => x != y,
+                        Cmp::Lt => x < y,
+                        Cmp::Gt => x > y,
+                        Cmp::Le => x <= y,
+                        Cmp::Ge => x >= y,
+                    }
+                }
+            };
+            a = Value::Bool(r);
+        }
+        Ok(a)
+    }
+
+    fn cmp_op(&mut self) -> Option<Cmp> {
+        let (c0, c1) = (self.src.peek()?, self.src.at(1));
+        let (op, n) = match (c0, c1) {
+            (b'=', Some(b'=')) => (Cmp::Eq, 2),
+            (b'<', Some(b'>')) => (Cmp::Ne, 2),
+            (b'<', Some(b'=')) => (Cmp::Le, 2),
+            (b'>', Some(b'=')) => (Cmp::Ge, 2),
+            (b'<', Some(b'<')) => return None,
+            (b'<', _) => (Cmp::Lt, 1),
+            (b'>', _) => (Cmp::Gt, 1),
+            _ => return None,
+        };
+        self.src.i += n;
+        Some(op)
+    }
+
+    fn concat(&mut self) -> Result<Value<'x>, AlarmKind> {
+        let a = self.logic(0)?;
+        if self.src.peek() == Some(b'<') && self.src.at(1) == Some(b'<') {
+            return Err(AlarmKind::NotSupportedYet { what: "string concatenation <<" });
+        }
+        Ok(a)
+    }
+
+    /// OR (0), XOR (1), AND (2), B_OR (3), B_XOR (4), B_AND (5).
+    fn logic(&mut self, level: u8) -> Result<Value<'x>, AlarmKind> {
+        const OPS: [&[u8]; 6] = [b"OR", b"XOR", b"AND", b"B_OR", b"B_XOR", b"B_AND"];
+        let next = |me: &mut Self| if level == 5 { me.sum() } else { me.logic(level + 1) };
+        let mut a = next(self)?;
+        while self.src.keyword(OPS[usize::from(level)]) {
+            let b = next(self)?;
+            a = if level < 3 {
+                let (x, y) = (truth(&a)?, truth(&b)?);
+                Value::Bool(match level {
+                    0 => x || y,
+                    1 => x ^ y,
+                    _ => x && y,
+                })
+            } else {
+                let (x, y) = (whole(&a)?, whole(&b)?);
+                Value::Int(match level {
+                    3 => x | y,
+                    4 => x ^ y,
+                    _ => x & y,
+                })
+            };
+        }
+        Ok(a)
+    }
+
+    fn sum(&mut self) -> Result<Value<'x>, AlarmKind> {
+        let mut a = self.product()?;
+        loop {
+            let op = match self.src.peek() {
+                Some(c @ (b'+' | b'-')) => c,
+                _ => return Ok(a),
+            };
+            self.src.i += 1;
+            let b = self.product()?;
+            a = arith(&a, &b, op)?;
+        }
+    }
+
+    fn product(&mut self) -> Result<Value<'x>, AlarmKind> {
+        let mut a = self.unary()?;
+        loop {
+            if self.src.eat(b'*') {
+                let b = self.unary()?;
+                a = arith(&a, &b, b'*')?;
+            } else if self.src.peek() == Some(b'/') {
+                self.src.i += 1;
+                let b = self.unary()?;
+                let (x, y) = (num(&a)?, num(&b)?);
+                if y == 0.0 {
+                    return Err(AlarmKind::DivideByZero);
+                }
+                a = finite(x / y)?;
+            } else if self.src.keyword(b"DIV") {
+                let b = self.unary()?;
+                let (x, y) = (num(&a)?, num(&b)?);
+                if y == 0.0 {
+                    return Err(AlarmKind::DivideByZero);
+                }
+                a = Value::Int(whole(&Value::Real(libm::trunc(x / y)))?);
+            } else if self.src.keyword(b"MOD") {
+                let b = self.unary()?;
+                let both_int = matches!((&a, &b), (Value::Int(_), Value::Int(_)));
+                let r = deg::modulo(num(&a)?, num(&b)?)?;
+                a = if both_int { Value::Int(r as i64) } else { Value::Real(r) };
+            } else {
+                return Ok(a);
+            }
+        }
+    }
+
+    fn unary(&mut self) -> Result<Value<'x>, AlarmKind> {
+        match self.src.peek() {
+            Some(b'-') => {
+                self.src.i += 1;
+                let v = self.nested(Self::unary)?;
+                Ok(match v {
+                    Value::Int(n) => Value::Int(-n),
+                    v => finite(-num(&v)?)?,
+                })
+            }
+            Some(b'+') => {
+                self.src.i += 1;
+                let v = self.nested(Self::unary)?;
+                num(&v)?;
+                Ok(v)
+            }
+            _ if self.src.keyword(b"NOT") => {
+                let v = self.nested(Self::unary)?;
+                Ok(Value::Bool(!truth(&v)?))
+            }
+            _ if self.src.keyword(b"B_NOT") => {
+                let v = self.nested(Self::unary)?;
+                Ok(Value::Int(!whole(&v)?))
+            }
+            _ => self.primary(),
+        }
+    }
+
+    /// `f` one level deeper (signs and NOT recurse).
+    fn nested(&mut self, f: fn(&mut Self) -> Result<Value<'x>, AlarmKind>) -> Result<Value<'x>, AlarmKind> {
+        self.depth += 1;
+        if self.depth > MAX_DEPTH {
+            return Err(syntax("expression nested too deep"));
+        }
+        let v = f(self);
+        self.depth -= 1;
+        v
+    }
+
+    fn primary(&mut self) -> Result<Value<'x>, AlarmKind> {
+        if self.src.at_number() {
+            let n = self.src.number()?;
+            return Ok(if n.has_point { Value::Real(n.to_f64()) } else { Value::Int(n.mantissa) });
+        }
+        match self.src.peek() {
+            Some(b'(') => {
+                self.src.i += 1;
+                let v = self.expr()?;
+                self.src.expect(b')', "')' missing")?;
+                Ok(v)
+            }
+            Some(b'"') => Ok(Value::Str(self.src.string()?)),
+            _ if self.src.at_name() => {
+                let name = self.src.name();
+                self.named(name)
+            }
+            Some(_) => Err(syntax("value expected")),
+            None => Err(syntax("expression ends early")),
+        }
+    }
+
+    /// A name in an expression: a constant, function, R parameter or variable.
+    fn named(&mut self, name: &'t [u8]) -> Result<Value<'x>, AlarmKind> {
+        if is(name, b"TRUE") {
+            return Ok(Value::Bool(true));
+        }
+        if is(name, b"FALSE") {
+            return Ok(Value::Bool(false));
+        }
+        if let Some(n) = r_number(name) {
+            return Ok(Value::Real(self.env.r(n)?));
+        }
+        if self.src.peek() == Some(b'(') {
+            return self.function(name);
+        }
+        if self.src.eat(b'[') {
+            let mut idx = [0i64; MAX_INDICES];
+            let mut k = 0;
+            loop {
+                let v = self.expr()?;
+                *idx.get_mut(k).ok_or(AlarmKind::from(S::IndexOutOfRange))? = whole(&v)?;
+                k += 1;
+                if !self.src.eat(b',') {
+                    break;
+                }
+            }
+            self.src.expect(b']', "']' missing")?;
+            if is(name, b"R") {
+                return Ok(Value::Real(self.env.r(idx[0])?));
+            }
+            return self.env.indexed(name, &idx[..k]);
+        }
+        self.env.var(name).ok_or(S::NameNotDefined.into())
+    }
+
+    fn function(&mut self, name: &'t [u8]) -> Result<Value<'x>, AlarmKind> {
+        let mut a = [0.0f64; 3];
+        let want = match () {
+            _ if is(name, b"ATAN2") || is(name, b"MINVAL") || is(name, b"MAXVAL") => 2,
+            _ if is(name, b"BOUND") => 3,
+            _ => 1,
+        };
+        self.src.expect(b'(', "'(' expected")?;
+        if is(name, b"STRLEN") {
+            let v = self.expr()?;
+            self.src.expect(b')', "')' missing")?;
+            return match v {
+                Value::Str(s) => Ok(Value::Int(s.len() as i64)),
+                _ => Err(S::TypeMismatch.into()),
+            };
+        }
+        for (k, slot) in a.iter_mut().enumerate().take(want) {
+            if k > 0 {
+                self.src.expect(b',', "',' expected between the function's arguments")?;
+            }
+            *slot = eval_num_in(self)?;
+        }
+        self.src.expect(b')', "')' missing")?;
+        let x = a[0];
+        let r = match () {
+            _ if is(name, b"SIN") => deg::sin_deg(x),
+            _ if is(name, b"COS") => deg::cos_deg(x),
+            _ if is(name, b"TAN") => deg::tan_deg(x)?,
+            _ if is(name, b"ASIN") => deg::asin_deg(x)?,
+            _ if is(name, b"ACOS") => deg::acos_deg(x)?,
+            _ if is(name, b"ATAN2") => atan2_deg(x, a[1])?,
+            _ if is(name, b"SQRT") => deg::sqrt(x)?,
+            _ if is(name, b"ABS") => libm::fabs(x),
+            _ if is(name, b"POT") => x * x,
+            _ if is(name, b"TRUNC") => deg::fix(x),
+            _ if is(name, b"ROUND") => libm::round(x) + 0.0,
+            _ if is(name, b"ROUNDUP") => libm::ceil(x) + 0.0,
+            _ if is(name, b"LN") => {
+                if x <= 0.0 {
+                    return Err(AlarmKind::ArgumentOutOfRange { function: "LN" });
+                }
+                libm::log(x)
+            }
+            _ if is(name, b"EXP") => deg::exp(x)?,
+            _ if is(name, b"MINVAL") => x.min(a[1]),
+            _ if is(name, b"MAXVAL") => x.max(a[1]),
+            _ if is(name, b"BOUND") => {
+                if x > a[1] {
+                    return Err(AlarmKind::ArgumentOutOfRange { function: "BOUND" });
+                }
+                a[2].clamp(x, a[1])
+            }
+            _ => return Err(S::NameNotDefined.into()),
+        };
+        finite(r)
+    }
+}
+
+fn eval_num_in<'t: 'x, 'x, E: Env>(e: &mut Eval<'_, 't, 'x, E>) -> Result<f64, AlarmKind> {
+    let v = e.expr()?;
+    num(&v)
+}
+
+/// ATAN2(y, x): the angle of the vector (x, y) from the abscissa, −180..180°
+/// (the 840D's, unlike FANUC's ATAN[j]/[k]); ATAN2(0, 0) is alarm 0119.
+pub fn atan2_deg(y: f64, x: f64) -> Result<f64, AlarmKind> {
+    if y == 0.0 && x == 0.0 {
+        return Err(AlarmKind::ArgumentOutOfRange { function: "ATAN2" });
+    }
+    Ok(deg::degrees(libm::atan2(y, x)))
+}
+
+/// The number of an R parameter written `R<digits>`.
+pub fn r_number(name: &[u8]) -> Option<i64> {
+    let digits = name.strip_prefix(b"R").or_else(|| name.strip_prefix(b"r"))?;
+    if digits.is_empty() || digits.len() > 4 || !digits.iter().all(u8::is_ascii_digit) {
+        return None;
+    }
+    Some(digits.iter().fold(0, |n, d| n * 10 + i64::from(d - b'0')))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::lang::siemens::vars::{VarTy, Vars};
+
+    struct T(Vars);
+
+    impl Env for T {
+        fn var(&self, name: &[u8]) -> Option<Value<'_>> {
+            self.0.get(name)
+        }
+        fn r(&self, n: i64) -> Result<f64, AlarmKind> {
+            self.0.r(n)
+        }
+        fn indexed(&self, _: &[u8], _: &[i64]) -> Result<Value<'_>, AlarmKind> {
+            Err(S::NameNotDefined.into())
+        }
+    }
+
+    fn env() -> T {
+        let mut v = Vars::new();
+        v.define(b"MID", VarTy::Real).unwrap();
+        v.set(b"MID", Value::Real(7.0)).unwrap();
+        v.define(b"FFR", VarTy::Real).unwrap();
+        v.set(b"FFR", Value::Real(200.0)).unwrap();
+        v.define(b"ZAEHL", VarTy::Int).unwrap();
+        v.set(b"ZAEHL", Value::Int(5)).unwrap();
+        v.define(b"S", VarTy::Str { cap: 8 }).unwrap();
+        v.set(b"S", Value::Str(b"ANFANG")).unwrap();
+        v.set_r(1, 5.0).unwrap();
+        T(v)
+    }
+
+    fn ev(t: &str) -> Result<Value<'static>, AlarmKind> {
+        let e = env();
+        let mut s = Src::new(t.as_bytes());
+        let v = eval(&mut s, &e)?;
+        if !s.done() {
+            return Err(syntax("left over"));
+        }
+        Ok(match v {
+            Value::Str(_) => Value::Str(b"<str>"),
+            Value::Real(x) => Value::Real(x),
+            Value::Int(x) => Value::Int(x),
+            Value::Bool(x) => Value::Bool(x),
+            Value::Char(x) => Value::Char(x),
+        })
+    }
+
+    #[test]
+    fn the_documents_expressions() {
+        // CYCLE100 ("E", MID*0.5, FFR+100, 1): MID 3.5, feed 300 (lines 691-701).
+        assert_eq!(ev("MID*0.5"), Ok(Value::Real(3.5)));
+        assert_eq!(ev("FFR+100"), Ok(Value::Real(300.0)));
+        assert_eq!(ev("ZAEHL<6"), Ok(Value::Bool(true)));
+        assert_eq!(ev("ZAEHL+1"), Ok(Value::Int(6)));
+        assert_eq!(ev("1.5*FFR"), Ok(Value::Real(300.0)));
+        assert_eq!(ev("R1*2-1"), Ok(Value::Real(9.0)));
+        assert_eq!(ev("R[R1-4]"), Ok(Value::Real(5.0)));
+        assert_eq!(ev("S==\"ANFANG\""), Ok(Value::Bool(true)));
+    }
+
+    #[test]
+    fn precedence_functions_and_types() {
+        assert_eq!(ev("2+3*4"), Ok(Value::Int(14)));
+        assert_eq!(ev("(2+3)*4"), Ok(Value::Int(20)));
+        assert_eq!(ev("7/2"), Ok(Value::Real(3.5)));
+        assert_eq!(ev("7 DIV 2"), Ok(Value::Int(3)));
+        assert_eq!(ev("-7 MOD 3"), Ok(Value::Int(-1)));
+        assert_eq!(ev("-2*-3"), Ok(Value::Int(6)));
+        assert_eq!(ev("SIN(30)"), Ok(Value::Real(0.5)));
+        assert_eq!(ev("ATAN2(1,-1)"), Ok(Value::Real(135.0)));
+        assert_eq!(ev("ATAN2(-1,-1)"), Ok(Value::Real(-135.0)));
+        assert_eq!(ev("SQRT(POT(3)+POT(4))"), Ok(Value::Real(5.0)));
+        assert_eq!(ev("TRUNC(-2.7)+ROUND(2.5)+ABS(-1)"), Ok(Value::Real(2.0)));
+        assert_eq!(ev("(1<2) AND (3>4)"), Ok(Value::Bool(false)));
+        assert_eq!(ev("NOT (1==2) OR FALSE"), Ok(Value::Bool(true)));
+        assert_eq!(ev("5 B_AND 3"), Ok(Value::Int(1)));
+        // Comparisons bind loosest: 1 < (2 AND 0) < 1 → 1 < 0 → FALSE < 1 → TRUE.
+        assert_eq!(ev("1<2 AND 0<1"), Ok(Value::Bool(true)));
+        assert_eq!(ev("BOUND(0, 10, 12)"), Ok(Value::Real(10.0)));
+    }
+
+    #[test]
+    fn errors_are_alarms() {
+        assert_eq!(ev("1/0"), Err(AlarmKind::DivideByZero));
+        assert_eq!(ev("SQRT(-1)"), Err(AlarmKind::ArgumentOutOfRange { function: "SQRT" }));
+        assert_eq!(ev("NOPE+1"), Err(S::NameNotDefined.into()));
+        assert_eq!(ev("S+1"), Err(S::TypeMismatch.into()));
+        assert_eq!(ev("(1+2"), Err(syntax("')' missing")));
+        assert_eq!(ev("R100"), Err(S::IndexOutOfRange.into()));
+        assert_eq!(ev("SIN(1,2)"), Err(syntax("')' missing")));
+        assert_eq!(ev(&"(".repeat(40)), Err(syntax("expression nested too deep")));
+        assert_eq!(ev(&"-".repeat(40)), Err(syntax("expression nested too deep")));
+        assert_eq!(ev("1EX300*1EX300"), Err(S::ValueRange.into()));
+    }
+}
