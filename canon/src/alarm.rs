@@ -304,6 +304,21 @@ pub enum AlarmKind {
 }
 
 impl AlarmKind {
+    /// Whether the alarm may only mean that program text has not arrived yet: the
+    /// end of the text, a jump target, END, shape block, label or PROC further on.
+    /// A stream waits for more text and reads the block again before it calls
+    /// it an alarm.
+    pub fn waits_for_text(&self) -> bool {
+        matches!(
+            self,
+            AlarmKind::EndOfRecord
+                | AlarmKind::JumpTargetNotFound { .. }
+                | AlarmKind::MissingEnd { .. }
+                | AlarmKind::SequenceNotFound { .. }
+                | AlarmKind::Siemens(SiemensAlarm::LabelNotFound | SiemensAlarm::SubprogramNotFound)
+        )
+    }
+
     /// The alarm number.
     pub fn code(&self) -> u16 {
         use AlarmKind::*;

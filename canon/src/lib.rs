@@ -357,3 +357,15 @@ pub trait CanonSink {
         self.push(*action)
     }
 }
+
+impl<S: CanonSink + ?Sized> CanonSink for &mut S {
+    #[inline]
+    fn push(&mut self, action: Canon) -> Result<(), Full> {
+        (**self).push(action)
+    }
+
+    #[inline]
+    fn push_ref(&mut self, action: &Canon) -> Result<(), Full> {
+        (**self).push_ref(action)
+    }
+}

@@ -974,13 +974,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
     /// An interpreter alarm: a look-ahead in a stream that only lacks text waits
     /// for it; anything else is a program alarm.
     fn interp_alarm<M: MotionPort + ?Sized>(&mut self, a: Alarm, port: &mut M) {
-        let missing_text = matches!(
-            a.kind,
-            AlarmKind::EndOfRecord
-                | AlarmKind::JumpTargetNotFound { .. }
-                | AlarmKind::MissingEnd { .. }
-                | AlarmKind::SequenceNotFound { .. }
-        );
+        let missing_text = a.kind.waits_for_text();
         let at = self.interp.block_start();
         let at_end = at.offset >= self.window.len();
         if self.job == Job::Stream && a.program == 0 && missing_text {

@@ -12,6 +12,14 @@
 //! M98 pushes a frame (12 levels, 3.1.6) holding the return cursor and the
 //! caller's open loops; WHILE/DO push a loop entry (3 per level) whose END is found
 //! when the loop is entered, so a jump out of the range closes it.
+//!
+//! Two languages step their statements here and share the engine: the FANUC
+//! dialect (this file) and SINUMERIK ([`siemens`]: labels, PROC calls, REPEAT
+//! sections, MCALL, cycle calls). Both hand a checked [`Command`] to the same
+//! block execution (`run_cmd`: staging, undo, cycle delivery and validation, the
+//! outbox) and share one call stack, whose frames record the caller's language.
+
+mod siemens;
 
 use crate::alarm::{Alarm, AlarmKind};
 use crate::axis::Pos;
@@ -111,6 +119,11 @@ struct Frame {
     loops: Loops,
     /// Runs of the subprogram still to come after the current one (M98 L/packed P).
     repeats_left: u16,
+    /// The caller's language, in force again after the return.
+    language: Language,
+    /// What kind of level the frame opened (a FANUC M98, a SINUMERIK PROC call or
+    /// REPEAT section).
+    kind: siemens::Level,
 }
 
 /// What a cycle block hands the interpreter besides its expansion (see
@@ -146,30 +159,48 @@ enum Next {
     Go,
     Pause,
     End,
-    Call { start: Cursor, repeats: u16 },
-    Return { to: Option<Cursor> },
-    Repeat { start: Cursor },
-    Restart { start: Cursor },
-    Jump { to: Cursor },
+    Call {
+        start: Cursor,
+        repeats: u16,
+    },
+    Return {
+        to: Option<Cursor>,
+    },
+    Repeat {
+        start: Cursor,
+    },
+    Restart {
+        start: Cursor,
+    },
+    Jump {
+        to: Cursor,
+    },
     Language(Language),
+    /// SINUMERIK M17/RET: back to the caller (in a main program: the end).
+    SiemensReturn,
 }
 
 /// The lathe interpreter.
 #[derive(Debug)]
 pub struct Interpreter {
-    cfg: MachineConfig,
     state: State,
-    cursor: Cursor,
-    /// Whether `cursor` has been set to the main program's start.
-    positioned: bool,
-    /// The program a run starts with.
-    main: ProgramId,
+    /// The block checked, reused from block to block.
+    cmd: Command,
     /// Actions waiting for the sink; also where a block stages its actions.
     outbox: Outbox,
     /// The block being read, reused from block to block.
     block: Block,
-    /// The block checked, reused from block to block.
-    cmd: Command,
+    cursor: Cursor,
+    /// Where the block the last step read (or failed to read) begins.
+    last_block: Cursor,
+    /// A held move that nose compensation found faulty while the failed block ran
+    /// (its line), for [`Interpreter::alarm_stop`].
+    fault_line: Option<u32>,
+    /// The program a run starts with.
+    main: ProgramId,
+    budget: u16,
+    /// Whether `cursor` has been set to the main program's start.
+    positioned: bool,
     phase: Phase,
     /// The language blocks are read in now (the machine's at power-on and reset;
     /// `G290`/`G291` switch it).
@@ -177,19 +208,16 @@ pub struct Interpreter {
     /// A block other than `%`/`O` has been executed in the current program level
     /// (a later `%` or `O` ends the record).
     started: bool,
-    vars: Variables,
-    calls: heapless::Vec<Frame, MAX_CALL_DEPTH>,
     loops: Loops,
-    budget: u16,
+    cfg: MachineConfig,
     /// The canned cycle being delivered (see [`crate::cycles`]).
     cycle: Option<Expansion>,
+    vars: Variables,
+    calls: heapless::Vec<Frame, MAX_CALL_DEPTH>,
     /// A cycle block whose dry run is still going on.
     validating: Option<Validating>,
-    /// Where the block the last step read (or failed to read) begins.
-    last_block: Cursor,
-    /// A held move that nose compensation found faulty while the failed block ran
-    /// (its line), for [`Interpreter::alarm_stop`].
-    fault_line: Option<u32>,
+    /// The SINUMERIK front end's state: variables, the block's words, MCALL.
+    siemens: siemens::Front,
 }
 
 impl Interpreter {
@@ -218,6 +246,7 @@ impl Interpreter {
             validating: None,
             last_block: Cursor::start(0),
             fault_line: None,
+            siemens: siemens::Front::new(),
         }
     }
 
@@ -325,6 +354,7 @@ impl Interpreter {
         self.state.contour.clear();
         self.calls.clear();
         self.loops.clear();
+        self.siemens.rewind();
     }
 
     /// Cycle start after M00/M01.
@@ -380,7 +410,8 @@ impl Interpreter {
         let loops = self.loops.iter().filter(|_| here).map(|l| l.start.offset);
         let frames = self.calls.iter().flat_map(|f| {
             let own = f.ret.program == program;
-            mine(&f.ret).into_iter().chain(f.loops.iter().filter(move |_| own).map(|l| l.start.offset))
+            let level = f.kind.kept().and_then(|c| mine(&c));
+            mine(&f.ret).into_iter().chain(level).chain(f.loops.iter().filter(move |_| own).map(|l| l.start.offset))
         });
         cursor.into_iter().chain(loops).chain(frames).min()
     }
@@ -410,7 +441,9 @@ impl Interpreter {
                 shift_loops(&mut f.loops);
             }
             shift(&mut f.ret);
+            f.kind.shift(program, bytes);
         }
+        self.siemens.shift(program, bytes);
     }
 
     /// Runs macro statements up to the step budget and at most one NC block (or
@@ -446,16 +479,13 @@ impl Interpreter {
             self.cursor = start;
             self.positioned = true;
         }
+        if self.language == Language::Siemens {
+            // The blocks after a G290 (or on a SINUMERIK machine) are SINUMERIK
+            // blocks. Only an NC block (G290/G291) switches, and it ends a step.
+            return self.siemens_step(&programs, env, &mut &mut *sink);
+        }
         let mut budget = self.budget;
         loop {
-            if self.language == Language::Siemens {
-                // The blocks after a G290 are SINUMERIK blocks (crate::lang, issue 19).
-                return Err(Alarm::in_program(
-                    self.cursor.program,
-                    self.cursor.line,
-                    AlarmKind::NotSupportedYet { what: "SINUMERIK mode (G290)" },
-                ));
-            }
             let at = self.cursor;
             self.last_block = at;
             let text = programs.text(at.program).unwrap_or(&[]);
@@ -629,6 +659,27 @@ impl Interpreter {
         R: FnOnce(&Self, Flow) -> Result<Next, AlarmKind>,
     {
         check_into(&self.block, &self.state, &self.cfg, &mut self.cmd)?;
+        self.run_cmd(env, program, route, None, |_| {})
+    }
+
+    /// Executes the checked `self.cmd` on the state in place (the engine part of
+    /// [`Interpreter::run_block`], shared by the languages): `call` is the
+    /// SINUMERIK cycle a cycle-call block starts, `edit` what the block sets on the
+    /// state besides the command (SINUMERIK DIAMON, LIMS), undone with the block.
+    #[inline(always)]
+    fn run_cmd<E, R, F>(
+        &mut self,
+        env: &E,
+        program: Option<ProgramText<'_>>,
+        route: R,
+        call: Option<siemens::CallSpec<'_>>,
+        edit: F,
+    ) -> Result<Option<Next>, AlarmKind>
+    where
+        E: Environment,
+        R: FnOnce(&Self, Flow) -> Result<Next, AlarmKind>,
+        F: FnOnce(&mut State),
+    {
         let cmd = &self.cmd;
         if program.is_none() {
             if let Some(&(m, _)) = cmd.m.iter().find(|(_, f)| f.is_flow()) {
@@ -638,20 +689,27 @@ impl Interpreter {
                 return Err(AlarmKind::NotSupportedYet { what: "canned cycles in MDI" });
             }
         }
-        let before = self.state.save(cmd);
+        // A SINUMERIK cycle may change what few blocks do (its tool edge): all is saved.
+        let before = if call.is_some() { self.state.save_all() } else { self.state.save(cmd) };
         let held = self.state.contour.is_holding().then_some(self.state.contour);
         // Tests (debug builds) check that an undone block leaves the whole state as it was.
         #[cfg(debug_assertions)]
         let whole = self.state;
+        edit(&mut self.state);
         let mut cycle = BlockCycle::default();
         let program = program.map(|p| ProgramText { vars: Some(&self.vars), ..p });
+        let cycle_call;
         // A cycle the block starts goes straight into `self.cycle` (empty here: a
         // cycle is delivered completely before the next block is read), so the
         // expansion is never moved.
         let mut staged = match program {
-            Some(p) => CycleStage::in_program(self.block.line, &mut self.outbox, p, &mut self.cycle),
-            None => CycleStage::new(self.block.line, &mut self.outbox),
+            Some(p) => CycleStage::in_program(cmd.line, &mut self.outbox, p, &mut self.cycle),
+            None => CycleStage::new(cmd.line, &mut self.outbox),
         };
+        if let Some(c) = call {
+            cycle_call = c.bind(&self.siemens.vars);
+            staged.call = Some(&cycle_call);
+        }
         let done = execute(cmd, &mut self.state, &self.cfg, env, &mut staged);
         let faulty = staged.faulty_move;
         if done.is_ok() {
@@ -699,7 +757,7 @@ impl Interpreter {
         next: Next,
     ) {
         let Some(exp) = &self.cycle else { return };
-        let (at, line) = (self.cursor, self.block.line);
+        let (at, line) = (self.cursor, self.cmd.line);
         let dry = exp.clone();
         let state = self.state;
         self.state.restore(before, held);
@@ -713,18 +771,11 @@ impl Interpreter {
     /// ([`crate::contour::stop_on_alarm`]). An alarm that only means the stream has
     /// not delivered the text yet (a jump target, an END further on) leaves the
     /// look-ahead as it is: the board waits for the text and reads the block again.
-    fn stop_lookahead(&mut self, faulty: Option<u32>, kind: &AlarmKind) -> Option<u32> {
-        let waits_for_text = matches!(
-            kind,
-            AlarmKind::EndOfRecord
-                | AlarmKind::JumpTargetNotFound { .. }
-                | AlarmKind::MissingEnd { .. }
-                | AlarmKind::SequenceNotFound { .. }
-        );
-        if waits_for_text || !self.state.contour.is_holding() {
+    fn stop_lookahead(&mut self, line: u32, faulty: Option<u32>, kind: &AlarmKind) -> Option<u32> {
+        if kind.waits_for_text() || !self.state.contour.is_holding() {
             return None;
         }
-        let mut out = Staged::new(self.block.line, &mut self.outbox);
+        let mut out = Staged::new(line, &mut self.outbox);
         crate::contour::stop_on_alarm(&mut self.state, faulty, &mut out);
         faulty
     }
@@ -735,7 +786,7 @@ impl Interpreter {
     /// compensation found one.
     fn alarm_stop<S: CanonSink + ?Sized>(&mut self, sink: &mut S, program: u32, line: u32, kind: AlarmKind) -> Alarm {
         let faulty = self.fault_line.take();
-        let line = self.stop_lookahead(faulty, &kind).unwrap_or(line);
+        let line = self.stop_lookahead(line, faulty, &kind).unwrap_or(line);
         self.deliver(sink);
         Alarm::in_program(program, line, kind)
     }
@@ -863,6 +914,8 @@ impl Interpreter {
                     ret: self.cursor,
                     loops: core::mem::take(&mut self.loops),
                     repeats_left: repeats.saturating_sub(1),
+                    language: self.language,
+                    kind: siemens::Level::Fanuc,
                 };
                 // `route` checked that there is room.
                 let _ = self.calls.push(frame);
@@ -880,6 +933,7 @@ impl Interpreter {
                     self.loops = f.loops;
                     self.cursor = f.ret;
                     self.started = true;
+                    self.language = f.language;
                 }
                 if let Some(to) = to {
                     self.jump(to);
@@ -887,6 +941,7 @@ impl Interpreter {
             }
             Next::Jump { to } => self.jump(to),
             Next::Language(l) => self.language = l,
+            Next::SiemensReturn => self.siemens_return(),
         }
     }
 

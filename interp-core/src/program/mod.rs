@@ -53,6 +53,24 @@ pub trait ProgramStore {
     }
 }
 
+impl<P: ProgramStore + ?Sized> ProgramStore for &P {
+    fn text(&self, id: ProgramId) -> Option<&[u8]> {
+        (**self).text(id)
+    }
+
+    fn start(&self, id: ProgramId) -> Option<Cursor> {
+        (**self).start(id)
+    }
+
+    fn find_sequence(&self, n: u32, from: Cursor) -> Option<Cursor> {
+        (**self).find_sequence(n, from)
+    }
+
+    fn find_named(&self, name: &[u8]) -> Option<Cursor> {
+        (**self).find_named(name)
+    }
+}
+
 /// A store holding a single main program (id 0).
 #[derive(Clone, Copy, Debug)]
 pub struct SingleProgram<'a>(pub &'a [u8]);

@@ -27,10 +27,6 @@ use crate::program::Cursor;
 /// the callee.
 pub const MAX_ARGS: usize = 24;
 
-/// Bytes of string arguments one call may pass in all (a contour name
-/// `"/_N_SPF_DIR/_N_KONTUR_1_SPF:N130:N210"` is 37).
-pub const ARG_TEXT: usize = 96;
-
 /// An evaluated argument of a cycle call.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Arg<'a> {
@@ -107,26 +103,25 @@ impl Signature {
     }
 }
 
-/// What one stored argument is; values are in [`CallArgs::nums`], strings in
-/// [`CallArgs::text`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Tag {
-    Empty,
-    Real,
-    Int,
-    Str { at: u8, len: u8 },
-}
+/// Bytes one call's arguments take when stored: a tag byte each, 8 bytes a
+/// number, a length byte and the bytes a string. The document's longest call
+/// (CYCLE950: 24 arguments, 6 strings) fits.
+pub const ARG_BYTES: usize = 256;
 
-/// The arguments of one call, evaluated, in fixed capacity (nothing refers into
-/// the program text: a modal call `MCALL CYCLE81(…)` keeps them for later blocks).
-/// Before [`CallArgs::bind`] they are as written; after it they have the
-/// parameters' types and one entry per parameter.
+/// The tags of stored arguments.
+const EMPTY: u8 = 0;
+const REAL: u8 = 1;
+const INT: u8 = 2;
+const STR: u8 = 3;
+
+/// The arguments of one call, evaluated, encoded in fixed capacity (nothing
+/// refers into the program text: a modal call `MCALL CYCLE81(…)` keeps them for
+/// later blocks). Before [`CallArgs::bind`] they are as written; after it they
+/// have the parameters' types and one entry per parameter.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CallArgs {
     count: u8,
-    tags: [Tag; MAX_ARGS],
-    nums: [f64; MAX_ARGS],
-    text: heapless::Vec<u8, ARG_TEXT>,
+    bytes: heapless::Vec<u8, ARG_BYTES>,
 }
 
 impl Default for CallArgs {
@@ -138,13 +133,13 @@ impl Default for CallArgs {
 impl CallArgs {
     /// No arguments.
     pub const fn new() -> Self {
-        CallArgs { count: 0, tags: [Tag::Empty; MAX_ARGS], nums: [0.0; MAX_ARGS], text: heapless::Vec::new() }
+        CallArgs { count: 0, bytes: heapless::Vec::new() }
     }
 
     /// Forgets every argument.
     pub fn clear(&mut self) {
         self.count = 0;
-        self.text.clear();
+        self.bytes.clear();
     }
 
     /// Number of arguments (after binding: of parameters).
@@ -157,28 +152,53 @@ impl CallArgs {
         self.count == 0
     }
 
-    /// Appends an argument as written: alarm 12340 beyond [`MAX_ARGS`]; a string
-    /// that does not fit [`ARG_TEXT`] is alarm 12160 (value range).
+    /// Appends an argument as written: alarm 12340 beyond [`MAX_ARGS`]; arguments
+    /// that do not fit [`ARG_BYTES`] are alarm 12160.
     pub fn push(&mut self, arg: Arg<'_>) -> Result<(), AlarmKind> {
-        let i = self.len();
-        if i >= MAX_ARGS {
+        if self.len() >= MAX_ARGS {
             return Err(S::TooManyParameters.into());
         }
-        let (tag, num) = match arg {
-            Arg::Empty => (Tag::Empty, 0.0),
-            Arg::Real(v) => (Tag::Real, v),
-            Arg::Int(n) => (Tag::Int, n as f64),
-            Arg::Str(s) => {
-                let at = self.text.len();
-                let len = u8::try_from(s.len()).map_err(|_| S::StringTooLong)?;
-                self.text.extend_from_slice(s).map_err(|_| S::StringTooLong)?;
-                (Tag::Str { at: at as u8, len }, 0.0)
+        let full = |_| AlarmKind::from(S::StringTooLong);
+        match arg {
+            Arg::Empty => self.bytes.push(EMPTY).map_err(full)?,
+            Arg::Real(v) => {
+                self.bytes.push(REAL).map_err(full)?;
+                self.bytes.extend_from_slice(&v.to_le_bytes()).map_err(|_| S::StringTooLong)?;
             }
-        };
-        self.tags[i] = tag;
-        self.nums[i] = num;
+            Arg::Int(n) => {
+                self.bytes.push(INT).map_err(full)?;
+                self.bytes.extend_from_slice(&n.to_le_bytes()).map_err(|_| S::StringTooLong)?;
+            }
+            Arg::Str(s) => {
+                let len = u8::try_from(s.len()).map_err(|_| S::StringTooLong)?;
+                self.bytes.push(STR).map_err(full)?;
+                self.bytes.push(len).map_err(full)?;
+                self.bytes.extend_from_slice(s).map_err(|_| S::StringTooLong)?;
+            }
+        }
         self.count += 1;
         Ok(())
+    }
+
+    /// The argument at byte `at` and where the next one begins.
+    fn decode(&self, at: usize) -> (Arg<'_>, usize) {
+        let b = &self.bytes;
+        let eight = |k: usize| -> [u8; 8] {
+            let mut a = [0u8; 8];
+            if let Some(s) = b.get(k..k + 8) {
+                a.copy_from_slice(s);
+            }
+            a
+        };
+        match b.get(at).copied() {
+            Some(REAL) => (Arg::Real(f64::from_le_bytes(eight(at + 1))), at + 9),
+            Some(INT) => (Arg::Int(i64::from_le_bytes(eight(at + 1))), at + 9),
+            Some(STR) => {
+                let len = usize::from(b.get(at + 1).copied().unwrap_or(0));
+                (Arg::Str(b.get(at + 2..at + 2 + len).unwrap_or(&[])), at + 2 + len)
+            }
+            _ => (Arg::Empty, at + 1),
+        }
     }
 
     /// Argument `i` (`Empty` past the end: a list closed early).
@@ -186,21 +206,20 @@ impl CallArgs {
         if i >= self.len() {
             return Arg::Empty;
         }
-        match self.tags[i] {
-            Tag::Empty => Arg::Empty,
-            Tag::Real => Arg::Real(self.nums[i]),
-            Tag::Int => Arg::Int(self.nums[i] as i64),
-            Tag::Str { at, len } => {
-                let (at, len) = (usize::from(at), usize::from(len));
-                Arg::Str(self.text.get(at..at + len).unwrap_or(&[]))
-            }
+        let mut at = 0;
+        for _ in 0..i {
+            at = self.decode(at).1;
         }
+        self.decode(at).0
     }
 
     /// Every argument, into `buf`.
     pub fn args<'s>(&'s self, buf: &'s mut [Arg<'s>; MAX_ARGS]) -> &'s [Arg<'s>] {
-        for (i, b) in buf.iter_mut().enumerate().take(self.len()) {
-            *b = self.get(i);
+        let mut at = 0;
+        for b in buf.iter_mut().take(self.len()) {
+            let (a, next) = self.decode(at);
+            *b = a;
+            at = next;
         }
         &buf[..self.len()]
     }
@@ -214,33 +233,34 @@ impl CallArgs {
     /// never becomes a string or a character, nor a string a number.
     pub fn bind(&mut self, params: impl ExactSizeIterator<Item = Ty>) -> Result<(), AlarmKind> {
         let n = params.len();
-        if self.len() > n {
+        if self.len() > n || n > MAX_ARGS {
             return Err(S::TooManyParameters.into());
         }
-        if n > MAX_ARGS {
-            return Err(S::TooManyParameters.into());
-        }
+        let mut out = CallArgs::new();
+        let mut at = 0;
         for (i, ty) in params.enumerate() {
-            let tag = if i < self.len() { self.tags[i] } else { Tag::Empty };
-            let (tag, num) = match (ty, tag) {
-                (_, Tag::Empty) => (Tag::Empty, 0.0),
-                (Ty::Real, Tag::Real | Tag::Int) => (Tag::Real, self.nums[i]),
-                (Ty::Int, Tag::Int) => (Tag::Int, self.nums[i]),
-                (Ty::Int, Tag::Real) => {
-                    let v = libm::round(self.nums[i]);
+            let (arg, next) = if i < self.len() { self.decode(at) } else { (Arg::Empty, at) };
+            at = next;
+            let bad = || AlarmKind::from(S::ParameterType { index: i as u8 + 1 });
+            let bound = match (ty, arg) {
+                (_, Arg::Empty) => Arg::Empty,
+                (Ty::Real, Arg::Real(v)) => Arg::Real(v),
+                (Ty::Real, Arg::Int(v)) => Arg::Real(v as f64),
+                (Ty::Int, Arg::Int(v)) => Arg::Int(v),
+                (Ty::Int, Arg::Real(v)) => {
+                    let v = libm::round(v);
                     if !(-2_147_483_648.0..=2_147_483_647.0).contains(&v) {
-                        return Err(S::ParameterType { index: i as u8 + 1 }.into());
+                        return Err(bad());
                     }
-                    (Tag::Int, v)
+                    Arg::Int(v as i64)
                 }
-                (Ty::Str, t @ Tag::Str { .. }) => (t, 0.0),
-                (Ty::Char, t @ Tag::Str { len: 1, .. }) => (t, 0.0),
-                _ => return Err(S::ParameterType { index: i as u8 + 1 }.into()),
+                (Ty::Str, Arg::Str(s)) => Arg::Str(s),
+                (Ty::Char, Arg::Str(s)) if s.len() == 1 => Arg::Str(s),
+                _ => return Err(bad()),
             };
-            self.tags[i] = tag;
-            self.nums[i] = num;
+            out.push(bound)?;
         }
-        self.count = n as u8;
+        *self = out;
         Ok(())
     }
 }

@@ -116,7 +116,18 @@ impl<'t: 'x, 'x, E: Env> Eval<'_, 't, 'x, E> {
         let mut a = self.concat()?;
         while let Some(op) = self.cmp_op() {
             let b = self.concat()?;
+            let one = |v: &Value<'x>| match *v {
+                Value::Char(c) => Some(c),
+                Value::Str(&[c]) => Some(c),
+                _ => None,
+            };
             let r = match (&a, &b) {
+                (Value::Char(_), Value::Str(_)) | (Value::Str(_), Value::Char(_)) => match (one(&a), one(&b), op) {
+                    (Some(x), Some(y), Cmp::Eq) => x == y,
+                    (x, y, Cmp::Ne) => x.is_none() || y.is_none() || x != y,
+                    (_, _, Cmp::Eq) => false,
+                    _ => return Err(S::TypeMismatch.into()),
+                },
                 (Value::Str(x), Value::Str(y)) => match op {
                     Cmp::Eq => x == y,
                     Cmp::Ne => x != y,

@@ -80,8 +80,8 @@ pub enum Addr {
     Spos,
 }
 
-/// Number of [`Addr`] slots.
-pub const ADDRS: usize = 21;
+/// Most address words in one block.
+pub const MAX_WORDS: usize = 12;
 
 impl Addr {
     /// The single-letter address `c` (uppercase).
@@ -155,7 +155,7 @@ pub struct Jump<'t> {
     pub label: &'t [u8],
 }
 
-/// The NC words of one block, kept in place and reused block after block.
+/// The NC words of one block (cheap to make: nothing is cleared but lengths).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Words {
     /// 1-based source line.
@@ -171,28 +171,31 @@ pub struct Words {
     ac: u32,
     /// Given as `=IC(…)`.
     ic: u32,
-    values: [Number; ADDRS],
+    values: heapless::Vec<(Addr, Number), MAX_WORDS>,
     /// DIAMON (`Some(true)`), DIAMOF (`Some(false)`); DIAM90 counts as DIAMON.
     pub diam: Option<bool>,
 }
 
 impl Default for Words {
     fn default() -> Self {
-        Words {
-            line: 0,
-            seq: None,
-            g: heapless::Vec::new(),
-            m: heapless::Vec::new(),
-            present: 0,
-            ac: 0,
-            ic: 0,
-            values: [Number::int(0); ADDRS],
-            diam: None,
-        }
+        Self::EMPTY
     }
 }
 
 impl Words {
+    /// No words.
+    pub const EMPTY: Words = Words {
+        line: 0,
+        seq: None,
+        g: heapless::Vec::new(),
+        m: heapless::Vec::new(),
+        present: 0,
+        ac: 0,
+        ic: 0,
+        values: heapless::Vec::new(),
+        diam: None,
+    };
+
     /// Empties the words for the block on `line`.
     #[inline]
     pub fn clear(&mut self, line: u32) {
@@ -203,13 +206,17 @@ impl Words {
         self.present = 0;
         self.ac = 0;
         self.ic = 0;
+        self.values.clear();
         self.diam = None;
     }
 
     /// The value of `a`, if given.
     #[inline]
     pub fn get(&self, a: Addr) -> Option<Number> {
-        (self.present & a.bit() != 0).then(|| self.values[a as usize])
+        if self.present & a.bit() == 0 {
+            return None;
+        }
+        self.values.iter().find(|(b, _)| *b == a).map(|&(_, n)| n)
     }
 
     /// Whether `a` was written `=AC(…)` (`Some(false)`) or `=IC(…)` (`Some(true)`).
@@ -244,8 +251,7 @@ impl Words {
             });
         }
         self.present |= a.bit();
-        self.values[a as usize] = n;
-        Ok(())
+        self.values.push((a, n)).map_err(|_| syntax("more than 12 address words in one block"))
     }
 }
 
@@ -410,6 +416,26 @@ pub struct Scope<'x> {
     pub state: &'x State,
     /// The machine (tool offsets, tool count).
     pub cfg: &'x MachineConfig,
+}
+
+impl Env for Scope<'_> {
+    fn var(&self, name: &[u8]) -> Option<Value<'_>> {
+        self.vars.get(name)
+    }
+
+    fn r(&self, n: i64) -> Result<f64, AlarmKind> {
+        self.vars.r(n)
+    }
+
+    fn indexed(&self, name: &[u8], idx: &[i64]) -> Result<Value<'_>, AlarmKind> {
+        View { scope: self, pending: &Pending::new() }.indexed(name, idx).map(|v| match v {
+            Value::Str(_) => Value::Int(0),
+            Value::Real(x) => Value::Real(x),
+            Value::Int(x) => Value::Int(x),
+            Value::Bool(x) => Value::Bool(x),
+            Value::Char(x) => Value::Char(x),
+        })
+    }
 }
 
 /// The scope seen through the block's own assignments.
@@ -778,7 +804,7 @@ impl<'t> Reader<'_, 't, '_> {
             }
             if let Some(n) = r_number(name) {
                 self.src.expect(b'=', "'=' expected after the R parameter")?;
-                self.scope.vars.r(n)?;
+                self.r_room(n)?;
                 self.assign(Target::R(n), None)?;
                 continue;
             }
@@ -806,7 +832,7 @@ impl<'t> Reader<'_, 't, '_> {
                     self.src.expect(b']', "']' missing")?;
                     self.src.expect(b'=', "'=' expected after the variable")?;
                     let target = if is(name, b"R") {
-                        self.scope.vars.r(idx[0])?;
+                        self.r_room(idx[0])?;
                         Target::R(idx[0])
                     } else {
                         indexed_target(name, &idx[..k], self.scope.cfg)?
@@ -820,6 +846,29 @@ impl<'t> Reader<'_, 't, '_> {
                 }
             }
         }
+    }
+
+    /// Whether R parameter `n` exists and can take a value with the block's other
+    /// new R parameters (alarm 17020, 12460).
+    fn r_room(&self, n: i64) -> Result<(), AlarmKind> {
+        let vars = self.scope.vars;
+        vars.r(n)?;
+        if vars.has_r(n) || self.pending.latest(&Target::R(n)).is_some() {
+            return Ok(());
+        }
+        let mut fresh = 0;
+        for (i, (t, _)) in self.pending.items.iter().enumerate() {
+            if let Target::R(m) = *t
+                && !vars.has_r(m)
+                && !self.pending.items[..i].iter().any(|(u, _)| *u == Target::R(m))
+            {
+                fresh += 1;
+            }
+        }
+        if fresh >= vars.r_free() {
+            return Err(S::TooManySymbols.into());
+        }
+        Ok(())
     }
 
     fn call(&mut self, args: &mut CallArgs) -> Result<Stmt<'t>, AlarmKind> {

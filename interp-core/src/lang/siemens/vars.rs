@@ -4,10 +4,11 @@
 //! read them.
 //!
 //! Everything is in fixed capacity, sized for the document's programs (the CYCLE93
-//! example defines 17 variables, the CYCLE83 one 14): R0–R99 (the 840D's default
-//! of 100), 48 DEF variables in all levels together with 512 bytes of names and
-//! 256 bytes of STRING contents. Defining more is alarm 12460. A level's
-//! variables go when the level returns (LIFO, as the 840D's LUD).
+//! example defines 17 variables, the CYCLE83 one 14) and the board's RAM: R0–R99
+//! (the 840D's default of 100), of which 32 may be other than zero at a time; 32
+//! DEF variables in all levels together with 192 bytes of names and 96 bytes of
+//! STRING contents. More is alarm 12460. A level's variables go when the level
+//! returns (LIFO, as the 840D's LUD).
 //!
 //! Names are compared without regard to case (the 840D reads them in capitals).
 
@@ -15,12 +16,14 @@ use crate::alarm::{AlarmKind, SiemensAlarm as S};
 
 /// R parameters R0–R99.
 pub const R_PARAMS: usize = 100;
+/// R parameters that may hold a value other than zero at a time.
+pub const R_SLOTS: usize = 32;
 /// DEF variables of all program levels together.
-pub const LOCALS: usize = 48;
+pub const LOCALS: usize = 32;
 /// Bytes of variable names of all levels together.
-pub const NAME_BYTES: usize = 512;
+pub const NAME_BYTES: usize = 192;
 /// Bytes of STRING contents of all levels together.
-pub const STRING_BYTES: usize = 256;
+pub const STRING_BYTES: usize = 96;
 /// Longest name (the 840D allows 31 characters after the first).
 pub const MAX_NAME: usize = 32;
 /// Longest STRING the 840D allows (`STRING[200]`).
@@ -91,7 +94,10 @@ struct Local {
 /// The SINUMERIK variables of one channel.
 #[derive(Clone, PartialEq)]
 pub struct Vars {
-    r: [f64; R_PARAMS],
+    /// Which R parameters have a value (their numbers), …
+    r_used: heapless::Vec<u8, R_SLOTS>,
+    /// … and the values, by the same index.
+    r_values: [f64; R_SLOTS],
     locals: heapless::Vec<Local, LOCALS>,
     names: heapless::Vec<u8, NAME_BYTES>,
     strings: heapless::Vec<u8, STRING_BYTES>,
@@ -111,6 +117,11 @@ impl Default for Vars {
     }
 }
 
+/// The number of R parameter `n`, 0–99 (alarm 17020 beyond).
+fn r_index(n: i64) -> Result<u8, AlarmKind> {
+    u8::try_from(n).ok().filter(|&n| usize::from(n) < R_PARAMS).ok_or(S::IndexOutOfRange.into())
+}
+
 /// Whether two names are the same name.
 fn same(a: &[u8], b: &[u8]) -> bool {
     a.eq_ignore_ascii_case(b)
@@ -120,7 +131,8 @@ impl Vars {
     /// All R parameters zero, nothing defined, level 0.
     pub const fn new() -> Self {
         Vars {
-            r: [0.0; R_PARAMS],
+            r_used: heapless::Vec::new(),
+            r_values: [0.0; R_SLOTS],
             locals: heapless::Vec::new(),
             names: heapless::Vec::new(),
             strings: heapless::Vec::new(),
@@ -130,14 +142,32 @@ impl Vars {
 
     /// R parameter `n` (alarm 12160 past R99, as the 840D's value-range alarm).
     pub fn r(&self, n: i64) -> Result<f64, AlarmKind> {
-        usize::try_from(n).ok().and_then(|i| self.r.get(i)).copied().ok_or(AlarmKind::from(S::IndexOutOfRange))
+        let n = r_index(n)?;
+        Ok(self.r_used.iter().position(|&u| u == n).map_or(0.0, |i| self.r_values[i]))
     }
 
-    /// Sets R parameter `n`.
+    /// Whether R parameter `n` holds a slot (a value other than zero was set).
+    pub fn has_r(&self, n: i64) -> bool {
+        r_index(n).is_ok_and(|n| self.r_used.contains(&n))
+    }
+
+    /// How many more R parameters may get a value.
+    pub fn r_free(&self) -> usize {
+        R_SLOTS - self.r_used.len()
+    }
+
+    /// Sets R parameter `n` (alarm 17020 past R99, 12460 when 32 others hold values).
     pub fn set_r(&mut self, n: i64, v: f64) -> Result<(), AlarmKind> {
-        let slot =
-            usize::try_from(n).ok().and_then(|i| self.r.get_mut(i)).ok_or(AlarmKind::from(S::IndexOutOfRange))?;
-        *slot = v;
+        let n = r_index(n)?;
+        match self.r_used.iter().position(|&u| u == n) {
+            Some(i) => self.r_values[i] = v,
+            None if v == 0.0 => {}
+            None => {
+                let i = self.r_used.len();
+                self.r_used.push(n).map_err(|_| S::TooManySymbols)?;
+                self.r_values[i] = v;
+            }
+        }
         Ok(())
     }
 
@@ -167,17 +197,26 @@ impl Vars {
         self.level = 0;
     }
 
+    /// A mark to go back to with [`Vars::undo_to`] (a DEF that fails halfway).
+    pub fn mark(&self) -> usize {
+        self.locals.len()
+    }
+
+    /// Forgets the variables defined since `mark`.
+    pub fn undo_to(&mut self, mark: usize) {
+        if let Some(first) = self.locals.get(mark).copied() {
+            self.names.truncate(usize::from(first.name_at));
+            if let Some(s) = self.locals[mark..].iter().find(|l| matches!(l.ty, VarTy::Str { .. })) {
+                self.strings.truncate(s.value as usize);
+            }
+            self.locals.truncate(mark);
+        }
+    }
+
     /// Forgets the variables of levels `level` and deeper.
     fn drop_level(&mut self, level: u8) {
         let keep = self.locals.iter().position(|l| l.level >= level).unwrap_or(self.locals.len());
-        if let Some(first) = self.locals.get(keep).copied() {
-            self.names.truncate(usize::from(first.name_at));
-            let strings = self.locals[keep..].iter().find(|l| matches!(l.ty, VarTy::Str { .. }));
-            if let Some(s) = strings {
-                self.strings.truncate(s.value as usize);
-            }
-        }
-        self.locals.truncate(keep);
+        self.undo_to(keep);
     }
 
     fn name_of(&self, l: &Local) -> &[u8] {
@@ -365,8 +404,17 @@ mod tests {
         assert_eq!(v.r(100), Err(AlarmKind::from(S::IndexOutOfRange)));
         v.set_r(99, 1.5).unwrap();
         assert_eq!(v.r(99), Ok(1.5));
+        assert_eq!(v.r(98), Ok(0.0));
+        for n in 0..31 {
+            v.set_r(n, 1.0).unwrap();
+        }
+        assert_eq!(v.r_free(), 0);
+        assert_eq!(v.set_r(50, 1.0), Err(AlarmKind::from(S::TooManySymbols)));
+        assert_eq!(v.set_r(50, 0.0), Ok(()), "zero needs no slot");
+        v.set_r(3, 2.0).unwrap();
+        assert_eq!(v.r(3), Ok(2.0));
         let mut v = Vars::new();
-        assert_eq!(v.define(b"S", VarTy::Str { cap: 255 }), Ok(()));
-        assert_eq!(v.define(b"T", VarTy::Str { cap: 2 }), Err(AlarmKind::from(S::TooManySymbols)));
+        assert_eq!(v.define(b"S", VarTy::Str { cap: 90 }), Ok(()));
+        assert_eq!(v.define(b"T", VarTy::Str { cap: 7 }), Err(AlarmKind::from(S::TooManySymbols)));
     }
 }
