@@ -58,7 +58,11 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             b"I" => {
                 self.out.line(Class::Info, "[VER:1.1h.lathe:]");
                 self.out.fmt(Class::Info, format_args!("[OPT:,{},{}]", port.status().capacity, crate::controller::RX));
-                self.msg(format_args!("lathe controller {} (FANUC lathe language)", env!("CARGO_PKG_VERSION")));
+                let language = match self.interp.language() {
+                    interp_core::config::Language::Fanuc => "FANUC lathe language",
+                    interp_core::config::Language::Siemens => "SINUMERIK language",
+                };
+                self.msg(format_args!("lathe controller {} ({language})", env!("CARGO_PKG_VERSION")));
             }
             b"N" => {
                 for i in 0..2 {

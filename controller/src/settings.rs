@@ -7,7 +7,7 @@
 
 use interp_core::MachineConfig;
 use interp_core::axis::Axis;
-use interp_core::config::{Param, ParamUnit};
+use interp_core::config::{Language, Param, ParamUnit};
 
 /// The controller's own settings (the rest live in the machine description).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -68,7 +68,7 @@ impl Default for Settings {
 
 /// The grbl-numbered settings, in `$$` order.
 pub const NUMBERS: &[u16] =
-    &[11, 12, 20, 21, 22, 23, 24, 25, 27, 30, 100, 102, 110, 112, 120, 122, 130, 132, 300, 301, 302, 303, 304];
+    &[11, 12, 20, 21, 22, 23, 24, 25, 27, 30, 100, 102, 110, 112, 120, 122, 130, 132, 300, 301, 302, 303, 304, 310];
 
 /// Why a setting write was refused.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -118,6 +118,10 @@ pub fn get(n: u16, cfg: &MachineConfig, s: &Settings) -> Option<f64> {
         303 => f64::from(u8::from(s.grbl_dwell)),
         302 => f64::from(u8::from(s.parity_strip)),
         304 => f64::from(s.starve_timeout_s),
+        310 => match cfg.language {
+            Language::Fanuc => 0.0,
+            Language::Siemens => 1.0,
+        },
         _ => return None,
     })
 }
@@ -170,6 +174,13 @@ pub fn set(n: u16, v: f64, cfg: &mut MachineConfig, s: &mut Settings) -> Result<
         303 => s.grbl_dwell = flag(v)?,
         302 => s.parity_strip = flag(v)?,
         304 => s.starve_timeout_s = whole(v)?.min(MAX_STARVE_S),
+        310 => {
+            cfg.language = match whole(v)? {
+                0 => Language::Fanuc,
+                1 => Language::Siemens,
+                _ => return Err(bad("is 0 (FANUC) or 1 (SINUMERIK)")),
+            }
+        }
         _ => return Err(SettingError::Unknown),
     }
     Ok(())
