@@ -10,6 +10,7 @@ use core::cell::RefCell;
 use defmt::{info, unwrap, warn};
 use embassy_executor::Spawner;
 use embassy_futures::select::{Either, select};
+use embassy_futures::yield_now;
 use embassy_stm32::gpio::{Input, Output};
 use embassy_stm32::peripherals::{IWDG, TIM5};
 use embassy_stm32::timer::qei::Qei;
@@ -303,6 +304,14 @@ async fn control(
         POLLED.signal(());
         TX_READY.signal(());
         watchdog.pet();
+        // The ticker returns at once while this loop is behind its ticks (after a
+        // long interpreter step or flash write; in QEMU whenever the host is slower
+        // than the guest's clock), and this task would then run tick after tick
+        // without returning to the executor: the link tasks starve, received bytes
+        // pile up in the UART's ring until it overflows and drops them — a `?` or
+        // feed hold among them — and no reply leaves (issue 18). One turn for every
+        // other ready task per tick.
+        yield_now().await;
     }
 }
 
