@@ -109,7 +109,11 @@ fn clock_config() -> embassy_stm32::Config {
     config
 }
 
-#[embassy_executor::main]
+/// Boot: clocks, board, store, motion, controller; then the tasks. On the board
+/// embassy's thread-mode executor runs it; the QEMU build runs it on
+/// [`firmware::qemu::run_executor`], which sleeps with WFI (see there).
+#[cfg_attr(not(feature = "qemu"), embassy_executor::main)]
+#[cfg_attr(feature = "qemu", embassy_executor::task)]
 async fn main(spawner: Spawner) {
     #[cfg(feature = "qemu")]
     let mut cp = {
@@ -161,6 +165,13 @@ async fn main(spawner: Spawner) {
     spawner.spawn(unwrap!(link_rx(rx)));
     spawner.spawn(unwrap!(link_tx(tx)));
     spawner.spawn(unwrap!(heartbeat(status_led)));
+}
+
+/// The QEMU build's entry: [`main`] on the QEMU executor.
+#[cfg(feature = "qemu")]
+#[cortex_m_rt::entry]
+fn entry() -> ! {
+    firmware::qemu::run_executor(|spawner| spawner.spawn(unwrap!(main(spawner))))
 }
 
 /// The persistence the control task runs (none in QEMU).
