@@ -15,46 +15,31 @@
 //! byte comes after the run-out and nothing fires. A lost link silences the
 //! sender while the board still runs what it had received.
 
-use interp_core::Alarm;
-use interp_core::alarm::AlarmKind;
-
-use crate::controller::{Controller, Job};
-use crate::port::MotionPort;
-
 /// One second, ns.
 const SECOND_NS: u64 = 1_000_000_000;
 
-impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<W, T, P, S> {
-    /// Once per poll: notes when the stream job ran out of text and motion, and
-    /// raises alarm 4601 when the link has been quiet since before that for `$304`
-    /// seconds.
-    pub(crate) fn watch_stream<M: MotionPort + ?Sized>(&mut self, port: &mut M) {
-        if !self.starved(port) {
+/// When the stream job ran out of text and motion.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct StarveWatch {
+    starved_at: Option<u64>,
+}
+
+impl StarveWatch {
+    /// Once per poll at `now`: `starved`, the open stream job has run out of text
+    /// and motion; `last_byte`, when the last byte of any kind arrived; `timeout_s`,
+    /// setting `$304` (0 off). True when the job is to end in alarm 4601: the link
+    /// has been quiet since before it ran out for `timeout_s` seconds.
+    pub fn due(&mut self, now: u64, starved: bool, last_byte: u64, timeout_s: u32) -> bool {
+        if !starved {
             self.starved_at = None;
-            return;
+            return false;
         }
-        let since = *self.starved_at.get_or_insert(self.now);
-        let timeout_s = self.settings.starve_timeout_s;
-        let quiet = self.now.saturating_sub(self.last_byte);
-        if timeout_s == 0 || self.last_byte >= since || quiet < u64::from(timeout_s) * SECOND_NS {
-            return;
+        let since = *self.starved_at.get_or_insert(now);
+        let quiet = now.saturating_sub(last_byte);
+        if timeout_s == 0 || last_byte >= since || quiet < u64::from(timeout_s) * SECOND_NS {
+            return false;
         }
         self.starved_at = None;
-        let line = self.interp.cursor().line;
-        let alarm = Alarm::in_program(0, line, AlarmKind::StreamStarved { seconds: timeout_s });
-        self.program_alarm(alarm, false, port);
-    }
-
-    /// An open stream job that has run out of text and motion.
-    fn starved<M: MotionPort + ?Sized>(&self, port: &M) -> bool {
-        let open = self.job == Job::Stream && self.job_worked && !self.record_closed && !self.interp_done;
-        let waiting = self.alarm.is_none()
-            && !self.check
-            && !self.hold
-            && !self.paused
-            && !self.door
-            && !self.sleep
-            && self.lookahead.is_none();
-        open && waiting && !self.interp.has_pending() && self.stream_drained() && port.status().idle
+        true
     }
 }
