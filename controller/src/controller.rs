@@ -4,7 +4,7 @@
 //! arguments.
 
 use interp_core::axis::Pos;
-use interp_core::canon::{Canon, CanonSink, Full};
+use interp_core::canon::{Canon, CanonSink, Full, SpindleDir};
 use interp_core::program::{Cursor, ProgramMemory};
 use interp_core::{Alarm, AlarmKind, Interpreter, MachineConfig, Panel, Progress};
 use motion_core::motion::{EventKind, State};
@@ -32,9 +32,6 @@ pub const OUT: usize = 2048;
 pub const STEPS_PER_POLL: usize = 8;
 /// Received lines one poll handles at most.
 pub const LINES_PER_POLL: usize = 4;
-/// How long the link must be quiet before a look-ahead that waits for text (G70–G73
-/// shape, forward GOTO, WHILE's END) is given up as an alarm.
-pub const QUIET_NS: u64 = 200_000_000;
 /// The welcome line senders wait for.
 pub const WELCOME: &str = "Grbl 1.1h ['$' for help]";
 
@@ -129,11 +126,16 @@ pub struct Counters {
     /// Times a look-ahead (G70–G73 shape, forward GOTO, WHILE's END) waited for
     /// lines not yet received.
     pub lookahead_waits: u32,
+    /// Soft resets (0x18) carried out.
+    pub resets: u32,
+    /// Feed holds from the link (`!`) carried out.
+    pub holds: u32,
 }
 
 /// With link checksums: a partial line that got no byte for this long (ns) has
-/// lost its LF (128 bytes take 11 ms at 115200 baud).
-pub const STALE_LINE_NS: u64 = 20_000_000;
+/// lost its LF (128 bytes take 11 ms at 115200 baud; a USB serial adapter may hold
+/// bytes back 16 ms).
+pub const STALE_LINE_NS: u64 = 50_000_000;
 
 /// The board's controller. `W`: stream window bytes; `T`, `P`, `S`: program
 /// memory text bytes, programs, indexed sequence numbers.
@@ -180,6 +182,8 @@ pub struct Controller<const W: usize, const T: usize, const P: usize, const S: u
     pub(crate) door_open: bool,
     pub(crate) tape: Option<Tape>,
     pub(crate) link: LinkSeq,
+    /// The link line being answered (checksums in use): replies name it.
+    answering: Option<u32>,
     pub(crate) panel: Panel,
     /// `$H` completed since power-on (G28/G30 need it when home switches are fitted).
     pub(crate) homed: bool,
@@ -274,6 +278,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             door_open: false,
             tape: None,
             link: LinkSeq::new(),
+            answering: None,
             panel: Panel::default(),
             homed: false,
             flood: false,
@@ -482,13 +487,30 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
     fn line<M: MotionPort + ?Sized>(&mut self, raw: &[u8], port: &mut M) -> Handled {
         let (text, k) = match self.link.check(trim(raw), self.job == Job::Stream) {
             Checked::Text(text, k) => (trim(text), k),
-            Checked::Duplicate => {
+            Checked::Duplicate(k) => {
+                self.answering = Some(k);
                 self.ok();
+                self.answering = None;
                 return Handled::Done;
             }
             Checked::Resend => return self.resend(),
         };
-        let handled = match lines::kind(text) {
+        self.answering = k;
+        // A framed line's answer is framed (also the one that switches checksums on).
+        self.out.crc |= k.is_some();
+        let handled = self.line_text(text, k.is_some(), port);
+        self.answering = None;
+        if handled == Handled::Done && k.is_some() {
+            self.link.accepted();
+        }
+        self.out.crc = self.link.active;
+        handled
+    }
+
+    /// What a line's text (after the link's framing) asks for; `framed`: it came
+    /// with a link checksum.
+    fn line_text<M: MotionPort + ?Sized>(&mut self, text: &[u8], framed: bool, port: &mut M) -> Handled {
+        match lines::kind(text) {
             Kind::BadByte(b) => {
                 self.refuse(1, lines::bad_text(b).as_str());
                 Handled::Done
@@ -503,16 +525,19 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
                 self.rx.grbl_seen = true;
                 self.dollar(cmd, port)
             }
-            Kind::Percent if self.tape_starts() => {
+            // A framed `%` is a record mark: tape DNC software never frames lines.
+            Kind::Percent if !framed && self.tape_starts() => {
                 self.start_tape();
                 Handled::Done
             }
+            // Blank lines before a job's first line (a sender's wake-up `\r\n\r\n`)
+            // neither start nor number a job.
+            Kind::Blank if self.job == Job::None => {
+                self.ok();
+                Handled::Done
+            }
             Kind::Blank | Kind::Percent | Kind::Program(_) => self.program_line(text),
-        };
-        if handled == Handled::Done && k.is_some() {
-            self.link.accepted();
         }
-        handled
     }
 
     /// `[MSG:Resend:<expected>]` + `error:88`.
@@ -680,11 +705,16 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
     /// 4601 (see [`StarveWatch`]).
     fn watch_stream<M: MotionPort + ?Sized>(&mut self, port: &mut M) {
         let starved = self.starved(port);
-        if !self.starve.due(self.now, starved, self.rx.last_byte, self.settings.starve_timeout_s) {
-            return;
+        let turning = self.interp.state().spindle.dir != SpindleDir::Stop || port.status().rpm != 0;
+        let lines_s = if turning { self.settings.spindle_stream_timeout_s } else { 0 };
+        let heard = [(self.rx.last_byte, self.settings.starve_timeout_s), (self.rx.last_line_byte, lines_s)];
+        let Some(which) = self.starve.due(self.now, starved, heard) else { return };
+        let seconds = heard[which].1;
+        if which == 1 {
+            // The sender still polls: its stream stopped, not the link.
+            self.msg(format_args!("No program line for {seconds} s with the spindle turning ($306)"));
         }
         let line = self.interp.cursor().line;
-        let seconds = self.settings.starve_timeout_s;
         let alarm = Alarm::in_program(0, line, AlarmKind::StreamStarved { seconds });
         self.program_alarm(alarm, false, port);
     }
@@ -704,16 +734,23 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
 
     // ----- replies -----
 
+    /// `ok`; `N<k> ok` for link line `k` (checksums in use).
     pub(crate) fn ok(&mut self) {
         self.counters.ok = self.counters.ok.saturating_add(1);
-        self.out.line(Class::Reply, "ok");
+        match self.answering {
+            Some(k) => self.out.fmt(Class::Reply, format_args!("N{k} ok")),
+            None => self.out.line(Class::Reply, "ok"),
+        }
     }
 
-    /// `[MSG:why]` + `error:n`.
+    /// `[MSG:why]` + `error:n` (`N<k> error:n` for link line `k`).
     pub(crate) fn refuse(&mut self, n: u8, why: &str) {
         self.counters.errors = self.counters.errors.saturating_add(1);
         self.out.fmt(Class::Info, format_args!("[MSG:{why}]"));
-        self.out.fmt(Class::Reply, format_args!("error:{n}"));
+        match self.answering {
+            Some(k) => self.out.fmt(Class::Reply, format_args!("N{k} error:{n}")),
+            None => self.out.fmt(Class::Reply, format_args!("error:{n}")),
+        }
     }
 
     pub(crate) fn msg(&mut self, text: core::fmt::Arguments<'_>) {
@@ -733,6 +770,8 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
     /// stack under the interpreter's deepest step.
     #[inline(never)]
     fn soft_reset<M: MotionPort + ?Sized>(&mut self, port: &mut M, inputs: Inputs) {
+        self.counters.resets = self.counters.resets.saturating_add(1);
+        let moving = !port.status().idle;
         port.reset();
         self.interp.reset();
         self.close_job();
@@ -741,12 +780,19 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
         self.door = false;
         self.ovr = [100; 3];
         self.apply_overrides(port);
-        self.link = LinkSeq { active: false, expected: 1 };
+        self.link = LinkSeq::new();
+        self.out.crc = false;
         self.alarm = if inputs.estop { Some(10) } else { None };
         if inputs.estop {
             port.emergency_stop();
         }
         self.welcome();
+        if moving && self.alarm.is_none() {
+            // Unlike grbl (ALARM:3: its steppers stop dead and may lose steps), the
+            // motion core brakes on the path within the axes' acceleration: the
+            // position is kept, no alarm, no homing needed.
+            self.msg(format_args!("Reset in motion: braked on the path, position kept"));
+        }
     }
 
     /// Drops the job: interpreter rewound to an empty window, holds released; the
@@ -839,6 +885,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             port.feed_hold();
         }
         if core::mem::take(&mut self.rx.latched.hold) && self.alarm.is_none() {
+            self.counters.holds = self.counters.holds.saturating_add(1);
             if self.jog {
                 port.reset();
             } else if self.homing.is_none() {
@@ -1067,7 +1114,8 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
                 self.lookahead = None;
                 return false;
             }
-            if self.window_stuck || self.now.saturating_sub(self.rx.last_line_byte) >= QUIET_NS {
+            let quiet_ns = u64::from(self.settings.lookahead_wait_ms) * 1_000_000;
+            if self.window_stuck || self.now.saturating_sub(self.rx.last_line_byte) >= quiet_ns {
                 self.lookahead = None;
                 self.program_alarm(w.alarm, true, port);
             }
@@ -1139,10 +1187,16 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             }
         }
         let sep = if pins.is_empty() { "" } else { "|Pn:" };
+        // With link checksums: the last link line accepted, so that a sender whose
+        // answers were lost to line noise can find its place again.
+        let mut link: heapless::String<16> = heapless::String::new();
+        if self.link.active {
+            let _ = core::fmt::write(&mut link, format_args!("|Lk:{}", self.link.expected.saturating_sub(1)));
+        }
         self.out.fmt(
             Class::Info,
             format_args!(
-                "<{state}|MPos:{}|FS:{feed},{}|Bf:{},{}|Ln:{}|WCO:{}|Ov:{},{},{}{sep}{pins}>",
+                "<{state}|MPos:{}|FS:{feed},{}|Bf:{},{}|Ln:{}|WCO:{}|Ov:{},{},{}{sep}{pins}{link}>",
                 Xyz::of(&st.position, cfg),
                 st.rpm,
                 st.capacity.saturating_sub(st.queued),

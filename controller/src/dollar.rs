@@ -110,6 +110,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             b"LN" => match whole(value) {
                 Some(n) => {
                     self.link = LinkSeq { active: n > 0, expected: n.max(1) };
+                    self.out.crc = n > 0;
                     Ok(())
                 }
                 None => Err((2, "Bad number")),

@@ -52,8 +52,8 @@ pub(crate) enum Checked<'a> {
     /// Text to handle; `Some(k)` when it came framed as link line `k` (then
     /// [`LinkSeq::accepted`] once it is handled).
     Text(&'a [u8], Option<u32>),
-    /// A duplicate of a line already taken: answered `ok`, dropped.
-    Duplicate,
+    /// A duplicate of link line `k`, already taken: answered `ok`, dropped.
+    Duplicate(u32),
     /// Damaged, out of sequence, or unframed while checksums are in use: ask for
     /// link line [`LinkSeq::expected`] again.
     Resend,
@@ -91,7 +91,7 @@ impl LinkSeq {
             self.expected = 1;
         }
         if k < self.expected {
-            return Checked::Duplicate;
+            return Checked::Duplicate(k);
         }
         if k > self.expected {
             return Checked::Resend;

@@ -61,7 +61,7 @@ mod starve;
 mod tape;
 pub mod window;
 
-pub use controller::{Controller, Counters, Dirty, LINES_PER_POLL, Mode, OUT, QUIET_NS, RX, STEPS_PER_POLL, WELCOME};
+pub use controller::{Controller, Counters, Dirty, LINES_PER_POLL, Mode, OUT, RX, STEPS_PER_POLL, WELCOME};
 pub use framing::frame_line;
 pub use io::{Inputs, MachineIo};
 pub use port::{MotionPort, MotionStatus};

@@ -32,6 +32,24 @@ enum Picked {
     Reset(usize),
 }
 
+/// Whether a real-time byte met between lines acts (see [`Receiver::acts`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Acts {
+    /// At once, alone.
+    Alone,
+    /// At once, with the LF behind it.
+    WithLf,
+    /// Not: it is line data.
+    No,
+    /// The byte behind it decides, and it has not come yet.
+    Undecided,
+}
+
+/// Whether `b` is one of the real-time command bytes.
+fn is_realtime(b: u8) -> bool {
+    matches!(b, b'?' | b'!' | b'~' | 0x18 | 0x84 | 0x85 | 0x90..=0x9D | 0x9E | 0xA0 | 0xA1)
+}
+
 /// The receive buffer and what goes with it.
 #[derive(Debug)]
 pub(crate) struct Receiver {
@@ -112,11 +130,28 @@ impl Receiver {
     /// Takes bytes in order while the receive buffer has room; how many were
     /// consumed.
     fn take(&mut self, bytes: &[u8], now: u64, framed: bool) -> usize {
+        let mut command_lf = false;
         for (i, &raw) in bytes.iter().enumerate() {
             self.last_byte = now;
             let b = self.stripped(raw);
-            if (self.at_line_boundary(framed) && self.realtime(b, self.buf.len())) || b == XON || b == XOFF {
+            if core::mem::take(&mut command_lf) || b == XON || b == XOFF {
                 continue;
+            }
+            if self.at_line_boundary(framed) && is_realtime(b) {
+                match self.acts(b, bytes.get(i + 1).map(|&n| self.stripped(n)), framed) {
+                    Acts::Alone => {
+                        self.realtime(b, self.buf.len());
+                        continue;
+                    }
+                    Acts::WithLf => {
+                        self.realtime(b, self.buf.len());
+                        command_lf = true;
+                        continue;
+                    }
+                    // Decided by the next byte: kept for the next offer.
+                    Acts::Undecided => return i,
+                    Acts::No => {}
+                }
             }
             // Line data (not status polls) is what keeps the link from being quiet.
             self.last_line_byte = now;
@@ -157,6 +192,7 @@ impl Receiver {
     fn pick_realtime(&mut self, tail: &mut [u8], now: u64, framed: bool) -> Picked {
         let mut between = !self.discarding && self.buf.last().is_none_or(|&b| b == b'\n');
         let mut kept = 0;
+        let mut command_lf = false;
         for i in 0..tail.len() {
             let Some(&raw) = tail.get(i) else { break };
             self.last_byte = now;
@@ -164,10 +200,17 @@ impl Receiver {
             if b == XON || b == XOFF {
                 continue;
             }
-            if (!framed || between) && self.realtime(b, self.buf.len() + kept) {
+            if core::mem::take(&mut command_lf) {
+                continue;
+            }
+            let next = tail.get(i + 1).map(|&n| self.stripped(n));
+            let acts = if (!framed || between) && is_realtime(b) { self.acts(b, next, framed) } else { Acts::No };
+            if matches!(acts, Acts::Alone | Acts::WithLf) {
+                self.realtime(b, self.buf.len() + kept);
                 if b == 0x18 {
-                    return Picked::Reset(i);
+                    return Picked::Reset(i + usize::from(acts == Acts::WithLf));
                 }
+                command_lf = acts == Acts::WithLf;
                 continue;
             }
             self.last_line_byte = now;
@@ -195,6 +238,23 @@ impl Receiver {
     /// real-time bytes between its lines, so they still act at once.
     fn at_line_boundary(&self, framed: bool) -> bool {
         !framed || (!self.discarding && self.buf.last().is_none_or(|&b| b == b'\n'))
+    }
+
+    /// Whether real-time byte `b`, met between lines, acts (`next`: the byte after
+    /// it, if it came yet). Without link checksums it acts alone, as in grbl. With
+    /// them (`framed`), `?` acts alone and every other real-time byte only when a
+    /// LF follows it (`!` LF, 0x18 LF …; the LF is part of the command): line noise
+    /// that drops the `N` of a framed line makes the line's second byte the first
+    /// after a LF, and one flipped bit of it (`8` → 0x18, `1` → `!`) must not reset
+    /// or hold the machine — it then acts only if the noise also turns the third
+    /// byte into a LF.
+    fn acts(&self, b: u8, next: Option<u8>, framed: bool) -> Acts {
+        match (framed && b != b'?', next) {
+            (false, _) => Acts::Alone,
+            (true, Some(b'\n')) => Acts::WithLf,
+            (true, Some(_)) => Acts::No,
+            (true, None) => Acts::Undecided,
+        }
     }
 
     /// A real-time byte: latched, true; any other byte: false. `behind`: received

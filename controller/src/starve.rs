@@ -14,6 +14,11 @@
 //! Idle (`lathe send`, CNCjs, which polls as long as it is connected), so its last
 //! byte comes after the run-out and nothing fires. A lost link silences the
 //! sender while the board still runs what it had received.
+//!
+//! With the spindle turning, status polls do not keep the job open: a sender whose
+//! stream stopped (its character count stuck on an `ok` that line noise ate) may
+//! go on polling `?` for ever. Then `$306` seconds without a program line since
+//! before the run-out end the job too.
 
 /// One second, ns.
 const SECOND_NS: u64 = 1_000_000_000;
@@ -26,20 +31,20 @@ pub(crate) struct StarveWatch {
 
 impl StarveWatch {
     /// Once per poll at `now`: `starved`, the open stream job has run out of text
-    /// and motion; `last_byte`, when the last byte of any kind arrived; `timeout_s`,
-    /// setting `$304` (0 off). True when the job is to end in alarm 4601: the link
-    /// has been quiet since before it ran out for `timeout_s` seconds.
-    pub fn due(&mut self, now: u64, starved: bool, last_byte: u64, timeout_s: u32) -> bool {
+    /// and motion; `heard`, when the link was last heard from and how many seconds
+    /// of silence since before the run-out end the job (0 never): the first whose
+    /// time is up, if any.
+    pub fn due(&mut self, now: u64, starved: bool, heard: [(u64, u32); 2]) -> Option<usize> {
         if !starved {
             self.starved_at = None;
-            return false;
+            return None;
         }
         let since = *self.starved_at.get_or_insert(now);
-        let quiet = now.saturating_sub(last_byte);
-        if timeout_s == 0 || last_byte >= since || quiet < u64::from(timeout_s) * SECOND_NS {
-            return false;
-        }
+        let up = |&(last, timeout_s): &(u64, u32)| {
+            timeout_s != 0 && last < since && now.saturating_sub(last) >= u64::from(timeout_s) * SECOND_NS
+        };
+        let which = heard.iter().position(up)?;
         self.starved_at = None;
-        true
+        Some(which)
     }
 }
