@@ -530,9 +530,12 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
                 self.start_tape();
                 Handled::Done
             }
-            // Blank lines before a job's first line (a sender's wake-up `\r\n\r\n`)
-            // neither start nor number a job.
+            // Blank lines before a job's first line (a grbl sender's wake-up
+            // `\r\n\r\n`) neither start nor number a job; they are grbl traffic:
+            // a `%` after them is a record mark (stream.py sends the file's `%`
+            // lines, racing its first `?`).
             Kind::Blank if self.job == Job::None => {
+                self.rx.grbl_seen = true;
                 self.ok();
                 Handled::Done
             }
@@ -550,8 +553,9 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
 
     /// Whether a `%` line starts tape mode now (setting `$301`): only while Idle,
     /// and by default only from a sender that has not spoken grbl since the last
-    /// reset — grbl senders poll `?` and send `$` commands when they connect, tape
-    /// DNC software never does; a grbl sender's `%` is a record mark.
+    /// reset — grbl senders poll `?`, send `$` commands or wake the board with blank
+    /// lines when they connect, tape DNC software does not; a grbl sender's `%` is a
+    /// record mark.
     fn tape_starts(&self) -> bool {
         let idle = self.job == Job::None && self.alarm.is_none() && !self.check;
         idle && match self.settings.tape_detect {

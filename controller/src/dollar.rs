@@ -111,6 +111,8 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
                 Some(n) => {
                     self.link = LinkSeq { active: n > 0, expected: n.max(1) };
                     self.out.crc = n > 0;
+                    // Says which number it took: line noise may have changed it.
+                    self.out.fmt(Class::Info, format_args!("[LN:{n}]"));
                     Ok(())
                 }
                 None => Err((2, "Bad number")),

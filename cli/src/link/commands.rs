@@ -12,7 +12,7 @@ use clap::Args;
 
 use super::LinkError;
 use super::keys::{self, Keys};
-use super::response::Status;
+use super::response::{Response, Status};
 use super::session::{Feeder, Origin, Session, Stats, Timing, Verdict};
 use super::source::{Source, SourceLine};
 use super::stream::{StreamConfig, Streamer};
@@ -140,7 +140,7 @@ struct Board {
 /// Idle. The reset is tried three times (line noise may spoil it or its welcome; a
 /// board left with checksums on by an earlier job needs 0x18 LF), the status report
 /// asked until it names a state.
-fn connect(port: &PortArgs, ui: &mut dyn Ui) -> Result<Board, LinkError> {
+fn connect(port: &PortArgs, checksum: bool, ui: &mut dyn Ui) -> Result<Board, LinkError> {
     let mut link = Link::open(&port.port, port.baud)?;
     let mut tries = 0;
     let welcome = loop {
@@ -153,9 +153,16 @@ fn connect(port: &PortArgs, ui: &mut dyn Ui) -> Result<Board, LinkError> {
         }
     };
     ui.note(&format!("connected to {}: {welcome}", port.port));
+    if checksum {
+        // Checked answers first: a plain status report may not come through the
+        // line noise checksums are for.
+        let empty = start_checksums(&mut link)?;
+        return Ok(Board { link, empty });
+    }
     let mut s = link.status(STATUS_WAIT)?;
     for _ in 0..4 {
-        if STATES.iter().any(|st| s.state.starts_with(st)) {
+        let (name, sub) = s.state.split_once(':').unwrap_or((&s.state, "0"));
+        if STATES.contains(&name) && matches!(sub, "0" | "1") {
             break;
         }
         s = link.status(STATUS_WAIT)?;
@@ -195,7 +202,7 @@ fn job(
         Feeder::Tape(t) => t.total(),
     };
     let (mut ui, keys) = display(port, total, out);
-    let mut board = connect(port, ui.as_mut())?;
+    let mut board = connect(port, checksum, ui.as_mut())?;
     if let Feeder::Tape(_) = feeder {
         // The board chooses tape mode only when nothing grbl-like came since its last
         // reset, and connecting asked for a status report.
@@ -203,9 +210,6 @@ fn job(
     }
     for command in preamble {
         settle(&mut board.link, command)?;
-    }
-    if checksum {
-        board.empty = start_checksums(&mut board.link)?.or(board.empty);
     }
     let started = Instant::now();
     let (verdict, stats) = Session::new(&mut board.link, ui.as_mut(), feeder, origin.clone(), board.empty)
@@ -217,7 +221,7 @@ fn job(
     match verdict {
         Verdict::Done => {
             ui.note(&format!("{}: done in {:.1} s", origin.name, started.elapsed().as_secs_f64()));
-            ui.note(&link_figures(&stats, checksum));
+            ui.note(&link_figures(&stats, checksum, board.link.resets()));
         }
         v => {
             drop(ui);
@@ -261,7 +265,11 @@ pub fn send(args: &SendArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result
         (Feeder::Tape(Tape::new(&texts(&lines), TAPE_CHUNK)), lines)
     } else {
         let lines = src.stream_lines();
-        let cfg = StreamConfig { checksum: args.checksum, ..StreamConfig::default() };
+        let cfg = StreamConfig {
+            checksum: args.checksum,
+            silence: StreamConfig::silence_at(args.port.baud),
+            ..StreamConfig::default()
+        };
         let streamer = Streamer::new(texts(&lines), cfg).map_err(|t| Error::Unsendable {
             path: args.program.clone(),
             line: lines.get(t.index).map_or(0, |l| l.file_line),
@@ -276,10 +284,11 @@ pub fn send(args: &SendArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result
     job(&args.port, checksum, &[], feeder, origin(&src.name, &lines), out, err).map(|(status, _)| status)
 }
 
-/// Switches the board's link checksums on: `$LN=1`, then a status report that must
-/// come framed and say `Lk:0` (line noise can spoil an unframed `$` command — a
-/// damaged `$LN=1` could set another number — or its answer). Five tries, each after
-/// a soft reset but the first. Returns the `Bf:` of the idle board from that report.
+/// Switches the board's link checksums on: `$LN=1`, answered `[LN:1]` (line noise
+/// can spoil an unframed `$` command — a damaged `$LN=1` could set another number —
+/// or its answer; from it on the board's lines carry their CRC). Five tries, each
+/// after a soft reset but the first. Then a status report, if one comes through the
+/// noise within a second: the `Bf:` of the idle board.
 fn start_checksums(link: &mut Link) -> Result<Option<(u32, u32)>, LinkError> {
     let mut last = String::new();
     for attempt in 0..5 {
@@ -289,31 +298,37 @@ fn start_checksums(link: &mut Link) -> Result<Option<(u32, u32)>, LinkError> {
                 Err(e) => return Err(e),
             }
         }
-        match link.command("$LN=1", COMMAND_WAIT / 3) {
-            Ok(_) | Err(LinkError::Timeout { .. } | LinkError::Refused { .. }) => {}
-            Err(e) => return Err(e),
-        }
-        // From here on the board's lines carry their CRC (a plain one is damaged).
+        // The board's answers are framed from `$LN=1` on.
         link.set_checked(true);
-        match link.status(STATUS_WAIT) {
-            Ok(s) if s.state == "Idle" && s.link == Some(0) => return Ok(s.buffer),
-            Ok(s) => last = format!("state {}, Lk:{:?}", s.state, s.link),
-            Err(LinkError::Timeout { .. }) => last = "no framed status report".into(),
-            Err(e) => return Err(e),
+        link.write(b"$LN=1\n")?;
+        let deadline = Instant::now() + COMMAND_WAIT / 3;
+        loop {
+            match link.line_until(deadline, "[LN:1]") {
+                Ok(Response::Feedback(f)) if f == "[LN:1]" => {
+                    // Its `ok` follows (or was lost): the status report, when one
+                    // comes through, passes over it.
+                    let s = link.status(STATUS_WAIT).ok().filter(|s| s.state == "Idle");
+                    return Ok(s.and_then(|s| s.buffer));
+                }
+                Ok(r) => last = format!("{r:?}"),
+                Err(LinkError::Timeout { .. }) => break,
+                Err(e) => return Err(e),
+            }
         }
+        link.set_checked(false);
     }
     Err(LinkError::Timeout { port: link.name().to_owned(), what: format!("checksums switched on ($LN=1): {last}") })
 }
 
 /// How the link went, in one line: `streamed 2005 lines in 12.3 s (163 lines/s);
-/// 31 resend requests, 2 resyncs, 12 damaged answers`.
-fn link_figures(s: &Stats, checksum: bool) -> String {
+/// 31 resend requests, 2 resyncs, 12 damaged answers, 1 soft resets sent`.
+fn link_figures(s: &Stats, checksum: bool, resets: u32) -> String {
     let time = s.streamed.map_or(0.0, |d| d.as_secs_f64());
     let rate = if time > 0.0 { s.lines as f64 / time } else { 0.0 };
     let mut t = format!("streamed {} lines in {time:.2} s ({rate:.0} lines/s)", s.lines);
     if checksum {
         t.push_str(&format!(
-            "; {} resend requests, {} resyncs, {} damaged answers",
+            "; {} resend requests, {} resyncs, {} damaged answers, {resets} soft resets sent",
             s.resend_requests, s.resyncs, s.damaged
         ));
     }

@@ -139,6 +139,9 @@ pub struct Session<'a> {
     written_at: Instant,
     /// Times the lines in flight were found lost and sent again (checksums).
     resyncs: u32,
+    /// A status report showed the board's receive buffer empty with lines in
+    /// flight: when, and its `Lk:`.
+    empty_seen: Option<(Instant, u32)>,
     /// Resend requests of the board (a request per damaged line, however many
     /// answers repeat it).
     resend_requests: u32,
@@ -190,6 +193,7 @@ impl<'a> Session<'a> {
             answered_at: now,
             written_at: now,
             resyncs: 0,
+            empty_seen: None,
             resend_requests: 0,
         }
     }
@@ -290,6 +294,8 @@ impl<'a> Session<'a> {
             Feeder::Counting(s) if s.checksum() && s.waiting() && now.duration_since(self.answered_at) >= STALLED => {
                 STALLED
             }
+            // Fed: the end is an Idle report, which line noise may spoil.
+            Feeder::Counting(s) if s.checksum() && self.fed_at.is_some() => STALLED,
             _ => self.timing.poll,
         }
     }
@@ -516,13 +522,24 @@ impl<'a> Session<'a> {
                 (Some((_, free)), None) => free >= super::stream::RX_BUFFER as u32,
                 _ => false,
             };
+            // Lines the board holds behind a full receive buffer do not show in one
+            // report's `Bf:`: it takes two, far enough apart, with nothing answered.
             let quiet = self.timing.char_time * (2 * super::stream::RX_BUFFER as u32) + LOST_AFTER;
             let stalled = now.duration_since(self.answered_at) >= quiet && now.duration_since(self.written_at) >= quiet;
-            if streamer.waiting() && rx_empty && stalled && !streamer.resending() {
-                let from = streamer.lost_in_flight(last as usize);
-                self.resyncs += 1;
-                self.ui.note(&format!("lines lost on the way: resending from line {}", from + 1));
-                self.answered_at = now;
+            if !(streamer.waiting() && rx_empty && stalled && !streamer.resending()) {
+                self.empty_seen = None;
+            } else {
+                match self.empty_seen {
+                    Some((at, lk)) if lk == last && now.duration_since(at) >= LOST_AFTER && at > self.answered_at => {
+                        let from = streamer.lost_in_flight(last as usize);
+                        self.resyncs += 1;
+                        self.ui.note(&format!("lines lost on the way: resending from line {}", from + 1));
+                        self.answered_at = now;
+                        self.empty_seen = None;
+                    }
+                    Some((_, lk)) if lk == last => {}
+                    _ => self.empty_seen = Some((now, last)),
+                }
             }
         }
         let asked_after_fed = self.fed_at.is_some_and(|t| self.polled_at > t);

@@ -26,6 +26,17 @@ pub struct StreamConfig {
     pub silence: Duration,
 }
 
+impl StreamConfig {
+    /// How long without an answer, after a resend request, counts as "every line in
+    /// flight answered" at `baud`: the time 256 characters take on the wire (128
+    /// bytes in flight to the board, its answers back) and 10 ms for the board and
+    /// the host (the board answers a line within a millisecond of its LF): 32 ms at
+    /// 115200 baud, 277 ms at 9600.
+    pub fn silence_at(baud: u32) -> Duration {
+        Duration::from_secs(10) * 256 / baud.max(1) + Duration::from_millis(10)
+    }
+}
+
 impl Default for StreamConfig {
     fn default() -> Self {
         StreamConfig { buffer: RX_BUFFER, checksum: false, silence: Duration::from_millis(100) }

@@ -70,6 +70,8 @@ pub struct Link {
     checked: bool,
     /// Lines dropped as damaged (a wrong CRC, or none while checked).
     damaged: u64,
+    /// Soft resets sent.
+    resets: u32,
 }
 
 /// How long one read waits for bytes.
@@ -100,6 +102,7 @@ impl Link {
             pending: VecDeque::new(),
             checked: false,
             damaged: 0,
+            resets: 0,
         }
     }
 
@@ -112,6 +115,11 @@ impl Link {
     /// Whether link checksums are in use.
     pub fn checked(&self) -> bool {
         self.checked
+    }
+
+    /// Soft resets sent so far.
+    pub fn resets(&self) -> u32 {
+        self.resets
     }
 
     /// Lines of the board dropped as damaged so far.
@@ -217,6 +225,7 @@ impl Link {
     /// once: a second reset's late welcome would be taken for the next one's.)
     pub fn reset(&mut self, wait: Duration) -> Result<String, LinkError> {
         self.realtime(0x18)?;
+        self.resets += 1;
         // The reset switches the board's checksums off.
         self.checked = false;
         self.welcome(wait)
