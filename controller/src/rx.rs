@@ -137,7 +137,7 @@ impl Receiver {
             if core::mem::take(&mut command_lf) || b == XON || b == XOFF {
                 continue;
             }
-            if self.at_line_boundary(framed) && is_realtime(b) {
+            if (self.at_line_boundary(framed) || b == b'?') && is_realtime(b) {
                 match self.acts(b, bytes.get(i + 1).map(|&n| self.stripped(n)), framed) {
                     Acts::Alone => {
                         self.realtime(b, self.buf.len());
@@ -204,7 +204,8 @@ impl Receiver {
                 continue;
             }
             let next = tail.get(i + 1).map(|&n| self.stripped(n));
-            let acts = if (!framed || between) && is_realtime(b) { self.acts(b, next, framed) } else { Acts::No };
+            let acts =
+                if (!framed || between || b == b'?') && is_realtime(b) { self.acts(b, next, framed) } else { Acts::No };
             if matches!(acts, Acts::Alone | Acts::WithLf) {
                 self.realtime(b, self.buf.len() + kept);
                 if b == 0x18 {
@@ -231,7 +232,11 @@ impl Receiver {
     }
 
     /// Whether a real-time byte would be acted on now. Always, except while link
-    /// checksums are in use: then only between lines (the first byte after a LF),
+    /// checksums are in use: then `?` anywhere (a byte line noise turns into `?` goes
+    /// missing from its line, whose CRC then fails, as for a dropped byte; and a
+    /// sender's status polls never become data of a line whose LF was lost, which
+    /// would keep that line from going stale), every other one only between lines
+    /// (the first byte after a LF),
     /// so that line noise turning a byte of a line into `!`, `~` or 0x18 (a flipped
     /// bit makes `1` a `!`, `X` a 0x18) corrupts that line — caught by its CRC and
     /// resent — instead of holding or resetting the machine. A sender writes

@@ -237,3 +237,28 @@ fn a_reset_in_motion_brakes_on_the_path_keeps_the_position_and_raises_no_alarm()
         assert_eq!(z(r.port.core.position()), z(after) - 1_000_000);
     }
 }
+
+/// A framed line whose LF line noise ate, while the sender goes on polling `?` every
+/// 20 ms: the polls act (they are not line data), so the partial line still goes
+/// stale after 50 ms and is ended there (whole but for its LF, its CRC holds: it is
+/// taken) — it does not grow into a 128-byte overlong line that swallows everything
+/// up to a LF that never comes.
+#[test]
+fn status_polls_do_not_keep_a_line_without_its_lf_alive() {
+    let mut r = framed_rig();
+    r.send(frame_line(2, "G01 W-1 F600").as_bytes());
+    for _ in 0..10 {
+        r.run_ms(20);
+        r.send(b"?");
+    }
+    r.run_ms(5);
+    let got = r.take_lines();
+    assert!(got.iter().filter(|l| l.starts_with('<')).count() >= 9, "{got:?}");
+    assert_eq!(got.iter().filter(|l| *l == "ok").count(), 1, "{got:?}");
+    assert!(!got.iter().any(|l| l.starts_with("error")), "{got:?}");
+    assert_eq!(field(&r.status(), "Lk:"), "2");
+    // The sender's resend of it is a duplicate.
+    r.send(format!("{}\n", frame_line(2, "G01 W-1 F600")).as_bytes());
+    r.run_ms(5);
+    assert_eq!(r.take_raw_lines(), vec![with_crc("N2 ok")]);
+}

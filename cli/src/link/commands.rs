@@ -156,7 +156,7 @@ fn connect(port: &PortArgs, checksum: bool, ui: &mut dyn Ui) -> Result<Board, Li
     if checksum {
         // Checked answers first: a plain status report may not come through the
         // line noise checksums are for.
-        let empty = start_checksums(&mut link)?;
+        let empty = start_checksums(&mut link, ui)?;
         return Ok(Board { link, empty });
     }
     let mut s = link.status(STATUS_WAIT)?;
@@ -289,10 +289,11 @@ pub fn send(args: &SendArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result
 /// or its answer; from it on the board's lines carry their CRC). Five tries, each
 /// after a soft reset but the first. Then a status report, if one comes through the
 /// noise within a second: the `Bf:` of the idle board.
-fn start_checksums(link: &mut Link) -> Result<Option<(u32, u32)>, LinkError> {
+fn start_checksums(link: &mut Link, ui: &mut dyn Ui) -> Result<Option<(u32, u32)>, LinkError> {
     let mut last = String::new();
     for attempt in 0..5 {
         if attempt > 0 {
+            ui.note("soft reset (checksums not confirmed)");
             match link.reset(WELCOME_WAIT / 3) {
                 Ok(_) | Err(LinkError::Timeout { .. }) => {}
                 Err(e) => return Err(e),
@@ -315,7 +316,10 @@ fn start_checksums(link: &mut Link) -> Result<Option<(u32, u32)>, LinkError> {
                 Err(e) => return Err(e),
             }
         }
-        link.set_checked(false);
+        // The board may have taken a damaged number and switched checksums on:
+        // the next reset goes as 0x18 LF (on a board without them the LF is a blank
+        // line, answered and forgotten).
+        link.set_checked(true);
     }
     Err(LinkError::Timeout { port: link.name().to_owned(), what: format!("checksums switched on ($LN=1): {last}") })
 }

@@ -252,7 +252,7 @@ impl<'a> Session<'a> {
                 if let Some(v) = self.incoming(item)? {
                     return Ok(v);
                 }
-            } else if self.heard_at.elapsed() >= self.timing.dead {
+            } else if self.heard_at.max(self.link.heard()).elapsed() >= self.timing.dead {
                 return Err(LinkError::Timeout {
                     port: self.link.name().to_owned(),
                     what: "any answer (the board stopped talking)".into(),

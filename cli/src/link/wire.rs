@@ -72,6 +72,8 @@ pub struct Link {
     damaged: u64,
     /// Soft resets sent.
     resets: u32,
+    /// When the board last sent a line, damaged or not.
+    heard: Instant,
 }
 
 /// How long one read waits for bytes.
@@ -103,6 +105,7 @@ impl Link {
             checked: false,
             damaged: 0,
             resets: 0,
+            heard: Instant::now(),
         }
     }
 
@@ -115,6 +118,12 @@ impl Link {
     /// Whether link checksums are in use.
     pub fn checked(&self) -> bool {
         self.checked
+    }
+
+    /// When the board last sent a line, damaged or not (a board that talks through
+    /// line noise is not a dead link).
+    pub fn heard(&self) -> Instant {
+        self.heard
     }
 
     /// Soft resets sent so far.
@@ -177,7 +186,10 @@ impl Link {
         loop {
             if let Some(i) = self.pending.pop_front() {
                 match i {
-                    Incoming::Line(l) => match self.accept(l) {
+                    Incoming::Line(l) => match {
+                        self.heard = Instant::now();
+                        self.accept(l)
+                    } {
                         Some(l) => return Ok(Some(Incoming::Line(l))),
                         None => continue,
                     },
