@@ -186,13 +186,13 @@ impl Link {
         loop {
             if let Some(i) = self.pending.pop_front() {
                 match i {
-                    Incoming::Line(l) => match {
+                    Incoming::Line(l) => {
                         self.heard = Instant::now();
-                        self.accept(l)
-                    } {
-                        Some(l) => return Ok(Some(Incoming::Line(l))),
-                        None => continue,
-                    },
+                        match self.accept(l) {
+                            Some(l) => return Ok(Some(Incoming::Line(l))),
+                            None => continue,
+                        }
+                    }
                     flow => return Ok(Some(flow)),
                 }
             }
