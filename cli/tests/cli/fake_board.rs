@@ -438,6 +438,7 @@ impl State {
         if let Some(n) = cmd.strip_prefix("LN=").and_then(|n| n.parse::<u32>().ok()) {
             self.expected = n.max(1);
             self.checksums = n > 0;
+            self.line(&format!("[LN:{n}]"));
             return self.line("ok");
         }
         if let Some(n) = cmd.strip_prefix("PR=").and_then(|n| n.parse::<u32>().ok()) {
