@@ -390,3 +390,60 @@ fn step_output(pin: Peri<'static, impl Pin>) -> Output<'static> {
 fn relay_output(pin: Peri<'static, impl Pin>) -> Output<'static> {
     Output::new(pin, Level::Low, Speed::Low)
 }
+
+/// The bring-up bench's wiring (docs/BRINGUP.md): jumpers from board outputs back to
+/// spare inputs, used only by the `hil_*` test binaries (never by the firmware).
+///
+/// | Jumper       | From → to  | Used by                                   |
+/// |--------------|------------|-------------------------------------------|
+/// | STEP probe   | PC6 → PA8  | TIM1_CH1 (AF1): counts or times X STEP     |
+/// | E-stop drive | PC13 → PC0 | a GPIO output plays the e-stop contact     |
+/// | Quadrature A | PC6 → PA0  | TIM8_CH1 (AF3) drives encoder input A      |
+/// | Quadrature B | PC7 → PA1  | TIM8_CH2 (AF3) drives encoder input B      |
+/// | Index        | PC8 → PD2  | a GPIO output plays the index pulse        |
+///
+/// The quadrature jumpers use the X and Z STEP pins (`hil_encoder` re-purposes them;
+/// PA8 is then unplugged from PC6). Disconnect the drives and the e-stop chain first.
+pub mod bench {
+    use embassy_stm32::pac;
+    use embassy_stm32::pac::gpio::vals::Moder;
+
+    /// The STEP probe: TIM1 (16-bit, 168 MHz on APB2), channel 1 on PA8.
+    pub const PROBE_TIMER: pac::timer::TimAdv = pac::TIM1;
+    /// TIM1's clock.
+    pub const PROBE_TIMER_HZ: u32 = 168_000_000;
+    /// The quadrature generator: TIM8 (168 MHz), channels 1 and 2 on PC6 and PC7.
+    pub const QUAD_TIMER: pac::timer::TimAdv = pac::TIM8;
+    /// TIM8's clock.
+    pub const QUAD_TIMER_HZ: u32 = 168_000_000;
+    /// PC13 in port C's BSRR/ODR: drives the e-stop input (PC0) through its jumper.
+    pub const ESTOP_DRIVE_BIT: u32 = 1 << 13;
+    /// PC8 (C STEP) in port C's BSRR/ODR: drives the index input (PD2).
+    pub const INDEX_DRIVE_BIT: u32 = 1 << 8;
+
+    /// PA8 as TIM1_CH1 (AF1) and TIM1 clocked.
+    pub fn probe_pin() {
+        pac::RCC.apb2enr().modify(|w| w.set_tim1en(true));
+        pac::GPIOA.afr(1).modify(|w| w.set_afr(0, 1));
+        pac::GPIOA.moder().modify(|w| w.set_moder(8, Moder::ALTERNATE));
+    }
+
+    /// PC13 as a push-pull output, low (e-stop released).
+    pub fn estop_drive_pin() {
+        pac::GPIOC.bsrr().write(|w| w.set_br(13, true));
+        pac::GPIOC.moder().modify(|w| w.set_moder(13, Moder::OUTPUT));
+    }
+
+    /// PC6/PC7 as TIM8_CH1/CH2 (AF3) and TIM8 clocked; PC8 stays a GPIO output.
+    pub fn quadrature_pins() {
+        pac::RCC.apb2enr().modify(|w| w.set_tim8en(true));
+        pac::GPIOC.afr(0).modify(|w| {
+            w.set_afr(6, 3);
+            w.set_afr(7, 3);
+        });
+        pac::GPIOC.moder().modify(|w| {
+            w.set_moder(6, Moder::ALTERNATE);
+            w.set_moder(7, Moder::ALTERNATE);
+        });
+    }
+}

@@ -14,6 +14,8 @@ compile_error!("`qemu` replaces `hw`: build with `--no-default-features --featur
 compile_error!("QEMU's netduinoplus2 has no USB: the `qemu` build leaves `usb` out");
 
 pub mod board;
+pub mod chip;
+pub mod hil;
 pub mod io;
 pub mod motion;
 #[cfg(feature = "qemu")]

@@ -26,10 +26,9 @@ use firmware::board::{Axis, Board, MotionTimers, Spindle};
 use firmware::io::{Clock, Inputs, Outputs};
 use firmware::motion::{self, MotionPort};
 use firmware::shell::{self, Ctl, SpindleFollower};
-use link_driver::held::Held;
 use hal::MonotonicClock as _;
 use interp_core::config::MachineConfig;
-use motion_driver::timebase::TimeBase;
+use link_driver::held::Held;
 use static_cell::StaticCell;
 use {defmt_rtt as _, panic_probe as _};
 
@@ -93,60 +92,13 @@ struct Kept {
 }
 static KEPT: StaticCell<Kept> = StaticCell::new();
 
-/// System clock from the board's 8 MHz crystal: 168 MHz core, 42 MHz APB1
-/// (84 MHz timers), 84 MHz APB2 (168 MHz timers), 48 MHz for USB. Same on the F446.
-#[cfg(not(feature = "qemu"))]
-fn clock_config() -> embassy_stm32::Config {
-    use embassy_stm32::rcc::{
-        AHBPrescaler, APBPrescaler, Hse, HseMode, Pll, PllMul, PllPDiv, PllPreDiv, PllQDiv, PllSource, Sysclk,
-    };
-    use embassy_stm32::time::Hertz;
-    let mut config = embassy_stm32::Config::default();
-    let rcc = &mut config.rcc;
-    rcc.hse = Some(Hse { freq: Hertz::mhz(8), mode: HseMode::Oscillator });
-    rcc.pll_src = PllSource::HSE;
-    rcc.pll = Some(Pll {
-        prediv: PllPreDiv::DIV4,   // 2 MHz PLL input
-        mul: PllMul::MUL168,       // 336 MHz VCO
-        divp: Some(PllPDiv::DIV2), // 168 MHz system clock
-        divq: Some(PllQDiv::DIV7), // 48 MHz USB/SDIO clock
-        divr: None,
-    });
-    rcc.sys = Sysclk::PLL1_P;
-    rcc.ahb_pre = AHBPrescaler::DIV1;
-    rcc.apb1_pre = APBPrescaler::DIV4;
-    rcc.apb2_pre = APBPrescaler::DIV2;
-    config
-}
-
-/// QEMU: the reset clocks (HSI 16 MHz) and no backup domain (QEMU's PWR never
-/// acknowledges DBP).
-#[cfg(feature = "qemu")]
-fn clock_config() -> embassy_stm32::Config {
-    let mut config = embassy_stm32::Config::default();
-    config.rcc.ls = embassy_stm32::rcc::LsConfig::off();
-    config
-}
-
 /// Boot: clocks, board, store, motion, controller; then the tasks. On the board
 /// embassy's thread-mode executor runs it; the QEMU build runs it on
 /// [`firmware::qemu::run_executor`], which sleeps with WFI (see there).
 #[cfg_attr(not(feature = "qemu"), embassy_executor::main)]
 #[cfg_attr(feature = "qemu", embassy_executor::task)]
 async fn main(spawner: Spawner) {
-    #[cfg(feature = "qemu")]
-    let mut cp = {
-        firmware::qemu::rcc_workaround();
-        let mut cp = unwrap!(cortex_m::Peripherals::take());
-        firmware::qemu::trap_pwr(&mut cp.MPU);
-        cp
-    };
-    let p = embassy_stm32::init(clock_config());
-    #[cfg(feature = "qemu")]
-    {
-        firmware::qemu::untrap_pwr(&mut cp.MPU);
-        firmware::qemu::start_time_driver(&mut cp.SYST);
-    }
+    let p = firmware::chip::init();
     #[cfg(feature = "usb")]
     let Board { x, z, c, drive_enable, spindle, aux, switches, dnc, usb, status_led, timers, watchdog, flash } =
         Board::new(p);
@@ -163,13 +115,13 @@ async fn main(spawner: Spawner) {
     let _ = flash; // Nothing persists in QEMU (build.rs).
     // One machine description in this frame (it is on the stack under every
     // call below): refused, it is reset in place.
-    let port = match start_motion(&cfg) {
+    let port = match motion::start(&cfg) {
         Ok(port) => port,
         Err(e) => {
             warn!("stored machine description refused ({}): defaults", e);
             cfg = MachineConfig::default();
             settings = controller::Settings::default();
-            unwrap!(start_motion(&cfg))
+            unwrap!(motion::start(&cfg))
         }
     };
     let outputs = Outputs::new(aux, cw, ccw, speed, drive_enable, cfg.spindle.max_rpm);
@@ -262,34 +214,6 @@ fn open_store(
         Err(e) => warn!("persist: stored settings: {}", defmt::Display2Format(&e)),
     }
     Some(store)
-}
-
-/// Builds the motion core at reference position 1 and starts the step, period and
-/// encoder interrupts (on the board) — or, in the QEMU build, the software time base
-/// that the control task advances.
-fn start_motion(cfg: &MachineConfig) -> Result<MotionPort, motion::StartError> {
-    let pos = cfg.reference[0];
-    #[cfg(feature = "hw")]
-    {
-        use firmware::board::{ENCODER_TIMER, TIMER_HZ};
-        let tb = TimeBase::new(TIMER_HZ, cfg.motion.tick_ns).map_err(motion::StartError::TimeBase)?;
-        let mut port = motion::init(cfg, pos, tb, 0, 0)?;
-        let start = motion::isr::start_timers(tb.period_ticks);
-        let raw = ENCODER_TIMER.cnt().read();
-        port.lock(|m| m.engine.set_origin(start, raw));
-        motion::isr::enable();
-        info!("motion: period {} ns = {} ticks of {} Hz", tb.period_ns, tb.period_ticks, tb.timer_hz);
-        Ok(port)
-    }
-    #[cfg(not(feature = "hw"))]
-    {
-        // Software time base: microseconds of embassy time.
-        let tb = TimeBase::new(1_000_000, cfg.motion.tick_ns).map_err(motion::StartError::TimeBase)?;
-        let now = embassy_time::Instant::now().as_micros() as u32;
-        let port = motion::init(cfg, pos, tb, now, 0)?;
-        info!("motion: software time base, period {} ns", tb.period_ns);
-        Ok(port)
-    }
 }
 
 /// Nanoseconds since boot.
@@ -557,14 +481,16 @@ async fn usb_tx(mut tx: firmware::usb::UsbOut, control: embassy_usb::class::cdc_
                 info!("link: {}", if link == Link::Usb { "USB" } else { "USART2" });
                 if link == Link::Usb {
                     let mut greeting = controller::WELCOME.bytes().chain(*b"\r\n");
-                    let sent = output.send(&mut tx, |buf| buf.iter_mut().zip(&mut greeting).map(|(slot, b)| *slot = b).count());
+                    let sent = output
+                        .send(&mut tx, |buf| buf.iter_mut().zip(&mut greeting).map(|(slot, b)| *slot = b).count());
                     if sent.await.is_err() {
                         break;
                     }
                 }
             }
             if usb_active() {
-                let take = |buf: &mut [u8]| CONTROLLER.lock(|c| c.borrow_mut().as_deref_mut().map_or(0, |c| c.transmit(buf)));
+                let take =
+                    |buf: &mut [u8]| CONTROLLER.lock(|c| c.borrow_mut().as_deref_mut().map_or(0, |c| c.transmit(buf)));
                 if output.send(&mut tx, take).await.is_err() {
                     break;
                 }
