@@ -10,6 +10,7 @@
 //!   zero-length packet (a host holds a full packet back until one comes).
 //! - [`select`]: which link the controller talks to — USB while a host has its
 //!   port open, USART2 otherwise — and what a switch drops.
+//! - [`usb`]: the USB device (one CDC-ACM port), for any embassy-usb driver.
 #![no_std]
 #![forbid(unsafe_code)]
 
@@ -19,6 +20,7 @@ extern crate std;
 pub mod held;
 pub mod packets;
 pub mod select;
+pub mod usb;
 
 /// The controller as the link tasks see it: bytes in, bytes out
 /// ([`controller::Controller::receive`], [`controller::Controller::transmit`]).
