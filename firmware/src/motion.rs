@@ -268,6 +268,34 @@ impl CanonSink for MotionPort {
     }
 }
 
+/// Builds the motion core at reference position 1 and starts the step, period and
+/// encoder interrupts (on the board) — or, in the QEMU build, the software time base
+/// that the control task advances (`soft.rs`).
+pub fn start(cfg: &MachineConfig) -> Result<MotionPort, StartError> {
+    let pos = cfg.reference[0];
+    #[cfg(feature = "hw")]
+    {
+        use crate::board::{ENCODER_TIMER, TIMER_HZ};
+        let tb = TimeBase::new(TIMER_HZ, cfg.motion.tick_ns).map_err(StartError::TimeBase)?;
+        let mut port = init(cfg, pos, tb, 0, 0)?;
+        let start = isr::start_timers(tb.period_ticks);
+        let raw = ENCODER_TIMER.cnt().read();
+        port.lock(|m| m.engine.set_origin(start, raw));
+        isr::enable();
+        defmt::info!("motion: period {} ns = {} ticks of {} Hz", tb.period_ns, tb.period_ticks, tb.timer_hz);
+        Ok(port)
+    }
+    #[cfg(not(feature = "hw"))]
+    {
+        // Software time base: microseconds of embassy time.
+        let tb = TimeBase::new(1_000_000, cfg.motion.tick_ns).map_err(StartError::TimeBase)?;
+        let now = embassy_time::Instant::now().as_micros() as u32;
+        let port = init(cfg, pos, tb, now, 0)?;
+        defmt::info!("motion: software time base, period {} ns", tb.period_ns);
+        Ok(port)
+    }
+}
+
 /// The hardware motion interrupts (not in the QEMU build: QEMU models neither the
 /// timers' compares nor GPIO).
 #[cfg(feature = "hw")]
