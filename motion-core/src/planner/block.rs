@@ -92,22 +92,40 @@ pub enum BlockKind {
 }
 
 /// Look-ahead state of a block (speeds in nm per interpolation period).
+///
+/// A planned entry speed is the speed of the interpolation period that reaches
+/// (or crosses) the block's start; the interpolator's discrete profile
+/// ([`crate::interpolator`]) runs exactly on these numbers, several blocks a
+/// period if their lengths ask for it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Plan {
     /// Path length, Q8 nm.
     pub len_q8: u64,
-    /// Path acceleration the axes allow along this block, nm/period².
+    /// Path acceleration the axes allow along this block, nm/period², on the Q8
+    /// grid (`accel_q8 / 256` exactly), so the planner's look-ahead and the
+    /// interpolator's braking test use the same number.
     pub accel: f32,
+    /// `accel` in Q8 nm/period².
+    pub accel_q8: u64,
     /// Highest path speed the axes allow (feed limits, arcs' normal acceleration
     /// and chord tolerance), nm/period.
     pub cap: f32,
     /// The programmed speed at 100 % override (junction speeds stay below it).
     pub nominal: f32,
-    /// Square of the highest entry speed the junction with the previous block allows.
-    pub max_entry_sq: f32,
-    /// Square of the planned entry speed.
-    pub entry_sq: f32,
-    /// The planned entry speed, Q8 nm/period (what the interpolator brakes to).
+    /// The highest entry speed the junction with the previous block allows (0:
+    /// the block starts from rest).
+    pub max_entry: f32,
+    /// The look-ahead's `reach` (see [`lookahead`](super::lookahead)) from which
+    /// the entry is `max_entry`.
+    pub max_reach: f32,
+    /// The junction's own limit (`max_entry` is the smaller of it and the
+    /// chain's curvature speed, [`bend`](super::bend), which rises as the path
+    /// beyond the junction arrives).
+    pub pending: f32,
+    /// The planned entry speed.
+    pub entry: f32,
+    /// The planned entry speed, Q8 nm/period (what the interpolator brakes to;
+    /// 0: the block before ends at rest).
     pub entry_q8: u64,
     /// `2 · accel · length`, for the backward pass.
     pub two_a_len: f32,
@@ -230,6 +248,22 @@ fn axis_caps(dir: &Dir, p: &MotionParams, rapid: bool) -> (f32, f32) {
     (cap, accel)
 }
 
+/// The acceleration of the slowest axis `dir` moves: a cutting line's path
+/// acceleration. Smaller than the most the axes allow along `dir` (up to √2 on a
+/// diagonal), but the same for every direction of the same axes, so the blocks
+/// of a blended chain share one acceleration and the look-ahead's braking test
+/// holds across all of them at once (see [`lookahead`](super::lookahead)).
+#[inline(always)]
+fn slowest_axis_accel(dir: &Dir, p: &MotionParams) -> f32 {
+    let mut accel = f32::MAX;
+    for (u, lim) in dir.iter().zip(&p.limits) {
+        if u.abs() > 1e-9 && lim.present {
+            accel = minf(accel, lim.accel);
+        }
+    }
+    accel
+}
+
 fn len_q8(len: f32) -> Result<u64, AlarmKind> {
     let q = len * (1u32 << PATH_FRAC) as f32 + 0.5;
     if !(q >= 1.0 && q < (1u64 << 50) as f32) {
@@ -240,13 +274,20 @@ fn len_q8(len: f32) -> Result<u64, AlarmKind> {
 
 fn plan(len: u64, accel: f32, cap: f32, nominal: f32) -> Plan {
     let len_nm = f32_of(len as i64) / (1u32 << PATH_FRAC) as f32;
+    // On the Q8 grid (at least 1/256 nm per period²): exactly what the
+    // interpolator brakes with.
+    let accel_q8 = u64_of(accel * (1u32 << PATH_FRAC) as f32).max(1);
+    let accel = f32_of(accel_q8 as i64) / (1u32 << PATH_FRAC) as f32;
     Plan {
         len_q8: len,
         accel,
+        accel_q8,
         cap,
         nominal: minf(nominal, cap),
-        max_entry_sq: 0.0,
-        entry_sq: 0.0,
+        max_entry: 0.0,
+        max_reach: 0.0,
+        pending: 0.0,
+        entry: 0.0,
         entry_q8: 0,
         two_a_len: 2.0 * accel * len_nm,
     }
@@ -277,9 +318,10 @@ pub fn line(
         (false, FeedMode::PerMin) => FeedSpec::PerMin(m.feed.value),
         (false, FeedMode::PerRev) => FeedSpec::PerRev(m.feed.value),
     };
-    let (mut cap, accel) = axis_caps(&dir, p, rapid);
+    let (mut cap, mut accel) = axis_caps(&dir, p, rapid);
     if !rapid {
         cap = minf(cap, p.path_feed);
+        accel = slowest_axis_accel(&dir, p);
     }
     let kind = if rapid && m.independent { BlockKind::Independent } else { BlockKind::Line };
     let len = len_q8(len)?;

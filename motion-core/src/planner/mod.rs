@@ -8,6 +8,7 @@
 //! machine can stop in time. A command (spindle, coolant, dwell, stop …) is a
 //! barrier: the motion before it ends at rest and it runs when that motion has.
 
+pub mod bend;
 pub mod block;
 pub mod lookahead;
 pub mod machine;
@@ -18,7 +19,7 @@ pub use machine::{AxisLimits, AxisScale, MotionParams};
 use crate::alarm::AlarmKind;
 use crate::axis::{AXIS_COUNT, Axis, Pos};
 use crate::canon::{Action, Canon, SpindleCommand, ThreadSync};
-use crate::fixed::minf;
+use crate::fixed::{f32_of, minf};
 use block::{Dir, Prepared};
 
 /// A non-motion action, run when the motion before it has finished.
@@ -103,6 +104,8 @@ struct Tail {
     nominal: f32,
     /// Whether the next block may blend with it (G64 cutting move without exact stop).
     blend: bool,
+    /// Its length, nm (the curvature of a chain of short blocks).
+    len: f32,
     /// The long axis of a thread block (a continuing thread may follow).
     thread: Option<Axis>,
     /// The lead a thread sequence with a G34 in it ends with, nm/rev: a block
@@ -117,22 +120,38 @@ pub struct Planner<const N: usize> {
     tail: Tail,
     /// Motion blocks taken out so far.
     taken: u64,
+    /// How many entries at the queue's end are blended blocks of one acceleration
+    /// (`run_accel_q8`): the interpolator's braking test for one boundary among them
+    /// holds for all later ones.
+    run: usize,
+    run_accel_q8: u64,
+    /// The chain at the queue's end: its curvature and waiting junctions.
+    bend: bend::Bend,
 }
 
 impl<const N: usize> Planner<N> {
     /// An empty queue with the axes at `pos` (machine, nm).
     pub fn new(pos: Pos) -> Self {
-        Planner { queue: heapless::Deque::new(), tail: Self::rest(pos), taken: 0 }
+        Planner {
+            queue: heapless::Deque::new(),
+            tail: Self::rest(pos),
+            taken: 0,
+            run: 0,
+            run_accel_q8: 0,
+            bend: bend::Bend::default(),
+        }
     }
 
     fn rest(end: Pos) -> Tail {
-        Tail { end, dir: [0.0; AXIS_COUNT], nominal: 0.0, blend: false, thread: None, thread_lead: None }
+        Tail { end, dir: [0.0; AXIS_COUNT], nominal: 0.0, blend: false, len: 0.0, thread: None, thread_lead: None }
     }
 
     /// Drops everything queued; the next block starts from `pos`.
     pub fn clear(&mut self, pos: Pos) {
         self.queue.clear();
         self.tail = Self::rest(pos);
+        self.run = 0;
+        self.bend.clear();
     }
 
     /// Whether no more can be queued.
@@ -191,6 +210,14 @@ impl<const N: usize> Planner<N> {
             Some(Item::Motion(b)) => b.plan.entry_q8,
             _ => 0,
         }
+    }
+
+    /// The blended run at the queue's end: the queue index from which every entry
+    /// is a blended block of one acceleration, and that acceleration (Q8
+    /// nm/period²). Its entry speeds chain exactly at that acceleration
+    /// ([`lookahead`]).
+    pub fn uniform_run(&self) -> (usize, u64) {
+        (self.queue.len() - self.run.min(self.queue.len()), self.run_accel_q8)
     }
 
     /// Prepares `c` and queues it, re-planning the entry speeds.
@@ -260,6 +287,8 @@ impl<const N: usize> Planner<N> {
             _ => return Ok(()),
         };
         self.queue.push_back(Item::Command { line, cmd }).map_err(|_| PushError::Full)?;
+        self.bend.clear();
+        self.run = 0;
         self.tail.blend = false;
         self.tail.thread = None;
         self.tail.thread_lead = None;
@@ -269,28 +298,68 @@ impl<const N: usize> Planner<N> {
     /// Plans the block just written into the queue's last slot, which ends at
     /// `prep.end`.
     fn push_motion(&mut self, prep: &Prepared, p: &MotionParams) {
+        let start = self.tail.end;
         let Some(Item::Motion(b)) = self.queue.back_mut() else { return };
         let blends = matches!(b.kind, BlockKind::Line | BlockKind::Arc(_)) && b.feed != FeedSpec::Rapid;
-        if self.tail.blend && blends {
-            let v = lookahead::junction_speed(&self.tail.dir, &prep.dir_in, p);
-            let v = minf(minf(v, self.tail.nominal), minf(b.plan.nominal, b.plan.cap));
-            b.plan.max_entry_sq = v * v;
+        let len = f32_of(b.plan.len_q8 as i64) * (1.0 / (1u32 << crate::fixed::PATH_FRAC) as f32);
+        let joins = self.tail.blend && blends;
+        if joins {
+            let v = lookahead::junction_speed(&self.tail.dir, &prep.dir_in, minf(self.tail.len, len), p);
+            b.plan.pending = minf(minf(v, self.tail.nominal), minf(b.plan.nominal, b.plan.cap));
         }
+        self.run = if blends && self.run > 0 && b.plan.accel_q8 == self.run_accel_q8 { self.run + 1 } else { 1 };
+        self.run_accel_q8 = b.plan.accel_q8;
         self.tail = Tail {
             end: prep.end,
             dir: prep.dir_out,
             nominal: b.plan.nominal,
             blend: blends && !b.exact_stop,
+            len,
             thread: if let BlockKind::Thread(t) = b.kind { Some(t.long) } else { None },
             thread_lead: match b.kind {
                 BlockKind::Thread(t) if t.lead_delta != 0 || t.keep_lead => Some(t.lead_end),
                 _ => None,
             },
         };
+        if blends {
+            // The chain's curvature: this junction's limit now, and earlier ones
+            // raised as the path beyond them becomes known.
+            let lim = bend::Limits {
+                settle_len: p.settle_len,
+                noise: p.input_noise,
+                tol: p.chord_tolerance,
+                a_n: p.accel_min * 0.5,
+            };
+            let Planner { queue, bend, .. } = self;
+            let curve = bend.push(start, prep.end, len, joins, &lim, |from_end, count, v| {
+                raise(queue, from_end, count, v);
+            });
+            if joins {
+                raise(queue, 1, 1, curve);
+            }
+        } else {
+            self.bend.clear();
+        }
         lookahead::backward_pass(self.queue.iter_mut().rev().map(|item| match item {
             Item::Motion(b) => Some(b),
             Item::Command { .. } => None,
         }));
+    }
+}
+
+/// Raises the highest entry of `count` queued blocks, starting `from_end` entries
+/// before the queue's end, to the smaller of their junction's own limit and the
+/// chain's curvature speed `curve` (nm/period), where that is higher than before.
+fn raise<const N: usize>(queue: &mut heapless::Deque<Item, N>, from_end: usize, count: usize, curve: f32) {
+    let first = queue.len().saturating_sub(from_end);
+    let count = count.saturating_sub(from_end.saturating_sub(queue.len()));
+    for item in queue.iter_mut().skip(first).take(count) {
+        if let Item::Motion(b) = item {
+            let v = minf(b.plan.pending, curve);
+            if v > b.plan.max_entry {
+                lookahead::set_max_entry(b, v);
+            }
+        }
     }
 }
 
@@ -303,19 +372,22 @@ mod tests {
     use canon::xorshift::XorShift;
 
     /// The entries of `queue` re-planned from rest at its end without stopping
-    /// early (the pass as it was before its early stops).
+    /// early (the pass as it would be without its early stops), as
+    /// `lookahead::set_entry` computes each.
     fn full_replan(queue: &[Block]) -> std::vec::Vec<(f32, u64)> {
-        let mut exit_sq = 0.0f32;
+        let mut exit = 0.0f32;
         let mut out = std::vec::Vec::new();
         for b in queue.iter().rev() {
-            let reach = exit_sq + b.plan.two_a_len;
-            let entry = if reach >= b.plan.max_entry_sq {
-                sqrtf(b.plan.max_entry_sq)
+            let h = b.plan.accel / 2.0;
+            let reach = (exit - h) * (exit - h) + b.plan.two_a_len;
+            let entry = if reach >= b.plan.max_reach {
+                b.plan.max_entry
             } else {
-                maxf(sqrtf(reach) - b.plan.accel, 0.0)
+                let e = minf((h + sqrtf(reach)) * (1.0 - 1.0 / 262_144.0) - 4.0 / 256.0, b.plan.max_entry);
+                if e < b.plan.accel { 0.0 } else { e }
             };
-            exit_sq = entry * entry;
-            out.push((entry * entry, crate::fixed::u64_of(entry * (1u32 << crate::fixed::PATH_FRAC) as f32)));
+            exit = entry;
+            out.push((entry, crate::fixed::u64_of(maxf(entry, 0.0) * (1u32 << crate::fixed::PATH_FRAC) as f32)));
         }
         out.reverse();
         out
@@ -355,8 +427,8 @@ mod tests {
                     .collect();
                 let want = full_replan(&blocks);
                 for (b, w) in blocks.iter().zip(&want) {
-                    assert_eq!((b.plan.entry_sq, b.plan.entry_q8), *w, "push {k}");
-                    capped += usize::from(b.entry_at_max && b.plan.max_entry_sq > 0.0);
+                    assert_eq!((b.plan.entry, b.plan.entry_q8), *w, "push {k}");
+                    capped += usize::from(b.entry_at_max && b.plan.max_entry > 0.0);
                 }
             }
         }
