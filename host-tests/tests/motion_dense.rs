@@ -108,7 +108,7 @@ fn run(cfg: &MachineConfig, start: Pos, actions: &[Canon], live_at: impl Fn(u64)
         if interp.segment().is_none() {
             match planner.pop() {
                 Some(Item::Motion(b)) => {
-                    accel = b.plan.accel_q8;
+                    accel = u64::from(b.plan.accel_q8);
                     interp.start(&b, &p);
                     last_v = 0;
                 }
@@ -124,7 +124,7 @@ fn run(cfg: &MachineConfig, start: Pos, actions: &[Canon], live_at: impl Fn(u64)
         let ahead: Vec<_> = planner
             .iter()
             .filter_map(|i| match i {
-                Item::Motion(b) => Some((b.plan.entry_q8, b.exec.end_steps, b.plan.accel_q8)),
+                Item::Motion(b) => Some((u64::from(b.plan.entry_q8), b.exec.end_steps, u64::from(b.plan.accel_q8))),
                 Item::Command { .. } => None,
             })
             .collect();

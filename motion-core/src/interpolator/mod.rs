@@ -164,7 +164,7 @@ impl Segment {
         };
         let path = match b.kind {
             BlockKind::Arc(g) => Path::Arc(arc_path(&g, p)),
-            BlockKind::Independent => Path::Independent(independent(from, &end_steps, &b.exec.axis_inv, p)),
+            BlockKind::Independent(inv) => Path::Independent(independent(from, &end_steps, &inv, p)),
             _ => Path::Line,
         };
         Segment {
@@ -179,7 +179,7 @@ impl Segment {
             end_steps,
             len: b.plan.len_q8,
             inv: b.exec.inv_len,
-            accel: b.plan.accel_q8,
+            accel: u64::from(b.plan.accel_q8),
             cap: q8(b.plan.cap),
             exact_stop: b.exact_stop,
         }
@@ -423,7 +423,9 @@ impl Interpolator {
         let rem = seg.len - self.s;
         let creep = rem.min(a).min(cap);
         match planner.front() {
-            Some(Item::Motion(b)) if creep == rem && !at_rest && b.plan.entry_q8 > 0 => creep.min(b.plan.entry_q8),
+            Some(Item::Motion(b)) if creep == rem && !at_rest && b.plan.entry_q8 > 0 => {
+                creep.min(u64::from(b.plan.entry_q8))
+            }
             _ => creep,
         }
     }
@@ -469,8 +471,8 @@ fn allowed<const N: usize>(
     loop {
         let ok = match next {
             None => fits(v, 0, a, rem),
-            Some((_, b)) if rem <= v => v <= b.plan.entry_q8,
-            Some((_, b)) => fits(v, b.plan.entry_q8, a, rem),
+            Some((_, b)) if rem <= v => v <= u64::from(b.plan.entry_q8),
+            Some((_, b)) => fits(v, u64::from(b.plan.entry_q8), a, rem),
         };
         if !ok {
             k += 1;
@@ -484,16 +486,25 @@ fn allowed<const N: usize>(
             if twice.saturating_mul(twice) <= (8 * a).saturating_mul(rem) {
                 return Some(v);
             }
-            // One run of blocks of the test's acceleration from here on.
-            if i >= run_from && a >= run_accel && chains(v, b.plan.entry_q8, run_accel, rem) {
+            // One run of blocks of the test's acceleration from here on (with
+            // room for the rounding of the planned entries, RUN_SLACK).
+            let run_accel = u64::from(run_accel);
+            let e = u64::from(b.plan.entry_q8);
+            if i >= run_from && a >= run_accel && chains(v, e, run_accel, rem.saturating_sub(RUN_SLACK)) {
                 return Some(v);
             }
         }
         rem = rem.saturating_add(b.plan.len_q8);
-        a = a.min(b.plan.accel_q8);
+        a = a.min(u64::from(b.plan.accel_q8));
         next = if b.exact_stop { None } else { blended(items.next()) };
     }
 }
+
+/// Distance (Q8 nm, a quarter of a micrometre) the braking test keeps in hand when
+/// it lets the planner's chain of entries carry it over a run of blocks: the f32
+/// rounding of the entries and of their Q8 form can break the chain by a fraction
+/// of a nanometre a block.
+const RUN_SLACK: u64 = 250 << 8;
 
 /// The queued block `item`, if the path may blend into it (a motion block with a
 /// planned entry above zero).

@@ -9,7 +9,7 @@
 //! 0.02 mm block by 0.025 rad, the angle a 0.8 mm radius would give it.
 //!
 //! So the curvature is measured on the path itself, at sample points of the chain
-//! (junctions at least `settle_len / 4` apart): the circle through the sample, a
+//! (junctions at least `settle_len / 2` apart): the circle through the sample, a
 //! point at least `settle_len` before it (or the chain's start) and the chain's end
 //! as it stands, `s_b` and `s_f` of path away. A rounding of `δ` changes that
 //! estimate by at most `ν = 4·δ / (s_b·s_f)`, so `κ + ν` bounds the curvature from
@@ -26,14 +26,18 @@
 //! `v² ≈ 2a·s_f` at `s_f` from it, and the bound allows `v² ≥ a_n·s_b·s_f / 4δ`,
 //! more for any `s_b` above `16·δ`.
 //!
-//! The junctions within the chain's first `settle_len / 4` each get their own
-//! bound, from the chain's start, the junction and the block's end.
+//! Only *dense* junctions take part: where a block next to the junction is shorter
+//! than twice the junction's own limit per period, so that a period may span two
+//! junctions. Elsewhere a period crosses one junction at a time and the corner
+//! rules of [`lookahead`](super::lookahead) are exact; such a junction starts the
+//! chain anew, and the junctions within the chain's first `settle_len / 2` each
+//! get their own bound, from the chain's start, the junction and the block's end.
 
 use crate::axis::{AXIS_COUNT, Pos};
 use crate::fixed::{f32_of, minf, sqrtf};
 
 /// Sample points kept: the span behind the newest and the ones still rising.
-const SAMPLES: usize = 12;
+const SAMPLES: usize = 8;
 
 /// `settle_len` for the fastest cutting feed `v_max` (nm/period), the smallest
 /// axis acceleration `accel_min` (nm/period²) and the input rounding `noise` (nm),
@@ -79,9 +83,6 @@ struct Sample {
     at: Pos,
     /// Path length from the chain's start, nm.
     s: f32,
-    /// The point before it the estimate uses, and the path length between them.
-    back: Pos,
-    s_back: f32,
     /// The speed its junctions may pass at (nm/period), rising.
     speed: f32,
     /// Junctions from this sample up to the next one.
@@ -90,7 +91,7 @@ struct Sample {
     open: bool,
 }
 
-/// The chain at the queue's end.
+/// The chain of dense junctions at the queue's end.
 #[derive(Clone, Debug)]
 pub struct Bend {
     samples: heapless::Deque<Sample, SAMPLES>,
@@ -109,7 +110,8 @@ impl Default for Bend {
 /// The curvature (1/nm) of the circle through `a`, `b`, `c`: `2·|ab × bc| / (|ab|·|bc|·|ac|)`.
 pub fn curvature(a: &Pos, b: &Pos, c: &Pos) -> f32 {
     let d = |p: &Pos, q: &Pos| -> [f32; AXIS_COUNT] { core::array::from_fn(|i| f32_of(q.0[i].wrapping_sub(p.0[i]))) };
-    let (u, w, x) = (d(a, b), d(b, c), d(a, c));
+    let (u, w) = (d(a, b), d(b, c));
+    let x: [f32; AXIS_COUNT] = core::array::from_fn(|i| u[i] + w[i]);
     let norm2 = |v: &[f32; AXIS_COUNT]| v.iter().map(|c| c * c).sum::<f32>();
     // |u × w|² as the sum of the squared 2×2 minors (exact in any dimension).
     let mut cross2 = 0.0;
@@ -124,76 +126,77 @@ pub fn curvature(a: &Pos, b: &Pos, c: &Pos) -> f32 {
 }
 
 impl Bend {
-    /// Forgets the chain: the next block starts a new one.
+    /// Forgets the chain.
     pub fn clear(&mut self) {
         self.samples.clear();
         self.s_end = 0.0;
     }
 
-    /// A block of the chain from `start` to `end`, `len` nm long, whose junction
-    /// with the block before is `joins` (false: it starts the chain). Returns the
-    /// speed its junction may pass at now, and calls `raise(from_end, count,
-    /// speed)` for every earlier stretch of junctions whose speed rose: the
-    /// `count` junctions (blocks) starting `from_end` entries before the queue's
-    /// end (the new block is its last entry).
+    /// A block from `start` to `end`, `len` nm long, whose junction with the
+    /// block before is not dense (or that starts from rest): it starts a new chain.
+    #[inline]
+    pub fn restart(&mut self, start: &Pos, len: f32) {
+        self.samples.clear();
+        (self.start, self.s_end) = (*start, len);
+    }
+
+    /// A block from `start` to `end`, `len` nm long, whose junction with the
+    /// block before is a dense junction of the chain. Returns the speed its
+    /// junction may pass at now, and calls `raise(from_end, count, speed)` for
+    /// every earlier stretch of junctions whose speed rose: the `count` junctions
+    /// (blocks) starting `from_end` entries before the queue's end (the new block
+    /// is its last entry).
     pub fn push(
         &mut self,
-        start: Pos,
-        end: Pos,
+        start: &Pos,
+        end: &Pos,
         len: f32,
-        joins: bool,
         lim: &Limits,
         mut raise: impl FnMut(usize, usize, f32),
     ) -> f32 {
-        if !joins {
-            self.clear();
-            self.start = start;
-        }
         let s_j = self.s_end;
-        let new_sample = joins
-            && match self.samples.back() {
-                None => s_j >= lim.settle_len * 0.25,
-                Some(b) => s_j - b.s >= lim.settle_len * 0.25,
-            };
+        let spacing = lim.settle_len * 0.5;
+        let new_sample = match self.samples.back() {
+            None => s_j >= spacing,
+            Some(b) => s_j - b.s >= spacing,
+        };
         if new_sample {
             if self.samples.is_full() {
                 self.samples.pop_front();
             }
-            // The newest sample at least `settle_len` before, or the chain's start.
-            let (back, b_s) = self
-                .samples
-                .iter()
-                .rev()
-                .find(|b| s_j - b.s >= lim.settle_len)
-                .map_or((self.start, 0.0), |b| (b.at, b.s));
-            let s = Sample { at: start, s: s_j, back, s_back: s_j - b_s, speed: 0.0, count: 0, open: true };
-            let _ = self.samples.push_back(s);
+            let _ = self.samples.push_back(Sample { at: *start, s: s_j, speed: 0.0, count: 0, open: true });
         }
-        self.end = end;
+        self.end = *end;
         self.s_end += len;
-        if !joins {
-            return 0.0;
-        }
+        let n = self.samples.len();
         let Some(newest) = self.samples.back_mut() else {
             // Within the chain's first stretch: a bound of its own.
-            return lim.bound(&self.start, &start, &end, s_j, len);
+            return lim.bound(&self.start, start, end, s_j, len);
         };
         newest.count += 1;
         // The open samples' bounds, with the path known to the new end: the newest
         // at every block, the older ones when a sample is added.
         let mut from_end = 0;
-        let n = self.samples.len();
         for k in (0..n).rev() {
-            let Some(s) = self.samples.get_mut(k) else { break };
+            let Some(s) = self.samples.get(k).copied() else { break };
             from_end += usize::from(s.count);
             if !s.open || (k + 1 < n && !new_sample) {
                 continue;
             }
             let s_f = self.s_end - s.s;
-            let v = lim.bound(&s.back, &s.at, &self.end, s.s_back, s_f);
-            s.open = s_f < lim.settle_len;
-            if v > s.speed {
-                s.speed = v;
+            // The newest sample at least `settle_len` before, or the chain's start.
+            let mut back = (self.start, s.s);
+            for i in (0..k).rev() {
+                if let Some(b) = self.samples.get(i).filter(|b| s.s - b.s >= lim.settle_len) {
+                    back = (b.at, s.s - b.s);
+                    break;
+                }
+            }
+            let v = lim.bound(&back.0, &s.at, &self.end, back.1, s_f);
+            let Some(m) = self.samples.get_mut(k) else { break };
+            m.open = s_f < lim.settle_len;
+            if v > m.speed {
+                m.speed = v;
                 // The new junction takes it from the return value.
                 let count = usize::from(s.count) - usize::from(k + 1 == n);
                 if count > 0 {
@@ -236,7 +239,11 @@ mod tests {
             let len = curvature_len(&w[0], &w[1]);
             // The queue holds every block so far; the new one is its last entry.
             speeds.push(0.0);
-            let v = bend.push(w[0], w[1], len, k > 0, lim, |from_end, count, v| {
+            if k == 0 {
+                bend.restart(&w[0], len);
+                continue;
+            }
+            let v = bend.push(&w[0], &w[1], len, lim, |from_end, count, v| {
                 let first = speeds.len() - from_end;
                 for s in &mut speeds[first..first + count] {
                     assert!(v >= *s, "a junction's speed fell");

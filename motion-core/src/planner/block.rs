@@ -81,8 +81,9 @@ pub struct TapSpec {
 pub enum BlockKind {
     /// A straight line, all axes interpolated together.
     Line,
-    /// A rapid with each axis at its own rate (dog-leg path, G28/G30).
-    Independent,
+    /// A rapid with each axis at its own rate (dog-leg path, G28/G30), with
+    /// `2^62 / length` of each axis's own move.
+    Independent([i64; AXIS_COUNT]),
     /// An arc in a plane.
     Arc(ArcGeom),
     /// A thread pass locked to the spindle.
@@ -101,12 +102,10 @@ pub enum BlockKind {
 pub struct Plan {
     /// Path length, Q8 nm.
     pub len_q8: u64,
-    /// Path acceleration the axes allow along this block, nm/period², on the Q8
-    /// grid (`accel_q8 / 256` exactly), so the planner's look-ahead and the
-    /// interpolator's braking test use the same number.
+    /// Path acceleration the axes allow along this block, nm/period².
     pub accel: f32,
-    /// `accel` in Q8 nm/period².
-    pub accel_q8: u64,
+    /// `accel` in Q8 nm/period², rounded down (what the interpolator brakes with).
+    pub accel_q8: u32,
     /// Highest path speed the axes allow (feed limits, arcs' normal acceleration
     /// and chord tolerance), nm/period.
     pub cap: f32,
@@ -115,8 +114,8 @@ pub struct Plan {
     /// The highest entry speed the junction with the previous block allows (0:
     /// the block starts from rest).
     pub max_entry: f32,
-    /// The look-ahead's `reach` (see [`lookahead`](super::lookahead)) from which
-    /// the entry is `max_entry`.
+    /// The look-ahead's reach from which the entry is `max_entry`
+    /// ([`lookahead`](super::lookahead)).
     pub max_reach: f32,
     /// The junction's own limit (`max_entry` is the smaller of it and the
     /// chain's curvature speed, [`bend`](super::bend), which rises as the path
@@ -126,7 +125,7 @@ pub struct Plan {
     pub entry: f32,
     /// The planned entry speed, Q8 nm/period (what the interpolator brakes to;
     /// 0: the block before ends at rest).
-    pub entry_q8: u64,
+    pub entry_q8: u32,
     /// `2 · accel · length`, for the backward pass.
     pub two_a_len: f32,
 }
@@ -167,8 +166,6 @@ pub struct Exec {
     /// The programmed speed: Q8 nm per period (feed per minute) or Q8 nm per
     /// revolution (feed per revolution); 0 for rapids.
     pub rate_q8: i64,
-    /// Independent rapids: `2^62 / length` of each axis's own move.
-    pub axis_inv: [i64; AXIS_COUNT],
 }
 
 impl Exec {
@@ -178,7 +175,7 @@ impl Exec {
     /// slot (as a call, the result was built on the stack and copied; zeroed in the
     /// slot and filled later, it cost a `memclr` of 80 bytes and two copies).
     #[inline(always)]
-    pub fn new(kind: &BlockKind, feed: FeedSpec, len_q8: u64, start: &Pos, end: &Pos, p: &MotionParams) -> Self {
+    pub fn new(feed: FeedSpec, len_q8: u64, end: &Pos, p: &MotionParams) -> Self {
         let present = |i: usize| p.limits[i].present;
         let end_steps = core::array::from_fn(|i| if present(i) { p.scale[i].steps(end.0[i]) } else { 0 });
         let rate_q8 = match feed {
@@ -186,15 +183,14 @@ impl Exec {
             FeedSpec::PerMin(f) => p.rate_q8(f),
             FeedSpec::PerRev(f) => f.saturating_mul(1 << PATH_FRAC),
         };
-        let axis_inv = if *kind == BlockKind::Independent { axis_inverses(start, end, p) } else { [0; AXIS_COUNT] };
-        Exec { end_steps, inv_len: inverse62(len_q8), rate_q8, axis_inv }
+        Exec { end_steps, inv_len: inverse62(len_q8), rate_q8 }
     }
 
     /// [`Exec::new`] as a call (threads and taps: rare blocks, no need to grow the
     /// code by another inlined copy).
     #[inline(never)]
-    fn outlined(kind: &BlockKind, feed: FeedSpec, len_q8: u64, start: &Pos, end: &Pos, p: &MotionParams) -> Self {
-        Self::new(kind, feed, len_q8, start, end, p)
+    fn outlined(feed: FeedSpec, len_q8: u64, end: &Pos, p: &MotionParams) -> Self {
+        Self::new(feed, len_q8, end, p)
     }
 }
 
@@ -219,6 +215,8 @@ pub struct Prepared {
     pub dir_out: Dir,
     /// End point, machine coordinates, nm (X radius).
     pub end: Pos,
+    /// Path length, nm.
+    pub len: f32,
 }
 
 /// Length (nm) and unit direction of a straight move. f32 on the FPU: the length
@@ -234,34 +232,23 @@ fn straight(start: &Pos, end: &Pos) -> (f32, Dir) {
     (len, d.map(|v| v * inv))
 }
 
-/// The fastest path speed and acceleration the axes allow along `dir`.
+/// The fastest path speed and the path acceleration the axes allow along `dir`:
+/// a rapid's (or a thread's) acceleration is the most the axes allow along it; a
+/// cutting move's is that of the slowest axis it moves, smaller (up to √2 on a
+/// diagonal) but the same for every direction of the same axes, so the blocks of a
+/// blended chain share one acceleration and the look-ahead's braking test holds
+/// across all of them at once (see [`lookahead`](super::lookahead)).
 #[inline(always)]
-fn axis_caps(dir: &Dir, p: &MotionParams, rapid: bool) -> (f32, f32) {
+fn axis_caps(dir: &Dir, p: &MotionParams, rapid: bool, along: bool) -> (f32, f32) {
     let (mut cap, mut accel) = (f32::MAX, f32::MAX);
     for (u, lim) in dir.iter().zip(&p.limits) {
         let u = u.abs();
         if u > 1e-9 && lim.present {
             cap = minf(cap, if rapid { lim.rapid } else { lim.feed } / u);
-            accel = minf(accel, lim.accel / u);
+            accel = minf(accel, if along { lim.accel / u } else { lim.accel });
         }
     }
     (cap, accel)
-}
-
-/// The acceleration of the slowest axis `dir` moves: a cutting line's path
-/// acceleration. Smaller than the most the axes allow along `dir` (up to √2 on a
-/// diagonal), but the same for every direction of the same axes, so the blocks
-/// of a blended chain share one acceleration and the look-ahead's braking test
-/// holds across all of them at once (see [`lookahead`](super::lookahead)).
-#[inline(always)]
-fn slowest_axis_accel(dir: &Dir, p: &MotionParams) -> f32 {
-    let mut accel = f32::MAX;
-    for (u, lim) in dir.iter().zip(&p.limits) {
-        if u.abs() > 1e-9 && lim.present {
-            accel = minf(accel, lim.accel);
-        }
-    }
-    accel
 }
 
 fn len_q8(len: f32) -> Result<u64, AlarmKind> {
@@ -274,10 +261,7 @@ fn len_q8(len: f32) -> Result<u64, AlarmKind> {
 
 fn plan(len: u64, accel: f32, cap: f32, nominal: f32) -> Plan {
     let len_nm = f32_of(len as i64) / (1u32 << PATH_FRAC) as f32;
-    // On the Q8 grid (at least 1/256 nm per period²): exactly what the
-    // interpolator brakes with.
-    let accel_q8 = u64_of(accel * (1u32 << PATH_FRAC) as f32).max(1);
-    let accel = f32_of(accel_q8 as i64) / (1u32 << PATH_FRAC) as f32;
+    let accel_q8 = ((accel * (1u32 << PATH_FRAC) as f32) as u32).max(1);
     Plan {
         len_q8: len,
         accel,
@@ -318,13 +302,16 @@ pub fn line(
         (false, FeedMode::PerMin) => FeedSpec::PerMin(m.feed.value),
         (false, FeedMode::PerRev) => FeedSpec::PerRev(m.feed.value),
     };
-    let (mut cap, mut accel) = axis_caps(&dir, p, rapid);
+    let (mut cap, accel) = axis_caps(&dir, p, rapid, rapid);
     if !rapid {
         cap = minf(cap, p.path_feed);
-        accel = slowest_axis_accel(&dir, p);
     }
-    let kind = if rapid && m.independent { BlockKind::Independent } else { BlockKind::Line };
-    let len = len_q8(len)?;
+    let kind = if rapid && m.independent {
+        BlockKind::Independent(axis_inverses(start, &m.to.machine, p))
+    } else {
+        BlockKind::Line
+    };
+    let (len_nm, len) = (len, len_q8(len)?);
     *slot = Item::Motion(Block {
         line,
         kind,
@@ -334,9 +321,9 @@ pub fn line(
         exact_stop: m.exact_stop || rapid,
         entry_at_max: false,
         plan: plan(len, accel, cap, nominal(feed, &m.spindle, p, cap)),
-        exec: Exec::new(&kind, feed, len, start, &m.to.machine, p),
+        exec: Exec::new(feed, len, &m.to.machine, p),
     });
-    Ok(Prepared { dir_in: dir, dir_out: dir, end: m.to.machine })
+    Ok(Prepared { dir_in: dir, dir_out: dir, end: m.to.machine, len: len_nm })
 }
 
 /// Start angle and signed sweep of an arc in turns × 2^32 from the radius vectors
@@ -512,7 +499,7 @@ pub fn arc(start: &Pos, a: &ArcMove, p: &MotionParams, line: u32, slot: &mut Ite
     let bend = sqrtf(minf(accel * r, 8.0 * r * p.chord_tolerance));
     let cap = minf(minf(minf(la.feed, lb.feed), p.path_feed), bend);
     let geom = ArcGeom { axes, center: c, r0: r0_nm, r1: r1_nm, theta0, sweep };
-    let len = len_q8(len)?;
+    let (len_nm, len) = (len, len_q8(len)?);
     *slot = Item::Motion(Block {
         line,
         kind: BlockKind::Arc(geom),
@@ -522,10 +509,15 @@ pub fn arc(start: &Pos, a: &ArcMove, p: &MotionParams, line: u32, slot: &mut Ite
         exact_stop: a.exact_stop,
         entry_at_max: false,
         plan: plan(len, accel, cap, nominal(feed, &a.spindle, p, cap)),
-        exec: Exec::new(&BlockKind::Arc(geom), feed, len, start, &a.to.machine, p),
+        exec: Exec::new(feed, len, &a.to.machine, p),
     });
     let ccw = sweep > 0;
-    Ok(Prepared { dir_in: tangent(axes, s, r0f, ccw), dir_out: tangent(axes, e, r1f, ccw), end: a.to.machine })
+    Ok(Prepared {
+        dir_in: tangent(axes, s, r0f, ccw),
+        dir_out: tangent(axes, e, r1f, ccw),
+        end: a.to.machine,
+        len: len_nm,
+    })
 }
 
 /// The axis that travels furthest (the thread's or tap's long axis).
@@ -596,13 +588,13 @@ pub fn thread(
     // Path speed whose long-axis part is the largest lead × rpm.
     let v = p.per_tick(rpm * lead.max(lead_end) as f32) / along;
     check_speed(&dir, v, p).map_err(|a| AlarmKind::ThreadTooFast { letter: a.letter() })?;
-    let (_, accel) = axis_caps(&dir, p, false);
+    let (_, accel) = axis_caps(&dir, p, false, true);
     let cpt = p.per_tick(rpm) * p.cpr as f32;
     let ramp = thread_ramp(&spec, lead_end, cpt, p.cpr, accel * along)?;
     if t.sync == ThreadSync::Index && ramp_up_nm(&spec, ramp, p.cpr) > len * along {
         return Err(AlarmKind::ThreadRampTooLong);
     }
-    let len = len_q8(len)?;
+    let (len_nm, len) = (len, len_q8(len)?);
     *slot = Item::Motion(Block {
         line,
         kind: BlockKind::Thread(spec),
@@ -612,9 +604,9 @@ pub fn thread(
         exact_stop: true,
         entry_at_max: false,
         plan: plan(len, accel, v.max(1.0), v),
-        exec: Exec::outlined(&BlockKind::Thread(spec), FeedSpec::PerRev(lead), len, start, &t.to.machine, p),
+        exec: Exec::outlined(FeedSpec::PerRev(lead), len, &t.to.machine, p),
     });
-    Ok(Prepared { dir_in: dir, dir_out: dir, end: t.to.machine })
+    Ok(Prepared { dir_in: dir, dir_out: dir, end: t.to.machine, len: len_nm })
 }
 
 /// The lead after `length` nm along the long axis of a thread starting at `lead`
@@ -667,11 +659,11 @@ pub fn tap(start: &Pos, t: &TapMove, p: &MotionParams, line: u32, slot: &mut Ite
     // The axis follows the spindle's own acceleration: lead × rev/period².
     let period_s = p.tick_ns as f32 / 1e9;
     let rev_per_tick2 = p.spindle_accel_rpm_s as f32 / 60.0 * period_s * period_s;
-    let (_, accel) = axis_caps(&dir, p, false);
+    let (_, accel) = axis_caps(&dir, p, false, true);
     if t.lead as f32 * rev_per_tick2 / along > accel {
         return Err(too_fast(long));
     }
-    let len = len_q8(len)?;
+    let (len_nm, len) = (len, len_q8(len)?);
     *slot = Item::Motion(Block {
         line,
         kind: BlockKind::Tap(TapSpec { lead: t.lead, dir: t.dir, long }),
@@ -681,16 +673,9 @@ pub fn tap(start: &Pos, t: &TapMove, p: &MotionParams, line: u32, slot: &mut Ite
         exact_stop: true,
         entry_at_max: false,
         plan: plan(len, accel, v.max(1.0), v),
-        exec: Exec::outlined(
-            &BlockKind::Tap(TapSpec { lead: t.lead, dir: t.dir, long }),
-            FeedSpec::PerRev(t.lead),
-            len,
-            start,
-            &t.to.machine,
-            p,
-        ),
+        exec: Exec::outlined(FeedSpec::PerRev(t.lead), len, &t.to.machine, p),
     });
-    Ok(Prepared { dir_in: dir, dir_out: dir, end: t.to.machine })
+    Ok(Prepared { dir_in: dir, dir_out: dir, end: t.to.machine, len: len_nm })
 }
 
 #[cfg(test)]

@@ -32,22 +32,17 @@
 //! later one (its test in [`crate::interpolator`]). So a block gives up nothing of
 //! its entry speed to the discrete profile — before, each block gave up one period
 //! of acceleration, which capped a chain of short blocks at about one block a
-//! period. Entries keep a margin of 2^-18 and 4/256 nm/period below the exact value
-//! for the rounding of f32 and of their Q8 form; an entry below one period of
-//! acceleration is 0 (the block before ends at rest), so an entry only ever rises
-//! as blocks arrive.
+//! period. An entry below one period of acceleration is 0 (the block before ends
+//! at rest), so an entry only ever rises as blocks arrive. (The f32 rounding of
+//! the entries and their Q8 form can break the chain by a fraction of a nanometre
+//! a block; the interpolator's test leaves a quarter of a micrometre for it.)
 //!
 //! The backward pass works with `(e − a/2)²` (one root per changed entry) from the
 //! newest block back to the first one whose entry speed it does not change.
 
 use super::block::{Block, Dir};
 use super::machine::MotionParams;
-use crate::fixed::{PATH_FRAC, maxf, minf, sqrtf, u64_of};
-
-/// Relative margin of a braking-bound entry below its exact value.
-const SHRINK: f32 = 1.0 - 1.0 / 262_144.0;
-/// Absolute margin, nm/period (4 units of the Q8 form).
-const MARGIN: f32 = 4.0 / (1u32 << PATH_FRAC) as f32;
+use crate::fixed::{PATH_FRAC, minf, sqrtf};
 
 /// Highest speed (nm/period) through the junction from direction `a` into `b`;
 /// `short` is the length (nm) of the shorter of the two blocks.
@@ -82,15 +77,13 @@ pub fn junction_speed(a: &Dir, b: &Dir, short: f32, p: &MotionParams) -> f32 {
 pub fn set_max_entry(block: &mut Block, v: f32) {
     block.entry_at_max = false;
     let plan = &mut block.plan;
-    let h = plan.accel * 0.5;
     if v < plan.accel {
-        plan.max_entry = 0.0;
-        plan.max_reach = 0.0;
+        (plan.max_entry, plan.max_reach) = (0.0, 0.0);
         return;
     }
     plan.max_entry = v;
-    // The reach at which the braking-bound entry (with its margins) gets to `v`.
-    let k = (v + MARGIN) / SHRINK - h;
+    // The reach at which the braking-bound entry gets to `v`.
+    let k = v - plan.accel * 0.5;
     plan.max_reach = k * k;
 }
 
@@ -113,12 +106,20 @@ fn set_entry(block: &mut Block, exit: f32) -> bool {
     let entry = if at_max {
         plan.max_entry
     } else {
-        let e = minf((h + sqrtf(reach)) * SHRINK - MARGIN, plan.max_entry);
-        if e < plan.accel { 0.0 } else { e }
+        // Below `max_entry` but for rounding (reach < (max_entry − h)²).
+        let e = h + sqrtf(reach);
+        if e < plan.accel {
+            0.0
+        } else if e > plan.max_entry {
+            plan.max_entry
+        } else {
+            e
+        }
     };
     let changed = entry != plan.entry;
     plan.entry = entry;
-    plan.entry_q8 = u64_of(maxf(entry, 0.0) * (1u32 << PATH_FRAC) as f32);
+    // `entry` is 0 or positive (a negative or NaN would become 0).
+    plan.entry_q8 = (entry * (1u32 << PATH_FRAC) as f32) as u32;
     changed
 }
 

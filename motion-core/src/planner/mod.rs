@@ -19,7 +19,7 @@ pub use machine::{AxisLimits, AxisScale, MotionParams};
 use crate::alarm::AlarmKind;
 use crate::axis::{AXIS_COUNT, Axis, Pos};
 use crate::canon::{Action, Canon, SpindleCommand, ThreadSync};
-use crate::fixed::{f32_of, minf};
+use crate::fixed::minf;
 use block::{Dir, Prepared};
 
 /// A non-motion action, run when the motion before it has finished.
@@ -124,7 +124,7 @@ pub struct Planner<const N: usize> {
     /// (`run_accel_q8`): the interpolator's braking test for one boundary among them
     /// holds for all later ones.
     run: usize,
-    run_accel_q8: u64,
+    run_accel_q8: u32,
     /// The chain at the queue's end: its curvature and waiting junctions.
     bend: bend::Bend,
 }
@@ -203,20 +203,11 @@ impl<const N: usize> Planner<N> {
         self.taken
     }
 
-    /// Planned entry speed of the next block, Q8 nm/period (0 if the next entry is
-    /// not a motion block the running one may blend into).
-    pub fn front_entry_q8(&self) -> u64 {
-        match self.queue.front() {
-            Some(Item::Motion(b)) => b.plan.entry_q8,
-            _ => 0,
-        }
-    }
-
     /// The blended run at the queue's end: the queue index from which every entry
     /// is a blended block of one acceleration, and that acceleration (Q8
     /// nm/period²). Its entry speeds chain exactly at that acceleration
     /// ([`lookahead`]).
-    pub fn uniform_run(&self) -> (usize, u64) {
+    pub fn uniform_run(&self) -> (usize, u32) {
         (self.queue.len() - self.run.min(self.queue.len()), self.run_accel_q8)
     }
 
@@ -225,9 +216,8 @@ impl<const N: usize> Planner<N> {
         if self.queue.is_full() {
             return Err(PushError::Full);
         }
-        let start = self.tail.end;
         let full_circle = matches!(c.action, Action::Arc(a) if a.full_circle);
-        if c.action.endpoint().is_some_and(|e| e.machine == start) && !full_circle {
+        if c.action.endpoint().is_some_and(|e| e.machine == self.tail.end) && !full_circle {
             return Ok(()); // no motion
         }
         if !matches!(
@@ -242,35 +232,36 @@ impl<const N: usize> Planner<N> {
         if self.queue.push_back(placeholder).is_err() {
             return Err(PushError::Full);
         }
-        let Some(slot) = self.queue.back_mut() else { return Err(PushError::Full) };
-        let (thread, thread_lead) = (self.tail.thread, self.tail.thread_lead);
+        let Planner { queue, tail, .. } = self;
+        let Some(slot) = queue.back_mut() else { return Err(PushError::Full) };
+        let start = &tail.end;
         let prepared = match &c.action {
-            Action::Rapid(m) => block::line(&start, m, true, p, c.line, slot),
-            Action::Linear(m) => block::line(&start, m, false, p, c.line, slot),
-            Action::Arc(a) => block::arc(&start, a, p, c.line, slot),
+            Action::Rapid(m) => block::line(start, m, true, p, c.line, slot),
+            Action::Linear(m) => block::line(start, m, false, p, c.line, slot),
+            Action::Arc(a) => block::arc(start, a, p, c.line, slot),
             Action::Thread(t) => {
                 let mut t = *t;
                 // A continuing thread needs a thread to continue (2.17.1 note 2).
-                if thread.is_none() {
+                if tail.thread.is_none() {
                     t.sync = ThreadSync::Index;
                 }
-                block::thread(&start, &t, thread, thread_lead, p, c.line, slot)
+                block::thread(start, &t, tail.thread, tail.thread_lead, p, c.line, slot)
             }
-            Action::Tap(t) => block::tap(&start, t, p, c.line, slot),
+            Action::Tap(t) => block::tap(start, t, p, c.line, slot),
             // Not reached: only motion gets here.
             _ => {
-                self.queue.pop_back();
+                queue.pop_back();
                 return Ok(());
             }
         };
-        match prepared {
+        match &prepared {
             Ok(prep) => {
-                self.push_motion(&prep, p);
+                self.push_motion(prep, p);
                 Ok(())
             }
             Err(e) => {
                 self.queue.pop_back();
-                Err(PushError::Alarm(e))
+                Err(PushError::Alarm(*e))
             }
         }
     }
@@ -298,48 +289,50 @@ impl<const N: usize> Planner<N> {
     /// Plans the block just written into the queue's last slot, which ends at
     /// `prep.end`.
     fn push_motion(&mut self, prep: &Prepared, p: &MotionParams) {
-        let start = self.tail.end;
-        let Some(Item::Motion(b)) = self.queue.back_mut() else { return };
+        let Planner { queue, tail, bend, run, run_accel_q8, .. } = self;
+        let Some(Item::Motion(b)) = queue.back_mut() else { return };
         let blends = matches!(b.kind, BlockKind::Line | BlockKind::Arc(_)) && b.feed != FeedSpec::Rapid;
-        let len = f32_of(b.plan.len_q8 as i64) * (1.0 / (1u32 << crate::fixed::PATH_FRAC) as f32);
-        let joins = self.tail.blend && blends;
+        let len = prep.len;
+        let joins = tail.blend && blends;
+        // Dense: a block at the junction is shorter than two periods at its speed,
+        // so a period may span two junctions; the chain's curvature then limits it
+        // too (below). Elsewhere the junction's own limit is all.
+        let mut dense = false;
         if joins {
-            let v = lookahead::junction_speed(&self.tail.dir, &prep.dir_in, minf(self.tail.len, len), p);
-            b.plan.pending = minf(minf(v, self.tail.nominal), minf(b.plan.nominal, b.plan.cap));
+            let v = lookahead::junction_speed(&tail.dir, &prep.dir_in, minf(tail.len, len), p);
+            let pending = minf(minf(v, tail.nominal), minf(b.plan.nominal, b.plan.cap));
+            b.plan.pending = pending;
+            dense = len < 2.0 * pending || tail.len < 2.0 * pending;
+            if !dense {
+                lookahead::set_max_entry(b, pending);
+            }
         }
-        self.run = if blends && self.run > 0 && b.plan.accel_q8 == self.run_accel_q8 { self.run + 1 } else { 1 };
-        self.run_accel_q8 = b.plan.accel_q8;
-        self.tail = Tail {
-            end: prep.end,
-            dir: prep.dir_out,
-            nominal: b.plan.nominal,
-            blend: blends && !b.exact_stop,
-            len,
-            thread: if let BlockKind::Thread(t) = b.kind { Some(t.long) } else { None },
-            thread_lead: match b.kind {
-                BlockKind::Thread(t) if t.lead_delta != 0 || t.keep_lead => Some(t.lead_end),
-                _ => None,
-            },
+        // The run of one acceleration at the queue's end, counted through dense
+        // junctions (where the interpolator's test needs it).
+        *run = if dense && b.plan.accel_q8 == *run_accel_q8 { *run + 1 } else { 1 };
+        *run_accel_q8 = b.plan.accel_q8;
+        let nominal = b.plan.nominal;
+        let blend = blends && !b.exact_stop;
+        let (thread, thread_lead) = match b.kind {
+            BlockKind::Thread(t) => (Some(t.long), (t.lead_delta != 0 || t.keep_lead).then_some(t.lead_end)),
+            _ => (None, None),
         };
-        if blends {
-            // The chain's curvature: this junction's limit now, and earlier ones
-            // raised as the path beyond them becomes known.
+        // The chain's curvature: this junction's limit now, and earlier ones raised
+        // as the path beyond them becomes known.
+        if dense {
             let lim = bend::Limits {
                 settle_len: p.settle_len,
                 noise: p.input_noise,
                 tol: p.chord_tolerance,
                 a_n: p.accel_min * 0.5,
             };
-            let Planner { queue, bend, .. } = self;
-            let curve = bend.push(start, prep.end, len, joins, &lim, |from_end, count, v| {
-                raise(queue, from_end, count, v);
-            });
-            if joins {
-                raise(queue, 1, 1, curve);
-            }
+            let curve =
+                bend.push(&tail.end, &prep.end, len, &lim, |from_end, count, v| raise(queue, from_end, count, v));
+            raise(queue, 1, 1, curve);
         } else {
-            self.bend.clear();
+            bend.restart(&tail.end, len);
         }
+        *tail = Tail { end: prep.end, dir: prep.dir_out, nominal, blend, len, thread, thread_lead };
         lookahead::backward_pass(self.queue.iter_mut().rev().map(|item| match item {
             Item::Motion(b) => Some(b),
             Item::Command { .. } => None,
@@ -351,10 +344,9 @@ impl<const N: usize> Planner<N> {
 /// before the queue's end, to the smaller of their junction's own limit and the
 /// chain's curvature speed `curve` (nm/period), where that is higher than before.
 fn raise<const N: usize>(queue: &mut heapless::Deque<Item, N>, from_end: usize, count: usize, curve: f32) {
-    let first = queue.len().saturating_sub(from_end);
-    let count = count.saturating_sub(from_end.saturating_sub(queue.len()));
-    for item in queue.iter_mut().skip(first).take(count) {
-        if let Item::Motion(b) = item {
+    let len = queue.len();
+    for i in len.saturating_sub(from_end)..(len + count).saturating_sub(from_end) {
+        if let Some(Item::Motion(b)) = queue.get_mut(i) {
             let v = minf(b.plan.pending, curve);
             if v > b.plan.max_entry {
                 lookahead::set_max_entry(b, v);
@@ -368,13 +360,13 @@ mod tests {
     use super::*;
     use crate::canon::{Endpoint, Feed, FeedMode, Move, SpindleSpeed};
     use crate::config::MachineConfig;
-    use crate::fixed::{maxf, sqrtf};
+    use crate::fixed::sqrtf;
     use canon::xorshift::XorShift;
 
     /// The entries of `queue` re-planned from rest at its end without stopping
     /// early (the pass as it would be without its early stops), as
     /// `lookahead::set_entry` computes each.
-    fn full_replan(queue: &[Block]) -> std::vec::Vec<(f32, u64)> {
+    fn full_replan(queue: &[Block]) -> std::vec::Vec<(f32, u32)> {
         let mut exit = 0.0f32;
         let mut out = std::vec::Vec::new();
         for b in queue.iter().rev() {
@@ -383,11 +375,11 @@ mod tests {
             let entry = if reach >= b.plan.max_reach {
                 b.plan.max_entry
             } else {
-                let e = minf((h + sqrtf(reach)) * (1.0 - 1.0 / 262_144.0) - 4.0 / 256.0, b.plan.max_entry);
-                if e < b.plan.accel { 0.0 } else { e }
+                let e = h + sqrtf(reach);
+                if e < b.plan.accel { 0.0 } else { minf(e, b.plan.max_entry) }
             };
             exit = entry;
-            out.push((entry, crate::fixed::u64_of(maxf(entry, 0.0) * (1u32 << crate::fixed::PATH_FRAC) as f32)));
+            out.push((entry, (entry * (1u32 << crate::fixed::PATH_FRAC) as f32) as u32));
         }
         out.reverse();
         out
