@@ -124,7 +124,7 @@ fn run(cfg: &MachineConfig, start: Pos, actions: &[Canon], live_at: impl Fn(u64)
         let ahead: Vec<_> = planner
             .iter()
             .filter_map(|i| match i {
-                Item::Motion(b) => Some((u64::from(b.plan.entry_q8), b.exec.end_steps, u64::from(b.plan.accel_q8))),
+                Item::Motion(b) => Some((b.plan.entry_q8(), b.exec.end_steps, u64::from(b.plan.accel_q8))),
                 Item::Command { .. } => None,
             })
             .collect();

@@ -42,6 +42,7 @@ use crate::axis::{AXIS_COUNT, Pos};
 use crate::canon::SpindleSpeed;
 use crate::cordic::{TRIG_FRAC, cos_sin};
 use crate::fixed::{FRAC_BITS, PATH_FRAC, STEP_FRAC, mul_q32, mul_shr};
+use crate::planner::block::Plan;
 use crate::planner::{ArcGeom, AxisScale, Block, BlockKind, FeedSpec, Item, MotionParams, Planner};
 use profile::{fits, next_speed};
 
@@ -389,7 +390,7 @@ impl Interpolator {
             s -= seg.len;
             self.steps = seg.end_steps;
             let next = match planner.front() {
-                Some(Item::Motion(b)) if !at_rest && b.plan.entry_q8 > 0 => Segment::new(b, &self.steps, p),
+                Some(Item::Motion(b)) if !at_rest && b.plan.entry_u > 0 => Segment::new(b, &self.steps, p),
                 _ => return self.finish(),
             };
             planner.pop();
@@ -423,9 +424,7 @@ impl Interpolator {
         let rem = seg.len - self.s;
         let creep = rem.min(a).min(cap);
         match planner.front() {
-            Some(Item::Motion(b)) if creep == rem && !at_rest && b.plan.entry_q8 > 0 => {
-                creep.min(u64::from(b.plan.entry_q8))
-            }
+            Some(Item::Motion(b)) if creep == rem && !at_rest && b.plan.entry_u > 0 => creep.min(b.plan.entry_q8()),
             _ => creep,
         }
     }
@@ -465,14 +464,15 @@ fn allowed<const N: usize>(
     let mut rem = seg.len - s;
     let mut a = seg.accel;
     let (run_from, run_accel) = planner.uniform_run();
+    let run_accel = u64::from(run_accel);
     let mut items = planner.iter().enumerate();
     // The block after the boundary, if the path blends into it.
     let mut next = if at_rest { None } else { blended(items.next()) };
     loop {
         let ok = match next {
             None => fits(v, 0, a, rem),
-            Some((_, b)) if rem <= v => v <= u64::from(b.plan.entry_q8),
-            Some((_, b)) => fits(v, u64::from(b.plan.entry_q8), a, rem),
+            Some((_, b)) if rem <= v => below_entry(v, &b.plan),
+            Some((_, b)) => below_entry(v, &b.plan) || chains(v, &b.plan, a, rem),
         };
         if !ok {
             k += 1;
@@ -486,11 +486,9 @@ fn allowed<const N: usize>(
             if twice.saturating_mul(twice) <= (8 * a).saturating_mul(rem) {
                 return Some(v);
             }
-            // One run of blocks of the test's acceleration from here on (with
-            // room for the rounding of the planned entries, RUN_SLACK).
-            let run_accel = u64::from(run_accel);
-            let e = u64::from(b.plan.entry_q8);
-            if i >= run_from && a >= run_accel && chains(v, e, run_accel, rem.saturating_sub(RUN_SLACK)) {
+            // One run of blocks of the test's acceleration from here on: braking
+            // for this boundary by the distance brakes for every later one.
+            if i >= run_from && a >= run_accel && chains(v, &b.plan, run_accel, rem) {
                 return Some(v);
             }
         }
@@ -500,25 +498,35 @@ fn allowed<const N: usize>(
     }
 }
 
-/// Distance (Q8 nm, a quarter of a micrometre) the braking test keeps in hand when
-/// it lets the planner's chain of entries carry it over a run of blocks: the f32
-/// rounding of the entries and of their Q8 form can break the chain by a fraction
-/// of a nanometre a block.
-const RUN_SLACK: u64 = 250 << 8;
-
 /// The queued block `item`, if the path may blend into it (a motion block with a
 /// planned entry above zero).
 fn blended(item: Option<(usize, &Item)>) -> Option<(usize, &Block)> {
     match item {
-        Some((i, Item::Motion(b))) if b.plan.entry_q8 > 0 => Some((i, b)),
+        Some((i, Item::Motion(b))) if b.plan.entry_u > 0 => Some((i, b)),
         _ => None,
     }
 }
 
-/// Whether braking by `a` from `v` ends on a boundary `rem` ahead at speed `e`
-/// by the distance itself, `v² + a·v ≤ e² − a·e + 2a·rem` (what carries from
-/// one boundary of a run to the next; [`fits`] also passes any `v ≤ e`).
-fn chains(v: u64, e: u64, a: u64, rem: u64) -> bool {
+/// Whether `v` is at or below the planned entry `e` of a block (`plan.entry_u`
+/// is `(e − h)²` with `e ≥ 2h`): `v ≤ h` or `(v − h)² ≤ u`.
+fn below_entry(v: u64, plan: &Plan) -> bool {
+    let h = plan.half_q8();
+    v <= h || (v - h).saturating_mul(v - h) <= plan.entry_u
+}
+
+/// Whether braking by `a` from `v` ends on a boundary `rem` ahead at the planned
+/// entry `e` of the block after it by the distance itself (the braking branch of
+/// [`fits`], `v² + a·v ≤ e² − a·e + 2a·rem`, which carries from one boundary of a
+/// run to the next). At the block's own acceleration that is
+/// `(v + h)² ≤ u + 2a·rem`: no root.
+fn chains(v: u64, plan: &Plan, a: u64, rem: u64) -> bool {
+    let h = plan.half_q8();
+    if a == 2 * h {
+        let lhs = (v + h).saturating_mul(v + h);
+        return lhs <= plan.entry_u.saturating_add((2 * a).saturating_mul(rem));
+    }
+    // Another acceleration (where it changes along the way): the entry itself.
+    let e = plan.entry_q8();
     let lhs = v.saturating_mul(v).saturating_add(a.saturating_mul(v));
     let rhs = e.saturating_mul(e).saturating_add((2 * a).saturating_mul(rem));
     a.saturating_mul(e) <= rhs && lhs <= rhs - a.saturating_mul(e)

@@ -95,15 +95,17 @@ struct Sample {
 #[derive(Clone, Debug)]
 pub struct Bend {
     samples: heapless::Deque<Sample, SAMPLES>,
-    /// The chain's start, its end (the last block's end) and its path length, nm.
+    /// The chain's start (taken at its first dense junction: `fresh` until
+    /// then), its end (the last block's end) and its path length, nm.
     start: Pos,
+    fresh: bool,
     end: Pos,
     s_end: f32,
 }
 
 impl Default for Bend {
     fn default() -> Self {
-        Bend { samples: heapless::Deque::new(), start: Pos::ZERO, end: Pos::ZERO, s_end: 0.0 }
+        Bend { samples: heapless::Deque::new(), start: Pos::ZERO, fresh: true, end: Pos::ZERO, s_end: 0.0 }
     }
 }
 
@@ -129,31 +131,36 @@ impl Bend {
     /// Forgets the chain.
     pub fn clear(&mut self) {
         self.samples.clear();
-        self.s_end = 0.0;
+        (self.fresh, self.s_end) = (true, 0.0);
     }
 
-    /// A block from `start` to `end`, `len` nm long, whose junction with the
-    /// block before is not dense (or that starts from rest): it starts a new chain.
+    /// A block `len` nm long whose junction with the block before is not dense
+    /// (or that starts from rest): it starts a new chain.
     #[inline]
-    pub fn restart(&mut self, start: &Pos, len: f32) {
+    pub fn restart(&mut self, len: f32) {
         self.samples.clear();
-        (self.start, self.s_end) = (*start, len);
+        (self.fresh, self.s_end) = (true, len);
     }
 
     /// A block from `start` to `end`, `len` nm long, whose junction with the
-    /// block before is a dense junction of the chain. Returns the speed its
-    /// junction may pass at now, and calls `raise(from_end, count, speed)` for
-    /// every earlier stretch of junctions whose speed rose: the `count` junctions
-    /// (blocks) starting `from_end` entries before the queue's end (the new block
-    /// is its last entry).
+    /// block before (which started at `before`) is a dense junction of the chain.
+    /// Returns the speed its junction may pass at now, and calls
+    /// `raise(from_end, count, speed)` for every earlier stretch of junctions
+    /// whose speed rose: the `count` junctions (blocks) starting `from_end`
+    /// entries before the queue's end (the new block is its last entry).
     pub fn push(
         &mut self,
+        before: &Pos,
         start: &Pos,
         end: &Pos,
         len: f32,
         lim: &Limits,
         mut raise: impl FnMut(usize, usize, f32),
     ) -> f32 {
+        if self.fresh {
+            // The chain's first block is the one before this junction.
+            (self.start, self.fresh) = (*before, false);
+        }
         let s_j = self.s_end;
         let spacing = lim.settle_len * 0.5;
         let new_sample = match self.samples.back() {
@@ -240,10 +247,10 @@ mod tests {
             // The queue holds every block so far; the new one is its last entry.
             speeds.push(0.0);
             if k == 0 {
-                bend.restart(&w[0], len);
+                bend.restart(len);
                 continue;
             }
-            let v = bend.push(&w[0], &w[1], len, lim, |from_end, count, v| {
+            let v = bend.push(&points[k - 1], &w[0], &w[1], len, lim, |from_end, count, v| {
                 let first = speeds.len() - from_end;
                 for s in &mut speeds[first..first + count] {
                     assert!(v >= *s, "a junction's speed fell");

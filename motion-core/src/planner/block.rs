@@ -94,40 +94,56 @@ pub enum BlockKind {
 
 /// Look-ahead state of a block (speeds in nm per interpolation period).
 ///
-/// A planned entry speed is the speed of the interpolation period that reaches
-/// (or crosses) the block's start; the interpolator's discrete profile
-/// ([`crate::interpolator`]) runs exactly on these numbers, several blocks a
-/// period if their lengths ask for it.
+/// A planned entry speed `e` is the speed of the interpolation period that
+/// reaches (or crosses) the block's start. The look-ahead keeps it as
+/// `u = (e − a/2)²` in Q16 (`a` the block's acceleration `accel_q8`, `a/2` its
+/// `half_q8`): the interpolator's discrete profile brakes from `e` to `e'` over a
+/// block of length `L` exactly when `u ≤ u' + 2a·L`, so planning is additions and
+/// the interpolator's tests need no root ([`lookahead`](super::lookahead),
+/// [`crate::interpolator`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Plan {
     /// Path length, Q8 nm.
     pub len_q8: u64,
+    /// `2·a·L` in Q16 (`accel_q8 · len_q8 · 2`, saturating).
+    pub two_a_len: u64,
+    /// The highest planned entry the junction allows, as `u` (0: the block starts
+    /// from rest).
+    pub max_u: u64,
+    /// The planned entry as `u`; 0: the block starts from rest (the path does
+    /// not blend into it). Speeds stay below 2^30 Q8 (4 m/period), `u` below 2^60.
+    pub entry_u: u64,
     /// Path acceleration the axes allow along this block, nm/period².
     pub accel: f32,
-    /// `accel` in Q8 nm/period², rounded down (what the interpolator brakes with).
+    /// `accel` in Q8 nm/period², rounded down to an even number (what the
+    /// interpolator brakes with; `half_q8` is half of it).
     pub accel_q8: u32,
     /// Highest path speed the axes allow (feed limits, arcs' normal acceleration
     /// and chord tolerance), nm/period.
     pub cap: f32,
     /// The programmed speed at 100 % override (junction speeds stay below it).
     pub nominal: f32,
-    /// The highest entry speed the junction with the previous block allows (0:
-    /// the block starts from rest).
-    pub max_entry: f32,
-    /// The look-ahead's reach from which the entry is `max_entry`
-    /// ([`lookahead`](super::lookahead)).
-    pub max_reach: f32,
-    /// The junction's own limit (`max_entry` is the smaller of it and the
+    /// The smallest entry above 0 as `u`: the larger acceleration of the two
+    /// blocks at the junction (a slower entry starts the block from rest).
+    pub floor_u: u64,
+    /// The junction's own limit, nm/period (`max_u` is the smaller of it and the
     /// chain's curvature speed, [`bend`](super::bend), which rises as the path
     /// beyond the junction arrives).
     pub pending: f32,
-    /// The planned entry speed.
-    pub entry: f32,
-    /// The planned entry speed, Q8 nm/period (what the interpolator brakes to;
-    /// 0: the block before ends at rest).
-    pub entry_q8: u32,
-    /// `2 · accel · length`, for the backward pass.
-    pub two_a_len: f32,
+}
+
+impl Plan {
+    /// Half the acceleration, Q8 nm/period² (exact: `accel_q8` is even).
+    #[inline]
+    pub fn half_q8(&self) -> u64 {
+        u64::from(self.accel_q8 / 2)
+    }
+
+    /// The planned entry speed, Q8 nm/period (0 when the block starts from rest);
+    /// by a square root: the interpolator's hot path works with `entry_u`.
+    pub fn entry_q8(&self) -> u64 {
+        if self.entry_u == 0 { 0 } else { self.half_q8() + sqrt_u64(self.entry_u).0 }
+    }
 }
 
 /// A block in the motion queue.
@@ -260,20 +276,20 @@ fn len_q8(len: f32) -> Result<u64, AlarmKind> {
 }
 
 fn plan(len: u64, accel: f32, cap: f32, nominal: f32) -> Plan {
-    let len_nm = f32_of(len as i64) / (1u32 << PATH_FRAC) as f32;
-    let accel_q8 = ((accel * (1u32 << PATH_FRAC) as f32) as u32).max(1);
+    let accel_q8 = ((accel * (1u32 << PATH_FRAC) as f32) as u32).max(2) & !1;
+    let h = u64::from(accel_q8 / 2);
     Plan {
         len_q8: len,
+        // At most 2^62: added to a `u` (below 2^60) it cannot overflow.
+        two_a_len: u64::from(accel_q8).saturating_mul(len).saturating_mul(2).min(1 << 62),
+        max_u: 0,
+        entry_u: 0,
         accel,
         accel_q8,
         cap,
         nominal: minf(nominal, cap),
-        max_entry: 0.0,
-        max_reach: 0.0,
+        floor_u: h * h,
         pending: 0.0,
-        entry: 0.0,
-        entry_q8: 0,
-        two_a_len: 2.0 * accel * len_nm,
     }
 }
 

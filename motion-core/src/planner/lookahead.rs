@@ -32,17 +32,20 @@
 //! later one (its test in [`crate::interpolator`]). So a block gives up nothing of
 //! its entry speed to the discrete profile — before, each block gave up one period
 //! of acceleration, which capped a chain of short blocks at about one block a
-//! period. An entry below one period of acceleration is 0 (the block before ends
-//! at rest), so an entry only ever rises as blocks arrive. (The f32 rounding of
-//! the entries and their Q8 form can break the chain by a fraction of a nanometre
-//! a block; the interpolator's test leaves a quarter of a micrometre for it.)
+//! period. The pass works with `u = (e − a/2)²` in Q16 integers ([`Plan`]): a
+//! braking-bound entry is `u = u' + 2aL`, an addition, exact (one root only where
+//! the acceleration changes from one block to the next). An entry below the
+//! larger acceleration of the two blocks at its junction is 0 (the block before
+//! ends at rest), so an entry only ever rises as blocks arrive.
 //!
-//! The backward pass works with `(e − a/2)²` (one root per changed entry) from the
-//! newest block back to the first one whose entry speed it does not change.
+//! The backward pass runs from the newest block back to the first one whose entry
+//! it does not change.
 
-use super::block::{Block, Dir};
+use super::Item;
+use super::block::{Block, Dir, Plan};
 use super::machine::MotionParams;
 use crate::fixed::{PATH_FRAC, minf, sqrtf};
+use canon::units::sqrt_u64;
 
 /// Highest speed (nm/period) through the junction from direction `a` into `b`;
 /// `short` is the length (nm) of the shorter of the two blocks.
@@ -72,71 +75,112 @@ pub fn junction_speed(a: &Dir, b: &Dir, short: f32, p: &MotionParams) -> f32 {
     v
 }
 
-/// Sets the highest entry speed `v` (nm/period) the junction into `block` allows:
-/// below one period of acceleration the block starts from rest.
-pub fn set_max_entry(block: &mut Block, v: f32) {
-    block.entry_at_max = false;
-    let plan = &mut block.plan;
-    if v < plan.accel {
-        (plan.max_entry, plan.max_reach) = (0.0, 0.0);
-        return;
+/// `u` of a junction limit `v` (nm/period) into a block with `plan`: 0 below the
+/// junction's floor (the block then starts from rest).
+pub fn max_u(plan: &Plan, v: f32) -> u64 {
+    let v_q8 = (v * (1u32 << PATH_FRAC) as f32) as u32;
+    if v_q8 < plan.accel_q8 {
+        return 0;
     }
-    plan.max_entry = v;
-    // The reach at which the braking-bound entry gets to `v`.
-    let k = v - plan.accel * 0.5;
-    plan.max_reach = k * k;
+    let u = square(v_q8 - plan.accel_q8 / 2);
+    if u < plan.floor_u { 0 } else { u }
 }
 
-/// Sets `block`'s entry from the planned entry `exit` of the block after it: the
-/// highest entry from which the interpolator's profile brakes to `exit` by the
-/// block's end, at most the junction's limit. Returns whether the entry changed.
+/// `x²` of a 32-bit `x`: one 32 × 32 → 64-bit multiply.
+#[inline(always)]
+fn square(x: u32) -> u64 {
+    u64::from(x) * u64::from(x)
+}
+
+/// Sets the junction's floor into a block with `plan` from the acceleration
+/// `prev_q8` (Q8) of the block before: the larger of the two accelerations.
+#[inline]
+pub fn set_floor(plan: &mut Plan, prev_q8: u32) {
+    // The block's own acceleration is the floor `plan` starts with.
+    if prev_q8 > plan.accel_q8 {
+        plan.floor_u = square(prev_q8 - plan.accel_q8 / 2);
+    }
+}
+
+/// Sets the highest entry speed `v` (nm/period) the junction into `block` allows.
+pub fn set_max_entry(block: &mut Block, v: f32) {
+    block.entry_at_max = false;
+    block.plan.max_u = max_u(&block.plan, v);
+}
+
+/// `(e − h)²` for the entry `u_next` (0: at rest) of a block whose half
+/// acceleration is `h_next`, seen from a block whose half acceleration is `h`.
+fn exit_term(u_next: u64, h_next: u32, h: u32) -> u64 {
+    if u_next == 0 {
+        return square(h);
+    }
+    if h_next == h {
+        return u_next;
+    }
+    // Speeds stay below 2^30 Q8: the entry fits 32 bits.
+    let e = h_next + sqrt_u64(u_next).0 as u32;
+    square(e.abs_diff(h))
+}
+
+/// Sets `block`'s entry from the entry `u_next` (half acceleration `h_next`) of
+/// the block after it: the highest entry from which the interpolator's profile
+/// brakes to it by the block's end, at most the junction's limit. Returns whether
+/// the entry changed.
 ///
 /// An entry already at the junction's limit stays there when the exit still
-/// reaches it: the same `max_entry` as before, not computed again.
-fn set_entry(block: &mut Block, exit: f32) -> bool {
+/// reaches it.
+fn set_entry(block: &mut Block, u_next: u64, h_next: u32) -> bool {
     let plan = &mut block.plan;
-    let h = plan.accel * 0.5;
-    let d = exit - h;
-    let reach = d * d + plan.two_a_len;
-    let at_max = reach >= plan.max_reach;
+    let h = plan.accel_q8 / 2;
+    let reach = exit_term(u_next, h_next, h) + plan.two_a_len;
+    let at_max = reach >= plan.max_u;
     if at_max && block.entry_at_max {
         return false;
     }
     block.entry_at_max = at_max;
-    let entry = if at_max {
-        plan.max_entry
-    } else {
-        // Below `max_entry` but for rounding (reach < (max_entry − h)²).
-        let e = h + sqrtf(reach);
-        if e < plan.accel {
-            0.0
-        } else if e > plan.max_entry {
-            plan.max_entry
-        } else {
-            e
-        }
-    };
-    let changed = entry != plan.entry;
-    plan.entry = entry;
-    // `entry` is 0 or positive (a negative or NaN would become 0).
-    plan.entry_q8 = (entry * (1u32 << PATH_FRAC) as f32) as u32;
+    let mut u = if at_max { plan.max_u } else { reach };
+    // Below the junction's floor: from rest.
+    if u < plan.floor_u {
+        u = 0;
+    }
+    let changed = u != plan.entry_u;
+    plan.entry_u = u;
     changed
 }
 
-/// Re-plans the entry speeds of `blocks` (oldest first; the last one ends at
-/// rest, and the first one is the next to run). Stops at the first block whose
-/// entry does not change: nothing before it can change either.
-pub fn backward_pass<'a, I>(newest_first: I)
-where
-    I: Iterator<Item = Option<&'a mut Block>>,
-{
-    let mut exit = 0.0f32;
-    for (k, item) in newest_first.enumerate() {
-        let Some(block) = item else { return };
-        if !set_entry(block, exit) && k >= 1 {
-            return;
+/// Re-plans the entry speeds of the queue given as its two contiguous parts
+/// (`front` then `back`, oldest first; the last block ends at rest, the first is
+/// the next to run), newest first. Stops at the first block whose entry does not
+/// change (nothing before it can change either) or at a command (a barrier).
+pub fn backward_pass(front: &mut [Item], back: &mut [Item]) {
+    let mut pass = Pass { u_next: 0, h_next: 0, first: true };
+    if pass.run(back) {
+        pass.run(front);
+    }
+}
+
+/// The backward pass's state between the queue's two parts.
+struct Pass {
+    /// The entry of the block after (as `u`, 0: at rest) and its half acceleration.
+    u_next: u64,
+    h_next: u32,
+    /// No block visited yet (the newest is always re-planned).
+    first: bool,
+}
+
+impl Pass {
+    /// Re-plans `items` newest first; false where the pass stops.
+    #[inline(always)]
+    fn run(&mut self, items: &mut [Item]) -> bool {
+        for item in items.iter_mut().rev() {
+            let Item::Motion(block) = item else { return false };
+            if !set_entry(block, self.u_next, self.h_next) && !self.first {
+                return false;
+            }
+            self.first = false;
+            (self.u_next, self.h_next) = (block.plan.entry_u, block.plan.accel_q8 / 2);
         }
-        exit = block.plan.entry;
+        true
     }
 }
 

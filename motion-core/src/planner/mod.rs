@@ -96,8 +96,11 @@ pub enum PushError {
 /// How the next block may join the queue's last motion.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Tail {
-    /// Where the last motion ends (machine, nm).
-    end: Pos,
+    /// Where the last motion ends (machine, nm) — `ends[cur]` — and where it
+    /// started, `ends[cur ^ 1]` (the end before: a new end goes into the other
+    /// slot, so the start stays known for one more block without a copy).
+    ends: [Pos; 2],
+    cur: usize,
     /// Direction at its end.
     dir: Dir,
     /// Its programmed speed.
@@ -129,6 +132,20 @@ pub struct Planner<const N: usize> {
     bend: bend::Bend,
 }
 
+impl Tail {
+    /// Where the last motion ends.
+    #[inline(always)]
+    fn end(&self) -> &Pos {
+        &self.ends[self.cur & 1]
+    }
+
+    /// Where the last motion started.
+    #[inline(always)]
+    fn start(&self) -> &Pos {
+        &self.ends[(self.cur ^ 1) & 1]
+    }
+}
+
 impl<const N: usize> Planner<N> {
     /// An empty queue with the axes at `pos` (machine, nm).
     pub fn new(pos: Pos) -> Self {
@@ -143,7 +160,16 @@ impl<const N: usize> Planner<N> {
     }
 
     fn rest(end: Pos) -> Tail {
-        Tail { end, dir: [0.0; AXIS_COUNT], nominal: 0.0, blend: false, len: 0.0, thread: None, thread_lead: None }
+        Tail {
+            ends: [end; 2],
+            cur: 0,
+            dir: [0.0; AXIS_COUNT],
+            nominal: 0.0,
+            blend: false,
+            len: 0.0,
+            thread: None,
+            thread_lead: None,
+        }
     }
 
     /// Drops everything queued; the next block starts from `pos`.
@@ -171,7 +197,7 @@ impl<const N: usize> Planner<N> {
 
     /// Where the queued motion ends (machine, nm).
     pub fn tail_end(&self) -> Pos {
-        self.tail.end
+        *self.tail.end()
     }
 
     /// The next entry.
@@ -217,7 +243,7 @@ impl<const N: usize> Planner<N> {
             return Err(PushError::Full);
         }
         let full_circle = matches!(c.action, Action::Arc(a) if a.full_circle);
-        if c.action.endpoint().is_some_and(|e| e.machine == self.tail.end) && !full_circle {
+        if c.action.endpoint().is_some_and(|e| e.machine == *self.tail.end()) && !full_circle {
             return Ok(()); // no motion
         }
         if !matches!(
@@ -234,7 +260,7 @@ impl<const N: usize> Planner<N> {
         }
         let Planner { queue, tail, .. } = self;
         let Some(slot) = queue.back_mut() else { return Err(PushError::Full) };
-        let start = &tail.end;
+        let start = tail.end();
         let prepared = match &c.action {
             Action::Rapid(m) => block::line(start, m, true, p, c.line, slot),
             Action::Linear(m) => block::line(start, m, false, p, c.line, slot),
@@ -302,6 +328,7 @@ impl<const N: usize> Planner<N> {
             let v = lookahead::junction_speed(&tail.dir, &prep.dir_in, minf(tail.len, len), p);
             let pending = minf(minf(v, tail.nominal), minf(b.plan.nominal, b.plan.cap));
             b.plan.pending = pending;
+            lookahead::set_floor(&mut b.plan, *run_accel_q8);
             dense = len < 2.0 * pending || tail.len < 2.0 * pending;
             if !dense {
                 lookahead::set_max_entry(b, pending);
@@ -326,17 +353,19 @@ impl<const N: usize> Planner<N> {
                 tol: p.chord_tolerance,
                 a_n: p.accel_min * 0.5,
             };
-            let curve =
-                bend.push(&tail.end, &prep.end, len, &lim, |from_end, count, v| raise(queue, from_end, count, v));
+            let curve = bend.push(tail.start(), tail.end(), &prep.end, len, &lim, |from_end, count, v| {
+                raise(queue, from_end, count, v)
+            });
             raise(queue, 1, 1, curve);
         } else {
-            bend.restart(&tail.end, len);
+            bend.restart(len);
         }
-        *tail = Tail { end: prep.end, dir: prep.dir_out, nominal, blend, len, thread, thread_lead };
-        lookahead::backward_pass(self.queue.iter_mut().rev().map(|item| match item {
-            Item::Motion(b) => Some(b),
-            Item::Command { .. } => None,
-        }));
+        let cur = (tail.cur ^ 1) & 1;
+        tail.ends[cur] = prep.end;
+        (tail.cur, tail.dir, tail.nominal, tail.blend, tail.len) = (cur, prep.dir_out, nominal, blend, len);
+        (tail.thread, tail.thread_lead) = (thread, thread_lead);
+        let (front, back) = self.queue.as_mut_slices();
+        lookahead::backward_pass(front, back);
     }
 }
 
@@ -347,9 +376,10 @@ fn raise<const N: usize>(queue: &mut heapless::Deque<Item, N>, from_end: usize, 
     let len = queue.len();
     for i in len.saturating_sub(from_end)..(len + count).saturating_sub(from_end) {
         if let Some(Item::Motion(b)) = queue.get_mut(i) {
-            let v = minf(b.plan.pending, curve);
-            if v > b.plan.max_entry {
-                lookahead::set_max_entry(b, v);
+            let u = lookahead::max_u(&b.plan, minf(b.plan.pending, curve));
+            if u > b.plan.max_u {
+                b.plan.max_u = u;
+                b.entry_at_max = false;
             }
         }
     }
@@ -360,26 +390,21 @@ mod tests {
     use super::*;
     use crate::canon::{Endpoint, Feed, FeedMode, Move, SpindleSpeed};
     use crate::config::MachineConfig;
-    use crate::fixed::sqrtf;
     use canon::xorshift::XorShift;
 
     /// The entries of `queue` re-planned from rest at its end without stopping
-    /// early (the pass as it would be without its early stops), as
-    /// `lookahead::set_entry` computes each.
-    fn full_replan(queue: &[Block]) -> std::vec::Vec<(f32, u32)> {
-        let mut exit = 0.0f32;
+    /// early (the pass as it would be without its early stops), from the
+    /// definition: `u = min(u_max, (e' − a/2)² + 2aL)`, 0 below the junction's floor.
+    fn full_replan(queue: &[Block]) -> std::vec::Vec<u64> {
+        let mut exit_q8 = 0u64;
         let mut out = std::vec::Vec::new();
         for b in queue.iter().rev() {
-            let h = b.plan.accel / 2.0;
-            let reach = (exit - h) * (exit - h) + b.plan.two_a_len;
-            let entry = if reach >= b.plan.max_reach {
-                b.plan.max_entry
-            } else {
-                let e = h + sqrtf(reach);
-                if e < b.plan.accel { 0.0 } else { minf(e, b.plan.max_entry) }
-            };
-            exit = entry;
-            out.push((entry, (entry * (1u32 << crate::fixed::PATH_FRAC) as f32) as u32));
+            let h = b.plan.half_q8();
+            let d = if exit_q8 == 0 { h } else { exit_q8.abs_diff(h) };
+            let u = (d * d + b.plan.two_a_len).min(b.plan.max_u);
+            let u = if u < b.plan.floor_u { 0 } else { u };
+            exit_q8 = if u == 0 { 0 } else { h + canon::units::sqrt_u64(u).0 };
+            out.push(u);
         }
         out.reverse();
         out
@@ -419,8 +444,11 @@ mod tests {
                     .collect();
                 let want = full_replan(&blocks);
                 for (b, w) in blocks.iter().zip(&want) {
-                    assert_eq!((b.plan.entry, b.plan.entry_q8), *w, "push {k}");
-                    capped += usize::from(b.entry_at_max && b.plan.max_entry > 0.0);
+                    // Equal where the acceleration does not change from one block to
+                    // the next (no root taken), within the root's rounding where it does.
+                    let tol = 2 * canon::units::sqrt_u64(b.plan.entry_u).0 + 2;
+                    assert!(b.plan.entry_u.abs_diff(*w) <= tol, "push {k}: {} vs {w}", b.plan.entry_u);
+                    capped += usize::from(b.entry_at_max && b.plan.max_u > 0);
                 }
             }
         }
