@@ -138,8 +138,11 @@ impl Bend {
     /// (or that starts from rest): it starts a new chain.
     #[inline]
     pub fn restart(&mut self, len: f32) {
-        self.samples.clear();
-        (self.fresh, self.s_end) = (true, len);
+        if !self.fresh {
+            self.samples.clear();
+            self.fresh = true;
+        }
+        self.s_end = len;
     }
 
     /// A block from `start` to `end`, `len` nm long, whose junction with the

@@ -281,7 +281,11 @@ fn plan(len: u64, accel: f32, cap: f32, nominal: f32) -> Plan {
     Plan {
         len_q8: len,
         // At most 2^62: added to a `u` (below 2^60) it cannot overflow.
-        two_a_len: u64::from(accel_q8).saturating_mul(len).saturating_mul(2).min(1 << 62),
+        two_a_len: if len < 1 << 30 {
+            u64::from(accel_q8) * len * 2
+        } else {
+            u64::from(accel_q8).saturating_mul(len).saturating_mul(2).min(1 << 62)
+        },
         max_u: 0,
         entry_u: 0,
         accel,

@@ -45,7 +45,7 @@ use super::Item;
 use super::block::{Block, Dir, Plan};
 use super::machine::MotionParams;
 use crate::fixed::{PATH_FRAC, minf, sqrtf};
-use canon::units::sqrt_u64;
+use canon::units::f32_of_u64;
 
 /// Highest speed (nm/period) through the junction from direction `a` into `b`;
 /// `short` is the length (nm) of the shorter of the two blocks.
@@ -59,10 +59,11 @@ pub fn junction_speed(a: &Dir, b: &Dir, short: f32, p: &MotionParams) -> f32 {
         let cos_half = sqrtf((1.0 + cos_phi) / 2.0);
         let sin_half = sqrtf((1.0 - cos_phi) / 2.0);
         let one_minus = 1.0 - cos_half;
-        if 2.0 * p.junction_deviation * sin_half <= short * one_minus {
+        let half_short = 0.5 * short;
+        if p.junction_deviation * sin_half <= half_short * one_minus {
             v = sqrtf(p.accel_min * p.junction_deviation * cos_half / one_minus);
         }
-        if 2.0 * short * sin_half > p.chord_tolerance {
+        if half_short * sin_half > 0.25 * p.chord_tolerance {
             v = minf(v, 2.0 * p.chord_tolerance / sin_half);
         }
     }
@@ -117,9 +118,11 @@ fn exit_term(u_next: u64, h_next: u32, h: u32) -> u64 {
     if h_next == h {
         return u_next;
     }
-    // Speeds stay below 2^30 Q8: the entry fits 32 bits.
-    let e = h_next + sqrt_u64(u_next).0 as u32;
-    square(e.abs_diff(h))
+    // The entry rounded down (f32 root, less one): the next entry is at least
+    // this block's acceleration (the junction's floor), so a smaller estimate
+    // only lowers `(e − h)²` and the entry planned from it.
+    let e = h_next + (sqrtf(f32_of_u64(u_next)) as u32).saturating_sub(1);
+    square(e.saturating_sub(h))
 }
 
 /// Sets `block`'s entry from the entry `u_next` (half acceleration `h_next`) of
@@ -127,16 +130,16 @@ fn exit_term(u_next: u64, h_next: u32, h: u32) -> u64 {
 /// brakes to it by the block's end, at most the junction's limit. Returns whether
 /// the entry changed.
 ///
-/// An entry already at the junction's limit stays there when the exit still
-/// reaches it.
+/// An entry at the junction's limit stays there: exits only rise as blocks
+/// arrive, and a raised limit clears `entry_at_max`.
 fn set_entry(block: &mut Block, u_next: u64, h_next: u32) -> bool {
+    if block.entry_at_max {
+        return false;
+    }
     let plan = &mut block.plan;
     let h = plan.accel_q8 / 2;
     let reach = exit_term(u_next, h_next, h) + plan.two_a_len;
     let at_max = reach >= plan.max_u;
-    if at_max && block.entry_at_max {
-        return false;
-    }
     block.entry_at_max = at_max;
     let mut u = if at_max { plan.max_u } else { reach };
     // Below the junction's floor: from rest.
