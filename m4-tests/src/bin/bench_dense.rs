@@ -86,12 +86,14 @@ impl Rig {
         let core = MotionCore::new(cfg, pos).unwrap_or_else(|_| exit(false));
         let tb = TimeBase::new(TIMER_HZ, cfg.motion.tick_ns).unwrap_or_else(|_| exit(false));
         let [(tx, rx), (tz, rz)] = rings.each_ref().map(|r| r.split().unwrap_or_else(|| exit(false)));
-        let timing = |a: Axis| PlayTiming::new(core.stepper(a.index()).map(|s| s.timing()).unwrap_or_else(|| exit(false)), &tb);
+        let timing =
+            |a: Axis| PlayTiming::new(core.stepper(a.index()).map(|s| s.timing()).unwrap_or_else(|| exit(false)), &tb);
         let player = Player::new([
             (rx, AxisPins { step: 6, dir: 10 }, timing(Axis::X)),
             (rz, AxisPins { step: 7, dir: 11 }, timing(Axis::Z)),
         ]);
-        let engine = Engine::new(tb, [EngineAxis::new(Axis::X.index(), tx), EngineAxis::new(Axis::Z.index(), tz)], 0, 0);
+        let engine =
+            Engine::new(tb, [EngineAxis::new(Axis::X.index(), tx), EngineAxis::new(Axis::Z.index(), tz)], 0, 0);
         Rig { core, engine, player, now: 0, played: 0 }
     }
 
@@ -171,7 +173,14 @@ fn run(rings: &'static [EdgeRing<RING>; 2], seg_um: i64, text: &mut Text) {
         let runs = if measured { measure(play, &mut rig) } else { play(&mut rig) };
         if measured {
             let speed = rig.core.path_speed() / 1_000_000;
-            hprintln!("fill {} blocks, period crossed {} blocks, {} edges, {} step interrupts, {} mm/min", blocks, crossed, edges, runs, speed);
+            hprintln!(
+                "fill {} blocks, period crossed {} blocks, {} edges, {} step interrupts, {} mm/min",
+                blocks,
+                crossed,
+                edges,
+                runs,
+                speed
+            );
         }
     }
     let st = rig.core.stats();
