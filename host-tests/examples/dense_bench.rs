@@ -64,7 +64,7 @@ fn middle_path() -> f64 {
 /// The speed (mm/min) at which a period still brakes to rest within the 64
 /// queued blocks, on the profile's grid of whole accelerations.
 fn queue_limit(accel: i64, seg: f64) -> f64 {
-    let a = accel as f64 * 1e-3; // nm per period²
+    let a = accel as f64; // mm/s² is nm per (1 ms period)²
     let d = 64.0 * seg * 1e6;
     let v = (2.0 * a * d + a * a / 4.0).sqrt() - a / 2.0;
     (v / a).floor() * a * 0.06
