@@ -111,6 +111,9 @@ pub struct Stats {
     pub max_queued: usize,
     /// Events dropped because nobody collected them.
     pub lost_events: u32,
+    /// Periods whose speed the interpolator's braking test allowed no candidate
+    /// for (0 unless a block was entered too fast to brake for its end).
+    pub overruns: u32,
 }
 
 /// Where the core is.
@@ -315,7 +318,7 @@ impl<const N: usize> MotionCore<N> {
 
     /// Counters.
     pub fn stats(&self) -> Stats {
-        Stats { blocks: self.planner.taken(), ..self.stats }
+        Stats { blocks: self.planner.taken(), overruns: self.interp.overruns(), ..self.stats }
     }
 
     /// The interpolator's commanded position at the end of the last period, Q16
