@@ -9,7 +9,7 @@ use crate::canon::{SpindleDir, ThreadSync};
 use crate::fixed::PATH_FRAC;
 use crate::planner::block::thread_ramp;
 use crate::planner::{Block, BlockKind, Item, ThreadSpec};
-use crate::sync::{Gear, Gearing, Leg, Ratio, ramp_up_steps};
+use crate::sync::{Due, Gear, Gearing, Leg, Ratio, ramp_up_steps};
 
 impl<const N: usize> MotionCore<N> {
     /// The leg from the current position to `b`'s end.
@@ -48,6 +48,22 @@ impl<const N: usize> MotionCore<N> {
     /// Length of a leg along each axis, nm.
     fn leg_nm(&self, leg: &Leg) -> [f32; AXIS_COUNT] {
         core::array::from_fn(|i| ((leg.end[i] - leg.start[i]) as f64 * self.p.scale[i].nm_per_step()) as f32)
+    }
+
+    /// The raw encoder counts at which [`MotionCore::on_encoder`] must next be
+    /// called: when the count reaches `up` (counting up) or `down` (counting down);
+    /// nothing moves at the counts between. `None` while no axis follows the
+    /// spindle (no thread or tap gearbox, no polygon turning). A thread's counts that
+    /// move nothing are applied here, ahead of the spindle ([`Gear::glide`]); a
+    /// count given to `on_encoder` anywhere from its last call on is taken
+    /// correctly, so every count still works (only slower).
+    pub fn encoder_due(&mut self) -> Option<Due> {
+        let gear = self.gear.as_mut().map(Gear::glide);
+        let polygon = self.polygon.gear.map(|g| g.due());
+        match (gear, polygon) {
+            (None, None) => None,
+            (a, b) => Some(a.unwrap_or(Due::NONE).merge(b.unwrap_or(Due::NONE))),
+        }
     }
 
     /// A thread pass waits for the spindle and its synchronisation count (SyncWait).

@@ -36,6 +36,19 @@
 //! Everything is integer in units of `1/(2R·den)` step (threads) or `1/(2·den)` step
 //! (taps): a locked count adds `2R·w` and `2·n2` to `w`, a ramp count a few products
 //! more; no division.
+//!
+//! **Only the counts where something falls due.** Most counts move nothing: at a
+//! 2 mm lead on 3.125 µm steps a step falls due every 6.4 counts. [`Gear::glide`]
+//! applies, in a tight loop of additions, the counts ahead that only add to the
+//! accumulators (no step, no change of phase, no deceleration start) and returns
+//! the raw count at which the next count must be taken ([`Due`]); the firmware sets
+//! the encoder timer's compare there and is interrupted only then. Applying a
+//! count before the spindle reaches it is safe because such a count changes no
+//! output and a thread's position depends only on the furthest count reached;
+//! an announced next leg ([`Gear::set_next`]) cannot change what those counts did
+//! (it only adds room before the end). A tap and the polygon gearbox
+//! ([`crate::motion::polygon`]) follow the spindle both ways, so they apply
+//! nothing ahead and name a count either side.
 
 use crate::alarm::AlarmKind;
 use crate::axis::AXIS_COUNT;
@@ -51,6 +64,49 @@ pub struct Leg {
     pub end: [i64; AXIS_COUNT],
     /// Index of the long (lead) axis.
     pub long: usize,
+}
+
+/// The raw encoder counts at which a gearbox must next be given the count: when the
+/// counter, counting up, reaches `up`, or, counting down, reaches `down`. Counts
+/// strictly between them move nothing.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Due {
+    /// The count to wait for while counting up (`None`: nothing falls due that way).
+    pub up: Option<i64>,
+    /// The count to wait for while counting down.
+    pub down: Option<i64>,
+}
+
+impl Due {
+    /// Nothing falls due either way.
+    pub const NONE: Due = Due { up: None, down: None };
+
+    /// From counts in a gearbox's forward sense: forward count `f` is raw count
+    /// `sigma·(f + origin)`; `ahead` and `back` are the forward counts due going
+    /// forward and back.
+    pub fn forward(sigma: i64, origin: i64, ahead: Option<i64>, back: Option<i64>) -> Due {
+        let raw = |f: i64| sigma * (f + origin);
+        if sigma < 0 {
+            Due { up: back.map(raw), down: ahead.map(raw) }
+        } else {
+            Due { up: ahead.map(raw), down: back.map(raw) }
+        }
+    }
+
+    /// The nearer of both dues each way (two gearboxes on one encoder).
+    pub fn merge(self, other: Due) -> Due {
+        let pick = |a: Option<i64>, b: Option<i64>, f: fn(i64, i64) -> i64| match (a, b) {
+            (Some(a), Some(b)) => Some(f(a, b)),
+            (a, b) => a.or(b),
+        };
+        Due { up: pick(self.up, other.up, i64::min), down: pick(self.down, other.down, i64::max) }
+    }
+
+    /// Whether raw count `c` has reached either due count.
+    pub fn reached(&self, c: i64) -> bool {
+        self.up.is_some_and(|u| c >= u) || self.down.is_some_and(|d| c <= d)
+    }
 }
 
 /// Long-axis steps per encoder count, `n / d`, reduced.
@@ -607,17 +663,130 @@ impl Gear {
                 }
             }
             Mode::Thread => {
-                while self.m < fwd {
-                    self.m += 1;
-                    if self.m > self.m_max {
-                        self.m_max = self.m;
-                        moved |= self.thread_count();
-                    }
+                // Counts up to `m_max` were taken (or applied ahead by `glide`):
+                // a thread follows the furthest count reached, never back.
+                while self.m_max < fwd {
+                    self.m_max += 1;
+                    moved |= self.thread_count();
                 }
-                self.m = fwd.min(self.m);
+                self.m = fwd;
             }
         }
         moved
+    }
+
+    /// Applies the counts ahead that move nothing (a thread's counts that only add
+    /// to the accumulators: no step, no change of phase, no deceleration start) and
+    /// returns the raw counts at which the next count must be taken. A tap follows
+    /// the spindle both ways: nothing is applied ahead, and the counts of the next
+    /// step either way are named. Additions only, about one loop turn per count
+    /// skipped.
+    pub fn glide(&mut self) -> Due {
+        match self.mode {
+            Mode::Thread => {
+                let n = match self.phase {
+                    Phase::RampUp { k } => self.glide_ramp_up(k),
+                    Phase::Locked => self.glide_locked(),
+                    Phase::RampDown { u } => self.glide_ramp_down(u),
+                    Phase::Waiting | Phase::Done => 0,
+                };
+                self.m_max += n;
+                let ahead = (self.phase != Phase::Done).then_some(self.m_max + 1);
+                Due::forward(self.sigma, self.origin, ahead, None)
+            }
+            Mode::Tap => {
+                let (up, down) = self.tap_due();
+                Due::forward(self.sigma, self.origin, Some(self.m + up), Some(self.m - down))
+            }
+        }
+    }
+
+    /// Ramp-up counts before the next step, the synchronised count (`R/2`) and the
+    /// lock (`R`), as [`Gear::ramp_up_count`] would take them; returns how many.
+    fn glide_ramp_up(&mut self, k: i64) -> i64 {
+        let stop = if k < self.ramp / 2 { self.ramp / 2 } else { self.ramp };
+        let (mut acc, mut w, dw, unit) = (self.acc, self.w, self.dw, self.unit);
+        let mut m = k;
+        while m + 1 < stop && acc + w < unit {
+            acc += w;
+            w += dw;
+            m += 1;
+        }
+        (self.acc, self.w, self.phase) = (acc, w, Phase::RampUp { k: m });
+        m - k
+    }
+
+    /// Locked counts before the next step or the deceleration start, as
+    /// [`Gear::thread_count`] would take them; returns how many.
+    fn glide_locked(&mut self) -> i64 {
+        let (mut acc, mut w, dw, two_r, unit) = (self.acc, self.w, self.dw, self.two_r, self.unit);
+        let mut n = 0;
+        match self.decel_left() {
+            Some(left) if left <= self.ramp_zone => {
+                // Near the end: each count also takes its share off the distance to
+                // the deceleration start (as `near_end`), which must stay positive.
+                if self.to_start.is_none() {
+                    self.to_start = self.exact_to_start(left);
+                }
+                let Some((mut x, step)) = self.to_start else { return 0 };
+                loop {
+                    let inc = two_r * w;
+                    match x.checked_sub(inc).and_then(|v| v.checked_sub(step)) {
+                        Some(after) if after > 0 && acc + inc < unit => {
+                            (x, acc, w, n) = (after, acc + inc, w + dw, n + 1);
+                        }
+                        _ => break,
+                    }
+                }
+                self.to_start = Some((x, step));
+            }
+            _ if dw == 0 => {
+                // A constant lead: the same increment every count.
+                let inc = two_r * w;
+                while acc + inc < unit {
+                    acc += inc;
+                    n += 1;
+                }
+            }
+            _ => loop {
+                let inc = two_r * w;
+                if acc + inc >= unit {
+                    break;
+                }
+                (acc, w, n) = (acc + inc, w + dw, n + 1);
+            },
+        }
+        (self.acc, self.w) = (acc, w);
+        n
+    }
+
+    /// Deceleration counts before the next step and the last count; returns how many.
+    fn glide_ramp_down(&mut self, u: i64) -> i64 {
+        let (mut acc, w, unit) = (self.acc, self.w, self.unit);
+        let (mut left, mut inc) = (u, self.w * (2 * u - 1));
+        while left > 1 && acc + inc < unit {
+            acc += inc;
+            inc -= 2 * w;
+            left -= 1;
+        }
+        (self.acc, self.phase) = (acc, Phase::RampDown { u: left });
+        u - left
+    }
+
+    /// A tap's counts to its next step forward and back (its increment is constant).
+    fn tap_due(&self) -> (i64, i64) {
+        let inc = 2 * self.gearing.n1;
+        let (mut up, mut a) = (1, self.acc + inc);
+        while a < self.unit {
+            a += inc;
+            up += 1;
+        }
+        let (mut down, mut b) = (1, self.acc - inc);
+        while b >= 0 {
+            b -= inc;
+            down += 1;
+        }
+        (up, down)
     }
 
     /// One forward count of a thread pass.
@@ -701,16 +870,22 @@ impl Gear {
     /// accumulator units), on the count where going on at `inc` would leave less
     /// than the next count's speed needs to stop: `rem − inc ≤ (w + dw)·R²`.
     fn ramp_down_jump(&mut self, inc: i64) -> Option<i64> {
-        let left = match self.next {
-            None => self.delta - self.p,
-            Some(n) if self.next_last && n.same_motion => self.delta - self.p + n.len,
-            Some(_) => return None,
-        };
+        let left = self.decel_left()?;
         // Far from the end the products below could overflow; the ramp is short.
         if left > self.ramp_zone {
             return None;
         }
         self.near_end(left, inc)
+    }
+
+    /// Long-axis steps to where the pass must be at rest, when it decelerates in
+    /// this leg (no next leg, or a last one continuing the same motion).
+    fn decel_left(&self) -> Option<i64> {
+        match self.next {
+            None => Some(self.delta - self.p),
+            Some(n) if self.next_last && n.same_motion => Some(self.delta - self.p + n.len),
+            Some(_) => None,
+        }
     }
 
     /// [`Gear::ramp_down_jump`] in the ramp zone, `left` steps from the end. The
@@ -837,6 +1012,164 @@ mod tests {
             out.push((c, pos[2], pos[0]));
         }
         out
+    }
+
+    /// Drives `a` with every raw count of `path` and `b` only at the counts its
+    /// [`Gear::glide`] names (as the encoder compare does; with `late`, only at
+    /// every `late`-th count of the path, as an interrupt held up would); `hook`
+    /// runs on both after each count (an announcement from the period). Asserts
+    /// that both put the axes at the same place after every count `b` has seen, and
+    /// that `b` moved at every count it was given. Returns how many counts `b` took.
+    fn same_as_every_count(
+        a: &mut Gear,
+        b: &mut Gear,
+        path: impl IntoIterator<Item = i64>,
+        late: usize,
+        mut hook: impl FnMut(i64, &mut Gear),
+    ) -> usize {
+        let (mut pa, mut pb) = ([0; AXIS_COUNT], [0; AXIS_COUNT]);
+        let mut due = b.glide();
+        let mut taken = 0;
+        for (k, c) in path.into_iter().enumerate() {
+            a.on_count(c);
+            if due.reached(c) && k % late.max(1) == 0 {
+                b.on_count(c);
+                due = b.glide();
+                taken += 1;
+                assert!(!due.reached(c), "count {c}: due again at once ({due:?})");
+            }
+            hook(c, a);
+            hook(c, b);
+            due = b.glide();
+            if k % late.max(1) == 0 {
+                a.positions(&mut pa);
+                b.positions(&mut pb);
+                assert_eq!(pa, pb, "count {c}");
+            }
+        }
+        assert_eq!(a.phase(), b.phase());
+        taken
+    }
+
+    fn up(from: i64, to: i64) -> impl Iterator<Item = i64> {
+        from..=to
+    }
+
+    #[test]
+    fn gliding_steps_at_exactly_the_counts_every_count_would() {
+        let ratio = Ratio { n: 5, d: 32 };
+        let g34 = Gearing::new(2_000_000, 100_000, 1, 3_125, CPR).unwrap();
+        let shrinking = Gearing::new(2_000_000, -20_000, 1, 3_125, CPR).unwrap();
+        let coarse = Gearing::new(6_000_000, 0, 1, 3_125, CPR).unwrap();
+        for (name, gearing, ramp, x) in [
+            ("constant lead", Gearing::from(ratio), 2_000, 0),
+            ("taper", Gearing::from(ratio), 400, 1_000),
+            ("G34 growing", g34, 2_000, 3_000),
+            ("G34 shrinking", shrinking, 8_000, 0),
+            ("6 mm lead: more than a step some counts", coarse, 30_000, -500),
+        ] {
+            for late in [1, 3] {
+                let mut a = Gear::thread(leg(20_000, x), gearing, ramp, 1, 5_000).unwrap();
+                let mut b = a;
+                let taken = same_as_every_count(&mut a, &mut b, up(4_000, 500_000), late, |_, _| {});
+                assert_eq!(a.phase(), Phase::Done, "{name}");
+                let mut end = [0; AXIS_COUNT];
+                b.positions(&mut end);
+                assert_eq!((end[2], end[0]), (-20_000, x), "{name}");
+                // A step (or a change of phase) at each count taken, few others.
+                assert!(taken <= 20_000 + x.unsigned_abs() as usize + 8, "{name}: {taken} counts taken");
+                assert_eq!(b.glide(), Due::NONE, "{name}: nothing more falls due");
+            }
+        }
+    }
+
+    #[test]
+    fn gliding_a_reversed_encoder_names_the_count_below() {
+        // Forward rotation counts down (sigma −1): the due count is below.
+        let ratio = Ratio { n: 5, d: 32 };
+        let mut a = Gear::thread(leg(6_400, 0), ratio, 1_000, -1, -2_000).unwrap();
+        let mut b = a;
+        let due = b.glide();
+        assert_eq!(due, Due { up: None, down: Some(-2_001) });
+        same_as_every_count(&mut a, &mut b, (-120_000..=-1_000).rev(), 1, |_, _| {});
+        assert_eq!(b.phase(), Phase::Done);
+    }
+
+    #[test]
+    fn a_thread_ignores_counts_back_and_goes_on_where_it_was() {
+        let ratio = Ratio { n: 5, d: 32 };
+        let mut a = Gear::thread(leg(6_400, 0), ratio, 1_000, 1, 0).unwrap();
+        let mut b = a;
+        // Forward, back 300 counts (a spindle that jerked back), forward again.
+        let path = (1..=20_000).chain((19_700..20_000).rev()).chain(19_700..=60_000);
+        same_as_every_count(&mut a, &mut b, path, 1, |_, _| {});
+        assert_eq!(b.phase(), Phase::Done);
+    }
+
+    #[test]
+    fn a_leg_announced_while_gliding_is_taken_as_count_by_count() {
+        // The next leg is announced at a count the glide may already have passed
+        // (the period's announcement comes at any count): a continuation, a short
+        // pull-out sharing the deceleration, and a G34 continued at the lead reached.
+        let ratio = Ratio { n: 5, d: 32 };
+        let g34 = Gearing::new(2_000_000, 100_000, 1, 3_125, CPR).unwrap();
+        let first = leg(8_000, 0);
+        let cases = [
+            (Gearing::from(ratio), Leg { start: first.end, end: [800, 0, -16_000, 0], long: 2 }, true, false),
+            (Gearing::from(ratio), Leg { start: first.end, end: [80, 0, -8_100, 0], long: 2 }, true, false),
+            (g34, Leg { start: first.end, end: [0, 0, -20_000, 0], long: 2 }, true, true),
+            (Gearing::from(ratio), Leg { start: first.end, end: [0, -900, -14_000, 0], long: 2 }, false, false),
+        ];
+        for (k, (gearing, next, last, keep)) in cases.into_iter().enumerate() {
+            for at in [3_000, 20_001, 37_777, 47_000] {
+                let mut a = Gear::thread(first, gearing, 400, 1, 0).unwrap();
+                let mut b = a;
+                let announce = |c: i64, g: &mut Gear| {
+                    if c == at {
+                        let _ = g.set_next(next, gearing, last, keep);
+                    }
+                };
+                same_as_every_count(&mut a, &mut b, up(1, 300_000), 1, announce);
+                assert_eq!(a.legs_done(), b.legs_done(), "case {k} at {at}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_tap_glides_both_ways_without_applying_anything_ahead() {
+        let ratio = Ratio::new(1_500_000, 1, 3_125, CPR).unwrap();
+        let way_in = leg(3_200, 400);
+        let mut a = Gear::tap(way_in, ratio, 1, 500).unwrap();
+        let mut b = a;
+        // In, a jitter around the bottom, out (the spindle reverses), with back
+        // and forth on the way.
+        let path = (501..=28_000)
+            .chain((27_000..28_000).rev())
+            .chain(27_000..=27_900)
+            .chain((27_890..27_900).rev())
+            .chain(27_890..=27_895)
+            .chain((500..27_895).rev());
+        same_as_every_count(&mut a, &mut b, path, 1, |_, _| {});
+        let mut end = [0; AXIS_COUNT];
+        b.positions(&mut end);
+        assert_eq!((end[2], end[0]), (0, 0));
+        // The due counts are those of the next step either way.
+        let due = b.glide();
+        let (u, d) = (due.up.unwrap(), due.down.unwrap());
+        let mut probe = b;
+        assert!((501..u).all(|c| !probe.on_count(c)) && probe.on_count(u));
+        let mut probe = b;
+        assert!((d + 1..500).rev().all(|c| !probe.on_count(c)) && probe.on_count(d));
+    }
+
+    #[test]
+    fn dues_merge_to_the_nearer_count_each_way() {
+        let a = Due { up: Some(10), down: None };
+        let b = Due { up: Some(7), down: Some(-3) };
+        assert_eq!(a.merge(b), Due { up: Some(7), down: Some(-3) });
+        assert_eq!(Due::NONE.merge(a), a);
+        assert!(b.reached(7) && b.reached(-3) && !b.reached(0));
+        assert_eq!(Due::forward(-1, 100, Some(5), Some(-2)), Due { up: Some(-98), down: Some(-105) });
     }
 
     #[test]
