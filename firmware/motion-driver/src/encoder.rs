@@ -18,6 +18,10 @@ pub struct Encoder {
     count: i64,
     /// `32 − bits`: a raw difference shifted left by it is signed in 32 bits.
     shift: u32,
+    /// The counter's values (`2^bits − 1`), and a quarter of its range: the
+    /// farthest a compare value is set from the count.
+    mask: u32,
+    reach: u32,
 }
 
 impl Default for Encoder {
@@ -45,7 +49,7 @@ impl Window {
 impl Encoder {
     /// A 32-bit counter whose current raw reading `raw` is count 0.
     pub const fn new(raw: u32) -> Self {
-        Encoder { raw, count: 0, shift: 0 }
+        Encoder::with_bits(raw, 32)
     }
 
     /// A `bits`-bit counter (16 to 32) whose current raw reading `raw` is count 0.
@@ -58,7 +62,8 @@ impl Encoder {
             bits
         };
         let shift = 32 - bits;
-        Encoder { raw: (raw << shift) >> shift, count: 0, shift }
+        let mask = u32::MAX >> shift;
+        Encoder { raw: raw & mask, count: 0, shift, mask, reach: 1 << (bits - 2) }
     }
 
     /// The same encoder with its widened count set to `count`.
@@ -69,7 +74,7 @@ impl Encoder {
     /// The same encoder with its count unchanged and `raw` as its last reading (the
     /// counter was set without counting).
     pub const fn with_raw(self, raw: u32) -> Self {
-        Encoder { raw: (raw << self.shift) >> self.shift, ..self }
+        Encoder { raw: raw & self.mask, ..self }
     }
 
     /// The signed number of counts from raw `from` to raw `to`.
@@ -104,10 +109,10 @@ impl Encoder {
     /// so a compare value is never ambiguous across the wrap.
     #[inline]
     pub fn window(&self, due: Due) -> Window {
-        let reach = 1i64 << (30 - self.shift);
-        let mask = u32::MAX >> self.shift;
-        let up = due.up.map(|u| self.raw.wrapping_add((u - self.count).clamp(0, reach) as u32) & mask);
-        let down = due.down.map(|d| self.raw.wrapping_sub((self.count - d).clamp(0, reach) as u32) & mask);
+        let reach = i64::from(self.reach);
+        let ahead = |d: i64| d.clamp(0, reach) as u32;
+        let up = due.up().map(|u| self.raw.wrapping_add(ahead(u - self.count)) & self.mask);
+        let down = due.down().map(|d| self.raw.wrapping_sub(ahead(self.count - d)) & self.mask);
         Window { up, down }
     }
 
@@ -153,17 +158,17 @@ mod tests {
         let mut e = e;
         e.update(u32::MAX - 1);
         assert_eq!(e.count(), 10);
-        let w = e.window(Due { up: Some(14), down: Some(7) });
+        let w = e.window(Due::new(Some(14), Some(7)));
         assert_eq!(w, Window { up: Some(2), down: Some(u32::MAX - 4) });
         assert!(!e.reached(&w, u32::MAX) && e.reached(&w, 2) && e.reached(&w, 9) && e.reached(&w, u32::MAX - 4));
         // Already reached: the reading itself, reached at once.
-        let w = e.window(Due { up: Some(9), down: None });
+        let w = e.window(Due::new(Some(9), None));
         assert_eq!(w.up, Some(u32::MAX - 1));
         assert!(e.reached(&w, u32::MAX - 1));
         // 16 bits: the same around 65535, and a far count as a checkpoint.
         let mut e = Encoder::with_bits(65_530, 16);
         e.update(65_534);
-        let w = e.window(Due { up: Some(8), down: Some(-100_000) });
+        let w = e.window(Due::new(Some(8), Some(-100_000)));
         assert_eq!(w, Window { up: Some(2), down: Some(65_534 - 16_384) });
         assert!(e.reached(&w, 2) && !e.reached(&w, 65_535) && !e.reached(&w, 65_534 - 16_383));
         assert_eq!(e.window(Due::NONE), Window::OFF);

@@ -19,7 +19,7 @@
 //! `emergency_stop` (the step player already raises no STEP pin while it is active).
 
 use motion_core::motion::{Feedback, MotionCore};
-use motion_core::stepgen::{EdgeKind, StepEvent};
+use motion_core::stepgen::{AxisStepGen, EdgeKind, StepEvent};
 
 use crate::encoder::{Encoder, Window};
 use crate::ring::{Edge, Producer, Timed};
@@ -181,14 +181,42 @@ impl<const A: usize> Engine<A> {
     pub fn encoder<const N: usize>(&mut self, core: &mut MotionCore<N>, now: u32, raw_count: u32) -> bool {
         let count = self.encoder.update(raw_count);
         self.stats.sync_counts += 1;
-        let moved = core.on_encoder(self.core_time(now), count);
+        let t = self.core_time(now);
+        let moved = core.on_encoder(t, count);
         if moved == 0 {
             return false;
         }
         self.stats.sync_moves += 1;
-        // Only the axes the count moved (the gearbox's, C in polygon turning).
+        // Only the axes the count moved (the gearbox's, C in polygon turning); an
+        // edge due now is at tick `now` (no conversion).
         let horizon = self.base_ns + 2 * u64::from(self.tb.period_ns);
-        self.drain(core, horizon, |a| moved & (1 << a) != 0) != 0
+        let mut edges = 0;
+        for ax in &mut self.axes {
+            if moved & (1 << ax.core_axis) == 0 {
+                continue;
+            }
+            if ax.carry.is_some() {
+                // The ring was full before: the general way.
+                let (tb, base_ns, base_ticks) = (self.tb, self.base_ns, self.base_ticks);
+                let at = |ev: &StepEvent| timed(&tb, base_ns, base_ticks, ev);
+                edges += ax.drain(core, horizon, at, &mut self.stats.ring_full);
+                continue;
+            }
+            while let Some(ev) = core.next_step(ax.core_axis, horizon) {
+                let at = if ev.t == t { now } else { timed(&self.tb, self.base_ns, self.base_ticks, &ev).at };
+                if ax.tx.push(Timed { at, edge: edge_of(&ev) }).is_err() {
+                    ax.carry = Some(ev);
+                    self.stats.ring_full += 1;
+                    break;
+                }
+                edges += 1;
+                if core.stepper(ax.core_axis).is_none_or(AxisStepGen::settled) {
+                    break;
+                }
+            }
+        }
+        self.stats.edges = self.stats.edges.wrapping_add(edges);
+        edges != 0
     }
 
     /// The encoder timer's compare values: the counts at which the core next needs
@@ -248,7 +276,16 @@ impl EngineAxis {
     ) -> u32 {
         let mut edges = 0;
         let mut next = self.carry.take();
-        while let Some(ev) = next.or_else(|| core.next_step(self.core_axis, until)) {
+        loop {
+            let ev = match next {
+                Some(ev) => ev,
+                // Everything commanded is issued (a jump's step): no call.
+                None if core.stepper(self.core_axis).is_none_or(AxisStepGen::settled) => break,
+                None => match core.next_step(self.core_axis, until) {
+                    Some(ev) => ev,
+                    None => break,
+                },
+            };
             if self.tx.push(at(&ev)).is_err() {
                 self.carry = Some(ev);
                 *ring_full += 1;
@@ -270,11 +307,16 @@ fn timed(tb: &TimeBase, base_ns: u64, base_ticks: u32, ev: &StepEvent) -> Timed 
     } else {
         base_ticks.wrapping_sub(tb.ticks((base_ns - ev.t).min(u64::from(u32::MAX)) as u32))
     };
-    let edge = match ev.kind {
+    Timed { at, edge: edge_of(ev) }
+}
+
+/// The pin edge of a step event.
+#[inline]
+fn edge_of(ev: &StepEvent) -> Edge {
+    match ev.kind {
         EdgeKind::Step(_) => Edge::Step,
         EdgeKind::Dir(positive) => Edge::Dir(positive),
-    };
-    Timed { at, edge }
+    }
 }
 
 #[cfg(test)]

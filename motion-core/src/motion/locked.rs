@@ -2,6 +2,7 @@
 //! (with its checks at the measured speed), continuing thread legs, rigid tapping
 //! with the spindle run to stop at the bottom and back, and letting go.
 
+use super::polygon::PolygonGear;
 use super::{MotionCore, State};
 use crate::alarm::AlarmKind;
 use crate::axis::{AXIS_COUNT, Axis};
@@ -58,11 +59,10 @@ impl<const N: usize> MotionCore<N> {
     /// count given to `on_encoder` anywhere from its last call on is taken
     /// correctly, so every count still works (only slower).
     pub fn encoder_due(&mut self) -> Option<Due> {
-        let gear = self.gear.as_mut().map(Gear::glide);
-        let polygon = self.polygon.gear.map(|g| g.due());
-        match (gear, polygon) {
+        match (self.gear.as_mut(), self.polygon.gear.as_ref()) {
+            (Some(g), None) => Some(g.glide()),
             (None, None) => None,
-            (a, b) => Some(a.unwrap_or(Due::NONE).merge(b.unwrap_or(Due::NONE))),
+            (g, p) => Some(g.map_or(Due::NONE, |g| g.glide()).merge(p.map_or(Due::NONE, PolygonGear::due))),
         }
     }
 

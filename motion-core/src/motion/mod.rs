@@ -569,13 +569,12 @@ impl<const N: usize> MotionCore<N> {
         let mut moved = self.polygon_count(now, count);
         let Some(g) = self.gear.as_mut() else { return moved };
         if g.on_count(count) {
-            let mut pos = *self.interp.start_steps();
-            g.positions(&mut pos);
-            let (long, follower) = g.axes();
-            self.steppers[long].jump(now, pos[long] << STEP_FRAC);
+            let (p, follower) = g.driven();
+            let long = g.leg().long;
+            self.steppers[long].jump(now, p << STEP_FRAC);
             moved |= 1 << long;
-            if let Some(f) = follower {
-                self.steppers[f].jump(now, pos[f] << STEP_FRAC);
+            if let Some((f, p)) = follower {
+                self.steppers[f].jump(now, p << STEP_FRAC);
                 moved |= 1 << f;
             }
         }

@@ -129,7 +129,7 @@ impl PolygonGear {
     /// position changed. C locks when the count reaches the lock count, even if
     /// that count itself was never given.
     pub fn on_count(&mut self, count: i64) -> bool {
-        let f = self.sigma * count;
+        let f = crate::sync::signed(self.sigma, count);
         if let Some(at) = self.lock_at {
             if f < at {
                 self.last = f;
@@ -261,7 +261,7 @@ mod tests {
     #[test]
     fn c_locks_at_the_index_even_when_that_count_comes_late() {
         let mut g = PolygonGear::new(1, 2, 1_000, 4_096, 1, 100, 0).unwrap();
-        assert_eq!(g.due(), Due { up: Some(100), down: None });
+        assert_eq!(g.due(), Due::new(Some(100), None));
         // The interrupt ran at count 103: C locked at 100 and is 3 counts along.
         let mut every = g;
         for c in 1..=103 {

@@ -193,11 +193,16 @@ impl AxisStepGen {
             self.earliest = self.earliest.max(t + u64::from(self.timing.dir_setup_ns));
             return Some(StepEvent { t, kind: EdgeKind::Dir(up) });
         }
-        if self.fresh {
-            self.next_q32 = self.crossing(up);
-            self.fresh = false;
-        }
-        let ideal = self.t0 + (self.next_q32 >> 32);
+        let ideal = if self.rate == 0 {
+            // A jump (the gearbox at an encoder count): every step due at once.
+            self.t0
+        } else {
+            if self.fresh {
+                self.next_q32 = self.crossing(up);
+                self.fresh = false;
+            }
+            self.t0 + (self.next_q32 >> 32)
+        };
         let t = ideal.max(self.earliest);
         if t >= until {
             return None;
