@@ -367,6 +367,10 @@ fn thread_at(rings: &'static [EdgeRing<RING>; 3], rpm: u32, lead_um: i64, x_end:
         }
         rig.play();
     }
+    if sums == Sums::Revolutions {
+        hprintln!("the rest of the pass; count interrupt:");
+        m4_tests::report_sum();
+    }
     let st = rig.engine.stats();
     hprintln!(
         "thread {} rpm, lead {} um, X{} at the end: {} counts, {} count interrupts ({} moved an axis), Z at {} steps, X at {}",

@@ -784,16 +784,72 @@ impl Gear {
     /// multiplications), else from a loop of additions.
     #[inline]
     pub fn glide(&mut self) -> Due {
-        match self.glide_constant() {
+        if let Some(due) = self.glide_constant() {
+            return due;
+        }
+        match self.glide_ramp() {
             Some(due) => due,
             None => self.glide_any(),
         }
     }
 
+    /// [`Gear::glide`] in a ramp (up or down), kept small: the counts to the step
+    /// as many as the last time, one more or one fewer, checked on the sums
+    /// `S(n) = n·a + d·n(n − 1)/2` of the ramp's increments. `None` otherwise.
+    #[inline(always)]
+    fn glide_ramp(&mut self) -> Option<Due> {
+        if self.mode != Mode::Thread {
+            return None;
+        }
+        // Count j from now adds a + j·d; `most` counts before the next special one.
+        let (a, d, most) = match self.phase {
+            Phase::RampUp { k } => {
+                let stop = if k < self.ramp / 2 { self.ramp / 2 } else { self.ramp };
+                (self.w, self.dw, stop - 1 - k)
+            }
+            Phase::RampDown { u } => (self.w * (2 * u - 1), -2 * self.w, u - 1),
+            _ => return None,
+        };
+        let h = i64::from(self.spacing) - 1;
+        if h < 1
+            || h + 1 >= most.min(i64::from(GLIDE_MAX))
+            || !(0..1 << 50).contains(&a)
+            || !(-(1 << 40)..1 << 40).contains(&d)
+        {
+            return None;
+        }
+        let room = self.unit - self.acc;
+        // Exactly n glide: S(n) < room ≤ S(n + 1), with every increment to the
+        // (n+1)-th at least zero. S(h) once, its neighbours by one increment.
+        let inc = a + d * h;
+        let s = h * a + d * (h * (h - 1) / 2);
+        let (n, glided) = if s < room && s + inc >= room && inc >= 0 {
+            (h, s)
+        } else if s + inc < room && s + 2 * inc + d >= room && inc + d >= 0 {
+            (h + 1, s + inc)
+        } else if s >= room && s - inc + d < room && inc >= d {
+            (h - 1, s - inc + d)
+        } else {
+            return None;
+        };
+        self.acc += glided;
+        self.phase = match self.phase {
+            Phase::RampUp { k } => {
+                self.w += n * self.dw;
+                Phase::RampUp { k: k + n }
+            }
+            Phase::RampDown { u } => Phase::RampDown { u: u - n },
+            p => p,
+        };
+        self.remember(n as u32);
+        self.m_max += n;
+        Some(self.due())
+    }
+
     /// [`Gear::glide`] for nearly every interrupt, kept small: locked at a constant
     /// lead, the step after as many counts as the last one, one more or one fewer.
     /// `None` otherwise.
-    #[inline]
+    #[inline(always)]
     fn glide_constant(&mut self) -> Option<Due> {
         if self.mode != Mode::Thread || self.phase != Phase::Locked || self.dw != 0 {
             return None;
