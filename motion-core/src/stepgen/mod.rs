@@ -183,6 +183,18 @@ impl AxisStepGen {
             return None;
         }
         let up = self.target > self.pos;
+        if up == self.positive && self.rate == 0 {
+            // A jump (the gearbox at an encoder count): the step at once, or when
+            // the driver allows.
+            let t = self.t0.max(self.earliest);
+            if t >= until {
+                return None;
+            }
+            if t > self.t0 {
+                self.delayed += 1;
+            }
+            return Some(self.issue(t, up));
+        }
         if up != self.positive {
             let t = self.dir_free.max(self.t0);
             if t >= until {
@@ -193,16 +205,11 @@ impl AxisStepGen {
             self.earliest = self.earliest.max(t + u64::from(self.timing.dir_setup_ns));
             return Some(StepEvent { t, kind: EdgeKind::Dir(up) });
         }
-        let ideal = if self.rate == 0 {
-            // A jump (the gearbox at an encoder count): every step due at once.
-            self.t0
-        } else {
-            if self.fresh {
-                self.next_q32 = self.crossing(up);
-                self.fresh = false;
-            }
-            self.t0 + (self.next_q32 >> 32)
-        };
+        if self.fresh {
+            self.next_q32 = self.crossing(up);
+            self.fresh = false;
+        }
+        let ideal = self.t0 + (self.next_q32 >> 32);
         let t = ideal.max(self.earliest);
         if t >= until {
             return None;
@@ -212,10 +219,17 @@ impl AxisStepGen {
         }
         // The next half-step boundary is one step further along the ramp.
         self.next_q32 = self.next_q32.saturating_add(self.interval_q32);
+        Some(self.issue(t, up))
+    }
+
+    /// Issues a step at `t`: the position, the pulse's direction hold and the step
+    /// period the driver needs after it.
+    #[inline]
+    fn issue(&mut self, t: u64, up: bool) -> StepEvent {
         self.pos += if up { 1 } else { -1 };
         self.dir_free = t + u64::from(self.timing.pulse_ns);
         self.earliest = t + u64::from(self.timing.min_period_ns);
-        Some(StepEvent { t, kind: EdgeKind::Step(up) })
+        StepEvent { t, kind: EdgeKind::Step(up) }
     }
 
     /// When, after `t0` (ns, Q32), the command crosses the half-step boundary
