@@ -202,7 +202,7 @@ impl<const A: usize> Engine<A> {
                 edges += ax.drain(core, horizon, at, &mut self.stats.ring_full);
                 continue;
             }
-            while let Some(ev) = core.next_step(ax.core_axis, horizon) {
+            while let Some(ev) = core.next_sync_step(ax.core_axis, horizon) {
                 let at = if ev.t == t { now } else { timed(&self.tb, self.base_ns, self.base_ticks, &ev).at };
                 if ax.tx.push(Timed { at, edge: edge_of(&ev) }).is_err() {
                     ax.carry = Some(ev);
@@ -276,16 +276,7 @@ impl EngineAxis {
     ) -> u32 {
         let mut edges = 0;
         let mut next = self.carry.take();
-        loop {
-            let ev = match next {
-                Some(ev) => ev,
-                // Everything commanded is issued (a jump's step): no call.
-                None if core.stepper(self.core_axis).is_none_or(AxisStepGen::settled) => break,
-                None => match core.next_step(self.core_axis, until) {
-                    Some(ev) => ev,
-                    None => break,
-                },
-            };
+        while let Some(ev) = next.or_else(|| core.next_step(self.core_axis, until)) {
             if self.tx.push(at(&ev)).is_err() {
                 self.carry = Some(ev);
                 *ring_full += 1;

@@ -10,6 +10,7 @@ use crate::canon::{SpindleDir, ThreadSync};
 use crate::fixed::PATH_FRAC;
 use crate::planner::block::thread_ramp;
 use crate::planner::{Block, BlockKind, Item, ThreadSpec};
+use crate::stepgen::StepEvent;
 use crate::sync::{Due, Gear, Gearing, Leg, Ratio, ramp_up_steps};
 
 impl<const N: usize> MotionCore<N> {
@@ -64,6 +65,12 @@ impl<const N: usize> MotionCore<N> {
             (None, None) => None,
             (g, p) => Some(g.map_or(Due::NONE, |g| g.glide()).merge(p.map_or(Due::NONE, PolygonGear::due))),
         }
+    }
+
+    /// The next step or direction event of `axis` before `until` after
+    /// [`MotionCore::on_encoder`] moved it (a jump: its step due at once).
+    pub fn next_sync_step(&mut self, axis: usize, until: u64) -> Option<StepEvent> {
+        self.steppers.get_mut(axis)?.next_jump_event(until)
     }
 
     /// A thread pass waits for the spindle and its synchronisation count (SyncWait).
