@@ -556,6 +556,8 @@ impl<const N: usize> MotionCore<N> {
     /// Whether encoder counts must come one by one with their times
     /// ([`MotionCore::on_encoder`]): while axes are locked to the spindle or a thread
     /// pass waits for its start count. Otherwise the count of each period is enough.
+    /// (Every count works; [`MotionCore::encoder_due`] names the only ones that
+    /// matter, which is what the firmware and the simulator hand over.)
     pub fn wants_encoder_edges(&self) -> bool {
         self.gear.is_some() || self.polygon.active() || matches!(self.state, State::SyncWait { .. })
     }

@@ -796,7 +796,7 @@ impl Gear {
     /// [`Gear::glide`] in a ramp (up or down), kept small: the counts to the step
     /// as many as the last time, one more or one fewer, checked on the sums
     /// `S(n) = n·a + d·n(n − 1)/2` of the ramp's increments. `None` otherwise.
-    #[inline(always)]
+    #[inline(never)]
     fn glide_ramp(&mut self) -> Option<Due> {
         if self.mode != Mode::Thread {
             return None;
@@ -1259,7 +1259,8 @@ mod tests {
     /// every `late`-th count of the path, as an interrupt held up would); `hook`
     /// runs on both after each count (an announcement from the period). Asserts
     /// that both put the axes at the same place after every count `b` has seen, and
-    /// that `b` moved at every count it was given. Returns how many counts `b` took.
+    /// that what `b` names next is never a count already reached. Returns how many
+    /// counts `b` took.
     fn same_as_every_count(
         a: &mut Gear,
         b: &mut Gear,
