@@ -133,10 +133,10 @@ impl RunArgs {
     }
 
     /// The macro variables a run starts with: the commons of `--vars`.
-    fn variables(&self) -> Result<interp_core::macros::Variables, Error> {
+    fn variables(&self) -> Result<interp_core::lang::fanuc::macros::Variables, Error> {
         match &self.vars {
             Some(path) => vars::read(path),
-            None => Ok(interp_core::macros::Variables::new()),
+            None => Ok(interp_core::lang::fanuc::macros::Variables::new()),
         }
     }
 }
@@ -286,7 +286,7 @@ fn check_one(
     cfg: &MachineConfig,
     args: &RunArgs,
     panel: &Panel,
-    variables: &interp_core::macros::Variables,
+    variables: &interp_core::lang::fanuc::macros::Variables,
     out: &mut dyn Write,
 ) -> Result<usize, Error> {
     let programs = Programs::load(path, &args.lib)?;
@@ -371,7 +371,7 @@ fn compensation_overlay(
     programs: &Programs,
     cfg: &MachineConfig,
     panel: &Panel,
-    variables: &interp_core::macros::Variables,
+    variables: &interp_core::lang::fanuc::macros::Variables,
     r: &Run,
 ) -> Option<svg::Overlay> {
     let with = |radius: bool, tip: bool| {

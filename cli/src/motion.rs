@@ -8,7 +8,7 @@ use std::fs::File;
 use std::io::BufWriter;
 use std::path::Path;
 
-use interp_core::macros::Variables;
+use interp_core::lang::fanuc::macros::Variables;
 use interp_core::{Alarm, MachineConfig, Panel};
 use sim::{Sim, SimOptions, SpindleModel};
 

@@ -9,7 +9,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use interp_core::canon::{Canon, CanonSink, Full};
-use interp_core::macros::Variables;
+use interp_core::lang::fanuc::macros::Variables;
 use interp_core::program::{Cursor, ProgramId, ProgramIndex, ProgramStore};
 use interp_core::{Alarm, Interpreter, MachineConfig, Panel, Pos, Progress, SingleProgram};
 

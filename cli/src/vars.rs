@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use interp_core::macros::{Variables, parse_common_line, write_commons};
+use interp_core::lang::fanuc::macros::{Variables, parse_common_line, write_commons};
 
 use crate::error::Error;
 

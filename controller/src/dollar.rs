@@ -344,7 +344,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
     fn list_variables(&mut self) {
         let mut vars: heapless::Vec<(u16, f64), 200> = heapless::Vec::new();
         for (n, v) in self.interp.variables().defined() {
-            if interp_core::macros::Variables::is_common(n) {
+            if interp_core::lang::fanuc::macros::Variables::is_common(n) {
                 let _ = vars.push((n, v));
             }
         }

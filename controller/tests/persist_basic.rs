@@ -6,7 +6,7 @@ use controller::persist::sim::SimFlash;
 use controller::persist::{Error, Offsets, Persist, ProgramInfo};
 use interp_core::Pos;
 use interp_core::config::ToolOffset;
-use interp_core::macros::{CommonStore, Variables};
+use interp_core::lang::fanuc::macros::{CommonStore, Variables};
 use interp_core::program::{ProgramMemory, ProgramStore};
 
 /// 8 sectors of 2 KB, 4-byte words.

@@ -13,7 +13,7 @@ use controller::persist::{Error, Offsets, Persist};
 use embedded_storage::nor_flash::NorFlashErrorKind;
 use interp_core::Pos;
 use interp_core::config::{MAX_OFFSETS, ToolOffset};
-use interp_core::macros::CommonStore;
+use interp_core::lang::fanuc::macros::CommonStore;
 
 /// 5 sectors of 2 KB, 4-byte words: small, so the sequence wraps around the
 /// pages and the store moves live items and erases sectors.

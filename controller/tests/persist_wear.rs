@@ -5,7 +5,7 @@ use std::collections::BTreeMap;
 
 use controller::persist::Persist;
 use controller::persist::sim::SimFlash;
-use interp_core::macros::CommonStore;
+use interp_core::lang::fanuc::macros::CommonStore;
 
 /// 4 sectors of 1 KB.
 type Flash = SimFlash<{ 4 * 1024 }, 1024, 4>;

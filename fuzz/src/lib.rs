@@ -136,10 +136,10 @@ impl std::fmt::Write for Discard {
 
 /// Variables the parser target's expressions read: #1–#33 and #100–#149 set to
 /// assorted values (whole, fractional, negative, large, zero), the rest null.
-fn parser_vars() -> &'static interp_core::macros::Variables {
-    static VARS: OnceLock<interp_core::macros::Variables> = OnceLock::new();
+fn parser_vars() -> &'static interp_core::lang::fanuc::macros::Variables {
+    static VARS: OnceLock<interp_core::lang::fanuc::macros::Variables> = OnceLock::new();
     VARS.get_or_init(|| {
-        let mut v = interp_core::macros::Variables::new();
+        let mut v = interp_core::lang::fanuc::macros::Variables::new();
         let values = [1.0, -2.5, 0.0, 1e9, 0.001, 360.0, -1e-9, 45.0, 99_999_999.0, 7.0];
         for (i, n) in (1..=33).chain(100..150).enumerate() {
             let _ = v.set(n, values.get(i % values.len()).copied());
@@ -150,7 +150,7 @@ fn parser_vars() -> &'static interp_core::macros::Variables {
 
 /// One line through the reader and, when it is an NC block, the block check.
 fn parse_line(line: &[u8], n: u32, fmt: &interp_core::units::NumberFormat) {
-    use interp_core::parse::{Block, Read, read_block_into, read_statement_into, skip_level};
+    use interp_core::lang::fanuc::parse::{Block, Read, read_block_into, read_statement_into, skip_level};
     static CFG: OnceLock<(MachineConfig, interp_core::modal::State)> = OnceLock::new();
     let (cfg, state) = CFG.get_or_init(|| {
         let cfg = MachineConfig::default();
@@ -165,8 +165,8 @@ fn parse_line(line: &[u8], n: u32, fmt: &interp_core::units::NumberFormat) {
             for letter in block.letters() {
                 assert!(letter.is_ascii_uppercase() && block.has(letter), "address {letter}");
             }
-            let mut cmd = interp_core::check::Command::EMPTY;
-            if let Err(kind) = interp_core::check::check_into(&block, state, cfg, &mut cmd) {
+            let mut cmd = interp_core::command::Command::EMPTY;
+            if let Err(kind) = interp_core::lang::fanuc::check::check_into(&block, state, cfg, &mut cmd) {
                 let _ = write!(Discard, "{kind}");
             }
         }

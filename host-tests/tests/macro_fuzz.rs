@@ -2,8 +2,8 @@
 //! builds check arithmetic overflow too).
 
 use host_tests::{Memory, run_interp};
-use interp_core::macros::Variables;
-use interp_core::parse::read_statement;
+use interp_core::lang::fanuc::macros::Variables;
+use interp_core::lang::fanuc::parse::read_statement;
 use interp_core::{Interpreter, MachineConfig, Panel, SingleProgram};
 use proptest::prelude::*;
 

@@ -5,7 +5,7 @@ use std::collections::HashMap;
 
 use host_tests::{VecSink, mm, path, run, run_with};
 use interp_core::canon::Action;
-use interp_core::macros::{CommonStore, Value};
+use interp_core::lang::fanuc::macros::{CommonStore, Value};
 use interp_core::{Interpreter, MachineConfig, Panel, Progress, SingleProgram};
 
 /// Variable `n` after the run.

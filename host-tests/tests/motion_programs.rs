@@ -4,7 +4,7 @@
 
 use interp_core::axis::{AXIS_COUNT, Pos};
 use interp_core::canon::{Action, Canon, CanonSink as _, Endpoint, Feed, FeedMode, Move, SpindleSpeed};
-use interp_core::macros::Variables;
+use interp_core::lang::fanuc::macros::Variables;
 use interp_core::{Axis, MachineConfig};
 use motion_core::fixed::round_steps;
 use motion_core::motion::{Feedback, MotionCore, QUEUE, State};

@@ -179,3 +179,25 @@ fn m00_pauses_until_cycle_start() {
     assert_eq!(interp.step(&store, &Panel::default(), &mut sink), Ok(Progress::Executed { line: 2 }));
     assert_eq!(interp.state().pos[Axis::X], mm(10.0));
 }
+
+/// G290 switches the following blocks to SINUMERIK mode, in a block of its own
+/// (docs/LANGUAGES.md); G291 is the FANUC-style dialect's own mode and changes
+/// nothing there. Not alone: alarm 4016 (a code that must stand alone).
+#[test]
+fn g290_and_g291_stand_alone_and_switch_the_language() {
+    assert!(run("G291\nG00 X10\nM30\n").alarms.is_empty());
+    assert_eq!(run("G290 X10\nM30\n").alarm_codes(), vec![(1, 4016)]);
+    assert_eq!(run("G00 G291\nM30\n").alarm_codes(), vec![(1, 4016)]);
+    let r = run("G00 X10\nN20 G290\nG0 X20\n");
+    assert_eq!(path(&r), vec![(10.0, 0.0)]);
+    assert_eq!(r.alarms.first().map(|a| a.line), Some(3), "{:?}", r.alarms);
+}
+
+/// The mill's table holds no lathe cycle: G71 on a machining centre is alarm 0010,
+/// never a lathe roughing cycle.
+#[test]
+fn a_lathe_code_on_a_mill_is_not_a_g_code() {
+    let cfg = MachineConfig { kind: interp_core::config::MachineKind::Mill, ..MachineConfig::default() };
+    let r = run_with("G71 U1 R1\nM30\n", cfg, Panel::default());
+    assert_eq!(r.alarm_codes(), vec![(1, 10)]);
+}

@@ -1,7 +1,7 @@
 //! The language tables: G codes of table 1.1 in systems A/B/C with their modal
 //! groups, and the M codes of tables 1.2 and 3.1 with their timing.
 
-use crate::config::{ConfigError, GCodeSystem, MTiming, MachineConfig};
+use crate::config::{CodeTable, ConfigError, GCodeSystem, Language, MTiming, MachineConfig};
 
 /// A G code by meaning, independent of the G-code system it was written in.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -72,6 +72,9 @@ pub enum GCode {
     ReturnInitial,
     /// G99 of systems B/C: drilling cycles return to the R level.
     ReturnR,
+    /// G290 (to SINUMERIK mode) / G291 (to the FANUC-style ISO dialect): the
+    /// language the following blocks are read in, in a block of its own.
+    Language(Language),
 }
 
 /// Modal groups (FANUC numbering in the comments). Group 00 codes act in their block only.
@@ -111,8 +114,17 @@ pub enum Group {
 }
 
 impl GCode {
-    /// The G code written as `G<tenths/10>` in `system`, if it exists there.
-    pub fn from_tenths(system: GCodeSystem, tenths: u16) -> Option<GCode> {
+    /// The G code written as `G<tenths/10>` in `table`, if it exists there.
+    #[inline]
+    pub fn from_tenths(table: CodeTable, tenths: u16) -> Option<GCode> {
+        match table {
+            CodeTable::Lathe(system) => Self::lathe(system, tenths),
+            CodeTable::Mill => Self::mill(tenths),
+        }
+    }
+
+    /// The lathe's table 1.1 in `system`.
+    fn lathe(system: GCodeSystem, tenths: u16) -> Option<GCode> {
         use GCode::*;
         let common = match tenths {
             0 => Rapid,
@@ -154,9 +166,53 @@ impl GCode {
             890 => SideBore,
             960 => CssOn,
             970 => CssOff,
+            2900 => Language(crate::config::Language::Siemens),
+            2910 => Language(crate::config::Language::Fanuc),
             _ => return Self::system_specific(system, tenths),
         };
         Some(common)
+    }
+
+    /// The M series of a machining centre (FANUC 0i-M, seed 004). A number the
+    /// table does not hold is alarm 0010, so a lathe code never silently means
+    /// something on a mill (G71, G76, G96, G32, G12.1, G50.2/G51.2 …).
+    fn mill(tenths: u16) -> Option<GCode> {
+        use GCode::*;
+        Some(match tenths {
+            0 => Rapid,
+            10 => Linear,
+            20 => ArcCw,
+            30 => ArcCcw,
+            40 => Dwell,
+            90 => ExactStopOnce,
+            170 => PlaneXy,
+            180 => PlaneZx,
+            190 => PlaneYz,
+            200 => Inch,
+            210 => Metric,
+            220 => StrokeCheckOn,
+            230 => StrokeCheckOff,
+            280 => ReferenceReturn,
+            300 => ReferenceReturnN,
+            400 => NoseCompOff,
+            410 => NoseCompLeft,
+            420 => NoseCompRight,
+            520 => LocalFrame,
+            530 => MachineCoordinates,
+            540..=590 if tenths.is_multiple_of(10) => WorkFrame(((tenths - 540) / 10) as u8),
+            610 => ExactStopMode,
+            640 => ContinuousMode,
+            800 => DrillCancel,
+            900 => Absolute,
+            910 => Incremental,
+            940 => FeedPerMin,
+            950 => FeedPerRev,
+            980 => ReturnInitial,
+            990 => ReturnR,
+            2900 => Language(crate::config::Language::Siemens),
+            2910 => Language(crate::config::Language::Fanuc),
+            _ => return None,
+        })
     }
 
     /// Codes whose number differs between systems (table 1.1 columns).
@@ -196,7 +252,7 @@ impl GCode {
             | VariableLeadThread | TurningCycle | ThreadCycle | FacingCycle => Group::Motion,
             Dwell | ExactStopOnce | ReferenceReturn | ReferenceReturnN | LocalFrame | MachineCoordinates
             | SetCoordinates | FinishCycle | RoughTurnCycle | RoughFaceCycle | PatternCycle | FacePeckCycle
-            | GroovePeckCycle | MultiThreadCycle => Group::NonModal,
+            | GroovePeckCycle | MultiThreadCycle | Language(_) => Group::NonModal,
             CssOn | CssOff => Group::SpindleMode,
             Absolute | Incremental => Group::Distance,
             StrokeCheckOn | StrokeCheckOff => Group::StrokeCheck,
@@ -327,21 +383,40 @@ mod tests {
 
     #[test]
     fn systems_map_the_cycles_of_table_1_1() {
-        use GCodeSystem::*;
-        assert_eq!(GCode::from_tenths(A, 900), Some(GCode::TurningCycle));
-        assert_eq!(GCode::from_tenths(B, 770), Some(GCode::TurningCycle));
-        assert_eq!(GCode::from_tenths(C, 200), Some(GCode::TurningCycle));
-        assert_eq!(GCode::from_tenths(C, 700), Some(GCode::Inch));
-        assert_eq!(GCode::from_tenths(A, 200), Some(GCode::Inch));
-        assert_eq!(GCode::from_tenths(B, 900), Some(GCode::Absolute));
-        assert_eq!(GCode::from_tenths(A, 910), None);
-        assert_eq!(GCode::from_tenths(A, 990), Some(GCode::FeedPerRev));
-        assert_eq!(GCode::from_tenths(B, 950), Some(GCode::FeedPerRev));
-        assert_eq!(GCode::from_tenths(A, 570), Some(GCode::WorkFrame(3)));
-        assert_eq!(GCode::from_tenths(A, 545), None);
-        assert_eq!(GCode::from_tenths(A, 500), Some(GCode::SetCoordinates));
-        assert_eq!(GCode::from_tenths(B, 920), Some(GCode::SetCoordinates));
-        assert_eq!(GCode::from_tenths(A, 70), None);
+        let (a, b, c) =
+            (CodeTable::Lathe(GCodeSystem::A), CodeTable::Lathe(GCodeSystem::B), CodeTable::Lathe(GCodeSystem::C));
+        assert_eq!(GCode::from_tenths(a, 900), Some(GCode::TurningCycle));
+        assert_eq!(GCode::from_tenths(b, 770), Some(GCode::TurningCycle));
+        assert_eq!(GCode::from_tenths(c, 200), Some(GCode::TurningCycle));
+        assert_eq!(GCode::from_tenths(c, 700), Some(GCode::Inch));
+        assert_eq!(GCode::from_tenths(a, 200), Some(GCode::Inch));
+        assert_eq!(GCode::from_tenths(b, 900), Some(GCode::Absolute));
+        assert_eq!(GCode::from_tenths(a, 910), None);
+        assert_eq!(GCode::from_tenths(a, 990), Some(GCode::FeedPerRev));
+        assert_eq!(GCode::from_tenths(b, 950), Some(GCode::FeedPerRev));
+        assert_eq!(GCode::from_tenths(a, 570), Some(GCode::WorkFrame(3)));
+        assert_eq!(GCode::from_tenths(a, 545), None);
+        assert_eq!(GCode::from_tenths(a, 500), Some(GCode::SetCoordinates));
+        assert_eq!(GCode::from_tenths(b, 920), Some(GCode::SetCoordinates));
+        assert_eq!(GCode::from_tenths(a, 70), None);
+    }
+
+    /// The mill's table holds no lathe-only code: the same number never silently
+    /// means the lathe's cycle on a mill (alarm 0010 instead).
+    #[test]
+    fn the_mill_table_refuses_lathe_codes() {
+        let m = CodeTable::Mill;
+        for lathe_only in [121, 131, 320, 340, 502, 512, 700, 710, 720, 730, 740, 750, 760, 920, 960, 970, 21, 22] {
+            assert_eq!(GCode::from_tenths(m, lathe_only), None, "G{}", lathe_only / 10);
+        }
+        assert_eq!(GCode::from_tenths(m, 900), Some(GCode::Absolute));
+        assert_eq!(GCode::from_tenths(m, 940), Some(GCode::FeedPerMin));
+        assert_eq!(GCode::from_tenths(m, 980), Some(GCode::ReturnInitial));
+        assert_eq!(GCode::from_tenths(m, 170), Some(GCode::PlaneXy));
+        for t in [CodeTable::Mill, CodeTable::Lathe(GCodeSystem::A), CodeTable::Lathe(GCodeSystem::C)] {
+            assert_eq!(GCode::from_tenths(t, 2900), Some(GCode::Language(Language::Siemens)));
+            assert_eq!(GCode::from_tenths(t, 2910), Some(GCode::Language(Language::Fanuc)));
+        }
     }
 
     #[test]

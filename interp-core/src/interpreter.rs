@@ -16,15 +16,18 @@
 use crate::alarm::{Alarm, AlarmKind};
 use crate::axis::Pos;
 use crate::canon::CanonSink;
-use crate::check::{Command, check_into};
+use crate::command::Command;
 use crate::config::{MachineConfig, Param};
 use crate::cycles::{CycleStage, Expansion};
 use crate::env::Environment;
 use crate::exec::execute;
-use crate::macros::{MacroStatement, Variables};
+use crate::lang::fanuc::check::check_into;
+use crate::lang::fanuc::macros::find_loop_end;
+use crate::lang::fanuc::macros::{MacroStatement, Variables};
+use crate::lang::fanuc::parse::{Block, MacroBlock, Read, read_statement_into, skip_level};
+use crate::lang::{Language, ProgramText};
 use crate::modal::State;
-use crate::parse::{Block, MacroBlock, Read, read_statement_into, skip_level};
-use crate::program::{Cursor, ProgramId, ProgramStore, ProgramText, find_loop_end, next_block};
+use crate::program::{Cursor, ProgramId, ProgramStore, next_block};
 use crate::stage::{Flow, Outbox, Staged};
 use crate::units::NumberFormat;
 
@@ -148,6 +151,7 @@ enum Next {
     Repeat { start: Cursor },
     Restart { start: Cursor },
     Jump { to: Cursor },
+    Language(Language),
 }
 
 /// The lathe interpreter.
@@ -167,6 +171,9 @@ pub struct Interpreter {
     /// The block checked, reused from block to block.
     cmd: Command,
     phase: Phase,
+    /// The language blocks are read in now (the machine's at power-on and reset;
+    /// `G290`/`G291` switch it).
+    language: Language,
     /// A block other than `%`/`O` has been executed in the current program level
     /// (a later `%` or `O` ends the record).
     started: bool,
@@ -190,6 +197,7 @@ impl Interpreter {
     /// variables null, running program 0 (see [`Interpreter::select_main`]).
     pub fn new(cfg: MachineConfig) -> Self {
         let state = State::power_on(&cfg, Pos::ZERO);
+        let language = cfg.language;
         Interpreter {
             cfg,
             state,
@@ -200,6 +208,7 @@ impl Interpreter {
             block: Block::default(),
             cmd: Command::EMPTY,
             phase: Phase::Running,
+            language,
             started: false,
             vars: Variables::new(),
             calls: heapless::Vec::new(),
@@ -238,7 +247,7 @@ impl Interpreter {
         &mut self.vars
     }
 
-    /// How program numbers are read now (for [`read_statement`](crate::parse::read_statement) outside the
+    /// How program numbers are read now (for [`read_statement`](crate::lang::fanuc::parse::read_statement) outside the
     /// interpreter, e.g. a cycle reading its profile blocks).
     pub fn number_format(&self) -> NumberFormat {
         NumberFormat { units: self.state.modal.units, input: self.cfg.input_mode(), increments: self.cfg.increments }
@@ -299,6 +308,7 @@ impl Interpreter {
             self.state.frames.local = old.frames.local;
         }
         self.state.sum_own_offsets();
+        self.language = self.cfg.language;
         self.rewind();
     }
 
@@ -438,6 +448,14 @@ impl Interpreter {
         }
         let mut budget = self.budget;
         loop {
+            if self.language == Language::Siemens {
+                // The blocks after a G290 are SINUMERIK blocks (crate::lang, issue 19).
+                return Err(Alarm::in_program(
+                    self.cursor.program,
+                    self.cursor.line,
+                    AlarmKind::NotSupportedYet { what: "SINUMERIK mode (G290)" },
+                ));
+            }
             let at = self.cursor;
             self.last_block = at;
             let text = programs.text(at.program).unwrap_or(&[]);
@@ -536,6 +554,7 @@ impl Interpreter {
         self.started = true;
         let here = self.cursor.program;
         let program = ProgramText {
+            language: self.language,
             text: programs.text(here).unwrap_or(&[]),
             start: programs.start(here).unwrap_or(Cursor::start(here)),
             vars: None,
@@ -567,7 +586,7 @@ impl Interpreter {
         E: Environment,
         S: CanonSink + ?Sized,
     {
-        let program = program_text(programs, self.cursor.program, &self.vars, self.number_format());
+        let program = program_text(programs, self.cursor.program, self.language, &self.vars, self.number_format());
         let Some(v) = self.validating.as_mut() else { return Ok(Progress::Blocked) };
         let (at, line) = (v.at, v.line);
         match v.dry.dry_run(&self.cfg, program, env) {
@@ -760,7 +779,7 @@ impl Interpreter {
             return Ok(None);
         }
         let here = self.cursor.program;
-        let program = program_text(programs, here, &self.vars, self.number_format());
+        let program = program_text(programs, here, self.language, &self.vars, self.number_format());
         let Some(exp) = self.cycle.as_mut() else { return Ok(None) };
         let line = exp.line();
         match exp.run(&self.cfg, program, env, &mut self.outbox) {
@@ -817,6 +836,7 @@ impl Interpreter {
                     Next::Return { to }
                 }
             },
+            Flow::Language(l) => Next::Language(l),
             Flow::Jump { seq } => Next::Jump {
                 to: programs.find_sequence(seq, self.cursor).ok_or(AlarmKind::JumpTargetNotFound { seq })?,
             },
@@ -866,6 +886,7 @@ impl Interpreter {
                 }
             }
             Next::Jump { to } => self.jump(to),
+            Next::Language(l) => self.language = l,
         }
     }
 
@@ -968,10 +989,12 @@ impl Interpreter {
 fn program_text<'a, P: ProgramStore + ?Sized>(
     programs: &'a P,
     here: ProgramId,
+    language: Language,
     vars: &'a Variables,
     fmt: NumberFormat,
 ) -> ProgramText<'a> {
     ProgramText {
+        language,
         text: programs.text(here).unwrap_or(&[]),
         start: programs.start(here).unwrap_or(Cursor::start(here)),
         vars: Some(vars),

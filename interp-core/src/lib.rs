@@ -1,17 +1,21 @@
-//! Lathe interpreter core: FANUC-style lathe programs (ELESY-E3TA dialect, G-code
-//! system A/B/C) in, canonical machining actions out. `no_std`, no allocation,
-//! no unsafe code: the same logic runs in the firmware and in the host simulator.
+//! Interpreter core: part programs in, canonical machining actions out. `no_std`,
+//! no allocation, no unsafe code: the same logic runs in the firmware and in the
+//! host simulator. Two languages (the FANUC-style dialect of the ELESY-E3TA manual,
+//! SINUMERIK 840D) on two kinds of machine (lathe, machining centre) share one
+//! engine (docs/LANGUAGES.md).
 //!
-//! Layers, one module each:
+//! Layers, one module each (docs/STRUCTURE.md):
 //! - [`program`]: program text and the cursor that cuts blocks out of it;
-//! - [`parse`]: one block of text into words (syntax), or an evaluated macro
-//!   statement ([`macros`]: variables, expressions, GOTO/IF/WHILE);
-//! - [`modal`]: the modal state a block is read against (below `check`);
-//! - [`check`]: words into a validated command in internal units (meaning);
-//! - [`stage`], [`moves`], [`contour`], [`cycles`], [`exec`]: the command applied to
-//!   the modal state, emitting [`canon`] actions — staging (all or nothing), the
-//!   move helpers, the contour look-ahead, the canned cycles, and `exec` on top
-//!   dispatching to them (docs/STRUCTURE.md);
+//! - [`modal`]: the modal state a block is read against;
+//! - [`command`]: the checked block every language produces;
+//! - [`lang`]: the front ends — [`lang::fanuc`] (reader, macro B, checker), each
+//!   turning its language's blocks into commands, with its own variables and
+//!   control flow;
+//! - [`stage`], [`moves`], [`contour`], [`cycles`], [`exec`]: the engine — the
+//!   command applied to the modal state, emitting [`canon`] actions: staging (all or
+//!   nothing), the move helpers, the contour look-ahead and compensation, the canned
+//!   cycles, and `exec` on top dispatching to them;
+//! - [`codes`]: G-code meanings and the table of each machine kind;
 //! - [`interpreter`]: the incremental driver, one NC block (and a bounded number of
 //!   macro statements) per step, with the subprogram and loop stacks.
 //!
@@ -22,8 +26,8 @@
 #[cfg(test)]
 extern crate std;
 
-pub mod check;
 pub mod codes;
+pub mod command;
 pub mod contour;
 pub mod cycles;
 pub mod env;
@@ -31,10 +35,9 @@ pub mod exec;
 pub mod geom;
 mod head;
 pub mod interpreter;
-pub mod macros;
+pub mod lang;
 pub mod modal;
 pub mod moves;
-pub mod parse;
 pub mod program;
 mod sort;
 pub mod stage;

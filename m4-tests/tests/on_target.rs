@@ -10,8 +10,8 @@ use core::hint::black_box;
 use cortex_m_rt::entry;
 use heapless::Vec;
 use interp_core::canon::{Action, Canon, CanonSink, Full, RecordingSink, ThreadSync};
-use interp_core::macros::{MacroStatement, Variables};
-use interp_core::parse::{Statement, read_statement};
+use interp_core::lang::fanuc::macros::{MacroStatement, Variables};
+use interp_core::lang::fanuc::parse::{Statement, read_statement};
 use interp_core::{Alarm, Axis, Interpreter, MachineConfig, Panel, Progress, SingleProgram};
 use m4_tests::{TestFn, run_tests, tests};
 

@@ -25,7 +25,7 @@ use std::io::Write;
 use hal::{DigitalInputs, DigitalOutputs, MonotonicClock, Rotation, SpindleDrive, SpindleEncoder, StepDir};
 use interp_core::axis::{AXIS_COUNT, Axis, Pos};
 use interp_core::canon::{Canon, CanonSink, Full, SpindleDir};
-use interp_core::macros::Variables;
+use interp_core::lang::fanuc::macros::Variables;
 use interp_core::program::{ProgramId, ProgramStore};
 use interp_core::{Alarm, Interpreter, MachineConfig, Panel, Progress, SingleProgram};
 use motion_core::motion::{Event, EventKind, Feedback, MotionCore, QUEUE, State};

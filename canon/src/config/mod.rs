@@ -26,6 +26,48 @@ pub enum GCodeSystem {
     C,
 }
 
+/// The language programs are written in: which front end reads them.
+///
+/// A machine setting gives the language at power-on and after a reset; in a
+/// program or on the link `G290` switches to SINUMERIK mode and `G291` back to the
+/// FANUC-style (ISO) dialect, as the 840D switches to and from its ISO dialect.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Language {
+    /// The FANUC-style dialect of the ELESY-E3TA manual, with custom macro B.
+    #[default]
+    Fanuc,
+    /// SINUMERIK 840D: R parameters, DEF variables, labels, PROC, the standard cycles.
+    Siemens,
+}
+
+/// The kind of machine: the profile that selects the G-code table, the address
+/// letters, the power-on modes, the tool model and the axes the language speaks of.
+/// Everything below the language (planner, interpolator, steps, job control, link,
+/// program memory, persistence) is the same for every kind.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum MachineKind {
+    /// A lathe: X (diameter) and Z, C optional; turret T with offsets (T0101);
+    /// the T-series codes of table 1.1 (systems A/B/C).
+    #[default]
+    Lathe,
+    /// A machining centre (FANUC 0i-M, seed 004): X, Y, Z in radius, optional 4th
+    /// rotary; T selects, M06 changes; H length and D radius offsets; M-series codes.
+    Mill,
+}
+
+/// The G-code table a block is read in: the machine kind's table, for a lathe in
+/// the G-code system chosen.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum CodeTable {
+    /// A lathe's table 1.1 in system A, B or C.
+    Lathe(GCodeSystem),
+    /// The M series of a machining centre.
+    Mill,
+}
+
 /// Limits and rates of one axis.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct AxisConfig {
@@ -117,7 +159,11 @@ pub const MAX_USER_M: usize = 16;
 /// Everything the interpreter needs to know about the machine.
 #[derive(Clone, Debug, PartialEq)]
 pub struct MachineConfig {
-    /// G-code system A, B or C (table 1.1).
+    /// Lathe or mill: the profile the language is read in.
+    pub kind: MachineKind,
+    /// The language at power-on and after a reset (`G290`/`G291` switch it).
+    pub language: Language,
+    /// G-code system A, B or C (table 1.1) of a lathe.
     pub gcode_system: GCodeSystem,
     /// IS-B or IS-C least increments.
     pub increments: IncrementSystem,
@@ -158,6 +204,8 @@ impl Default for MachineConfig {
         let x = AxisConfig::linear(-5, 160, 6_000);
         let z = AxisConfig { drive: Drive::per_mm(320), ..AxisConfig::linear(-600, 300, 8_000) };
         MachineConfig {
+            kind: MachineKind::Lathe,
+            language: Language::Fanuc,
             gcode_system: GCodeSystem::A,
             increments: IncrementSystem::IsB,
             diameter_x: true,
@@ -188,6 +236,15 @@ impl MachineConfig {
     #[inline]
     pub fn axis(&self, a: Axis) -> &AxisConfig {
         &self.axes[a.index()]
+    }
+
+    /// The G-code table blocks are read in.
+    #[inline]
+    pub fn code_table(&self) -> CodeTable {
+        match self.kind {
+            MachineKind::Lathe => CodeTable::Lathe(self.gcode_system),
+            MachineKind::Mill => CodeTable::Mill,
+        }
     }
 
     /// Input mode from parameter 3401.

@@ -4,14 +4,15 @@
 use std::collections::BTreeMap;
 
 use interp_core::config::{
-    AxisConfig, GCodeSystem, MAX_OFFSETS, MAX_USER_M, MTiming, MotionConfig, Param, ParamError, Parameters, UserMCode,
+    AxisConfig, GCodeSystem, Language, MAX_OFFSETS, MAX_USER_M, MTiming, MachineKind, MotionConfig, Param, ParamError,
+    Parameters, UserMCode,
 };
 use interp_core::units::IncrementSystem;
 use interp_core::{Axis, MachineConfig, Pos};
 
 use super::file::{
-    AxisFile, GCodeSystemName, IncrementName, InputName, MachineFile, MotionFile, Offset, ParamKey, Point, Spindle,
-    TimingName, UserM, WorkOffsets,
+    AxisFile, GCodeSystemName, IncrementName, InputName, KindName, LanguageName, MachineFile, MotionFile, Offset,
+    ParamKey, Point, Spindle, TimingName, UserM, WorkOffsets,
 };
 
 /// Largest magnitude of an internal value from a file: 10⁹ mm, far beyond any machine.
@@ -67,8 +68,20 @@ pub(super) fn apply(file: &MachineFile, cfg: &mut MachineConfig) -> Result<(), S
         .map_err(|e| e.to_string())
 }
 
-/// G-code system, increments, diameter programming, rapid mode, tool count.
+/// Kind, language, G-code system, increments, diameter programming, rapid mode, tool count.
 fn apply_modes(file: &MachineFile, cfg: &mut MachineConfig) {
+    if let Some(k) = file.kind {
+        cfg.kind = match k {
+            KindName::Lathe => MachineKind::Lathe,
+            KindName::Mill => MachineKind::Mill,
+        };
+    }
+    if let Some(l) = file.language {
+        cfg.language = match l {
+            LanguageName::Fanuc => Language::Fanuc,
+            LanguageName::Siemens => Language::Siemens,
+        };
+    }
     if let Some(s) = file.gcode_system {
         cfg.gcode_system = match s {
             GCodeSystemName::A => GCodeSystem::A,

@@ -3,19 +3,29 @@
 
 use std::collections::BTreeMap;
 
-use interp_core::config::{AxisConfig, GCodeSystem, MTiming, MotionConfig, PARAMS, Param, ParamUnit, ToolOffset};
+use interp_core::config::{
+    AxisConfig, GCodeSystem, Language, MTiming, MachineKind, MotionConfig, PARAMS, Param, ParamUnit, ToolOffset,
+};
 use interp_core::units::IncrementSystem;
 use interp_core::{Axis, MachineConfig, Pos};
 
 use super::apply::position_scale;
 use super::file::{
-    Axes, AxisFile, GCodeSystemName, IncrementName, InputName, MachineFile, MotionFile, Offset, ParamKey, Point,
-    Spindle, TimingName, UserM, WorkOffsets,
+    Axes, AxisFile, GCodeSystemName, IncrementName, InputName, KindName, LanguageName, MachineFile, MotionFile, Offset,
+    ParamKey, Point, Spindle, TimingName, UserM, WorkOffsets,
 };
 
 /// Every setting of `cfg` as a machine file (offset rows that are all zero left out).
 pub(super) fn file_of(cfg: &MachineConfig) -> MachineFile {
     MachineFile {
+        kind: Some(match cfg.kind {
+            MachineKind::Lathe => KindName::Lathe,
+            MachineKind::Mill => KindName::Mill,
+        }),
+        language: Some(match cfg.language {
+            Language::Fanuc => LanguageName::Fanuc,
+            Language::Siemens => LanguageName::Siemens,
+        }),
         gcode_system: Some(match cfg.gcode_system {
             GCodeSystem::A => GCodeSystemName::A,
             GCodeSystem::B => GCodeSystemName::B,

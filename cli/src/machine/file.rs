@@ -12,6 +12,11 @@ use serde::{Deserialize, Serialize};
 #[derive(Clone, Debug, Default, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct MachineFile {
+    /// `lathe` or `mill`: the profile programs are read in (G-code table, letters,
+    /// power-on modes, tool model).
+    pub kind: Option<KindName>,
+    /// `fanuc` or `siemens`: the language at power-on and after a reset.
+    pub language: Option<LanguageName>,
     /// `A`, `B` or `C`.
     pub gcode_system: Option<GCodeSystemName>,
     /// `IS-B` or `IS-C`.
@@ -80,6 +85,26 @@ impl PartialOrd for ParamKey {
     fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
         Some(self.cmp(other))
     }
+}
+
+/// Machine kind.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum KindName {
+    /// A lathe (T series).
+    Lathe,
+    /// A machining centre (M series).
+    Mill,
+}
+
+/// Programming language.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum LanguageName {
+    /// The FANUC-style dialect.
+    Fanuc,
+    /// SINUMERIK 840D.
+    Siemens,
 }
 
 /// G-code system.

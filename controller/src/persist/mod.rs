@@ -53,7 +53,7 @@
 //! ```
 //! use controller::persist::sim::SimFlash;
 //! use controller::persist::{Offsets, Persist};
-//! use interp_core::macros::Variables;
+//! use interp_core::lang::fanuc::macros::Variables;
 //!
 //! let mut flash = SimFlash::<{ 4 * 2048 }, 2048, 4>::new();
 //! let mut store = Persist::new(&mut flash, 0..4 * 2048)?;
@@ -90,7 +90,7 @@ use core::ops::Range;
 
 use embassy_futures::block_on;
 use embedded_storage::nor_flash::{MultiwriteNorFlash, NorFlash, NorFlashError, NorFlashErrorKind};
-use interp_core::macros::COMMON_COUNT;
+use interp_core::lang::fanuc::macros::COMMON_COUNT;
 use sequential_storage::cache::Cache;
 use sequential_storage::cache::key_pointers::ArrayKeyPointers;
 use sequential_storage::cache::page_pointers::ArrayPagePointers;

@@ -5,7 +5,7 @@ use embedded_storage::nor_flash::{MultiwriteNorFlash, NorFlash};
 use interp_core::Pos;
 use interp_core::axis::AXIS_COUNT;
 use interp_core::config::{MAX_OFFSETS, ToolOffset, ToolTable};
-use interp_core::macros::{COMMON_COUNT, CommonStore, FIRST_COMMON, LAST_COMMON, Value};
+use interp_core::lang::fanuc::macros::{COMMON_COUNT, CommonStore, FIRST_COMMON, LAST_COMMON, Value};
 
 use super::keys::{self, Kind};
 use super::{Error, Persist};

@@ -48,7 +48,7 @@ impl FinishGen {
         &mut self,
         em: &mut Emitter,
         cfg: &MachineConfig,
-        program: crate::program::ProgramText<'_>,
+        program: crate::lang::ProgramText<'_>,
         env: &E,
         out: &mut dyn Out,
         queue: &mut StepQueue,

@@ -35,14 +35,14 @@ mod rough;
 mod single;
 mod thread;
 
-pub use crate::check::cycle_args::CycleArgs;
+pub use crate::command::cycle::CycleArgs;
 pub use emit::{Emitter, Out, Pt, Step};
 
 use crate::alarm::AlarmKind;
 use crate::canon::{Canon, Plane, SpindleDir};
-use crate::check::Command;
-use crate::check::cycle_args as args;
 use crate::codes::GCode;
+use crate::command::Command;
+use crate::command::cycle as args;
 use crate::config::{MachineConfig, Param};
 use crate::env::Environment;
 use crate::modal::{RigidTap, State};
@@ -139,7 +139,7 @@ impl Expansion {
     pub fn run<E: Environment + ?Sized>(
         &mut self,
         cfg: &MachineConfig,
-        program: crate::program::ProgramText<'_>,
+        program: crate::lang::ProgramText<'_>,
         env: &E,
         out: &mut dyn Out,
     ) -> Result<bool, AlarmKind> {
@@ -248,7 +248,7 @@ impl<'a> CycleStage<'a> {
     pub fn in_program(
         line: u32,
         outbox: &'a mut Outbox,
-        program: crate::program::ProgramText<'a>,
+        program: crate::lang::ProgramText<'a>,
         slot: &'a mut Option<Expansion>,
     ) -> Self {
         let mut staged = Staged::new(line, outbox);
@@ -602,7 +602,7 @@ impl Expansion {
     pub fn dry_run<E: Environment + ?Sized>(
         &mut self,
         cfg: &MachineConfig,
-        program: crate::program::ProgramText<'_>,
+        program: crate::lang::ProgramText<'_>,
         env: &E,
     ) -> Result<bool, AlarmKind> {
         self.run(cfg, program, env, &mut Dry(DRY_RUN_CHUNK))
@@ -640,7 +640,7 @@ mod tests {
         // live in the interpreter too: ~26 KB on a 64-bit host, less on the M4.
         // So does the checked command reused from block to block (336 bytes here,
         // 304 on the M4): returning it by value cost ~330 instructions a block.
-        let vars = core::mem::size_of::<crate::macros::Variables>();
+        let vars = core::mem::size_of::<crate::lang::fanuc::macros::Variables>();
         assert!(interp < 16 * 1024 + 512 + vars + exp, "Interpreter is {interp} bytes");
     }
 }

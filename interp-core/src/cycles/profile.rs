@@ -8,13 +8,14 @@ use super::{CycleStage, Execute};
 use crate::alarm::AlarmKind;
 use crate::axis::Axis;
 use crate::canon::{Action, SpindleDir};
-use crate::check::check;
 use crate::codes::{GCode, MFunction};
 use crate::config::MachineConfig;
 use crate::env::Environment;
+use crate::lang::ProgramText;
+use crate::lang::fanuc::check::check;
+use crate::lang::fanuc::parse::{Block, Read, read_with};
 use crate::modal::State;
-use crate::parse::{Block, Read, read_with};
-use crate::program::{Cursor, ProgramText, find_sequence_from, next_block};
+use crate::program::{Cursor, find_sequence_from, next_block};
 use crate::stage::Flow;
 
 /// Most segments a finishing shape may have (alarm 4035 beyond).
@@ -247,7 +248,7 @@ pub fn next_shape_block<E: Environment + ?Sized>(
 }
 
 /// Checks a shape block's command against 2.16.7 notes 2–3.
-pub fn check_shape_command(cmd: &crate::check::Command, first: bool) -> Result<(), AlarmKind> {
+pub fn check_shape_command(cmd: &crate::command::Command, first: bool) -> Result<(), AlarmKind> {
     use GCode::*;
     if let Some(c) = cmd.g.one_shot
         && c != Dwell
@@ -287,8 +288,8 @@ pub fn run_shape_block<E: Environment + ?Sized>(
     env: &E,
     execute: Execute,
     staged: &mut CycleStage<'_>,
-) -> Result<crate::check::Command, AlarmKind> {
-    let units = |t: &u16| matches!(GCode::from_tenths(cfg.gcode_system, *t), Some(GCode::Inch | GCode::Metric));
+) -> Result<crate::command::Command, AlarmKind> {
+    let units = |t: &u16| matches!(GCode::from_tenths(cfg.code_table(), *t), Some(GCode::Inch | GCode::Metric));
     if sb.block.g.iter().any(units) {
         return Err(AlarmKind::ProfileForbiddenCode { what: "G20/G21" });
     }

@@ -4,7 +4,7 @@
 use crate::alarm::AlarmKind;
 use crate::axis::Axis;
 use crate::canon::Endpoint;
-use crate::check::Command;
+use crate::command::Command;
 use crate::config::{MachineConfig, Param};
 use crate::env::Environment;
 use crate::modal::State;

@@ -10,8 +10,8 @@ mod polygon;
 use crate::alarm::AlarmKind;
 use crate::axis::Pos;
 use crate::canon::Action;
-use crate::check::{Command, FlowWord};
 use crate::codes::{GCode, MFunction};
+use crate::command::{Command, FlowWord};
 use crate::config::{MTiming, MachineConfig, ToolOffset};
 use crate::cycles::{self, CycleStage};
 use crate::env::Environment;
@@ -46,6 +46,7 @@ pub fn execute(
         Some(GCode::LocalFrame) => coords::local_frame(cmd, st),
         Some(GCode::MachineCoordinates) => coords::machine_move(cmd, st, cfg, out)?,
         Some(GCode::ReferenceReturn | GCode::ReferenceReturnN) => coords::reference_return(cmd, st, cfg, env, out)?,
+        Some(GCode::Language(_)) => {}
         _ if cmd.g.stroke.is_some() => {}
         _ if cmd.g.polygon.is_some() => polygon::switch(cmd, st, cfg, out)?,
         _ if polar::mode_change(cmd, st, cfg)? => {}
@@ -252,6 +253,9 @@ fn program_flow(
             }
             _ => {}
         }
+    }
+    if let Some(GCode::Language(l)) = cmd.g.one_shot {
+        return Ok(Flow::Language(l));
     }
     Ok(match cmd.flow {
         None => Flow::Continue,

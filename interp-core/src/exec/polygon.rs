@@ -15,8 +15,8 @@
 use crate::alarm::AlarmKind;
 use crate::axis::Axis;
 use crate::canon::{Action, Endpoint, Move, PolygonSync, SpindleCommand, SpindleDir};
-use crate::check::Command;
-use crate::check::cycle_args::CycleArgs;
+use crate::command::Command;
+use crate::command::cycle::CycleArgs;
 use crate::config::MachineConfig;
 use crate::modal::State;
 use crate::moves::{motion, spindle_speed};

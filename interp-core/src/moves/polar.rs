@@ -14,8 +14,8 @@
 use crate::alarm::{AlarmKind, GNum};
 use crate::axis::Axis;
 use crate::canon::{Action, ArcMove, Endpoint, Feed, FeedMode, Move, Plane, SpindleDir};
-use crate::check::Command;
 use crate::codes::GCode;
+use crate::command::Command;
 use crate::config::MachineConfig;
 use crate::geom::{center_from_radius, path::V2};
 use crate::modal::{Polar, State};

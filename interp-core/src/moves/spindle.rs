@@ -4,8 +4,8 @@
 use crate::alarm::AlarmKind;
 use crate::axis::Axis;
 use crate::canon::{Action, SpindleCommand, SpindleDir, SpindleSpeed, css_rpm};
-use crate::check::Command;
 use crate::codes::{GCode, MFunction};
+use crate::command::Command;
 use crate::config::MachineConfig;
 use crate::modal::State;
 use crate::stage::Staged;

@@ -7,7 +7,7 @@
 use crate::alarm::AlarmKind;
 use crate::axis::{Axis, Pos};
 use crate::canon::{Action, Canon};
-use crate::check::Command;
+use crate::command::Command;
 use crate::config::{MachineConfig, Param};
 use crate::geom::path::{Elem, V2};
 use crate::modal::{State, StrokeArea};

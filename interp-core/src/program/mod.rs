@@ -11,10 +11,7 @@ mod memory;
 
 pub use memory::{LoadError, ProgramArea, ProgramIndex, ProgramMemory};
 
-use crate::alarm::AlarmKind;
 pub(crate) use crate::head::leading_sequence;
-use crate::macros::{LoopMark, Variables, loop_mark};
-use crate::units::NumberFormat;
 
 /// Identifies a program in a store: its O number (0 = a main program without one).
 pub type ProgramId = u32;
@@ -54,30 +51,6 @@ pub struct SingleProgram<'a>(pub &'a [u8]);
 impl ProgramStore for SingleProgram<'_> {
     fn text(&self, id: ProgramId) -> Option<&[u8]> {
         (id == 0).then_some(self.0)
-    }
-}
-
-/// A program as the blocks of a canned cycle's shape (G70–G73 ns–nf) are read from
-/// it: the text, where the program begins, and what the words are evaluated against.
-#[derive(Clone, Copy, Debug)]
-pub struct ProgramText<'a> {
-    /// The text; cursors of the program index into it.
-    pub text: &'a [u8],
-    /// Where the program begins: sequence numbers are searched from here.
-    pub start: Cursor,
-    /// The variables `#i` in words stand for (`None`: words may not use variables).
-    pub vars: Option<&'a Variables>,
-    /// The number format in force (ROUND in words); `None` outside a program.
-    pub fmt: Option<NumberFormat>,
-}
-
-impl ProgramText<'_> {
-    /// No program (MDI, tests): no blocks, no variables.
-    pub const NONE: ProgramText<'static> = ProgramText { text: &[], start: Cursor::start(0), vars: None, fmt: None };
-
-    /// Program text without variables, starting at its beginning (tests, tools).
-    pub const fn plain(text: &[u8]) -> ProgramText<'_> {
-        ProgramText { text, start: Cursor::start(0), vars: None, fmt: None }
     }
 }
 
@@ -204,39 +177,8 @@ fn scan_sequence(text: &[u8], mut cur: Cursor, until: Option<usize>, n: u32) -> 
     }
 }
 
-/// The cursor just after the `END label` that closes the loop whose range starts at
-/// `from` (the block after its WHILE/DO), skipping inner DO–END pairs. Alarm 0124
-/// if the END is missing (the program ends first) or the ranges overlap (note 4).
-///
-/// The work is bounded by the length of the loop's range; the interpreter does it
-/// when it enters the loop, so it knows the range for jumps out of it.
-pub fn find_loop_end(text: &[u8], from: Cursor, label: u8) -> Result<Cursor, AlarmKind> {
-    let mut cur = from;
-    let mut inner: heapless::Vec<u8, 8> = heapless::Vec::new();
-    while let Some(block) = next_block(text, &mut cur) {
-        if block.percent || starts_program(block.text) {
-            break;
-        }
-        match loop_mark(block.text) {
-            Some(LoopMark::Do(m)) if m == label || inner.contains(&m) => {
-                return Err(AlarmKind::LoopsCrossed { label });
-            }
-            Some(LoopMark::Do(m)) => inner.push(m).map_err(|_| AlarmKind::LoopsCrossed { label })?,
-            Some(LoopMark::End(m)) => match inner.last() {
-                Some(&top) if top == m => {
-                    inner.pop();
-                }
-                None if m == label => return Ok(cur),
-                _ => return Err(AlarmKind::LoopsCrossed { label }),
-            },
-            None => {}
-        }
-    }
-    Err(AlarmKind::MissingEnd { label })
-}
-
 /// Whether a block is an `O` program number block.
-pub(crate) fn starts_program(text: &[u8]) -> bool {
+pub fn starts_program(text: &[u8]) -> bool {
     let i = text.iter().position(|c| !matches!(c, b' ' | b'\t' | b'\r')).unwrap_or(text.len());
     matches!(text.get(i), Some(b'O' | b'o'))
         && text.get(i + 1..).is_some_and(|r| r.iter().find(|c| **c != b' ').is_some_and(u8::is_ascii_digit))

@@ -28,7 +28,7 @@ pub struct Staged<'a> {
     /// The staged actions, in order.
     pub actions: &'a mut Outbox,
     /// The program the block is in: G70–G73 read their ns–nf blocks from it.
-    pub program: crate::program::ProgramText<'a>,
+    pub program: crate::lang::ProgramText<'a>,
     /// Index in `actions` where the cycle's moves belong: actions staged after it
     /// (M05, M30 …) are delivered after the cycle.
     pub split: Option<usize>,
@@ -49,7 +49,7 @@ impl<'a> Staged<'a> {
         Staged {
             line,
             actions: outbox,
-            program: crate::program::ProgramText::NONE,
+            program: crate::lang::ProgramText::NONE,
             split: None,
             params: heapless::Vec::new(),
             resume: None,
@@ -90,6 +90,8 @@ pub enum Flow {
         /// Sequence number in this program.
         seq: u32,
     },
+    /// G290/G291: read the following blocks in `Language`.
+    Language(crate::config::Language),
 }
 
 /// A [`State`] as it was before a block (see [`State::save`]).
@@ -111,9 +113,9 @@ pub struct Saved {
 /// rigid tapping pending, [`crate::cycles::before_block`] changes nothing either
 /// (it clears exactly those). Debug builds check every undone block against a
 /// whole copy of the state.
-fn plain_for_cycles(cmd: &crate::check::Command, modal: &Modal, cycle: &CycleMemory) -> bool {
-    use crate::check::cycle_args::is_hole;
+fn plain_for_cycles(cmd: &crate::command::Command, modal: &Modal, cycle: &CycleMemory) -> bool {
     use crate::codes::GCode;
+    use crate::command::cycle::is_hole;
     let motion = cmd.g.motion.unwrap_or(modal.motion);
     matches!(motion, GCode::Rapid | GCode::Linear | GCode::ArcCw | GCode::ArcCcw)
         && cmd.g.one_shot.is_none()
@@ -143,7 +145,7 @@ impl State {
     ///
     /// The canned-cycle memory (96 bytes) is saved only when the block can change
     /// it: see [`plain_for_cycles`].
-    pub fn save(&self, cmd: &crate::check::Command) -> Saved {
+    pub fn save(&self, cmd: &crate::command::Command) -> Saved {
         use crate::codes::GCode::{LocalFrame, SetCoordinates};
         // Destructured so that a new field cannot be forgotten here.
         let State { modal, pos, frames, tool, own_offsets: _, feed, spindle, moved, cycle, polar, stroke, contour } =

@@ -11,8 +11,8 @@
 use cortex_m_rt::entry;
 use cortex_m_semihosting::hprintln;
 use interp_core::canon::RecordingSink;
-use interp_core::macros::Variables;
-use interp_core::parse::{Statement, read_statement};
+use interp_core::lang::fanuc::macros::Variables;
+use interp_core::lang::fanuc::parse::{Statement, read_statement};
 use interp_core::units::NumberFormat;
 use interp_core::{Alarm, Interpreter, MachineConfig, Panel, Progress, SingleProgram};
 use m4_tests::{exit, measure};

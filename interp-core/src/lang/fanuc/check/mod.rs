@@ -1,0 +1,126 @@
+//! Checking: a [`Block`] of words becomes a [`Command`] — G and M codes resolved,
+//! every word verified to belong to the block, values converted to internal units.
+//! Nothing here changes state; a block that fails never reaches execution.
+
+pub mod cycle_args;
+mod gset;
+mod words;
+
+use crate::alarm::AlarmKind;
+use crate::axis::{AXIS_COUNT, Axis};
+use crate::codes::{MFunction, m_codes_conflict, m_function};
+use crate::command::{Command, FlowWord};
+use crate::config::MachineConfig;
+use crate::lang::fanuc::parse::{Block, MAX_M};
+use crate::modal::State;
+use crate::units::NumberFormat;
+
+/// Checks `block` against the machine and the current state.
+pub fn check(block: &Block, state: &State, cfg: &MachineConfig) -> Result<Command, AlarmKind> {
+    let mut cmd = Command::EMPTY;
+    check_into(block, state, cfg, &mut cmd)?;
+    Ok(cmd)
+}
+
+/// [`check`] into a command reused from block to block (nothing ~300 bytes large
+/// is returned and copied per block). On an alarm `cmd` holds a partial result.
+pub fn check_into(block: &Block, state: &State, cfg: &MachineConfig, cmd: &mut Command) -> Result<(), AlarmKind> {
+    cmd.g.resolve_into(block, state, cfg)?;
+    let fmt = NumberFormat {
+        units: cmd.g.units.unwrap_or(state.modal.units),
+        input: cfg.input_mode(),
+        increments: cfg.increments,
+    };
+    cmd.line = block.line;
+    cmd.seq = block.seq;
+    resolve_m(block, cfg, &mut cmd.m)?;
+    cmd.axes = [None; AXIS_COUNT];
+    cmd.center = [None; AXIS_COUNT];
+    cmd.radius = None;
+    cmd.dwell_ms = None;
+    cmd.reference = 1;
+    cmd.feed = None;
+    cmd.speed = None;
+    cmd.tool = None;
+    cmd.flow = None;
+    cmd.corner = None;
+    cmd.cycle = crate::command::cycle::CycleArgs::None;
+    let flow_m = cmd.m.iter().map(|&(_, f)| f).find(|f| f.is_flow());
+    let user = cmd.axis_user(state);
+    words::check_letters(block, user, flow_m, cfg)?;
+    words::convert(block, user, state, cfg, &fmt, cmd)?;
+    cmd.flow = flow_m.map(|f| flow_word(block, f)).transpose()?;
+    Ok(())
+}
+
+/// The P (and L) of M98, M99, M91, M92.
+fn flow_word(block: &Block, f: MFunction) -> Result<FlowWord, AlarmKind> {
+    let p = |max| block.get(b'P').map(|n| crate::lang::fanuc::parse::whole(b'P', &n, max)).transpose();
+    match f {
+        MFunction::Call => {
+            let p = p(99_999_999)?.ok_or(AlarmKind::SubprogramNumberMissing)?;
+            let (program, repeats) = match block.get(b'L') {
+                Some(l) => (p, crate::lang::fanuc::parse::whole(b'L', &l, 9_999)?),
+                // FANUC's packed form: P30012 = 3 times O0012.
+                None if p > 9_999 => (p % 10_000, p / 10_000),
+                None => (p, 1),
+            };
+            if !(1..=9_999).contains(&program) {
+                return Err(AlarmKind::ValueOutOfRange { letter: b'P' });
+            }
+            if !(1..=9_999).contains(&repeats) {
+                return Err(AlarmKind::ValueOutOfRange { letter: b'L' });
+            }
+            Ok(FlowWord::Call { program, repeats: repeats as u16 })
+        }
+        MFunction::Return => {
+            let alone = block.g.is_empty()
+                && block.m.len() == 1
+                && block.letters().all(|l| l == b'P')
+                && block.chamfer.is_none()
+                && block.corner.is_none();
+            if !alone {
+                return Err(AlarmKind::M99NotAlone);
+            }
+            Ok(FlowWord::Return { seq: p(99_999)? })
+        }
+        _ => {
+            let seq = p(99_999)?.ok_or(AlarmKind::MissingWord { letter: b'P', context: "M91/M92" })?;
+            if seq == 0 {
+                return Err(AlarmKind::ValueOutOfRange { letter: b'P' });
+            }
+            Ok(FlowWord::Jump { seq, high: f == MFunction::JumpIfHigh })
+        }
+    }
+}
+
+/// Looks up every M code into `out` and rejects contradicting pairs.
+fn resolve_m(
+    block: &Block,
+    cfg: &MachineConfig,
+    out: &mut heapless::Vec<(u16, MFunction), MAX_M>,
+) -> Result<(), AlarmKind> {
+    out.clear();
+    for (i, &m) in block.m.iter().enumerate() {
+        let f = m_function(m, cfg).ok_or(AlarmKind::UnknownMCode { m })?;
+        if let Some(&other) = block.m[..i].iter().find(|&&o| m_codes_conflict(o, m)) {
+            return Err(AlarmKind::ConflictingMCodes { first: other, second: m });
+        }
+        // Capacity equals the reader's, so this push cannot fail.
+        let _ = out.push((m, f));
+    }
+    Ok(())
+}
+
+/// The axis addressed by `letter` and whether the letter is incremental.
+pub(crate) fn axis_of(letter: u8) -> Option<(Axis, bool)> {
+    Axis::ALL.into_iter().find_map(|a| {
+        if a.letter() == letter {
+            Some((a, false))
+        } else if a.incremental_letter() == letter {
+            Some((a, true))
+        } else {
+            None
+        }
+    })
+}

@@ -1,0 +1,485 @@
+//! The block reader: bytes → a [`Statement`]. Accepts lowercase, blanks between and
+//! inside words (between address and value), comments in parentheses, a leading
+//! `/n`, a sequence number before a macro statement (2.24.2 note 10), and macro
+//! values in words: `F#203`, `Z-#210`, `G#230`, `X[#1*2]`, `F[25.4/10]` (2.24.1).
+
+use super::{Block, MacroBlock, Read, Statement, whole};
+use crate::alarm::AlarmKind;
+use crate::alarm::GNum;
+use crate::lang::fanuc::macros::{Eval, Rounding, Variables, format, nullable, starts_statement, statement};
+use crate::units::{Number, NumberFormat, pow10};
+
+/// Most digits before the decimal point.
+const MAX_INT_DIGITS: u8 = 9;
+/// Most digits after it (nanometres of a millimetre).
+const MAX_FRAC_DIGITS: u8 = 9;
+/// Largest whole number a macro value may give an integer address (8 digits).
+const MAX_WHOLE_VALUE: f64 = 99_999_999.0;
+
+/// Reads one block's text (without its end-of-block character), evaluating every
+/// expression against `vars`. `fmt` is the number format in force: ROUND in a word
+/// rounds to its least input increment (2.24.2 (7)).
+///
+/// This is the reader every consumer of program text uses — the interpreter (through
+/// [`read_statement_into`]), and the canned cycles reading their profile blocks.
+pub fn read_statement(text: &[u8], line: u32, vars: &Variables, fmt: &NumberFormat) -> Result<Statement, AlarmKind> {
+    let mut block = Block::default();
+    Ok(match read_statement_into(text, line, vars, fmt, &mut block)? {
+        Read::Nc => Statement::Nc(block),
+        Read::Macro(m) => Statement::Macro(m),
+    })
+}
+
+/// [`read_statement`] into `block`, reusing its storage (the interpreter's per-block
+/// path: nothing large is copied). An NC statement's words end up in `block`.
+pub fn read_statement_into(
+    text: &[u8],
+    line: u32,
+    vars: &Variables,
+    fmt: &NumberFormat,
+    block: &mut Block,
+) -> Result<Read, AlarmKind> {
+    Reader { text, pos: 0, vars: Some(vars), fmt: Some(*fmt) }.statement(line, block)
+}
+
+/// [`read_statement_into`] with what is available: without `vars` a `#` raises
+/// alarm 0114, without `fmt` a ROUND in a word does (the cycles' shape blocks).
+pub fn read_with(
+    text: &[u8],
+    line: u32,
+    vars: Option<&Variables>,
+    fmt: Option<NumberFormat>,
+    block: &mut Block,
+) -> Result<Read, AlarmKind> {
+    Reader { text, pos: 0, vars, fmt }.statement(line, block)
+}
+
+/// Reads an NC block that uses no variables (tools and tests). A `#`, a ROUND in a
+/// word or a macro statement raise alarm 0114: use [`read_statement`] for those.
+pub fn read_block(text: &[u8], line: u32) -> Result<Block, AlarmKind> {
+    let mut block = Block::default();
+    read_block_into(text, line, &mut block)?;
+    Ok(block)
+}
+
+/// [`read_block`] into `block`, reusing its storage.
+pub fn read_block_into(text: &[u8], line: u32, block: &mut Block) -> Result<(), AlarmKind> {
+    match (Reader { text, pos: 0, vars: None, fmt: None }).statement(line, block)? {
+        Read::Nc => Ok(()),
+        Read::Macro(_) => Err(format("macro statement (use read_statement)")),
+    }
+}
+
+struct Reader<'a, 'v> {
+    text: &'a [u8],
+    pos: usize,
+    vars: Option<&'v Variables>,
+    fmt: Option<NumberFormat>,
+}
+
+impl Reader<'_, '_> {
+    /// The whole block: skip mark, sequence number, then a macro statement or words.
+    fn statement(&mut self, line: u32, block: &mut Block) -> Result<Read, AlarmKind> {
+        block.clear(line);
+        self.skip_blanks_and_comments()?;
+        if self.peek() == Some(b'/') {
+            self.pos += 1;
+            block.skip_level = Some(match self.peek() {
+                Some(d @ b'1'..=b'9') => {
+                    self.pos += 1;
+                    d - b'0'
+                }
+                _ => 1,
+            });
+        }
+        self.skip_blanks_and_comments()?;
+        if matches!(self.peek(), Some(b'N' | b'n')) {
+            self.pos += 1;
+            if starts_number(self.text, self.pos) {
+                let n = self.number(b'N')?;
+                self.store(b'N', n, block)?;
+            } else {
+                self.word(b'N', block)?;
+            }
+            self.skip_blanks_and_comments()?;
+        }
+        if starts_statement(self.text, self.pos) {
+            let statement = self.macro_statement()?;
+            let (skip_level, seq) = (block.skip_level, block.seq);
+            block.clear(line);
+            return Ok(Read::Macro(MacroBlock { line, skip_level, seq, statement }));
+        }
+        self.words(block)?;
+        Ok(Read::Nc)
+    }
+
+    /// A macro statement, and nothing but comments after it (note 7).
+    fn macro_statement(&mut self) -> Result<crate::lang::fanuc::macros::MacroStatement, AlarmKind> {
+        let Some(vars) = self.vars else {
+            return Err(format("macro statement (use read_statement)"));
+        };
+        let mut e = Eval::new(self.text, self.pos, Some(vars), Rounding::Macro);
+        let s = statement(&mut e)?;
+        self.pos = e.pos;
+        self.skip_blanks_and_comments()?;
+        match self.peek() {
+            None => Ok(s),
+            Some(c) if c.is_ascii_alphabetic() || c == b'/' => Err(AlarmKind::MacroAndNcInOneBlock),
+            Some(_) => Err(format("unexpected text after the statement")),
+        }
+    }
+
+    /// The words of an NC block.
+    fn words(&mut self, block: &mut Block) -> Result<(), AlarmKind> {
+        loop {
+            self.skip_blanks_and_comments()?;
+            let Some(c) = self.peek() else { return Ok(()) };
+            // The common word: a letter right before its plain number (`X40.8`,
+            // `Z-0.1`): no keyword, no macro value, no blanks to skip.
+            let letter = c & !0x20;
+            if letter.wrapping_sub(b'A') < 26 && starts_number(self.text, self.pos + 1) {
+                self.pos += 1;
+                let n = self.number(letter)?;
+                self.store(letter, n, block)?;
+                continue;
+            }
+            // Keywords start with two letters (checked here first: it is cheap).
+            let two_letters =
+                c.is_ascii_alphabetic() && self.text.get(self.pos + 1).is_some_and(u8::is_ascii_alphabetic);
+            if c == b'#' || two_letters && starts_statement(self.text, self.pos) {
+                // A macro statement after NC words (2.24.2 note 7).
+                return Err(AlarmKind::MacroAndNcInOneBlock);
+            }
+            self.pos += 1;
+            match c.to_ascii_uppercase() {
+                letter @ b'A'..=b'Z' => self.word(letter, block)?,
+                b',' => self.comma_word(block)?,
+                b'/' => return Err(AlarmKind::MisplacedBlockSkip),
+                c @ (b'0'..=b'9' | b'+' | b'-' | b'.' | b'[' | b'=' | b']') => {
+                    return Err(AlarmKind::AddressNotFound { found: c });
+                }
+                other => return Err(AlarmKind::IllegalCharacter { found: other }),
+            }
+        }
+    }
+
+    fn peek(&self) -> Option<u8> {
+        self.text.get(self.pos).copied()
+    }
+
+    fn skip_blanks(&mut self) {
+        while self.text.get(self.pos).is_some_and(|&c| is_blank(c)) {
+            self.pos += 1;
+        }
+    }
+
+    fn skip_blanks_and_comments(&mut self) -> Result<(), AlarmKind> {
+        loop {
+            self.skip_blanks();
+            if self.peek() != Some(b'(') {
+                return Ok(());
+            }
+            match self.text[self.pos..].iter().position(|&c| c == b')') {
+                Some(n) => self.pos += n + 1,
+                None => return Err(AlarmKind::CommentNotClosed),
+            }
+        }
+    }
+
+    /// Reads the value of `letter` and stores it in the block. A word whose value
+    /// is a null variable is ignored with its address (2.24.1).
+    fn word(&mut self, letter: u8, block: &mut Block) -> Result<(), AlarmKind> {
+        let Some(n) = self.value(letter)? else { return Ok(()) };
+        self.store(letter, n, block)
+    }
+
+    /// Stores the value `n` of address `letter` in the block.
+    #[inline(always)]
+    fn store(&self, letter: u8, n: Number, block: &mut Block) -> Result<(), AlarmKind> {
+        match letter {
+            b'G' => {
+                let tenths = g_tenths(&n)?;
+                block.g.push(tenths).map_err(|_| AlarmKind::ValueOutOfRange { letter })
+            }
+            b'M' => {
+                let m = whole(letter, &n, 999)?;
+                block.m.push(m as u16).map_err(|_| AlarmKind::TooManyMCodes)
+            }
+            b'N' => set_once(&mut block.seq, letter, whole(letter, &n, 99_999)?),
+            b'O' => set_once(&mut block.program, letter, whole(letter, &n, 9_999)?),
+            _ => {
+                if letter == b'T' {
+                    whole(letter, &n, 99_999_999)?;
+                }
+                if block.set(letter, n) { Ok(()) } else { Err(AlarmKind::DuplicateAddress { letter }) }
+            }
+        }
+    }
+
+    /// `,C` or `,R`.
+    fn comma_word(&mut self, block: &mut Block) -> Result<(), AlarmKind> {
+        self.skip_blanks();
+        let letter =
+            self.peek().map(|c| c.to_ascii_uppercase()).ok_or(AlarmKind::NoDataAfterAddress { letter: b',' })?;
+        self.pos += 1;
+        let Some(n) = self.value(letter)? else { return Ok(()) };
+        let slot = match letter {
+            b'C' => &mut block.chamfer,
+            b'R' => &mut block.corner,
+            _ => return Err(AlarmKind::ImproperAddress { letter }),
+        };
+        // 2.23 note 9: with several C/R in one block the last one is effective.
+        *slot = Some(n);
+        block.corner_last = letter == b'R';
+        Ok(())
+    }
+
+    /// The value after an address: a number as written, or a macro value
+    /// (`#i`, `-#i`, `[expr]`, `-[expr]`); `None` for a null variable.
+    fn value(&mut self, letter: u8) -> Result<Option<Number>, AlarmKind> {
+        self.skip_blanks();
+        let mut at = self.pos;
+        let negative = match self.peek() {
+            Some(s @ (b'+' | b'-')) => {
+                at += 1;
+                while self.text.get(at).is_some_and(|&c| is_blank(c)) {
+                    at += 1;
+                }
+                s == b'-'
+            }
+            _ => false,
+        };
+        if !matches!(self.text.get(at), Some(b'#' | b'[')) {
+            return self.number(letter).map(Some);
+        }
+        if matches!(letter, b'N' | b'O') {
+            return Err(format("N and O take no variables"));
+        }
+        let mut e = Eval::new(self.text, at, self.vars, self.rounding(letter));
+        let v = nullable(e.primary()?)?;
+        self.pos = e.pos;
+        match v {
+            None => Ok(None),
+            Some(x) => macro_number(letter, if negative { -x } else { x }).map(Some),
+        }
+    }
+
+    /// How ROUND rounds in a word of `letter`: to the least input increment of the
+    /// address (angles for C/H, lengths for every other address).
+    fn rounding(&self, letter: u8) -> Rounding {
+        let Some(f) = self.fmt else { return Rounding::Unknown };
+        let step_e9 = if matches!(letter, b'C' | b'H') {
+            f.increments.angle_udeg() * 1_000
+        } else {
+            f.increments.linear_nm(f.units) * 1_000_000_000 / f.units.nm_per_unit()
+        };
+        Rounding::Nc { step_e9 }
+    }
+
+    /// A signed decimal number after an address letter: at most 9 digits before the
+    /// point (leading zeros not counted) and 9 after it.
+    /// The caller has skipped the blanks before it.
+    #[inline(always)]
+    fn number(&mut self, letter: u8) -> Result<Number, AlarmKind> {
+        let text = self.text;
+        let mut i = self.pos;
+        let negative = match text.get(i) {
+            Some(b'-') => {
+                i += 1;
+                true
+            }
+            Some(b'+') => {
+                i += 1;
+                false
+            }
+            _ => false,
+        };
+        let first = i;
+        while text.get(i) == Some(&b'0') {
+            i += 1;
+        }
+        // Each part has at most 9 digits: it fits a u32 (more wrap, and are refused).
+        let start = i;
+        let int = digits(text, &mut i);
+        if i - start > usize::from(MAX_INT_DIGITS) {
+            return Err(AlarmKind::TooManyDigits { letter });
+        }
+        let has_point = text.get(i) == Some(&b'.');
+        let mut mantissa = u64::from(int);
+        let mut frac_digits = 0;
+        if has_point {
+            i += 1;
+            let start = i;
+            let frac = digits(text, &mut i);
+            frac_digits = i - start;
+            if frac_digits > usize::from(MAX_FRAC_DIGITS) {
+                return Err(AlarmKind::TooManyDigits { letter });
+            }
+            if text.get(i) == Some(&b'.') {
+                return Err(AlarmKind::IllegalDecimalPoint { letter });
+            }
+            mantissa = mantissa * POW10_U32[frac_digits] as u64 + u64::from(frac);
+        }
+        if i == first {
+            return Err(AlarmKind::NoDataAfterAddress { letter });
+        }
+        self.pos = i;
+        // At most 18 digits: below 10^18, which fits an i64.
+        let mantissa = mantissa as i64;
+        Ok(Number { mantissa: if negative { -mantissa } else { mantissa }, frac_digits: frac_digits as u8, has_point })
+    }
+}
+
+/// `10^n` for the fraction digits of a word (0–9).
+const POW10_U32: [u32; 10] = [1, 10, 100, 1_000, 10_000, 100_000, 1_000_000, 10_000_000, 100_000_000, 1_000_000_000];
+
+/// Whether a plain number (no macro value, no blanks) starts at `text[i]`: a digit
+/// or a point, after an optional sign.
+#[inline(always)]
+fn starts_number(text: &[u8], i: usize) -> bool {
+    let plain = |c: Option<&u8>| c.is_some_and(|&c| c.is_ascii_digit() || c == b'.');
+    match text.get(i) {
+        Some(b'-' | b'+') => plain(text.get(i + 1)),
+        c => plain(c),
+    }
+}
+
+/// A blank between and inside words: space, tab, CR (one compare for most bytes).
+#[inline(always)]
+fn is_blank(c: u8) -> bool {
+    c == b' ' || c < b' ' && (1u32 << c) & (1 << b'\t' | 1 << b'\r') != 0
+}
+
+/// Reads the decimal digits from `text[*i]` on, returns their value (wrapping past
+/// 9 digits: the caller refuses that many anyway).
+#[inline(always)]
+fn digits(text: &[u8], i: &mut usize) -> u32 {
+    let mut v = 0u32;
+    while let Some(&c) = text.get(*i) {
+        let d = u32::from(c).wrapping_sub(u32::from(b'0'));
+        if d > 9 {
+            break;
+        }
+        v = v.wrapping_mul(10).wrapping_add(d);
+        *i += 1;
+    }
+    v
+}
+
+/// A macro value as the word of `letter`. Addresses that take whole numbers
+/// (M S T L P Q) get the value rounded to a whole number, G to one decimal; every
+/// other address gets a real number (decimal point set, 9 decimals), which checking
+/// rounds to the least input increment (2.24.1: #1=1.23456, X#1 → 1.235).
+fn macro_number(letter: u8, v: f64) -> Result<Number, AlarmKind> {
+    let too_big = AlarmKind::TooManyDigits { letter };
+    match letter {
+        b'G' => {
+            let tenths = libm::round(v * 10.0);
+            if tenths.abs() > MAX_WHOLE_VALUE {
+                return Err(too_big);
+            }
+            Ok(Number { mantissa: tenths as i64, frac_digits: 1, has_point: true })
+        }
+        b'M' | b'S' | b'T' | b'L' | b'P' | b'Q' => {
+            let w = libm::round(v);
+            if w.abs() > MAX_WHOLE_VALUE {
+                return Err(too_big);
+            }
+            Ok(Number::int(w as i64))
+        }
+        _ => Number::from_f64(v).ok_or(too_big),
+    }
+}
+
+fn set_once(slot: &mut Option<u32>, letter: u8, v: u32) -> Result<(), AlarmKind> {
+    if slot.replace(v).is_some() { Err(AlarmKind::DuplicateAddress { letter }) } else { Ok(()) }
+}
+
+/// A G number in tenths: G1 → 10, G02.1 → 21, G12.1 → 121.
+fn g_tenths(n: &Number) -> Result<u16, AlarmKind> {
+    // The usual G01, G96, G02.1: no multiplication to check.
+    match (n.frac_digits, n.mantissa) {
+        (0, m @ 0..100) => return Ok(m as u16 * 10),
+        (1, m @ 0..1000) => return Ok(m as u16),
+        _ => {}
+    }
+    if n.is_negative() {
+        return Err(AlarmKind::IllegalMinusSign { letter: b'G' });
+    }
+    let tenths = n.scaled(1).unwrap_or(i64::MAX);
+    let shown = GNum(u16::try_from(tenths).unwrap_or(u16::MAX));
+    // Fraction digits past the first must be zeros (G2.10 is G2.1; G2.15 is nothing);
+    // three-digit codes (G290, G291) are looked up, the tables hold no longer ones.
+    let exact = n.frac_digits <= 1 || n.scaled(n.frac_digits) == Some(tenths * pow10(n.frac_digits - 1).unwrap_or(0));
+    if !exact || tenths >= 10_000 {
+        return Err(AlarmKind::ImproperGCode { code: shown });
+    }
+    Ok(tenths as u16)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn n(m: i64, f: u8, p: bool) -> Number {
+        Number { mantissa: m, frac_digits: f, has_point: p }
+    }
+
+    #[test]
+    fn reads_words_with_and_without_points() {
+        let b = read_block(b"N10 G01 X60 Z7. F500 ; ignored", 3);
+        assert!(b.is_err(), "';' is split by the program layer, not the reader");
+        let b = read_block(b"n10 g01 x60 z-7.25 f0.15 (cut) m03 s800 t0101", 3).unwrap();
+        assert_eq!(b.line, 3);
+        assert_eq!(b.seq, Some(10));
+        assert_eq!(b.g.as_slice(), &[10]);
+        assert_eq!(b.m.as_slice(), &[3]);
+        assert_eq!(b.get(b'X'), Some(n(60, 0, false)));
+        assert_eq!(b.get(b'Z'), Some(n(-725, 2, true)));
+        assert_eq!(b.get(b'F'), Some(n(15, 2, true)));
+        assert_eq!(b.get(b'T'), Some(n(101, 0, false)));
+    }
+
+    #[test]
+    fn g_codes_with_fractions() {
+        let b = read_block(b"G02.1 G12.1 G2", 1).unwrap();
+        assert_eq!(b.g.as_slice(), &[21, 121, 20]);
+        assert!(matches!(read_block(b"G2.15", 1), Err(AlarmKind::ImproperGCode { .. })));
+        assert_eq!(read_block(b"G-1", 1), Err(AlarmKind::IllegalMinusSign { letter: b'G' }));
+    }
+
+    #[test]
+    fn block_skip_comments_and_comma_words() {
+        let b = read_block(b"/2 G01 X10 ,C1.5 ,r2", 1).unwrap();
+        assert_eq!(b.skip_level, Some(2));
+        assert_eq!(b.chamfer, Some(n(15, 1, true)));
+        assert_eq!(b.corner, Some(n(2, 0, false)));
+        assert!(read_block(b"  (only a comment)  ", 1).unwrap().is_empty());
+    }
+
+    #[test]
+    fn malformed_blocks_raise_alarms() {
+        use AlarmKind::*;
+        assert_eq!(read_block(b"X", 1), Err(NoDataAfterAddress { letter: b'X' }));
+        assert_eq!(read_block(b"X1 X2", 1), Err(DuplicateAddress { letter: b'X' }));
+        assert_eq!(read_block(b"N1.5", 1), Err(IllegalDecimalPoint { letter: b'N' }));
+        assert_eq!(read_block(b"M-3", 1), Err(IllegalMinusSign { letter: b'M' }));
+        assert_eq!(read_block(b"X1.2.3", 1), Err(IllegalDecimalPoint { letter: b'X' }));
+        assert_eq!(read_block(b"X1234567890", 1), Err(TooManyDigits { letter: b'X' }));
+        assert_eq!(read_block(b"X1.0000000001", 1), Err(TooManyDigits { letter: b'X' }));
+        assert_eq!(read_block(b"G01 (open", 1), Err(CommentNotClosed));
+        assert_eq!(read_block(b"G01 X1 / Z2", 1), Err(MisplacedBlockSkip));
+        assert_eq!(read_block(b"12", 1), Err(AddressNotFound { found: b'1' }));
+        assert_eq!(read_block(b"G01 ?", 1), Err(IllegalCharacter { found: b'?' }));
+        assert_eq!(read_block(b"M3 M8 M9 M5", 1), Err(TooManyMCodes));
+        assert_eq!(read_block(b",Q1", 1), Err(ImproperAddress { letter: b'Q' }));
+    }
+
+    #[test]
+    fn blanks_inside_words_and_leading_zeros() {
+        let b = read_block(b"X 0000060.5", 1).unwrap();
+        assert_eq!(b.get(b'X'), Some(n(605, 1, true)));
+        let b = read_block(b"X.", 1).unwrap();
+        assert_eq!(b.get(b'X'), Some(n(0, 0, true)));
+    }
+}

@@ -1,0 +1,46 @@
+//! The languages programs are written in: one front end each.
+//!
+//! A front end reads blocks of its language, keeps the language's variables and
+//! control flow, and hands every NC block to the execution layers as a checked
+//! [`crate::command::Command`]. Everything below the command — the modal state,
+//! the canned cycles' geometry, the contour look-ahead and compensation, the
+//! canonical actions — is one engine that every language shares.
+//!
+//! - [`fanuc`]: the FANUC-style dialect of the ELESY-E3TA manual (G-code systems
+//!   A/B/C on a lathe, the M series on a mill), with custom macro B.
+
+pub mod fanuc;
+
+use crate::lang::fanuc::macros::Variables;
+use crate::program::Cursor;
+use crate::units::NumberFormat;
+
+pub use crate::config::Language;
+
+/// A program as the blocks of a canned cycle's shape (G70–G73 ns–nf) are read from
+/// it: the text, where the program begins, the language it is written in, and what
+/// the words are evaluated against.
+#[derive(Clone, Copy, Debug)]
+pub struct ProgramText<'a> {
+    /// The text; cursors of the program index into it.
+    pub text: &'a [u8],
+    /// Where the program begins: sequence numbers are searched from here.
+    pub start: Cursor,
+    /// The language the program is written in: its blocks are read by that front end.
+    pub language: Language,
+    /// The variables `#i` in words stand for (`None`: words may not use variables).
+    pub vars: Option<&'a Variables>,
+    /// The number format in force (ROUND in words); `None` outside a program.
+    pub fmt: Option<NumberFormat>,
+}
+
+impl ProgramText<'_> {
+    /// No program (MDI, tests): no blocks, no variables.
+    pub const NONE: ProgramText<'static> =
+        ProgramText { text: &[], start: Cursor::start(0), language: Language::Fanuc, vars: None, fmt: None };
+
+    /// Program text without variables, starting at its beginning (tests, tools).
+    pub const fn plain(text: &[u8]) -> ProgramText<'_> {
+        ProgramText { text, start: Cursor::start(0), language: Language::Fanuc, vars: None, fmt: None }
+    }
+}
