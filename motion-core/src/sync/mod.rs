@@ -471,6 +471,44 @@ impl Run {
         n * self.a + self.d * (n * (n - 1) / 2)
     }
 
+    /// How many counts glide (a [`Run::monotone`] run): `hint`, one more or one
+    /// fewer when one of them is it (two or three sums), else a binary search (at
+    /// most 11 sums for GLIDE_MAX).
+    fn search(&self, hint: u32) -> u32 {
+        let h = hint;
+        match (self.glides(h), self.glides(h + 1)) {
+            (true, false) => h,
+            (true, true) if !self.glides(h + 2) => h + 1,
+            (false, _) if h > 0 && self.glides(h - 1) => h - 1,
+            _ => {
+                let (mut lo, mut hi) = (0, self.most + 1);
+                while hi - lo > 1 {
+                    let mid = lo + (hi - lo) / 2;
+                    if self.glides(mid) { lo = mid } else { hi = mid }
+                }
+                lo
+            }
+        }
+    }
+
+    /// How many counts glide and what they add, count by count (additions and
+    /// checked subtractions: any run). An increment below zero could step back:
+    /// it ends the glide.
+    fn one_by_one(&self) -> (u32, i64) {
+        let (mut n, mut sum, mut inc) = (0u32, 0i64, self.a);
+        let (mut x, step) = self.end.unwrap_or((i64::MAX, 0));
+        while n < self.most && inc >= 0 && sum + inc < self.room {
+            match x.checked_sub(inc).and_then(|v| v.checked_sub(step)) {
+                Some(after) if after > 0 => x = if self.end.is_some() { after } else { x },
+                _ => break,
+            }
+            sum += inc;
+            inc += self.d;
+            n += 1;
+        }
+        (n, sum)
+    }
+
     /// Whether the first `n` counts all glide (for a [`Run::monotone`] run).
     #[inline]
     fn glides(&self, n: u32) -> bool {
@@ -779,9 +817,10 @@ impl Gear {
     /// to the accumulators: no step, no change of phase, no deceleration start) and
     /// returns the raw counts at which the next count must be taken. A tap follows
     /// the spindle both ways: nothing is applied ahead, and the counts of the next
-    /// step either way are named. No division: the counts to the next step come
-    /// from the last glide's (the same, one more or one fewer, checked by a few
-    /// multiplications), else from a loop of additions.
+    /// step either way are named. No division: the counts to the next step are
+    /// the last glide's, one more or one fewer (checked by a few products), else
+    /// found by a binary search over the sums of the increments, else (numbers
+    /// that could leave 64 bits) counted one by one; at most [`GLIDE_MAX`].
     #[inline]
     pub fn glide(&mut self) -> Due {
         if let Some(due) = self.glide_constant() {
@@ -959,42 +998,9 @@ impl Gear {
     /// glide's count, one more or one fewer, else a binary search; counts one by
     /// one only where the sums could leave i64 or shrink.
     fn glide_by(&mut self, r: Run) -> (u32, i64) {
-        if r.monotone() {
-            // The last spacing (n = spacing − 1 counts glide), one more, one fewer;
-            // else a binary search (at most 11 tries for GLIDE_MAX).
-            let h = self.spacing.saturating_sub(1);
-            let n = match (r.glides(h), r.glides(h + 1)) {
-                (true, false) => h,
-                (true, true) if !r.glides(h + 2) => h + 1,
-                (false, _) if h > 0 && r.glides(h - 1) => h - 1,
-                _ => {
-                    let (mut lo, mut hi) = (0, r.most + 1);
-                    while hi - lo > 1 {
-                        let mid = lo + (hi - lo) / 2;
-                        if r.glides(mid) { lo = mid } else { hi = mid }
-                    }
-                    lo
-                }
-            };
-            self.remember(n);
-            return (n, r.sum(n));
-        }
-        #[cfg(test)]
-        LOOPS.with(|l| l.set(l.get() + 1));
-        let (mut n, mut sum, mut inc) = (0u32, 0i64, r.a);
-        let (mut x, step) = r.end.unwrap_or((i64::MAX, 0));
-        // (An increment below zero could step back: not a glide.)
-        while n < r.most && inc >= 0 && sum + inc < r.room {
-            match x.checked_sub(inc).and_then(|v| v.checked_sub(step)) {
-                Some(after) if after > 0 => x = if r.end.is_some() { after } else { x },
-                _ => break,
-            }
-            sum += inc;
-            inc += r.d;
-            n += 1;
-        }
+        let n = if r.monotone() { r.search(self.spacing.saturating_sub(1)) } else { r.one_by_one().0 };
         self.remember(n);
-        (n, sum)
+        (n, r.sum(n))
     }
 
     /// Keeps the spacing of steps a glide of `n` counts found (a glide that finds
@@ -1222,12 +1228,6 @@ impl Gear {
 }
 
 #[cfg(test)]
-std::thread_local! {
-    /// Glides that went count by count (tests: both ways are exercised).
-    static LOOPS: core::cell::Cell<u32> = const { core::cell::Cell::new(0) };
-}
-
-#[cfg(test)]
 mod tests {
     use super::*;
 
@@ -1317,7 +1317,6 @@ mod tests {
             ("6 mm lead: more than a step some counts", coarse, 30_000, -500),
         ] {
             for late in [1, 3] {
-                LOOPS.with(|l| l.set(0));
                 let len = if name == "fine lead" { 400 } else { 20_000 };
                 let mut a = Gear::thread(leg(len, x), gearing, ramp, 1, 5_000).unwrap();
                 let mut b = a;
@@ -1327,9 +1326,6 @@ mod tests {
                 b.positions(&mut end);
                 assert_eq!((end[2], end[0]), (-len, x), "{name}");
                 // A step (or a change of phase) at each count taken, few others.
-                if name.starts_with("G34 with") {
-                    assert!(LOOPS.with(|l| l.get()) > 1_000, "{name}: the counts went one by one");
-                }
                 // (the fine lead: and a checkpoint every GLIDE_MAX counts of its ramps)
                 assert!(taken <= len as usize + x.unsigned_abs() as usize + 40, "{name}: {taken} counts taken");
                 assert_eq!(b.glide(), Due::NONE, "{name}: nothing more falls due");
@@ -1414,6 +1410,33 @@ mod tests {
         assert!((501..u).all(|c| !probe.on_count(c)) && probe.on_count(u));
         let mut probe = b;
         assert!((d + 1..500).rev().all(|c| !probe.on_count(c)) && probe.on_count(d));
+    }
+
+    #[test]
+    fn the_glide_search_finds_what_counting_one_by_one_finds() {
+        // Runs of every shape the gearbox makes: constant, growing (ramp-up, G34),
+        // shrinking (the deceleration), near the end (a distance that must stay
+        // positive), each from every hint.
+        let mut rng = canon::xorshift::XorShift::new(22);
+        let mut next = || rng.next_u64();
+        let mut searched = [0; 2];
+        for k in 0..3_000 {
+            let most = 1 + (next() % u64::from(GLIDE_MAX)) as u32;
+            let a = (next() % 200_000) as i64;
+            let d = (next() % 2_000) as i64 - if k % 2 == 0 { 0 } else { 1_000 };
+            let room = 1 + (next() % 50_000_000) as i64;
+            let end = (k % 3 == 0).then(|| ((next() % 60_000_000) as i64, (next() % 3_000) as i64));
+            let r = Run { room, a, d, most, end };
+            let (n, sum) = r.one_by_one();
+            if r.monotone() {
+                searched[usize::from(end.is_some())] += 1;
+                for hint in [0, n.saturating_sub(1), n, n + 1, most / 2, most] {
+                    assert_eq!(r.search(hint), n, "{k}: hint {hint}");
+                }
+                assert_eq!(r.sum(n), sum);
+            }
+        }
+        assert!(searched[0] > 1_000 && searched[1] > 500, "{searched:?}");
     }
 
     #[test]
