@@ -51,7 +51,7 @@
 //! PC4, PC5 (ADC, e.g. override potentiometers), PC13.
 //!
 //! Timers: TIM2 (32-bit, 84 MHz, no pins) step time base and step-edge compare, TIM7
-//! interpolation period, TIM5 spindle encoder (32-bit) with per-count compares, TIM3
+//! interpolation period, TIM5 spindle encoder (32-bit) with compares at the due counts, TIM3
 //! spindle PWM, TIM4 embassy time driver (no pins); TIM8 (for hardware step pulses
 //! later), TIM1 and TIM6 are free.
 //!
