@@ -12,6 +12,8 @@ use crate::config::MachineConfig;
 use crate::modal::State;
 use crate::moves::motion;
 
+pub use crate::geom::Pt;
+
 /// The plain blocks' soft-limit check, out of line for the cycles' many moves (inlined
 /// at each of them it cost flash; a plain block keeps its inlined copy).
 #[inline(never)]
@@ -23,38 +25,6 @@ fn check_limits(machine: &Pos, cfg: &MachineConfig) -> Result<(), AlarmKind> {
 #[inline(never)]
 fn spindle_speed(st: &State, cfg: &MachineConfig, x: i64) -> crate::canon::SpindleSpeed {
     crate::moves::spindle_speed(st, cfg, x)
-}
-
-/// A point of the ZX plane in work coordinates: X as a radius, nm.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct Pt {
-    /// X (radius).
-    pub x: i64,
-    /// Z.
-    pub z: i64,
-}
-
-impl Pt {
-    /// A point.
-    pub const fn new(x: i64, z: i64) -> Self {
-        Pt { x, z }
-    }
-
-    /// Coordinate of `axis` (X or Z).
-    pub fn get(self, axis: Axis) -> i64 {
-        if axis == Axis::X { self.x } else { self.z }
-    }
-
-    /// The point with `axis` set to `v`.
-    pub fn with(mut self, axis: Axis, v: i64) -> Self {
-        if axis == Axis::X {
-            self.x = v;
-        } else {
-            self.z = v;
-        }
-        self
-    }
 }
 
 /// One move (or other action) a cycle plans.
