@@ -299,6 +299,36 @@ pub enum AlarmKind {
     NoseCompGouge,
     /// 3607: nose compensation corner angle under 0.1° (2.18.4).
     NoseCompCornerAngle,
+    /// 61000: SINUMERIK cycle alarm (seed 001 table 5.3): no tool offset active.
+    NoToolOffset,
+    /// 61001: SINUMERIK cycle alarm (seed 001 table 5.3): thread pitch wrong.
+    ThreadPitchWrong,
+    /// 61002: SINUMERIK cycle alarm (seed 001 table 5.3): machining type wrong.
+    MachiningTypeWrong,
+    /// 61601: SINUMERIK cycle alarm (seed 001 table 5.3): finished diameter too small.
+    FinishedDiameterTooSmall,
+    /// 61602: SINUMERIK cycle alarm (seed 001 table 5.3): tool width wrong.
+    ToolWidthWrong,
+    /// 61603: SINUMERIK cycle alarm (seed 001 table 5.3): groove form wrong.
+    GrooveFormWrong,
+    /// 61604: SINUMERIK cycle alarm (seed 001 table 5.3): tool violates contour.
+    ToolViolatesContour,
+    /// 61605: SINUMERIK cycle alarm (seed 001 table 5.3): contour wrong.
+    ContourWrong,
+    /// 61606: SINUMERIK cycle alarm (seed 001 table 5.3): contour preparation error.
+    ContourPreparation { cause: u16 },
+    /// 61607: SINUMERIK cycle alarm (seed 001 table 5.3): start point wrong.
+    StartPointWrong,
+    /// 61608: SINUMERIK cycle alarm (seed 001 table 5.3): wrong edge position.
+    WrongEdgePosition,
+    /// 61609: SINUMERIK cycle alarm (seed 001 table 5.3): form wrong.
+    FormWrong,
+    /// 61611: SINUMERIK cycle alarm (seed 001 table 5.3): no intersection found.
+    NoIntersection,
+    /// 61612: SINUMERIK cycle alarm (seed 001 table 5.3): re-cutting impossible.
+    RecutImpossible,
+    /// 61613: SINUMERIK cycle alarm (seed 001 table 5.3): undercut position wrong.
+    UndercutPositionWrong,
 }
 
 impl AlarmKind {
@@ -411,6 +441,21 @@ impl AlarmKind {
             ToolChangeInNoseComp => 3577,
             NoseCompGouge => 3605,
             NoseCompCornerAngle => 3607,
+            NoToolOffset => 61000,
+            ThreadPitchWrong => 61001,
+            MachiningTypeWrong => 61002,
+            FinishedDiameterTooSmall => 61601,
+            ToolWidthWrong => 61602,
+            GrooveFormWrong => 61603,
+            ToolViolatesContour => 61604,
+            ContourWrong => 61605,
+            ContourPreparation { .. } => 61606,
+            StartPointWrong => 61607,
+            WrongEdgePosition => 61608,
+            FormWrong => 61609,
+            NoIntersection => 61611,
+            RecutImpossible => 61612,
+            UndercutPositionWrong => 61613,
         }
     }
 }
@@ -584,6 +629,37 @@ impl fmt::Display for AlarmKind {
             ToolChangeInNoseComp => write!(f, "T code while nose compensation is active"),
             NoseCompGouge => write!(f, "nose compensation would gouge the part"),
             NoseCompCornerAngle => write!(f, "nose compensation corner angle below 0.1 degrees"),
+            NoToolOffset => write!(f, "no tool offset active (program D before the cycle)"),
+            ThreadPitchWrong => {
+                write!(f, "thread pitch defined incorrectly (PIT/MPIT contradict, or not a DIN 76 / ISO coarse size)")
+            }
+            MachiningTypeWrong => write!(f, "type of machining (VARI) defined incorrectly"),
+            FinishedDiameterTooSmall => write!(f, "finished part diameter too small (under 3 mm)"),
+            ToolWidthWrong => {
+                write!(f, "tool width defined incorrectly (grooving tool wider than the groove, or no width)")
+            }
+            GrooveFormWrong => write!(f, "groove form defined incorrectly"),
+            ToolViolatesContour => {
+                write!(f, "active tool violates the programmed contour (clearance angle too small for an undercut)")
+            }
+            ContourWrong => write!(f, "contour programmed incorrectly"),
+            ContourPreparation { cause } => {
+                let c = match cause {
+                    10930 => "10930: illegal interpolation type in the stock removal contour",
+                    10931 => "10931: incorrect stock removal contour",
+                    10933 => "10933: the contour contains too few contour blocks",
+                    10934 => "10934: contour table overflow",
+                    15800 => "15800: incorrect start conditions for CONTPRON",
+                    _ => "the contour",
+                };
+                write!(f, "error during contour preparation ({c})")
+            }
+            StartPointWrong => write!(f, "starting point programmed incorrectly (inside the rectangle of the contour)"),
+            WrongEdgePosition => write!(f, "wrong tool point direction programmed (cutting edge position 1-4 needed)"),
+            FormWrong => write!(f, "form defined incorrectly (CYCLE94: E or F, CYCLE96: A-D)"),
+            NoIntersection => write!(f, "no intersection point found"),
+            RecutImpossible => write!(f, "thread re-cutting not possible"),
+            UndercutPositionWrong => write!(f, "undercut position (_VARI) defined incorrectly"),
         }
     }
 }
@@ -1016,6 +1092,81 @@ pub const CATALOG: &[CatalogEntry] = &[
                for $304 seconds since before it ran out (default 10 s; $304=0 off)",
     },
     CatalogEntry { code: 5010, title: "end of record", when: "program text ends without M02, M30 or M99" },
+    CatalogEntry {
+        code: 61000,
+        title: "no tool offset active",
+        when: "SINUMERIK CYCLE93-CYCLE96 called without a D offset in force (seed 001 lines 10353, 10537, 11045: 没有刀具补偿有效)",
+    },
+    CatalogEntry {
+        code: 61001,
+        title: "thread pitch wrong",
+        when: "CYCLE97 PIT and MPIT contradict or neither gives a pitch; MPIT or CYCLE96 DIATH not an ISO coarse size M3-M60/M68 (lines 11136-11142, 11009: 螺距定义错误)",
+    },
+    CatalogEntry {
+        code: 61002,
+        title: "machining type wrong",
+        when: "VARI outside the values of CYCLE93 (1-8, 11-18), CYCLE95 (1-12, hundreds 0/2), CYCLE97/CYCLE98 (1-4) (lines 10311, 10799, 11195, 11397: 加工方式错误定义)",
+    },
+    CatalogEntry {
+        code: 61601,
+        title: "finished diameter too small",
+        when: "CYCLE94 SPD or CYCLE96 DIATH gives a finished diameter under 3 mm (lines 10504, 11003: 成品直径太小)",
+    },
+    CatalogEntry {
+        code: 61602,
+        title: "tool width wrong",
+        when: "CYCLE93 groove narrower than the two-edge tool (offsets D and D+1), or a tool width of zero (line 10268: 刀具宽度错误定义)",
+    },
+    CatalogEntry {
+        code: 61603,
+        title: "groove form wrong",
+        when: "CYCLE93 radii/chamfers that touch or cut each other at the bottom, or a face groove on a line parallel to the longitudinal axis (line 10313: 错误定义切槽形状)",
+    },
+    CatalogEntry {
+        code: 61604,
+        title: "tool violates contour",
+        when: "CYCLE95 undercut steeper than the tool's clearance angle (offset parameter P24, 0 = no check) allows (line 10870: 激活的刀具损坏编程的轮廓)",
+    },
+    CatalogEntry {
+        code: 61605,
+        title: "contour wrong",
+        when: "CYCLE95 contour with an element the cycle cannot machine (an undercut against the machining direction) (table 12260: 轮廓错误编程)",
+    },
+    CatalogEntry {
+        code: 61606,
+        title: "contour preparation error",
+        when: "CYCLE95 contour that cannot be prepared, with the NCK alarm that caused it: 10930 a motion other than G0-G3, 10931 an arc of more than 180 degrees / G41/G42 / a plane change, 10933 fewer than 3 blocks, 10934 more elements than the cycle holds, 15800 a first block without G0-G3 (lines 10820-10858: 轮廓预处理时出错)",
+    },
+    CatalogEntry {
+        code: 61607,
+        title: "start point wrong",
+        when: "CYCLE95 called from a point inside the rectangle the contour spans (table 12267: 起始点错误编程)",
+    },
+    CatalogEntry {
+        code: 61608,
+        title: "wrong edge position",
+        when: "CYCLE94/CYCLE96 with _VARI=0 and an active cutting edge position other than 1-4 (line 10527: 编程了错误的刀沿位置)",
+    },
+    CatalogEntry {
+        code: 61609,
+        title: "form wrong",
+        when: "CYCLE94 FORM not E/F, CYCLE96 FORM not A-D (lines 10513, 11024: 形状错误定义)",
+    },
+    CatalogEntry {
+        code: 61611,
+        title: "no intersection found",
+        when: "CYCLE95: a roughing level's cut point on the contour cannot be computed (table 12270: 没有找到切削点)",
+    },
+    CatalogEntry {
+        code: 61612,
+        title: "re-cutting impossible",
+        when: "CYCLE97/CYCLE98 with thread re-cutting (4.9) set up but the thread is a multi-start one or the synchronised angle is missing (table 12272: 不可能进行螺纹精整)",
+    },
+    CatalogEntry {
+        code: 61613,
+        title: "undercut position wrong",
+        when: "CYCLE94/CYCLE96 _VARI outside 0-4 (table 12273: 退刀槽位置错误定义)",
+    },
 ];
 
 #[cfg(test)]
@@ -1145,6 +1296,21 @@ mod tests {
             ToolChangeInNoseComp,
             NoseCompGouge,
             NoseCompCornerAngle,
+            NoToolOffset,
+            ThreadPitchWrong,
+            MachiningTypeWrong,
+            FinishedDiameterTooSmall,
+            ToolWidthWrong,
+            GrooveFormWrong,
+            ToolViolatesContour,
+            ContourWrong,
+            ContourPreparation { cause: 10933 },
+            StartPointWrong,
+            WrongEdgePosition,
+            FormWrong,
+            NoIntersection,
+            RecutImpossible,
+            UndercutPositionWrong,
         ]
     };
 

@@ -10,6 +10,7 @@
 
 pub mod cycle;
 mod gset;
+pub mod job;
 
 pub use cycle::CycleArgs;
 pub use gset::{GSet, uses_axes};

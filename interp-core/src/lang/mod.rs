@@ -7,9 +7,11 @@
 //! canonical actions — is one engine that every language shares.
 //!
 //! - [`fanuc`]: the FANUC-style dialect of the ELESY-E3TA manual (G-code systems
-//!   A/B/C on a lathe, the M series on a mill), with custom macro B.
+//!   A/B/C on a lathe, the M series on a mill), with custom macro B;
+//! - [`siemens`]: SINUMERIK 840D (seed 001): its cycle calls and standard cycles.
 
 pub mod fanuc;
+pub mod siemens;
 
 use crate::lang::fanuc::macros::Variables;
 use crate::program::Cursor;

@@ -1,0 +1,109 @@
+//! What a front end asks the cycle engine to do, in the engine's own terms: the
+//! specifications of the shared generators in internal units (nm, X as a radius,
+//! µdeg, ms). FANUC's G76 and SINUMERIK's CYCLE97/CYCLE98 both become a
+//! [`MultiThreadSpec`] for the one infeed engine (`cycles::thread`); G71/G72 and
+//! CYCLE95 a [`RoughSpec`] for the one roughing generator (`cycles::rough`) …
+//! The data is defined here, below the languages that fill it in; the generators
+//! that run it are in [`crate::cycles`] (data down, logic up).
+
+use crate::geom::Pt;
+
+/// Pull-out of a G92/G76 thread pass: parameter 5130 (tenths of the lead) along the
+/// long axis, the short axis at the angle of 5131 from the long axis (0 = 45°).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Pullout {
+    /// Tenths of the pitch (5130 / G76 r); 0 = no pull-out.
+    pub tenths: i64,
+    /// Angle in degrees (5131), 0 = 45°.
+    pub angle_deg: i64,
+}
+
+/// How the infeed engine splits the thread depth into rough passes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Depths {
+    /// G76 (2.17.4): the first pass at Δd, pass n at √n·Δd but at least Δdmin
+    /// deeper than the one before, up to the height less the allowance.
+    Root {
+        /// First depth Δd (radius).
+        first: i64,
+        /// Minimum depth increase Δdmin (radius).
+        min_depth: i64,
+    },
+    /// CYCLE97/CYCLE98: `passes` rough passes down to the height less the
+    /// allowance, with the same infeed each (constant infeed: pass k at k/n of the
+    /// depth) or with the same chip cross-section each (a V thread's cut area grows
+    /// with the square of the depth: pass k at √(k/n) of the depth).
+    Split {
+        /// Rough passes (NRC).
+        passes: u32,
+        /// Constant cross-section (VARI 3/4) instead of constant infeed (VARI 1/2).
+        constant_section: bool,
+    },
+}
+
+/// Where the passes of a thread lie along the long axis as they go deeper.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Flank {
+    /// G76: the pass start moves by depth × tan(angle) towards the thread end, the
+    /// pass still ends at the thread end (the tool follows one flank; 0 = radial).
+    FromStart {
+        /// Half the tool angle a (the infeed angle), µdeg.
+        angle_udeg: i64,
+    },
+    /// CYCLE97/CYCLE98 IANG: every pass lies on a flank of the finished thread, which
+    /// the last pass cuts at the programmed place: pass at depth d moves by
+    /// (height − d) × tan(angle) along the long axis, always to the same side
+    /// (`alternate` false, IANG > 0) or to alternate sides (IANG < 0, cylindrical
+    /// threads only). 0 = radial infeed.
+    ToFinal {
+        /// |IANG|, µdeg.
+        angle_udeg: i64,
+        /// Alternating flanks.
+        alternate: bool,
+    },
+}
+
+/// Most points a thread chain has: start, two intermediate points, end (CYCLE98).
+pub const CHAIN_POINTS: usize = 4;
+
+/// What the thread infeed engine cuts (G76; CYCLE97, CYCLE98). All values radius, nm.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct MultiThreadSpec {
+    /// Where the tool is when the cycle starts, and where a G76 pass returns to.
+    pub start: Pt,
+    /// The thread's nominal line at depth 0 (the crest of an outside thread, the
+    /// bore of an inside one): `points[0]` is where a pass starts (after the run-in),
+    /// `points[count - 1]` where it ends (after the run-out).
+    pub points: [Pt; CHAIN_POINTS],
+    /// How many of `points` are used (2–4).
+    pub count: usize,
+    /// Lead along the long axis of segment i (points i → i+1), nm/rev.
+    pub leads: [i64; CHAIN_POINTS - 1],
+    /// The long axis is X (a face thread, taper over 45°) rather than Z.
+    pub face: bool,
+    /// +1 if going deeper is the positive direction of the infeed axis (an inside
+    /// longitudinal thread), −1 if negative.
+    pub inward: i64,
+    /// Thread height k (TDEP).
+    pub height: i64,
+    /// Finishing allowance d (FAL): the rough passes stop at `height − allowance`.
+    pub allowance: i64,
+    /// How the rough passes split the depth.
+    pub depths: Depths,
+    /// Passes at the full height after the rough passes (G76 m; CYCLE97 the
+    /// finishing cut when FAL > 0 plus the NID idle passes).
+    pub finish: u32,
+    /// Where each pass lies along the long axis.
+    pub flank: Flank,
+    /// Pull-out at the end of each pass (G76; none for CYCLE97/98).
+    pub pull: Pullout,
+    /// The infeed-axis value a pass retracts to at its end before the tool returns
+    /// along the long axis to `start` (G76: the start point's X; CYCLE97: _VRT
+    /// above the thread).
+    pub retract: i64,
+    /// Number of thread starts, the whole sequence of passes cut for each.
+    pub starts: u32,
+    /// Spindle angle after the index where the first start begins, µdeg; start i
+    /// begins i × 360° / `starts` later.
+    pub start_udeg: u32,
+}

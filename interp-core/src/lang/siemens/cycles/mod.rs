@@ -1,0 +1,207 @@
+//! The SINUMERIK standard turning cycles (seed 001 chapter 4): each cycle's
+//! parameter list, the checks and alarms (61xxx) its section names, and the mapping
+//! of its parameters onto the engine's shared generators — CYCLE97/CYCLE98 onto the
+//! thread infeed engine of G76, CYCLE95 onto the roughing generator of G71/G72 …
+//! ([`Engine`], implemented by the engine in `crate::cycles`).
+//!
+//! General rules (seed lines 514–701, 10099–10184): parameters are positional, an
+//! empty or missing one is zero; the plane is G18 (Z the longitudinal axis, X the
+//! plane axis); under diameter programming (DIAMON) the plane-axis values (SPD,
+//! DM1 …) are diameters; lengths are in the programmed unit (G70/G71);
+//! G functions active before the call are active after it.
+//!
+//! One file per cycle family: [`thread`] (CYCLE97, CYCLE98, thread re-cutting).
+
+mod thread;
+
+#[cfg(test)]
+mod tests;
+
+pub use super::call::{Arg, ContourSource, Signature, Ty};
+
+use crate::alarm::AlarmKind;
+use crate::canon::Plane;
+use crate::command::Command;
+use crate::command::job::MultiThreadSpec;
+use crate::config::MachineConfig;
+use crate::modal::State;
+use crate::units::Units;
+
+use Ty::{Int as I, Real as R};
+
+/// Every cycle of this module with its parameter list as the manual gives it.
+pub static SIGNATURES: &[Signature] = &[
+    // Lines 11169, 11195: CYCLE97.
+    Signature {
+        name: "CYCLE97",
+        params: &[
+            ("PIT", R),
+            ("MPIT", R),
+            ("SPL", R),
+            ("FPL", R),
+            ("DM1", R),
+            ("DM2", R),
+            ("APP", R),
+            ("ROP", R),
+            ("TDEP", R),
+            ("FAL", R),
+            ("IANG", R),
+            ("NSP", R),
+            ("NRC", I),
+            ("NID", I),
+            ("VARI", I),
+            ("NUMT", I),
+            ("_VRT", R),
+        ],
+    },
+    // Line 11259: CYCLE98.
+    Signature {
+        name: "CYCLE98",
+        params: &[
+            ("PO1", R),
+            ("DM1", R),
+            ("PO2", R),
+            ("DM2", R),
+            ("PO3", R),
+            ("DM3", R),
+            ("PO4", R),
+            ("DM4", R),
+            ("APP", R),
+            ("ROP", R),
+            ("TDEP", R),
+            ("FAL", R),
+            ("IANG", R),
+            ("NSP", R),
+            ("NRC", I),
+            ("NID", I),
+            ("PP1", R),
+            ("PP2", R),
+            ("PP3", R),
+            ("VARI", I),
+            ("NUMT", I),
+            ("_VRT", R),
+        ],
+    },
+];
+
+/// The cycle called `name` (case-insensitive), if this module implements it.
+pub fn signature(name: &[u8]) -> Option<&'static Signature> {
+    SIGNATURES.iter().find(|s| s.name.as_bytes().eq_ignore_ascii_case(name))
+}
+
+/// The engine's side of a cycle call: the shared generators a cycle's parameters
+/// are mapped onto. Implemented by `crate::cycles` (which sits above the
+/// languages), handed down as a trait object.
+pub trait Engine {
+    /// The machine.
+    fn cfg(&self) -> &MachineConfig;
+    /// Starts the thread infeed engine (G76's) with `spec` for the cycle block `cmd`.
+    fn thread(&mut self, spec: &MultiThreadSpec, cmd: &Command, st: &mut State) -> Result<(), AlarmKind>;
+}
+
+/// Starts the cycle `sig` with `args` (already type-checked and padded with
+/// [`Arg::Empty`]) on the state: checks the parameters (the cycle's 61xxx alarms),
+/// maps them onto the engine's specification and starts the generator. Nothing
+/// moves when an alarm is returned.
+pub fn start(
+    sig: &Signature,
+    args: &[Arg<'_>],
+    cmd: &Command,
+    st: &mut State,
+    ctx: &mut dyn Engine,
+    contour: Option<ContourSource<'_>>,
+) -> Result<(), AlarmKind> {
+    let _ = contour;
+    let p = Params::new(args, st);
+    match sig.name {
+        "CYCLE97" => thread::cycle97(&p, cmd, st, ctx),
+        "CYCLE98" => thread::cycle98(&p, cmd, st, ctx),
+        _ => Err(AlarmKind::NotSupportedYet { what: "this SINUMERIK cycle" }),
+    }
+}
+
+/// The turning cycles work in the ZX plane (G18, line 10113).
+fn need_zx(st: &State) -> Result<(), AlarmKind> {
+    if st.modal.plane != Plane::Zx {
+        return Err(AlarmKind::CycleNotInZxPlane);
+    }
+    Ok(())
+}
+
+/// The arguments of a call, read as the manual declares them, in internal units.
+struct Params<'s, 'a> {
+    args: &'s [Arg<'a>],
+    /// Nanometres per programmed length unit (mm or inch, G71/G70).
+    per_unit: f64,
+    /// Plane-axis values are diameters (DIAMON).
+    diameter: bool,
+}
+
+/// 1 mm, the manual's default for retracts and clearances.
+const MM: i64 = 1_000_000;
+
+/// Largest length a cycle parameter may give (10 m).
+const MAX_LENGTH_NM: f64 = 1e13;
+
+impl<'s, 'a> Params<'s, 'a> {
+    fn new(args: &'s [Arg<'a>], st: &State) -> Self {
+        let per_unit = match st.modal.units {
+            Units::Metric => 1e6,
+            Units::Inch => 25.4e6,
+        };
+        Params { args, per_unit, diameter: st.modal.diameter }
+    }
+
+    fn arg(&self, i: usize) -> Arg<'a> {
+        self.args.get(i).copied().unwrap_or(Arg::Empty)
+    }
+
+    /// REAL parameter `i` (an INT is converted, a left-out one is zero).
+    fn real(&self, i: usize) -> f64 {
+        match self.arg(i) {
+            Arg::Real(v) => v,
+            Arg::Int(v) => v as f64,
+            _ => 0.0,
+        }
+    }
+
+    /// INT parameter `i`.
+    fn int(&self, i: usize) -> i64 {
+        match self.arg(i) {
+            Arg::Int(v) => v,
+            Arg::Real(v) if v.is_finite() => v as i64,
+            _ => 0,
+        }
+    }
+
+    /// A length in nm from a value in program units.
+    fn nm(&self, v: f64) -> Result<i64, AlarmKind> {
+        let nm = v * self.per_unit;
+        if !nm.is_finite() || libm::fabs(nm) > MAX_LENGTH_NM {
+            return Err(AlarmKind::Overflow);
+        }
+        Ok(libm::round(nm) as i64)
+    }
+
+    /// Length parameter `i`, nm, signed.
+    fn len(&self, i: usize) -> Result<i64, AlarmKind> {
+        self.nm(self.real(i))
+    }
+
+    /// Length parameter `i` the manual gives without sign (不输入符号), nm.
+    fn unsigned(&self, i: usize) -> Result<i64, AlarmKind> {
+        Ok(self.len(i)?.abs())
+    }
+
+    /// A plane-axis (X) position, as a radius: halved under DIAMON.
+    fn x(&self, i: usize) -> Result<i64, AlarmKind> {
+        let v = self.len(i)?;
+        Ok(if self.diameter { v / 2 } else { v })
+    }
+
+    /// A retract or clearance the manual defaults to 1 mm when zero (_VRT).
+    fn or_1mm(&self, i: usize) -> Result<i64, AlarmKind> {
+        let v = self.unsigned(i)?;
+        Ok(if v == 0 { MM } else { v })
+    }
+}
