@@ -107,3 +107,38 @@ pub struct MultiThreadSpec {
     /// begins i × 360° / `starts` later.
     pub start_udeg: u32,
 }
+
+/// What the stock-removal generator does with a contour (CYCLE95, seed 001 4.5):
+/// axis-parallel roughing in sections of equal infeed, following the contour after
+/// every cut, and a finishing pass with the nose compensated. Values radius, nm.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct StockSpec {
+    /// Face machining: infeed along Z, cuts along X (else longitudinal).
+    pub facing: bool,
+    /// Inside: infeed in the positive direction (else outside: negative).
+    pub internal: bool,
+    /// Rough the contour.
+    pub rough: bool,
+    /// Finish it.
+    pub finish: bool,
+    /// Most infeed of a roughing pass (MID as a radius for X), nm.
+    pub depth: i64,
+    /// Allowance in X (FALX, radius), Z (FALZ) and along the contour (FAL), nm.
+    pub allow_x: i64,
+    /// Allowance in Z.
+    pub allow_z: i64,
+    /// Allowance along the contour.
+    pub allow: i64,
+    /// Feeds in the feed mode in force: roughing (FF1), plunging into an undercut
+    /// along its contour (FF2), finishing (FF3); 0 = the feed in force.
+    pub feeds: [i64; 3],
+    /// VARI hundreds 0: after each cut follow the contour over one more cut point
+    /// (overlapping); else (2) only up to the previous one.
+    pub overlap: bool,
+    /// Chip breaking: interrupt every roughing cut after this path length (DAM; 0 = never)…
+    pub interrupt: i64,
+    /// … and dwell this long there (DT), ms.
+    pub dwell_ms: u32,
+    /// Retract from the contour in both axes after a cut (_VRT), nm.
+    pub retract: i64,
+}

@@ -4,14 +4,15 @@
 //! generator as the block's expansion, exactly as the FANUC cycle that shares it.
 
 use super::emit::Emitter;
+use super::stock::{Nose, StockGen};
 use super::thread::MultiThreadGen;
-use super::{Ctx, Executor, Gen, start_cycle};
+use super::{Ctx, Executor, Gen, profile, start_cycle};
 use crate::alarm::AlarmKind;
 use crate::command::Command;
 use crate::command::cycle::check_lead;
-use crate::command::job::MultiThreadSpec;
+use crate::command::job::{MultiThreadSpec, StockSpec};
 use crate::config::MachineConfig;
-use crate::lang::siemens::cycles::Engine;
+use crate::lang::siemens::cycles::{ContourSource, Engine};
 use crate::modal::State;
 
 /// The engine for the cycle calls of a block: its stage and machine ([`Ctx`]) and
@@ -33,11 +34,64 @@ impl<X: Executor> Engine for CallEngine<'_, '_, '_, X> {
         self.ctx.cfg
     }
 
+    fn stock(
+        &mut self,
+        spec: &StockSpec,
+        contour: ContourSource<'_>,
+        cmd: &Command,
+        st: &mut State,
+    ) -> Result<(), AlarmKind> {
+        self.stock_removal(spec, contour, cmd, st)
+    }
+
     fn thread(&mut self, spec: &MultiThreadSpec, cmd: &Command, st: &mut State) -> Result<(), AlarmKind> {
         for &lead in &spec.leads[..spec.count - 1] {
             check_lead(lead, st.modal.units)?;
         }
         let generator = MultiThreadGen::new(*spec)?;
         start_cycle(Emitter::new(*st, cmd.line), Gen::MultiThread(generator), self.ctx.out).map(|_| ())
+    }
+}
+
+impl<X: Executor> CallEngine<'_, '_, '_, X> {
+    /// Runs `build` on a new expansion in the block's slot; on an alarm the slot
+    /// is emptied again (the block moves nothing).
+    fn expansion(
+        &mut self,
+        em: Emitter,
+        build: impl FnOnce(&mut super::Expansion, &MachineConfig, &dyn crate::env::Environment) -> Result<(), AlarmKind>,
+    ) -> Result<(), AlarmKind> {
+        let (cfg, env) = (self.ctx.cfg, self.ctx.env);
+        let exp = start_cycle(em, Gen::Plan(heapless::Vec::new()), self.ctx.out)?;
+        let built = build(exp, cfg, env);
+        if built.is_err() {
+            self.ctx.out.cycle_slot()?.take();
+        }
+        built
+    }
+}
+
+impl<X: Executor> CallEngine<'_, '_, '_, X> {
+    /// CYCLE95: the contour read into the expansion, then the stock generator on it.
+    pub(crate) fn stock_removal(
+        &mut self,
+        spec: &StockSpec,
+        contour: ContourSource<'_>,
+        cmd: &Command,
+        st: &State,
+    ) -> Result<(), AlarmKind> {
+        let em = Emitter::new(*st, cmd.line);
+        let here = em.here(self.ctx.cfg);
+        let feed = em.feed.value;
+        let nose = Nose {
+            radius: st.tool.nose_radius,
+            tip: st.tool.tip,
+            clearance_udeg: self.ctx.cfg.tools.get(st.tool.offset_number).map_or(0, |r| r.clearance_udeg),
+        };
+        self.expansion(em, |exp, cfg, env| {
+            profile::read_contour(&contour, st, cfg, env, X::execute, &mut exp.profile)?;
+            exp.generator = Gen::Stock(StockGen::new(spec, &mut exp.profile.segs, here, nose, feed)?);
+            Ok(())
+        })
     }
 }

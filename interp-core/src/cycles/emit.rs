@@ -86,6 +86,8 @@ pub enum Step {
     },
     /// Dwell.
     Dwell(u32),
+    /// The cycle's cutting feed from here on, in its feed mode (CYCLE95 FF1–FF3).
+    Feedrate(i64),
     /// Spindle direction change at the remembered speed.
     Spindle(SpindleDir),
 }
@@ -221,6 +223,10 @@ impl Emitter {
                 Action::Linear(Move { to, feed, spindle, exact_stop, independent: false })
             }
             Step::Dwell(ms) => Action::Dwell { ms },
+            Step::Feedrate(v) => {
+                self.feed.value = v;
+                return Ok(());
+            }
             Step::Spindle(dir) => {
                 self.st.spindle.dir = dir;
                 let x = self.st.work_axis(cfg, Axis::X);

@@ -29,11 +29,13 @@ mod emit;
 mod finish;
 mod groove;
 mod hole;
+mod offset;
 mod pattern;
 pub mod polar;
 pub mod profile;
 mod rough;
 mod single;
+mod stock;
 mod thread;
 
 pub use crate::command::cycle::CycleArgs;
@@ -85,6 +87,7 @@ enum Gen {
     Hole(HoleGen),
     Curve(curve::CurveGen),
     Polar(polar::PolarGen),
+    Stock(stock::StockGen),
 }
 
 /// A cycle being delivered: its generator, its copy of the state and what is
@@ -180,6 +183,7 @@ impl Expansion {
                     Gen::Hole(g) => g.fill(&mut self.queue)?,
                     Gen::Curve(g) => g.fill(&mut self.queue)?,
                     Gen::Polar(g) => g.fill(&mut self.queue)?,
+                    Gen::Stock(g) => g.fill(&self.profile.segs, here, &mut self.queue)?,
                 };
                 self.gen_done = !more;
                 continue;

@@ -184,16 +184,7 @@ pub fn read_profile<E: Environment + ?Sized>(
     execute: Execute,
     profile: &mut Profile,
 ) -> Result<(), AlarmKind> {
-    let mut scratch = *st;
-    // Roughing follows the programmed shape: no nose compensation (2.16.7 note 5).
-    scratch.contour.clear();
-    scratch.contour.no_comp = true;
-    scratch.feed.per_min = scratch.feed.per_min.max(1);
-    scratch.feed.per_rev = scratch.feed.per_rev.max(1);
-    if scratch.spindle.dir == SpindleDir::Stop {
-        scratch.spindle.dir = SpindleDir::Cw;
-    }
-    scratch.spindle.rpm = scratch.spindle.rpm.max(1);
+    let mut scratch = scratch(st);
     let mut cur = start_of(src)?;
     profile.segs.clear();
     let mut first = true;
@@ -211,33 +202,14 @@ pub fn read_profile<E: Environment + ?Sized>(
             profile.ns_z = cmd.axes[Axis::Z.index()].is_some();
             profile.ns_rapid = cmd.g.motion == Some(GCode::Rapid);
         }
-        let mut a = match profile.segs.last() {
+        let a = match profile.segs.last() {
             Some(s) if held => s.b,
             _ => Pt::new(here[Axis::X], here[Axis::Z]),
         };
         if sb.last {
             crate::contour::flush(&mut scratch, &mut staged)?;
         }
-        for c in staged.actions.iter() {
-            let (kind, to) = match c.action {
-                Action::Rapid(m) => (SegKind::Rapid, m.to.work),
-                Action::Linear(m) => (SegKind::Line, m.to.work),
-                Action::Arc(arc) => {
-                    if arc.plane != crate::canon::Plane::Zx {
-                        return Err(AlarmKind::CycleNotInZxPlane);
-                    }
-                    let center = Pt::new(arc.center.work[Axis::X], arc.center.work[Axis::Z]);
-                    (SegKind::Arc { center, cw: arc.cw }, arc.to.work)
-                }
-                Action::Thread(_) | Action::Tap(_) => {
-                    return Err(AlarmKind::ProfileForbiddenCode { what: "threading" });
-                }
-                _ => continue,
-            };
-            let b = Pt::new(to[Axis::X], to[Axis::Z]);
-            profile.segs.push(Seg { kind, a, b }).map_err(|_| AlarmKind::ProfileTooLong)?;
-            a = b;
-        }
+        keep_moves(&staged, a, profile)?;
         if first && profile.segs.is_empty() {
             // The ns block must move (it defines B).
             return Err(AlarmKind::ProfileFirstBlock);
@@ -249,4 +221,209 @@ pub fn read_profile<E: Environment + ?Sized>(
         }
     }
     Err(AlarmKind::SequenceNotFound { n: src.nf })
+}
+
+/// A copy of `st` to run a shape's blocks on. Roughing follows the programmed
+/// shape: no nose compensation (2.16.7 note 5); it ignores the shape's F, S and T,
+/// so the copy has a feed and a turning spindle: geometry must not fail on a feed
+/// the roughing never uses.
+fn scratch(st: &State) -> State {
+    let mut scratch = *st;
+    scratch.contour.clear();
+    scratch.contour.no_comp = true;
+    scratch.feed.per_min = scratch.feed.per_min.max(1);
+    scratch.feed.per_rev = scratch.feed.per_rev.max(1);
+    if scratch.spindle.dir == SpindleDir::Stop {
+        scratch.spindle.dir = SpindleDir::Cw;
+    }
+    scratch.spindle.rpm = scratch.spindle.rpm.max(1);
+    scratch
+}
+
+/// Appends the moves staged in `staged` to `profile` as segments, the first from
+/// `a`; returns how many.
+fn keep_moves(staged: &CycleStage<'_>, mut a: Pt, profile: &mut Profile) -> Result<usize, AlarmKind> {
+    let mut n = 0;
+    for c in staged.actions.iter() {
+        let (kind, to) = match c.action {
+            Action::Rapid(m) => (SegKind::Rapid, m.to.work),
+            Action::Linear(m) => (SegKind::Line, m.to.work),
+            Action::Arc(arc) => {
+                if arc.plane != crate::canon::Plane::Zx {
+                    return Err(AlarmKind::CycleNotInZxPlane);
+                }
+                let center = Pt::new(arc.center.work[Axis::X], arc.center.work[Axis::Z]);
+                (SegKind::Arc { center, cw: arc.cw }, arc.to.work)
+            }
+            Action::Thread(_) | Action::Tap(_) => {
+                return Err(AlarmKind::ProfileForbiddenCode { what: "threading" });
+            }
+            _ => continue,
+        };
+        let b = Pt::new(to[Axis::X], to[Axis::Z]);
+        profile.segs.push(Seg { kind, a, b }).map_err(|_| AlarmKind::ProfileTooLong)?;
+        a = b;
+        n += 1;
+    }
+    Ok(n)
+}
+
+/// Reads and checks one block of a contour in the language of its program;
+/// `None` for a block without words.
+fn contour_command(
+    program: &ProgramText<'_>,
+    raw: &crate::program::RawBlock<'_>,
+    st: &State,
+    cfg: &MachineConfig,
+) -> Result<Option<crate::command::Command>, AlarmKind> {
+    match program.language {
+        crate::config::Language::Fanuc => {
+            let mut block = Block::default();
+            if let Read::Macro(_) = read_with(raw.text, raw.line, program.vars, program.fmt, &mut block)? {
+                return Err(AlarmKind::ContourPreparation { cause: 10931 });
+            }
+            if block.is_empty() {
+                return Ok(None);
+            }
+            check(&block, st, cfg).map(Some)
+        }
+        crate::config::Language::Siemens => {
+            Err(AlarmKind::NotSupportedYet { what: "SINUMERIK contour blocks (the SINUMERIK reader)" })
+        }
+    }
+}
+
+/// Whether a contour block ends its subprogram (M17/RET, M02/M30, M99).
+fn ends_subprogram(cmd: &crate::command::Command) -> bool {
+    matches!(cmd.flow, Some(crate::command::FlowWord::Return { .. }))
+        || cmd.m.iter().any(|&(_, f)| matches!(f, MFunction::End | MFunction::EndRewind))
+}
+
+/// The checks of a stock-removal contour block (CYCLE95, seed 001 lines
+/// 10820–10858), as the NCK alarm under 61606: G0–G3 only (10930); no G41/G42,
+/// plane selection or frame (10931); the first block moving in the plane must
+/// have its G0–G3 (15800).
+fn check_contour_command(cmd: &crate::command::Command, first: bool) -> Result<(), AlarmKind> {
+    use GCode::*;
+    let prep = |cause| Err(AlarmKind::ContourPreparation { cause });
+    if let Some(m) = cmd.g.motion
+        && !matches!(m, Rapid | Linear | ArcCw | ArcCcw)
+    {
+        return prep(10930);
+    }
+    if cmd.g.one_shot.is_some_and(|c| c != Dwell) || cmd.g.drilling.is_some_and(|d| d != DrillCancel) {
+        return prep(10930);
+    }
+    if cmd.g.nose_comp.is_some_and(|c| c != NoseCompOff) || cmd.g.plane.is_some() || cmd.g.units.is_some() {
+        return prep(10931);
+    }
+    if first && cmd.has_axes() && cmd.g.motion.is_none() {
+        return prep(15800);
+    }
+    Ok(())
+}
+
+/// The contour of a stock-removal cycle (CYCLE95 `NPP`) read from `src`: its blocks
+/// run on a scratch copy of `st` through `execute`, their moves kept as segments
+/// in `profile` starting at the contour's first programmed point, which is
+/// returned (the first block's move only gets there). Alarms 61606 with the
+/// NCK cause: fewer than three moving blocks (10933), more elements than the
+/// profile holds (10934), an arc over 180° or a chamfer/rounding on the first
+/// block (10931), G41/G42 in force at the call (15800).
+pub fn read_contour<E: Environment + ?Sized>(
+    src: &crate::lang::siemens::call::ContourSource<'_>,
+    st: &State,
+    cfg: &MachineConfig,
+    env: &E,
+    execute: Execute,
+    profile: &mut Profile,
+) -> Result<Pt, AlarmKind> {
+    let prep = |cause| AlarmKind::ContourPreparation { cause };
+    if matches!(st.modal.nose_comp, GCode::NoseCompLeft | GCode::NoseCompRight) {
+        return Err(prep(15800));
+    }
+    let mut scratch = scratch(st);
+    profile.segs.clear();
+    let (text, mut cur) = (src.program.text, src.start);
+    let mut first: Option<Pt> = None;
+    let mut blocks = 0;
+    loop {
+        let at = cur;
+        let Some(raw) = next_block(text, &mut cur) else {
+            if src.end.is_some() {
+                return Err(prep(10933));
+            }
+            break;
+        };
+        let last = src.end.is_some_and(|e| at.offset >= e.offset);
+        let Some(cmd) = contour_command(&src.program, &raw, &scratch, cfg)? else {
+            if last {
+                break;
+            }
+            continue;
+        };
+        if ends_subprogram(&cmd) {
+            break;
+        }
+        check_contour_command(&cmd, first.is_none())?;
+        let mut outbox = crate::stage::Outbox::new();
+        let mut staged = CycleStage::new(raw.line, &mut outbox);
+        let here = scratch.work_pos(cfg);
+        let held = scratch.contour.is_holding();
+        let mut next = scratch;
+        let flow = execute(&cmd, &mut next, cfg, &EnvRef(env), &mut staged)?;
+        if flow != Flow::Continue {
+            return Err(prep(10930));
+        }
+        scratch = next;
+        if last {
+            crate::contour::flush(&mut scratch, &mut staged)?;
+        }
+        match first {
+            None => {
+                if scratch.contour.is_holding() {
+                    return Err(prep(10931));
+                }
+                let w = scratch.work_pos(cfg);
+                if staged.actions.iter().any(|c| c.action.endpoint().is_some()) || cmd.has_axes() {
+                    first = Some(Pt::new(w[Axis::X], w[Axis::Z]));
+                    blocks += 1;
+                }
+            }
+            Some(p0) => {
+                let a = match profile.segs.last() {
+                    Some(s) if held => s.b,
+                    Some(_) => Pt::new(here[Axis::X], here[Axis::Z]),
+                    None => p0,
+                };
+                if keep_moves(&staged, a, profile)
+                    .map_err(|e| if e == AlarmKind::ProfileTooLong { prep(10934) } else { e })?
+                    > 0
+                {
+                    blocks += 1;
+                }
+            }
+        }
+        if last {
+            break;
+        }
+    }
+    let Some(p0) = first else { return Err(prep(10933)) };
+    if blocks < 3 {
+        return Err(prep(10933));
+    }
+    for s in &profile.segs {
+        if let SegKind::Arc { center, cw } = s.kind {
+            let e = crate::geom::path::Elem::Arc {
+                start: crate::geom::path::V2::new(s.a.z as f64, s.a.x as f64),
+                end: crate::geom::path::V2::new(s.b.z as f64, s.b.x as f64),
+                center: crate::geom::path::V2::new(center.z as f64, center.x as f64),
+                ccw: !cw,
+            };
+            if e.length() > core::f64::consts::PI * e.radius() + 1.0 {
+                return Err(prep(10931));
+            }
+        }
+    }
+    Ok(p0)
 }

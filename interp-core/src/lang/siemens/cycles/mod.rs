@@ -10,8 +10,10 @@
 //! DM1 …) are diameters; lengths are in the programmed unit (G70/G71);
 //! G functions active before the call are active after it.
 //!
-//! One file per cycle family: [`thread`] (CYCLE97, CYCLE98, thread re-cutting).
+//! One file per cycle family: [`thread`] (CYCLE97, CYCLE98, thread re-cutting),
+//! [`stock`] (CYCLE95).
 
+mod stock;
 mod thread;
 
 #[cfg(test)]
@@ -22,16 +24,34 @@ pub use super::call::{Arg, ContourSource, Signature, Ty};
 use crate::alarm::AlarmKind;
 use crate::canon::Plane;
 use crate::command::Command;
-use crate::command::job::MultiThreadSpec;
+use crate::command::job::{MultiThreadSpec, StockSpec};
 use crate::config::MachineConfig;
 use crate::modal::State;
 use crate::units::Units;
 
-use Ty::{Int as I, Real as R};
+use Ty::{Int as I, Real as R, Str as S};
 
 /// Every cycle of this module with its parameter list as the manual gives it.
 pub static SIGNATURES: &[Signature] = &[
-    // Lines 11169, 11195: CYCLE97.
+    // Line 10602: CYCLE95.
+    Signature {
+        name: "CYCLE95",
+        params: &[
+            ("NPP", S),
+            ("MID", R),
+            ("FALZ", R),
+            ("FALX", R),
+            ("FAL", R),
+            ("FF1", R),
+            ("FF2", R),
+            ("FF3", R),
+            ("VARI", I),
+            ("DT", R),
+            ("DAM", R),
+            ("_VRT", R),
+        ],
+    },
+    // Line 11069: CYCLE97.
     Signature {
         name: "CYCLE97",
         params: &[
@@ -97,6 +117,14 @@ pub trait Engine {
     fn cfg(&self) -> &MachineConfig;
     /// Starts the thread infeed engine (G76's) with `spec` for the cycle block `cmd`.
     fn thread(&mut self, spec: &MultiThreadSpec, cmd: &Command, st: &mut State) -> Result<(), AlarmKind>;
+    /// Reads `contour` and starts the stock-removal generator (G71's geometry) on it.
+    fn stock(
+        &mut self,
+        spec: &StockSpec,
+        contour: ContourSource<'_>,
+        cmd: &Command,
+        st: &mut State,
+    ) -> Result<(), AlarmKind>;
 }
 
 /// Starts the cycle `sig` with `args` (already type-checked and padded with
@@ -111,9 +139,9 @@ pub fn start(
     ctx: &mut dyn Engine,
     contour: Option<ContourSource<'_>>,
 ) -> Result<(), AlarmKind> {
-    let _ = contour;
     let p = Params::new(args, st);
     match sig.name {
+        "CYCLE95" => stock::cycle95(&p, cmd, st, ctx, contour),
         "CYCLE97" => thread::cycle97(&p, cmd, st, ctx),
         "CYCLE98" => thread::cycle98(&p, cmd, st, ctx),
         _ => Err(AlarmKind::NotSupportedYet { what: "this SINUMERIK cycle" }),

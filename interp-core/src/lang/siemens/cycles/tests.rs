@@ -13,6 +13,7 @@ use crate::{MachineConfig, Panel};
 use std::vec;
 use std::vec::Vec;
 
+mod stock;
 mod threads;
 
 /// A lathe with room for the document's examples (X ±200 mm radius, Z ±600 mm).
