@@ -30,6 +30,7 @@ mod finish;
 mod groove;
 mod hole;
 mod offset;
+mod pass;
 mod pattern;
 pub mod polar;
 pub mod profile;

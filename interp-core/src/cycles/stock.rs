@@ -34,6 +34,7 @@
 use super::StepQueue;
 use super::emit::Step;
 use super::offset::{Offsets, walk};
+use super::pass::{PassGen, along};
 use super::rough::{Frame, below};
 use crate::alarm::AlarmKind;
 use crate::axis::Axis;
@@ -73,9 +74,7 @@ enum Phase {
     Approach,
     Level { s: u16, k: u32, part: Part },
     Return,
-    FinishIn,
-    Finish { elem: u16 },
-    FinishOut,
+    Finish,
     Done,
 }
 
@@ -94,10 +93,8 @@ pub struct StockGen {
     spec: StockSpec,
     frame: Frame,
     rough: Offsets,
-    finish: Offsets,
-    /// The finishing pass runs against the machining direction (finishing only, a
-    /// contour programmed the other way round).
-    finish_back: bool,
+    /// The finishing pass.
+    finish: PassGen,
     /// The cycle's start point, normalised.
     start: (i64, i64),
     /// Feed in force at the call (an FF of 0).
@@ -197,8 +194,7 @@ impl StockGen {
             spec: *spec,
             frame,
             rough,
-            finish,
-            finish_back: back,
+            finish: PassGen::new(finish, (0, 0), Pt::default(), [None; 3], 0, [None; 3]),
             start: (0, 0),
             base_feed,
             phase: Phase::Approach,
@@ -206,7 +202,7 @@ impl StockGen {
         // The start point, from the rough shape (the finishing shape when it is
         // walked backwards: its start is the far end).
         let (mut umax, mut wfirst) = (i64::MIN, None);
-        let o = if back { g.finish } else { g.rough };
+        let o = if back { finish } else { g.rough };
         walk(raw, &o, |s| {
             umax = umax.max(high(&frame, &s));
             wfirst.get_or_insert(frame.norm(s.a).1);
@@ -218,6 +214,28 @@ impl StockGen {
         let w_raw = frame.norm(a).1 - allow_cut - spec.allow;
         let w0 = if back { w_raw } else { w_raw.min(wfirst.unwrap_or(w_raw)) };
         g.start = (umax + spec.retract, w0 - spec.retract);
+        // Finishing (lines 10692-10697): G0 to the start point, G0 to allowance +
+        // nose radius + 1 mm before the contour's start, G1 onto it, the contour at
+        // FF3, back axis by axis with the infeed axis first.
+        let (mut first, mut last) = (None, None);
+        walk(raw, &finish, |s| {
+            first.get_or_insert(s.a);
+            last = Some(s.b);
+            Ok(true)
+        })?;
+        let (Some(first), Some(last)) = (first, last) else {
+            return Err(AlarmKind::ContourPreparation { cause: 10933 });
+        };
+        let (u0, w0) = frame.norm(first);
+        let (au, aw) = if spec.facing { (spec.allow_z, spec.allow_x) } else { (spec.allow_x, spec.allow_z) };
+        let du = au + spec.allow + nose.radius + crate::units::NM_PER_MM;
+        let dw = aw + spec.allow + nose.radius + crate::units::NM_PER_MM;
+        let sign = if back { -1 } else { 1 };
+        let s = g.s_point();
+        let before = [Some(s), Some(frame.work(u0 + du, w0 - sign * dw)), None];
+        let after = [Some(frame.work(g.start.0, frame.norm(last).1)), Some(s), None];
+        let n = u16::try_from(raw.len()).map_err(|_| AlarmKind::ContourPreparation { cause: 10934 })?;
+        g.finish = PassGen::new(finish, (0, n), Pt::default(), before, g.feed(2), after);
         Ok(g)
     }
 
@@ -237,52 +255,19 @@ impl StockGen {
             Phase::Approach => {
                 push(out, Step::Rapid(self.s_point()))?;
                 self.phase =
-                    if self.spec.rough { Phase::Level { s: 0, k: 1, part: Part::Begin } } else { Phase::FinishIn };
+                    if self.spec.rough { Phase::Level { s: 0, k: 1, part: Part::Begin } } else { Phase::Finish };
             }
             Phase::Level { s, k, part } => self.level(raw, here, s, k, part, out)?,
             Phase::Return => {
                 let (_, w) = f.norm(here);
                 push(out, Step::Rapid(f.work(self.start.0, w)))?;
                 push(out, Step::Rapid(self.s_point()))?;
-                self.phase = if self.spec.finish { Phase::FinishIn } else { Phase::Done };
+                self.phase = if self.spec.finish { Phase::Finish } else { Phase::Done };
             }
-            Phase::FinishIn => {
-                let Some(first) = self.shape_seg(raw, &self.finish, 0)? else {
+            Phase::Finish => {
+                if !self.finish.fill(raw, out)? {
                     self.phase = Phase::Done;
-                    return Ok(true);
-                };
-                let (u0, w0) = f.norm(first.a);
-                let nose = self.finish.equi as i64;
-                let (ax, az) = (self.spec.allow_x, self.spec.allow_z);
-                let (au, aw) = if self.spec.facing { (az, ax) } else { (ax, az) };
-                let du = au + self.spec.allow + nose + crate::units::NM_PER_MM;
-                let dw = aw + self.spec.allow + nose + crate::units::NM_PER_MM;
-                let back = if self.finish_back { -1 } else { 1 };
-                push(out, Step::Rapid(self.s_point()))?;
-                push(out, Step::Rapid(f.work(u0 + du, w0 - back * dw)))?;
-                push(out, Step::Feedrate(self.feed(2)))?;
-                push(out, Step::Feed(first.a))?;
-                self.phase = Phase::Finish { elem: 0 };
-            }
-            Phase::Finish { elem } => {
-                let mut k = elem;
-                for _ in 0..4 {
-                    match self.shape_seg(raw, &self.finish, k)? {
-                        Some(s) => push(out, along(&s))?,
-                        None => {
-                            self.phase = Phase::FinishOut;
-                            return Ok(true);
-                        }
-                    }
-                    k += 1;
                 }
-                self.phase = Phase::Finish { elem: k };
-            }
-            Phase::FinishOut => {
-                let (_, w) = f.norm(here);
-                push(out, Step::Rapid(f.work(self.start.0, w)))?;
-                push(out, Step::Rapid(self.s_point()))?;
-                self.phase = Phase::Done;
             }
             Phase::Done => return Ok(false),
         }
@@ -755,14 +740,6 @@ fn point_at(s: &Seg, t: f64) -> Pt {
 /// The piece of `s` from parameter `t0` to `t1`.
 fn part_of(s: &Seg, t0: f64, t1: f64) -> Seg {
     Seg { kind: s.kind, a: point_at(s, t0), b: point_at(s, t1) }
-}
-
-/// The move along a segment (lines and rapids of the contour at the feed).
-fn along(s: &Seg) -> Step {
-    match s.kind {
-        SegKind::Arc { center, cw } => Step::Arc { to: s.b, center, cw },
-        _ => Step::Feed(s.b),
-    }
 }
 
 fn push(out: &mut StepQueue, s: Step) -> Result<(), AlarmKind> {
