@@ -4,6 +4,8 @@
 //! generator as the block's expansion, exactly as the FANUC cycle that shares it.
 
 use super::emit::Emitter;
+use super::offset::Offsets;
+use super::pass::PassGen;
 use super::stock::{Nose, StockGen};
 use super::thread::MultiThreadGen;
 use super::{Ctx, Executor, Gen, profile, start_cycle};
@@ -42,6 +44,36 @@ impl<X: Executor> Engine for CallEngine<'_, '_, '_, X> {
         st: &mut State,
     ) -> Result<(), AlarmKind> {
         self.stock_removal(spec, contour, cmd, st)
+    }
+
+    fn contour_pass(
+        &mut self,
+        path: &[crate::geom::Seg],
+        tool_left: bool,
+        start: crate::geom::Pt,
+        cmd: &Command,
+        st: &mut State,
+    ) -> Result<(), AlarmKind> {
+        let em = Emitter::new(*st, cmd.line);
+        let feed = em.feed.value;
+        let zero = crate::geom::path::V2::new(0.0, 0.0);
+        let offsets = Offsets {
+            side: if tool_left { 1.0 } else { -1.0 },
+            equi: st.tool.nose_radius as f64,
+            front: zero,
+            back: zero,
+            along: zero,
+            tip: crate::contour::comp::tip_vector(st.tool.tip, st.tool.nose_radius),
+        };
+        self.expansion(em, |exp, _, _| {
+            for s in path {
+                exp.profile.segs.push(*s).map_err(|_| AlarmKind::ProfileTooLong)?;
+            }
+            let n = u16::try_from(path.len()).map_err(|_| AlarmKind::ProfileTooLong)?;
+            let ends = [Some(start), None, None];
+            exp.generator = Gen::Pass(PassGen::new(offsets, (0, n), crate::geom::Pt::default(), ends, feed, ends));
+            Ok(())
+        })
     }
 
     fn thread(&mut self, spec: &MultiThreadSpec, cmd: &Command, st: &mut State) -> Result<(), AlarmKind> {

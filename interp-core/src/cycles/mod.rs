@@ -89,6 +89,7 @@ enum Gen {
     Curve(curve::CurveGen),
     Polar(polar::PolarGen),
     Stock(stock::StockGen),
+    Pass(pass::PassGen),
 }
 
 /// A cycle being delivered: its generator, its copy of the state and what is
@@ -185,6 +186,7 @@ impl Expansion {
                     Gen::Curve(g) => g.fill(&mut self.queue)?,
                     Gen::Polar(g) => g.fill(&mut self.queue)?,
                     Gen::Stock(g) => g.fill(&self.profile.segs, here, &mut self.queue)?,
+                    Gen::Pass(g) => g.fill(&self.profile.segs, &mut self.queue)?,
                 };
                 self.gen_done = !more;
                 continue;

@@ -11,10 +11,11 @@
 //! G functions active before the call are active after it.
 //!
 //! One file per cycle family: [`thread`] (CYCLE97, CYCLE98, thread re-cutting),
-//! [`stock`] (CYCLE95).
+//! [`stock`] (CYCLE95), [`undercut`] (CYCLE94, CYCLE96).
 
 mod stock;
 mod thread;
+mod undercut;
 
 #[cfg(test)]
 mod tests;
@@ -26,13 +27,16 @@ use crate::canon::Plane;
 use crate::command::Command;
 use crate::command::job::{MultiThreadSpec, StockSpec};
 use crate::config::MachineConfig;
+use crate::geom::{Pt, Seg};
 use crate::modal::State;
 use crate::units::Units;
 
-use Ty::{Int as I, Real as R, Str as S};
+use Ty::{Char as C, Int as I, Real as R, Str as S};
 
 /// Every cycle of this module with its parameter list as the manual gives it.
 pub static SIGNATURES: &[Signature] = &[
+    // Line 10459: CYCLE94.
+    Signature { name: "CYCLE94", params: &[("SPD", R), ("SPL", R), ("FORM", C), ("_VARI", I)] },
     // Line 10602: CYCLE95.
     Signature {
         name: "CYCLE95",
@@ -51,6 +55,8 @@ pub static SIGNATURES: &[Signature] = &[
             ("_VRT", R),
         ],
     },
+    // Line 10962: CYCLE96.
+    Signature { name: "CYCLE96", params: &[("DIATH", R), ("SPL", R), ("FORM", C), ("_VARI", I)] },
     // Line 11069: CYCLE97.
     Signature {
         name: "CYCLE97",
@@ -117,6 +123,16 @@ pub trait Engine {
     fn cfg(&self) -> &MachineConfig;
     /// Starts the thread infeed engine (G76's) with `spec` for the cycle block `cmd`.
     fn thread(&mut self, spec: &MultiThreadSpec, cmd: &Command, st: &mut State) -> Result<(), AlarmKind>;
+    /// One pass along `path` (work, X radius) with the nose compensated, the tool
+    /// left (or right) of it, from and back to `start` with G0, at the feed in force.
+    fn contour_pass(
+        &mut self,
+        path: &[Seg],
+        tool_left: bool,
+        start: Pt,
+        cmd: &Command,
+        st: &mut State,
+    ) -> Result<(), AlarmKind>;
     /// Reads `contour` and starts the stock-removal generator (G71's geometry) on it.
     fn stock(
         &mut self,
@@ -141,7 +157,9 @@ pub fn start(
 ) -> Result<(), AlarmKind> {
     let p = Params::new(args, st);
     match sig.name {
+        "CYCLE94" => undercut::cycle94(&p, cmd, st, ctx),
         "CYCLE95" => stock::cycle95(&p, cmd, st, ctx, contour),
+        "CYCLE96" => undercut::cycle96(&p, cmd, st, ctx),
         "CYCLE97" => thread::cycle97(&p, cmd, st, ctx),
         "CYCLE98" => thread::cycle98(&p, cmd, st, ctx),
         _ => Err(AlarmKind::NotSupportedYet { what: "this SINUMERIK cycle" }),
@@ -190,6 +208,14 @@ impl<'s, 'a> Params<'s, 'a> {
             Arg::Real(v) => v,
             Arg::Int(v) => v as f64,
             _ => 0.0,
+        }
+    }
+
+    /// STRING or CHAR parameter `i` (empty when left out).
+    fn text(&self, i: usize) -> &'a [u8] {
+        match self.arg(i) {
+            Arg::Str(s) => s,
+            _ => &[],
         }
     }
 

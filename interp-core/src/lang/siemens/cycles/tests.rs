@@ -15,6 +15,7 @@ use std::vec::Vec;
 
 mod stock;
 mod threads;
+mod undercut;
 
 /// A lathe with room for the document's examples (X ±200 mm radius, Z ±600 mm).
 pub(super) fn machine() -> MachineConfig {
