@@ -48,7 +48,10 @@ const DIN_509: &[(f64, f64, f64, f64, f64)] = &[
 
 /// A DIN 76-1 row: pitch P; outside: x (d_g = d − x), g2 of form A, g2 of form B;
 /// inside: y (d_g = d + y), g2 of form C, g2 of form D; radius r (mm).
-const DIN_76: &[(f64, f64, f64, f64, f64, f64, f64, f64)] = &[
+type Din76Row = (f64, f64, f64, f64, f64, f64, f64, f64);
+
+/// DIN 76-1:2004 tables 1 and 2, the pitches of M3–M68.
+const DIN_76: &[Din76Row] = &[
     (0.5, 0.8, 1.75, 1.25, 0.3, 2.7, 2.0, 0.2),
     (0.6, 1.0, 2.1, 1.5, 0.3, 3.3, 2.4, 0.4),
     (0.7, 1.1, 2.45, 1.75, 0.3, 3.8, 2.75, 0.4),
