@@ -142,3 +142,40 @@ pub struct StockSpec {
     /// Retract from the contour in both axes after a cut (_VRT), nm.
     pub retract: i64,
 }
+
+/// What the grooving generator does (CYCLE93, seed 001 4.3): axis-parallel plunges
+/// side by side across the groove with pecks (G74/G75's columns), the flanks cut
+/// along their slope, then each side finished along the contour with its own
+/// cutting edge. The contours come with the spec as segments (work, X radius):
+/// ranges of them are named here.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct GrooveSpec {
+    /// A face groove: the plunges go along Z and step along X (else along X).
+    pub face: bool,
+    /// +1 when going deeper is the positive direction of the plunge axis.
+    pub inward: i64,
+    /// The groove's edges on the surface (start side first): the plunges start on
+    /// the line through them, `safety` off it.
+    pub edges: [Pt; 2],
+    /// Safety distance off the surface and the chip-breaking retract (_VRT), nm.
+    pub safety: i64,
+    /// Infeed of one peck along the plunge axis (IDEP), nm.
+    pub peck: i64,
+    /// Dwell at the bottom of each plunge (DTB), ms.
+    pub dwell_ms: u32,
+    /// Out of each plunge at the cutting feed (`_ZSD[4]` = 0) rather than rapid.
+    pub retract_feed: bool,
+    /// Where edge D + 1 is when the tool is positioned by edge D (work), nm.
+    pub span: Pt,
+    /// Nose radius and cutting edge position of edge D and of edge D + 1.
+    pub noses: [(i64, u8); 2],
+    /// The contour with the allowances (the plunges and flank cuts stop on it).
+    pub rough: (u16, u16),
+    /// Each flank's line with its allowance, from off the surface down to its foot.
+    pub flanks: (u16, u16),
+    /// The finished contour of the start side and of the far side, each from the
+    /// surface outside its edge to the middle of the bottom.
+    pub halves: [(u16, u16); 2],
+    /// The tool is left of the start side's finishing path in the (Z, X) plane.
+    pub half1_left: bool,
+}

@@ -4,6 +4,7 @@
 //! generator as the block's expansion, exactly as the FANUC cycle that shares it.
 
 use super::emit::Emitter;
+use super::groove::{GrooveSpec, GroovingGen};
 use super::offset::Offsets;
 use super::pass::PassGen;
 use super::stock::{Nose, StockGen};
@@ -72,6 +73,23 @@ impl<X: Executor> Engine for CallEngine<'_, '_, '_, X> {
             let n = u16::try_from(path.len()).map_err(|_| AlarmKind::ProfileTooLong)?;
             let ends = [Some(start), None, None];
             exp.generator = Gen::Pass(PassGen::new(offsets, (0, n), crate::geom::Pt::default(), ends, feed, ends));
+            Ok(())
+        })
+    }
+
+    fn grooving(
+        &mut self,
+        spec: &GrooveSpec,
+        segs: &[crate::geom::Seg],
+        cmd: &Command,
+        st: &mut State,
+    ) -> Result<(), AlarmKind> {
+        let em = Emitter::new(*st, cmd.line);
+        self.expansion(em, |exp, _, _| {
+            for s in segs {
+                exp.profile.segs.push(*s).map_err(|_| AlarmKind::ProfileTooLong)?;
+            }
+            exp.generator = Gen::Grooving(GroovingGen::new(spec, &exp.profile.segs)?);
             Ok(())
         })
     }

@@ -90,6 +90,7 @@ enum Gen {
     Polar(polar::PolarGen),
     Stock(stock::StockGen),
     Pass(pass::PassGen),
+    Grooving(groove::GroovingGen),
 }
 
 /// A cycle being delivered: its generator, its copy of the state and what is
@@ -187,6 +188,7 @@ impl Expansion {
                     Gen::Polar(g) => g.fill(&mut self.queue)?,
                     Gen::Stock(g) => g.fill(&self.profile.segs, here, &mut self.queue)?,
                     Gen::Pass(g) => g.fill(&self.profile.segs, &mut self.queue)?,
+                    Gen::Grooving(g) => g.fill(&self.profile.segs, here, &mut self.queue)?,
                 };
                 self.gen_done = !more;
                 continue;

@@ -33,7 +33,7 @@ pub struct PassGen {
     shift: Pt,
     /// Rapids before the path ([`Pt`]s; unused ones are `None`).
     before: [Option<Pt>; LEADS],
-    /// Feed along the path (in the cycle's feed mode).
+    /// Feed along the path (in the cycle's feed mode); 0 = the cycle's feed.
     feed: i64,
     /// Rapids after it.
     after: [Option<Pt>; LEADS],
@@ -77,7 +77,9 @@ impl PassGen {
                 for p in self.before.iter().flatten() {
                     push(out, Step::Rapid(*p))?;
                 }
-                push(out, Step::Feedrate(self.feed))?;
+                if self.feed > 0 {
+                    push(out, Step::Feedrate(self.feed))?;
+                }
                 if let Some(first) = self.element(raw, 0)? {
                     push(out, Step::Feed(first.a))?;
                 }

@@ -11,8 +11,9 @@
 //! G functions active before the call are active after it.
 //!
 //! One file per cycle family: [`thread`] (CYCLE97, CYCLE98, thread re-cutting),
-//! [`stock`] (CYCLE95), [`undercut`] (CYCLE94, CYCLE96).
+//! [`groove`] (CYCLE93), [`stock`] (CYCLE95), [`undercut`] (CYCLE94, CYCLE96).
 
+mod groove;
 mod stock;
 mod thread;
 mod undercut;
@@ -25,7 +26,7 @@ pub use super::call::{Arg, ContourSource, Signature, Ty};
 use crate::alarm::AlarmKind;
 use crate::canon::Plane;
 use crate::command::Command;
-use crate::command::job::{MultiThreadSpec, StockSpec};
+use crate::command::job::{GrooveSpec, MultiThreadSpec, StockSpec};
 use crate::config::MachineConfig;
 use crate::geom::{Pt, Seg};
 use crate::modal::State;
@@ -35,6 +36,29 @@ use Ty::{Char as C, Int as I, Real as R, Str as S};
 
 /// Every cycle of this module with its parameter list as the manual gives it.
 pub static SIGNATURES: &[Signature] = &[
+    // Line 10198: CYCLE93.
+    Signature {
+        name: "CYCLE93",
+        params: &[
+            ("SPD", R),
+            ("SPL", R),
+            ("WIDG", R),
+            ("DIAG", R),
+            ("STA1", R),
+            ("ANG1", R),
+            ("ANG2", R),
+            ("RCO1", R),
+            ("RCO2", R),
+            ("RCI1", R),
+            ("RCI2", R),
+            ("FAL1", R),
+            ("FAL2", R),
+            ("IDEP", R),
+            ("DTB", R),
+            ("VARI", I),
+            ("_VRT", R),
+        ],
+    },
     // Line 10459: CYCLE94.
     Signature { name: "CYCLE94", params: &[("SPD", R), ("SPL", R), ("FORM", C), ("_VARI", I)] },
     // Line 10602: CYCLE95.
@@ -133,6 +157,8 @@ pub trait Engine {
         cmd: &Command,
         st: &mut State,
     ) -> Result<(), AlarmKind>;
+    /// Starts the grooving generator (G74/G75's columns) with `spec` on `segs`.
+    fn grooving(&mut self, spec: &GrooveSpec, segs: &[Seg], cmd: &Command, st: &mut State) -> Result<(), AlarmKind>;
     /// Reads `contour` and starts the stock-removal generator (G71's geometry) on it.
     fn stock(
         &mut self,
@@ -157,6 +183,7 @@ pub fn start(
 ) -> Result<(), AlarmKind> {
     let p = Params::new(args, st);
     match sig.name {
+        "CYCLE93" => groove::cycle93(&p, cmd, st, ctx),
         "CYCLE94" => undercut::cycle94(&p, cmd, st, ctx),
         "CYCLE95" => stock::cycle95(&p, cmd, st, ctx, contour),
         "CYCLE96" => undercut::cycle96(&p, cmd, st, ctx),
