@@ -329,6 +329,14 @@ pub enum AlarmKind {
     RecutImpossible,
     /// 61613: SINUMERIK cycle alarm (seed 001 table 5.3): undercut position wrong.
     UndercutPositionWrong,
+    /// 61701: SINUMERIK cycle alarm (seed 001 table 5.3): finished contour wrong.
+    FinishedContourWrong,
+    /// 61702: SINUMERIK cycle alarm (seed 001 table 5.3): blank contour wrong.
+    BlankContourWrong,
+    /// 61720: SINUMERIK cycle alarm (seed 001 table 5.3): illegal input.
+    IllegalInput,
+    /// 61721: SINUMERIK cycle alarm (seed 001 table 5.3): contour direction.
+    ContourDirection,
 }
 
 impl AlarmKind {
@@ -456,6 +464,10 @@ impl AlarmKind {
             NoIntersection => 61611,
             RecutImpossible => 61612,
             UndercutPositionWrong => 61613,
+            FinishedContourWrong => 61701,
+            BlankContourWrong => 61702,
+            IllegalInput => 61720,
+            ContourDirection => 61721,
         }
     }
 }
@@ -660,6 +672,10 @@ impl fmt::Display for AlarmKind {
             NoIntersection => write!(f, "no intersection point found"),
             RecutImpossible => write!(f, "thread re-cutting not possible"),
             UndercutPositionWrong => write!(f, "undercut position (_VARI) defined incorrectly"),
+            FinishedContourWrong => write!(f, "finished part contour description wrong (_NP1-_NP3)"),
+            BlankContourWrong => write!(f, "blank contour description wrong (_NP5-_NP7, _APZ/_APX)"),
+            IllegalInput => write!(f, "illegal input (a _VARI digit of CYCLE950 out of its range)"),
+            ContourDirection => write!(f, "wrong contour direction, cannot be computed"),
         }
     }
 }
@@ -1167,6 +1183,26 @@ pub const CATALOG: &[CatalogEntry] = &[
         title: "undercut position wrong",
         when: "CYCLE94/CYCLE96 _VARI outside 0-4 (table 12273: 退刀槽位置错误定义)",
     },
+    CatalogEntry {
+        code: 61701,
+        title: "finished contour wrong",
+        when: "CYCLE950 without a finished contour (_NP1, or _NP2/_NP3 not found), or one that cannot be prepared (table 12112: 成品轮廓描述错误)",
+    },
+    CatalogEntry {
+        code: 61702,
+        title: "blank contour wrong",
+        when: "CYCLE950 blank given wrongly: _APZA/_APXA other than 90/91, or a blank cylinder inside the finished contour (table 12113: 坯件轮廓描述错误)",
+    },
+    CatalogEntry {
+        code: 61720,
+        title: "illegal input",
+        when: "CYCLE950 _VARI with a digit outside its values, or a machining or infeed direction that does not fit the machining type (table 12124: 非法输入)",
+    },
+    CatalogEntry {
+        code: 61721,
+        title: "contour direction",
+        when: "CYCLE950 machining direction (_VARI hundred-thousands) against the direction the contour can be cut in (table 12125: 错误轮廓方向不可计算)",
+    },
 ];
 
 #[cfg(test)]
@@ -1311,6 +1347,10 @@ mod tests {
             NoIntersection,
             RecutImpossible,
             UndercutPositionWrong,
+            FinishedContourWrong,
+            BlankContourWrong,
+            IllegalInput,
+            ContourDirection,
         ]
     };
 

@@ -108,6 +108,30 @@ pub struct MultiThreadSpec {
     pub start_udeg: u32,
 }
 
+/// The blank a stock-removal cycle starts from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Blank {
+    /// The cylinder (or face) through the contour's highest point.
+    Contour,
+    /// A cylinder of this radius (a face at this Z for face machining): the point's
+    /// coordinate on the infeed axis.
+    At(Pt),
+    /// The contour with this allowance round it (X radius, Z).
+    Allowance(Pt),
+}
+
+/// How far a roughing cut follows the contour before it leaves it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Pull {
+    /// Not at all: the tool leaves the contour where the cut meets it (CYCLE950
+    /// `_VARI` thousands 2).
+    None,
+    /// Up to the previous cut's point (CYCLE95 VARI hundreds 2, CYCLE950 thousands 1).
+    Previous,
+    /// Over one more cut point, overlapping (CYCLE95 VARI hundreds 0).
+    Overlap,
+}
+
 /// What the stock-removal generator does with a contour (CYCLE95, seed 001 4.5):
 /// axis-parallel roughing in sections of equal infeed, following the contour after
 /// every cut, and a finishing pass with the nose compensated. Values radius, nm.
@@ -132,9 +156,30 @@ pub struct StockSpec {
     /// Feeds in the feed mode in force: roughing (FF1), plunging into an undercut
     /// along its contour (FF2), finishing (FF3); 0 = the feed in force.
     pub feeds: [i64; 3],
-    /// VARI hundreds 0: after each cut follow the contour over one more cut point
-    /// (overlapping); else (2) only up to the previous one.
-    pub overlap: bool,
+    /// How far each cut follows the contour before the tool retracts.
+    pub pull: Pull,
+    /// The passes of a section: equal ones of at most MID (CYCLE95), or full MID
+    /// ones until less than two are left, then two halves (CYCLE950).
+    pub equal: bool,
+    /// Rough the undercuts (CYCLE950 `_VARI` ten-thousands 2: only the main section).
+    pub undercuts: bool,
+    /// Contour-parallel roughing (CYCLE950 `_VARI` units 3): the passes are copies of
+    /// the contour moved out by the blank's allowance `blank` in steps of MID (G73's
+    /// pattern) instead of axis-parallel cuts.
+    pub parallel: bool,
+    /// The blank beyond the contour (CYCLE950 `_APX`/`_APZ`); CYCLE95: the cylinder
+    /// through the contour's highest point.
+    pub blank: Blank,
+    /// The machining direction asked for along the cutting axis (CYCLE950 `_VARI`
+    /// hundred-thousands), +1 or −1; 0: from the contour's lower end up.
+    pub direction: i64,
+    /// Angle the tool leaves the contour at after a cut (CYCLE950 `_ANGB`; 45°), µdeg.
+    pub retract_angle_udeg: i64,
+    /// Feed on the finishing contour's arcs (CYCLE950 `_FF4`); 0 = the finishing feed.
+    pub arc_feed: i64,
+    /// Rapids stop this far before the blank, the rest is cut (CYCLE950 `_TOL1`); 0:
+    /// _VRT, as CYCLE95.
+    pub approach: i64,
     /// Chip breaking: interrupt every roughing cut after this path length (DAM; 0 = never)…
     pub interrupt: i64,
     /// … and dwell this long there (DT), ms.

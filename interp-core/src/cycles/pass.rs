@@ -37,6 +37,8 @@ pub struct PassGen {
     feed: i64,
     /// Rapids after it.
     after: [Option<Pt>; LEADS],
+    /// Feed on the path's arcs (CYCLE950 `_FF4`); 0 = `feed`.
+    arc_feed: i64,
     phase: Phase,
 }
 
@@ -51,7 +53,13 @@ impl PassGen {
         feed: i64,
         after: [Option<Pt>; LEADS],
     ) -> Self {
-        PassGen { offsets, from, to, shift, before, feed, after, phase: Phase::In }
+        PassGen { offsets, from, to, shift, before, feed, after, arc_feed: 0, phase: Phase::In }
+    }
+
+    /// The pass with its arcs at `feed` (0: the path's feed).
+    pub fn arcs_at(mut self, feed: i64) -> Self {
+        self.arc_feed = feed;
+        self
     }
 
     /// Element `k` of the pass's path (shifted), if it has one.
@@ -87,9 +95,18 @@ impl PassGen {
             }
             Phase::Walk(k) => {
                 let mut k = k;
-                for _ in 0..4 {
+                while out.len() + 3 <= out.capacity() {
                     match self.element(raw, k)? {
-                        Some(s) => push(out, along(&s))?,
+                        Some(s) => {
+                            let arc = matches!(s.kind, SegKind::Arc { .. }) && self.arc_feed > 0;
+                            if arc {
+                                push(out, Step::Feedrate(self.arc_feed))?;
+                            }
+                            push(out, along(&s))?;
+                            if arc && self.feed > 0 {
+                                push(out, Step::Feedrate(self.feed))?;
+                            }
+                        }
                         None => {
                             self.phase = Phase::Out;
                             return Ok(true);
@@ -122,7 +139,8 @@ fn shifted(s: &Seg, d: Pt) -> Seg {
 /// The move along a segment (a contour's rapids too at the pass's feed).
 pub fn along(s: &Seg) -> Step {
     match s.kind {
-        SegKind::Arc { center, cw } => Step::Arc { to: s.b, center, cw },
+        // A piece of an arc rounded to nothing is no move (not a full circle).
+        SegKind::Arc { center, cw } if s.a != s.b => Step::Arc { to: s.b, center, cw },
         _ => Step::Feed(s.b),
     }
 }

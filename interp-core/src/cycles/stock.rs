@@ -35,10 +35,11 @@ use super::StepQueue;
 use super::emit::Step;
 use super::offset::{Offsets, walk};
 use super::pass::{PassGen, along};
+use super::pattern::PatternGen;
 use super::rough::{Frame, below};
 use crate::alarm::AlarmKind;
 use crate::axis::Axis;
-use crate::command::job::StockSpec;
+use crate::command::job::{Blank, Pull, StockSpec};
 use crate::geom::path::V2;
 use crate::geom::{Pt, Seg, SegKind};
 
@@ -72,8 +73,14 @@ enum Part {
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Phase {
     Approach,
-    Level { s: u16, k: u32, part: Part },
+    Level {
+        s: u16,
+        k: u32,
+        part: Part,
+    },
     Return,
+    /// Contour-parallel roughing (CYCLE950): G73's passes.
+    Pattern(PatternGen),
     Finish,
     Done,
 }
@@ -154,11 +161,23 @@ impl StockGen {
         if dir == 0 {
             return Err(AlarmKind::ContourWrong);
         }
+        if spec.direction != 0 && spec.direction != dir {
+            // CYCLE950 asked for the other direction: the contour cannot be cut so.
+            return Err(AlarmKind::ContourDirection);
+        }
         let frame = Frame { level, cut, out, dir };
         check_contour(&frame, raw, turned && !spec.rough, nose.clearance_udeg)?;
         // Line 10841: up to the highest point along the infeed axis at the end.
-        let top = raw.iter().map(|s| high(&frame, s)).max().unwrap_or(0);
-        if spec.rough && u(b) < top {
+        let mut top = raw.iter().map(|s| high(&frame, s)).max().unwrap_or(0);
+        if !spec.parallel {
+            // A blank above the contour's highest point (CYCLE950 _APX/_APZ).
+            match spec.blank {
+                Blank::At(p) => top = top.max(u(p)),
+                Blank::Allowance(a) => top += a.get(level).abs(),
+                Blank::Contour => {}
+            }
+        }
+        if spec.rough && !spec.parallel && u(b) < top {
             let end = b.with(level, out * top);
             raw.push(Seg { kind: SegKind::Line, a: b, b: end })
                 .map_err(|_| AlarmKind::ContourPreparation { cause: 10934 })?;
@@ -213,7 +232,16 @@ impl StockGen {
         let allow_cut = if spec.facing { spec.allow_x } else { spec.allow_z };
         let w_raw = frame.norm(a).1 - allow_cut - spec.allow;
         let w0 = if back { w_raw } else { w_raw.min(wfirst.unwrap_or(w_raw)) };
-        g.start = (umax + spec.retract, w0 - spec.retract);
+        // Contour-parallel roughing starts outside the blank round the contour.
+        let (bu, bw) = match (spec.parallel, spec.blank) {
+            (true, Blank::Allowance(a)) => {
+                let (au, aw) = if spec.facing { (a.z, a.x) } else { (a.x, a.z) };
+                (au.abs(), aw.abs())
+            }
+            _ => (0, 0),
+        };
+        let top_u = if spec.parallel { umax } else { umax.max(top) };
+        g.start = (top_u + bu + spec.retract, w0 - bw - spec.retract.max(spec.approach));
         // Finishing (lines 10692-10697): G0 to the start point, G0 to allowance +
         // nose radius + 1 mm before the contour's start, G1 onto it, the contour at
         // FF3, back axis by axis with the infeed axis first.
@@ -235,8 +263,41 @@ impl StockGen {
         let before = [Some(s), Some(frame.work(u0 + du, w0 - sign * dw)), None];
         let after = [Some(frame.work(g.start.0, frame.norm(last).1)), Some(s), None];
         let n = u16::try_from(raw.len()).map_err(|_| AlarmKind::ContourPreparation { cause: 10934 })?;
-        g.finish = PassGen::new(finish, (0, n), Pt::default(), before, g.feed(2), after);
+        let mut path = (0, n);
+        if spec.parallel && spec.rough {
+            // G73's shape: the move from the start point onto the contour first.
+            let s = g.s_point();
+            raw.insert(0, Seg { kind: SegKind::Rapid, a: s, b: first_raw(raw) })
+                .map_err(|_| AlarmKind::ContourPreparation { cause: 10934 })?;
+            path = (1, n + 1);
+        }
+        g.finish = PassGen::new(finish, path, Pt::default(), before, g.feed(2), after).arcs_at(spec.arc_feed);
         Ok(g)
+    }
+
+    /// Contour-parallel roughing: G73's passes from the blank's allowance down to
+    /// the finishing allowances, MID apart (perpendicular to the contour: the larger
+    /// of the two allowances decides the count).
+    fn pattern(&self) -> Result<PatternGen, AlarmKind> {
+        let f = self.frame;
+        let blank = match self.spec.blank {
+            Blank::Allowance(a) => a,
+            _ => Pt::default(),
+        };
+        let (au, aw) = if self.spec.facing { (blank.z, blank.x) } else { (blank.x, blank.z) };
+        let count = levels(au.abs().max(aw.abs()), self.spec.depth, true).max(1);
+        // G73's first pass is at the relief: one step inside the blank's surface.
+        let inside = |v: i64| v.abs() * i64::from(count - 1) / i64::from(count);
+        let (au, aw) = (inside(au), inside(aw));
+        let (fu, fw) = if self.spec.facing {
+            (self.spec.allow_z, self.spec.allow_x)
+        } else {
+            (self.spec.allow_x, self.spec.allow_z)
+        };
+        // Outward on the infeed axis, back towards the start on the cutting axis.
+        let relief = f.work(au, -aw);
+        let allowance = f.work(fu + self.spec.allow, -(fw + self.spec.allow));
+        PatternGen::new(self.s_point(), relief, count, allowance)
     }
 
     /// The start point (work).
@@ -254,8 +315,21 @@ impl StockGen {
         match self.phase {
             Phase::Approach => {
                 push(out, Step::Rapid(self.s_point()))?;
-                self.phase =
-                    if self.spec.rough { Phase::Level { s: 0, k: 1, part: Part::Begin } } else { Phase::Finish };
+                self.phase = if !self.spec.rough {
+                    Phase::Finish
+                } else if self.spec.parallel {
+                    push(out, Step::Feedrate(self.feed(0)))?;
+                    Phase::Pattern(self.pattern()?)
+                } else {
+                    Phase::Level { s: 0, k: 1, part: Part::Begin }
+                };
+            }
+            Phase::Pattern(mut p) => {
+                if p.fill_segs(raw, true, out)? {
+                    self.phase = Phase::Pattern(p);
+                } else {
+                    self.phase = if self.spec.finish { Phase::Finish } else { Phase::Done };
+                }
             }
             Phase::Level { s, k, part } => self.level(raw, here, s, k, part, out)?,
             Phase::Return => {
@@ -285,16 +359,18 @@ impl StockGen {
         out: &mut StepQueue,
     ) -> Result<(), AlarmKind> {
         let f = self.frame;
-        let Some(sec) = self.section(raw, s)? else {
+        let sec = if s > 0 && !self.spec.undercuts { None } else { self.section(raw, s)? };
+        let Some(sec) = sec else {
             self.phase = Phase::Return;
             return Ok(());
         };
-        let n = levels(sec.top - sec.bottom, self.spec.depth);
+        let equal = self.spec.equal;
+        let n = levels(sec.top - sec.bottom, self.spec.depth, equal);
         if k > n {
             self.phase = Phase::Level { s: s + 1, k: 1, part: Part::Begin };
             return Ok(());
         }
-        let u_k = level_u(&sec, k, n);
+        let u_k = level_u(&sec, k, n, equal, self.spec.depth);
         let set = |me: &mut Self, part| me.phase = Phase::Level { s, k, part };
         match part {
             Part::Begin => {
@@ -353,9 +429,14 @@ impl StockGen {
                     push(out, Step::Feed(f.work(u_k, next)))?;
                     if next == w_end {
                         push(out, Step::Feed(point_at(&seg, end.t)))?;
-                        let back = if self.spec.overlap { 2 } else { 1 };
-                        let target = if k > back { level_u(&sec, k - back, n) } else { sec.top };
-                        set(self, Part::Pull { at: end, target });
+                        let back = match self.spec.pull {
+                            Pull::None => 0,
+                            Pull::Previous => 1,
+                            Pull::Overlap => 2,
+                        };
+                        let target =
+                            if k > back { level_u(&sec, k - back, n, equal, self.spec.depth) } else { sec.top };
+                        set(self, if back == 0 { Part::Out } else { Part::Pull { at: end, target } });
                         return Ok(());
                     }
                     push(out, Step::Dwell(self.spec.dwell_ms))?;
@@ -373,7 +454,10 @@ impl StockGen {
             Part::Out => {
                 let (hu, hw) = f.norm(here);
                 let r = self.spec.retract;
-                let (ru, rw) = (hu + r, hw - r);
+                // At 45° _VRT in both axes; at another angle never more (line 11632).
+                let a = (self.spec.retract_angle_udeg as f64 / 1e6).to_radians();
+                let (tu, tw) = (libm::tan(a).min(1.0), (1.0 / libm::tan(a)).min(1.0));
+                let (ru, rw) = (hu + libm::round(r as f64 * tu) as i64, hw - libm::round(r as f64 * tw) as i64);
                 push(out, Step::Feed(f.work(ru, rw)))?;
                 match sec.descent {
                     None => push(out, Step::Rapid(f.work(ru, self.start.1)))?,
@@ -599,6 +683,11 @@ impl StockGen {
     }
 }
 
+/// The contour's first point.
+fn first_raw(raw: &[Seg]) -> Pt {
+    raw.first().map_or(Pt::default(), |s| s.a)
+}
+
 /// Whether the run starting at `start` is section `sec`'s.
 fn wanted(sec: &Section, start: Mark) -> bool {
     match sec.descent {
@@ -607,18 +696,36 @@ fn wanted(sec: &Section, start: Mark) -> bool {
     }
 }
 
-/// Passes for a depth: ⌈depth / MID⌉ (line 10731).
-fn levels(depth: i64, mid: i64) -> u32 {
+/// Passes for a depth: ⌈depth / MID⌉ equal ones (line 10731), or full MID steps
+/// while at least two are left, then two halves (lines 11702–11706).
+fn levels(depth: i64, mid: i64, equal: bool) -> u32 {
     if depth <= 0 || mid <= 0 {
         return 0;
     }
-    u32::try_from((depth + mid - 1) / mid).unwrap_or(u32::MAX)
+    let n = if equal {
+        (depth + mid - 1) / mid
+    } else if depth >= 2 * mid {
+        (depth - 2 * mid) / mid + 3
+    } else {
+        2
+    };
+    u32::try_from(n).unwrap_or(u32::MAX)
 }
 
-/// Level `k` of `n` of a section: equal steps from its top to its bottom.
-fn level_u(sec: &Section, k: u32, n: u32) -> i64 {
-    let depth = (sec.top - sec.bottom) as f64;
-    sec.top - libm::round(depth * f64::from(k) / f64::from(n)) as i64
+/// Level `k` of `n` of a section from its top to its bottom: equal steps (CYCLE95,
+/// line 10731), or full steps of `mid` until less than two are left, then two
+/// halves (CYCLE950, lines 11702–11706).
+fn level_u(sec: &Section, k: u32, n: u32, equal: bool, mid: i64) -> i64 {
+    let depth = sec.top - sec.bottom;
+    if equal || n < 2 {
+        return sec.top - libm::round(depth as f64 * f64::from(k) / f64::from(n)) as i64;
+    }
+    let full = i64::from(n - 2);
+    if i64::from(k) <= full {
+        return sec.top - i64::from(k) * mid;
+    }
+    let rest = depth - full * mid;
+    if k == n { sec.bottom } else { sec.top - full * mid - rest / 2 }
 }
 
 /// Whether the tool (on the outward side) is left of the machining direction in

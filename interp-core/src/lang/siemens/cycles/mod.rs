@@ -11,7 +11,8 @@
 //! G functions active before the call are active after it.
 //!
 //! One file per cycle family: [`thread`] (CYCLE97, CYCLE98, thread re-cutting),
-//! [`groove`] (CYCLE93), [`stock`] (CYCLE95), [`undercut`] (CYCLE94, CYCLE96).
+//! [`groove`] (CYCLE93), [`stock`] (CYCLE95, CYCLE950), [`undercut`] (CYCLE94,
+//! CYCLE96).
 
 mod groove;
 mod stock;
@@ -132,6 +133,36 @@ pub static SIGNATURES: &[Signature] = &[
             ("_VRT", R),
         ],
     },
+    // Lines 11523–11527: CYCLE950.
+    Signature {
+        name: "CYCLE950",
+        params: &[
+            ("_NP1", S),
+            ("_NP2", S),
+            ("_NP3", S),
+            ("_NP4", S),
+            ("_VARI", I),
+            ("_MID", R),
+            ("_FALZ", R),
+            ("_FALX", R),
+            ("_FF1", R),
+            ("_FF2", R),
+            ("_FF3", R),
+            ("_FF4", R),
+            ("_VRT", R),
+            ("_ANGB", R),
+            ("_SDIS", R),
+            ("_NP5", S),
+            ("_NP6", S),
+            ("_NP7", S),
+            ("_NP8", S),
+            ("_APZ", R),
+            ("_APZA", I),
+            ("_APX", R),
+            ("_APXA", I),
+            ("_TOL1", R),
+        ],
+    },
 ];
 
 /// The cycle called `name` (case-insensitive), if this module implements it.
@@ -187,6 +218,7 @@ pub fn start(
         "CYCLE94" => undercut::cycle94(&p, cmd, st, ctx),
         "CYCLE95" => stock::cycle95(&p, cmd, st, ctx, contour),
         "CYCLE96" => undercut::cycle96(&p, cmd, st, ctx),
+        "CYCLE950" => stock::cycle950(&p, cmd, st, ctx, contour),
         "CYCLE97" => thread::cycle97(&p, cmd, st, ctx),
         "CYCLE98" => thread::cycle98(&p, cmd, st, ctx),
         _ => Err(AlarmKind::NotSupportedYet { what: "this SINUMERIK cycle" }),

@@ -390,3 +390,125 @@ fn cycle95_example_2_diamof() {
     // Start point: 1 mm (_VRT 0) above X50.8, 1 mm before Z100.8.
     assert_eq!(moves(&c)[0], ('r', 2.0 * 51.8, 101.8));
 }
+
+/// CYCLE950 arguments: _VARI, _MID, _FALZ, _FALX, _FF1–_FF4, _VRT, _ANGB, _SDIS; the blank
+/// `_APZ, _APZA, _APX, _APXA`; _TOL1.
+fn c950(vari: i64, r: [f64; 10], blank: (f64, i64, f64, i64), tol: f64) -> Vec<Arg<'static>> {
+    let mut a = vec![Arg::Str(b"KONTUR_1"), Arg::Empty, Arg::Empty, Arg::Str(b"BEARBEITE"), Arg::Int(vari)];
+    a.extend(r.iter().map(|&v| Arg::Real(v)));
+    a.extend([Arg::Empty, Arg::Empty, Arg::Empty, Arg::Empty]);
+    a.extend([Arg::Real(blank.0), Arg::Int(blank.1), Arg::Real(blank.2), Arg::Int(blank.3), Arg::Real(tol)]);
+    a
+}
+
+/// _MID 5 on KONTUR_1: full steps of 5 until less than 10 are left, then two halves
+/// (lines 11702–11706): the main section's 39 mm as 6 × 5 + 2 × 4.5, the first
+/// undercut's 36 as 6 × 5 + 2 × 3, the second's 7 as 2 × 3.5. Feeds: _FF1 along Z.
+#[test]
+fn cycle950_full_steps_then_halves() {
+    let cfg = machine();
+    let st = at(&cfg, 81.0, 125.0);
+    let r = [5.0, 0.0, 0.0, 0.3, 0.1, 0.2, 0.05, 0.5, 0.0, 0.0];
+    let c = call_with("CYCLE950", &c950(311111, r, (0.0, 0, 0.0, 0), 0.0), &st, &cfg, Some(contour(KONTUR_1))).unwrap();
+    let steps = |top: f64, depth: f64, mid: f64| {
+        let full = ((depth - 2.0 * mid) / mid).floor().max(-1.0) as i32 + 1;
+        let mut v: Vec<f64> = (1..=full).map(|k| top - mid * f64::from(k)).collect();
+        let rest = depth - mid * f64::from(full);
+        v.extend([r3(top - mid * f64::from(full) - rest / 2.0), r3(top - depth)]);
+        v
+    };
+    let mut want = steps(76.0, 39.0, 5.0);
+    assert_eq!(want, [71.0, 66.0, 61.0, 56.0, 51.0, 46.0, 41.5, 37.0]);
+    want.extend(steps(65.0, 36.0, 5.0));
+    want.extend(steps(44.0, 7.0, 5.0));
+    assert_eq!(cut_levels_at(&c, 0.3, 0.1), want);
+    // Without the undercuts (ten-thousands 2): the main section only.
+    let c = call_with("CYCLE950", &c950(321111, r, (0.0, 0, 0.0, 0), 0.0), &st, &cfg, Some(contour(KONTUR_1))).unwrap();
+    assert_eq!(cut_levels_at(&c, 0.3, 0.1), steps(76.0, 39.0, 5.0));
+}
+
+/// Without following the contour (thousands 2) each cut leaves it at once at
+/// _ANGB: 30° takes _VRT 0.5 along Z and 0.5·tan 30° up (never more than _VRT).
+#[test]
+fn cycle950_retract_angle_without_pull() {
+    let cfg = machine();
+    let st = at(&cfg, 81.0, 125.0);
+    let r = [5.0, 0.0, 0.0, 0.3, 0.1, 0.2, 0.05, 0.5, 30.0, 0.0];
+    let c = call_with("CYCLE950", &c950(322111, r, (0.0, 0, 0.0, 0), 0.0), &st, &cfg, Some(contour(KONTUR_1))).unwrap();
+    let m = moves(&c);
+    // The first cut at Ø71 ends on the end face (Z35), leaves it to Z35.5 and up.
+    let i = m.iter().position(|x| *x == ('l', 71.0, 35.0)).unwrap();
+    assert_eq!(m[i + 1], ('l', r3(71.0 + 2.0 * 0.5 * libm::tan(30f64.to_radians())), 35.5));
+}
+
+/// A blank cylinder Ø80 (_APX 80, _APXA 90): the main section starts there.
+#[test]
+fn cycle950_blank_cylinder() {
+    let cfg = machine();
+    let st = at(&cfg, 90.0, 125.0);
+    let r = [5.0, 0.0, 0.0, 0.3, 0.1, 0.2, 0.05, 0.5, 0.0, 0.0];
+    let c =
+        call_with("CYCLE950", &c950(321111, r, (0.0, 0, 80.0, 90), 2.0), &st, &cfg, Some(contour(KONTUR_1))).unwrap();
+    let l = cut_levels_at(&c, 0.3, 0.1);
+    assert_eq!(l[0], 75.0);
+    assert_eq!(l.last(), Some(&37.0));
+    // The start point: _VRT above Ø80, _TOL1 (2) before Z120.
+    assert_eq!(moves(&c)[0], ('r', 81.0, 122.0));
+}
+
+/// Contour-parallel roughing (units 3) with a blank 2 mm (radius) round the contour
+/// and _MID 1: G73's passes one _MID in from the blank each, the first 1 mm out,
+/// the last on the contour, then the finishing pass at _FF3 with its arc at _FF4.
+#[test]
+fn cycle950_contour_parallel() {
+    let cfg = machine();
+    let st = at(&cfg, 100.0, 130.0);
+    let text = "G01 X40 Z120\nZ100\nG02 X60 Z90 R10\nG01 X80\nZ60\nM30\n";
+    let r = [1.0, 0.0, 0.0, 0.3, 0.1, 0.2, 0.05, 0.5, 0.0, 0.0];
+    let c = call_with("CYCLE950", &c950(311313, r, (2.0, 91, 4.0, 91), 0.0), &st, &cfg, Some(contour(text))).unwrap();
+    let m = moves(&c);
+    // The start point outside the blank: _VRT (0.5) over Ø80 + 4, _TOL1 (1) before Z120 + 2.
+    assert_eq!(m[0], ('r', 85.0, 123.0));
+    // Pass 1: the contour moved 1 out (X+2 on the diameter) and 1 back (Z+1); pass 2 on it.
+    assert!(m.contains(&('l', 42.0, 101.0)), "{m:?}");
+    assert!(m.contains(&('l', 40.0, 100.0)), "{m:?}");
+    assert!(!m.contains(&('l', 44.0, 102.0)), "{m:?}");
+    // Finishing: the arc at _FF4.
+    let arcs: Vec<i64> = c
+        .actions
+        .iter()
+        .filter_map(|a| match a.action {
+            Action::Arc(m) => Some(m.feed.value),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(arcs.last(), Some(&mm(0.05)));
+}
+
+#[test]
+fn cycle950_alarms_move_nothing() {
+    let cfg = machine();
+    let st = at(&cfg, 81.0, 125.0);
+    let r = [5.0, 0.0, 0.0, 0.3, 0.1, 0.2, 0.05, 0.5, 0.0, 0.0];
+    let k1 = || Some(contour(KONTUR_1));
+    for vari in [311114, 311115, 311131, 111111, 311411, 313111, 331111, 1311111, 0] {
+        let e = call_with("CYCLE950", &c950(vari, r, (0.0, 0, 0.0, 0), 0.0), &st, &cfg, k1()).unwrap_err();
+        assert_eq!(e, AlarmKind::IllegalInput, "{vari}");
+    }
+    assert_eq!(AlarmKind::IllegalInput.code(), 61720);
+    // Z+ asked for a contour that can only be cut towards Z-: 61721.
+    let e = call_with("CYCLE950", &c950(411111, r, (0.0, 0, 0.0, 0), 0.0), &st, &cfg, k1()).unwrap_err();
+    assert_eq!(e, AlarmKind::ContourDirection);
+    assert_eq!(AlarmKind::ContourDirection.code(), 61721);
+    // No finished contour: 61701; a blank neither absolute nor incremental: 61702.
+    let e = call_with("CYCLE950", &c950(311111, r, (0.0, 0, 0.0, 0), 0.0), &st, &cfg, None).unwrap_err();
+    assert_eq!(e, AlarmKind::FinishedContourWrong);
+    assert_eq!(AlarmKind::FinishedContourWrong.code(), 61701);
+    let e = call_with("CYCLE950", &c950(311111, r, (0.0, 0, 80.0, 92), 0.0), &st, &cfg, k1()).unwrap_err();
+    assert_eq!(e, AlarmKind::BlankContourWrong);
+    assert_eq!(AlarmKind::BlankContourWrong.code(), 61702);
+    // A blank contour program is not supported: 4007.
+    let mut a = c950(311111, r, (0.0, 0, 0.0, 0), 0.0);
+    a[15] = Arg::Str(b"ROHTEIL1");
+    assert_eq!(call_with("CYCLE950", &a, &st, &cfg, k1()).unwrap_err().code(), 4007);
+}
