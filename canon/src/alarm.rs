@@ -299,44 +299,8 @@ pub enum AlarmKind {
     NoseCompGouge,
     /// 3607: nose compensation corner angle under 0.1° (2.18.4).
     NoseCompCornerAngle,
-    /// 61000: SINUMERIK cycle alarm (seed 001 table 5.3): no tool offset active.
-    NoToolOffset,
-    /// 61001: SINUMERIK cycle alarm (seed 001 table 5.3): thread pitch wrong.
-    ThreadPitchWrong,
-    /// 61002: SINUMERIK cycle alarm (seed 001 table 5.3): machining type wrong.
-    MachiningTypeWrong,
-    /// 61601: SINUMERIK cycle alarm (seed 001 table 5.3): finished diameter too small.
-    FinishedDiameterTooSmall,
-    /// 61602: SINUMERIK cycle alarm (seed 001 table 5.3): tool width wrong.
-    ToolWidthWrong,
-    /// 61603: SINUMERIK cycle alarm (seed 001 table 5.3): groove form wrong.
-    GrooveFormWrong,
-    /// 61604: SINUMERIK cycle alarm (seed 001 table 5.3): tool violates contour.
-    ToolViolatesContour,
-    /// 61605: SINUMERIK cycle alarm (seed 001 table 5.3): contour wrong.
-    ContourWrong,
-    /// 61606: SINUMERIK cycle alarm (seed 001 table 5.3): contour preparation error.
-    ContourPreparation { cause: u16 },
-    /// 61607: SINUMERIK cycle alarm (seed 001 table 5.3): start point wrong.
-    StartPointWrong,
-    /// 61608: SINUMERIK cycle alarm (seed 001 table 5.3): wrong edge position.
-    WrongEdgePosition,
-    /// 61609: SINUMERIK cycle alarm (seed 001 table 5.3): form wrong.
-    FormWrong,
-    /// 61611: SINUMERIK cycle alarm (seed 001 table 5.3): no intersection found.
-    NoIntersection,
-    /// 61612: SINUMERIK cycle alarm (seed 001 table 5.3): re-cutting impossible.
-    RecutImpossible,
-    /// 61613: SINUMERIK cycle alarm (seed 001 table 5.3): undercut position wrong.
-    UndercutPositionWrong,
-    /// 61701: SINUMERIK cycle alarm (seed 001 table 5.3): finished contour wrong.
-    FinishedContourWrong,
-    /// 61702: SINUMERIK cycle alarm (seed 001 table 5.3): blank contour wrong.
-    BlankContourWrong,
-    /// 61720: SINUMERIK cycle alarm (seed 001 table 5.3): illegal input.
-    IllegalInput,
-    /// 61721: SINUMERIK cycle alarm (seed 001 table 5.3): contour direction.
-    ContourDirection,
+    /// A SINUMERIK cycle alarm, 61000–61999 ([`CycleAlarm`]).
+    SiemensCycle(CycleAlarm),
 }
 
 impl AlarmKind {
@@ -449,25 +413,7 @@ impl AlarmKind {
             ToolChangeInNoseComp => 3577,
             NoseCompGouge => 3605,
             NoseCompCornerAngle => 3607,
-            NoToolOffset => 61000,
-            ThreadPitchWrong => 61001,
-            MachiningTypeWrong => 61002,
-            FinishedDiameterTooSmall => 61601,
-            ToolWidthWrong => 61602,
-            GrooveFormWrong => 61603,
-            ToolViolatesContour => 61604,
-            ContourWrong => 61605,
-            ContourPreparation { .. } => 61606,
-            StartPointWrong => 61607,
-            WrongEdgePosition => 61608,
-            FormWrong => 61609,
-            NoIntersection => 61611,
-            RecutImpossible => 61612,
-            UndercutPositionWrong => 61613,
-            FinishedContourWrong => 61701,
-            BlankContourWrong => 61702,
-            IllegalInput => 61720,
-            ContourDirection => 61721,
+            SiemensCycle(k) => k.code(),
         }
     }
 }
@@ -641,6 +587,93 @@ impl fmt::Display for AlarmKind {
             ToolChangeInNoseComp => write!(f, "T code while nose compensation is active"),
             NoseCompGouge => write!(f, "nose compensation would gouge the part"),
             NoseCompCornerAngle => write!(f, "nose compensation corner angle below 0.1 degrees"),
+            SiemensCycle(k) => k.fmt(f),
+        }
+    }
+}
+
+/// The alarms of the SINUMERIK standard cycles (seed 001 table 5.3, 61000–61999:
+/// cleared by NC reset, the block interrupted), with the document's texts.
+/// Nested in [`AlarmKind::SiemensCycle`]: [`AlarmKind`] stays under 128 variants
+/// (more cost every FANUC block Cortex-M4 instructions).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum CycleAlarm {
+    /// 61000: SINUMERIK cycle alarm (seed 001 table 5.3): no tool offset active.
+    NoToolOffset,
+    /// 61001: SINUMERIK cycle alarm (seed 001 table 5.3): thread pitch wrong.
+    ThreadPitchWrong,
+    /// 61002: SINUMERIK cycle alarm (seed 001 table 5.3): machining type wrong.
+    MachiningTypeWrong,
+    /// 61601: SINUMERIK cycle alarm (seed 001 table 5.3): finished diameter too small.
+    FinishedDiameterTooSmall,
+    /// 61602: SINUMERIK cycle alarm (seed 001 table 5.3): tool width wrong.
+    ToolWidthWrong,
+    /// 61603: SINUMERIK cycle alarm (seed 001 table 5.3): groove form wrong.
+    GrooveFormWrong,
+    /// 61604: SINUMERIK cycle alarm (seed 001 table 5.3): tool violates contour.
+    ToolViolatesContour,
+    /// 61605: SINUMERIK cycle alarm (seed 001 table 5.3): contour wrong.
+    ContourWrong,
+    /// 61606: SINUMERIK cycle alarm (seed 001 table 5.3): contour preparation error.
+    ContourPreparation { cause: u16 },
+    /// 61607: SINUMERIK cycle alarm (seed 001 table 5.3): start point wrong.
+    StartPointWrong,
+    /// 61608: SINUMERIK cycle alarm (seed 001 table 5.3): wrong edge position.
+    WrongEdgePosition,
+    /// 61609: SINUMERIK cycle alarm (seed 001 table 5.3): form wrong.
+    FormWrong,
+    /// 61612: SINUMERIK cycle alarm (seed 001 table 5.3): re-cutting impossible.
+    RecutImpossible,
+    /// 61613: SINUMERIK cycle alarm (seed 001 table 5.3): undercut position wrong.
+    UndercutPositionWrong,
+    /// 61701: SINUMERIK cycle alarm (seed 001 table 5.3): finished contour wrong.
+    FinishedContourWrong,
+    /// 61702: SINUMERIK cycle alarm (seed 001 table 5.3): blank contour wrong.
+    BlankContourWrong,
+    /// 61720: SINUMERIK cycle alarm (seed 001 table 5.3): illegal input.
+    IllegalInput,
+    /// 61721: SINUMERIK cycle alarm (seed 001 table 5.3): contour direction.
+    ContourDirection,
+}
+
+impl From<CycleAlarm> for AlarmKind {
+    fn from(k: CycleAlarm) -> Self {
+        AlarmKind::SiemensCycle(k)
+    }
+}
+
+impl CycleAlarm {
+    /// The alarm number.
+    pub fn code(&self) -> u16 {
+        use CycleAlarm::*;
+        match self {
+            NoToolOffset => 61000,
+            ThreadPitchWrong => 61001,
+            MachiningTypeWrong => 61002,
+            FinishedDiameterTooSmall => 61601,
+            ToolWidthWrong => 61602,
+            GrooveFormWrong => 61603,
+            ToolViolatesContour => 61604,
+            ContourWrong => 61605,
+            ContourPreparation { .. } => 61606,
+            StartPointWrong => 61607,
+            WrongEdgePosition => 61608,
+            FormWrong => 61609,
+            RecutImpossible => 61612,
+            UndercutPositionWrong => 61613,
+            FinishedContourWrong => 61701,
+            BlankContourWrong => 61702,
+            IllegalInput => 61720,
+            ContourDirection => 61721,
+        }
+    }
+}
+
+impl fmt::Display for CycleAlarm {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        use CycleAlarm::*;
+        match *self {
             NoToolOffset => write!(f, "no tool offset active (program D before the cycle)"),
             ThreadPitchWrong => {
                 write!(f, "thread pitch defined incorrectly (PIT/MPIT contradict, or not a DIN 76 / ISO coarse size)")
@@ -669,7 +702,6 @@ impl fmt::Display for AlarmKind {
             StartPointWrong => write!(f, "starting point programmed incorrectly (inside the rectangle of the contour)"),
             WrongEdgePosition => write!(f, "wrong tool point direction programmed (cutting edge position 1-4 needed)"),
             FormWrong => write!(f, "form defined incorrectly (CYCLE94: E or F, CYCLE96: A-D)"),
-            NoIntersection => write!(f, "no intersection point found"),
             RecutImpossible => write!(f, "thread re-cutting not possible"),
             UndercutPositionWrong => write!(f, "undercut position (_VARI) defined incorrectly"),
             FinishedContourWrong => write!(f, "finished part contour description wrong (_NP1-_NP3)"),
@@ -1169,11 +1201,6 @@ pub const CATALOG: &[CatalogEntry] = &[
         when: "CYCLE94 FORM not E/F, CYCLE96 FORM not A-D (lines 10513, 11024: 形状错误定义)",
     },
     CatalogEntry {
-        code: 61611,
-        title: "no intersection found",
-        when: "CYCLE95: a roughing level's cut point on the contour cannot be computed (table 12270: 没有找到切削点)",
-    },
-    CatalogEntry {
         code: 61612,
         title: "re-cutting impossible",
         when: "CYCLE97/CYCLE98 with thread re-cutting (4.9) set up but the thread is a multi-start one or the synchronised angle is missing (table 12272: 不可能进行螺纹精整)",
@@ -1332,25 +1359,24 @@ mod tests {
             ToolChangeInNoseComp,
             NoseCompGouge,
             NoseCompCornerAngle,
-            NoToolOffset,
-            ThreadPitchWrong,
-            MachiningTypeWrong,
-            FinishedDiameterTooSmall,
-            ToolWidthWrong,
-            GrooveFormWrong,
-            ToolViolatesContour,
-            ContourWrong,
-            ContourPreparation { cause: 10933 },
-            StartPointWrong,
-            WrongEdgePosition,
-            FormWrong,
-            NoIntersection,
-            RecutImpossible,
-            UndercutPositionWrong,
-            FinishedContourWrong,
-            BlankContourWrong,
-            IllegalInput,
-            ContourDirection,
+            SiemensCycle(CycleAlarm::NoToolOffset),
+            SiemensCycle(CycleAlarm::ThreadPitchWrong),
+            SiemensCycle(CycleAlarm::MachiningTypeWrong),
+            SiemensCycle(CycleAlarm::FinishedDiameterTooSmall),
+            SiemensCycle(CycleAlarm::ToolWidthWrong),
+            SiemensCycle(CycleAlarm::GrooveFormWrong),
+            SiemensCycle(CycleAlarm::ToolViolatesContour),
+            SiemensCycle(CycleAlarm::ContourWrong),
+            SiemensCycle(CycleAlarm::ContourPreparation { cause: 10933 }),
+            SiemensCycle(CycleAlarm::StartPointWrong),
+            SiemensCycle(CycleAlarm::WrongEdgePosition),
+            SiemensCycle(CycleAlarm::FormWrong),
+            SiemensCycle(CycleAlarm::RecutImpossible),
+            SiemensCycle(CycleAlarm::UndercutPositionWrong),
+            SiemensCycle(CycleAlarm::FinishedContourWrong),
+            SiemensCycle(CycleAlarm::BlankContourWrong),
+            SiemensCycle(CycleAlarm::IllegalInput),
+            SiemensCycle(CycleAlarm::ContourDirection),
         ]
     };
 

@@ -10,7 +10,7 @@
 
 use super::StepQueue;
 use super::emit::{Pt, Step};
-use crate::alarm::AlarmKind;
+use crate::alarm::{AlarmKind, CycleAlarm};
 use crate::axis::Axis;
 
 /// Where G74/G75 is.
@@ -212,13 +212,13 @@ impl GroovingGen {
         let (step_axis, _) = axes(spec);
         let width = spec.span.get(step_axis).abs();
         if width <= 0 {
-            return Err(AlarmKind::ToolWidthWrong);
+            return Err(AlarmKind::SiemensCycle(CycleAlarm::ToolWidthWrong));
         }
         // Across the rough bottom: from one flank's foot to the other's (the flanks
         // above them are cut along their slope).
         let flanks = range(segs, spec.flanks);
         let (Some(a), Some(b)) = (flanks.first().map(|s| s.b), flanks.get(1).map(|s| s.b)) else {
-            return Err(AlarmKind::GrooveFormWrong);
+            return Err(AlarmKind::SiemensCycle(CycleAlarm::GrooveFormWrong));
         };
         let (lo, hi) = (a.get(step_axis).min(b.get(step_axis)), a.get(step_axis).max(b.get(step_axis)));
         let open = hi - lo;
@@ -443,7 +443,7 @@ impl GroovingGen {
         let (from, to) = s.halves[usize::from(side)];
         let half = range(segs, (from, to));
         let (Some(first), Some(last)) = (half.first(), half.last()) else {
-            return Err(AlarmKind::GrooveFormWrong);
+            return Err(AlarmKind::SiemensCycle(CycleAlarm::GrooveFormWrong));
         };
         // The edge on this side: D if D + 1 lies towards the middle.
         let towards_far = (s.edges[1].get(step_axis) - s.edges[0].get(step_axis)).signum();

@@ -5,7 +5,7 @@
 
 use super::emit::Pt;
 use super::{CycleStage, Execute};
-use crate::alarm::AlarmKind;
+use crate::alarm::{AlarmKind, CycleAlarm};
 use crate::axis::Axis;
 use crate::canon::{Action, SpindleDir};
 use crate::codes::{GCode, MFunction};
@@ -280,7 +280,7 @@ fn contour_command(
         crate::config::Language::Fanuc => {
             let mut block = Block::default();
             if let Read::Macro(_) = read_with(raw.text, raw.line, program.vars, program.fmt, &mut block)? {
-                return Err(AlarmKind::ContourPreparation { cause: 10931 });
+                return Err(AlarmKind::SiemensCycle(CycleAlarm::ContourPreparation { cause: 10931 }));
             }
             if block.is_empty() {
                 return Ok(None);
@@ -305,7 +305,7 @@ fn ends_subprogram(cmd: &crate::command::Command) -> bool {
 /// have its G0–G3 (15800).
 fn check_contour_command(cmd: &crate::command::Command, first: bool) -> Result<(), AlarmKind> {
     use GCode::*;
-    let prep = |cause| Err(AlarmKind::ContourPreparation { cause });
+    let prep = |cause| Err(AlarmKind::SiemensCycle(CycleAlarm::ContourPreparation { cause }));
     if let Some(m) = cmd.g.motion
         && !matches!(m, Rapid | Linear | ArcCw | ArcCcw)
     {
@@ -338,7 +338,7 @@ pub fn read_contour<E: Environment + ?Sized>(
     execute: Execute,
     profile: &mut Profile,
 ) -> Result<Pt, AlarmKind> {
-    let prep = |cause| AlarmKind::ContourPreparation { cause };
+    let prep = |cause| AlarmKind::SiemensCycle(CycleAlarm::ContourPreparation { cause });
     if matches!(st.modal.nose_comp, GCode::NoseCompLeft | GCode::NoseCompRight) {
         return Err(prep(15800));
     }

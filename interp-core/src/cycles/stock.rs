@@ -37,7 +37,7 @@ use super::offset::{Offsets, walk};
 use super::pass::{PassGen, along};
 use super::pattern::PatternGen;
 use super::rough::{Frame, below};
-use crate::alarm::AlarmKind;
+use crate::alarm::{AlarmKind, CycleAlarm};
 use crate::axis::Axis;
 use crate::command::job::{Blank, Pull, StockSpec};
 use crate::geom::path::V2;
@@ -139,13 +139,13 @@ impl StockGen {
         let u = |p: Pt| out * p.get(level);
         let (first, last) = match (raw.first(), raw.last()) {
             (Some(f), Some(l)) => (f.a, l.b),
-            _ => return Err(AlarmKind::ContourPreparation { cause: 10933 }),
+            _ => return Err(AlarmKind::SiemensCycle(CycleAlarm::ContourPreparation { cause: 10933 })),
         };
         // Lines 10878, 10926: a start point inside the contour's rectangle.
         let (lo, hi) = bounds(raw);
         let inside = |a: Axis| here.get(a) > lo.get(a) && here.get(a) < hi.get(a);
         if inside(Axis::X) && inside(Axis::Z) {
-            return Err(AlarmKind::StartPointWrong);
+            return Err(AlarmKind::SiemensCycle(CycleAlarm::StartPointWrong));
         }
         // The machining direction: from the lower end up to the higher one.
         let turned = u(first) > u(last);
@@ -154,16 +154,16 @@ impl StockGen {
         }
         let (a, b) = match (raw.first(), raw.last()) {
             (Some(f), Some(l)) => (f.a, l.b),
-            _ => return Err(AlarmKind::ContourPreparation { cause: 10933 }),
+            _ => return Err(AlarmKind::SiemensCycle(CycleAlarm::ContourPreparation { cause: 10933 })),
         };
         let (a, b) = if turned && !spec.rough { (b, a) } else { (a, b) };
         let dir = (b.get(cut) - a.get(cut)).signum();
         if dir == 0 {
-            return Err(AlarmKind::ContourWrong);
+            return Err(AlarmKind::SiemensCycle(CycleAlarm::ContourWrong));
         }
         if spec.direction != 0 && spec.direction != dir {
             // CYCLE950 asked for the other direction: the contour cannot be cut so.
-            return Err(AlarmKind::ContourDirection);
+            return Err(AlarmKind::SiemensCycle(CycleAlarm::ContourDirection));
         }
         let frame = Frame { level, cut, out, dir };
         check_contour(&frame, raw, turned && !spec.rough, nose.clearance_udeg)?;
@@ -180,7 +180,7 @@ impl StockGen {
         if spec.rough && !spec.parallel && u(b) < top {
             let end = b.with(level, out * top);
             raw.push(Seg { kind: SegKind::Line, a: b, b: end })
-                .map_err(|_| AlarmKind::ContourPreparation { cause: 10934 })?;
+                .map_err(|_| AlarmKind::SiemensCycle(CycleAlarm::ContourPreparation { cause: 10934 }))?;
         }
         let tool_left = tool_left(&frame);
         let tip = crate::contour::comp::tip_vector(nose.tip, nose.radius);
@@ -252,7 +252,7 @@ impl StockGen {
             Ok(true)
         })?;
         let (Some(first), Some(last)) = (first, last) else {
-            return Err(AlarmKind::ContourPreparation { cause: 10933 });
+            return Err(AlarmKind::SiemensCycle(CycleAlarm::ContourPreparation { cause: 10933 }));
         };
         let (u0, w0) = frame.norm(first);
         let (au, aw) = if spec.facing { (spec.allow_z, spec.allow_x) } else { (spec.allow_x, spec.allow_z) };
@@ -262,13 +262,14 @@ impl StockGen {
         let s = g.s_point();
         let before = [Some(s), Some(frame.work(u0 + du, w0 - sign * dw)), None];
         let after = [Some(frame.work(g.start.0, frame.norm(last).1)), Some(s), None];
-        let n = u16::try_from(raw.len()).map_err(|_| AlarmKind::ContourPreparation { cause: 10934 })?;
+        let n = u16::try_from(raw.len())
+            .map_err(|_| AlarmKind::SiemensCycle(CycleAlarm::ContourPreparation { cause: 10934 }))?;
         let mut path = (0, n);
         if spec.parallel && spec.rough {
             // G73's shape: the move from the start point onto the contour first.
             let s = g.s_point();
             raw.insert(0, Seg { kind: SegKind::Rapid, a: s, b: first_raw(raw) })
-                .map_err(|_| AlarmKind::ContourPreparation { cause: 10934 })?;
+                .map_err(|_| AlarmKind::SiemensCycle(CycleAlarm::ContourPreparation { cause: 10934 }))?;
             path = (1, n + 1);
         }
         g.finish = PassGen::new(finish, path, Pt::default(), before, g.feed(2), after).arcs_at(spec.arc_feed);
@@ -406,7 +407,9 @@ impl StockGen {
             Part::Follow { at, to, end } => {
                 let mut at = at;
                 for _ in 0..4 {
-                    let seg = self.shape_seg(raw, &self.rough, at.elem)?.ok_or(AlarmKind::NoIntersection)?;
+                    let seg = self
+                        .shape_seg(raw, &self.rough, at.elem)?
+                        .ok_or(AlarmKind::SiemensCycle(CycleAlarm::ContourPreparation { cause: 10931 }))?;
                     if at.elem == to.elem {
                         let piece = part_of(&seg, at.t, to.t);
                         push(out, along(&piece))?;
@@ -420,7 +423,9 @@ impl StockGen {
                 set(self, Part::Follow { at, to, end });
             }
             Part::Cut { w, end } => {
-                let seg = self.shape_seg(raw, &self.rough, end.elem)?.ok_or(AlarmKind::NoIntersection)?;
+                let seg = self
+                    .shape_seg(raw, &self.rough, end.elem)?
+                    .ok_or(AlarmKind::SiemensCycle(CycleAlarm::ContourPreparation { cause: 10931 }))?;
                 let w_end = f.norm(point_at(&seg, end.t)).1;
                 let step = self.spec.interrupt;
                 let mut w = w;
@@ -678,7 +683,9 @@ impl StockGen {
 
     /// The point at mark `m` of the rough shape.
     fn point(&self, raw: &[Seg], m: Mark) -> Result<Pt, AlarmKind> {
-        let s = self.shape_seg(raw, &self.rough, m.elem)?.ok_or(AlarmKind::NoIntersection)?;
+        let s = self
+            .shape_seg(raw, &self.rough, m.elem)?
+            .ok_or(AlarmKind::SiemensCycle(CycleAlarm::ContourPreparation { cause: 10931 }))?;
         Ok(point_at(&s, m.t))
     }
 }
@@ -789,7 +796,7 @@ fn check_contour(f: &Frame, raw: &[Seg], backwards: bool, clearance_udeg: u32) -
         let (lo, hi) = s.extent(f.cut);
         let within = lo >= s.a.get(f.cut).min(s.b.get(f.cut)) - 1 && hi <= s.a.get(f.cut).max(s.b.get(f.cut)) + 1;
         if (wb - wa) as f64 * sign < -1.0 || !within {
-            return Err(AlarmKind::ContourWrong);
+            return Err(AlarmKind::SiemensCycle(CycleAlarm::ContourWrong));
         }
         if clearance_udeg == 0 {
             continue;
@@ -807,7 +814,7 @@ fn check_contour(f: &Frame, raw: &[Seg], backwards: bool, clearance_udeg: u32) -
             let ((u0, w0), (u1, w1)) = (n(p), n(q));
             let (du, dw) = ((u1 - u0) * sign, (w1 - w0) * sign);
             if du < -1e-9 && libm::atan2(-du, dw).to_degrees() > limit + 1e-6 {
-                return Err(AlarmKind::ToolViolatesContour);
+                return Err(AlarmKind::SiemensCycle(CycleAlarm::ToolViolatesContour));
             }
         }
     }

@@ -21,7 +21,7 @@
 
 use super::stock::seconds_ms;
 use super::{Engine, Params, need_zx};
-use crate::alarm::AlarmKind;
+use crate::alarm::{AlarmKind, CycleAlarm};
 use crate::axis::Axis;
 use crate::command::Command;
 use crate::command::job::GrooveSpec;
@@ -62,11 +62,11 @@ pub(super) fn cycle93(
     let vari = p.int(15);
     let (units, tens) = (vari % 10, vari / 10);
     if !(1..=8).contains(&units) || !(0..=1).contains(&tens) {
-        return Err(AlarmKind::MachiningTypeWrong);
+        return Err(AlarmKind::SiemensCycle(CycleAlarm::MachiningTypeWrong));
     }
     let d = st.tool.offset_number;
     if d == 0 {
-        return Err(AlarmKind::NoToolOffset);
+        return Err(AlarmKind::SiemensCycle(CycleAlarm::NoToolOffset));
     }
     let face = units % 2 == 0;
     let inside = matches!(units, 2 | 3 | 4 | 7);
@@ -91,7 +91,7 @@ pub(super) fn cycle93(
     let surface = V2::new(libm::cos(sta), libm::sin(sta));
     let (along, deep) = if face { (surface.b, Axis::Z) } else { (surface.a, Axis::X) };
     if libm::fabs(along) < 1e-9 {
-        return Err(AlarmKind::GrooveFormWrong);
+        return Err(AlarmKind::SiemensCycle(CycleAlarm::GrooveFormWrong));
     }
     let mut pdir = surface;
     if ((if face { pdir.b } else { pdir.a }) > 0.0) != towards_plus {
@@ -102,7 +102,7 @@ pub(super) fn cycle93(
     // Deeper: -X (-Z for a face groove) outside, + inside.
     let want = if inside { 1.0 } else { -1.0 };
     if libm::fabs(comp(left)) < 1e-9 {
-        return Err(AlarmKind::GrooveFormWrong);
+        return Err(AlarmKind::SiemensCycle(CycleAlarm::GrooveFormWrong));
     }
     let qdir = if comp(left) * want > 0.0 { left } else { left.scale(-1.0) };
     let origin = V2::new(p.len(1)? as f64, p.x(0)?.abs() as f64);
@@ -130,14 +130,14 @@ pub(super) fn cycle93(
     // The tool: edges D and D + 1 (line 10342).
     let cfg = ctx.cfg();
     let (Some(e1), Some(e2)) = (cfg.tools.get(d), cfg.tools.get(d + 1)) else {
-        return Err(AlarmKind::ToolWidthWrong);
+        return Err(AlarmKind::SiemensCycle(CycleAlarm::ToolWidthWrong));
     };
     let span = Pt::new(e1.total_x() - e2.total_x(), e1.total_z() - e2.total_z());
     let step_axis = if face { Axis::X } else { Axis::Z };
     let opening = (pt(fin[4]).get(step_axis) - pt(fin[1]).get(step_axis)).abs();
     let tool = span.get(step_axis).abs();
     if tool == 0 || opening < tool {
-        return Err(AlarmKind::ToolWidthWrong);
+        return Err(AlarmKind::SiemensCycle(CycleAlarm::ToolWidthWrong));
     }
     let spec = GrooveSpec {
         face,
@@ -196,7 +196,7 @@ fn contour(
         || !fits(cuts[1].1, cuts[2].0, v[2], v[3])
         || !fits(cuts[2].1, cuts[3].0, v[3], v[4])
     {
-        return Err(AlarmKind::GrooveFormWrong);
+        return Err(AlarmKind::SiemensCycle(CycleAlarm::GrooveFormWrong));
     }
     let bottom_mid = cuts[1].1.plus(cuts[2].0.minus(cuts[1].1).scale(0.5));
     match half {
@@ -261,7 +261,7 @@ fn corner(a: V2, b: V2, c: V2, spec: CornerSpec) -> Result<(V2, V2, Option<Seg>)
         -v / (2.0 * libm::cos(half))
     };
     if leg > b.minus(a).len() + 1.0 || leg > c.minus(b).len() + 1.0 {
-        return Err(AlarmKind::GrooveFormWrong);
+        return Err(AlarmKind::SiemensCycle(CycleAlarm::GrooveFormWrong));
     }
     let (s, e) = (b.minus(t1.scale(leg)), b.plus(t2.scale(leg)));
     let piece = if v > 0.0 {

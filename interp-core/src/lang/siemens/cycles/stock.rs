@@ -20,7 +20,7 @@
 //! - VARI outside 1–12 / 101–112 / 201–212 raises 61002.
 
 use super::{ContourSource, Engine, Params, need_zx};
-use crate::alarm::AlarmKind;
+use crate::alarm::{AlarmKind, CycleAlarm};
 use crate::command::Command;
 use crate::command::job::{Blank, Pull, StockSpec};
 use crate::geom::Pt;
@@ -38,7 +38,7 @@ pub(super) fn cycle95(
     let vari = p.int(8);
     let (units, hundreds) = (vari % 100, vari / 100);
     if !(1..=12).contains(&units) || !(hundreds == 0 || hundreds == 2) {
-        return Err(AlarmKind::MachiningTypeWrong);
+        return Err(AlarmKind::SiemensCycle(CycleAlarm::MachiningTypeWrong));
     }
     let (stage, kind) = ((units - 1) / 4, (units - 1) % 4);
     let facing = kind % 2 == 1;
@@ -74,7 +74,7 @@ pub(super) fn cycle95(
         dwell_ms: seconds_ms(p.real(9)),
         retract: p.or_1mm(11)?,
     };
-    let contour = contour.ok_or(AlarmKind::ContourPreparation { cause: 10933 })?;
+    let contour = contour.ok_or(AlarmKind::SiemensCycle(CycleAlarm::ContourPreparation { cause: 10933 }))?;
     ctx.stock(&spec, contour, cmd, st)
 }
 
@@ -127,7 +127,7 @@ pub(super) fn cycle950(
     // Longitudinal infeeds along X, face along Z; the machining direction along the other.
     let infeed_x = infeed <= 2;
     if bad || (kind == 1 && !infeed_x) || (kind == 2 && infeed_x) || ((dir <= 2) == infeed_x) {
-        return Err(AlarmKind::IllegalInput);
+        return Err(AlarmKind::SiemensCycle(CycleAlarm::IllegalInput));
     }
     let facing = !infeed_x;
     let internal = infeed == 2 || infeed == 4;
@@ -147,7 +147,7 @@ pub(super) fn cycle950(
     };
     let angb = if p.real(13) == 0.0 { 45.0 } else { libm::fabs(p.real(13)) };
     if angb >= 90.0 {
-        return Err(AlarmKind::IllegalInput);
+        return Err(AlarmKind::SiemensCycle(CycleAlarm::IllegalInput));
     }
     let blank_contour = p.text(15);
     if !blank_contour.is_empty() && !blank_contour.eq_ignore_ascii_case(b"DEFAULT") {
@@ -158,7 +158,7 @@ pub(super) fn cycle950(
         (0, 0) => Blank::Contour,
         (91, 91) | (0, 91) | (91, 0) => Blank::Allowance(Pt::new(half(p.unsigned(21)?), p.unsigned(19)?)),
         (90, 90) | (0, 90) | (90, 0) => Blank::At(Pt::new(half(p.len(21)?.abs()), p.len(19)?)),
-        _ => return Err(AlarmKind::BlankContourWrong),
+        _ => return Err(AlarmKind::SiemensCycle(CycleAlarm::BlankContourWrong)),
     };
     // Along the cutting axis: X− (1) / X+ (2) for face machining, Z− (3) / Z+ (4).
     let direction = if dir % 2 == 1 { -1 } else { 1 };
@@ -185,6 +185,6 @@ pub(super) fn cycle950(
         retract: p.or_1mm(12)?,
         approach: p.or_1mm(23)?,
     };
-    let contour = contour.ok_or(AlarmKind::FinishedContourWrong)?;
+    let contour = contour.ok_or(AlarmKind::SiemensCycle(CycleAlarm::FinishedContourWrong))?;
     ctx.stock(&spec, contour, cmd, st)
 }

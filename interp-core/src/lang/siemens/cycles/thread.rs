@@ -34,7 +34,7 @@
 //!   the size's pitch raise 61001 "thread pitch defined incorrectly".
 
 use super::{Engine, MM, Params, need_zx};
-use crate::alarm::AlarmKind;
+use crate::alarm::{AlarmKind, CycleAlarm};
 use crate::command::Command;
 use crate::command::job::{CHAIN_POINTS, Depths, Flank, MultiThreadSpec, Pullout};
 use crate::geom::Pt;
@@ -111,14 +111,14 @@ pub(super) fn cycle97(
     // Line 11138: PIT or the size MPIT (M3–M60), not contradicting each other.
     let lead = match (pit > 0.0, mpit != 0.0) {
         (_, true) => {
-            let coarse = coarse_pitch(mpit, 60.0).ok_or(AlarmKind::ThreadPitchWrong)?;
+            let coarse = coarse_pitch(mpit, 60.0).ok_or(AlarmKind::SiemensCycle(CycleAlarm::ThreadPitchWrong))?;
             if pit > 0.0 && libm::fabs(pit * p.per_unit - coarse * 1e6) > 1.0 {
-                return Err(AlarmKind::ThreadPitchWrong);
+                return Err(AlarmKind::SiemensCycle(CycleAlarm::ThreadPitchWrong));
             }
             libm::round(coarse * 1e6) as i64
         }
         (true, false) => p.nm(pit)?,
-        (false, false) => return Err(AlarmKind::ThreadPitchWrong),
+        (false, false) => return Err(AlarmKind::SiemensCycle(CycleAlarm::ThreadPitchWrong)),
     };
     let c = common(p, 6)?;
     let a = Pt::new(p.x(4)?, p.len(2)?);
@@ -159,7 +159,7 @@ pub(super) fn cycle98(
         }
     }
     if lds.contains(&0) {
-        return Err(AlarmKind::ThreadPitchWrong);
+        return Err(AlarmKind::SiemensCycle(CycleAlarm::ThreadPitchWrong));
     }
     let spec = spec(&c, &pts, &lds, st)?;
     ctx.thread(&spec, cmd, st)
@@ -191,7 +191,7 @@ fn common(p: &Params<'_, '_>, at: usize) -> Result<Common, AlarmKind> {
 /// VARI 1–4, else 61002 (see the module notes on 61102).
 fn check_vari(vari: i64) -> Result<(), AlarmKind> {
     if !(1..=4).contains(&vari) {
-        return Err(AlarmKind::MachiningTypeWrong);
+        return Err(AlarmKind::SiemensCycle(CycleAlarm::MachiningTypeWrong));
     }
     Ok(())
 }
@@ -233,7 +233,7 @@ fn spec(c: &Common, pts: &[Pt], leads: &[i64], st: &State) -> Result<MultiThread
     let nsp = libm::round(c.nsp * 1e6) as i64;
     let start_udeg = match st.cycle.recut {
         Some(r) if !face => recut_start(r, &points[..n], leads)?,
-        Some(_) => return Err(AlarmKind::RecutImpossible),
+        Some(_) => return Err(AlarmKind::SiemensCycle(CycleAlarm::RecutImpossible)),
         None => nsp,
     };
     let mut all_leads = [leads[n - 2]; CHAIN_POINTS - 1];
@@ -274,7 +274,7 @@ fn recut_start(r: crate::modal::ThreadRecut, points: &[Pt], leads: &[i64]) -> Re
             return Ok(r.angle_udeg - advance);
         }
     }
-    Err(AlarmKind::RecutImpossible)
+    Err(AlarmKind::SiemensCycle(CycleAlarm::RecutImpossible))
 }
 
 /// `to` moved on by `by` along the long axis, away from `from`, on the line

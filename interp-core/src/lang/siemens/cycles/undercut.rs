@@ -32,7 +32,7 @@
 
 use super::thread::coarse_pitch;
 use super::{Engine, Params, need_zx};
-use crate::alarm::AlarmKind;
+use crate::alarm::{AlarmKind, CycleAlarm};
 use crate::command::Command;
 use crate::geom::{Pt, Seg, SegKind};
 use crate::modal::State;
@@ -85,10 +85,10 @@ fn position(vari: i64, st: &State) -> Result<Position, AlarmKind> {
     let sl = match vari {
         0 => match st.tool.tip {
             t @ 1..=4 => t,
-            _ => return Err(AlarmKind::WrongEdgePosition),
+            _ => return Err(AlarmKind::SiemensCycle(CycleAlarm::WrongEdgePosition)),
         },
         1..=4 => vari as u8,
-        _ => return Err(AlarmKind::UndercutPositionWrong),
+        _ => return Err(AlarmKind::SiemensCycle(CycleAlarm::UndercutPositionWrong)),
     };
     // The tip points into the corner: position 3 (−X −Z) cuts an outside corner
     // whose diameter runs towards +Z.
@@ -123,18 +123,18 @@ pub(super) fn cycle94(
 ) -> Result<(), AlarmKind> {
     need_zx(st)?;
     if st.tool.offset_number == 0 {
-        return Err(AlarmKind::NoToolOffset);
+        return Err(AlarmKind::SiemensCycle(CycleAlarm::NoToolOffset));
     }
     let rf = p.x(0)?.abs();
     let form = p.text(2);
     let f_form = match form {
         [b'E' | b'e'] => false,
         [b'F' | b'f'] => true,
-        _ => return Err(AlarmKind::FormWrong),
+        _ => return Err(AlarmKind::SiemensCycle(CycleAlarm::FormWrong)),
     };
     let d = 2.0 * rf as f64 / 1e6;
     if d < 3.0 {
-        return Err(AlarmKind::FinishedDiameterTooSmall);
+        return Err(AlarmKind::SiemensCycle(CycleAlarm::FinishedDiameterTooSmall));
     }
     let pos = position(p.int(3), st)?;
     let &(_, r, t1, f, t2) = DIN_509.iter().find(|row| d <= row.0).unwrap_or(&DIN_509[3]);
@@ -151,16 +151,19 @@ pub(super) fn cycle96(
 ) -> Result<(), AlarmKind> {
     need_zx(st)?;
     if st.tool.offset_number == 0 {
-        return Err(AlarmKind::NoToolOffset);
+        return Err(AlarmKind::SiemensCycle(CycleAlarm::NoToolOffset));
     }
     let form = match p.text(2) {
         [c] if (b'A'..=b'D').contains(&c.to_ascii_uppercase()) => c.to_ascii_uppercase(),
-        _ => return Err(AlarmKind::FormWrong),
+        _ => return Err(AlarmKind::SiemensCycle(CycleAlarm::FormWrong)),
     };
     // DIATH is the thread's nominal size M3–M68 (line 11003), a diameter.
     let d = libm::fabs(p.real(0)) * p.per_unit / 1e6;
-    let pitch = coarse_pitch(d, 68.0).ok_or(AlarmKind::ThreadPitchWrong)?;
-    let row = DIN_76.iter().find(|row| libm::fabs(row.0 - pitch) < 1e-9).ok_or(AlarmKind::ThreadPitchWrong)?;
+    let pitch = coarse_pitch(d, 68.0).ok_or(AlarmKind::SiemensCycle(CycleAlarm::ThreadPitchWrong))?;
+    let row = DIN_76
+        .iter()
+        .find(|row| libm::fabs(row.0 - pitch) < 1e-9)
+        .ok_or(AlarmKind::SiemensCycle(CycleAlarm::ThreadPitchWrong))?;
     let outside = form <= b'B';
     let (dg, g2) = match form {
         b'A' => (d - row.1, row.2),
@@ -169,12 +172,16 @@ pub(super) fn cycle96(
         _ => (d + row.4, row.6),
     };
     if dg < 3.0 {
-        return Err(AlarmKind::FinishedDiameterTooSmall);
+        return Err(AlarmKind::SiemensCycle(CycleAlarm::FinishedDiameterTooSmall));
     }
     let vari = p.int(3);
     let pos = position(vari, st)?;
     if (pos.x > 0) != outside {
-        return Err(if vari == 0 { AlarmKind::WrongEdgePosition } else { AlarmKind::UndercutPositionWrong });
+        return Err(if vari == 0 {
+            AlarmKind::SiemensCycle(CycleAlarm::WrongEdgePosition)
+        } else {
+            AlarmKind::SiemensCycle(CycleAlarm::UndercutPositionWrong)
+        });
     }
     let shape = Shape { rf: d / 2.0, t: libm::fabs(d - dg) / 2.0, f: g2, flank: 30.0, r: row.7, t2: 0.0, relief: 0.0 };
     start_undercut(&shape, p.len(1)?, pos, cmd, st, ctx)

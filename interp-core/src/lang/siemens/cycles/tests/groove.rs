@@ -1,6 +1,7 @@
 //! CYCLE93 against the document's example (lines 10377–10451) and its alarms.
 
 use super::*;
+use crate::alarm::CycleAlarm;
 use crate::canon::Action;
 
 /// A grooving tool 4 mm wide: edge D1 the left corner (position 3), D2 the right
@@ -113,25 +114,25 @@ fn cycle93_alarms_move_nothing() {
     let st = grooving_tool(&mut cfg, 0.2);
     let err = |a: &[Arg<'_>], st: &State, cfg: &MachineConfig| call("CYCLE93", a, st, cfg).unwrap_err();
     for vari in [0, 9, 10, 19, 21] {
-        assert_eq!(err(&example(vari), &st, &cfg), AlarmKind::MachiningTypeWrong, "{vari}");
+        assert_eq!(err(&example(vari), &st, &cfg), AlarmKind::SiemensCycle(CycleAlarm::MachiningTypeWrong), "{vari}");
     }
     let mut no_d = st;
     no_d.tool.offset_number = 0;
-    assert_eq!(err(&example(5), &no_d, &cfg), AlarmKind::NoToolOffset);
+    assert_eq!(err(&example(5), &no_d, &cfg), AlarmKind::SiemensCycle(CycleAlarm::NoToolOffset));
     // A groove 3 mm wide for a 4 mm tool; a tool of no width: 61602.
     let mut narrow = example(5);
     narrow[2] = Arg::Real(3.0);
-    assert_eq!(err(&narrow, &st, &cfg), AlarmKind::ToolWidthWrong);
+    assert_eq!(err(&narrow, &st, &cfg), AlarmKind::SiemensCycle(CycleAlarm::ToolWidthWrong));
     let mut flat = cfg.clone();
     flat.tools.get_mut(2).unwrap().z = 0;
-    assert_eq!(err(&example(5), &st, &flat), AlarmKind::ToolWidthWrong);
-    assert_eq!(AlarmKind::ToolWidthWrong.code(), 61602);
+    assert_eq!(err(&example(5), &st, &flat), AlarmKind::SiemensCycle(CycleAlarm::ToolWidthWrong));
+    assert_eq!(AlarmKind::SiemensCycle(CycleAlarm::ToolWidthWrong).code(), 61602);
     // Bottom chamfers longer than the bottom; a face groove on a cylinder: 61603.
     let mut wide = example(5);
     wide[9] = Arg::Real(-20.0);
-    assert_eq!(err(&wide, &st, &cfg), AlarmKind::GrooveFormWrong);
+    assert_eq!(err(&wide, &st, &cfg), AlarmKind::SiemensCycle(CycleAlarm::GrooveFormWrong));
     let mut face = example(6);
     face[4] = Arg::Real(0.0);
-    assert_eq!(err(&face, &st, &cfg), AlarmKind::GrooveFormWrong);
-    assert_eq!(AlarmKind::GrooveFormWrong.code(), 61603);
+    assert_eq!(err(&face, &st, &cfg), AlarmKind::SiemensCycle(CycleAlarm::GrooveFormWrong));
+    assert_eq!(AlarmKind::SiemensCycle(CycleAlarm::GrooveFormWrong).code(), 61603);
 }

@@ -5,6 +5,7 @@
 //! dialect (the same geometry: `,R5` is RND=5), read by the same engine.
 
 use super::*;
+use crate::alarm::CycleAlarm;
 use crate::canon::Action;
 use crate::config::Language;
 use crate::program::Cursor;
@@ -255,25 +256,35 @@ fn cycle95_alarms_move_nothing() {
     let k1 = || Some(contour(KONTUR_1));
     for vari in [0, 13, 109, 313, 1001] {
         let a = c95([5.0, 0.0, 0.0, 0.0, FF[0], FF[1], FF[2]], vari, 0.0, 0.0, 0.5);
-        assert_eq!(call_with("CYCLE95", &a, &st, &cfg, k1()).unwrap_err(), AlarmKind::MachiningTypeWrong, "{vari}");
+        assert_eq!(
+            call_with("CYCLE95", &a, &st, &cfg, k1()).unwrap_err(),
+            AlarmKind::SiemensCycle(CycleAlarm::MachiningTypeWrong),
+            "{vari}"
+        );
     }
     let a = c95([5.0, 0.0, 0.0, 0.0, FF[0], FF[1], FF[2]], 9, 0.0, 0.0, 0.5);
     // Started inside the contour's rectangle: 61607.
     let inside = at(&cfg, 50.0, 100.0);
-    assert_eq!(call_with("CYCLE95", &a, &inside, &cfg, k1()).unwrap_err(), AlarmKind::StartPointWrong);
-    assert_eq!(AlarmKind::StartPointWrong.code(), 61607);
+    assert_eq!(
+        call_with("CYCLE95", &a, &inside, &cfg, k1()).unwrap_err(),
+        AlarmKind::SiemensCycle(CycleAlarm::StartPointWrong)
+    );
+    assert_eq!(AlarmKind::SiemensCycle(CycleAlarm::StartPointWrong).code(), 61607);
     // The undercut 65 → 29 falls at atan(18/10) = 61°: a 30° clearance angle cannot cut it.
     let mut cfg30 = cfg.clone();
     cfg30.tools.get_mut(1).unwrap().clearance_udeg = 30_000_000;
     let mut st1 = st;
     st1.tool.offset_number = 1;
-    assert_eq!(call_with("CYCLE95", &a, &st1, &cfg30, k1()).unwrap_err(), AlarmKind::ToolViolatesContour);
-    assert_eq!(AlarmKind::ToolViolatesContour.code(), 61604);
+    assert_eq!(
+        call_with("CYCLE95", &a, &st1, &cfg30, k1()).unwrap_err(),
+        AlarmKind::SiemensCycle(CycleAlarm::ToolViolatesContour)
+    );
+    assert_eq!(AlarmKind::SiemensCycle(CycleAlarm::ToolViolatesContour).code(), 61604);
     // 62° is enough; 0 = no check.
     cfg30.tools.get_mut(1).unwrap().clearance_udeg = 62_000_000;
     assert!(call_with("CYCLE95", &a, &st1, &cfg30, k1()).is_ok());
     // Contour preparation (61606): too few blocks (10933), a thread (10930), G41 (10931).
-    let prep = |cause| AlarmKind::ContourPreparation { cause };
+    let prep = |cause| AlarmKind::SiemensCycle(CycleAlarm::ContourPreparation { cause });
     for (text, cause) in [
         ("G01 Z120 X37\nZ35\nM30\n", 10933),
         ("G01 Z120 X37\nZ100\nG32 Z90 F2\nX76\nM30\n", 10930),
@@ -289,8 +300,11 @@ fn cycle95_alarms_move_nothing() {
     assert_eq!(call_with("CYCLE95", &a, &g42, &cfg, k1()).unwrap_err(), prep(15800));
     // A contour turning back along Z (an overhang): 61605.
     let back = "G01 Z120 X37\nZ100\nZ105 X50\nZ90\nX76\nM30\n";
-    assert_eq!(call_with("CYCLE95", &a, &st, &cfg, Some(contour(back))).unwrap_err(), AlarmKind::ContourWrong);
-    assert_eq!(AlarmKind::ContourWrong.code(), 61605);
+    assert_eq!(
+        call_with("CYCLE95", &a, &st, &cfg, Some(contour(back))).unwrap_err(),
+        AlarmKind::SiemensCycle(CycleAlarm::ContourWrong)
+    );
+    assert_eq!(AlarmKind::SiemensCycle(CycleAlarm::ContourWrong).code(), 61605);
 }
 
 /// The document's example 1 (lines 10891–10925): CYCLE95 (UPNAME, 5, 1.2, 0.6, ,
@@ -493,20 +507,20 @@ fn cycle950_alarms_move_nothing() {
     let k1 = || Some(contour(KONTUR_1));
     for vari in [311114, 311115, 311131, 111111, 311411, 313111, 331111, 1311111, 0] {
         let e = call_with("CYCLE950", &c950(vari, r, (0.0, 0, 0.0, 0), 0.0), &st, &cfg, k1()).unwrap_err();
-        assert_eq!(e, AlarmKind::IllegalInput, "{vari}");
+        assert_eq!(e, AlarmKind::SiemensCycle(CycleAlarm::IllegalInput), "{vari}");
     }
-    assert_eq!(AlarmKind::IllegalInput.code(), 61720);
+    assert_eq!(AlarmKind::SiemensCycle(CycleAlarm::IllegalInput).code(), 61720);
     // Z+ asked for a contour that can only be cut towards Z-: 61721.
     let e = call_with("CYCLE950", &c950(411111, r, (0.0, 0, 0.0, 0), 0.0), &st, &cfg, k1()).unwrap_err();
-    assert_eq!(e, AlarmKind::ContourDirection);
-    assert_eq!(AlarmKind::ContourDirection.code(), 61721);
+    assert_eq!(e, AlarmKind::SiemensCycle(CycleAlarm::ContourDirection));
+    assert_eq!(AlarmKind::SiemensCycle(CycleAlarm::ContourDirection).code(), 61721);
     // No finished contour: 61701; a blank neither absolute nor incremental: 61702.
     let e = call_with("CYCLE950", &c950(311111, r, (0.0, 0, 0.0, 0), 0.0), &st, &cfg, None).unwrap_err();
-    assert_eq!(e, AlarmKind::FinishedContourWrong);
-    assert_eq!(AlarmKind::FinishedContourWrong.code(), 61701);
+    assert_eq!(e, AlarmKind::SiemensCycle(CycleAlarm::FinishedContourWrong));
+    assert_eq!(AlarmKind::SiemensCycle(CycleAlarm::FinishedContourWrong).code(), 61701);
     let e = call_with("CYCLE950", &c950(311111, r, (0.0, 0, 80.0, 92), 0.0), &st, &cfg, k1()).unwrap_err();
-    assert_eq!(e, AlarmKind::BlankContourWrong);
-    assert_eq!(AlarmKind::BlankContourWrong.code(), 61702);
+    assert_eq!(e, AlarmKind::SiemensCycle(CycleAlarm::BlankContourWrong));
+    assert_eq!(AlarmKind::SiemensCycle(CycleAlarm::BlankContourWrong).code(), 61702);
     // A blank contour program is not supported: 4007.
     let mut a = c950(311111, r, (0.0, 0, 0.0, 0), 0.0);
     a[15] = Arg::Str(b"ROHTEIL1");

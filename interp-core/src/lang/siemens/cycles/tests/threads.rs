@@ -3,6 +3,7 @@
 //! alarms.
 
 use super::*;
+use crate::alarm::CycleAlarm;
 
 /// CYCLE97 arguments: PIT, MPIT, SPL, FPL, DM1, DM2, APP, ROP, TDEP, FAL, IANG, NSP
 /// as REAL, NRC, NID, VARI, NUMT as INT, _VRT.
@@ -184,23 +185,26 @@ fn thread_alarms_move_nothing() {
     // "M42x2": MPIT 42 has the pitch 4.5, PIT 2 contradicts it (line 11142).
     let mut a = example(3);
     a[0] = Arg::Real(2.0);
-    assert_eq!(call("CYCLE97", &a, &st, &cfg).unwrap_err(), AlarmKind::ThreadPitchWrong);
-    assert_eq!(AlarmKind::ThreadPitchWrong.code(), 61001);
+    assert_eq!(call("CYCLE97", &a, &st, &cfg).unwrap_err(), AlarmKind::SiemensCycle(CycleAlarm::ThreadPitchWrong));
+    assert_eq!(AlarmKind::SiemensCycle(CycleAlarm::ThreadPitchWrong).code(), 61001);
     // No pitch at all, and a size outside M3–M60.
     let mut a = example(3);
     a[1] = Arg::Empty;
-    assert_eq!(call("CYCLE97", &a, &st, &cfg).unwrap_err(), AlarmKind::ThreadPitchWrong);
+    assert_eq!(call("CYCLE97", &a, &st, &cfg).unwrap_err(), AlarmKind::SiemensCycle(CycleAlarm::ThreadPitchWrong));
     a[1] = Arg::Real(64.0);
-    assert_eq!(call("CYCLE97", &a, &st, &cfg).unwrap_err(), AlarmKind::ThreadPitchWrong);
+    assert_eq!(call("CYCLE97", &a, &st, &cfg).unwrap_err(), AlarmKind::SiemensCycle(CycleAlarm::ThreadPitchWrong));
     // VARI outside 1–4: 61002 (the section's 61102 is the table's "no spindle direction").
     for vari in [0, 5] {
-        assert_eq!(call("CYCLE97", &example(vari), &st, &cfg).unwrap_err(), AlarmKind::MachiningTypeWrong);
+        assert_eq!(
+            call("CYCLE97", &example(vari), &st, &cfg).unwrap_err(),
+            AlarmKind::SiemensCycle(CycleAlarm::MachiningTypeWrong)
+        );
     }
-    assert_eq!(AlarmKind::MachiningTypeWrong.code(), 61002);
+    assert_eq!(AlarmKind::SiemensCycle(CycleAlarm::MachiningTypeWrong).code(), 61002);
     let mut a = reals(&[Some(0.0), Some(30.0), Some(-30.0), Some(30.0), Some(-60.0), Some(36.0), Some(-80.0)]);
     a.extend(reals(&[Some(50.0), Some(10.0), Some(10.0), Some(0.92), None, None, None]));
     a.extend([Arg::Int(5), Arg::Int(1), Arg::Real(1.5), Arg::Real(2.0), Arg::Real(2.0), Arg::Int(7)]);
-    assert_eq!(call("CYCLE98", &a, &st, &cfg).unwrap_err(), AlarmKind::MachiningTypeWrong);
+    assert_eq!(call("CYCLE98", &a, &st, &cfg).unwrap_err(), AlarmKind::SiemensCycle(CycleAlarm::MachiningTypeWrong));
     // Outside the ZX plane.
     let mut g17 = st;
     g17.modal.plane = crate::canon::Plane::Xy;
@@ -222,6 +226,6 @@ fn cycle97_recut_start_angle() {
     let want = r3((90.0 - frac * 360.0).rem_euclid(360.0));
     assert!(threads(&c).iter().all(|t| r3(t.3) == want), "{:?}", threads(&c)[0]);
     st.cycle.recut = Some(crate::modal::ThreadRecut { z: mm(-50.0), angle_udeg: 0 });
-    assert_eq!(call("CYCLE97", &a, &st, &cfg).unwrap_err(), AlarmKind::RecutImpossible);
-    assert_eq!(AlarmKind::RecutImpossible.code(), 61612);
+    assert_eq!(call("CYCLE97", &a, &st, &cfg).unwrap_err(), AlarmKind::SiemensCycle(CycleAlarm::RecutImpossible));
+    assert_eq!(AlarmKind::SiemensCycle(CycleAlarm::RecutImpossible).code(), 61612);
 }

@@ -1,6 +1,7 @@
 //! CYCLE94 and CYCLE96 against DIN 509 / DIN 76 and the document's examples.
 
 use super::*;
+use crate::alarm::CycleAlarm;
 
 /// The state of the examples: tool offset 3 with cutting edge position `tip`.
 fn with_tool(cfg: &mut MachineConfig, tip: u8, radius: f64, x: f64, z: f64) -> State {
@@ -144,26 +145,41 @@ fn undercut_alarms_move_nothing() {
     // No D offset: 61000.
     let mut no_d = st;
     no_d.tool.offset_number = 0;
-    assert_eq!(err("CYCLE94", &args(20.0, 60.0, b"E", 0), &no_d), AlarmKind::NoToolOffset);
-    assert_eq!(err("CYCLE96", &args(10.0, 60.0, b"A", 0), &no_d), AlarmKind::NoToolOffset);
-    assert_eq!(AlarmKind::NoToolOffset.code(), 61000);
+    assert_eq!(err("CYCLE94", &args(20.0, 60.0, b"E", 0), &no_d), AlarmKind::SiemensCycle(CycleAlarm::NoToolOffset));
+    assert_eq!(err("CYCLE96", &args(10.0, 60.0, b"A", 0), &no_d), AlarmKind::SiemensCycle(CycleAlarm::NoToolOffset));
+    assert_eq!(AlarmKind::SiemensCycle(CycleAlarm::NoToolOffset).code(), 61000);
     // Finished diameter under 3 mm: 61601 (M4 form A: 4 − 1.1 = 2.9).
-    assert_eq!(err("CYCLE94", &args(2.8, 60.0, b"E", 0), &st), AlarmKind::FinishedDiameterTooSmall);
-    assert_eq!(err("CYCLE96", &args(4.0, 60.0, b"A", 0), &st), AlarmKind::FinishedDiameterTooSmall);
-    assert_eq!(AlarmKind::FinishedDiameterTooSmall.code(), 61601);
+    assert_eq!(
+        err("CYCLE94", &args(2.8, 60.0, b"E", 0), &st),
+        AlarmKind::SiemensCycle(CycleAlarm::FinishedDiameterTooSmall)
+    );
+    assert_eq!(
+        err("CYCLE96", &args(4.0, 60.0, b"A", 0), &st),
+        AlarmKind::SiemensCycle(CycleAlarm::FinishedDiameterTooSmall)
+    );
+    assert_eq!(AlarmKind::SiemensCycle(CycleAlarm::FinishedDiameterTooSmall).code(), 61601);
     // Not a form of the standard: 61609.
-    assert_eq!(err("CYCLE94", &args(20.0, 60.0, b"G", 0), &st), AlarmKind::FormWrong);
-    assert_eq!(err("CYCLE96", &args(10.0, 60.0, b"E", 0), &st), AlarmKind::FormWrong);
-    assert_eq!(AlarmKind::FormWrong.code(), 61609);
+    assert_eq!(err("CYCLE94", &args(20.0, 60.0, b"G", 0), &st), AlarmKind::SiemensCycle(CycleAlarm::FormWrong));
+    assert_eq!(err("CYCLE96", &args(10.0, 60.0, b"E", 0), &st), AlarmKind::SiemensCycle(CycleAlarm::FormWrong));
+    assert_eq!(AlarmKind::SiemensCycle(CycleAlarm::FormWrong).code(), 61609);
     // Not an ISO coarse size (M13): 61001.
-    assert_eq!(err("CYCLE96", &args(13.0, 60.0, b"A", 0), &st), AlarmKind::ThreadPitchWrong);
+    assert_eq!(err("CYCLE96", &args(13.0, 60.0, b"A", 0), &st), AlarmKind::SiemensCycle(CycleAlarm::ThreadPitchWrong));
     // Cutting edge position 5 with _VARI 0: 61608; _VARI 7: 61613.
     let mut sl5 = st;
     sl5.tool.tip = 5;
-    assert_eq!(err("CYCLE94", &args(20.0, 60.0, b"E", 0), &sl5), AlarmKind::WrongEdgePosition);
-    assert_eq!(AlarmKind::WrongEdgePosition.code(), 61608);
-    assert_eq!(err("CYCLE94", &args(20.0, 60.0, b"E", 7), &st), AlarmKind::UndercutPositionWrong);
-    assert_eq!(AlarmKind::UndercutPositionWrong.code(), 61613);
+    assert_eq!(
+        err("CYCLE94", &args(20.0, 60.0, b"E", 0), &sl5),
+        AlarmKind::SiemensCycle(CycleAlarm::WrongEdgePosition)
+    );
+    assert_eq!(AlarmKind::SiemensCycle(CycleAlarm::WrongEdgePosition).code(), 61608);
+    assert_eq!(
+        err("CYCLE94", &args(20.0, 60.0, b"E", 7), &st),
+        AlarmKind::SiemensCycle(CycleAlarm::UndercutPositionWrong)
+    );
+    assert_eq!(AlarmKind::SiemensCycle(CycleAlarm::UndercutPositionWrong).code(), 61613);
     // An outside thread undercut with an inside position.
-    assert_eq!(err("CYCLE96", &args(10.0, 60.0, b"A", 1), &st), AlarmKind::UndercutPositionWrong);
+    assert_eq!(
+        err("CYCLE96", &args(10.0, 60.0, b"A", 1), &st),
+        AlarmKind::SiemensCycle(CycleAlarm::UndercutPositionWrong)
+    );
 }
