@@ -10,6 +10,7 @@ use core::cell::RefCell;
 use defmt::{info, unwrap, warn};
 use embassy_executor::Spawner;
 use embassy_futures::select::{Either, select};
+use embassy_futures::yield_now;
 use embassy_stm32::gpio::{Input, Output};
 use embassy_stm32::peripherals::{IWDG, TIM5};
 use embassy_stm32::timer::qei::Qei;
@@ -108,7 +109,11 @@ fn clock_config() -> embassy_stm32::Config {
     config
 }
 
-#[embassy_executor::main]
+/// Boot: clocks, board, store, motion, controller; then the tasks. On the board
+/// embassy's thread-mode executor runs it; the QEMU build runs it on
+/// [`firmware::qemu::run_executor`], which sleeps with WFI (see there).
+#[cfg_attr(not(feature = "qemu"), embassy_executor::main)]
+#[cfg_attr(feature = "qemu", embassy_executor::task)]
 async fn main(spawner: Spawner) {
     #[cfg(feature = "qemu")]
     let mut cp = {
@@ -160,6 +165,13 @@ async fn main(spawner: Spawner) {
     spawner.spawn(unwrap!(link_rx(rx)));
     spawner.spawn(unwrap!(link_tx(tx)));
     spawner.spawn(unwrap!(heartbeat(status_led)));
+}
+
+/// The QEMU build's entry: [`main`] on the QEMU executor.
+#[cfg(feature = "qemu")]
+#[cortex_m_rt::entry]
+fn entry() -> ! {
+    firmware::qemu::run_executor(|spawner| spawner.spawn(unwrap!(main(spawner))))
 }
 
 /// The persistence the control task runs (none in QEMU).
@@ -303,6 +315,14 @@ async fn control(
         POLLED.signal(());
         TX_READY.signal(());
         watchdog.pet();
+        // The ticker returns at once while this loop is behind its ticks (after a
+        // long interpreter step or flash write; in QEMU whenever the host is slower
+        // than the guest's clock), and this task would then run tick after tick
+        // without returning to the executor: the link tasks starve, received bytes
+        // pile up in the UART's ring until it overflows and drops them — a `?` or
+        // feed hold among them — and no reply leaves (issue 18). One turn for every
+        // other ready task per tick.
+        yield_now().await;
     }
 }
 
