@@ -28,7 +28,7 @@ pub mod curve;
 mod emit;
 mod finish;
 mod groove;
-mod hole;
+pub mod hole;
 mod offset;
 mod pass;
 mod pattern;
