@@ -605,6 +605,18 @@ pub enum CycleAlarm {
     ThreadPitchWrong,
     /// 61002: SINUMERIK cycle alarm (seed 001 table 5.3): machining type wrong.
     MachiningTypeWrong,
+    /// 61005: SINUMERIK cycle alarm (seed 001 table 5.3): 3rd geometry axis not present.
+    NoThirdAxis,
+    /// 61019: SINUMERIK cycle alarm (seed 001 table 5.3): parameter programmed incorrectly.
+    ParameterWrong,
+    /// 61101: SINUMERIK cycle alarm (seed 001 table 5.3): reference plane defined incorrectly.
+    ReferencePlaneWrong,
+    /// 61102: SINUMERIK cycle alarm (seed 001 table 5.3): no spindle direction programmed.
+    NoSpindleDirection,
+    /// 61107: SINUMERIK cycle alarm (seed 001 line 1803): first drilling depth defined incorrectly.
+    FirstDepthWrong,
+    /// 61125: SINUMERIK cycle alarm (seed 001 table 5.3): _TECHNO defined incorrectly.
+    TechnologyWrong,
     /// 61601: SINUMERIK cycle alarm (seed 001 table 5.3): finished diameter too small.
     FinishedDiameterTooSmall,
     /// 61602: SINUMERIK cycle alarm (seed 001 table 5.3): tool width wrong.
@@ -635,6 +647,10 @@ pub enum CycleAlarm {
     IllegalInput,
     /// 61721: SINUMERIK cycle alarm (seed 001 table 5.3): contour direction.
     ContourDirection,
+    /// 61803: SINUMERIK cycle alarm (seed 001 table 5.3): programmed axis not present.
+    AxisNotPresent,
+    /// 61807: SINUMERIK cycle alarm (seed 001 table 5.3): spindle direction programmed incorrectly.
+    WrongSpindleDirection,
 }
 
 impl From<CycleAlarm> for AlarmKind {
@@ -651,6 +667,12 @@ impl CycleAlarm {
             NoToolOffset => 61000,
             ThreadPitchWrong => 61001,
             MachiningTypeWrong => 61002,
+            NoThirdAxis => 61005,
+            ParameterWrong => 61019,
+            ReferencePlaneWrong => 61101,
+            NoSpindleDirection => 61102,
+            FirstDepthWrong => 61107,
+            TechnologyWrong => 61125,
             FinishedDiameterTooSmall => 61601,
             ToolWidthWrong => 61602,
             GrooveFormWrong => 61603,
@@ -666,6 +688,8 @@ impl CycleAlarm {
             BlankContourWrong => 61702,
             IllegalInput => 61720,
             ContourDirection => 61721,
+            AxisNotPresent => 61803,
+            WrongSpindleDirection => 61807,
         }
     }
 }
@@ -679,6 +703,14 @@ impl fmt::Display for CycleAlarm {
                 write!(f, "thread pitch defined incorrectly (PIT/MPIT contradict, or not a DIN 76 / ISO coarse size)")
             }
             MachiningTypeWrong => write!(f, "type of machining (VARI) defined incorrectly"),
+            NoThirdAxis => write!(f, "3rd geometry axis not present (the drilling axis of the plane)"),
+            ParameterWrong => write!(f, "parameter programmed incorrectly (DAM, ENC)"),
+            ReferencePlaneWrong => write!(f, "reference plane defined incorrectly (RTP, RFP, DP/DPR)"),
+            NoSpindleDirection => write!(f, "no spindle direction programmed (SDIR/SDR 3 or 4, M3/M4 before CYCLE840)"),
+            FirstDepthWrong => {
+                write!(f, "first drilling depth defined incorrectly (FDEP/FDPR against the total depth)")
+            }
+            TechnologyWrong => write!(f, "technology selection in parameter _TECHNO defined incorrectly"),
             FinishedDiameterTooSmall => write!(f, "finished part diameter too small (under 3 mm)"),
             ToolWidthWrong => {
                 write!(f, "tool width defined incorrectly (grooving tool wider than the groove, or no width)")
@@ -708,6 +740,8 @@ impl fmt::Display for CycleAlarm {
             BlankContourWrong => write!(f, "blank contour description wrong (_NP5-_NP7, _APZ/_APX)"),
             IllegalInput => write!(f, "illegal input (a _VARI digit of CYCLE950 out of its range)"),
             ContourDirection => write!(f, "wrong contour direction, cannot be computed"),
+            AxisNotPresent => write!(f, "programmed axis does not exist (_AXN)"),
+            WrongSpindleDirection => write!(f, "spindle direction programmed incorrectly (SDR/SDAC of CYCLE840)"),
         }
     }
 }
@@ -1156,6 +1190,36 @@ pub const CATALOG: &[CatalogEntry] = &[
         when: "VARI outside the values of CYCLE93 (1-8, 11-18), CYCLE95 (1-12, hundreds 0/2), CYCLE97/CYCLE98 (1-4) (lines 10311, 10799, 11195, 11397: 加工方式错误定义)",
     },
     CatalogEntry {
+        code: 61005,
+        title: "3rd geometry axis not present",
+        when: "a SINUMERIK drilling cycle (CYCLE81-89, CYCLE840 without _AXN) whose drilling axis, the applicate of the plane, the machine lacks: a lathe in G18 drills along Y (line 2721: 3. 几何轴没有出现); use G17 or _AXN=1",
+    },
+    CatalogEntry {
+        code: 61019,
+        title: "parameter wrong",
+        when: "CYCLE83 DAM under -1 (line 1824), CYCLE840 ENC other than 0, 1, 11, 20 (table 12213: 参数错误编程)",
+    },
+    CatalogEntry {
+        code: 61101,
+        title: "reference plane wrong",
+        when: "a SINUMERIK drilling cycle with a relative depth DPR and RTP = RFP, a depth on the retract plane's side of RFP, or no depth (lines 1583-1589: 基准面错误定义)",
+    },
+    CatalogEntry {
+        code: 61102,
+        title: "no spindle direction",
+        when: "CYCLE86/87/88 SDIR other than 3/4, CYCLE84 SDAC other than 0/3/4/5, CYCLE840 with the spindle stopped at the call or SDR = 0 without an encoder (ENC 1/11) (lines 2689, 2814, 2896, table 12217: 没有编程主轴方向)",
+    },
+    CatalogEntry {
+        code: 61107,
+        title: "first depth wrong",
+        when: "CYCLE83 first depth FDEP/FDPR deeper than the final depth or not into the hole (lines 1803, 1823: 第一次钻深错误定义)",
+    },
+    CatalogEntry {
+        code: 61125,
+        title: "_TECHNO wrong",
+        when: "CYCLE84/CYCLE840 _TECHNO with a digit outside its values (table: 参数_TECHNO中工艺选择错误定义)",
+    },
+    CatalogEntry {
         code: 61601,
         title: "finished diameter too small",
         when: "CYCLE94 SPD or CYCLE96 DIATH gives a finished diameter under 3 mm (lines 10504, 11003: 成品直径太小)",
@@ -1229,6 +1293,16 @@ pub const CATALOG: &[CatalogEntry] = &[
         code: 61721,
         title: "contour direction",
         when: "CYCLE950 machining direction (_VARI hundred-thousands) against the direction the contour can be cut in (table 12125: 错误轮廓方向不可计算)",
+    },
+    CatalogEntry {
+        code: 61803,
+        title: "axis not present",
+        when: "CYCLE83/84/840 _AXN choosing a drilling axis the machine lacks (table: 编程的轴不存在)",
+    },
+    CatalogEntry {
+        code: 61807,
+        title: "spindle direction wrong",
+        when: "CYCLE840 SDR the direction the spindle turns into the hole (it must reverse), or SDAC other than 0/3/4/5 (table: 编程错误的主轴方向)",
     },
 ];
 
@@ -1362,6 +1436,12 @@ mod tests {
             SiemensCycle(CycleAlarm::NoToolOffset),
             SiemensCycle(CycleAlarm::ThreadPitchWrong),
             SiemensCycle(CycleAlarm::MachiningTypeWrong),
+            SiemensCycle(CycleAlarm::NoThirdAxis),
+            SiemensCycle(CycleAlarm::ParameterWrong),
+            SiemensCycle(CycleAlarm::ReferencePlaneWrong),
+            SiemensCycle(CycleAlarm::NoSpindleDirection),
+            SiemensCycle(CycleAlarm::FirstDepthWrong),
+            SiemensCycle(CycleAlarm::TechnologyWrong),
             SiemensCycle(CycleAlarm::FinishedDiameterTooSmall),
             SiemensCycle(CycleAlarm::ToolWidthWrong),
             SiemensCycle(CycleAlarm::GrooveFormWrong),
@@ -1377,6 +1457,8 @@ mod tests {
             SiemensCycle(CycleAlarm::BlankContourWrong),
             SiemensCycle(CycleAlarm::IllegalInput),
             SiemensCycle(CycleAlarm::ContourDirection),
+            SiemensCycle(CycleAlarm::AxisNotPresent),
+            SiemensCycle(CycleAlarm::WrongSpindleDirection),
         ]
     };
 

@@ -379,6 +379,30 @@ pub const PROVEN_ELSEWHERE: &[(u16, &str)] = &[
         "interp-core lang::siemens::cycles::tests::threads.rs thread_alarms_move_nothing, stock.rs cycle95_alarms_move_nothing, groove.rs cycle93_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
     ),
     (
+        61005,
+        "interp-core lang::siemens::cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+    ),
+    (
+        61019,
+        "interp-core lang::siemens::cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+    ),
+    (
+        61101,
+        "interp-core lang::siemens::cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+    ),
+    (
+        61102,
+        "interp-core lang::siemens::cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+    ),
+    (
+        61107,
+        "interp-core lang::siemens::cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+    ),
+    (
+        61125,
+        "interp-core lang::siemens::cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+    ),
+    (
         61601,
         "interp-core lang::siemens::cycles::tests::undercut.rs undercut_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
     ),
@@ -437,6 +461,14 @@ pub const PROVEN_ELSEWHERE: &[(u16, &str)] = &[
     (
         61721,
         "interp-core lang::siemens::cycles::tests::stock.rs cycle950_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+    ),
+    (
+        61803,
+        "interp-core lang::siemens::cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+    ),
+    (
+        61807,
+        "interp-core lang::siemens::cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
     ),
 ];
 

@@ -10,6 +10,7 @@
 
 pub mod cycle;
 mod gset;
+pub mod hole;
 pub mod job;
 
 pub use cycle::CycleArgs;

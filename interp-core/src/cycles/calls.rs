@@ -94,6 +94,20 @@ impl<X: Executor> Engine for CallEngine<'_, '_, '_, X> {
         })
     }
 
+    fn hole(
+        &mut self,
+        spec: &crate::command::hole::HoleSpec,
+        spindle: Option<crate::canon::SpindleDir>,
+        cmd: &Command,
+        st: &mut State,
+    ) -> Result<(), AlarmKind> {
+        let mut generator = super::hole::HoleGen::new(*spec);
+        if let Some(dir) = spindle {
+            generator = generator.starting(dir);
+        }
+        start_cycle(Emitter::new(*st, cmd.line), Gen::Hole(generator), self.ctx.out).map(|_| ())
+    }
+
     fn thread(&mut self, spec: &MultiThreadSpec, cmd: &Command, st: &mut State) -> Result<(), AlarmKind> {
         for &lead in &spec.leads[..spec.count - 1] {
             check_lead(lead, st.modal.units)?;

@@ -21,93 +21,11 @@ use super::StepQueue;
 use super::emit::Step;
 use crate::alarm::AlarmKind;
 use crate::axis::{Axis, Pos};
-use crate::canon::{Plane, SpindleDir};
+use crate::canon::SpindleDir;
+pub use crate::command::hole::{DeepDrill, Degression, HoleSpec, HoleWork};
 
 /// M19: spindle orientation before a boring cycle's shift (seed 004 @10321).
 const ORIENT: u16 = 19;
-
-/// What is done at the hole.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum HoleWork {
-    /// Drill to the bottom, pecking by `q` if non-zero: `deep` = back to R after
-    /// each peck (lathe 5101 = 1, FANUC M G83), else back by `d` (high speed:
-    /// lathe 5101 = 0, FANUC M G73).
-    Drill {
-        /// Peck depth (0 = no pecking).
-        q: i64,
-        /// Deep-hole pecking.
-        deep: bool,
-        /// Return d (high speed) or clearance d (deep).
-        d: i64,
-    },
-    /// Feed in, dwell, feed out (lathe G85/G89, FANUC M G85/G89).
-    Bore,
-    /// Feed in, dwell, spindle stop, rapid out, spindle on again in `restart`
-    /// (FANUC M G86).
-    BoreStop {
-        /// Direction the spindle turned in before the hole.
-        restart: SpindleDir,
-    },
-    /// Feed in, dwell, spindle stop, a stop for the operator (who may retract by
-    /// hand), then rapid out and the spindle on again (FANUC M G88).
-    BoreManual {
-        /// Direction the spindle turned in before the hole.
-        restart: SpindleDir,
-    },
-    /// Feed in, dwell, oriented spindle stop (M19), shift away from the wall by
-    /// `shift`, rapid out, shift back, spindle on (FANUC M G76).
-    FineBore {
-        /// The shift, a vector in the positioning plane (work coordinates).
-        shift: Pos,
-        /// Direction the spindle turned in before the hole.
-        restart: SpindleDir,
-    },
-    /// Back boring (FANUC M G87): at the hole position oriented stop and shift,
-    /// rapid down to the R level (below the hole's far end), shift back, spindle
-    /// on, feed up to the bottom level, oriented stop, shift, rapid to the initial
-    /// level, shift back, spindle on. Always back to the initial level.
-    BackBore {
-        /// The shift, a vector in the positioning plane (work coordinates).
-        shift: Pos,
-        /// Direction the spindle turns in while cutting.
-        restart: SpindleDir,
-    },
-    /// Rigid tapping (M29): every move in the hole locked to the spindle.
-    RigidTap {
-        /// Lead, nm/rev.
-        lead: i64,
-        /// Peck depth (0 = none).
-        q: i64,
-        /// Deep peck: back to R after each peck.
-        deep: bool,
-        /// Return d of pecking.
-        d: i64,
-        /// Spindle direction into the hole.
-        dir: SpindleDir,
-        /// Dwell at R after tapping (lathe parameter 7013).
-        dwell_r_ms: u32,
-        /// Spindle direction after the hole (⑦ of the lathe; stopped on a mill,
-        /// whose spindle stays in position control until G80).
-        restore: SpindleDir,
-    },
-    /// Floating tapping: the spindle turns `dir` into the hole and the other way
-    /// out; the feed follows the spindle.
-    FloatTap {
-        /// Lead, nm/rev.
-        lead: i64,
-        /// Direction into the hole.
-        dir: SpindleDir,
-        /// Whether the spindle already turns that way (then ① outputs nothing).
-        turning: bool,
-        /// The spindle after the hole: stopped (lathe, 2.22.3: M05 at R and M03/M04
-        /// again before the next hole) or `dir` again (FANUC M G84/G74: forward
-        /// again at R).
-        after: SpindleDir,
-        /// The spindle stops at the bottom before it reverses (lathe 2.22.3); a
-        /// mill reverses directly.
-        stop_at_bottom: bool,
-    },
-}
 
 /// Where a hole cycle is.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -130,6 +48,12 @@ pub struct HoleGen {
     phase: Phase,
     /// Depth reached in the hole.
     reached: i64,
+    /// Strokes drilled in the hole and the length of the last one (deep drilling).
+    strokes: u32,
+    last_stroke: i64,
+    /// The spindle started this way at the first hole's R level (SINUMERIK
+    /// CYCLE86–88 SDIR), if it does not turn that way already.
+    spindle: Option<SpindleDir>,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -138,39 +62,6 @@ enum Phase {
     Peck,
     Out,
     Done,
-}
-
-/// What a hole cycle is asked to do.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct HoleSpec {
-    /// Work at the hole.
-    pub work: HoleWork,
-    /// Drilling axis: the normal of `plane`.
-    pub axis: Axis,
-    /// Positioning plane: the plane the hole positions are given in (G17 for a
-    /// machining centre's holes; a lathe's face holes are positioned in X and C,
-    /// its side holes in Z and C). Rotary axes position along with it.
-    pub plane: Plane,
-    /// First hole position (work coordinates); on the drilling axis the level the
-    /// tool is on when the hole is positioned.
-    pub position: Pos,
-    /// Position change per repetition.
-    pub step: Pos,
-    /// Initial level on the drilling axis, where G98 (or a lathe's hole) returns:
-    /// on a machining centre the level the cycle mode started on, remembered across
-    /// its G99 holes (seed 004 @7537).
-    pub initial: i64,
-    /// R level on the drilling axis.
-    pub r_level: i64,
-    /// Bottom on the drilling axis (the far end of the cut: for back boring the
-    /// level the cut ends on, above R).
-    pub bottom: i64,
-    /// Dwell at the bottom.
-    pub dwell_ms: u32,
-    /// G99: return to the R level only.
-    pub stay_at_r: bool,
-    /// K.
-    pub repeat: u32,
 }
 
 impl HoleGen {
@@ -194,7 +85,15 @@ impl HoleGen {
             hole: 0,
             phase: if spec.repeat == 0 { Phase::Done } else { Phase::Position },
             reached: spec.r_level,
+            strokes: 0,
+            last_stroke: 0,
+            spindle: None,
         }
+    }
+
+    /// The same cycle with the spindle turned on `dir` at the first hole's R level.
+    pub fn starting(self, dir: SpindleDir) -> HoleGen {
+        HoleGen { spindle: Some(dir), ..self }
     }
 
     /// The current hole's position with the drilling axis at `v`.
@@ -239,8 +138,12 @@ impl HoleGen {
                     {
                         push(out, Step::Spindle(dir))?;
                     }
+                    if let Some(dir) = self.spindle.take() {
+                        push(out, Step::Spindle(dir))?;
+                    }
                 }
                 self.reached = self.r_level;
+                self.strokes = 0;
                 self.phase = Phase::Peck;
             }
             Phase::Peck => self.peck(out)?,
@@ -265,6 +168,9 @@ impl HoleGen {
 
     /// One peck (or the whole depth), into the hole and back as the cycle says.
     fn peck(&mut self, out: &mut StepQueue) -> Result<(), AlarmKind> {
+        if let HoleWork::DeepDrill(deep) = self.work {
+            return self.stroke(&deep, out);
+        }
         let dir = (self.bottom - self.r_level).signum();
         let (q, deep, d) = match self.work {
             HoleWork::Drill { q, deep, d } => (q, deep, d),
@@ -289,6 +195,10 @@ impl HoleGen {
                     push(out, Step::Spindle(SpindleDir::Stop))?;
                 }
             }
+            HoleWork::BoreFeeds { feed_in, .. } => {
+                push(out, Step::Feedrate(feed_in))?;
+                push(out, Step::FeedTo(self.at(next)))?;
+            }
             _ => push(out, Step::FeedTo(self.at(next)))?,
         }
         self.reached = next;
@@ -310,6 +220,52 @@ impl HoleGen {
         Ok(())
     }
 
+    /// One stroke of a deep hole (CYCLE83, seed 001 lines 1752-1772): back in
+    /// (chip removal: G0 to the anticipation distance before the depth reached),
+    /// G1 to the next depth (the first at its own feed), then dwell and chip
+    /// breaking (G1 back by the retract) or chip removal (G0 to R, dwell).
+    fn stroke(&mut self, deep: &DeepDrill, out: &mut StepQueue) -> Result<(), AlarmKind> {
+        let dir = (self.bottom - self.r_level).signum();
+        let left = (self.bottom - self.reached) * dir;
+        let s = match self.strokes {
+            0 => (deep.first + deep.approach).min(left),
+            n => deep.stroke(n, self.last_stroke, left),
+        };
+        let next = if s >= left { self.bottom } else { self.reached + dir * s };
+        let depth = (self.reached - self.r_level) * dir;
+        if self.strokes == 0 {
+            push(out, Step::Feedrate(deep.first_feed))?;
+            push(out, Step::FeedTo(self.at(next)))?;
+            push(out, Step::Feedrate(deep.feed))?;
+        } else {
+            if deep.chip_removal {
+                let back = deep.anticipation_at(depth).min(depth);
+                push(out, Step::RapidTo(self.at(self.reached - dir * back)))?;
+            }
+            push(out, Step::FeedTo(self.at(next)))?;
+        }
+        self.last_stroke = if self.strokes == 0 { deep.first } else { s };
+        self.strokes += 1;
+        self.reached = next;
+        if next == self.bottom {
+            self.phase = Phase::Out;
+            return Ok(());
+        }
+        if deep.dwell_depth_ms > 0 {
+            push(out, Step::Dwell(deep.dwell_depth_ms))?;
+        }
+        if deep.chip_removal {
+            push(out, Step::RapidTo(self.at(self.r_level)))?;
+            if deep.dwell_start_ms > 0 {
+                push(out, Step::Dwell(deep.dwell_start_ms))?;
+            }
+        } else {
+            let back = deep.retract.min((next - self.r_level) * dir);
+            push(out, Step::FeedTo(self.at(next - dir * back)))?;
+        }
+        Ok(())
+    }
+
     /// Dwell at the bottom and the way out.
     fn out(&mut self, out: &mut StepQueue) -> Result<(), AlarmKind> {
         if self.dwell_ms > 0 && !matches!(self.work, HoleWork::FloatTap { .. }) {
@@ -318,8 +274,12 @@ impl HoleGen {
         let r = self.at(self.r_level);
         let leave = if self.stay_at_r { self.r_level } else { self.initial };
         match self.work {
-            HoleWork::Drill { .. } => push(out, Step::RapidTo(r))?,
+            HoleWork::Drill { .. } | HoleWork::DeepDrill(_) => push(out, Step::RapidTo(r))?,
             HoleWork::Bore => push(out, Step::FeedTo(r))?,
+            HoleWork::BoreFeeds { feed_out, .. } => {
+                push(out, Step::Feedrate(feed_out))?;
+                push(out, Step::FeedTo(r))?;
+            }
             HoleWork::BoreStop { restart } | HoleWork::BoreManual { restart } => {
                 push(out, Step::Spindle(SpindleDir::Stop))?;
                 if matches!(self.work, HoleWork::BoreManual { .. }) {
@@ -382,6 +342,7 @@ fn push(out: &mut StepQueue, s: Step) -> Result<(), AlarmKind> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::canon::Plane;
     use std::vec::Vec;
 
     /// Every step of a cycle.

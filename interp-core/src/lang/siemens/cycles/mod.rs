@@ -10,10 +10,11 @@
 //! DM1 …) are diameters; lengths are in the programmed unit (G70/G71);
 //! G functions active before the call are active after it.
 //!
-//! One file per cycle family: [`thread`] (CYCLE97, CYCLE98, thread re-cutting),
+//! One file per cycle family: [`drill`] (CYCLE81–CYCLE89, CYCLE840), [`thread`] (CYCLE97, CYCLE98, thread re-cutting),
 //! [`groove`] (CYCLE93), [`stock`] (CYCLE95, CYCLE950), [`undercut`] (CYCLE94,
 //! CYCLE96).
 
+mod drill;
 mod groove;
 mod stock;
 mod thread;
@@ -25,8 +26,9 @@ mod tests;
 pub use super::call::{Arg, ContourSource, Signature, Ty};
 
 use crate::alarm::AlarmKind;
-use crate::canon::Plane;
+use crate::canon::{Plane, SpindleDir};
 use crate::command::Command;
+use crate::command::hole::HoleSpec;
 use crate::command::job::{GrooveSpec, MultiThreadSpec, StockSpec};
 use crate::config::MachineConfig;
 use crate::geom::{Pt, Seg};
@@ -37,6 +39,108 @@ use Ty::{Char as C, Int as I, Real as R, Str as S};
 
 /// Every cycle of this module with its parameter list as the manual gives it.
 pub static SIGNATURES: &[Signature] = &[
+    // Line 1528: CYCLE81 (the drilling cycles' common five, lines 1530-1534).
+    Signature { name: "CYCLE81", params: &[("RTP", R), ("RFP", R), ("SDIS", R), ("DP", R), ("DPR", R)] },
+    // Line 1619: CYCLE82.
+    Signature { name: "CYCLE82", params: &[("RTP", R), ("RFP", R), ("SDIS", R), ("DP", R), ("DPR", R), ("DTB", R)] },
+    // Line 1709: CYCLE83.
+    Signature {
+        name: "CYCLE83",
+        params: &[
+            ("RTP", R),
+            ("RFP", R),
+            ("SDIS", R),
+            ("DP", R),
+            ("DPR", R),
+            ("FDEP", R),
+            ("FDPR", R),
+            ("DAM", R),
+            ("DTB", R),
+            ("DTS", R),
+            ("FRF", R),
+            ("VARI", I),
+            ("_AXN", I),
+            ("_MDEP", R),
+            ("_VRT", R),
+            ("_DTD", R),
+            ("_DIS1", R),
+        ],
+    },
+    // Line 1964: CYCLE84.
+    Signature {
+        name: "CYCLE84",
+        params: &[
+            ("RTP", R),
+            ("RFP", R),
+            ("SDIS", R),
+            ("DP", R),
+            ("DPR", R),
+            ("DTB", R),
+            ("SDAC", I),
+            ("MPIT", R),
+            ("PIT", R),
+            ("POSS", R),
+            ("SST", R),
+            ("SST1", R),
+            ("_AXN", I),
+            ("_PTAB", I),
+            ("_TECHNO", I),
+            ("_VARI", I),
+            ("_DAM", R),
+            ("_VRT", R),
+        ],
+    },
+    // Line 2212 (the print runs "PIT- AXN" together): CYCLE840.
+    Signature {
+        name: "CYCLE840",
+        params: &[
+            ("RTP", R),
+            ("RFP", R),
+            ("SDIS", R),
+            ("DP", R),
+            ("DPR", R),
+            ("DTB", R),
+            ("SDR", I),
+            ("SDAC", I),
+            ("ENC", I),
+            ("MPIT", R),
+            ("PIT", R),
+            ("_AXN", I),
+            ("_PTAB", I),
+            ("_TECHNO", I),
+        ],
+    },
+    // Line 2512: CYCLE85.
+    Signature {
+        name: "CYCLE85",
+        params: &[("RTP", R), ("RFP", R), ("SDIS", R), ("DP", R), ("DPR", R), ("DTB", R), ("FFR", R), ("RFF", R)],
+    },
+    // Line 2633: CYCLE86.
+    Signature {
+        name: "CYCLE86",
+        params: &[
+            ("RTP", R),
+            ("RFP", R),
+            ("SDIS", R),
+            ("DP", R),
+            ("DPR", R),
+            ("DTB", R),
+            ("SDIR", I),
+            ("RPA", R),
+            ("RPO", R),
+            ("RPAP", R),
+            ("POSS", R),
+        ],
+    },
+    // Line 2759: CYCLE87.
+    Signature { name: "CYCLE87", params: &[("RTP", R), ("RFP", R), ("SDIS", R), ("DP", R), ("DPR", R), ("SDIR", I)] },
+    // Line 2843: CYCLE88.
+    Signature {
+        name: "CYCLE88",
+        params: &[("RTP", R), ("RFP", R), ("SDIS", R), ("DP", R), ("DPR", R), ("DTB", R), ("SDIR", I)],
+    },
+    // Line 2926: CYCLE89.
+    Signature { name: "CYCLE89", params: &[("RTP", R), ("RFP", R), ("SDIS", R), ("DP", R), ("DPR", R), ("DTB", R)] },
     // Line 10198: CYCLE93.
     Signature {
         name: "CYCLE93",
@@ -190,6 +294,15 @@ pub trait Engine {
     ) -> Result<(), AlarmKind>;
     /// Starts the grooving generator (G74/G75's columns) with `spec` on `segs`.
     fn grooving(&mut self, spec: &GrooveSpec, segs: &[Seg], cmd: &Command, st: &mut State) -> Result<(), AlarmKind>;
+    /// Starts the one hole generator (G83–G89's, the mill's G73–G89) with `spec`,
+    /// the spindle turned on `spindle` at the R level first when given.
+    fn hole(
+        &mut self,
+        spec: &HoleSpec,
+        spindle: Option<SpindleDir>,
+        cmd: &Command,
+        st: &mut State,
+    ) -> Result<(), AlarmKind>;
     /// Reads `contour` and starts the stock-removal generator (G71's geometry) on it.
     fn stock(
         &mut self,
@@ -214,6 +327,16 @@ pub fn start(
 ) -> Result<(), AlarmKind> {
     let p = Params::new(args, st);
     match sig.name {
+        "CYCLE81" => drill::cycle81(&p, cmd, st, ctx),
+        "CYCLE82" => drill::cycle82(&p, cmd, st, ctx),
+        "CYCLE83" => drill::cycle83(&p, cmd, st, ctx),
+        "CYCLE84" => drill::cycle84(&p, cmd, st, ctx),
+        "CYCLE840" => drill::cycle840(&p, cmd, st, ctx),
+        "CYCLE85" => drill::cycle85(&p, cmd, st, ctx),
+        "CYCLE86" => drill::cycle86(&p, cmd, st, ctx),
+        "CYCLE87" => drill::cycle87(&p, cmd, st, ctx),
+        "CYCLE88" => drill::cycle88(&p, cmd, st, ctx),
+        "CYCLE89" => drill::cycle89(&p, cmd, st, ctx),
         "CYCLE93" => groove::cycle93(&p, cmd, st, ctx),
         "CYCLE94" => undercut::cycle94(&p, cmd, st, ctx),
         "CYCLE95" => stock::cycle95(&p, cmd, st, ctx, contour),

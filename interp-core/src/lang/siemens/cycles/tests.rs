@@ -13,6 +13,7 @@ use crate::{MachineConfig, Panel};
 use std::vec;
 use std::vec::Vec;
 
+mod drill;
 mod groove;
 mod stock;
 mod threads;
