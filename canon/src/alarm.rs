@@ -301,6 +301,8 @@ pub enum AlarmKind {
     NoseCompCornerAngle,
     /// A SINUMERIK alarm ([`SiemensAlarm`]).
     Siemens(SiemensAlarm),
+    /// A SINUMERIK cycle alarm, 61000–61999 ([`CycleAlarm`]).
+    SiemensCycle(CycleAlarm),
 }
 
 impl AlarmKind {
@@ -429,6 +431,7 @@ impl AlarmKind {
             NoseCompGouge => 3605,
             NoseCompCornerAngle => 3607,
             Siemens(k) => k.code(),
+            SiemensCycle(k) => k.code(),
         }
     }
 }
@@ -603,6 +606,7 @@ impl fmt::Display for AlarmKind {
             NoseCompGouge => write!(f, "nose compensation would gouge the part"),
             NoseCompCornerAngle => write!(f, "nose compensation corner angle below 0.1 degrees"),
             Siemens(k) => k.fmt(f),
+            SiemensCycle(k) => k.fmt(f),
         }
     }
 }
@@ -693,6 +697,108 @@ impl SiemensAlarm {
     }
 }
 
+/// The alarms of the SINUMERIK standard cycles (seed 001 table 5.3, 61000–61999:
+/// cleared by NC reset, the block interrupted), with the document's texts.
+/// Nested in [`AlarmKind::SiemensCycle`]: [`AlarmKind`] stays under 128 variants
+/// (more cost every FANUC block Cortex-M4 instructions).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum CycleAlarm {
+    /// 61000: SINUMERIK cycle alarm (seed 001 table 5.3): no tool offset active.
+    NoToolOffset,
+    /// 61001: SINUMERIK cycle alarm (seed 001 table 5.3): thread pitch wrong.
+    ThreadPitchWrong,
+    /// 61002: SINUMERIK cycle alarm (seed 001 table 5.3): machining type wrong.
+    MachiningTypeWrong,
+    /// 61005: SINUMERIK cycle alarm (seed 001 table 5.3): 3rd geometry axis not present.
+    NoThirdAxis,
+    /// 61019: SINUMERIK cycle alarm (seed 001 table 5.3): parameter programmed incorrectly.
+    ParameterWrong,
+    /// 61101: SINUMERIK cycle alarm (seed 001 table 5.3): reference plane defined incorrectly.
+    ReferencePlaneWrong,
+    /// 61102: SINUMERIK cycle alarm (seed 001 table 5.3): no spindle direction programmed.
+    NoSpindleDirection,
+    /// 61107: SINUMERIK cycle alarm (seed 001 line 1803): first drilling depth defined incorrectly.
+    FirstDepthWrong,
+    /// 61125: SINUMERIK cycle alarm (seed 001 table 5.3): _TECHNO defined incorrectly.
+    TechnologyWrong,
+    /// 61601: SINUMERIK cycle alarm (seed 001 table 5.3): finished diameter too small.
+    FinishedDiameterTooSmall,
+    /// 61602: SINUMERIK cycle alarm (seed 001 table 5.3): tool width wrong.
+    ToolWidthWrong,
+    /// 61603: SINUMERIK cycle alarm (seed 001 table 5.3): groove form wrong.
+    GrooveFormWrong,
+    /// 61604: SINUMERIK cycle alarm (seed 001 table 5.3): tool violates contour.
+    ToolViolatesContour,
+    /// 61605: SINUMERIK cycle alarm (seed 001 table 5.3): contour wrong.
+    ContourWrong,
+    /// 61606: SINUMERIK cycle alarm (seed 001 table 5.3): contour preparation error.
+    ContourPreparation { cause: u16 },
+    /// 61607: SINUMERIK cycle alarm (seed 001 table 5.3): start point wrong.
+    StartPointWrong,
+    /// 61608: SINUMERIK cycle alarm (seed 001 table 5.3): wrong edge position.
+    WrongEdgePosition,
+    /// 61609: SINUMERIK cycle alarm (seed 001 table 5.3): form wrong.
+    FormWrong,
+    /// 61612: SINUMERIK cycle alarm (seed 001 table 5.3): re-cutting impossible.
+    RecutImpossible,
+    /// 61613: SINUMERIK cycle alarm (seed 001 table 5.3): undercut position wrong.
+    UndercutPositionWrong,
+    /// 61701: SINUMERIK cycle alarm (seed 001 table 5.3): finished contour wrong.
+    FinishedContourWrong,
+    /// 61702: SINUMERIK cycle alarm (seed 001 table 5.3): blank contour wrong.
+    BlankContourWrong,
+    /// 61720: SINUMERIK cycle alarm (seed 001 table 5.3): illegal input.
+    IllegalInput,
+    /// 61721: SINUMERIK cycle alarm (seed 001 table 5.3): contour direction.
+    ContourDirection,
+    /// 61803: SINUMERIK cycle alarm (seed 001 table 5.3): programmed axis not present.
+    AxisNotPresent,
+    /// 61807: SINUMERIK cycle alarm (seed 001 table 5.3): spindle direction programmed incorrectly.
+    WrongSpindleDirection,
+}
+
+impl From<CycleAlarm> for AlarmKind {
+    fn from(k: CycleAlarm) -> Self {
+        AlarmKind::SiemensCycle(k)
+    }
+}
+
+impl CycleAlarm {
+    /// The alarm number.
+    pub fn code(&self) -> u16 {
+        use CycleAlarm::*;
+        match self {
+            NoToolOffset => 61000,
+            ThreadPitchWrong => 61001,
+            MachiningTypeWrong => 61002,
+            NoThirdAxis => 61005,
+            ParameterWrong => 61019,
+            ReferencePlaneWrong => 61101,
+            NoSpindleDirection => 61102,
+            FirstDepthWrong => 61107,
+            TechnologyWrong => 61125,
+            FinishedDiameterTooSmall => 61601,
+            ToolWidthWrong => 61602,
+            GrooveFormWrong => 61603,
+            ToolViolatesContour => 61604,
+            ContourWrong => 61605,
+            ContourPreparation { .. } => 61606,
+            StartPointWrong => 61607,
+            WrongEdgePosition => 61608,
+            FormWrong => 61609,
+            RecutImpossible => 61612,
+            UndercutPositionWrong => 61613,
+            FinishedContourWrong => 61701,
+            BlankContourWrong => 61702,
+            IllegalInput => 61720,
+            ContourDirection => 61721,
+            AxisNotPresent => 61803,
+            WrongSpindleDirection => 61807,
+        }
+    }
+}
+
 impl fmt::Display for SiemensAlarm {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         use SiemensAlarm::*;
@@ -716,6 +822,58 @@ impl fmt::Display for SiemensAlarm {
             IndexOutOfRange => write!(f, "array index out of range"),
             IllegalDNumber { number } => write!(f, "D{number} has no tool offset row"),
             ModalCallNested => write!(f, "MCALL inside a modally called subprogram"),
+        }
+    }
+}
+
+impl fmt::Display for CycleAlarm {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        use CycleAlarm::*;
+        match *self {
+            NoToolOffset => write!(f, "no tool offset active (program D before the cycle)"),
+            ThreadPitchWrong => {
+                write!(f, "thread pitch defined incorrectly (PIT/MPIT contradict, or not a DIN 76 / ISO coarse size)")
+            }
+            MachiningTypeWrong => write!(f, "type of machining (VARI) defined incorrectly"),
+            NoThirdAxis => write!(f, "3rd geometry axis not present (the drilling axis of the plane)"),
+            ParameterWrong => write!(f, "parameter programmed incorrectly (DAM, ENC)"),
+            ReferencePlaneWrong => write!(f, "reference plane defined incorrectly (RTP, RFP, DP/DPR)"),
+            NoSpindleDirection => write!(f, "no spindle direction programmed (SDIR/SDR 3 or 4, M3/M4 before CYCLE840)"),
+            FirstDepthWrong => {
+                write!(f, "first drilling depth defined incorrectly (FDEP/FDPR against the total depth)")
+            }
+            TechnologyWrong => write!(f, "technology selection in parameter _TECHNO defined incorrectly"),
+            FinishedDiameterTooSmall => write!(f, "finished part diameter too small (under 3 mm)"),
+            ToolWidthWrong => {
+                write!(f, "tool width defined incorrectly (grooving tool wider than the groove, or no width)")
+            }
+            GrooveFormWrong => write!(f, "groove form defined incorrectly"),
+            ToolViolatesContour => {
+                write!(f, "active tool violates the programmed contour (clearance angle too small for an undercut)")
+            }
+            ContourWrong => write!(f, "contour programmed incorrectly"),
+            ContourPreparation { cause } => {
+                let c = match cause {
+                    10930 => "10930: illegal interpolation type in the stock removal contour",
+                    10931 => "10931: incorrect stock removal contour",
+                    10933 => "10933: the contour contains too few contour blocks",
+                    10934 => "10934: contour table overflow",
+                    15800 => "15800: incorrect start conditions for CONTPRON",
+                    _ => "the contour",
+                };
+                write!(f, "error during contour preparation ({c})")
+            }
+            StartPointWrong => write!(f, "starting point programmed incorrectly (inside the rectangle of the contour)"),
+            WrongEdgePosition => write!(f, "wrong tool point direction programmed (cutting edge position 1-4 needed)"),
+            FormWrong => write!(f, "form defined incorrectly (CYCLE94: E or F, CYCLE96: A-D)"),
+            RecutImpossible => write!(f, "thread re-cutting not possible"),
+            UndercutPositionWrong => write!(f, "undercut position (_VARI) defined incorrectly"),
+            FinishedContourWrong => write!(f, "finished part contour description wrong (_NP1-_NP3)"),
+            BlankContourWrong => write!(f, "blank contour description wrong (_NP5-_NP7, _APZ/_APX)"),
+            IllegalInput => write!(f, "illegal input (a _VARI digit of CYCLE950 out of its range)"),
+            ContourDirection => write!(f, "wrong contour direction, cannot be computed"),
+            AxisNotPresent => write!(f, "programmed axis does not exist (_AXN)"),
+            WrongSpindleDirection => write!(f, "spindle direction programmed incorrectly (SDR/SDAC of CYCLE840)"),
         }
     }
 }
@@ -1230,6 +1388,136 @@ pub const CATALOG: &[CatalogEntry] = &[
         title: "illegal D number",
         when: "SINUMERIK: T t D d selects offset row t + (d-1) x tool count, which the offset table does not have",
     },
+    CatalogEntry {
+        code: 61000,
+        title: "no tool offset active",
+        when: "SINUMERIK CYCLE93-CYCLE96 called without a D offset in force (seed 001 lines 10353, 10537, 11045: 没有刀具补偿有效)",
+    },
+    CatalogEntry {
+        code: 61001,
+        title: "thread pitch wrong",
+        when: "CYCLE97 PIT and MPIT contradict or neither gives a pitch; MPIT or CYCLE96 DIATH not an ISO coarse size M3-M60/M68 (lines 11136-11142, 11009: 螺距定义错误)",
+    },
+    CatalogEntry {
+        code: 61002,
+        title: "machining type wrong",
+        when: "VARI outside the values of CYCLE93 (1-8, 11-18), CYCLE95 (1-12, hundreds 0/2), CYCLE97/CYCLE98 (1-4) (lines 10311, 10799, 11195, 11397: 加工方式错误定义)",
+    },
+    CatalogEntry {
+        code: 61005,
+        title: "3rd geometry axis not present",
+        when: "a SINUMERIK drilling cycle (CYCLE81-89, CYCLE840 without _AXN) whose drilling axis, the applicate of the plane, the machine lacks: a lathe in G18 drills along Y (line 2721: 3. 几何轴没有出现); use G17 or _AXN=1",
+    },
+    CatalogEntry {
+        code: 61019,
+        title: "parameter wrong",
+        when: "CYCLE83 DAM under -1 (line 1824), CYCLE840 ENC other than 0, 1, 11, 20 (table 12213: 参数错误编程)",
+    },
+    CatalogEntry {
+        code: 61101,
+        title: "reference plane wrong",
+        when: "a SINUMERIK drilling cycle with a relative depth DPR and RTP = RFP, a depth on the retract plane's side of RFP, or no depth (lines 1583-1589: 基准面错误定义)",
+    },
+    CatalogEntry {
+        code: 61102,
+        title: "no spindle direction",
+        when: "CYCLE86/87/88 SDIR other than 3/4, CYCLE84 SDAC other than 0/3/4/5, CYCLE840 with the spindle stopped at the call or SDR = 0 without an encoder (ENC 1/11) (lines 2689, 2814, 2896, table 12217: 没有编程主轴方向)",
+    },
+    CatalogEntry {
+        code: 61107,
+        title: "first depth wrong",
+        when: "CYCLE83 first depth FDEP/FDPR deeper than the final depth or not into the hole (lines 1803, 1823: 第一次钻深错误定义)",
+    },
+    CatalogEntry {
+        code: 61125,
+        title: "_TECHNO wrong",
+        when: "CYCLE84/CYCLE840 _TECHNO with a digit outside its values (table: 参数_TECHNO中工艺选择错误定义)",
+    },
+    CatalogEntry {
+        code: 61601,
+        title: "finished diameter too small",
+        when: "CYCLE94 SPD or CYCLE96 DIATH gives a finished diameter under 3 mm (lines 10504, 11003: 成品直径太小)",
+    },
+    CatalogEntry {
+        code: 61602,
+        title: "tool width wrong",
+        when: "CYCLE93 groove narrower than the two-edge tool (offsets D and D+1), or a tool width of zero (line 10268: 刀具宽度错误定义)",
+    },
+    CatalogEntry {
+        code: 61603,
+        title: "groove form wrong",
+        when: "CYCLE93 radii/chamfers that touch or cut each other at the bottom, or a face groove on a line parallel to the longitudinal axis (line 10313: 错误定义切槽形状)",
+    },
+    CatalogEntry {
+        code: 61604,
+        title: "tool violates contour",
+        when: "CYCLE95 undercut steeper than the tool's clearance angle (offset parameter P24, 0 = no check) allows (line 10870: 激活的刀具损坏编程的轮廓)",
+    },
+    CatalogEntry {
+        code: 61605,
+        title: "contour wrong",
+        when: "CYCLE95 contour with an element the cycle cannot machine (an undercut against the machining direction) (table 12260: 轮廓错误编程)",
+    },
+    CatalogEntry {
+        code: 61606,
+        title: "contour preparation error",
+        when: "CYCLE95 contour that cannot be prepared, with the NCK alarm that caused it: 10930 a motion other than G0-G3, 10931 an arc of more than 180 degrees / G41/G42 / a plane change, 10933 fewer than 3 blocks, 10934 more elements than the cycle holds, 15800 a first block without G0-G3 (lines 10820-10858: 轮廓预处理时出错)",
+    },
+    CatalogEntry {
+        code: 61607,
+        title: "start point wrong",
+        when: "CYCLE95 called from a point inside the rectangle the contour spans (table 12267: 起始点错误编程)",
+    },
+    CatalogEntry {
+        code: 61608,
+        title: "wrong edge position",
+        when: "CYCLE94/CYCLE96 with _VARI=0 and an active cutting edge position other than 1-4 (line 10527: 编程了错误的刀沿位置)",
+    },
+    CatalogEntry {
+        code: 61609,
+        title: "form wrong",
+        when: "CYCLE94 FORM not E/F, CYCLE96 FORM not A-D (lines 10513, 11024: 形状错误定义)",
+    },
+    CatalogEntry {
+        code: 61612,
+        title: "re-cutting impossible",
+        when: "CYCLE97/CYCLE98 with thread re-cutting (4.9) set up but the thread is a multi-start one or the synchronised angle is missing (table 12272: 不可能进行螺纹精整)",
+    },
+    CatalogEntry {
+        code: 61613,
+        title: "undercut position wrong",
+        when: "CYCLE94/CYCLE96 _VARI outside 0-4 (table 12273: 退刀槽位置错误定义)",
+    },
+    CatalogEntry {
+        code: 61701,
+        title: "finished contour wrong",
+        when: "CYCLE950 without a finished contour (_NP1, or _NP2/_NP3 not found), or one that cannot be prepared (table 12112: 成品轮廓描述错误)",
+    },
+    CatalogEntry {
+        code: 61702,
+        title: "blank contour wrong",
+        when: "CYCLE950 blank given wrongly: _APZA/_APXA other than 90/91, or a blank cylinder inside the finished contour (table 12113: 坯件轮廓描述错误)",
+    },
+    CatalogEntry {
+        code: 61720,
+        title: "illegal input",
+        when: "CYCLE950 _VARI with a digit outside its values, or a machining or infeed direction that does not fit the machining type (table 12124: 非法输入)",
+    },
+    CatalogEntry {
+        code: 61721,
+        title: "contour direction",
+        when: "CYCLE950 machining direction (_VARI hundred-thousands) against the direction the contour can be cut in (table 12125: 错误轮廓方向不可计算)",
+    },
+    CatalogEntry {
+        code: 61803,
+        title: "axis not present",
+        when: "CYCLE83/84/840 _AXN choosing a drilling axis the machine lacks (table: 编程的轴不存在)",
+    },
+    CatalogEntry {
+        code: 61807,
+        title: "spindle direction wrong",
+        when: "CYCLE840 SDR the direction the spindle turns into the hole (it must reverse), or SDAC other than 0/3/4/5 (table: 编程错误的主轴方向)",
+    },
 ];
 
 #[cfg(test)]
@@ -1378,6 +1666,32 @@ mod tests {
             Siemens(SiemensAlarm::IndexOutOfRange),
             Siemens(SiemensAlarm::IllegalDNumber { number: 99 }),
             Siemens(SiemensAlarm::ModalCallNested),
+            SiemensCycle(CycleAlarm::NoToolOffset),
+            SiemensCycle(CycleAlarm::ThreadPitchWrong),
+            SiemensCycle(CycleAlarm::MachiningTypeWrong),
+            SiemensCycle(CycleAlarm::NoThirdAxis),
+            SiemensCycle(CycleAlarm::ParameterWrong),
+            SiemensCycle(CycleAlarm::ReferencePlaneWrong),
+            SiemensCycle(CycleAlarm::NoSpindleDirection),
+            SiemensCycle(CycleAlarm::FirstDepthWrong),
+            SiemensCycle(CycleAlarm::TechnologyWrong),
+            SiemensCycle(CycleAlarm::FinishedDiameterTooSmall),
+            SiemensCycle(CycleAlarm::ToolWidthWrong),
+            SiemensCycle(CycleAlarm::GrooveFormWrong),
+            SiemensCycle(CycleAlarm::ToolViolatesContour),
+            SiemensCycle(CycleAlarm::ContourWrong),
+            SiemensCycle(CycleAlarm::ContourPreparation { cause: 10933 }),
+            SiemensCycle(CycleAlarm::StartPointWrong),
+            SiemensCycle(CycleAlarm::WrongEdgePosition),
+            SiemensCycle(CycleAlarm::FormWrong),
+            SiemensCycle(CycleAlarm::RecutImpossible),
+            SiemensCycle(CycleAlarm::UndercutPositionWrong),
+            SiemensCycle(CycleAlarm::FinishedContourWrong),
+            SiemensCycle(CycleAlarm::BlankContourWrong),
+            SiemensCycle(CycleAlarm::IllegalInput),
+            SiemensCycle(CycleAlarm::ContourDirection),
+            SiemensCycle(CycleAlarm::AxisNotPresent),
+            SiemensCycle(CycleAlarm::WrongSpindleDirection),
         ]
     };
 

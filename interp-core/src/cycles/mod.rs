@@ -23,19 +23,24 @@
 //! first; the ones after the motion (M05, M09, M30 …) are kept in the expansion
 //! and delivered after its last move. Every action carries the cycle block's line.
 
+mod calls;
 pub mod curve;
 mod emit;
 mod finish;
 mod groove;
-mod hole;
+pub mod hole;
+mod offset;
+mod pass;
 mod pattern;
 pub mod polar;
 pub mod profile;
 mod rough;
 mod single;
+mod stock;
 mod thread;
 
 pub use crate::command::cycle::CycleArgs;
+pub use calls::CallEngine;
 pub use emit::{Emitter, Out, Pt, Step};
 
 use crate::alarm::AlarmKind;
@@ -83,6 +88,9 @@ enum Gen {
     Hole(HoleGen),
     Curve(curve::CurveGen),
     Polar(polar::PolarGen),
+    Stock(stock::StockGen),
+    Pass(pass::PassGen),
+    Grooving(groove::GroovingGen),
 }
 
 /// A cycle being delivered: its generator, its copy of the state and what is
@@ -178,6 +186,9 @@ impl Expansion {
                     Gen::Hole(g) => g.fill(&mut self.queue)?,
                     Gen::Curve(g) => g.fill(&mut self.queue)?,
                     Gen::Polar(g) => g.fill(&mut self.queue)?,
+                    Gen::Stock(g) => g.fill(&self.profile.segs, here, &mut self.queue)?,
+                    Gen::Pass(g) => g.fill(&self.profile.segs, &mut self.queue)?,
+                    Gen::Grooving(g) => g.fill(&self.profile.segs, here, &mut self.queue)?,
                 };
                 self.gen_done = !more;
                 continue;
@@ -493,18 +504,33 @@ fn multiple<X: Executor>(code: GCode, cmd: &Command, st: &mut State, ctx: &mut C
             let lead = lead.unwrap_or(st.cycle.lead);
             args::check_lead(lead, st.modal.units)?;
             st.cycle.lead = lead;
+            let (start, end) = (here, target(cmd, st, cfg)?);
+            if end.x == start.x {
+                return Err(AlarmKind::CycleValueIllegal { what: "G76 end point X equals the start point X" });
+            }
+            let height = height.unwrap_or(0);
+            // The thread's line at depth 0: from B (the end's X + i, raised by k,
+            // on the start's Z) to D raised by k.
+            let inward = (end.x - start.x).signum();
+            let b = Pt::new(end.x + taper - inward * height, start.z);
+            let d = Pt::new(end.x - inward * height, end.z);
+            let angle_deg = p(Param::ThreadToolAngle);
             let spec = thread::MultiThreadSpec {
-                start: here,
-                end: target(cmd, st, cfg)?,
-                taper,
-                height: height.unwrap_or(0),
-                first: first.unwrap_or(0),
-                min_depth: p(Param::ThreadMinDepth),
+                start,
+                points: [b, d, d, d],
+                count: 2,
+                leads: [lead; 3],
+                face: false,
+                inward,
+                height,
                 allowance: p(Param::ThreadFinishAllowance),
+                depths: thread::Depths::Root { first: first.unwrap_or(0), min_depth: p(Param::ThreadMinDepth) },
                 finish: u32::try_from(p(Param::ThreadFinishCount)).unwrap_or(0),
-                angle_deg: u32::try_from(p(Param::ThreadToolAngle)).unwrap_or(0),
-                lead,
+                flank: thread::Flank::FromStart { angle_udeg: angle_deg * 500_000 },
                 pull: thread::Pullout { tenths: p(Param::ThreadChamfer), angle_deg: p(Param::ThreadChamferAngle) },
+                retract: start.x,
+                starts: 1,
+                start_udeg: 0,
             };
             Gen::MultiThread(MultiThreadGen::new(spec)?)
         }

@@ -49,16 +49,26 @@ impl PatternGen {
 
     /// The next group of steps; `false` when finished.
     pub fn fill(&mut self, profile: &Profile, out: &mut StepQueue) -> Result<bool, AlarmKind> {
+        self.fill_segs(&profile.segs, profile.ns_rapid, out)
+    }
+
+    /// [`PatternGen::fill`] over a shape `segs` whose first segment is the move from
+    /// the start point onto it (G00 if `ns_rapid`).
+    pub fn fill_segs(
+        &mut self,
+        segs: &[super::profile::Seg],
+        ns_rapid: bool,
+        out: &mut StepQueue,
+    ) -> Result<bool, AlarmKind> {
         if self.pass > self.count {
             return Ok(false);
         }
         let d = self.offset(self.pass);
-        let segs = &profile.segs;
         if self.seg == 0 {
             let a_n = Pt::new(self.start.x + d.x, self.start.z + d.z);
             push(out, Step::Rapid(a_n))?;
             let ns = segs[0].shifted(d);
-            push(out, if profile.ns_rapid { Step::Rapid(ns.b) } else { Step::Feed(ns.b) })?;
+            push(out, if ns_rapid { Step::Rapid(ns.b) } else { Step::Feed(ns.b) })?;
             self.seg = 1;
         } else if let Some(s) = segs.get(self.seg) {
             push(out, contour_step(&s.shifted(d)))?;

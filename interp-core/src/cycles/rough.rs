@@ -336,24 +336,11 @@ impl RoughGen {
             }
         }
         for s in shape {
-            let mut ts: heapless::Vec<f64, 4> = heapless::Vec::new();
-            let _ = ts.push(0.0);
-            for t in s.crossings(f.level, f.out as f64 * uf) {
-                let _ = ts.push(t);
-            }
-            let _ = ts.push(1.0);
-            for pair in ts.windows(2) {
-                let (t0, t1) = (pair[0], pair[1]);
-                let mid = s.point_at((t0 + t1) / 2.0);
-                let umid = f.out as f64 * if f.level == Axis::X { mid.0 } else { mid.1 };
-                if umid < uf {
-                    let wn = |t: f64| {
-                        let p = s.point_at(t);
-                        f.dir as f64 * if f.cut == Axis::X { p.0 } else { p.1 }
-                    };
-                    add(wn(t0), wn(t1))?;
-                }
-            }
+            let wn = |t: f64| {
+                let p = s.point_at(t);
+                f.dir as f64 * if f.cut == Axis::X { p.0 } else { p.1 }
+            };
+            below(f, s, uf, |t0, t1| add(wn(t0), wn(t1)))?;
         }
         Ok(out)
     }
@@ -373,6 +360,31 @@ impl RoughGen {
         }
         if pockets > 10 { Err(AlarmKind::TooManyPockets) } else { Ok(()) }
     }
+}
+
+/// Calls `add(t0, t1)` for each piece of `s` (parameters along it) that lies below
+/// level `u` of frame `f`, in order: the material a cut at that level reaches.
+pub fn below(
+    f: &Frame,
+    s: &Seg,
+    u: f64,
+    mut add: impl FnMut(f64, f64) -> Result<(), AlarmKind>,
+) -> Result<(), AlarmKind> {
+    let mut ts: heapless::Vec<f64, 4> = heapless::Vec::new();
+    let _ = ts.push(0.0);
+    for t in s.crossings(f.level, f.out as f64 * u) {
+        let _ = ts.push(t);
+    }
+    let _ = ts.push(1.0);
+    for pair in ts.windows(2) {
+        let (t0, t1) = (pair[0], pair[1]);
+        let mid = s.point_at((t0 + t1) / 2.0);
+        let umid = f.out as f64 * if f.level == Axis::X { mid.0 } else { mid.1 };
+        if umid < u {
+            add(t0, t1)?;
+        }
+    }
+    Ok(())
 }
 
 /// Both types need the shape monotone along the cut (alarm 0064, note 4); type I

@@ -135,7 +135,14 @@ impl cycles::Executor for Blocks {
         let call = *ctx.out.call.ok_or(AlarmKind::NotSupportedYet { what: "a cycle call without its arguments" })?;
         let mut buf = [Arg::Empty; MAX_ARGS];
         let args = call.args.args(&mut buf);
-        crate::lang::siemens::cycles::start(call.sig, args, cmd, st, ctx, call.contour)
+        crate::lang::siemens::cycles::start(
+            call.sig,
+            args,
+            cmd,
+            st,
+            &mut cycles::CallEngine::<Blocks>::new(ctx),
+            call.contour,
+        )
     }
 }
 

@@ -1,10 +1,13 @@
-//! Per-block geometry in a plane: arc centres from R or I/J/K, arc extents; the
-//! numeric functions in degrees both languages share ([`deg`]).
+//! Per-block geometry in a plane: arc centres from R or I/J/K, arc extents, the
+//! points and segments of the ZX plane the turning cycles plan with; the numeric
+//! functions in degrees both languages share ([`deg`]).
 //! Uses f64 (libm) for the computation, returns integer nanometres.
 
 mod arc;
 pub mod deg;
 pub mod path;
+mod seg;
 mod sqrt;
 
 pub use arc::{Extents, P2, arc_extents, center_from_offsets, center_from_radius};
+pub use seg::{Pt, Seg, SegKind};

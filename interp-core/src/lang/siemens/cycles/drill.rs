@@ -1,0 +1,477 @@
+//! SINUMERIK drilling cycles (seed 001 chapter 2.1, lines 1443-2995): CYCLE81,
+//! CYCLE82, CYCLE83, CYCLE84, CYCLE840, CYCLE85, CYCLE86, CYCLE87, CYCLE88 and
+//! CYCLE89, all on the one hole generator (`cycles::hole`) that drills FANUC's
+//! G83–G89 — the drilling axis and positioning plane are its parameters.
+//!
+//! - **Drilling axis** (lines 528-545, 1508): the applicate of the active plane —
+//!   G17 Z, G18 Y, G19 X. CYCLE83/84/840 take `_AXN` instead (lines 1865-1883):
+//!   1 / 2 the first / second axis of the plane, 3 (or any other) the third; so on
+//!   a lathe `G18` with `_AXN=1` drills along Z on the centre line, as does `G17`.
+//!   A drilling axis the machine lacks is 61803 when `_AXN` chose it, else 61005
+//!   (the document names 61005 for CYCLE86 in G18 without Y, line 2721; an 840D
+//!   stops every drilling cycle whose drilling axis is missing).
+//! - **Levels** (lines 1559-1591): RTP retract plane, RFP reference plane, SDIS
+//!   safety distance in front of RFP (the side RTP is on), DP absolute or DPR
+//!   relative depth (DPR wins when both are given). DPR with RTP = RFP, a depth on
+//!   the retract plane's side, or no depth at all: 61101.
+//! - **The hole**: the cycle drills where the tool is in the plane (the position
+//!   was approached before the call), G0 to RFP+SDIS, the cycle's work, G0 to RTP.
+//!   Under DIAMON a level along X (G19 or `_AXN` choosing X) is a diameter.
+//! - **Dwells** in seconds; CYCLE83's DTB, DTS and _DTD < 0 are revolutions of the
+//!   spindle speed S in force (rev × 60000 / S ms).
+
+use super::{Engine, MM, Params};
+use crate::alarm::{AlarmKind, CycleAlarm};
+use crate::axis::{Axis, Pos};
+use crate::canon::{FeedMode, Plane, SpindleDir};
+use crate::command::Command;
+use crate::command::hole::{DeepDrill, Degression, HoleSpec, HoleWork};
+use crate::modal::State;
+
+use CycleAlarm::{
+    AxisNotPresent, FirstDepthWrong, MachiningTypeWrong, NoSpindleDirection, NoThirdAxis, ParameterWrong,
+    ReferencePlaneWrong, TechnologyWrong, ThreadPitchWrong, WrongSpindleDirection,
+};
+
+/// The levels of a hole along its drilling axis (work, nm) and where it is.
+struct Hole {
+    axis: Axis,
+    plane: Plane,
+    rtp: i64,
+    rfp: i64,
+    r_level: i64,
+    bottom: i64,
+    /// +1 / −1: the direction from RFP into the material.
+    dir: i64,
+    /// Plane axes: abscissa, ordinate.
+    abscissa: Axis,
+    ordinate: Axis,
+}
+
+/// The axes of the plane: abscissa, ordinate, applicate (lines 530-545).
+fn plane_axes(plane: Plane) -> [Axis; 3] {
+    match plane {
+        Plane::Xy => [Axis::X, Axis::Y, Axis::Z],
+        Plane::Zx => [Axis::Z, Axis::X, Axis::Y],
+        Plane::Yz => [Axis::Y, Axis::Z, Axis::X],
+    }
+}
+
+fn alarm(k: CycleAlarm) -> AlarmKind {
+    AlarmKind::SiemensCycle(k)
+}
+
+/// The drilling axis, levels and plane of a call; `axn` is the `_AXN` argument of
+/// CYCLE83/84/840 (0 for the others: the applicate).
+fn hole(p: &Params<'_, '_>, st: &State, ctx: &dyn Engine, axn: i64) -> Result<Hole, AlarmKind> {
+    let [a, o, n] = plane_axes(st.modal.plane);
+    let axis = match axn {
+        1 => a,
+        2 => o,
+        _ => n,
+    };
+    if !ctx.cfg().axes[axis.index()].present {
+        return Err(alarm(if axn != 0 { AxisNotPresent } else { NoThirdAxis }));
+    }
+    let (abscissa, ordinate) = match axis {
+        Axis::Z => (Axis::X, Axis::Y),
+        Axis::Y => (Axis::Z, Axis::X),
+        _ => (Axis::Y, Axis::Z),
+    };
+    let plane = match axis {
+        Axis::Z => Plane::Xy,
+        Axis::Y => Plane::Zx,
+        _ => Plane::Yz,
+    };
+    let level = |i: usize| -> Result<i64, AlarmKind> {
+        let v = p.len(i)?;
+        Ok(if axis == Axis::X && p.diameter { v / 2 } else { v })
+    };
+    let (rtp, rfp, dp) = (level(0)?, level(1)?, level(3)?);
+    let sdis = p.unsigned(2)?;
+    let dpr = p.unsigned(4)?;
+    let dpr = if axis == Axis::X && p.diameter { dpr / 2 } else { dpr };
+    // The direction into the material: away from the retract plane, or towards
+    // DP when the retract plane is the reference plane (lines 1559-1591).
+    let dir = if rtp != rfp {
+        (rfp - rtp).signum()
+    } else if dpr != 0 {
+        return Err(alarm(ReferencePlaneWrong));
+    } else {
+        (dp - rfp).signum()
+    };
+    let bottom = if dpr != 0 { rfp + dir * dpr } else { dp };
+    if dir == 0 || (bottom - rfp) * dir < 0 {
+        return Err(alarm(ReferencePlaneWrong));
+    }
+    Ok(Hole { axis, plane, rtp, rfp, r_level: rfp - dir * sdis, bottom, dir, abscissa, ordinate })
+}
+
+/// A dwell parameter in ms: seconds, or (`revs_allowed`, < 0) spindle revolutions.
+fn dwell(p: &Params<'_, '_>, i: usize, st: &State, revs_allowed: bool) -> Result<u32, AlarmKind> {
+    let v = p.real(i);
+    let ms = if v < 0.0 && revs_allowed {
+        if st.spindle.rpm == 0 {
+            return Err(AlarmKind::FeedPerRevSpindleStopped);
+        }
+        -v * 60_000.0 / f64::from(st.spindle.rpm)
+    } else {
+        libm::fabs(v) * 1000.0
+    };
+    if !ms.is_finite() || ms > f64::from(u32::MAX) {
+        return Err(AlarmKind::Overflow);
+    }
+    Ok(libm::round(ms) as u32)
+}
+
+/// The spindle direction of an M3/M4/M5 number (SDIR, SDR, SDAC).
+fn direction(m: i64) -> Option<SpindleDir> {
+    match m {
+        3 => Some(SpindleDir::Cw),
+        4 => Some(SpindleDir::Ccw),
+        5 => Some(SpindleDir::Stop),
+        _ => None,
+    }
+}
+
+/// SDIR of CYCLE86-88: M3 or M4, else 61102 (lines 2689, 2814, 2896).
+fn sdir(p: &Params<'_, '_>, i: usize) -> Result<SpindleDir, AlarmKind> {
+    match direction(p.int(i)) {
+        Some(SpindleDir::Stop) | None => Err(alarm(NoSpindleDirection)),
+        Some(d) => Ok(d),
+    }
+}
+
+/// Starts the hole `h` with `work` and a dwell at the bottom.
+fn drill(
+    h: &Hole,
+    work: HoleWork,
+    dwell_ms: u32,
+    spindle: Option<SpindleDir>,
+    cmd: &Command,
+    st: &mut State,
+    ctx: &mut dyn Engine,
+) -> Result<(), AlarmKind> {
+    let position = st.work_pos(ctx.cfg());
+    let spec = HoleSpec {
+        work,
+        axis: h.axis,
+        plane: h.plane,
+        position,
+        step: Pos::ZERO,
+        initial: h.rtp,
+        r_level: h.r_level,
+        bottom: h.bottom,
+        dwell_ms,
+        stay_at_r: false,
+        repeat: 1,
+    };
+    let spindle = spindle.filter(|&d| d != st.spindle.dir);
+    ctx.hole(&spec, spindle, cmd, st)
+}
+
+const PLAIN: HoleWork = HoleWork::Drill { q: 0, deep: false, d: 0 };
+
+/// CYCLE81 (RTP, RFP, SDIS, DP, DPR): G0 to RFP+SDIS, G1 to the depth, G0 to RTP.
+pub(super) fn cycle81(
+    p: &Params<'_, '_>,
+    cmd: &Command,
+    st: &mut State,
+    ctx: &mut dyn Engine,
+) -> Result<(), AlarmKind> {
+    let h = hole(p, st, ctx, 0)?;
+    drill(&h, PLAIN, 0, None, cmd, st, ctx)
+}
+
+/// CYCLE82 (RTP, RFP, SDIS, DP, DPR, DTB): CYCLE81 with a dwell at the depth.
+pub(super) fn cycle82(
+    p: &Params<'_, '_>,
+    cmd: &Command,
+    st: &mut State,
+    ctx: &mut dyn Engine,
+) -> Result<(), AlarmKind> {
+    let h = hole(p, st, ctx, 0)?;
+    let dtb = dwell(p, 5, st, false)?;
+    drill(&h, PLAIN, dtb, None, cmd, st, ctx)
+}
+
+/// CYCLE83 (RTP, RFP, SDIS, DP, DPR, FDEP, FDPR, DAM, DTB, DTS, FRF, VARI, _AXN,
+/// _MDEP, _VRT, _DTD, _DIS1), lines 1703-1956.
+pub(super) fn cycle83(
+    p: &Params<'_, '_>,
+    cmd: &Command,
+    st: &mut State,
+    ctx: &mut dyn Engine,
+) -> Result<(), AlarmKind> {
+    let h = hole(p, st, ctx, p.int(12))?;
+    let chip_removal = match p.int(11) {
+        0 => false,
+        1 => true,
+        _ => return Err(alarm(MachiningTypeWrong)),
+    };
+    // The first depth: FDPR relative to RFP, else FDEP absolute; deeper than the
+    // hole, or not into it, is 61107 (lines 1803, 1823).
+    let fdpr = p.unsigned(6)?;
+    let first = if fdpr != 0 { fdpr } else { (p.len(5)? - h.rfp) * h.dir };
+    let total = (h.bottom - h.rfp) * h.dir;
+    if first <= 0 || first > total {
+        return Err(alarm(FirstDepthWrong));
+    }
+    let dam = p.real(7);
+    let degression = if dam > 0.0 {
+        Degression::Amount(p.nm(dam)?)
+    } else if dam < 0.0 {
+        if dam < -1.0 {
+            return Err(alarm(ParameterWrong));
+        }
+        // Without _MDEP the strokes shrink to 1 mm at least.
+        let min = match p.unsigned(13)? {
+            0 => MM,
+            m => m,
+        };
+        Degression::Factor { ppm: libm::round(-dam * 1e6) as i64, min }
+    } else {
+        Degression::None
+    };
+    let feed = st.feed.get(st.modal.feed_mode);
+    // FRF: 0.001-1, larger is 1, left out is 1 (line 1852).
+    let frf = match libm::fabs(p.real(10)) {
+        0.0 => 1.0,
+        f => f.clamp(0.001, 1.0),
+    };
+    let dtb = dwell(p, 8, st, true)?;
+    let deep = DeepDrill {
+        first,
+        approach: (h.rfp - h.r_level) * h.dir,
+        degression,
+        chip_removal,
+        retract: p.or_1mm(14)?,
+        anticipation: p.unsigned(16)?,
+        dwell_depth_ms: dtb,
+        dwell_start_ms: if chip_removal { dwell(p, 9, st, true)? } else { 0 },
+        first_feed: libm::round(feed as f64 * frf) as i64,
+        feed,
+    };
+    let dtd = match dwell(p, 15, st, true)? {
+        0 => dtb,
+        d => d,
+    };
+    drill(&h, HoleWork::DeepDrill(deep), dtd, None, cmd, st, ctx)
+}
+
+/// The lead of a tapping cycle from MPIT (M3–M48, sign = direction) and PIT (sign =
+/// direction, unit by _PTAB): nm/rev and the direction into the hole. Both zero, a
+/// size not in the ISO coarse series, or values that contradict: 61001.
+fn tap_lead(p: &Params<'_, '_>, mpit: usize, pit: usize, ptab: usize) -> Result<(i64, SpindleDir), AlarmKind> {
+    let (m, v) = (p.real(mpit), p.real(pit));
+    let pitch_mm = match p.int(ptab) {
+        0 => v * p.per_unit / 1e6,
+        1 => v,
+        2 if v != 0.0 => 25.4 / v,
+        2 => 0.0,
+        3 => v * 25.4,
+        _ => return Err(alarm(ThreadPitchWrong)),
+    };
+    let mm = if m != 0.0 {
+        let coarse = super::thread::coarse_pitch(libm::fabs(m), 48.0).ok_or(alarm(ThreadPitchWrong))?;
+        let coarse = if m < 0.0 { -coarse } else { coarse };
+        if pitch_mm != 0.0 && libm::fabs(pitch_mm - coarse) > 1e-6 {
+            return Err(alarm(ThreadPitchWrong));
+        }
+        coarse
+    } else if pitch_mm != 0.0 {
+        pitch_mm
+    } else {
+        return Err(alarm(ThreadPitchWrong));
+    };
+    let nm = libm::round(libm::fabs(mm) * 1e6);
+    if !(1.0..=2e9).contains(&nm) {
+        return Err(alarm(ThreadPitchWrong));
+    }
+    Ok((nm as i64, if mm < 0.0 { SpindleDir::Ccw } else { SpindleDir::Cw }))
+}
+
+/// _TECHNO: units 0-3 (G601-G603), tens 0-2 (FFWON/FFWOF), hundreds up to
+/// `hundreds` (SOFT/BRISK/DRIVE or the braking point), thousands 0-1; else 61125.
+/// Accepted and otherwise without effect: our axes always stop exactly at the
+/// tapping reversal and the planner has one acceleration profile.
+fn techno(p: &Params<'_, '_>, i: usize, hundreds: i64) -> Result<(), AlarmKind> {
+    let t = p.int(i);
+    let ok = (0..=1999).contains(&t) && t % 10 <= 3 && t / 10 % 10 <= 2 && t / 100 % 10 <= hundreds;
+    if ok { Ok(()) } else { Err(alarm(TechnologyWrong)) }
+}
+
+/// CYCLE84 (RTP, RFP, SDIS, DP, DPR, DTB, SDAC, MPIT, PIT, POSS, SST, SST1, _AXN,
+/// _PTAB, _TECHNO, _VARI, _DAM, _VRT), lines 1958-2204: rigid tapping, the axis
+/// locked to the spindle (G331/G332), in pecks when _VARI is 1 (chip breaking:
+/// back by _VRT) or 2 (chip removal: back to R).
+pub(super) fn cycle84(
+    p: &Params<'_, '_>,
+    cmd: &Command,
+    st: &mut State,
+    ctx: &mut dyn Engine,
+) -> Result<(), AlarmKind> {
+    let h = hole(p, st, ctx, p.int(12))?;
+    let (lead, dir) = tap_lead(p, 7, 8, 13)?;
+    techno(p, 14, 3)?;
+    let restore = match p.int(6) {
+        0 => st.spindle.dir,
+        m => direction(m).ok_or(alarm(NoSpindleDirection))?,
+    };
+    let (q, deep) = match p.int(15) {
+        0 => (0, false),
+        1 => (p.unsigned(16)?, false),
+        2 => (p.unsigned(16)?, true),
+        _ => return Err(alarm(MachiningTypeWrong)),
+    };
+    let work = HoleWork::RigidTap { lead, q, deep, d: p.or_1mm(17)?, dir, dwell_r_ms: 0, restore };
+    let dtb = dwell(p, 5, st, false)?;
+    drill(&h, work, dtb, None, cmd, st, ctx)
+}
+
+/// CYCLE840 (RTP, RFP, SDIS, DP, DPR, DTB, SDR, SDAC, ENC, MPIT, PIT, _AXN, _PTAB,
+/// _TECHNO), lines 2206-2504: tapping with a compensating chuck, the feed following
+/// the spindle (G33 with an encoder, G63 without).
+pub(super) fn cycle840(
+    p: &Params<'_, '_>,
+    cmd: &Command,
+    st: &mut State,
+    ctx: &mut dyn Engine,
+) -> Result<(), AlarmKind> {
+    let h = hole(p, st, ctx, p.int(11))?;
+    techno(p, 13, 1)?;
+    let enc = p.int(8);
+    let with_encoder = match enc {
+        0 | 20 => true,
+        1 | 11 => false,
+        _ => return Err(alarm(ParameterWrong)),
+    };
+    // The spindle turns into the hole the way M3/M4 before the call set it.
+    let dir = match st.spindle.dir {
+        SpindleDir::Stop => return Err(alarm(NoSpindleDirection)),
+        d => d,
+    };
+    let back = if dir == SpindleDir::Cw { SpindleDir::Ccw } else { SpindleDir::Cw };
+    // SDR: 0 = reversed automatically (needs the encoder), else M3/M4 — the way
+    // out must be the other way (61807, table 12281); without an encoder it must
+    // be given (61102, table 12217).
+    match (p.int(6), with_encoder) {
+        (0, true) => {}
+        (0, false) => return Err(alarm(NoSpindleDirection)),
+        (m, _) => match direction(m) {
+            Some(d) if d == back => {}
+            Some(SpindleDir::Stop) | None => return Err(alarm(NoSpindleDirection)),
+            Some(_) => return Err(alarm(WrongSpindleDirection)),
+        },
+    }
+    let after = match p.int(7) {
+        0 => dir,
+        m => direction(m).ok_or(alarm(WrongSpindleDirection))?,
+    };
+    let lead = if enc == 1 {
+        // ENC = 1: the lead is the programmed F over S (line 2328).
+        let f = st.feed.get(st.modal.feed_mode);
+        match st.modal.feed_mode {
+            FeedMode::PerRev => f,
+            FeedMode::PerMin if st.spindle.rpm > 0 => f / i64::from(st.spindle.rpm),
+            FeedMode::PerMin => return Err(AlarmKind::FeedPerRevSpindleStopped),
+        }
+    } else {
+        tap_lead(p, 9, 10, 12)?.0
+    };
+    if lead <= 0 {
+        return Err(AlarmKind::FeedZero);
+    }
+    let work = HoleWork::FloatTap { lead, dir, turning: true, after, stop_at_bottom: false };
+    // DTB: with ENC = 20 and without an encoder (the example of line 2458 dwells
+    // with ENC = 1); not with ENC = 0.
+    let dtb = if enc == 0 { 0 } else { dwell(p, 5, st, false)? };
+    drill(&h, work, dtb, None, cmd, st, ctx)
+}
+
+/// A feed parameter (FFR, RFF) in the feed mode in force; 0 = the feed in force.
+fn feed(p: &Params<'_, '_>, i: usize, st: &State) -> Result<i64, AlarmKind> {
+    match p.unsigned(i)? {
+        0 => Ok(st.feed.get(st.modal.feed_mode)),
+        f => Ok(f),
+    }
+}
+
+/// CYCLE85 (RTP, RFP, SDIS, DP, DPR, DTB, FFR, RFF): in at FFR, dwell, out to
+/// RFP+SDIS at RFF, G0 to RTP (lines 2506-2625).
+pub(super) fn cycle85(
+    p: &Params<'_, '_>,
+    cmd: &Command,
+    st: &mut State,
+    ctx: &mut dyn Engine,
+) -> Result<(), AlarmKind> {
+    let h = hole(p, st, ctx, 0)?;
+    let work = HoleWork::BoreFeeds { feed_in: feed(p, 6, st)?, feed_out: feed(p, 7, st)? };
+    let dtb = dwell(p, 5, st, false)?;
+    drill(&h, work, dtb, None, cmd, st, ctx)
+}
+
+/// CYCLE86 (RTP, RFP, SDIS, DP, DPR, DTB, SDIR, RPA, RPO, RPAP, POSS): in with the
+/// spindle turning SDIR, dwell, oriented stop, G0 off the wall by RPA/RPO in the
+/// plane, G0 out, back to the hole position, spindle on (lines 2627-2751).
+pub(super) fn cycle86(
+    p: &Params<'_, '_>,
+    cmd: &Command,
+    st: &mut State,
+    ctx: &mut dyn Engine,
+) -> Result<(), AlarmKind> {
+    let h = hole(p, st, ctx, 0)?;
+    let dir = sdir(p, 6)?;
+    let mut shift = Pos::ZERO;
+    for (axis, i) in [(h.abscissa, 7), (h.ordinate, 8)] {
+        // A retract on an axis the machine lacks is ignored (line 2721).
+        if ctx.cfg().axes[axis.index()].present {
+            let v = p.len(i)?;
+            shift[axis] = if axis == Axis::X && p.diameter { v / 2 } else { v };
+        }
+    }
+    let dtb = dwell(p, 5, st, false)?;
+    drill(&h, HoleWork::FineBore { shift, restart: dir }, dtb, Some(dir), cmd, st, ctx)
+}
+
+/// CYCLE87 (RTP, RFP, SDIS, DP, DPR, SDIR): in with the spindle turning SDIR, M5,
+/// M0, G0 out after NC start (lines 2753-2835).
+pub(super) fn cycle87(
+    p: &Params<'_, '_>,
+    cmd: &Command,
+    st: &mut State,
+    ctx: &mut dyn Engine,
+) -> Result<(), AlarmKind> {
+    let h = hole(p, st, ctx, 0)?;
+    let dir = sdir(p, 5)?;
+    drill(&h, HoleWork::BoreManual { restart: dir }, 0, Some(dir), cmd, st, ctx)
+}
+
+/// CYCLE88 (RTP, RFP, SDIS, DP, DPR, DTB, SDIR): CYCLE87 with a dwell; M5 only
+/// (no M0) when `_ZSD[5]` = 1 (lines 2837-2918).
+pub(super) fn cycle88(
+    p: &Params<'_, '_>,
+    cmd: &Command,
+    st: &mut State,
+    ctx: &mut dyn Engine,
+) -> Result<(), AlarmKind> {
+    let h = hole(p, st, ctx, 0)?;
+    let dir = sdir(p, 6)?;
+    let work =
+        if st.cycle.zsd[5] == 1 { HoleWork::BoreStop { restart: dir } } else { HoleWork::BoreManual { restart: dir } };
+    let dtb = dwell(p, 5, st, false)?;
+    drill(&h, work, dtb, Some(dir), cmd, st, ctx)
+}
+
+/// CYCLE89 (RTP, RFP, SDIS, DP, DPR, DTB): in, dwell, out at the same feed to
+/// RFP+SDIS, G0 to RTP (lines 2920-2995).
+pub(super) fn cycle89(
+    p: &Params<'_, '_>,
+    cmd: &Command,
+    st: &mut State,
+    ctx: &mut dyn Engine,
+) -> Result<(), AlarmKind> {
+    let h = hole(p, st, ctx, 0)?;
+    let dtb = dwell(p, 5, st, false)?;
+    drill(&h, HoleWork::Bore, dtb, None, cmd, st, ctx)
+}
