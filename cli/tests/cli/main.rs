@@ -12,6 +12,7 @@ mod link;
 mod machine;
 mod macros;
 mod sim;
+mod siemens;
 mod svg;
 
 use std::path::PathBuf;
