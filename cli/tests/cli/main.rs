@@ -11,8 +11,8 @@ mod jsonl;
 mod link;
 mod machine;
 mod macros;
-mod sim;
 mod siemens;
+mod sim;
 mod svg;
 
 use std::path::PathBuf;

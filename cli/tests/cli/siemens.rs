@@ -50,7 +50,8 @@ fn the_language_tour_runs_its_loop_jumps_calls_and_cycle() {
         .map(|v| (v["cx"].as_f64().unwrap(), v["cz"].as_f64().unwrap()))
         .collect();
     assert_eq!(arcs, [(50.0, -20.0), (50.0, -30.0)], "CR=5 and I0 K-5 centres");
-    let dwell: Vec<f64> = actions.iter().filter(|v| v["kind"] == "dwell").map(|v| v["seconds"].as_f64().unwrap()).collect();
+    let dwell: Vec<f64> =
+        actions.iter().filter(|v| v["kind"] == "dwell").map(|v| v["seconds"].as_f64().unwrap()).collect();
     assert_eq!(dwell, [1.0]);
     assert!(actions.iter().all(|v| v["x"].as_f64() != Some(999.0)), "N100 is jumped over");
     // Without the library FASE is not in program memory: 14011 on its line, and
@@ -86,7 +87,16 @@ fn cycle95_example_1_finishes_on_the_contour_of_its_subprogram() {
     let at = m.iter().rposition(|p| (p.1, p.2) == contour[0]).expect("the finishing pass reaches X37 Z120");
     let tail: Vec<(f64, f64)> = m[at..].iter().filter(|p| p.0 == 'l').map(|p| (p.1, p.2)).collect();
     assert_eq!(&tail[..3], &contour);
-    let end = [(65.0, 87.0), (29.0, 77.0), (29.0, 62.0), (44.0, 58.0), (44.0, 52.0), (37.0, 41.0), (37.0, 35.0), (76.0, 35.0)];
+    let end = [
+        (65.0, 87.0),
+        (29.0, 77.0),
+        (29.0, 62.0),
+        (44.0, 58.0),
+        (44.0, 52.0),
+        (37.0, 41.0),
+        (37.0, 35.0),
+        (76.0, 35.0),
+    ];
     assert_eq!(&tail[tail.len() - end.len()..], &end);
     let finish_feed: Vec<f64> =
         actions.iter().filter(|v| v["kind"] == "linear" && v["line"] == 7).filter_map(|v| v["f"].as_f64()).collect();
