@@ -1324,7 +1324,7 @@ pub const CATALOG: &[CatalogEntry] = &[
     CatalogEntry {
         code: 12160,
         title: "value range",
-        when: "SINUMERIK: INT beyond 32 bits, CHAR beyond 255, a string longer than its STRING[n] or than the 96 bytes of a call's string arguments",
+        when: "SINUMERIK: INT beyond 32 bits, CHAR beyond 255, a string longer than its STRING[n] or a call's arguments beyond the 256 bytes they are kept in",
     },
     CatalogEntry { code: 12170, title: "name defined twice", when: "SINUMERIK: DEF of a name the program level has" },
     CatalogEntry {
@@ -1340,7 +1340,7 @@ pub const CATALOG: &[CatalogEntry] = &[
     CatalogEntry {
         code: 12460,
         title: "too many variables",
-        when: "SINUMERIK: more than 48 DEF variables, 512 bytes of names or 256 bytes of STRING contents in all program levels",
+        when: "SINUMERIK: more than 32 DEF variables and PROC parameters, 192 bytes of their names or 96 bytes of STRING contents in all program levels",
     },
     CatalogEntry {
         code: 12470,
