@@ -355,7 +355,10 @@ pub const PROVEN_ELSEWHERE: &[(u16, &str)] = &[
     (4017, "alarms.rs alarms_needing_a_machine_setting (400 far moves on unlimited axes)"),
     (4035, "alarms.rs cycle_alarms_needing_a_machine_or_a_long_program (49-segment shape)"),
     (4036, "alarms.rs cycle_alarms_needing_a_machine_or_a_long_program (11 pockets)"),
-    (4048, "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (MCALL in a modally called SINUMERIK subprogram)"),
+    (
+        4048,
+        "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (MCALL in a modally called SINUMERIK subprogram)",
+    ),
     (4501, "alarms.rs motion_alarms_are_raised_with_their_line (simulated drive)"),
     (4502, "alarms.rs motion_alarms_are_raised_with_their_line (simulated drive)"),
     (4503, "alarms.rs motion_alarms_are_raised_with_their_line (simulated spindle)"),
@@ -367,23 +370,74 @@ pub const PROVEN_ELSEWHERE: &[(u16, &str)] = &[
     (4509, "alarms.rs motion_alarms_are_raised_with_their_line (emergency stop input)"),
     (4510, "alarms.rs motion_alarms_are_raised_with_their_line (simulated drive)"),
     (4601, "controller starve.rs (a stream cut mid-job; the time the controller is given) and sim faults.rs"),
-    (12080, "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)"),
-    (12150, "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)"),
-    (12160, "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)"),
-    (12170, "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)"),
-    (12330, "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)"),
-    (12340, "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)"),
-    (12460, "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)"),
-    (12470, "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)"),
-    (12550, "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)"),
-    (14011, "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)"),
-    (14012, "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)"),
-    (14080, "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)"),
-    (14500, "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)"),
-    (14510, "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)"),
-    (16420, "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)"),
-    (17020, "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)"),
-    (17180, "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)"),
+    (
+        12080,
+        "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)",
+    ),
+    (
+        12150,
+        "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)",
+    ),
+    (
+        12160,
+        "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)",
+    ),
+    (
+        12170,
+        "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)",
+    ),
+    (
+        12330,
+        "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)",
+    ),
+    (
+        12340,
+        "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)",
+    ),
+    (
+        12460,
+        "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)",
+    ),
+    (
+        12470,
+        "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)",
+    ),
+    (
+        12550,
+        "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)",
+    ),
+    (
+        14011,
+        "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)",
+    ),
+    (
+        14012,
+        "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)",
+    ),
+    (
+        14080,
+        "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)",
+    ),
+    (
+        14500,
+        "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)",
+    ),
+    (
+        14510,
+        "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)",
+    ),
+    (
+        16420,
+        "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)",
+    ),
+    (
+        17020,
+        "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)",
+    ),
+    (
+        17180,
+        "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)",
+    ),
     (
         61000,
         "interp-core lang::siemens::cycles::tests::undercut.rs undercut_alarms_move_nothing, groove.rs cycle93_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",

@@ -2,7 +2,8 @@
 //! a G01 block, a G02 block with R, and a G01 block under G96 (surface speed), each
 //! read, checked and executed into a sink; then the same steps into the motion
 //! planner (text to planned block: the step with its action queued, prepared and
-//! look-ahead planned). Run through `bench.sh bench_interp`.
+//! look-ahead planned). Then the same for SINUMERIK `G1 X.. Z..` blocks (the
+//! machine's language SINUMERIK, issue 19). Run through `bench.sh bench_interp`.
 #![no_std]
 #![no_main]
 
@@ -20,6 +21,20 @@ const PROGRAM: &[u8] = b"G00 X40. Z2.\nG99 M3 S1200\nG01 Z0 F0.12\n\
 N100 G01 X40.412 Z-0.05\nN101 G01 X40.824 Z-0.1\nN102 G01 X41.234 Z-0.15\n\
 N103 G02 X42.1 Z-1.2 R25.\nN104 G03 X43.05 Z-2.3 R25.\n\
 G96 S200\nN105 G01 X43.5 Z-2.5\nN106 G01 X44.0 Z-2.7\nM30\n";
+
+/// The same stretch in SINUMERIK: the blocks measured are plain `G1 X.. Z..`.
+const SIEMENS_PROGRAM: &[u8] = b"G0 X40 Z2\nG95 M3 S1200\nG1 Z0 F0.12\n\
+N100 G1 X40.412 Z-0.05\nN101 G1 X40.824 Z-0.1\nN102 G1 X41.234 Z-0.15\nM30\n";
+
+/// What the steps of [`SIEMENS_PROGRAM`] read, in order.
+const SIEMENS_LABELS: [&str; 6] = [
+    "setup SINUMERIK G0",
+    "setup SINUMERIK G95 M3 S",
+    "setup SINUMERIK G1 F",
+    "SINUMERIK G1",
+    "SINUMERIK G1",
+    "SINUMERIK G1",
+];
 
 /// Keeps the last action so the work can't be optimised away.
 struct Last(Option<Canon>);
@@ -58,17 +73,18 @@ impl CanonSink for Plan {
 struct Bench<S> {
     interp: Interpreter,
     sink: S,
+    program: &'static [u8],
 }
 
 /// Runs one step.
 fn step<S: CanonSink>(b: &mut Bench<S>) -> bool {
-    matches!(b.interp.step(&SingleProgram(PROGRAM), &Panel::default(), &mut b.sink), Ok(Progress::Executed { .. }))
+    matches!(b.interp.step(&SingleProgram(b.program), &Panel::default(), &mut b.sink), Ok(Progress::Executed { .. }))
 }
 
 /// Runs the program's steps, measuring each (`only`: just the one at that index)
 /// with the label `what: label`.
-fn run<S: CanonSink>(b: &mut Bench<S>, what: &str, only: Option<usize>) {
-    for (k, label) in LABELS.into_iter().enumerate() {
+fn run<S: CanonSink>(b: &mut Bench<S>, labels: &[&str], what: &str, only: Option<usize>) {
+    for (k, &label) in labels.iter().enumerate() {
         if only.is_some_and(|o| o != k) {
             if !step(b) {
                 exit(false);
@@ -110,12 +126,22 @@ fn main() -> ! {
         None => (None, None),
     };
     let cfg = MachineConfig::default();
-    let mut b = Bench { interp: Interpreter::new(cfg.clone()), sink: Last(None) };
-    run(&mut b, "step", steps);
+    let mut b = Bench { interp: Interpreter::new(cfg.clone()), sink: Last(None), program: PROGRAM };
+    run(&mut b, &LABELS, "step", steps);
     hprintln!("size of Interpreter: {} bytes", core::mem::size_of::<Interpreter>());
     let Ok(params) = MotionParams::new(&cfg) else { exit(false) };
     let plan = Plan { planner: Planner::new(Pos::ZERO), params };
-    let mut b = Bench { interp: Interpreter::new(cfg), sink: plan };
-    run(&mut b, "text to planned block", planned);
+    let mut b = Bench { interp: Interpreter::new(cfg.clone()), sink: plan, program: PROGRAM };
+    run(&mut b, &LABELS, "text to planned block", planned);
+    // SINUMERIK (not with BENCH_ONLY: its indexes are the FANUC program's).
+    if only.is_none() {
+        let cfg = MachineConfig { language: interp_core::config::Language::Siemens, ..cfg };
+        let mut b = Bench { interp: Interpreter::new(cfg.clone()), sink: Last(None), program: SIEMENS_PROGRAM };
+        run(&mut b, &SIEMENS_LABELS, "step", None);
+        let Ok(params) = MotionParams::new(&cfg) else { exit(false) };
+        let plan = Plan { planner: Planner::new(Pos::ZERO), params };
+        let mut b = Bench { interp: Interpreter::new(cfg), sink: plan, program: SIEMENS_PROGRAM };
+        run(&mut b, &SIEMENS_LABELS, "text to planned block", None);
+    }
     exit(true)
 }
