@@ -5,13 +5,13 @@ instructions from the block's text to its planned motion block).
 
     m4-tests/bench.sh bench_interp | python3 m4-tests/budget.py
 
-Budgets: a short G01 (also under G96, and a SINUMERIK `G1 X.. Z..`) ≤ 4,000 instructions, a G02/G03 with R
+Budgets: a short G01 (also under G96) ≤ 4,000 instructions, a G02/G03 with R
 ≤ 7,000. Prints each measured block with its budget and margin.
 """
 import re
 import sys
 
-BUDGETS = {"G01": 4000, "G01 under G96": 4000, "G02 R": 7000, "G03 R": 7000, "SINUMERIK G1": 4000}
+BUDGETS = {"G01": 4000, "G01 under G96": 4000, "G02 R": 7000, "G03 R": 7000}
 
 
 def planned_counts(lines):
