@@ -229,10 +229,12 @@ pub fn next_shape_block<E: Environment + ?Sized>(
             return Err(AlarmKind::SequenceNotFound { n: src.nf });
         }
         // Words may use variables (read as the cycle block saw them); a macro
-        // statement cannot be part of a shape.
+        // statement or call (G65, G66, G67) cannot be part of a shape.
         let mut block = Block::default();
-        if let Read::Macro(_) = read_with(raw.text, raw.line, src.program.vars, src.program.fmt, &mut block)? {
-            return Err(AlarmKind::ProfileForbiddenCode { what: "a macro statement" });
+        match read_with(raw.text, raw.line, src.program.vars, src.program.fmt, &mut block)? {
+            Read::Nc => {}
+            Read::Macro(_) => return Err(AlarmKind::ProfileForbiddenCode { what: "a macro statement" }),
+            Read::Call(_) => return Err(AlarmKind::ProfileForbiddenCode { what: "a macro call (G65, G66, G67)" }),
         }
         let last = block.seq == Some(src.nf);
         // Note 4: block skip as the switch stands when the block is read.

@@ -9,7 +9,7 @@ mod words;
 use crate::alarm::AlarmKind;
 use crate::axis::{AXIS_COUNT, Axis};
 use crate::codes::{MFunction, m_codes_conflict, m_function};
-use crate::command::{Command, FlowWord};
+use crate::command::{CallBy, Command, FlowWord};
 use crate::config::MachineConfig;
 use crate::lang::fanuc::parse::{Block, MAX_M};
 use crate::modal::State;
@@ -50,6 +50,27 @@ pub fn check_into(block: &Block, state: &State, cfg: &MachineConfig, cmd: &mut C
     words::check_letters(block, user, flow_m, cfg)?;
     words::convert(block, user, state, cfg, &fmt, cmd)?;
     cmd.flow = flow_m.map(|f| flow_word(block, f)).transpose()?;
+    if let Some(call) = block.call {
+        sub_call(cmd, call)?;
+    }
+    Ok(())
+}
+
+/// A subprogram call by an M code (parameters 6071–6079) or a T code (6001#5):
+/// the block's flow word, as M98 P would be (FANUC 0i); with M98, M99, M91 or M92
+/// in the block it is an alarm.
+fn sub_call(cmd: &mut Command, call: crate::lang::fanuc::calls::SubCall) -> Result<(), AlarmKind> {
+    if cmd.flow.is_some() {
+        let m = cmd.m.iter().find(|(_, f)| f.is_flow()).map_or(98, |&(m, _)| m);
+        return Err(match call.t {
+            None => AlarmKind::ConflictingMCodes { first: m, second: call.m },
+            Some(_) => AlarmKind::WordNotAllowed {
+                letter: b'T',
+                context: "M98/M99/M91/M92 while T codes call O9000 (parameter 6001)",
+            },
+        });
+    }
+    cmd.flow = Some(FlowWord::Call { program: call.program, repeats: 1, by: CallBy::Code { t: call.t } });
     Ok(())
 }
 
@@ -71,7 +92,7 @@ fn flow_word(block: &Block, f: MFunction) -> Result<FlowWord, AlarmKind> {
             if !(1..=9_999).contains(&repeats) {
                 return Err(AlarmKind::ValueOutOfRange { letter: b'L' });
             }
-            Ok(FlowWord::Call { program, repeats: repeats as u16 })
+            Ok(FlowWord::Call { program, repeats: repeats as u16, by: CallBy::M98 })
         }
         MFunction::Return => {
             let alone = block.g.is_empty()

@@ -29,6 +29,7 @@ fn statement_in(text: &str, vars: &Variables) -> Result<MacroStatement, AlarmKin
     match read_statement(text.as_bytes(), 1, vars, &METRIC)? {
         Statement::Macro(m) => Ok(m.statement),
         Statement::Nc(b) => panic!("{text}: read as NC {b:?}"),
+        Statement::Call(c, _) => panic!("{text}: read as a call {c:?}"),
     }
 }
 
@@ -59,6 +60,7 @@ fn nc_in(text: &str, vars: &Variables, fmt: &NumberFormat) -> Result<Block, Alar
     match read_statement(text.as_bytes(), 1, vars, fmt)? {
         Statement::Nc(b) => Ok(b),
         Statement::Macro(m) => panic!("{text}: read as macro {m:?}"),
+        Statement::Call(c, _) => panic!("{text}: read as a call {c:?}"),
     }
 }
 

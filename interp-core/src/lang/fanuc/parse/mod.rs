@@ -4,9 +4,10 @@
 
 mod reader;
 
-pub use reader::{read_block, read_block_into, read_statement, read_statement_into, read_with};
+pub use reader::{read_block, read_block_into, read_program_block, read_statement, read_statement_into, read_with};
 
-use crate::lang::fanuc::macros::MacroStatement;
+use crate::lang::fanuc::calls::{CallBlock, SubCall};
+use crate::lang::fanuc::macros::{Locals, MacroStatement};
 use crate::units::Number;
 
 /// What one block of program text is (2.24.2 notes 7 and 8).
@@ -20,6 +21,8 @@ pub enum Statement {
     Nc(Block),
     /// A macro statement, evaluated.
     Macro(MacroBlock),
+    /// A macro call (G65, G66, G67, a G or M code that calls) with its arguments.
+    Call(CallBlock, Locals),
 }
 
 impl Statement {
@@ -28,6 +31,7 @@ impl Statement {
         match self {
             Statement::Nc(b) => b.line,
             Statement::Macro(m) => m.line,
+            Statement::Call(c, _) => c.line,
         }
     }
 }
@@ -39,6 +43,9 @@ pub enum Read {
     Nc,
     /// A macro statement, evaluated (the block is left empty).
     Macro(MacroBlock),
+    /// A macro call (the block is left empty; the arguments are where the reader
+    /// was told to put them).
+    Call(CallBlock),
 }
 
 /// A macro statement with what may stand before it: a skip mark and a sequence
@@ -102,6 +109,9 @@ pub struct Block {
     pub corner: Option<Number>,
     /// Of `,C` and `,R`, `,R` was written last (2.23 note 9: the last one counts).
     pub corner_last: bool,
+    /// A subprogram call by an M code (parameters 6071–6079) or a T code (6001#5):
+    /// the code is not among the block's M codes or T word.
+    pub call: Option<SubCall>,
 }
 
 impl Default for Block {
@@ -118,6 +128,7 @@ impl Default for Block {
             chamfer: None,
             corner: None,
             corner_last: false,
+            call: None,
         }
     }
 }
@@ -135,6 +146,7 @@ impl Block {
         self.chamfer = None;
         self.corner = None;
         self.corner_last = false;
+        self.call = None;
     }
 
     /// The value of address `letter` (uppercase ASCII), if given.
@@ -188,7 +200,12 @@ impl Block {
 
     /// True if the block commands nothing (blank, comment only, or only N/O).
     pub fn is_empty(&self) -> bool {
-        self.g.is_empty() && self.m.is_empty() && self.present == 0 && self.chamfer.is_none() && self.corner.is_none()
+        self.g.is_empty()
+            && self.m.is_empty()
+            && self.present == 0
+            && self.chamfer.is_none()
+            && self.corner.is_none()
+            && self.call.is_none()
     }
 }
 
