@@ -151,8 +151,7 @@ fn parser_vars() -> &'static interp_core::lang::fanuc::macros::Variables {
 /// One line through the reader and, when it is an NC block, the block check.
 fn parse_line(line: &[u8], n: u32, fmt: &interp_core::units::NumberFormat) {
     use interp_core::config::Param;
-    use interp_core::lang::fanuc::calls::CallCodes;
-    use interp_core::lang::fanuc::macros::Locals;
+    use interp_core::lang::fanuc::calls::{CallCodes, CallRead, Calls};
     use interp_core::lang::fanuc::parse::{Block, Read, read_block_into, read_program_block, skip_level};
     static CFG: OnceLock<(MachineConfig, interp_core::modal::State, CallCodes)> = OnceLock::new();
     let (cfg, state, codes) = CFG.get_or_init(|| {
@@ -167,11 +166,11 @@ fn parse_line(line: &[u8], n: u32, fmt: &interp_core::units::NumberFormat) {
         }
         (cfg, state, CallCodes::of(&p, 0))
     });
-    let codes = if n % 2 == 1 { codes } else { &CallCodes::BUILT_IN };
+    let codes = if n % 2 == 1 { *codes } else { CallCodes::BUILT_IN };
     let _ = skip_level(line);
     let mut block = Block::default();
-    let mut args = Locals::VACANT;
-    match read_program_block(line, n, parser_vars(), fmt, codes, &mut block, &mut args) {
+    let mut calls = Calls { codes, read: CallRead::EMPTY };
+    match read_program_block(line, n, parser_vars(), fmt, &mut block, &mut calls) {
         Ok(Read::Nc) => {
             assert_eq!(block.line, n, "the block keeps its line");
             for letter in block.letters() {
@@ -182,10 +181,12 @@ fn parse_line(line: &[u8], n: u32, fmt: &interp_core::units::NumberFormat) {
                 let _ = write!(Discard, "{kind}");
             }
         }
-        Ok(Read::Macro(m)) => assert_eq!(m.line, n, "the statement keeps its line"),
-        Ok(Read::Call(c)) => {
-            assert_eq!(c.line, n, "the call keeps its line");
-            assert!(block.is_empty(), "a call block leaves no words");
+        Ok(Read::Macro(m)) => {
+            assert_eq!(m.line, n, "the statement keeps its line");
+            if m.statement == interp_core::lang::fanuc::macros::MacroStatement::Call {
+                assert_eq!(calls.read.block.line, n, "the call keeps its line");
+                assert!(block.is_empty(), "a call block leaves no words");
+            }
         }
         Err(kind) => {
             let _ = write!(Discard, "{kind}");

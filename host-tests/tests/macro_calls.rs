@@ -344,9 +344,19 @@ fn an_m_code_calls_a_subprogram_after_the_blocks_other_codes() {
     assert_eq!(r.interp.variables().get(401), Ok(Some(4.0)));
     let r = run_programs("M06\nM30\n", &["O9001\nM06\nM99\n"], cfg.clone(), Panel::default());
     assert_eq!(r.alarm_codes(), [(2, 4008)]);
+    // A dwell's P beside it is the dwell's (the call takes no P).
+    let r = clean_on(cfg.clone(), "G04 P500 M06\nM30\n", &[o9001]);
+    assert_eq!(kind_names(&r)[..2], ["dwell 500", "rapid"]);
+    // Two calls, or one with M98/M99/M30, is an alarm, and the block does nothing.
+    let r = run_programs("M98 P9001 M06\nM30\n", &[o9001], cfg.clone(), Panel::default());
+    assert_eq!(r.alarms[0].kind, AlarmKind::ConflictingMCodes { first: 98, second: 6 });
+    let r = run_programs("M06 M30\nM30\n", &[o9001], cfg.clone(), Panel::default());
+    assert_eq!(r.alarms[0].kind, AlarmKind::ConflictingMCodes { first: 6, second: 30 });
+    let r = run_programs("M06 P9001\nM30\n", &[o9001], cfg.clone(), Panel::default());
+    assert_eq!(r.alarm_codes(), [(1, 4005)], "the call takes no P");
     // With M98 in the block it is an alarm, and the block does nothing.
     let r = run_programs("G00 X10 M06 M98 P9001\nM30\n", &[o9001], cfg, Panel::default());
-    assert_eq!(r.alarms[0].kind, AlarmKind::ConflictingMCodes { first: 98, second: 6 });
+    assert_eq!(r.alarms[0].kind, AlarmKind::ConflictingMCodes { first: 6, second: 98 });
     assert!(host_tests::on_line(&r, 1).is_empty());
 }
 

@@ -23,10 +23,10 @@ use crate::config::{MachineConfig, Param};
 use crate::cycles::{CycleStage, Expansion};
 use crate::env::Environment;
 use crate::exec::execute;
-use crate::lang::fanuc::calls::{CallCodes, Caller, ModalCalls};
+use crate::lang::fanuc::calls::{CallCodes, CallRead, Caller, Calls, ModalCalls};
 use crate::lang::fanuc::check::check_into;
 use crate::lang::fanuc::macros::find_loop_end;
-use crate::lang::fanuc::macros::{Locals, MacroStatement, Variables};
+use crate::lang::fanuc::macros::{MacroStatement, Variables};
 use crate::lang::fanuc::parse::{Block, MacroBlock, Read, read_program_block, skip_level};
 use crate::lang::{Language, ProgramText};
 use crate::modal::State;
@@ -107,15 +107,18 @@ struct Loop {
 /// The open loops of one program level.
 type Loops = heapless::Vec<Loop, MAX_LOOP_DEPTH>;
 
-/// How a program level was entered: what its return gives back.
+/// How a program level was entered: what its return gives back. (Two bytes: a
+/// [`Next`] that carries one stays as small as before.)
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Entry {
-    /// M98, or a subprogram call by an M or T code (`by`): the caller's local
-    /// variables go on.
-    Subprogram { by: Caller },
-    /// A FANUC macro call — G65, a G or M code (`by`), or after a move the G66
-    /// modal call `modal` — with a new level of local variables #1–#33.
-    Macro { by: Caller, modal: Option<u8> },
+    /// M98 (`Caller::Program`), or a subprogram call by an M or T code
+    /// (`Caller::Subprogram`): the caller's local variables go on.
+    Subprogram(Caller),
+    /// A FANUC macro call — G65, a G or M code — with a new level of local
+    /// variables #1–#33.
+    Macro(Caller),
+    /// The G66 modal call `i` after a move: a macro call too.
+    Modal(u8),
 }
 
 /// A subprogram call in progress.
@@ -167,12 +170,12 @@ enum Next {
     Go,
     Pause,
     End,
-    /// Into a called program; `t` is a T code's value for #149 (a call by T code).
+    /// Into a called program (a call by T code finds its value for #149 in the
+    /// block's command).
     Call {
         start: Cursor,
         repeats: u16,
         entry: Entry,
-        t: Option<u32>,
     },
     Return {
         to: Option<Cursor>,
@@ -225,17 +228,38 @@ pub struct Interpreter {
     /// A held move that nose compensation found faulty while the failed block ran
     /// (its line), for [`Interpreter::alarm_stop`].
     fault_line: Option<u32>,
-    /// The arguments of the macro call block being read (`#1–#33` of the level
-    /// it starts).
-    args: Locals,
+    /// The codes that call programs at the level in force, and the macro call
+    /// block just read with its arguments (`#1–#33` of the level it starts).
+    macro_calls: Calls,
     /// The G66 modal calls in force.
     modal: ModalCalls,
-    /// The codes that call programs at the level in force.
-    codes: CallCodes,
     /// The code calls the level in force switches off ([`Caller::switches_off`]).
     codes_off: u8,
-    /// The machine configuration may have changed: `codes` is to be made again.
-    codes_stale: bool,
+}
+
+/// The machine configuration of an [`Interpreter`], borrowed to be changed (see
+/// [`Interpreter::config_mut`]).
+pub struct ConfigMut<'a> {
+    interp: &'a mut Interpreter,
+}
+
+impl core::ops::Deref for ConfigMut<'_> {
+    type Target = MachineConfig;
+    fn deref(&self) -> &MachineConfig {
+        &self.interp.cfg
+    }
+}
+
+impl core::ops::DerefMut for ConfigMut<'_> {
+    fn deref_mut(&mut self) -> &mut MachineConfig {
+        &mut self.interp.cfg
+    }
+}
+
+impl Drop for ConfigMut<'_> {
+    fn drop(&mut self) {
+        self.interp.refresh_codes();
+    }
 }
 
 impl Interpreter {
@@ -264,12 +288,17 @@ impl Interpreter {
             validating: None,
             last_block: Cursor::start(0),
             fault_line: None,
-            args: Locals::VACANT,
+            macro_calls: Calls { codes: CallCodes::BUILT_IN, read: CallRead::EMPTY },
             modal: ModalCalls::default(),
-            codes: CallCodes::BUILT_IN,
             codes_off: 0,
-            codes_stale: true,
         }
+        .with_codes()
+    }
+
+    /// The interpreter with the codes that call programs made from its parameters.
+    fn with_codes(mut self) -> Self {
+        self.refresh_codes();
+        self
     }
 
     /// The machine configuration.
@@ -278,10 +307,10 @@ impl Interpreter {
     }
 
     /// Mutable machine configuration (offset and parameter edits between runs).
-    pub fn config_mut(&mut self) -> &mut MachineConfig {
-        // The codes that call programs (parameters 6001, 6050–6089) may change.
-        self.codes_stale = true;
-        &mut self.cfg
+    /// When the borrow ends, what the interpreter keeps from the parameters (the
+    /// codes that call programs, 6001 and 6050–6089) follows them.
+    pub fn config_mut(&mut self) -> ConfigMut<'_> {
+        ConfigMut { interp: self }
     }
 
     /// The interpreter state (modal codes, position, frames, tool …).
@@ -505,9 +534,6 @@ impl Interpreter {
             self.cursor = start;
             self.positioned = true;
         }
-        if self.codes_stale {
-            self.refresh_codes();
-        }
         let mut budget = self.budget;
         loop {
             if self.language == Language::Siemens {
@@ -532,19 +558,18 @@ impl Interpreter {
                 return Ok(Progress::Skipped { line });
             }
             let fmt = self.number_format();
-            let read =
-                read_program_block(raw.text, line, &self.vars, &fmt, &self.codes, &mut self.block, &mut self.args);
+            let read = read_program_block(raw.text, line, &self.vars, &fmt, &mut self.block, &mut self.macro_calls);
             match read {
                 Ok(Read::Nc) => return self.nc_block(at, fmt, programs, env, sink),
-                Ok(Read::Macro(m)) => {
+                Ok(Read::Macro(m)) if m.statement != MacroStatement::Call => {
                     self.started = true;
                     if let Err(k) = self.macro_statement(&m, at, programs) {
                         return Err(self.alarm_stop(sink, at.program, line, k));
                     }
                 }
-                Ok(Read::Call(c)) => {
+                Ok(Read::Macro(_)) => {
                     self.started = true;
-                    match self.macro_call(&c, programs) {
+                    match self.macro_call(programs) {
                         Ok(None) => {}
                         Ok(Some(next)) => {
                             // Into the called program: a step reads one program.
@@ -586,15 +611,12 @@ impl Interpreter {
             return Err(alarm(AlarmKind::IllegalCharacter { found: c }));
         }
         let fmt = self.number_format();
-        if self.codes_stale {
-            self.refresh_codes();
-        }
-        let read = read_program_block(raw, 0, &self.vars, &fmt, &self.codes, &mut self.block, &mut self.args);
+        let read = read_program_block(raw, 0, &self.vars, &fmt, &mut self.block, &mut self.macro_calls);
         match read.map_err(alarm)? {
-            Read::Call(_) => {
-                return Err(alarm(AlarmKind::NotSupportedYet { what: "a macro call (G65/G66/G67) in MDI" }));
-            }
             Read::Macro(m) => match m.statement {
+                MacroStatement::Call => {
+                    return Err(alarm(AlarmKind::NotSupportedYet { what: "a macro call (G65/G66/G67) in MDI" }));
+                }
                 MacroStatement::Assign { var, value } => self.vars.set(var, value).map_err(alarm)?,
                 MacroStatement::Nop => {}
                 _ => return Err(alarm(AlarmKind::ControlInMdi)),
@@ -714,11 +736,11 @@ impl Interpreter {
         check_into(&self.block, &self.state, &self.cfg, &mut self.cmd)?;
         let cmd = &self.cmd;
         if program.is_none() {
+            if self.block.sub_call().is_some() {
+                return Err(AlarmKind::NotSupportedYet { what: "a subprogram call by M or T code in MDI" });
+            }
             if let Some(&(m, _)) = cmd.m.iter().find(|(_, f)| f.is_flow()) {
                 return Err(AlarmKind::FlowInMdi { m });
-            }
-            if cmd.flow.is_some() {
-                return Err(AlarmKind::NotSupportedYet { what: "a subprogram call by M or T code in MDI" });
             }
             if crate::cycles::cycle_of(cmd, &self.state).is_some() {
                 return Err(AlarmKind::NotSupportedYet { what: "canned cycles in MDI" });
@@ -936,7 +958,7 @@ impl Interpreter {
             Next::Go => {}
             Next::Pause => self.phase = Phase::Paused,
             Next::End => self.phase = Phase::Ended,
-            Next::Call { start, repeats, entry, t } => {
+            Next::Call { start, repeats, entry } => {
                 let frame = Frame {
                     ret: self.cursor,
                     loops: core::mem::take(&mut self.loops),
@@ -946,7 +968,7 @@ impl Interpreter {
                 };
                 // `route` checked that there is room.
                 let _ = self.calls.push(frame);
-                self.enter_call(entry, t);
+                self.enter_call(entry);
                 self.enter(start);
             }
             Next::Repeat { start } => {
@@ -1006,6 +1028,8 @@ impl Interpreter {
             }
             MacroStatement::Loop { label, enter } => self.loop_start(label, enter, at, programs),
             MacroStatement::End { label } => self.loop_end(label),
+            // Taken by `step` before (a call ends the step).
+            MacroStatement::Call => Ok(()),
         }
     }
 

@@ -41,11 +41,8 @@ pub enum CallBy {
     /// M98.
     M98,
     /// A code the language lets call a subprogram (FANUC: an M code of parameters
-    /// 6071–6079, or with 6001#5 a T code, whose value goes to #149).
-    Code {
-        /// The T code's value.
-        t: Option<u32>,
-    },
+    /// 6071–6079, or with 6001#5 a T code, whose value the front end passes on).
+    Code,
 }
 
 /// What an M98, M99, M91 or M92 of the block asks for, with its P (and L), or a

@@ -13,6 +13,7 @@ use crate::config::MachineConfig;
 use crate::env::Environment;
 use crate::lang::ProgramText;
 use crate::lang::fanuc::check::check;
+use crate::lang::fanuc::macros::MacroStatement;
 use crate::lang::fanuc::parse::{Block, Read, read_with};
 use crate::modal::State;
 use crate::program::{Cursor, find_sequence_from, next_block};
@@ -233,8 +234,10 @@ pub fn next_shape_block<E: Environment + ?Sized>(
         let mut block = Block::default();
         match read_with(raw.text, raw.line, src.program.vars, src.program.fmt, &mut block)? {
             Read::Nc => {}
+            Read::Macro(m) if m.statement == MacroStatement::Call => {
+                return Err(AlarmKind::ProfileForbiddenCode { what: "a macro call (G65, G66, G67)" });
+            }
             Read::Macro(_) => return Err(AlarmKind::ProfileForbiddenCode { what: "a macro statement" }),
-            Read::Call(_) => return Err(AlarmKind::ProfileForbiddenCode { what: "a macro call (G65, G66, G67)" }),
         }
         let last = block.seq == Some(src.nf);
         // Note 4: block skip as the switch stands when the block is read.

@@ -8,29 +8,26 @@
 use super::{Entry, Interpreter, Next};
 use crate::alarm::AlarmKind;
 use crate::command::CallBy;
-use crate::lang::fanuc::calls::{CallBlock, CallCodes, Caller, MacroCall, T_CODE_VARIABLE};
+use crate::lang::fanuc::calls::{CallCodes, Caller, MacroCall, T_CODE_VARIABLE};
 use crate::lang::fanuc::macros::MAX_MACRO_LEVEL;
 use crate::program::{Cursor, ProgramStore};
 
 impl Interpreter {
-    /// The macro call block `c` just read (its arguments in `self.args`): G65 and
-    /// a call by G or M code lead into the called program (`Some`, checked); G66
-    /// and G67 change the modal calls and the step goes on (`None`).
-    pub(super) fn macro_call<P: ProgramStore + ?Sized>(
-        &mut self,
-        c: &CallBlock,
-        programs: &P,
-    ) -> Result<Option<Next>, AlarmKind> {
-        match c.call {
+    /// The macro call block just read into `self.macro_calls.read`: G65 and a call by G or M
+    /// code lead into the called program (`Some`, checked); G66 and G67 change the
+    /// modal calls and the step goes on (`None`).
+    #[inline(never)]
+    pub(super) fn macro_call<P: ProgramStore + ?Sized>(&mut self, programs: &P) -> Result<Option<Next>, AlarmKind> {
+        match self.macro_calls.read.block.call {
             MacroCall::Simple { program, repeats, by } => {
                 let start = self.macro_start(program, programs)?;
-                Ok(Some(Next::Call { start, repeats, entry: Entry::Macro { by, modal: None }, t: None }))
+                Ok(Some(Next::Call { start, repeats, entry: Entry::Macro(by) }))
             }
             MacroCall::Modal { program, repeats } => {
                 // The program must be there when the modal call begins (FANUC looks
                 // at the first move; the alarm names the G66 block instead).
                 programs.start(program).ok_or(AlarmKind::ProgramNotFound { program })?;
-                self.modal.start(program, repeats, &self.args)?;
+                self.modal.start(program, repeats, &self.macro_calls.read.args)?;
                 Ok(None)
             }
             MacroCall::Cancel => {
@@ -61,7 +58,7 @@ impl Interpreter {
             return Ok(Next::Go);
         }
         let start = self.macro_start(program, programs)?;
-        Ok(Next::Call { start, repeats, entry: Entry::Macro { by: Caller::Program, modal: Some(i) }, t: None })
+        Ok(Next::Call { start, repeats, entry: Entry::Modal(i) })
     }
 
     /// M98, or a subprogram call by an M or T code, checked.
@@ -72,48 +69,51 @@ impl Interpreter {
         by: CallBy,
         programs: &P,
     ) -> Result<Next, AlarmKind> {
-        let (caller, t) = match by {
+        let caller = match by {
             CallBy::M98 => {
                 if program == self.cursor.program {
                     return Err(AlarmKind::SelfCall { program });
                 }
-                (Caller::Program, None)
+                Caller::Program
             }
-            CallBy::Code { t } => {
+            CallBy::Code => {
+                let t = self.block.sub_call().and_then(|c| c.t);
                 if t.is_some() && !self.vars.can_set(T_CODE_VARIABLE) {
                     return Err(AlarmKind::VariablesFull);
                 }
-                (Caller::Subprogram, t)
+                Caller::Subprogram
             }
         };
         if self.calls.is_full() {
             return Err(AlarmKind::CallNestingTooDeep);
         }
         let start = programs.start(program).ok_or(AlarmKind::ProgramNotFound { program })?;
-        Ok(Next::Call { start, repeats, entry: Entry::Subprogram { by: caller }, t })
+        Ok(Next::Call { start, repeats, entry: Entry::Subprogram(caller) })
     }
 
-    /// Entering a called program (its frame is pushed): a macro's level of local
-    /// variables, a T code's value in #149, the code calls it switches off.
-    pub(super) fn enter_call(&mut self, entry: Entry, t: Option<u32>) {
-        if let Some(t) = t {
-            // `subprogram_call` made sure there is room.
-            let _ = self.vars.set(T_CODE_VARIABLE, Some(f64::from(t)));
-        }
+    /// Entering a called program (its frame is pushed), right after the calling
+    /// block (or its cycle's dry run): a macro's level of local variables, a T
+    /// code's value in #149 (from the calling block, still in `self.block`), the
+    /// code calls it switches off.
+    pub(super) fn enter_call(&mut self, entry: Entry) {
+        // `macro_start` made sure there is a level free, `subprogram_call` that
+        // #149 has room.
         let by = match entry {
-            Entry::Macro { by, modal } => {
-                // `macro_start` made sure there is a level free.
-                let args = match modal {
-                    Some(i) => {
-                        self.modal.set_busy(i, true);
-                        self.modal.args(i).unwrap_or(&self.args)
-                    }
-                    None => &self.args,
-                };
-                let _ = self.vars.enter_level(args);
+            Entry::Macro(by) => {
+                let _ = self.vars.enter_level(&self.macro_calls.read.args);
                 by
             }
-            Entry::Subprogram { by } => by,
+            Entry::Modal(i) => {
+                self.modal.set_busy(i, true);
+                let _ = self.vars.enter_level(self.modal.args(i).unwrap_or(&self.macro_calls.read.args));
+                Caller::Program
+            }
+            Entry::Subprogram(by) => {
+                if let Some(t) = self.block.sub_call().and_then(|c| c.t) {
+                    let _ = self.vars.set(T_CODE_VARIABLE, Some(f64::from(t)));
+                }
+                by
+            }
         };
         self.set_codes_off(self.codes_off | by.switches_off());
     }
@@ -121,11 +121,13 @@ impl Interpreter {
     /// Leaving a called program (M99, its frame popped): the caller's local
     /// variables and code calls again.
     pub(super) fn leave_call(&mut self, entry: Entry, off: u8) {
-        if let Entry::Macro { modal, .. } = entry {
-            self.vars.leave_level();
-            if let Some(i) = modal {
+        match entry {
+            Entry::Macro(_) => self.vars.leave_level(),
+            Entry::Modal(i) => {
+                self.vars.leave_level();
                 self.modal.set_busy(i, false);
             }
+            Entry::Subprogram(_) => {}
         }
         self.set_codes_off(off);
     }
@@ -142,15 +144,14 @@ impl Interpreter {
     fn set_codes_off(&mut self, off: u8) {
         if off != self.codes_off {
             self.codes_off = off;
-            self.codes_stale = true;
+            self.refresh_codes();
         }
     }
 
     /// The table of codes that call, from the parameters and what is switched off.
     #[inline(never)]
     pub(super) fn refresh_codes(&mut self) {
-        self.codes = CallCodes::of(&self.cfg.params, self.codes_off);
-        self.codes_stale = false;
+        self.macro_calls.codes = CallCodes::of(&self.cfg.params, self.codes_off);
     }
 
     /// Macro levels now active (0 in the main program and what it calls with M98).

@@ -13,6 +13,7 @@ use cortex_m_semihosting::hprintln;
 use interp_core::canon::RecordingSink;
 use interp_core::lang::fanuc::macros::Variables;
 use interp_core::lang::fanuc::parse::{Statement, read_statement};
+use interp_core::program::{ProgramMemory, ProgramStore};
 use interp_core::units::NumberFormat;
 use interp_core::{Alarm, Interpreter, MachineConfig, Panel, Progress, SingleProgram};
 use m4_tests::{exit, measure};
@@ -37,11 +38,15 @@ fn read(input: (&[u8], &Variables, &NumberFormat)) -> bool {
 const LOOP: &[u8] = b"#1=0\nWHILE [#1 LT 1000000] DO1\n#1=#1+1\nEND1\nM30\n";
 
 /// One interpreter step: the default budget of statements.
-fn step(input: (&mut Interpreter, &SingleProgram<'_>, &Panel)) -> Result<Progress, Alarm> {
+fn step<P: ProgramStore>(input: (&mut Interpreter, &P, &Panel)) -> Result<Progress, Alarm> {
     let (interp, store, panel) = input;
     let mut sink = RecordingSink::<1>::new();
     interp.step(store, panel, &mut sink)
 }
+
+/// G65 calls with two arguments (docs/MACROS.md), the macro one statement and M99.
+const CALLS: &[u8] = b"G65 P9100 A1. B2.\nG65 P9100 A3. B4.\nG65 P9100 A5. B6.\nM30\n";
+const MACRO: &[u8] = b"O9100\n#3=#1+#2\nM99\n";
 
 #[entry]
 fn main() -> ! {
@@ -69,6 +74,24 @@ fn main() -> ! {
             hprintln!("unexpected: {:?}", r);
             exit(false);
         }
+    }
+    // A G65 call: the step that reads the call block and enters O9100 (a new level
+    // with #1, #2), then the macro's step (#3=#1+#2, M99 back to level 0).
+    let mut memory = ProgramMemory::<256, 4, 8>::new();
+    let (Ok(main), Ok(_)) = (memory.load(CALLS, Some(0)), memory.load(MACRO, None)) else { exit(false) };
+    let mut interp = Interpreter::new(MachineConfig::default());
+    interp.select_main(main);
+    let _ = step((&mut interp, &memory, &panel));
+    let _ = step((&mut interp, &memory, &panel));
+    for what in ["G65 P9100 A1. B2. (call, 2 arguments)", "O9100: #3=#1+#2, M99 (return)"] {
+        hprintln!("bench step: {}", what);
+        if !matches!(measure(step, (&mut interp, &memory, &panel)), Ok(Progress::Executed { .. })) {
+            exit(false);
+        }
+    }
+    if interp.variables().get(3) != Ok(None) || interp.macro_level() != 0 {
+        hprintln!("unexpected: #3 of level 0 or the level after the call");
+        exit(false);
     }
     hprintln!("interpreter: {} bytes, variables: {} bytes", size_of::<Interpreter>(), size_of::<Variables>());
     exit(true)

@@ -226,6 +226,34 @@ pub struct CallBlock {
     pub call: MacroCall,
 }
 
+/// A macro call block as the reader leaves it: the block and its arguments.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CallRead {
+    /// What the block asks for.
+    pub block: CallBlock,
+    /// `#1–#33` as the arguments set them (vacant where not given).
+    pub args: Locals,
+}
+
+impl CallRead {
+    /// Nothing read yet.
+    pub const EMPTY: CallRead = CallRead {
+        block: CallBlock { line: 0, skip_level: None, seq: None, call: MacroCall::Cancel },
+        args: Locals::VACANT,
+    };
+}
+
+/// What the reader of a program's blocks needs for macro calls: the codes that
+/// call, and where a call block goes. (One place, so the per-block path passes one
+/// pointer.)
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Calls {
+    /// The codes that call programs at the level in force.
+    pub codes: CallCodes,
+    /// The macro call block just read, with its arguments.
+    pub read: CallRead,
+}
+
 /// A subprogram call by an M code (6071–6079) or a T code (6001#5): an NC block's
 /// program-flow word, like M98 (the block's other codes run first).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -50,34 +50,30 @@ pub fn check_into(block: &Block, state: &State, cfg: &MachineConfig, cmd: &mut C
     words::check_letters(block, user, flow_m, cfg)?;
     words::convert(block, user, state, cfg, &fmt, cmd)?;
     cmd.flow = flow_m.map(|f| flow_word(block, f)).transpose()?;
-    if let Some(call) = block.call {
-        sub_call(cmd, call)?;
-    }
     Ok(())
 }
 
-/// A subprogram call by an M code (parameters 6071–6079) or a T code (6001#5):
-/// the block's flow word, as M98 P would be (FANUC 0i); with M98, M99, M91 or M92
-/// in the block it is an alarm.
-fn sub_call(cmd: &mut Command, call: crate::lang::fanuc::calls::SubCall) -> Result<(), AlarmKind> {
-    if cmd.flow.is_some() {
-        let m = cmd.m.iter().find(|(_, f)| f.is_flow()).map_or(98, |&(m, _)| m);
-        return Err(match call.t {
-            None => AlarmKind::ConflictingMCodes { first: m, second: call.m },
-            Some(_) => AlarmKind::WordNotAllowed {
-                letter: b'T',
-                context: "M98/M99/M91/M92 while T codes call O9000 (parameter 6001)",
-            },
-        });
+/// The alarm for M codes `first` and `second` that contradict each other; a
+/// subprogram call by an M or T code stands in the block as an M98 and is named
+/// by its own code.
+#[cold]
+fn conflict(block: &Block, first: u16, second: u16) -> AlarmKind {
+    match block.sub_call() {
+        Some(call) if first == 98 && call.t.is_some() => crate::lang::fanuc::parse::T_WITH_FLOW,
+        Some(call) if first == 98 => AlarmKind::ConflictingMCodes { first: call.m, second },
+        _ => AlarmKind::ConflictingMCodes { first, second },
     }
-    cmd.flow = Some(FlowWord::Call { program: call.program, repeats: 1, by: CallBy::Code { t: call.t } });
-    Ok(())
 }
 
-/// The P (and L) of M98, M99, M91, M92.
+/// The P (and L) of M98, M99, M91, M92, or a subprogram call by an M or T code.
 fn flow_word(block: &Block, f: MFunction) -> Result<FlowWord, AlarmKind> {
     let p = |max| block.get(b'P').map(|n| crate::lang::fanuc::parse::whole(b'P', &n, max)).transpose();
     match f {
+        // A subprogram call by an M code (6071–6079) or a T code (6001#5), standing
+        // in the block as an M98 (FANUC 0i: as M98 P would, without P or L).
+        MFunction::Call if let Some(call) = block.sub_call() => {
+            Ok(FlowWord::Call { program: call.program, repeats: 1, by: CallBy::Code })
+        }
         MFunction::Call => {
             let p = p(99_999_999)?.ok_or(AlarmKind::SubprogramNumberMissing)?;
             let (program, repeats) = match block.get(b'L') {
@@ -125,7 +121,7 @@ fn resolve_m(
     for (i, &m) in block.m.iter().enumerate() {
         let f = m_function(m, cfg).ok_or(AlarmKind::UnknownMCode { m })?;
         if let Some(&other) = block.m[..i].iter().find(|&&o| m_codes_conflict(o, m)) {
-            return Err(AlarmKind::ConflictingMCodes { first: other, second: m });
+            return Err(conflict(block, other, m));
         }
         // Capacity equals the reader's, so this push cannot fail.
         let _ = out.push((m, f));

@@ -6,9 +6,9 @@
 use super::{Block, MacroBlock, Read, Statement, whole};
 use crate::alarm::AlarmKind;
 use crate::alarm::GNum;
-use crate::lang::fanuc::calls::{CallBlock, CallCode, CallCodes, Caller, MCall, MacroCall, SubCall};
+use crate::lang::fanuc::calls::{CallBlock, CallCode, CallCodes, CallRead, Caller, Calls, MCall, MacroCall, SubCall};
 use crate::lang::fanuc::macros::{
-    Eval, Locals, Rounding, Value, Variables, format, nullable, starts_statement, statement,
+    Eval, MacroStatement, Rounding, Value, Variables, format, nullable, starts_statement, statement,
 };
 use crate::units::{InputMode, Number, NumberFormat, pow10};
 
@@ -29,18 +29,13 @@ const MAX_WHOLE_VALUE: f64 = 99_999_999.0;
 /// recognised by [`read_program_block`].
 pub fn read_statement(text: &[u8], line: u32, vars: &Variables, fmt: &NumberFormat) -> Result<Statement, AlarmKind> {
     let mut block = Block::default();
-    let mut args = Locals::VACANT;
-    Ok(
-        match Reader::new(text, Some(vars), Some(*fmt), &CallCodes::BUILT_IN).statement(
-            line,
-            &mut block,
-            Some(&mut args),
-        )? {
-            Read::Nc => Statement::Nc(block),
-            Read::Macro(m) => Statement::Macro(m),
-            Read::Call(c) => Statement::Call(c, args),
-        },
-    )
+    let mut call = CallRead::EMPTY;
+    let mut reader = Reader::new(text, Some(vars), Some(*fmt), &CallCodes::BUILT_IN);
+    Ok(match reader.statement(line, &mut block, Some(&mut call))? {
+        Read::Nc => Statement::Nc(block),
+        Read::Macro(m) if m.statement == MacroStatement::Call => Statement::Call(call.block, call.args),
+        Read::Macro(m) => Statement::Macro(m),
+    })
 }
 
 /// [`read_statement`] into `block`, reusing its storage (the interpreter's per-block
@@ -57,18 +52,18 @@ pub fn read_statement_into(
 }
 
 /// A block of a program as the interpreter reads it: [`read_statement_into`] with
-/// the codes that call programs (`codes`), a macro call's arguments read into `args`
-/// (`#1–#33`, vacant where not given).
+/// the codes that call programs (`calls.codes`); a macro call block is read into
+/// `calls.read` (its arguments `#1–#33`, vacant where not given).
 pub fn read_program_block(
     text: &[u8],
     line: u32,
     vars: &Variables,
     fmt: &NumberFormat,
-    codes: &CallCodes,
     block: &mut Block,
-    args: &mut Locals,
+    calls: &mut Calls,
 ) -> Result<Read, AlarmKind> {
-    Reader::new(text, Some(vars), Some(*fmt), codes).statement(line, block, Some(args))
+    let Calls { codes, read } = calls;
+    Reader::new(text, Some(vars), Some(*fmt), codes).statement(line, block, Some(read))
 }
 
 /// [`read_statement_into`] with what is available: without `vars` a `#` raises
@@ -95,7 +90,7 @@ pub fn read_block(text: &[u8], line: u32) -> Result<Block, AlarmKind> {
 pub fn read_block_into(text: &[u8], line: u32, block: &mut Block) -> Result<(), AlarmKind> {
     match Reader::new(text, None, None, &CallCodes::BUILT_IN).statement(line, block, None)? {
         Read::Nc => Ok(()),
-        Read::Macro(_) | Read::Call(_) => Err(format("macro statement (use read_statement)")),
+        Read::Macro(_) => Err(format("macro statement (use read_statement)")),
     }
 }
 
@@ -117,7 +112,7 @@ impl<'a, 'v, 'c> Reader<'a, 'v, 'c> {
 
     /// The whole block: skip mark, sequence number, then a macro statement, a macro
     /// call or words.
-    fn statement(&mut self, line: u32, block: &mut Block, args: Option<&mut Locals>) -> Result<Read, AlarmKind> {
+    fn statement(&mut self, line: u32, block: &mut Block, call: Option<&mut CallRead>) -> Result<Read, AlarmKind> {
         block.clear(line);
         self.skip_blanks_and_comments()?;
         if self.peek() == Some(b'/') {
@@ -147,12 +142,17 @@ impl<'a, 'v, 'c> Reader<'a, 'v, 'c> {
             block.clear(line);
             return Ok(Read::Macro(MacroBlock { line, skip_level, seq, statement }));
         }
-        self.words(block)?;
-        if let Some((code, at)) = self.call {
-            self.pos = at;
-            return self.macro_call(code, line, block, args).map(Read::Call);
+        match self.words(block) {
+            Ok(()) => Ok(Read::Nc),
+            // A call code began the block: the rest is the call's.
+            Err(_) if let Some((code, at)) = self.call => {
+                self.pos = at;
+                let (skip_level, seq) = (block.skip_level, block.seq);
+                self.macro_call(code, line, block, call)?;
+                Ok(Read::Macro(MacroBlock { line, skip_level, seq, statement: MacroStatement::Call }))
+            }
+            Err(k) => Err(k),
         }
-        Ok(Read::Nc)
     }
 
     /// A macro statement, and nothing but comments after it (note 7).
@@ -263,7 +263,7 @@ impl<'a, 'v, 'c> Reader<'a, 'v, 'c> {
                 if letter == b'T' {
                     let t = whole(letter, &n, 99_999_999)?;
                     if self.codes.t_calls() {
-                        return sub_call(block, SubCall { program: 9_000, m: 0, t: Some(t) });
+                        return block.set_sub_call(SubCall { program: 9_000, m: 0, t: Some(t) });
                     }
                 }
                 if block.set(letter, n) { Ok(()) } else { Err(AlarmKind::DuplicateAddress { letter }) }
@@ -274,36 +274,42 @@ impl<'a, 'v, 'c> Reader<'a, 'v, 'c> {
     /// A call code (G65–G67, a G or M code that calls a macro) read as a word: it
     /// must begin the block (2.24.2 note 7: a macro call is a macro statement); the
     /// words after it are the call's, read by [`Reader::macro_call`].
+    #[cold]
+    #[inline(never)]
     fn call_code(&mut self, code: CallCode, block: &Block) -> Result<(), AlarmKind> {
         if !block.is_empty() {
             return Err(AlarmKind::MacroAndNcInOneBlock);
         }
         self.call = Some((code, self.pos));
-        // The words loop ends here; `statement` reads the rest as the call's.
-        self.pos = self.text.len();
-        Ok(())
+        // Out of the words loop (the alarm is not raised: `statement` reads the rest
+        // of the block as the call's).
+        Err(AlarmKind::MacroAndNcInOneBlock)
     }
 
     /// An M code that calls: a macro (a call block, as G65), or a subprogram after
     /// the block's other codes (as M98).
+    #[cold]
+    #[inline(never)]
     fn m_call(&mut self, call: MCall, m: u16, block: &mut Block) -> Result<(), AlarmKind> {
         match call {
             MCall::Macro(program) => self.call_code(CallCode::M { program }, block),
-            MCall::Subprogram(program) => sub_call(block, SubCall { program, m, t: None }),
+            MCall::Subprogram(program) => block.set_sub_call(SubCall { program, m, t: None }),
         }
     }
 
     /// The words of a call block after its code (at `self.pos`): P (G65/G66) and L,
     /// and the arguments (FANUC 0i argument specification I and II) into `args`.
+    /// Out of line: the registers of the per-block path stay free of it.
+    #[inline(never)]
     fn macro_call(
         &mut self,
         code: CallCode,
         line: u32,
         block: &mut Block,
-        mut args: Option<&mut Locals>,
-    ) -> Result<CallBlock, AlarmKind> {
-        if let Some(a) = args.as_deref_mut() {
-            a.clear();
+        mut read: Option<&mut CallRead>,
+    ) -> Result<(), AlarmKind> {
+        if let Some(r) = read.as_deref_mut() {
+            r.args.clear();
         }
         let takes_p = matches!(code, CallCode::G65 | CallCode::G66);
         let mut program = match code {
@@ -338,8 +344,8 @@ impl<'a, 'v, 'c> Reader<'a, 'v, 'c> {
                 b'A'..=b'Z' if code != CallCode::G67 && SPEC_I[usize::from(letter - b'A')] != 0 => {
                     let var = spec.variable(letter)?;
                     let v = self.argument(letter)?;
-                    if let (Some(a), Some(v)) = (args.as_deref_mut(), v) {
-                        a.set(var, Some(v));
+                    if let (Some(r), Some(v)) = (read.as_deref_mut(), v) {
+                        r.args.set(var, Some(v));
                     }
                 }
                 b'A'..=b'Z' | b',' => return Err(AlarmKind::IllegalArgumentAddress { letter }),
@@ -363,7 +369,10 @@ impl<'a, 'v, 'c> Reader<'a, 'v, 'c> {
         };
         let (skip_level, seq) = (block.skip_level, block.seq);
         block.clear(line);
-        Ok(CallBlock { line, skip_level, seq, call })
+        if let Some(r) = read {
+            r.block = CallBlock { line, skip_level, seq, call };
+        }
+        Ok(())
     }
 
     /// A P or L of a call: a whole number 1–9999 (`None` for a null variable).
@@ -641,22 +650,6 @@ fn argument_value(n: &Number, letter: u8, fmt: Option<NumberFormat>) -> f64 {
         frac_digits += 1;
     }
     Number { mantissa: n.mantissa, frac_digits, has_point: true }.to_f64()
-}
-
-/// Puts a subprogram call by an M or T code into the block: one per block.
-fn sub_call(block: &mut Block, call: SubCall) -> Result<(), AlarmKind> {
-    let Some(first) = block.call else {
-        block.call = Some(call);
-        return Ok(());
-    };
-    Err(match (first.t, call.t) {
-        (Some(_), Some(_)) => AlarmKind::DuplicateAddress { letter: b'T' },
-        (None, None) => AlarmKind::ConflictingMCodes { first: first.m, second: call.m },
-        _ => AlarmKind::WordNotAllowed {
-            letter: b'T',
-            context: "a block whose M code calls a subprogram while T codes call O9000 (parameter 6001)",
-        },
-    })
 }
 
 fn set_once(slot: &mut Option<u32>, letter: u8, v: u32) -> Result<(), AlarmKind> {
