@@ -29,13 +29,23 @@ const MAX_WHOLE_VALUE: f64 = 99_999_999.0;
 /// recognised by [`read_program_block`].
 pub fn read_statement(text: &[u8], line: u32, vars: &Variables, fmt: &NumberFormat) -> Result<Statement, AlarmKind> {
     let mut block = Block::default();
-    let mut call = CallRead::EMPTY;
     let mut reader = Reader::new(text, Some(vars), Some(*fmt), &CallCodes::BUILT_IN);
-    Ok(match reader.statement(line, &mut block, Some(&mut call))? {
+    Ok(match reader.statement(line, &mut block, None)? {
         Read::Nc => Statement::Nc(block),
-        Read::Macro(m) if m.statement == MacroStatement::Call => Statement::Call(call.block, call.args),
+        Read::Macro(m) if m.statement == MacroStatement::Call => read_call(text, line, vars, fmt)?,
         Read::Macro(m) => Statement::Macro(m),
     })
+}
+
+/// A macro call block of [`read_statement`], read again with its arguments (only
+/// a call pays for the 33 vacant locals it starts from).
+#[cold]
+#[inline(never)]
+fn read_call(text: &[u8], line: u32, vars: &Variables, fmt: &NumberFormat) -> Result<Statement, AlarmKind> {
+    let mut block = Block::default();
+    let mut call = CallRead::EMPTY;
+    Reader::new(text, Some(vars), Some(*fmt), &CallCodes::BUILT_IN).statement(line, &mut block, Some(&mut call))?;
+    Ok(Statement::Call(call.block, call.args))
 }
 
 /// [`read_statement`] into `block`, reusing its storage (the interpreter's per-block
