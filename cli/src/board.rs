@@ -73,7 +73,9 @@ impl Trace {
                 _ => write!(self.file, "\\x{b:02X}")?,
             }
         }
-        self.file.write_all(b"\n")
+        // Flushed per chunk: the board is usually ended by a signal (noise.py).
+        self.file.write_all(b"\n")?;
+        self.file.flush()
     }
 }
 

@@ -74,7 +74,9 @@ def run(lathe, work, prog, want, noise, seed, speed, timeout):
     holds = text.count("feed hold (!)")
     figures = re.search(r"streamed (\d+) lines in ([\d.]+) s \((\d+) lines/s\); (\d+) resend requests, "
                         r"(\d+) resyncs, (\d+) damaged answers, (\d+) soft resets sent", out)
-    sender_resets = int(figures.group(7)) if figures else 1
+    # Without the closing figures (a stuck or failed run): the connecting reset and
+    # every one the sender noted (retries of `$LN=1`, stopping a job).
+    sender_resets = int(figures.group(7)) if figures else 1 + out.count("soft reset")
     open(os.path.join(work, f"send-{seed}.txt"), "w").write(out)
     return {
         "trace": trace, "log": log,
