@@ -14,6 +14,7 @@ mod macros;
 mod siemens;
 mod sim;
 mod svg;
+mod tape_flow;
 
 use std::path::PathBuf;
 use std::process::{Command, Output};
