@@ -173,6 +173,9 @@ pub enum AlarmKind {
     MissingWord { letter: Letter, context: &'static str },
     /// 4007: a code this controller recognises but does not implement yet.
     NotSupportedYet { what: &'static str },
+    /// 4007: a language or machine kind this firmware was built without (a cargo
+    /// feature of the board's build, docs/FIRMWARE-SIZES.md).
+    NotInThisBuild { what: &'static str },
     /// 4008: an M code neither in the manual's tables nor configured as a user output.
     UnknownMCode { m: u16 },
     /// 4009: two M codes of a block contradict each other (M03 with M04 …).
@@ -379,7 +382,7 @@ impl AlarmKind {
             DuplicateAddress { .. } => 4004,
             WordNotAllowed { .. } => 4005,
             MissingWord { .. } => 4006,
-            NotSupportedYet { .. } => 4007,
+            NotSupportedYet { .. } | NotInThisBuild { .. } => 4007,
             UnknownMCode { .. } => 4008,
             ConflictingMCodes { .. } => 4009,
             TooManyMCodes => 4010,
@@ -530,6 +533,7 @@ impl fmt::Display for AlarmKind {
             WordNotAllowed { letter, context } => write!(f, "address {} is not used by {context}", Ch(letter)),
             MissingWord { letter, context } => write!(f, "{context} needs address {}", Ch(letter)),
             NotSupportedYet { what } => write!(f, "{what} is not supported yet"),
+            NotInThisBuild { what } => write!(f, "{what} not in this build"),
             UnknownMCode { m } => write!(f, "M{m:02} is not a known M code"),
             ConflictingMCodes { first, second } => write!(f, "M{first:02} and M{second:02} contradict each other"),
             TooManyMCodes => write!(f, "more than 3 M codes in one block"),
@@ -1167,7 +1171,7 @@ pub const CATALOG: &[CatalogEntry] = &[
     CatalogEntry {
         code: 4007,
         title: "not supported yet",
-        when: "a code of the manual this build does not implement yet",
+        when: "a code of the manual this build does not implement yet; SINUMERIK mode (G290, $310=1) on a board built without it (the F446: SINUMERIK mode not in this build)",
     },
     CatalogEntry {
         code: 4008,

@@ -23,23 +23,31 @@
 //! first; the ones after the motion (M05, M09, M30 …) are kept in the expansion
 //! and delivered after its last move. Every action carries the cycle block's line.
 
+// The SINUMERIK cycles (CYCLE93/95, the finishing passes of their contours) use
+// these generators and nothing else does: a build without the `siemens` feature
+// leaves them out (and their code out of flash).
+#[cfg(feature = "siemens")]
 mod calls;
 pub mod curve;
 mod emit;
 mod finish;
+#[cfg_attr(not(feature = "siemens"), allow(dead_code))]
 mod groove;
 pub mod hole;
 mod offset;
+#[cfg_attr(not(feature = "siemens"), allow(dead_code))]
 mod pass;
 mod pattern;
 pub mod polar;
 pub mod profile;
 mod rough;
 mod single;
+#[cfg(feature = "siemens")]
 mod stock;
 mod thread;
 
 pub use crate::command::cycle::CycleArgs;
+#[cfg(feature = "siemens")]
 pub use calls::CallEngine;
 pub use emit::{Emitter, Out, Pt, Step};
 
@@ -88,8 +96,11 @@ enum Gen {
     Hole(HoleGen),
     Curve(curve::CurveGen),
     Polar(polar::PolarGen),
+    #[cfg(feature = "siemens")]
     Stock(stock::StockGen),
+    #[cfg(feature = "siemens")]
     Pass(pass::PassGen),
+    #[cfg(feature = "siemens")]
     Grooving(groove::GroovingGen),
 }
 
@@ -186,8 +197,11 @@ impl Expansion {
                     Gen::Hole(g) => g.fill(&mut self.queue)?,
                     Gen::Curve(g) => g.fill(&mut self.queue)?,
                     Gen::Polar(g) => g.fill(&mut self.queue)?,
+                    #[cfg(feature = "siemens")]
                     Gen::Stock(g) => g.fill(&self.profile.segs, here, &mut self.queue)?,
+                    #[cfg(feature = "siemens")]
                     Gen::Pass(g) => g.fill(&self.profile.segs, &mut self.queue)?,
+                    #[cfg(feature = "siemens")]
                     Gen::Grooving(g) => g.fill(&self.profile.segs, here, &mut self.queue)?,
                 };
                 self.gen_done = !more;

@@ -118,6 +118,9 @@ fn plain(
 /// [`execute`] for the cycles below, which run the blocks of a G70–G73 shape.
 pub struct Blocks;
 
+/// What alarm 4007 names on a build without the `siemens` feature.
+pub(crate) const SINUMERIK: &str = "SINUMERIK mode";
+
 impl cycles::Executor for Blocks {
     fn execute(
         cmd: &Command,
@@ -129,6 +132,12 @@ impl cycles::Executor for Blocks {
         execute(cmd, st, cfg, env, out)
     }
 
+    #[cfg(not(feature = "siemens"))]
+    fn cycle_call(_: &Command, _: &mut State, _: &mut cycles::Ctx<'_, '_>) -> Result<(), AlarmKind> {
+        Err(AlarmKind::NotInThisBuild { what: SINUMERIK })
+    }
+
+    #[cfg(feature = "siemens")]
     fn cycle_call(cmd: &Command, st: &mut State, ctx: &mut cycles::Ctx<'_, '_>) -> Result<(), AlarmKind> {
         use crate::lang::siemens::call::{Arg, MAX_ARGS};
         // The driver puts the bound call into the stage of every cycle-call block.
@@ -271,6 +280,10 @@ fn program_flow(
         }
     }
     if let Some(GCode::Language(l)) = cmd.g.one_shot {
+        // A board built without the `siemens` feature (the F446) refuses G290.
+        if cfg!(not(feature = "siemens")) && l == crate::config::Language::Siemens {
+            return Err(AlarmKind::NotInThisBuild { what: SINUMERIK });
+        }
         return Ok(Flow::Language(l));
     }
     Ok(match cmd.flow {

@@ -21,6 +21,9 @@
 //! block execution (`run_cmd`: staging, undo, cycle delivery and validation, the
 //! outbox) and share one call stack, whose frames record the caller's language.
 
+// Without the `siemens` feature the front end's driver is compiled (its frames and
+// state are part of the interpreter) but never entered: no SINUMERIK code in flash.
+#[cfg_attr(not(feature = "siemens"), allow(dead_code))]
 mod siemens;
 
 use crate::alarm::{Alarm, AlarmKind};
@@ -204,6 +207,7 @@ enum Next {
     },
     Language(Language),
     /// SINUMERIK M17/RET: back to the caller (in a main program: the end).
+    #[cfg_attr(not(feature = "siemens"), allow(dead_code))]
     SiemensReturn,
 }
 
@@ -559,7 +563,17 @@ impl Interpreter {
         if self.language == Language::Siemens {
             // The blocks after a G290 (or on a SINUMERIK machine) are SINUMERIK
             // blocks. Only an NC block (G290/G291) switches, and it ends a step.
+            #[cfg(feature = "siemens")]
             return self.siemens_step(&programs, env, &mut &mut *sink);
+            // A board built without SINUMERIK mode (the F446) whose language
+            // setting ($310=1, machine file `language = "siemens"`) asks for it:
+            // alarm 4007 on the program's first block, nothing runs.
+            #[cfg(not(feature = "siemens"))]
+            {
+                self.phase = Phase::Ended;
+                let kind = AlarmKind::NotInThisBuild { what: crate::exec::SINUMERIK };
+                return Err(Alarm::in_program(self.cursor.program, self.cursor.line, kind));
+            }
         }
         let mut budget = self.budget;
         loop {
@@ -1149,5 +1163,51 @@ fn program_text<'a, P: ProgramStore + ?Sized>(
         start: programs.start(here).unwrap_or(Cursor::start(here)),
         vars: Some(vars),
         fmt: Some(fmt),
+    }
+}
+
+/// A build without the `siemens` feature (the F446 board) refuses SINUMERIK mode
+/// with alarm 4007 instead of reading a program in a language it does not carry.
+/// Run by `cargo test -p interp-core --no-default-features --lib` (.ci/run).
+#[cfg(all(test, not(feature = "siemens")))]
+mod without_siemens {
+    use super::*;
+    use crate::canon::RecordingSink;
+    use crate::config::Language;
+    use crate::env::Panel;
+    use crate::program::SingleProgram;
+
+    /// Steps until an alarm or the end; the alarm and the actions staged.
+    fn run(cfg: MachineConfig, text: &str) -> (Option<Alarm>, usize) {
+        let mut interp = Interpreter::new(cfg);
+        let mut sink = RecordingSink::<64>::new();
+        for _ in 0..100 {
+            match interp.step(&SingleProgram(text.as_bytes()), &Panel::default(), &mut sink) {
+                Ok(Progress::Ended) => return (None, sink.actions.len()),
+                Ok(_) => {}
+                Err(a) => return (Some(a), sink.actions.len()),
+            }
+        }
+        (None, sink.actions.len())
+    }
+
+    #[test]
+    fn g290_raises_4007_on_its_line_and_nothing_after_it_runs() {
+        let (alarm, _) = run(MachineConfig::default(), "G00 X10 Z10\nG290\nG1 X20 Z5 F0.2\nM30\n");
+        let alarm = alarm.expect("G290 must be refused");
+        assert_eq!(alarm.code(), 4007);
+        assert_eq!(alarm.line, 2);
+        assert_eq!(alarm.kind, AlarmKind::NotInThisBuild { what: "SINUMERIK mode" });
+        let mut text = heapless::String::<64>::new();
+        core::fmt::Write::write_fmt(&mut text, format_args!("{}", alarm.kind)).unwrap();
+        assert_eq!(text.as_str(), "SINUMERIK mode not in this build");
+    }
+
+    #[test]
+    fn a_sinumerik_power_on_language_raises_4007_before_any_motion() {
+        let cfg = MachineConfig { language: Language::Siemens, ..MachineConfig::default() };
+        let (alarm, actions) = run(cfg, "G0 X10 Z10\nM30\n");
+        assert_eq!(alarm.map(|a| a.code()), Some(4007));
+        assert_eq!(actions, 0);
     }
 }

@@ -21,6 +21,7 @@ mod thread;
 mod undercut;
 
 #[cfg(test)]
+#[cfg(feature = "siemens")]
 mod tests;
 
 pub use super::call::{Arg, ContourSource, Signature, Ty};
