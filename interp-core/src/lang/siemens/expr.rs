@@ -32,6 +32,13 @@ pub trait Env {
 /// Evaluates the expression at `src` (up to the first thing that cannot continue
 /// it: a `,`, `)`, keyword …).
 pub fn eval<'t: 'x, 'x, E: Env>(src: &mut Src<'t>, env: &'x E) -> Result<Value<'x>, AlarmKind> {
+    eval_in(src, env)
+}
+
+/// The evaluator reaches its variables through `dyn Env`: one copy of it in
+/// flash for every kind of scope (the block reader's and the cycle's views were
+/// two copies of ~13 KB each on the board).
+fn eval_in<'t: 'x, 'x>(src: &mut Src<'t>, env: &'x dyn Env) -> Result<Value<'x>, AlarmKind> {
     Eval { src, env, depth: 0 }.expr()
 }
 
@@ -60,9 +67,9 @@ pub fn whole(v: &Value<'_>) -> Result<i64, AlarmKind> {
     Ok(x as i64)
 }
 
-struct Eval<'s, 't, 'x, E> {
+struct Eval<'s, 't, 'x> {
     src: &'s mut Src<'t>,
-    env: &'x E,
+    env: &'x dyn Env,
     depth: u8,
 }
 
@@ -101,7 +108,7 @@ fn finite(r: f64) -> Result<Value<'static>, AlarmKind> {
     if r.is_finite() { Ok(Value::Real(r + 0.0)) } else { Err(AlarmKind::MacroOverflow) }
 }
 
-impl<'t: 'x, 'x, E: Env> Eval<'_, 't, 'x, E> {
+impl<'t: 'x, 'x> Eval<'_, 't, 'x> {
     fn expr(&mut self) -> Result<Value<'x>, AlarmKind> {
         self.depth += 1;
         if self.depth > MAX_DEPTH {
@@ -398,7 +405,7 @@ impl<'t: 'x, 'x, E: Env> Eval<'_, 't, 'x, E> {
     }
 }
 
-fn eval_num_in<'t: 'x, 'x, E: Env>(e: &mut Eval<'_, 't, 'x, E>) -> Result<f64, AlarmKind> {
+fn eval_num_in<'t: 'x, 'x>(e: &mut Eval<'_, 't, 'x>) -> Result<f64, AlarmKind> {
     let v = e.expr()?;
     num(&v)
 }
