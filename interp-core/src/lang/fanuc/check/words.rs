@@ -36,9 +36,8 @@ impl Letters {
 
 /// Axis addresses, absolute and incremental.
 const AXES: Letters = Letters::of(b"XYZCUVWH");
-/// Words every block may hold (and a subprogram call by an M or T code, which is
-/// not a word).
-const ALWAYS: Letters = Letters::of(b"FST").with(Letters(crate::lang::fanuc::parse::SUB_CALL));
+/// Words every block may hold.
+const ALWAYS: Letters = Letters::of(b"FST");
 /// Letters no function of this controller uses.
 const UNUSED: Letters = Letters::of(b"D");
 
@@ -76,8 +75,7 @@ pub(super) fn check_letters(
         Some((l, name)) => (Letters::of(l), name),
         None => words_of(user),
     };
-    // A subprogram call by an M or T code stands as an M98 but takes no P or L.
-    if let Some(f) = flow.filter(|_| block.sub_call().is_none()) {
+    if let Some(f) = flow {
         if allowed.contains(b'P') && block.has(b'P') {
             return Err(AlarmKind::WordNotAllowed {
                 letter: b'P',
