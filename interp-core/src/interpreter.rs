@@ -268,6 +268,11 @@ impl Interpreter {
     pub fn new(cfg: MachineConfig) -> Self {
         let state = State::power_on(&cfg, Pos::ZERO);
         let language = cfg.language;
+        // The codes are computed before the literal, which is returned as it is:
+        // a value passed through a `self`-taking method would be built on the stack
+        // and copied (the board builds its controller in place, see
+        // `Controller::new_in`).
+        let codes = CallCodes::of(&cfg.params, 0);
         Interpreter {
             cfg,
             state,
@@ -288,17 +293,10 @@ impl Interpreter {
             validating: None,
             last_block: Cursor::start(0),
             fault_line: None,
-            macro_calls: Calls { codes: CallCodes::BUILT_IN, read: CallRead::EMPTY },
+            macro_calls: Calls { codes, read: CallRead::EMPTY },
             modal: ModalCalls::default(),
             codes_off: 0,
         }
-        .with_codes()
-    }
-
-    /// The interpreter with the codes that call programs made from its parameters.
-    fn with_codes(mut self) -> Self {
-        self.refresh_codes();
-        self
     }
 
     /// The machine configuration.

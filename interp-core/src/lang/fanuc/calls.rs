@@ -99,6 +99,7 @@ impl CallCodes {
     /// The codes parameters 6001#5 and 6050–6089 make calls, but those `off`
     /// (bits of [`off`]) switches off. Of two parameters naming one code, the lower
     /// number wins; an M code in both 6080–6089 and 6071–6079 calls the macro.
+    #[inline(never)]
     pub fn of(params: &Parameters, off: u8) -> CallCodes {
         let mut c = CallCodes::BUILT_IN;
         let code = |p: Param, max: i64| u16::try_from(params.get(p)).ok().filter(|&v| i64::from(v) <= max);
