@@ -220,6 +220,16 @@ pub const PROOFS: &[Proof] = &[
         in_program: 2,
         line: 2,
     },
+    plain("g65_program_missing", 76, "G00 X1\nG65 P12 A1.\nM30\n", 2),
+    plain("g66_without_p", 76, "G00 X1\nG66 A1.\nM30\n", 2),
+    Proof {
+        case: "g65_nesting_5_macro_levels",
+        code: 77,
+        setup: Setup::Library(&["O0001\nG65 P1\nM99\n"]),
+        program: "G00 X1\nG65 P1\nM30\n",
+        in_program: 1,
+        line: 2,
+    },
     plain("goto_missing_sequence", 78, "G00 X1\nGOTO 5\nM30\n", 2),
     Proof {
         case: "m99_p_missing_sequence",
@@ -243,7 +253,16 @@ pub const PROOFS: &[Proof] = &[
     plain("do_without_end", 124, "G00 X1\nWHILE [1 EQ 1] DO1\nM30\n", 2),
     plain("do_label_4", 126, "G00 X1\nDO4\nM30\n", 2),
     plain("macro_and_nc_words", 127, "G00 X1\n#1=1 G00\nM30\n", 2),
+    Proof {
+        case: "g66_four_fold",
+        code: 122,
+        setup: Setup::Library(&["O0001\nM99\n"]),
+        program: "G00 X1\nG66 P1\nG66 P1\nG66 P1\nG66 P1\nM30\n",
+        in_program: 0,
+        line: 5,
+    },
     plain("goto_0", 128, "G00 X1\nGOTO 0\nM30\n", 2),
+    plain("g65_g_as_argument", 129, "G00 X1\nG65 P1 G01\nM30\n", 2),
     plain("m29_without_s", 200, "G00 X1\nM29\nM30\n", 2),
     plain("s_after_m29", 203, "M29 S100\nS200\nM30\n", 2),
     plain("m29_twice", 203, "M29 S100\nM29 S100\nM30\n", 2),
@@ -345,6 +364,7 @@ pub const PROOFS: &[Proof] = &[
     plain("g51_2_without_tool_spindle", 4047, "G00 X1\nG51.2 P1 Q2\nM30\n", 2),
     on(C_AXIS, "c_move_in_polygon_turning", 220, "G51.2 P1 Q2 S300\nG00 X50\nG00 C10\nG50.2\nM30\n", 3),
     on(C_AXIS, "polar_in_polygon_turning", 221, "G51.2 P1 Q2 S300\nG00 X50\nG12.1\nG13.1\nG50.2\nM30\n", 3),
+    plain("variables_full", 4050, "#1=0\nWHILE [#1 LT 200] DO1\n#[200+#1]=1\n#1=#1+1\nEND1\nM30\n", 3),
     plain("no_m30", 5010, "G00 X10\n", 2),
 ];
 
@@ -356,7 +376,7 @@ pub const PROVEN_ELSEWHERE: &[(u16, &str)] = &[
     (4035, "alarms.rs cycle_alarms_needing_a_machine_or_a_long_program (49-segment shape)"),
     (4036, "alarms.rs cycle_alarms_needing_a_machine_or_a_long_program (11 pockets)"),
     (
-        4048,
+        4052,
         "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (MCALL in a modally called SINUMERIK subprogram)",
     ),
     (4501, "alarms.rs motion_alarms_are_raised_with_their_line (simulated drive)"),

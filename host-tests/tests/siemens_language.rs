@@ -231,7 +231,7 @@ fn alarms_of_the_language_with_their_numbers_and_lines() {
     // 14510: arguments for a subprogram without PROC parameters.
     let r = siemens_lib("PLAIN(1)\nM30\n", &["%_N_PLAIN_SPF\nG0 X1\nM17\n"]);
     assert_eq!(r.alarm_codes(), vec![(1, 14510)]);
-    // 4048: MCALL inside a modally called subprogram.
+    // 4052: MCALL inside a modally called subprogram.
     let r = siemens_lib("MCALL INNER\nG0 X10\nMCALL\nM30\n", &["%_N_INNER_SPF\nPROC INNER\nMCALL INNER\nM17\n"]);
-    assert_eq!(r.alarm_codes().first(), Some(&(3, 4048)));
+    assert_eq!(r.alarm_codes().first(), Some(&(3, 4052)));
 }

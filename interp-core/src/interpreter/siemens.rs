@@ -14,7 +14,7 @@
 //!   the end of the main program's text without M02/M30 is alarm 5010, which a
 //!   stream reads as "wait for more text".
 
-use super::{Frame, Interpreter, Next, Progress};
+use super::{Entry, Frame, Interpreter, Next, Progress};
 use crate::alarm::{Alarm, AlarmKind, SiemensAlarm as S};
 use crate::canon::{Action, Canon, CanonSink};
 use crate::codes::GCode;
@@ -22,6 +22,7 @@ use crate::command::Command;
 use crate::config::Language;
 use crate::env::Environment;
 use crate::lang::ProgramText;
+use crate::lang::fanuc::calls::Caller;
 use crate::lang::siemens::call::{Arg, CallArgs, ContourSource, CycleCall, Signature};
 use crate::lang::siemens::check::{Extras, check_into, number_format};
 use crate::lang::siemens::def::{self, proc_params};
@@ -579,6 +580,8 @@ impl Interpreter {
             loops: heapless::Vec::new(),
             repeats_left: u16::try_from(count.saturating_sub(1)).unwrap_or(u16::MAX),
             language: self.language,
+            entry: Entry::Subprogram(Caller::Program),
+            off: self.codes_off,
             kind: Level::Repeat { start: from, end: stop },
         };
         let _ = self.calls.push(frame);
@@ -672,6 +675,8 @@ impl Interpreter {
             loops: core::mem::take(&mut self.loops),
             repeats_left: u16::try_from(passes.saturating_sub(1)).unwrap_or(u16::MAX),
             language: self.language,
+            entry: Entry::Subprogram(Caller::Program),
+            off: self.codes_off,
             kind: Level::Proc {
                 start: proc_line.unwrap_or(entry),
                 skip: u16::try_from(body.offset - proc_line.map_or(body.offset, |c| c.offset)).unwrap_or(0),
