@@ -81,7 +81,16 @@ fn moved(e: Elem, v: V2) -> Elem {
 /// Calls `f` with each element of the path `o` makes of `raw`, in order (the
 /// contour's own elements and the pieces inserted at corners), while it returns
 /// true. Alarm 3605 when the nose does not fit inside an arc of the contour.
+#[inline]
 pub fn walk(raw: &[Seg], o: &Offsets, mut f: impl FnMut(Seg) -> Result<bool, AlarmKind>) -> Result<(), AlarmKind> {
+    walk_dyn(raw, o, &mut f)
+}
+
+/// [`walk`] with the visitor behind a reference: one copy of the walk in flash
+/// instead of one per caller's closure (the walk runs a few times per roughing pass,
+/// not per block).
+#[inline(never)]
+fn walk_dyn(raw: &[Seg], o: &Offsets, f: &mut dyn FnMut(Seg) -> Result<bool, AlarmKind>) -> Result<(), AlarmKind> {
     let off = |s: &Seg| -> Result<(Elem, V2, SegKind), AlarmKind> {
         let e = elem(s);
         let shift = o.shift(&e);

@@ -364,11 +364,23 @@ impl RoughGen {
 
 /// Calls `add(t0, t1)` for each piece of `s` (parameters along it) that lies below
 /// level `u` of frame `f`, in order: the material a cut at that level reaches.
+#[inline]
 pub fn below(
     f: &Frame,
     s: &Seg,
     u: f64,
     mut add: impl FnMut(f64, f64) -> Result<(), AlarmKind>,
+) -> Result<(), AlarmKind> {
+    below_dyn(f, s, u, &mut add)
+}
+
+/// [`below`] with the visitor behind a reference (one copy in flash).
+#[inline(never)]
+fn below_dyn(
+    f: &Frame,
+    s: &Seg,
+    u: f64,
+    add: &mut dyn FnMut(f64, f64) -> Result<(), AlarmKind>,
 ) -> Result<(), AlarmKind> {
     let mut ts: heapless::Vec<f64, 4> = heapless::Vec::new();
     let _ = ts.push(0.0);
