@@ -141,6 +141,17 @@ fn the_sinumerik_examples_check_clean() {
         assert_eq!(status(&o), 0, "{name}: {}", stdout(&o));
         assert!(stdout(&o).ends_with("no alarms\n"), "{name}: {}", stdout(&o));
     }
+    // The ones whose tools and cutting edges the built-in turret lacks (T4, T5 D3,
+    // T1 D2 and D3) run on examples/machines/sinumerik_tools.toml.
+    let machine = concat!(env!("CARGO_MANIFEST_DIR"), "/../examples/machines/sinumerik_tools.toml");
+    for name in
+        ["drill_cycle83.mpf", "drill_cycle83_g18_axn.mpf", "turn_cycle93.mpf", "turn_cycle94.mpf", "turn_cycle96.mpf"]
+    {
+        let path = format!("{SINUMERIK}/{name}");
+        let o = lathe(&["check", &path, "--machine", machine]);
+        assert_eq!(status(&o), 0, "{name}: {}", stdout(&o));
+        assert!(stdout(&o).ends_with("no alarms\n"), "{name}: {}", stdout(&o));
+    }
 }
 
 #[test]

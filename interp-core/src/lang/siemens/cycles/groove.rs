@@ -127,9 +127,10 @@ pub(super) fn cycle93(
     let flanks = (flanks_from, segs.len() as u16);
     let h1 = contour(&fin, &corners, Some(0), &mut segs)?;
     let h2 = contour(&fin, &corners, Some(1), &mut segs)?;
-    // The tool: edges D and D + 1 (line 10342).
+    // The tool: edges D and D + 1 (line 10342) of the tool in force; edge D + 1's
+    // offset row is a tool count further (`T t D d` is row t + (d − 1) × count).
     let cfg = ctx.cfg();
-    let (Some(e1), Some(e2)) = (cfg.tools.get(d), cfg.tools.get(d + 1)) else {
+    let (Some(e1), Some(e2)) = (cfg.tools.get(d), cfg.tools.get(d.saturating_add(cfg.tool_count))) else {
         return Err(AlarmKind::SiemensCycle(CycleAlarm::ToolWidthWrong));
     };
     let span = Pt::new(e1.total_x() - e2.total_x(), e1.total_z() - e2.total_z());

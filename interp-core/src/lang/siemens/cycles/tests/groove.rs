@@ -4,17 +4,23 @@ use super::*;
 use crate::alarm::CycleAlarm;
 use crate::canon::Action;
 
-/// A grooving tool 4 mm wide: edge D1 the left corner (position 3), D2 the right
-/// one (position 4) 4 mm towards -Z in its offset (+Z on the part), nose `r`.
+/// A grooving tool 4 mm wide, T1: edge D1 the left corner (position 3, row 1), D2
+/// the right one (position 4, row 1 + tool count) 4 mm towards -Z in its offset
+/// (+Z on the part), nose `r`.
 fn grooving_tool(cfg: &mut MachineConfig, r: f64) -> State {
     *cfg.tools.get_mut(1).unwrap() = crate::config::ToolOffset { tip: 3, radius: mm(r), ..Default::default() };
-    *cfg.tools.get_mut(2).unwrap() =
+    *cfg.tools.get_mut(d2(cfg)).unwrap() =
         crate::config::ToolOffset { z: mm(-4.0), tip: 4, radius: mm(r), ..Default::default() };
     let mut st = at(cfg, 50.0, 65.0);
     st.tool.offset_number = 1;
     st.tool.tip = 3;
     st.tool.nose_radius = mm(r);
     st
+}
+
+/// T1 D2's offset row.
+fn d2(cfg: &MachineConfig) -> u16 {
+    1 + cfg.tool_count
 }
 
 /// The example: SPD 35, SPL 60, WIDG 30, DIAG 25, STA1 5, ANG1 10, ANG2 20, RCO 0,
@@ -124,7 +130,8 @@ fn cycle93_alarms_move_nothing() {
     narrow[2] = Arg::Real(3.0);
     assert_eq!(err(&narrow, &st, &cfg), AlarmKind::SiemensCycle(CycleAlarm::ToolWidthWrong));
     let mut flat = cfg.clone();
-    flat.tools.get_mut(2).unwrap().z = 0;
+    let row = d2(&flat);
+    flat.tools.get_mut(row).unwrap().z = 0;
     assert_eq!(err(&example(5), &st, &flat), AlarmKind::SiemensCycle(CycleAlarm::ToolWidthWrong));
     assert_eq!(AlarmKind::SiemensCycle(CycleAlarm::ToolWidthWrong).code(), 61602);
     // Bottom chamfers longer than the bottom; a face groove on a cylinder: 61603.
