@@ -627,8 +627,14 @@ impl fmt::Display for AlarmKind {
             ToolChangeInNoseComp => write!(f, "T code while nose compensation is active"),
             NoseCompGouge => write!(f, "nose compensation would gouge the part"),
             NoseCompCornerAngle => write!(f, "nose compensation corner angle below 0.1 degrees"),
+            #[cfg(feature = "siemens")]
             Siemens(k) => k.fmt(f),
+            #[cfg(feature = "siemens")]
             SiemensCycle(k) => k.fmt(f),
+            // A build without SINUMERIK mode never raises these: their texts stay out
+            // of its flash.
+            #[cfg(not(feature = "siemens"))]
+            Siemens(_) | SiemensCycle(_) => f.write_str("SINUMERIK alarm (SINUMERIK mode is not in this build)"),
         }
     }
 }
