@@ -527,3 +527,118 @@ fn cycle950_alarms_move_nothing() {
     a[15] = Arg::Str(b"ROHTEIL1");
     assert_eq!(call_with("CYCLE950", &a, &st, &cfg, k1()).unwrap_err().code(), 4007);
 }
+
+/// The whole toolpath of CYCLE95/CYCLE950 in every machining direction and form
+/// (rough with the overlapping and the previous-cut pull, finish, complete, chip
+/// breaking, inside, face, CYCLE950's steps, angle, blank), one line per move:
+/// kind, X diameter and Z in mm, and the feed (mm/rev) when it changes. Pinned in
+/// `tests/golden_stock.txt`, so that moving the roughing onto G71/G72's engine
+/// (issue 19) shows every move it changes. `GOLDEN=write cargo test -p interp-core --lib
+/// pinned` writes the file anew.
+#[test]
+fn cycle95_and_cycle950_toolpaths_are_pinned() {
+    use core::fmt::Write as _;
+    let cfg = machine();
+    let r950 = [5.0, 0.0, 0.0, 0.3, 0.1, 0.2, 0.05, 0.5, 0.0, 0.0];
+    let bore = "G01 X40 Z0\nZ-10\nX30 Z-15\nZ-30\nX20\nM30\n";
+    let face = "G01 X20 Z0\nX40\nZ-2\nX60 Z-4\nX80\nZ-8\nM30\n";
+    let cases: Vec<(&str, &str, Vec<Arg<'static>>, (f64, f64), &str)> = vec![
+        (
+            "CYCLE95 VARI 1",
+            "CYCLE95",
+            c95([5.0, 0.0, 0.0, 0.0, FF[0], FF[1], FF[2]], 1, 0.0, 0.0, 0.5),
+            (81.0, 125.0),
+            KONTUR_1,
+        ),
+        (
+            "CYCLE95 VARI 201",
+            "CYCLE95",
+            c95([5.0, 0.0, 0.0, 0.0, FF[0], FF[1], FF[2]], 201, 0.0, 0.0, 0.5),
+            (81.0, 125.0),
+            KONTUR_1,
+        ),
+        (
+            "CYCLE95 VARI 9 allowances",
+            "CYCLE95",
+            c95([5.0, 1.2, 0.3, 0.2, FF[0], FF[1], FF[2]], 9, 0.0, 0.0, 0.5),
+            (81.0, 125.0),
+            KONTUR_1,
+        ),
+        (
+            "CYCLE95 VARI 5",
+            "CYCLE95",
+            c95([5.0, 0.0, 0.0, 0.0, FF[0], FF[1], FF[2]], 5, 0.0, 0.0, 0.5),
+            (81.0, 125.0),
+            KONTUR_1,
+        ),
+        (
+            "CYCLE95 VARI 1 chip breaking",
+            "CYCLE95",
+            c95([5.0, 0.0, 0.0, 0.0, FF[0], FF[1], FF[2]], 1, 0.5, 10.0, 0.5),
+            (81.0, 125.0),
+            KONTUR_1,
+        ),
+        (
+            "CYCLE95 VARI 11 bore",
+            "CYCLE95",
+            c95([4.0, 0.0, 0.0, 0.0, FF[0], FF[1], FF[2]], 11, 0.0, 0.0, 1.0),
+            (10.0, 5.0),
+            bore,
+        ),
+        (
+            "CYCLE95 VARI 10 face",
+            "CYCLE95",
+            c95([2.0, 0.0, 0.0, 0.0, FF[0], FF[1], FF[2]], 10, 0.0, 0.0, 1.0),
+            (100.0, 10.0),
+            face,
+        ),
+        ("CYCLE950 311111", "CYCLE950", c950(311111, r950, (0.0, 0, 0.0, 0), 0.0), (81.0, 125.0), KONTUR_1),
+        (
+            "CYCLE950 322111 30 deg",
+            "CYCLE950",
+            c950(
+                322111,
+                {
+                    let mut r = r950;
+                    r[8] = 30.0;
+                    r
+                },
+                (0.0, 0, 0.0, 0),
+                0.0,
+            ),
+            (81.0, 125.0),
+            KONTUR_1,
+        ),
+        ("CYCLE950 321111 blank", "CYCLE950", c950(321111, r950, (0.0, 0, 80.0, 90), 2.0), (90.0, 125.0), KONTUR_1),
+    ];
+    let mut text = std::string::String::new();
+    for (title, name, args, (x, z), shape) in &cases {
+        let st = at(&cfg, *x, *z);
+        let c = call_with(name, args, &st, &cfg, Some(contour(shape))).unwrap_or_else(|e| panic!("{title}: {e:?}"));
+        let _ = writeln!(text, "# {title}");
+        let mut feed = None;
+        for a in &c.actions {
+            let (k, to, f) = match a.action {
+                Action::Rapid(m) => ('r', m.to.work, None),
+                Action::Linear(m) => ('l', m.to.work, Some(m.feed.value)),
+                Action::Arc(m) => ('a', m.to.work, Some(m.feed.value)),
+                _ => continue,
+            };
+            let _ = write!(text, "{k} {} {}", um(2 * to[Axis::X]), um(to[Axis::Z]));
+            if f.is_some() && f != feed {
+                let _ = write!(text, " F{}", um(f.unwrap_or(0)));
+                feed = f;
+            }
+            text.push('\n');
+        }
+    }
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/golden_stock.txt");
+    if std::env::var("GOLDEN").as_deref() == Ok("write") {
+        std::fs::write(path, &text).unwrap();
+    }
+    let want = std::fs::read_to_string(path).expect("tests/golden_stock.txt (GOLDEN=write writes it)");
+    for (i, (got, want)) in text.lines().zip(want.lines()).enumerate() {
+        assert_eq!(got, want, "line {} of tests/golden_stock.txt", i + 1);
+    }
+    assert_eq!(text.lines().count(), want.lines().count(), "moves in tests/golden_stock.txt");
+}
