@@ -537,12 +537,14 @@ fn cycle950_alarms_move_nothing() {
 /// pinned` writes the file anew.
 #[test]
 fn cycle95_and_cycle950_toolpaths_are_pinned() {
+    /// Title, cycle, arguments, start point (X diameter, Z), contour text.
+    type Case = (&'static str, &'static str, Vec<Arg<'static>>, (f64, f64), &'static str);
     use core::fmt::Write as _;
     let cfg = machine();
     let r950 = [5.0, 0.0, 0.0, 0.3, 0.1, 0.2, 0.05, 0.5, 0.0, 0.0];
     let bore = "G01 X40 Z0\nZ-10\nX30 Z-15\nZ-30\nX20\nM30\n";
     let face = "G01 X20 Z0\nX40\nZ-2\nX60 Z-4\nX80\nZ-8\nM30\n";
-    let cases: Vec<(&str, &str, Vec<Arg<'static>>, (f64, f64), &str)> = vec![
+    let cases: Vec<Case> = vec![
         (
             "CYCLE95 VARI 1",
             "CYCLE95",
