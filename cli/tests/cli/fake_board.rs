@@ -42,6 +42,8 @@ pub struct Script {
     pub locked: bool,
     /// Never send the welcome line.
     pub mute: bool,
+    /// Fall silent for good once this many program lines were taken (a dead link).
+    pub dies_after: Option<u32>,
 }
 
 impl Default for Script {
@@ -55,6 +57,7 @@ impl Default for Script {
             garble_reports: false,
             locked: false,
             mute: false,
+            dies_after: None,
         }
     }
 }
@@ -204,6 +207,9 @@ impl State {
     }
 
     fn send(&mut self, text: &str) {
+        if self.script.dies_after.is_some_and(|n| self.line_no >= n) {
+            return;
+        }
         let _ = self.port.write_all(text.as_bytes());
     }
 

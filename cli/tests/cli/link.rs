@@ -80,6 +80,24 @@ fn send_with_checksums_finds_a_lost_last_line_from_the_enq_answer_alone() {
     assert_eq!(last.len(), 2, "lost once, sent again: {last:?}");
 }
 
+/// A board that falls silent mid-job (a dead link) still ends the job with a clear
+/// error: after 5 s without a byte and at least 20 queries (`?`, ENQ) unanswered.
+#[test]
+fn send_gives_up_on_a_board_that_stopped_talking_after_5_s_and_20_queries() {
+    let board = FakeBoard::start(Script { dies_after: Some(10), ..Script::default() });
+    let p = scratch("link-send-dies.nc", program(30));
+    let t = std::time::Instant::now();
+    let o = lathe(&["send", &p, "--port", &board.path, "--quiet", "--checksum"]);
+    let waited = t.elapsed();
+    board.finish();
+    let err = stderr(&o);
+    assert_eq!(status(&o), 2, "{}{err}", stdout(&o));
+    assert!(err.contains("the board stopped talking: nothing for 5."), "{err}");
+    let queries: u32 = err.split(" s, ").nth(1).and_then(|r| r.split(' ').next()).and_then(|n| n.parse().ok()).unwrap_or(0);
+    assert!(queries >= 20, "{err}");
+    assert!(waited >= std::time::Duration::from_secs(5) && waited < std::time::Duration::from_secs(15), "{waited:?}");
+}
+
 #[test]
 fn a_refused_line_is_named_by_file_and_line_the_job_stops_and_exits_1() {
     let board = FakeBoard::start(Script { refuse: Some("G12.1"), ..Script::default() });
