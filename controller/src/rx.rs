@@ -218,8 +218,11 @@ impl Receiver {
                 continue;
             }
             let next = tail.get(i + 1).map(|&n| self.stripped(n));
-            let acts =
-                if (!framed || between || is_query(b)) && is_realtime(b) { self.acts(b, next, framed) } else { Acts::No };
+            let acts = if (!framed || between || is_query(b)) && is_realtime(b) {
+                self.acts(b, next, framed)
+            } else {
+                Acts::No
+            };
             if matches!(acts, Acts::Alone | Acts::WithLf) {
                 self.realtime(b, self.buf.len() + kept);
                 if b == 0x18 {
@@ -246,7 +249,7 @@ impl Receiver {
     }
 
     /// Whether a real-time byte would be acted on now. Always, except while link
-    /// checksums are in use: then `?` anywhere (a byte line noise turns into `?` goes
+    /// checksums are in use: then the queries `?` and ENQ anywhere (a byte line noise turns into `?` goes
     /// missing from its line, whose CRC then fails, as for a dropped byte; and a
     /// sender's status polls never become data of a line whose LF was lost, which
     /// would keep that line from going stale), every other one only between lines
@@ -261,7 +264,7 @@ impl Receiver {
 
     /// Whether real-time byte `b`, met between lines, acts (`next`: the byte after
     /// it, if it came yet). Without link checksums it acts alone, as in grbl. With
-    /// them (`framed`), `?` acts alone and every other real-time byte only when a
+    /// them (`framed`), `?` and ENQ act alone and every other real-time byte only when a
     /// LF follows it (`!` LF, 0x18 LF …; the LF is part of the command): line noise
     /// that drops the `N` of a framed line makes the line's second byte the first
     /// after a LF, and one flipped bit of it (`8` → 0x18, `1` → `!`) must not reset

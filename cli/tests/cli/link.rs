@@ -93,7 +93,8 @@ fn send_gives_up_on_a_board_that_stopped_talking_after_5_s_and_20_queries() {
     let err = stderr(&o);
     assert_eq!(status(&o), 2, "{}{err}", stdout(&o));
     assert!(err.contains("the board stopped talking: nothing for 5."), "{err}");
-    let queries: u32 = err.split(" s, ").nth(1).and_then(|r| r.split(' ').next()).and_then(|n| n.parse().ok()).unwrap_or(0);
+    let queries: u32 =
+        err.split(" s, ").nth(1).and_then(|r| r.split(' ').next()).and_then(|n| n.parse().ok()).unwrap_or(0);
     assert!(queries >= 20, "{err}");
     assert!(waited >= std::time::Duration::from_secs(5) && waited < std::time::Duration::from_secs(15), "{waited:?}");
 }
