@@ -7,7 +7,7 @@ use super::emit::Emitter;
 use super::groove::{GrooveSpec, GroovingGen};
 use super::offset::Offsets;
 use super::pass::PassGen;
-use super::stock::{Nose, StockGen};
+use super::rough::{Nose, RoughGen};
 use super::thread::MultiThreadGen;
 use super::{Ctx, Executor, Gen, profile, start_cycle};
 use crate::alarm::AlarmKind;
@@ -154,7 +154,7 @@ impl<X: Executor> CallEngine<'_, '_, '_, X> {
         };
         self.expansion(em, |exp, cfg, env| {
             profile::read_contour(&contour, st, cfg, env, X::execute, &mut exp.profile)?;
-            exp.generator = Gen::Stock(StockGen::new(spec, &mut exp.profile.segs, here, nose, feed)?);
+            exp.generator = Gen::Rough(RoughGen::sections(spec, &mut exp.profile.segs, here, nose, feed)?);
             Ok(())
         })
     }

@@ -42,8 +42,6 @@ pub mod polar;
 pub mod profile;
 mod rough;
 mod single;
-#[cfg(feature = "siemens")]
-mod stock;
 mod thread;
 
 pub use crate::command::cycle::CycleArgs;
@@ -96,8 +94,6 @@ enum Gen {
     Hole(HoleGen),
     Curve(curve::CurveGen),
     Polar(polar::PolarGen),
-    #[cfg(feature = "siemens")]
-    Stock(stock::StockGen),
     #[cfg(feature = "siemens")]
     Pass(pass::PassGen),
     #[cfg(feature = "siemens")]
@@ -197,8 +193,6 @@ impl Expansion {
                     Gen::Hole(g) => g.fill(&mut self.queue)?,
                     Gen::Curve(g) => g.fill(&mut self.queue)?,
                     Gen::Polar(g) => g.fill(&mut self.queue)?,
-                    #[cfg(feature = "siemens")]
-                    Gen::Stock(g) => g.fill(&self.profile.segs, here, &mut self.queue)?,
                     #[cfg(feature = "siemens")]
                     Gen::Pass(g) => g.fill(&self.profile.segs, &mut self.queue)?,
                     #[cfg(feature = "siemens")]
