@@ -277,6 +277,9 @@ fn keep_moves(staged: &CycleStage<'_>, mut a: Pt, profile: &mut Profile) -> Resu
 /// `None` for a block without words. A SINUMERIK contour's words may use the
 /// calling level's variables (`src.vars`); its blocks are NC blocks only
 /// (a label, a comment, DIAMON/DIAMOF are fine; DEF, a jump or a call is 10930).
+/// Not inlined: the reader's scratch (words, pending assignments, call arguments,
+/// a FANUC block: ~1.8 KB) stays out of the frame that runs the contour's blocks.
+#[inline(never)]
 fn contour_command(
     src: &crate::lang::siemens::call::ContourSource<'_>,
     raw: &crate::program::RawBlock<'_>,
@@ -370,7 +373,10 @@ fn check_contour_command(cmd: &crate::command::Command, first: bool) -> Result<(
 /// returned (the first block's move only gets there). Alarms 61606 with the
 /// NCK cause: fewer than three moving blocks (10933), more elements than the
 /// profile holds (10934), an arc over 180° or a chamfer/rounding on the first
-/// block (10931), G41/G42 in force at the call (15800).
+/// block (10931), G41/G42 in force at the call (15800). Not inlined into the cycle
+/// call that starts the expansion: its frame (the scratch state and the outbox the
+/// contour's blocks run through) is on the stack only while the contour is read.
+#[inline(never)]
 pub fn read_contour<E: Environment + ?Sized>(
     src: &crate::lang::siemens::call::ContourSource<'_>,
     st: &State,
@@ -411,12 +417,12 @@ pub fn read_contour<E: Environment + ?Sized>(
         let mut staged = CycleStage::new(raw.line, &mut outbox);
         let here = scratch.work_pos(cfg);
         let held = scratch.contour.is_holding();
-        let mut next = scratch;
-        let flow = execute(&cmd, &mut next, cfg, &EnvRef(env), &mut staged)?;
+        // On the scratch copy itself: an alarm or a block that leaves the contour
+        // ends the reading, so nothing needs the state from before the block.
+        let flow = execute(&cmd, &mut scratch, cfg, &EnvRef(env), &mut staged)?;
         if flow != Flow::Continue {
             return Err(prep(10930));
         }
-        scratch = next;
         if last {
             crate::contour::flush(&mut scratch, &mut staged)?;
         }

@@ -167,8 +167,6 @@ pub struct RoughGen {
     /// G00 infeed (the ns block's mode).
     rapid_infeed: bool,
     phase: Phase,
-    level: i64,
-    run: Run,
     /// The options of CYCLE95/950: `None` for G71/G72.
     #[cfg(feature = "siemens")]
     sections: Option<Sections>,
@@ -177,8 +175,12 @@ pub struct RoughGen {
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Phase {
     Start,
-    /// G71/G72: the depth-first walk over the runs of the levels.
-    Rough,
+    /// G71/G72: the depth-first walk over the runs of the levels, at the cut of
+    /// `run` on level `level`.
+    Rough {
+        level: i64,
+        run: Run,
+    },
     /// CYCLE95/950: pass `k` of section `s`.
     #[cfg(feature = "siemens")]
     Level {
@@ -271,8 +273,6 @@ impl RoughGen {
             type2,
             rapid_infeed: profile.ns_rapid,
             phase: Phase::Start,
-            level: 0,
-            run: Run { w0: 0.0, w1: 0.0 },
             #[cfg(feature = "siemens")]
             sections: None,
         };
@@ -287,15 +287,18 @@ impl RoughGen {
         match self.phase {
             #[cfg(feature = "siemens")]
             Phase::Start if self.sections.is_some() => self.begin_sections(out)?,
-            Phase::Start => {
-                self.phase = Phase::Rough;
-                match self.first_run(full)? {
-                    Some((lv, run)) => self.cut(lv, run, here, 0, out)?,
-                    None => self.phase = Phase::Contour(0),
+            Phase::Start => match self.first_run(full)? {
+                Some((level, run)) => {
+                    self.phase = Phase::Rough { level, run };
+                    self.cut(level, run, here, 0, out)?;
                 }
-            }
-            Phase::Rough => match self.next_run(full)? {
-                Some((lv, run, safe)) => self.cut(lv, run, here, safe, out)?,
+                None => self.phase = Phase::Contour(0),
+            },
+            Phase::Rough { level, run } => match self.next_run(full, level, run)? {
+                Some((level, run, safe)) => {
+                    self.phase = Phase::Rough { level, run };
+                    self.cut(level, run, here, safe, out)?;
+                }
                 None => {
                     self.approach_contour(profile, here, out)?;
                     self.phase = Phase::Contour(0);
@@ -342,7 +345,7 @@ impl RoughGen {
     /// it has one, else the end.
     fn after_roughing(&self) -> Phase {
         #[cfg(feature = "siemens")]
-        if self.sections.is_some_and(|o| o.spec.finish) {
+        if self.sections.is_some_and(|o| o.finishes) {
             return Phase::Finish;
         }
         Phase::Done
@@ -366,12 +369,10 @@ impl RoughGen {
     }
 
     /// The first cut: the first run of the first level above the bottom.
-    fn first_run(&mut self, shape: &[Seg]) -> Result<Option<(i64, Run)>, AlarmKind> {
+    fn first_run(&self, shape: &[Seg]) -> Result<Option<(i64, Run)>, AlarmKind> {
         let mut k = 1;
         while self.level_u(k) > self.bottom {
             if let Some(r) = self.runs(shape, self.level_u(k))?.first() {
-                self.level = k;
-                self.run = *r;
                 return Ok(Some((k, *r)));
             }
             k += 1;
@@ -379,22 +380,19 @@ impl RoughGen {
         Ok(None)
     }
 
-    /// The next cut in depth-first order, with the level whose height + e is safe to
-    /// travel at on the way there.
-    fn next_run(&mut self, shape: &[Seg]) -> Result<Option<(i64, Run, i64)>, AlarmKind> {
-        let k = self.level;
+    /// The next cut in depth-first order after the cut of `run` on level `k`, with
+    /// the level whose height + e is safe to travel at on the way there.
+    fn next_run(&self, shape: &[Seg], k: i64, run: Run) -> Result<Option<(i64, Run, i64)>, AlarmKind> {
         // A child: the first run of the level below inside this one.
         if self.level_u(k + 1) > self.bottom {
-            let cur = self.run;
+            let cur = run;
             if let Some(r) = self.runs(shape, self.level_u(k + 1))?.iter().find(|r| inside(r, &cur)) {
-                self.level = k + 1;
-                self.run = *r;
                 return Ok(Some((k + 1, *r, k)));
             }
         }
         // Else the next sibling, or the next sibling of an ancestor.
         let mut lv = k;
-        let mut cur = self.run;
+        let mut cur = run;
         while lv >= 1 {
             let parent = if lv == 1 {
                 None
@@ -404,8 +402,6 @@ impl RoughGen {
             let runs = self.runs(shape, self.level_u(lv))?;
             let sibling = runs.iter().find(|r| r.w0 > cur.w1 && parent.is_none_or(|p| inside(r, &p)));
             if let Some(r) = sibling {
-                self.level = lv;
-                self.run = *r;
                 return Ok(Some((lv, *r, lv - 1)));
             }
             match parent {
@@ -634,16 +630,35 @@ mod sections {
         pub clearance_udeg: u32,
     }
 
-    /// What CYCLE95/950 ask of the engine beyond its frame, start and depths.
+    /// What CYCLE95/950 ask of the engine beyond its frame, start, depth and _VRT
+    /// (from their [`StockSpec`]; what only the set-up needs is not kept).
     #[derive(Clone, Copy, Debug, PartialEq)]
     pub struct Sections {
-        pub(super) spec: StockSpec,
         /// The contour moved by the allowances and the nose: the roughing's shape.
         rough: Offsets,
         /// The finishing pass.
         pub(super) finish: PassGen,
-        /// Feed in force at the call (an FF of 0).
-        base_feed: i64,
+        /// FF1, FF2, FF3 (the feed in force at the call where one is 0).
+        feeds: [i64; 3],
+        /// DAM: a cut is interrupted after this path length (0: never) …
+        interrupt: i64,
+        /// … for DT, ms.
+        dwell_ms: u32,
+        /// The blank (contour-parallel roughing: its allowance round the contour).
+        blank: Blank,
+        /// The finishing allowances along the infeed and the cutting axis, each with
+        /// the contour-parallel one (contour-parallel roughing stops there).
+        allowance: (i64, i64),
+        pull: Pull,
+        spacing: Spacing,
+        /// Rough the undercut sections too.
+        undercuts: bool,
+        /// Contour-parallel roughing (G73's passes).
+        parallel: bool,
+        /// Rough at all / finish.
+        roughs: bool,
+        pub(super) finishes: bool,
+        facing: bool,
     }
 
     /// A point on the shape: element `elem`, parameter `t` along it.
@@ -783,13 +798,21 @@ mod sections {
                 type2: false,
                 rapid_infeed: true,
                 phase: Phase::Start,
-                level: 0,
-                run: Run { w0: 0.0, w1: 0.0 },
                 sections: Some(Sections {
-                    spec: *spec,
                     rough,
                     finish: PassGen::new(finish, (0, 0), Pt::default(), [None; 3], 0, [None; 3]),
-                    base_feed,
+                    feeds: spec.feeds.map(|f| if f > 0 { f } else { base_feed }),
+                    interrupt: spec.interrupt,
+                    dwell_ms: spec.dwell_ms,
+                    blank: spec.blank,
+                    allowance: (au + spec.allow, aw + spec.allow),
+                    pull: spec.pull,
+                    spacing: if spec.equal { Spacing::Equal } else { Spacing::Halves },
+                    undercuts: spec.undercuts,
+                    parallel: spec.parallel,
+                    roughs: spec.rough,
+                    finishes: spec.finish,
+                    facing: spec.facing,
                 }),
             };
             // The start point, from the rough shape (the finishing shape when it is
@@ -863,10 +886,10 @@ mod sections {
         /// or straight the finishing.
         pub(super) fn begin_sections(&mut self, out: &mut StepQueue) -> Result<(), AlarmKind> {
             push(out, Step::Rapid(self.s_point()))?;
-            let spec = self.opts()?.spec;
-            self.phase = if !spec.rough {
+            let o = self.opts()?;
+            self.phase = if !o.roughs {
                 Phase::Finish
-            } else if spec.parallel {
+            } else if o.parallel {
                 push(out, Step::Feedrate(self.feed(0)?))?;
                 Phase::Pattern(self.pattern()?)
             } else {
@@ -880,20 +903,19 @@ mod sections {
         /// of the two allowances decides the count).
         fn pattern(&self) -> Result<PatternGen, AlarmKind> {
             let f = self.frame;
-            let spec = self.opts()?.spec;
-            let blank = match spec.blank {
+            let o = self.opts()?;
+            let blank = match o.blank {
                 Blank::Allowance(a) => a,
                 _ => Pt::default(),
             };
-            let (au, aw) = if spec.facing { (blank.z, blank.x) } else { (blank.x, blank.z) };
-            let count = Spacing::Equal.count(au.abs().max(aw.abs()), spec.depth).max(1);
+            let (au, aw) = if o.facing { (blank.z, blank.x) } else { (blank.x, blank.z) };
+            let count = Spacing::Equal.count(au.abs().max(aw.abs()), self.depth).max(1);
             // G73's first pass is at the relief: one step inside the blank's surface.
             let inside = |v: i64| v.abs() * i64::from(count - 1) / i64::from(count);
             let (au, aw) = (inside(au), inside(aw));
-            let (fu, fw) = if spec.facing { (spec.allow_z, spec.allow_x) } else { (spec.allow_x, spec.allow_z) };
             // Outward on the infeed axis, back towards the start on the cutting axis.
             let relief = f.work(au, -aw);
-            let allowance = f.work(fu + spec.allow, -(fw + spec.allow));
+            let allowance = f.work(o.allowance.0, -o.allowance.1);
             PatternGen::new(self.s_point(), relief, count, allowance)
         }
 
@@ -904,8 +926,7 @@ mod sections {
 
         /// Feed `i` (FF1–FF3) or the one in force.
         fn feed(&self, i: usize) -> Result<i64, AlarmKind> {
-            let o = self.opts()?;
-            Ok(if o.spec.feeds[i] > 0 { o.spec.feeds[i] } else { o.base_feed })
+            Ok(self.opts()?.feeds[i])
         }
 
         /// One part of a roughing pass; the phase that follows.
@@ -919,12 +940,12 @@ mod sections {
             out: &mut StepQueue,
         ) -> Result<Phase, AlarmKind> {
             let f = self.frame;
-            let spec = self.opts()?.spec;
+            let spec = self.opts()?;
             let sec = if s > 0 && !spec.undercuts { None } else { self.section(raw, s)? };
             let Some(sec) = sec else {
                 return Ok(Phase::Return);
             };
-            let spacing = if spec.equal { Spacing::Equal } else { Spacing::Halves };
+            let spacing = spec.spacing;
             let n = spacing.count(sec.top - sec.bottom, self.depth);
             if k > n {
                 return Ok(Phase::Level { s: s + 1, k: 1, part: Part::Begin });
