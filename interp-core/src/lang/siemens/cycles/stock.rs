@@ -1,6 +1,6 @@
 //! CYCLE95 stock removal with undercuts (seed 001 4.5, lines 10596–10954), mapped
-//! onto the stock generator that shares G71/G72's roughing geometry
-//! (`crate::cycles`): the contour `NPP` (a subprogram or a label section, read by
+//! onto G71/G72's roughing engine (`crate::cycles`, `rough::RoughGen` with the
+//! options a [`StockSpec`] asks for): the contour `NPP` (a subprogram or a label section, read by
 //! the engine in its program's language), the twelve machining types of VARI
 //! (roughing / finishing / complete × longitudinal / face × outside / inside) with
 //! the hundreds digit choosing how far each cut follows the contour, MID, the
@@ -86,7 +86,7 @@ pub(super) fn seconds_ms(s: f64) -> u32 {
 /// CYCLE950 (_NP1, _NP2, _NP3, _NP4, _VARI, _MID, _FALZ, _FALX, _FF1, _FF2, _FF3,
 /// _FF4, _VRT, _ANGB, _SDIS, _NP5, _NP6, _NP7, _NP8, _APZ, _APZA, _APX, _APXA,
 /// _TOL1), the extended stock removal of seed 001 4.10 (lines 11511–12156), on the
-/// same stock generator as CYCLE95:
+/// same roughing engine as CYCLE95:
 /// - `_VARI` digits (lines 11688–11698): units 1 longitudinal, 2 face, 3
 ///   contour-parallel (G73's passes); tens the infeed direction X−/X+/Z−/Z+
 ///   (outside/inside); hundreds rough/finish/complete; thousands with / without
