@@ -1144,7 +1144,7 @@ mod sections {
                 top = top.max(high(&f, &seg));
                 entry.get_or_insert(f.norm(seg.a).0);
                 let (ua, ub) = (f.norm(seg.a).0, f.norm(seg.b).0);
-                let low = low(&f, &seg);
+                let low = lowest(&f, &seg);
                 if ub < ua - 1_000 {
                     match open.as_mut() {
                         Some(d) => {
@@ -1284,12 +1284,6 @@ mod sections {
         if f.out > 0 { hi } else { -lo }
     }
 
-    /// Lowest u of a segment.
-    fn low(f: &Frame, s: &Seg) -> i64 {
-        let (lo, hi) = s.extent(f.level);
-        if f.out > 0 { lo } else { -hi }
-    }
-
     /// The smallest and largest X and Z of the contour.
     fn bounds(raw: &[Seg]) -> (Pt, Pt) {
         let mut lo = Pt::new(i64::MAX, i64::MAX);
@@ -1329,9 +1323,8 @@ mod sections {
         let limit = f64::from(clearance_udeg) / 1e6;
         for s in raw {
             let (wa, wb) = (f.norm(s.a).1, f.norm(s.b).1);
-            let (lo, hi) = s.extent(f.cut);
-            let within = lo >= s.a.get(f.cut).min(s.b.get(f.cut)) - 1 && hi <= s.a.get(f.cut).max(s.b.get(f.cut)) + 1;
-            if (wb - wa) as f64 * sign < -1.0 || !within {
+            // G71/G72's rule too (alarm 0064 there): monotone along the cut.
+            if (wb - wa) as f64 * sign < -1.0 || !within(s.extent(f.cut), s.a.get(f.cut), s.b.get(f.cut)) {
                 return Err(AlarmKind::SiemensCycle(CycleAlarm::ContourWrong));
             }
             if clearance_udeg == 0 {
