@@ -67,8 +67,12 @@ pub enum Step {
     RapidTo(Pos),
     /// Cutting feed to a point at the cycle's feed.
     Feed(Pt),
-    /// Cutting feed to a point at a feed per revolution (floating tapping follows the spindle).
-    FeedPerRev(Pt, i64),
+    /// Cutting feed at the cycle's feed to a work position of all axes (the hole
+    /// cycles).
+    FeedTo(Pos),
+    /// Cutting feed to a work position at a feed per revolution (floating tapping
+    /// follows the spindle).
+    FeedPerRev(Pos, i64),
     /// Arc at the cycle's feed.
     Arc {
         /// End point.
@@ -93,8 +97,8 @@ pub enum Step {
     },
     /// Rigid tapping move along one axis.
     Tap {
-        /// End point.
-        to: Pt,
+        /// End point (work, all axes).
+        to: Pos,
         /// Lead, nm/rev.
         lead: i64,
         /// Spindle direction during the move.
@@ -102,7 +106,7 @@ pub enum Step {
     },
     /// Cutting feed to a work position of all axes at a given feed (polar
     /// interpolation's X/C moves).
-    FeedTo {
+    PolarFeed {
         /// Work X (radius), nm.
         x: i64,
         /// Work C, µdeg.
@@ -118,6 +122,11 @@ pub enum Step {
     Dwell(u32),
     /// Spindle direction change at the remembered speed.
     Spindle(SpindleDir),
+    /// A machine output by M code (M19 spindle orientation of the boring cycles).
+    Aux(u16),
+    /// A stop for the operator: the machine waits for cycle start (G88 at the
+    /// bottom of the hole).
+    Stop,
 }
 
 /// Where emitted actions go: the block's stage, the interpreter's outbox, or
@@ -199,11 +208,7 @@ impl Emitter {
                 Action::Rapid(m)
             }
             Step::RapidTo(w) => {
-                let to = motion::endpoint(w, &self.st, cfg)?;
-                check_limits(&to.machine, cfg)?;
-                if to.machine == self.st.pos {
-                    return Ok(());
-                }
+                let Some(to) = self.target_pos(w, cfg)? else { return Ok(()) };
                 let spindle = spindle_speed(&self.st, cfg, w[Axis::X]);
                 Action::Rapid(Move { to, feed: self.feed, spindle, exact_stop: true, independent: false })
             }
@@ -213,10 +218,18 @@ impl Emitter {
                 let exact_stop = self.st.modal.exact_stop_mode;
                 Action::Linear(Move { to, feed, spindle: self.speed(cfg, p), exact_stop, independent: false })
             }
-            Step::FeedPerRev(p, value) => {
-                let Some(to) = self.target(p, cfg)? else { return Ok(()) };
+            Step::FeedTo(w) => {
+                let feed = self.cutting_feed(cfg)?;
+                let Some(to) = self.target_pos(w, cfg)? else { return Ok(()) };
+                let exact_stop = self.st.modal.exact_stop_mode;
+                let spindle = spindle_speed(&self.st, cfg, w[Axis::X]);
+                Action::Linear(Move { to, feed, spindle, exact_stop, independent: false })
+            }
+            Step::FeedPerRev(w, value) => {
+                let Some(to) = self.target_pos(w, cfg)? else { return Ok(()) };
                 let feed = Feed { mode: FeedMode::PerRev, value };
-                Action::Linear(Move { to, feed, spindle: self.speed(cfg, p), exact_stop: true, independent: false })
+                let spindle = spindle_speed(&self.st, cfg, w[Axis::X]);
+                Action::Linear(Move { to, feed, spindle, exact_stop: true, independent: false })
             }
             Step::Arc { to, center, cw } => self.arc(to, center, cw, cfg)?,
             Step::Thread { to: p, lead, delta, start_udeg, sync } => {
@@ -229,15 +242,15 @@ impl Emitter {
                 }
                 Action::Thread(ThreadMove { to, lead, lead_delta: delta, start_udeg, sync, spindle })
             }
-            Step::Tap { to: p, lead, dir } => {
-                let Some(to) = self.target(p, cfg)? else { return Ok(()) };
+            Step::Tap { to: w, lead, dir } => {
+                let Some(to) = self.target_pos(w, cfg)? else { return Ok(()) };
                 // The spindle is position-controlled in the tapping direction at the M29 speed.
                 let mut locked = self.st;
                 locked.spindle.dir = dir;
-                let spindle = spindle_speed(&locked, cfg, p.x);
+                let spindle = spindle_speed(&locked, cfg, w[Axis::X]);
                 Action::Tap(TapMove { to, lead, dir, spindle })
             }
-            Step::FeedTo { x, c, z, feed, .. } => {
+            Step::PolarFeed { x, c, z, feed, .. } => {
                 let mut work = self.st.work_pos(cfg);
                 (work[Axis::X], work[Axis::C], work[Axis::Z]) = (x, c, z);
                 let feed = Feed { value: feed, ..self.feed };
@@ -251,6 +264,8 @@ impl Emitter {
                 Action::Linear(Move { to, feed, spindle, exact_stop, independent: false })
             }
             Step::Dwell(ms) => Action::Dwell { ms },
+            Step::Aux(m) => Action::Aux { m },
+            Step::Stop => Action::Stop { optional: false },
             Step::Spindle(dir) => {
                 self.st.spindle.dir = dir;
                 let x = self.st.work_axis(cfg, Axis::X);
@@ -266,8 +281,16 @@ impl Emitter {
             self.st.pos = e.machine;
             self.st.moved = true;
         }
-        let line = if let Step::FeedTo { line, .. } = step { line } else { self.line };
+        let line = if let Step::PolarFeed { line, .. } = step { line } else { self.line };
         out.put(Canon { line, action })
+    }
+
+    /// The end point of a move to work position `w`, soft limits checked; `None` if
+    /// already there.
+    fn target_pos(&self, w: Pos, cfg: &MachineConfig) -> Result<Option<crate::canon::Endpoint>, AlarmKind> {
+        let to = motion::endpoint(w, &self.st, cfg)?;
+        check_limits(&to.machine, cfg)?;
+        Ok((to.machine != self.st.pos).then_some(to))
     }
 
     /// The end point of a move to `p`, soft limits checked; `None` if already there.

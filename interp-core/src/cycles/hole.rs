@@ -1,58 +1,111 @@
-//! Hole cycles: G83/G87 drilling (plain, high-speed peck, deep peck by parameter
-//! 5101), G85/G89 boring, G84/G88 tapping — rigid after M29 S (2.22.2) or floating
-//! with the M03/M04/M05 sequence of 2.22.3. G83/G84/G85 drill along Z on the face,
-//! G87/G88/G89 along X on the side.
+//! The one hole-cycle generator of every language and machine kind: drilling
+//! (plain, high-speed peck, deep peck), boring (feed out, spindle stop and rapid
+//! out, manual retract, fine boring with an oriented shift, back boring), tapping
+//! (rigid after M29, floating with the spindle sequence of the kind).
 //!
-//! One hole: rapid to the hole position on the initial level (①), rapid to the R
-//! level (②), the work at the hole, back to R, rapid to the initial level (or stay
-//! on R with G99 of systems B/C). K repeats the hole, moving by the incremental
-//! position words each time.
+//! It is told the drilling axis and the positioning plane (whose normal the
+//! drilling axis is) and works on whole positions (work coordinates, every axis),
+//! so the same generator drills a lathe's face (Z, positioned in X and C) and side
+//! (X, positioned in Z and C) — G83–G89 of the ELESY manual —, a machining
+//! centre's holes along Z positioned in XY — FANUC 0i-M G73–G89 — and the
+//! SINUMERIK CYCLE81–89 in the plane of G17/G18/G19 with the tool axis as
+//! drilling axis.
+//!
+//! One hole: rapid to the hole position at the level the tool is on (①), rapid to
+//! the R level (②), the work at the hole, back to R, rapid to the initial level
+//! (or stay on R: G99). K repeats the hole, moving by the incremental position
+//! words each time; each repetition positions at the level the last one left the
+//! tool on.
 
 use super::StepQueue;
 use super::emit::Step;
 use crate::alarm::AlarmKind;
 use crate::axis::{Axis, Pos};
-use crate::canon::SpindleDir;
+use crate::canon::{Plane, SpindleDir};
+
+/// M19: spindle orientation before a boring cycle's shift (seed 004 @10321).
+const ORIENT: u16 = 19;
 
 /// What is done at the hole.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum HoleWork {
-    /// G83/G87: drill, pecking by `q` if non-zero; `deep` = return to R each peck (5101 = 1).
+    /// Drill to the bottom, pecking by `q` if non-zero: `deep` = back to R after
+    /// each peck (lathe 5101 = 1, FANUC M G83), else back by `d` (high speed:
+    /// lathe 5101 = 0, FANUC M G73).
     Drill {
         /// Peck depth (0 = no pecking).
         q: i64,
         /// Deep-hole pecking.
         deep: bool,
-        /// Return d (high-speed) or clearance d (deep), parameter 5113.
+        /// Return d (high speed) or clearance d (deep).
         d: i64,
     },
-    /// G85/G89: feed in, dwell, feed out.
+    /// Feed in, dwell, feed out (lathe G85/G89, FANUC M G85/G89).
     Bore,
-    /// G84/G88 with M29: every move in the hole locked to the spindle.
+    /// Feed in, dwell, spindle stop, rapid out, spindle on again in `restart`
+    /// (FANUC M G86).
+    BoreStop {
+        /// Direction the spindle turned in before the hole.
+        restart: SpindleDir,
+    },
+    /// Feed in, dwell, spindle stop, a stop for the operator (who may retract by
+    /// hand), then rapid out and the spindle on again (FANUC M G88).
+    BoreManual {
+        /// Direction the spindle turned in before the hole.
+        restart: SpindleDir,
+    },
+    /// Feed in, dwell, oriented spindle stop (M19), shift away from the wall by
+    /// `shift`, rapid out, shift back, spindle on (FANUC M G76).
+    FineBore {
+        /// The shift, a vector in the positioning plane (work coordinates).
+        shift: Pos,
+        /// Direction the spindle turned in before the hole.
+        restart: SpindleDir,
+    },
+    /// Back boring (FANUC M G87): at the hole position oriented stop and shift,
+    /// rapid down to the R level (below the hole's far end), shift back, spindle
+    /// on, feed up to the bottom level, oriented stop, shift, rapid to the initial
+    /// level, shift back, spindle on. Always back to the initial level.
+    BackBore {
+        /// The shift, a vector in the positioning plane (work coordinates).
+        shift: Pos,
+        /// Direction the spindle turns in while cutting.
+        restart: SpindleDir,
+    },
+    /// Rigid tapping (M29): every move in the hole locked to the spindle.
     RigidTap {
         /// Lead, nm/rev.
         lead: i64,
         /// Peck depth (0 = none).
         q: i64,
-        /// Deep peck (5102 = 1): back to R after each peck.
+        /// Deep peck: back to R after each peck.
         deep: bool,
-        /// Return d, parameter 5114.
+        /// Return d of pecking.
         d: i64,
-        /// Spindle direction into the hole (M04 with the reverse-thread option 5170).
+        /// Spindle direction into the hole.
         dir: SpindleDir,
-        /// Dwell at R after tapping, parameter 7013.
+        /// Dwell at R after tapping (lathe parameter 7013).
         dwell_r_ms: u32,
-        /// Spindle direction restored after the hole (⑦).
+        /// Spindle direction after the hole (⑦ of the lathe; stopped on a mill,
+        /// whose spindle stays in position control until G80).
         restore: SpindleDir,
     },
-    /// G84/G88 floating: M03/M04/M05 around feeds that follow the spindle.
+    /// Floating tapping: the spindle turns `dir` into the hole and the other way
+    /// out; the feed follows the spindle.
     FloatTap {
         /// Lead, nm/rev.
         lead: i64,
         /// Direction into the hole.
         dir: SpindleDir,
-        /// Whether the spindle already turns that way (then ③ outputs nothing).
+        /// Whether the spindle already turns that way (then ① outputs nothing).
         turning: bool,
+        /// The spindle after the hole: stopped (lathe, 2.22.3: M05 at R and M03/M04
+        /// again before the next hole) or `dir` again (FANUC M G84/G74: forward
+        /// again at R).
+        after: SpindleDir,
+        /// The spindle stops at the bottom before it reverses (lathe 2.22.3); a
+        /// mill reverses directly.
+        stop_at_bottom: bool,
     },
 }
 
@@ -62,7 +115,8 @@ pub struct HoleGen {
     work: HoleWork,
     /// Drilling axis.
     axis: Axis,
-    /// Hole position (work) of the first hole, drilling axis on the initial level.
+    /// Hole position (work) of the first hole; drilling axis = the level the
+    /// tool positions on.
     position: Pos,
     /// Position change per repetition (incremental position words).
     step: Pos,
@@ -91,19 +145,29 @@ enum Phase {
 pub struct HoleSpec {
     /// Work at the hole.
     pub work: HoleWork,
-    /// Drilling axis.
+    /// Drilling axis: the normal of `plane`.
     pub axis: Axis,
-    /// First hole position (work coordinates, drilling axis = initial level).
+    /// Positioning plane: the plane the hole positions are given in (G17 for a
+    /// machining centre's holes; a lathe's face holes are positioned in X and C,
+    /// its side holes in Z and C). Rotary axes position along with it.
+    pub plane: Plane,
+    /// First hole position (work coordinates); on the drilling axis the level the
+    /// tool is on when the hole is positioned.
     pub position: Pos,
     /// Position change per repetition.
     pub step: Pos,
+    /// Initial level on the drilling axis, where G98 (or a lathe's hole) returns:
+    /// on a machining centre the level the cycle mode started on, remembered across
+    /// its G99 holes (seed 004 @7537).
+    pub initial: i64,
     /// R level on the drilling axis.
     pub r_level: i64,
-    /// Bottom on the drilling axis.
+    /// Bottom on the drilling axis (the far end of the cut: for back boring the
+    /// level the cut ends on, above R).
     pub bottom: i64,
     /// Dwell at the bottom.
     pub dwell_ms: u32,
-    /// G99 of systems B/C: return to the R level only.
+    /// G99: return to the R level only.
     pub stay_at_r: bool,
     /// K.
     pub repeat: u32,
@@ -112,16 +176,20 @@ pub struct HoleSpec {
 impl HoleGen {
     /// A hole cycle.
     pub fn new(spec: HoleSpec) -> HoleGen {
+        debug_assert!(!spec.plane.contains(spec.axis), "the drilling axis is the plane's normal");
+        let back_bore = matches!(spec.work, HoleWork::BackBore { .. });
         HoleGen {
             work: spec.work,
             axis: spec.axis,
             position: spec.position,
             step: spec.step,
-            initial: spec.position[spec.axis],
+            initial: spec.initial,
             r_level: spec.r_level,
             bottom: spec.bottom,
             dwell_ms: spec.dwell_ms,
-            stay_at_r: spec.stay_at_r,
+            // Back boring's R level is below the cut: it always returns to the
+            // initial level (seed 004 @9419).
+            stay_at_r: spec.stay_at_r && !back_bore,
             repeat: spec.repeat,
             hole: 0,
             phase: if spec.repeat == 0 { Phase::Done } else { Phase::Position },
@@ -129,6 +197,7 @@ impl HoleGen {
         }
     }
 
+    /// The current hole's position with the drilling axis at `v`.
     #[inline(never)]
     fn at(&self, v: i64) -> Pos {
         let mut p = self.here_pos();
@@ -145,17 +214,31 @@ impl HoleGen {
         p
     }
 
+    /// The level the current hole is positioned on: where the tool is — the
+    /// block's level for the first hole, where the last hole left it for the others.
+    fn positioning_level(&self) -> i64 {
+        match self.hole {
+            0 => self.position[self.axis],
+            _ if self.stay_at_r => self.r_level,
+            _ => self.initial,
+        }
+    }
+
     /// The next group of steps; `false` when done.
     pub fn fill(&mut self, out: &mut StepQueue) -> Result<bool, AlarmKind> {
         match self.phase {
             Phase::Done => return Ok(false),
             Phase::Position => {
-                push(out, Step::RapidTo(self.at(self.initial)))?;
-                push(out, Step::RapidTo(self.at(self.r_level)))?;
-                if let HoleWork::FloatTap { dir, turning, .. } = self.work
-                    && (!turning || self.hole > 0)
-                {
-                    push(out, Step::Spindle(dir))?;
+                push(out, Step::RapidTo(self.at(self.positioning_level())))?;
+                if let HoleWork::BackBore { shift, restart } = self.work {
+                    self.back_bore_in(shift, restart, out)?;
+                } else {
+                    push(out, Step::RapidTo(self.at(self.r_level)))?;
+                    if let HoleWork::FloatTap { dir, turning, after, .. } = self.work
+                        && (if self.hole == 0 { !turning } else { after != dir })
+                    {
+                        push(out, Step::Spindle(dir))?;
+                    }
                 }
                 self.reached = self.r_level;
                 self.phase = Phase::Peck;
@@ -168,6 +251,16 @@ impl HoleGen {
             }
         }
         Ok(true)
+    }
+
+    /// Back boring down to R: oriented stop, shift, rapid to R, shift back, spindle on.
+    fn back_bore_in(&self, shift: Pos, restart: SpindleDir, out: &mut StepQueue) -> Result<(), AlarmKind> {
+        let level = self.positioning_level();
+        push(out, Step::Aux(ORIENT))?;
+        push(out, Step::RapidTo(self.at(level) + shift))?;
+        push(out, Step::RapidTo(self.at(self.r_level) + shift))?;
+        push(out, Step::RapidTo(self.at(self.r_level)))?;
+        push(out, Step::Spindle(restart))
     }
 
     /// One peck (or the whole depth), into the hole and back as the cycle says.
@@ -185,16 +278,18 @@ impl HoleGen {
             HoleWork::Drill { .. } if deep && self.reached != self.r_level => {
                 // ⑤ back in to d short of the last depth, ⑥ feed q + d.
                 push(out, Step::RapidTo(self.at(self.reached - dir * d)))?;
-                push(out, Step::Feed(self.pt(next)))?;
+                push(out, Step::FeedTo(self.at(next)))?;
             }
-            HoleWork::Drill { .. } | HoleWork::Bore => push(out, Step::Feed(self.pt(next)))?,
             HoleWork::RigidTap { lead, dir: sd, .. } => {
-                push(out, Step::Tap { to: self.pt(next), lead, dir: sd })?;
+                push(out, Step::Tap { to: self.at(next), lead, dir: sd })?;
             }
-            HoleWork::FloatTap { lead, .. } => {
-                push(out, Step::FeedPerRev(self.pt(next), lead))?;
-                push(out, Step::Spindle(SpindleDir::Stop))?;
+            HoleWork::FloatTap { lead, stop_at_bottom, .. } => {
+                push(out, Step::FeedPerRev(self.at(next), lead))?;
+                if stop_at_bottom {
+                    push(out, Step::Spindle(SpindleDir::Stop))?;
+                }
             }
+            _ => push(out, Step::FeedTo(self.at(next)))?,
         }
         self.reached = next;
         if last {
@@ -204,10 +299,10 @@ impl HoleGen {
         let back = if deep { self.r_level } else { next - dir * d };
         match self.work {
             HoleWork::RigidTap { lead, dir: sd, .. } => {
-                push(out, Step::Tap { to: self.pt(back), lead, dir: reverse(sd) })?;
+                push(out, Step::Tap { to: self.at(back), lead, dir: reverse(sd) })?;
                 if deep {
                     // Deep rigid peck: back in to the depth reached, locked to the spindle.
-                    push(out, Step::Tap { to: self.pt(next), lead, dir: sd })?;
+                    push(out, Step::Tap { to: self.at(next), lead, dir: sd })?;
                 }
             }
             _ => push(out, Step::RapidTo(self.at(back)))?,
@@ -220,10 +315,33 @@ impl HoleGen {
         if self.dwell_ms > 0 && !matches!(self.work, HoleWork::FloatTap { .. }) {
             push(out, Step::Dwell(self.dwell_ms))?;
         }
-        let r = self.pt(self.r_level);
+        let r = self.at(self.r_level);
+        let leave = if self.stay_at_r { self.r_level } else { self.initial };
         match self.work {
-            HoleWork::Drill { .. } => push(out, Step::RapidTo(self.at(self.r_level)))?,
-            HoleWork::Bore => push(out, Step::Feed(r))?,
+            HoleWork::Drill { .. } => push(out, Step::RapidTo(r))?,
+            HoleWork::Bore => push(out, Step::FeedTo(r))?,
+            HoleWork::BoreStop { restart } | HoleWork::BoreManual { restart } => {
+                push(out, Step::Spindle(SpindleDir::Stop))?;
+                if matches!(self.work, HoleWork::BoreManual { .. }) {
+                    push(out, Step::Stop)?;
+                }
+                push(out, Step::RapidTo(self.at(leave)))?;
+                return push(out, Step::Spindle(restart));
+            }
+            HoleWork::FineBore { shift, restart } => {
+                push(out, Step::Aux(ORIENT))?;
+                push(out, Step::RapidTo(self.at(self.bottom) + shift))?;
+                push(out, Step::RapidTo(self.at(leave) + shift))?;
+                push(out, Step::RapidTo(self.at(leave)))?;
+                return push(out, Step::Spindle(restart));
+            }
+            HoleWork::BackBore { shift, restart } => {
+                push(out, Step::Aux(ORIENT))?;
+                push(out, Step::RapidTo(self.at(self.bottom) + shift))?;
+                push(out, Step::RapidTo(self.at(self.initial) + shift))?;
+                push(out, Step::RapidTo(self.at(self.initial)))?;
+                return push(out, Step::Spindle(restart));
+            }
             HoleWork::RigidTap { lead, dir, dwell_r_ms, restore, .. } => {
                 push(out, Step::Tap { to: r, lead, dir: reverse(dir) })?;
                 if dwell_r_ms > 0 {
@@ -231,25 +349,19 @@ impl HoleGen {
                 }
                 push(out, Step::Spindle(restore))?;
             }
-            HoleWork::FloatTap { lead, dir, .. } => {
+            HoleWork::FloatTap { lead, dir, after, .. } => {
                 if self.dwell_ms > 0 {
                     push(out, Step::Dwell(self.dwell_ms))?;
                 }
                 push(out, Step::Spindle(reverse(dir)))?;
                 push(out, Step::FeedPerRev(r, lead))?;
-                push(out, Step::Spindle(SpindleDir::Stop))?;
+                push(out, Step::Spindle(after))?;
             }
         }
         if !self.stay_at_r {
             push(out, Step::RapidTo(self.at(self.initial)))?;
         }
         Ok(())
-    }
-
-    #[inline(never)]
-    fn pt(&self, v: i64) -> super::emit::Pt {
-        let p = self.at(v);
-        super::emit::Pt::new(p[Axis::X], p[Axis::Z])
     }
 }
 
@@ -265,4 +377,167 @@ pub fn reverse(d: SpindleDir) -> SpindleDir {
 #[inline(never)]
 fn push(out: &mut StepQueue, s: Step) -> Result<(), AlarmKind> {
     out.push_back(s).map_err(|_| AlarmKind::Overflow)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::vec::Vec;
+
+    /// Every step of a cycle.
+    fn steps(spec: HoleSpec) -> Vec<Step> {
+        let mut g = HoleGen::new(spec);
+        let mut all = Vec::new();
+        let mut q = StepQueue::new();
+        while g.fill(&mut q).unwrap() {
+            while let Some(s) = q.pop_front() {
+                all.push(s);
+            }
+        }
+        all
+    }
+
+    const fn xyz(x: i64, y: i64, z: i64) -> Pos {
+        Pos([x, y, z, 0])
+    }
+
+    /// A machining centre's hole: along Z, positioned in XY.
+    fn mill(work: HoleWork) -> HoleSpec {
+        HoleSpec {
+            work,
+            axis: Axis::Z,
+            plane: Plane::Xy,
+            position: xyz(10, 20, 3),
+            step: Pos::ZERO,
+            initial: 50,
+            r_level: 2,
+            bottom: -10,
+            dwell_ms: 0,
+            stay_at_r: false,
+            repeat: 1,
+        }
+    }
+
+    /// The first hole positions on the level the tool is on (3, left there by a
+    /// G99 hole), returns to the remembered initial level (50) under G98; with
+    /// G99 and K3 every further hole positions on R.
+    #[test]
+    fn positions_on_the_current_level_and_returns_to_the_remembered_initial_level() {
+        let drill = HoleWork::Drill { q: 0, deep: false, d: 0 };
+        assert_eq!(
+            steps(mill(drill)),
+            [
+                Step::RapidTo(xyz(10, 20, 3)),
+                Step::RapidTo(xyz(10, 20, 2)),
+                Step::FeedTo(xyz(10, 20, -10)),
+                Step::RapidTo(xyz(10, 20, 2)),
+                Step::RapidTo(xyz(10, 20, 50)),
+            ]
+        );
+        let pattern = HoleSpec { stay_at_r: true, repeat: 3, step: xyz(5, 0, 0), ..mill(drill) };
+        let rapids: Vec<_> = steps(pattern).into_iter().filter(|s| matches!(s, Step::RapidTo(_))).collect();
+        assert_eq!(
+            rapids,
+            [
+                Step::RapidTo(xyz(10, 20, 3)),
+                Step::RapidTo(xyz(10, 20, 2)),
+                Step::RapidTo(xyz(10, 20, 2)),
+                Step::RapidTo(xyz(15, 20, 2)),
+                Step::RapidTo(xyz(15, 20, 2)),
+                Step::RapidTo(xyz(15, 20, 2)),
+                Step::RapidTo(xyz(20, 20, 2)),
+                Step::RapidTo(xyz(20, 20, 2)),
+                Step::RapidTo(xyz(20, 20, 2)),
+            ]
+        );
+    }
+
+    /// Fine boring: dwell, oriented stop, shift, out shifted, shift back, spindle on.
+    #[test]
+    fn fine_boring_shifts_away_from_the_wall_before_it_leaves() {
+        let shift = xyz(-1, 0, 0);
+        let s = steps(HoleSpec { dwell_ms: 7, ..mill(HoleWork::FineBore { shift, restart: SpindleDir::Cw }) });
+        assert_eq!(
+            s[2..],
+            [
+                Step::FeedTo(xyz(10, 20, -10)),
+                Step::Dwell(7),
+                Step::Aux(ORIENT),
+                Step::RapidTo(xyz(9, 20, -10)),
+                Step::RapidTo(xyz(9, 20, 50)),
+                Step::RapidTo(xyz(10, 20, 50)),
+                Step::Spindle(SpindleDir::Cw),
+            ]
+        );
+    }
+
+    /// Back boring goes down shifted to R (below the cut), cuts up to the bottom
+    /// level and returns to the initial level even under G99.
+    #[test]
+    fn back_boring_cuts_upwards_and_always_returns_to_the_initial_level() {
+        let shift = xyz(0, 2, 0);
+        let spec = HoleSpec {
+            r_level: -30,
+            bottom: -12,
+            stay_at_r: true,
+            ..mill(HoleWork::BackBore { shift, restart: SpindleDir::Cw })
+        };
+        assert_eq!(
+            steps(spec),
+            [
+                Step::RapidTo(xyz(10, 20, 3)),
+                Step::Aux(ORIENT),
+                Step::RapidTo(xyz(10, 22, 3)),
+                Step::RapidTo(xyz(10, 22, -30)),
+                Step::RapidTo(xyz(10, 20, -30)),
+                Step::Spindle(SpindleDir::Cw),
+                Step::FeedTo(xyz(10, 20, -12)),
+                Step::Aux(ORIENT),
+                Step::RapidTo(xyz(10, 22, -12)),
+                Step::RapidTo(xyz(10, 22, 50)),
+                Step::RapidTo(xyz(10, 20, 50)),
+                Step::Spindle(SpindleDir::Cw),
+            ]
+        );
+    }
+
+    /// A machining centre's floating tap reverses at the bottom without a stop and
+    /// turns forward again at R; G86 stops the spindle and rapids out; G88 stops
+    /// for the operator before it leaves.
+    #[test]
+    fn mill_tapping_and_spindle_stop_boring() {
+        let tap = HoleWork::FloatTap {
+            lead: 1,
+            dir: SpindleDir::Ccw,
+            turning: true,
+            after: SpindleDir::Ccw,
+            stop_at_bottom: false,
+        };
+        assert_eq!(
+            steps(mill(tap))[2..],
+            [
+                Step::FeedPerRev(xyz(10, 20, -10), 1),
+                Step::Spindle(SpindleDir::Cw),
+                Step::FeedPerRev(xyz(10, 20, 2), 1),
+                Step::Spindle(SpindleDir::Ccw),
+                Step::RapidTo(xyz(10, 20, 50)),
+            ]
+        );
+        let manual = steps(mill(HoleWork::BoreManual { restart: SpindleDir::Cw }));
+        assert_eq!(
+            manual[2..],
+            [
+                Step::FeedTo(xyz(10, 20, -10)),
+                Step::Spindle(SpindleDir::Stop),
+                Step::Stop,
+                Step::RapidTo(xyz(10, 20, 50)),
+                Step::Spindle(SpindleDir::Cw),
+            ]
+        );
+        let stop = steps(HoleSpec { stay_at_r: true, ..mill(HoleWork::BoreStop { restart: SpindleDir::Cw }) });
+        assert_eq!(
+            stop[3..],
+            [Step::Spindle(SpindleDir::Stop), Step::RapidTo(xyz(10, 20, 2)), Step::Spindle(SpindleDir::Cw)]
+        );
+    }
 }

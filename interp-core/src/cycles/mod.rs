@@ -27,7 +27,7 @@ pub mod curve;
 mod emit;
 mod finish;
 mod groove;
-mod hole;
+pub mod hole;
 mod pattern;
 pub mod polar;
 pub mod profile;

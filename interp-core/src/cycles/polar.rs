@@ -137,7 +137,7 @@ impl PolarGen {
         }
         let feed = libm::round(m.feed as f64 * planner / cart).max(1.0) as i64;
         let round = |v: f64| libm::round(v) as i64;
-        Some(Step::FeedTo { x: round(r), c: round(c), z: round(z), feed, line: m.line })
+        Some(Step::PolarFeed { x: round(r), c: round(c), z: round(z), feed, line: m.line })
     }
 }
 

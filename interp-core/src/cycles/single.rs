@@ -8,7 +8,7 @@ use super::thread::{Pullout, ThreadCycleGen, check_variable_lead, long_axis};
 use super::{Ctx, CycleArgs, Gen, args};
 use crate::alarm::AlarmKind;
 use crate::axis::{Axis, Pos};
-use crate::canon::{FeedMode, SpindleDir};
+use crate::canon::{FeedMode, Plane, SpindleDir};
 use crate::codes::GCode;
 use crate::command::Command;
 use crate::config::{MachineConfig, Param};
@@ -161,7 +161,7 @@ pub fn hole_block(
     cfg: &MachineConfig,
 ) -> Result<Option<HoleGen>, AlarmKind> {
     use GCode::*;
-    if st.modal.plane != crate::canon::Plane::Zx {
+    if st.modal.plane != Plane::Zx {
         return Err(AlarmKind::CycleNotInZxPlane);
     }
     let CycleArgs::Hole { r, dwell_ms, q, repeat } = cmd.cycle else { return Ok(None) };
@@ -178,7 +178,10 @@ pub fn hole_block(
     if cmd.g.drilling.is_none() && !cmd.has_axes() {
         return Ok(None);
     }
-    let axis = if matches!(code, FaceDrill | FaceTap | FaceBore) { Axis::Z } else { Axis::X };
+    // Face holes run along Z, positioned in X and C; side holes along X,
+    // positioned in Z and C (C standing in for the plane's second axis).
+    let (axis, plane) =
+        if matches!(code, FaceDrill | FaceTap | FaceBore) { (Axis::Z, Plane::Xy) } else { (Axis::X, Plane::Yz) };
     let here = st.work_pos(cfg);
     let mut position = here;
     let mut step = Pos::ZERO;
@@ -215,8 +218,11 @@ pub fn hole_block(
     let spec = HoleSpec {
         work,
         axis,
+        plane,
         position,
         step,
+        // A lathe's initial level is where each hole block starts (2.21).
+        initial: here[axis],
         r_level,
         bottom,
         dwell_ms: mem.dwell_ms,
@@ -264,7 +270,14 @@ fn tap_work(st: &mut State, cfg: &MachineConfig, q: i64) -> Result<HoleWork, Ala
             };
             let turning = st.spindle.dir == dir;
             st.cycle.tap_dir = dir;
-            Ok(HoleWork::FloatTap { lead: lead_of(st.spindle.rpm)?, dir, turning })
+            // 2.22.3: M05 at the bottom and at R, M03/M04 again for the next hole.
+            Ok(HoleWork::FloatTap {
+                lead: lead_of(st.spindle.rpm)?,
+                dir,
+                turning,
+                after: SpindleDir::Stop,
+                stop_at_bottom: true,
+            })
         }
     }
 }
