@@ -67,6 +67,15 @@ pub enum Body {
         /// Offset number (0 = cancelled).
         offset: u16,
     },
+    /// M06 of a machining centre: the tool selected goes into the spindle.
+    ToolChange {
+        /// The tool put in.
+        tool: u16,
+        /// The tool taken out (0 = none).
+        previous: u16,
+        /// By hand (the machine stops for the operator) or by the tool changer.
+        manual: bool,
+    },
     /// A machine output switched by an M code.
     Aux {
         /// The M number.
@@ -217,6 +226,7 @@ pub fn record(c: &Canon, cfg: &MachineConfig) -> Record {
         Action::Dwell { ms } => Body::Dwell { seconds: f64::from(*ms) / 1e3 },
         Action::Spindle(s) => spindle_record(s),
         Action::Tool { tool, offset } => Body::Tool { tool: *tool, offset: *offset },
+        Action::ToolChange(t) => Body::ToolChange { tool: t.tool, previous: t.previous, manual: t.manual },
         Action::Aux { m } => Body::Aux { m: *m },
         Action::Stop { optional } => Body::Stop { optional: *optional },
         Action::End { rewind } => Body::End { rewind: *rewind },

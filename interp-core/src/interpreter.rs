@@ -118,7 +118,7 @@ struct Frame {
 #[derive(Clone, Debug, Default)]
 struct BlockCycle {
     split: usize,
-    params: heapless::Vec<(Param, i64), 8>,
+    writes: heapless::Vec<(crate::stage::Setting, i64), 8>,
     resume: Option<Cursor>,
 }
 
@@ -593,7 +593,7 @@ impl Interpreter {
             Ok(false) => Ok(Progress::Yielded { line }),
             Ok(true) => {
                 if let Some(mut v) = self.validating.take() {
-                    v.dry.settle(&mut v.state);
+                    v.dry.settle(&mut v.state, &self.cfg);
                     self.state = v.state;
                     self.commit_cycle(&v.block);
                     self.go(v.next);
@@ -656,9 +656,9 @@ impl Interpreter {
         let faulty = staged.faulty_move;
         if done.is_ok() {
             cycle.split = staged.split.unwrap_or(staged.actions.len());
-            if !staged.params.is_empty() {
-                // Only cycle blocks set parameters: most blocks move nothing here.
-                cycle.params = core::mem::take(&mut staged.params);
+            if !staged.writes.is_empty() {
+                // Only cycle and G10 blocks write settings: most blocks move nothing here.
+                cycle.writes = core::mem::take(&mut staged.writes);
             }
             cycle.resume = staged.resume;
         }
@@ -747,7 +747,7 @@ impl Interpreter {
     #[inline]
     fn commit_cycle(&mut self, c: &BlockCycle) {
         // Most blocks start no cycle and write no parameter.
-        if self.cycle.is_some() || !c.params.is_empty() || c.resume.is_some() {
+        if self.cycle.is_some() || !c.writes.is_empty() || c.resume.is_some() {
             self.hand_over(c);
         }
     }
@@ -758,8 +758,8 @@ impl Interpreter {
         if let Some(exp) = self.cycle.as_mut() {
             exp.take_tail(&mut self.outbox, c.split);
         }
-        for &(p, v) in &c.params {
-            self.cfg.params.set(p, v);
+        for &(s, v) in &c.writes {
+            s.apply(&mut self.cfg, v);
         }
         if let Some(r) = c.resume.filter(|r| r.offset > self.cursor.offset) {
             self.jump(Cursor { program: self.cursor.program, ..r });

@@ -12,7 +12,7 @@ pub mod cycle;
 mod gset;
 
 pub use cycle::CycleArgs;
-pub use gset::{GSet, uses_axes};
+pub use gset::{EXTRA_FRAME, GSet, uses_axes};
 // The `,C`/`,R` (FANUC) and `CHF=`/`RND=` (SINUMERIK) request is held by the
 // contour look-ahead: defined with it.
 pub use crate::modal::Corner;
@@ -84,8 +84,13 @@ pub struct Command {
     pub feed: Option<i64>,
     /// S as written (rev/min, surface speed, or G50 clamp).
     pub speed: Option<u32>,
-    /// T: turret station and offset number.
+    /// T: turret station and offset number (a machining centre's T selects a tool:
+    /// offset 0).
     pub tool: Option<(u16, u16)>,
+    /// Mill: H, the tool length offset number.
+    pub h: Option<u16>,
+    /// Mill: D, the cutter radius offset number.
+    pub d: Option<u16>,
     /// M98/M99/M91/M92 with their words.
     pub flow: Option<FlowWord>,
     /// `,C`/`,R`: the corner to insert after the block's move (2.23).
@@ -109,6 +114,8 @@ impl Command {
         feed: None,
         speed: None,
         tool: None,
+        h: None,
+        d: None,
         flow: None,
         corner: None,
         cycle: CycleArgs::None,
@@ -128,6 +135,9 @@ impl Command {
             Some(true) => return GCode::PolygonOn,
             Some(false) => return GCode::PolygonOff,
             None => {}
+        }
+        if let Some(f) = self.g.frame {
+            return f;
         }
         match self.g.one_shot {
             Some(c) if gset::uses_axes(c) || is_multiple(c) => c,

@@ -24,6 +24,7 @@
 //! and delivered after its last move. Every action carries the cycle block's line.
 
 pub mod curve;
+mod drilling;
 mod emit;
 mod finish;
 mod groove;
@@ -285,7 +286,7 @@ impl<'a> core::ops::DerefMut for CycleStage<'a> {
 /// tapping, and the M29 rules (2.22.1). Returns whether the previous block was a
 /// thread block.
 #[inline]
-pub fn before_block(cmd: &Command, st: &mut State) -> Result<bool, AlarmKind> {
+pub fn before_block(cmd: &Command, st: &mut State, cfg: &MachineConfig) -> Result<bool, AlarmKind> {
     let quiet = cmd.m.is_empty()
         && cmd.g.drilling.is_none()
         && cmd.g.one_shot.is_none()
@@ -300,25 +301,42 @@ pub fn before_block(cmd: &Command, st: &mut State) -> Result<bool, AlarmKind> {
         }
         return Ok(false);
     }
-    cycle_words(cmd, st)
+    cycle_words(cmd, st, cfg)
 }
 
 /// [`before_block`] for a block with M words, a drilling or group 00 code, or
 /// with a thread chain or a rigid tap in progress.
 #[inline(never)]
-fn cycle_words(cmd: &Command, st: &mut State) -> Result<bool, AlarmKind> {
+fn cycle_words(cmd: &Command, st: &mut State, cfg: &MachineConfig) -> Result<bool, AlarmKind> {
+    use GCode::{FaceTap, LeftTap, SideTap, Tap};
     let chained = core::mem::replace(&mut st.cycle.thread_chain, false);
     if cmd.g.one_shot.is_some_and(|c| c != GCode::Dwell) || cmd.g.motion.is_some() {
         st.cycle.single = None;
     }
+    if let Some(code) = cmd.g.drilling.filter(|c| args::is_mill_hole(*c)) {
+        if !args::is_hole(st.modal.drilling) {
+            // A machining centre's hole mode starts: G00–G03 cancelled the mode
+            // with its data (seed 004 @10250); a new initial level follows.
+            st.cycle.hole = Default::default();
+            st.mill.initial = None;
+        }
+        if !matches!(code, Tap | LeftTap) && st.cycle.rigid != RigidTap::Off {
+            // Another cycle code ends rigid tapping (seed 004 @8400).
+            st.cycle.rigid = RigidTap::Off;
+        }
+    }
     let m29 = cmd.m.iter().any(|&(m, _)| m == 29);
-    let taps = matches!(cmd.g.drilling, Some(GCode::FaceTap | GCode::SideTap))
-        || (cmd.g.drilling.is_none() && matches!(st.modal.drilling, GCode::FaceTap | GCode::SideTap));
+    let taps = matches!(cmd.g.drilling, Some(FaceTap | SideTap | Tap | LeftTap))
+        || (cmd.g.drilling.is_none() && matches!(st.modal.drilling, FaceTap | SideTap | Tap | LeftTap));
     if m29 {
         if st.cycle.rigid != RigidTap::Off {
             return Err(AlarmKind::RigidTapSequence);
         }
-        let rpm = cmd.speed.filter(|s| *s > 0).ok_or(AlarmKind::RigidTapSpeed)?;
+        // A machining centre's M29 stands alone and taps at the S in force (seed
+        // 004 @8320); a lathe's takes S in its block (2.22.1).
+        let mill = cfg.kind == crate::config::MachineKind::Mill;
+        let s = if mill { cmd.speed.or(Some(st.spindle.rpm)) } else { cmd.speed };
+        let rpm = s.filter(|s| *s > 0).ok_or(AlarmKind::RigidTapSpeed)?;
         st.cycle.rigid = RigidTap::Pending { rpm, before: st.spindle.dir };
     } else if matches!(st.cycle.rigid, RigidTap::Pending { .. }) && !taps {
         if cmd.speed.is_some() {
@@ -385,7 +403,8 @@ fn cycle_block<X: Executor>(
         return Ok(true);
     }
     if args::is_hole(code) {
-        if let Some(generator) = single::hole_block(code, cmd, st, ctx.cfg)? {
+        let block = if args::is_mill_hole(code) { drilling::hole_block } else { single::hole_block };
+        if let Some(generator) = block(code, cmd, st, ctx.cfg)? {
             start_cycle(Emitter::new(*st, cmd.line), Gen::Hole(generator), ctx.out)?;
         }
         return Ok(true);
@@ -578,7 +597,7 @@ fn target(cmd: &Command, st: &State, cfg: &MachineConfig) -> Result<Pt, AlarmKin
 /// Stages a parameter write (applied only if the block succeeds).
 fn write(ctx: &mut Ctx<'_, '_>, id: Param, v: Option<i64>) -> Result<(), AlarmKind> {
     if let Some(v) = v {
-        ctx.out.params.push((id, v)).map_err(|_| AlarmKind::Overflow)?;
+        ctx.out.writes.push((crate::stage::Setting::Param(id), v)).map_err(|_| AlarmKind::Overflow)?;
     }
     Ok(())
 }
@@ -612,7 +631,7 @@ impl Expansion {
     /// from the block's state `st` — the position back at the start point, the
     /// spindle as the cycle leaves it (floating tapping stops it, 2.22.3 note 2;
     /// rigid tapping restores it) and, after G70, the modal changes of its blocks.
-    pub fn settle(&self, st: &mut State) {
+    pub fn settle(&self, st: &mut State, cfg: &MachineConfig) {
         let end = self.final_state();
         st.pos = end.pos;
         st.moved |= end.moved;
@@ -622,6 +641,11 @@ impl Expansion {
             st.cycle.single = cycle.single;
         }
         st.spindle.dir = end.spindle.dir;
+        if st.mill.frame.active != 0 {
+            // A machining centre's transformation: the programmed position is where
+            // the cycle left the tool.
+            crate::moves::frame::resync(st, cfg);
+        }
     }
 }
 

@@ -6,13 +6,15 @@
 //! look-ahead's buffers in [`lookahead`]); their logic stays with them.
 
 pub mod lookahead;
+pub mod mill;
 
 pub use lookahead::{Buffer, Comp, Contour, Corner, HOLD, Marks, Side};
+pub use mill::Mill;
 
 use crate::axis::{Axis, Pos};
 use crate::canon::{FeedMode, Plane, SpindleDir};
 use crate::codes::GCode;
-use crate::config::{MachineConfig, Param};
+use crate::config::{MachineConfig, MachineKind, Param};
 use crate::units::{NM_PER_MM, Units};
 
 /// One field per modal group (table 1.1), with the power-on states of the notes.
@@ -21,7 +23,7 @@ use crate::units::{NM_PER_MM, Units};
 pub struct Modal {
     /// Group 01: G00 or G01 at power-on (parameter 5153), G02/G03, later the cycles.
     pub motion: GCode,
-    /// Group 16: G18 at power-on (2.13 note 3).
+    /// Group 16: G18 at power-on on a lathe (2.13 note 3), G17 on a machining centre.
     pub plane: Plane,
     /// Group 06: G21 unless parameter 10 says inch (2.9 note 1).
     pub units: Units,
@@ -33,7 +35,8 @@ pub struct Modal {
     pub css: bool,
     /// Group 07: G40 at power-on.
     pub nose_comp: GCode,
-    /// Group 14: G54 (frame 0) at power-on (2.12.2 note 1).
+    /// Group 14: G54 (frame 0) at power-on (2.12.2 note 1); a machining centre's
+    /// G54.1 P1–P48 are frames 6–53.
     pub work_frame: u8,
     /// Group 15: G61 exact-stop mode; G64 at power-on (2.14).
     pub exact_stop_mode: bool,
@@ -135,12 +138,15 @@ pub struct SingleMemory {
 pub struct HoleMemory {
     /// Hole bottom along the drilling axis (work, absolute); `None` until given.
     pub bottom: Option<i64>,
-    /// Signed distance initial level → R level (radius value).
+    /// Signed distance initial level → R level (radius value); on a machining
+    /// centre the R level itself (programmed coordinates).
     pub r: i64,
-    /// Peck depth Q (0 = no pecking).
+    /// Peck depth Q (0 = no pecking); a machining centre's G76/G87 shift.
     pub q: i64,
     /// Dwell at the bottom, ms.
     pub dwell_ms: u32,
+    /// A machining centre's R has been given in the mode (a hole needs it).
+    pub r_set: bool,
 }
 
 /// Rigid tapping mode (2.22.1).
@@ -261,6 +267,9 @@ pub struct State {
     pub stroke: Option<StrokeArea>,
     /// The contour look-ahead: a move held back until the next one is known.
     pub contour: Contour,
+    /// A machining centre's modal data (tool length, H/D, G28 point, hole-cycle
+    /// initial level, transformations); unused on a lathe.
+    pub mill: Mill,
 }
 
 impl State {
@@ -272,7 +281,7 @@ impl State {
         State {
             modal: Modal {
                 motion: if p.flag(Param::InitialLinear) { GCode::Linear } else { GCode::Rapid },
-                plane: Plane::Zx,
+                plane: if cfg.kind == MachineKind::Mill { Plane::Xy } else { Plane::Zx },
                 units: if p.flag(Param::InchAtPowerOn) { Units::Inch } else { Units::Metric },
                 incremental: false,
                 feed_mode: if p.flag(Param::InitialPerRev) { FeedMode::PerRev } else { FeedMode::PerMin },
@@ -295,6 +304,7 @@ impl State {
             polar: None,
             stroke: None,
             contour: Contour::default(),
+            mill: Mill::default(),
         }
     }
 
@@ -315,7 +325,7 @@ impl State {
             self.frames.shift + self.frames.local + self.tool.offset,
             "own offsets not summed again after a change"
         );
-        cfg.work_offsets[usize::from(self.modal.work_frame)] + cfg.external_offset + self.own_offsets
+        cfg.work_offset(self.modal.work_frame) + cfg.external_offset + self.own_offsets
     }
 
     /// The current position in work coordinates.

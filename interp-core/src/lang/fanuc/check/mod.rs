@@ -4,13 +4,14 @@
 
 pub mod cycle_args;
 mod gset;
+mod mill;
 mod words;
 
 use crate::alarm::AlarmKind;
 use crate::axis::{AXIS_COUNT, Axis};
 use crate::codes::{MFunction, m_codes_conflict, m_function};
 use crate::command::{Command, FlowWord};
-use crate::config::MachineConfig;
+use crate::config::{MachineConfig, MachineKind};
 use crate::lang::fanuc::parse::{Block, MAX_M};
 use crate::modal::State;
 use crate::units::NumberFormat;
@@ -47,8 +48,12 @@ pub fn check_into(block: &Block, state: &State, cfg: &MachineConfig, cmd: &mut C
     cmd.cycle = crate::command::cycle::CycleArgs::None;
     let flow_m = cmd.m.iter().map(|&(_, f)| f).find(|f| f.is_flow());
     let user = cmd.axis_user(state);
-    words::check_letters(block, user, flow_m, cfg)?;
-    words::convert(block, user, state, cfg, &fmt, cmd)?;
+    if cfg.kind == MachineKind::Mill {
+        mill::check(block, user, flow_m, state, cfg, &fmt, cmd)?;
+    } else {
+        words::check_letters(block, user, flow_m, cfg)?;
+        words::convert(block, user, state, cfg, &fmt, cmd)?;
+    }
     cmd.flow = flow_m.map(|f| flow_word(block, f)).transpose()?;
     Ok(())
 }
