@@ -311,3 +311,19 @@ fn bad_offset_words_and_lathe_t_words() {
     // A mill's T is a tool number: T0101 is tool 101.
     assert_eq!(alarms("T0101\nM30\n"), vec![(1, 30)]);
 }
+
+/// The simulated machine cuts a helix within one step plus the chord tolerance of
+/// the programmed one (the motion core moves Z with the arc's progress) and ends
+/// exactly at its end point.
+#[test]
+fn helix_on_the_simulated_machine() {
+    let cfg = mill();
+    let mut s = sim::Sim::new(cfg.clone(), sim::SimOptions::default()).unwrap();
+    let r = s.run_program(
+        "G00 X10. Y0 Z5.\nM03 S1000\nG03 X-10. Y0 Z-4. I-10. J0 F300\nG03 X10. Y0 Z-8. R10.\nG00 Z50.\nM30\n",
+    );
+    assert!(r.alarms.is_empty() && r.ended, "{r:?}");
+    let step = cfg.axes.iter().filter(|a| a.present).map(|a| a.drive.per_nm as f64 / a.drive.steps as f64);
+    let bound = step.fold(0.0, f64::max) + cfg.motion.chord_tolerance as f64;
+    assert!(r.max_dev_nm <= bound, "deviation {} nm on line {}", r.max_dev_nm, r.max_dev_line);
+}

@@ -69,6 +69,9 @@ struct ArcPath {
     /// Start angle and signed sweep, turns × 2^32.
     theta0: i64,
     sweep: i64,
+    /// An axis outside the plane moves too (a machining centre's helical
+    /// interpolation): it moves linearly with the progress along the arc.
+    helical: bool,
 }
 
 /// Per-axis profiles of an independent rapid.
@@ -140,7 +143,11 @@ impl Segment {
             FeedSpec::PerRev(_) => Rate::PerRev(b.exec.rate_q8),
         };
         let path = match b.kind {
-            BlockKind::Arc(g) => Path::Arc(arc_path(&g, p)),
+            BlockKind::Arc(g) => {
+                let mut a = arc_path(&g, p);
+                a.helical = (0..AXIS_COUNT).any(|i| i != a.ia && i != a.ib && delta[i] != 0);
+                Path::Arc(a)
+            }
             BlockKind::Independent => Path::Independent(independent(from, &end_steps, &b.exec.axis_inv, p)),
             _ => Path::Line,
         };
@@ -200,6 +207,13 @@ impl Segment {
                 let (c, sn) = cos_sin(th as u32);
                 out[a.ia] = a.scale[0].q16(a.center[0] + mul_shr(r, i64::from(c), TRIG_FRAC));
                 out[a.ib] = a.scale[1].q16(a.center[1] + mul_shr(r, i64::from(sn), TRIG_FRAC));
+                if a.helical {
+                    for i in 0..AXIS_COUNT {
+                        if i != a.ia && i != a.ib && self.delta[i] != 0 {
+                            out[i] = self.start[i] + mul_q32(self.delta[i], f);
+                        }
+                    }
+                }
             }
             Path::Independent(_) => {}
         }
@@ -217,6 +231,7 @@ fn arc_path(g: &ArcGeom, p: &MotionParams) -> ArcPath {
         dr: g.r1 - g.r0,
         theta0: g.theta0,
         sweep: g.sweep,
+        helical: false,
     }
 }
 
