@@ -4,7 +4,7 @@
 use interp_core::axis::Axis;
 use interp_core::canon::{FeedMode, Plane, SpindleDir};
 use interp_core::codes::GCode;
-use interp_core::config::{PARAMS, Param};
+use interp_core::config::{MachineKind, PARAMS, Param};
 use interp_core::units::Units;
 
 use crate::controller::{Controller, Handled, Job, Mode};
@@ -18,6 +18,14 @@ use crate::settings::{self, NUMBERS, SettingError};
 
 const HELP: &str =
     "[HLP:$$ $# $G $I $N $x=val $Nx=line $J=line $SLP $C $X $H $RST= $P $Pn=val $PL $PR=n $PD=n $V $LN=n ~ ! ? ctrl-x]";
+
+/// The name of a machine kind on the link (`$I`, `$311`'s message).
+fn kind_name(k: MachineKind) -> &'static str {
+    match k {
+        MachineKind::Lathe => "lathe",
+        MachineKind::Mill => "mill",
+    }
+}
 
 /// Whether a `$` command only reads (allowed in any state).
 fn read_only(cmd: &[u8]) -> bool {
@@ -58,9 +66,10 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             b"#" => self.list_offsets(),
             b"G" => self.list_modal(),
             b"I" => {
-                self.out.line(Class::Info, "[VER:1.1h.lathe:]");
+                let kind = kind_name(self.interp.config().kind);
+                self.out.fmt(Class::Info, format_args!("[VER:1.1h.{kind}:]"));
                 self.out.fmt(Class::Info, format_args!("[OPT:,{},{}]", port.status().capacity, crate::controller::RX));
-                self.msg(format_args!("lathe controller {} (FANUC lathe language)", env!("CARGO_PKG_VERSION")));
+                self.msg(format_args!("lathe controller {} (FANUC {kind} language)", env!("CARGO_PKG_VERSION")));
             }
             b"N" => {
                 for i in 0..2 {
@@ -152,7 +161,14 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
         })?;
         if cfg != *self.interp.config() {
             port.reconfigure(&cfg).map_err(|_| (2, "The motion core cannot run with this value"))?;
+            let kind_changed = cfg.kind != self.interp.config().kind;
             *self.interp.config_mut() = cfg;
+            if kind_changed {
+                // Another G-code table and power-on modes (G17 on a mill, G18 on
+                // a lathe): the modal state starts again as after a reset.
+                self.interp.reset();
+                self.msg(format_args!("Machine kind: {}", kind_name(self.interp.config().kind)));
+            }
         }
         self.settings = s;
         Ok(())

@@ -3,7 +3,10 @@
 # controller on the simulated machine) over a pty; what the board's motion core
 # accepted must be what `lathe sim` interprets for the same file.
 #
-#   tools/third-party-sender/board-test.sh LATHE_BINARY PROGRAM...
+#   tools/third-party-sender/board-test.sh LATHE_BINARY [--machine FILE] PROGRAM...
+#
+# With --machine the board and `lathe sim` both run that machine file (a mill:
+# examples/machines/mill.toml).
 #
 # CNCjs strips comments, blank and `%` lines before sending (so line numbers differ)
 # and appends `G4 P0.5` (the board runs it as a 0.5 s dwell, setting $303): the
@@ -11,16 +14,18 @@
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 lathe="$1"; shift
+machine=()
+if [ "${1:-}" = "--machine" ]; then machine=(--machine "$2"); shift 2; fi
 work="$(mktemp -d)"
 trap 'kill "${board_pid:-0}" 2>/dev/null || true; rm -rf "$work"' EXIT
 failed=0
 for program in "$@"; do
     name="$(basename "$program")"
     pty="$work/board.pty"
-    "$lathe" board --pty "$pty" --speed 20 --record "$work/$name.board.jsonl" --exit-after 900 > "$work/board.log" 2>&1 &
+    "$lathe" board "${machine[@]}" --pty "$pty" --speed 20 --record "$work/$name.board.jsonl" --exit-after 900 > "$work/board.log" 2>&1 &
     board_pid=$!
     for _ in $(seq 100); do [ -e "$pty" ] && break; sleep 0.1; done
-    "$lathe" sim "$program" --format jsonl > "$work/$name.sim.jsonl"
+    "$lathe" sim "${machine[@]}" "$program" --format jsonl > "$work/$name.sim.jsonl"
     if "$here/run.sh" "$pty" "$program" --timeout 300 > "$work/run.log" 2>&1; then
         sleep 0.5
         if python3 - "$work/$name.sim.jsonl" "$work/$name.board.jsonl" <<'PY'

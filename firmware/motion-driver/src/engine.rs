@@ -81,6 +81,11 @@ impl EngineAxis {
     pub fn queued(&self) -> u32 {
         self.tx.len()
     }
+
+    /// The motion core's axis this channel drives.
+    pub fn core_axis(&self) -> usize {
+        self.core_axis
+    }
 }
 
 /// The motion interrupt's state for `A` driven axes.
@@ -149,6 +154,25 @@ impl<const A: usize> Engine<A> {
     /// The driven axes.
     pub fn axes(&self) -> &[EngineAxis; A] {
         &self.axes
+    }
+
+    /// Whether channel `i` may drive the core's axis `core_axis` now: it already
+    /// does, or its edges have all been played.
+    pub fn can_set_core_axis(&self, i: usize, core_axis: usize) -> bool {
+        self.axes.get(i).is_some_and(|ax| ax.core_axis == core_axis || (ax.tx.len() == 0 && ax.carry.is_none()))
+    }
+
+    /// Makes channel `i` drive the core's axis `core_axis` (a board's third channel
+    /// is C on a lathe, Y on a mill: `$311`) if [`Self::can_set_core_axis`];
+    /// returns whether it does.
+    pub fn set_core_axis(&mut self, i: usize, core_axis: usize) -> bool {
+        if !self.can_set_core_axis(i, core_axis) {
+            return false;
+        }
+        if let Some(ax) = self.axes.get_mut(i) {
+            ax.core_axis = core_axis;
+        }
+        true
     }
 
     /// The period interrupt: computes the period after the one playing, queues its
