@@ -134,7 +134,8 @@ pub fn render(program: &str, run: &Run, cfg: &MachineConfig) -> String {
         d6 = n(6.0 * px),
         f13 = n(13.0 * px),
     );
-    for (panel, title, (v0, v1)) in [(&plan, "plan (X right, Y up)", (lo[1], hi[1])), (&side, "side (X right, Z up)", (lo[2], hi[2]))]
+    for (panel, title, (v0, v1)) in
+        [(&plan, "plan (X right, Y up)", (lo[1], hi[1])), (&side, "side (X right, Z up)", (lo[2], hi[2]))]
     {
         let (x0, y0) = panel.at(&[lo[0], v1, v1]);
         let _ = writeln!(

@@ -867,9 +867,13 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             port.emergency_stop();
             return;
         }
-        let tripped = [(inputs.limit_x, prev.limit_x, 'X'), (inputs.limit_y, prev.limit_y, 'Y'), (inputs.limit_z, prev.limit_z, 'Z')]
-            .into_iter()
-            .find(|&(now, before, _)| now && !before);
+        let tripped = [
+            (inputs.limit_x, prev.limit_x, 'X'),
+            (inputs.limit_y, prev.limit_y, 'Y'),
+            (inputs.limit_z, prev.limit_z, 'Z'),
+        ]
+        .into_iter()
+        .find(|&(now, before, _)| now && !before);
         if let Some((_, _, axis)) = tripped
             && self.settings.hard_limits
             && self.homing.is_none()

@@ -192,7 +192,10 @@ fn a_program_streamed_over_usb_runs_to_its_end_every_line_ok_and_the_planner_nev
     assert!(rate > 650.0, "{rate:.0} blocks/s");
     assert_eq!(r.starvations, 0, "the planner ran empty while streaming");
     assert_eq!(pc.stuck, 0, "a full packet waited in the PC for the end of its transfer");
-    eprintln!("usb: {} blocks of 0.05 mm in {:.2} s: {rate:.0} blocks/s, planner empty {} times", r.blocks, r.seconds, r.starvations);
+    eprintln!(
+        "usb: {} blocks of 0.05 mm in {:.2} s: {rate:.0} blocks/s, planner empty {} times",
+        r.blocks, r.seconds, r.starvations
+    );
 }
 
 #[test]
@@ -207,7 +210,10 @@ fn lines_that_queue_no_motion_go_over_usb_as_fast_as_the_controller_takes_them()
     assert_eq!(r.oks, p.len());
     let rate = r.oks as f64 / r.seconds;
     let limit = (controller::LINES_PER_POLL * 1_000) as f64;
-    eprintln!("usb: {} macro lines in {:.2} s: {rate:.0} lines/s (the controller takes {limit:.0}/s)", r.oks, r.seconds);
+    eprintln!(
+        "usb: {} macro lines in {:.2} s: {rate:.0} lines/s (the controller takes {limit:.0}/s)",
+        r.oks, r.seconds
+    );
     // With character counting the sender keeps 128 bytes in flight and USB returns
     // every `ok` within its frame: the controller's lines per poll are the limit.
     assert!(rate > 0.9 * limit, "{rate:.0} lines/s");
