@@ -10,9 +10,25 @@ then 8,000 lines `#1=1` and M30 streamed the same way, every one `ok` (a byte lo
 on the link makes one of them unreadable, an alarm; a lost LF leaves an `ok` missing:
 embassy's UART handler lost about one byte in 8 KB here, see `board::TcGuard`); then
 a program with an illegal G code: the alarm message names its line, ALARM:20,
-`$X` unlocks; a `?` answered and a soft reset (0x18) acted on at once (the welcome
-again) behind a receive buffer overfilled with slow jogs by a sender that ignores
-character counting. Exits non-zero on the first failure. Used by .ci/run.
+`$X` unlocks; then a sender that ignores character counting: 100 slow jogs in one
+burst with a `?` behind the 20th, 60th and 100th — every `?` answered, the last
+while the jogs ahead of it still fill the planner — and a soft reset (0x18) behind
+them acted on at once (the welcome again). Then the same firmware once more on a
+CPU far too slow for its 1 ms control loop (`-icount shift=10`: 1,000 instructions
+per millisecond), which is behind its ticks all the time: the link must still
+answer (issue 18: the control task then kept the executor to itself, and received
+bytes and replies waited until the UART's ring overflowed). Exits non-zero on the
+first failure. Used by .ci/run.
+
+Time. QEMU runs with `-icount` (QEMU_ICOUNT, default `shift=3,sleep=on`): the
+guest's clock advances 8 ns per instruction while it works (a 125 MIPS core; the
+board's 168 MHz M4 runs the motion interrupts that the QEMU build does in its
+control task) and with the host's clock while it sleeps in WFI. So the firmware
+never finds its millisecond ticks gone because the host was busy elsewhere: what
+it does per millisecond is the same on a fast host, a loaded one, or under CI.
+How long that takes on the host is not: every wait here fails on a lack of
+progress (no reply, or the same status report, for TIMEOUT seconds), never on a
+total time. `QEMU_ICOUNT=off` runs QEMU on the host's clock.
 """
 import os
 import socket
@@ -23,6 +39,7 @@ import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 WELCOME = b"Grbl 1.1h ['$' for help]\r\n"
+# Seconds without progress (no reply, or the same status report) that fail a stage.
 TIMEOUT = 20.0
 # The receive buffer a character-counting sender may fill (docs/PROTOCOL.md).
 RX_BUFFER = 128
@@ -42,6 +59,9 @@ PROGRAM_END = b"MPos:50.000,0.000,20.000|"
 # `1=1`, or two lines run together) the line is refused with an alarm.
 STRESS_LINE = "#1=1\n"
 STRESS_LINES = 8000
+# QEMU's clock (see the module doc).
+ICOUNT_MODE = os.environ.get("QEMU_ICOUNT", "shift=3,sleep=on")
+ICOUNT = [] if ICOUNT_MODE == "off" else ["-icount", ICOUNT_MODE]
 # A jog of 6 s (1 mm on the diameter at F5), 13 bytes.
 SLOW_JOG = b"$J=G91 X1 F5\n"
 # The second line has a G code the lathe system does not have (alarm 0010).
@@ -108,19 +128,18 @@ def read_line(link, deadline, what):
     return line
 
 
-def stream(link, text, seconds=3 * TIMEOUT):
+def stream(link, text):
     """Streams `text` with grbl character counting: a line is sent while the bytes
     of the lines not yet answered fit into the board's receive buffer; every answer
-    must be `ok`, all within `seconds`. Returns the other lines the board sent
-    meanwhile."""
+    must be `ok`, each within TIMEOUT of the one before. Returns the other lines the
+    board sent meanwhile."""
     pending, inflight, other = list(text.splitlines(keepends=True)), [], []
-    deadline = time.monotonic() + seconds
     while pending or inflight:
         while pending and sum(map(len, inflight)) + len(pending[0]) <= RX_BUFFER:
             line = pending.pop(0).encode()
             link.send(line)
             inflight.append(line)
-        reply = read_line(link, deadline, "ok while streaming")
+        reply = read_line(link, time.monotonic() + TIMEOUT, "ok while streaming")
         if reply == b"ok":
             inflight.pop(0)
         elif reply.startswith((b"error", b"ALARM")):
@@ -131,22 +150,103 @@ def stream(link, text, seconds=3 * TIMEOUT):
     return other
 
 
-def wait_status(link, wanted, what, timeout):
-    """Polls `?` until the status report starts with `wanted`; the last report."""
-    deadline, said = time.monotonic() + timeout, []
+def wait_status(link, wanted, what):
+    """Polls `?` until the status report starts with `wanted`; the last report.
+    Fails on an alarm or hold, or when the report stays the same (the machine made
+    no progress) for TIMEOUT seconds."""
+    said, last, since = [], None, time.monotonic()
     while True:
         link.send(b"?")
         while True:
-            line = read_line(link, deadline, what)
+            line = read_line(link, time.monotonic() + TIMEOUT, what)
             if line.startswith(b"<"):
                 break
             said.append(line)
         if line.startswith(wanted):
             print(f"qemu-test: {what}: {line!r}")
             return line
-        if line.startswith((b"<Alarm", b"<Hold")) or time.monotonic() > deadline:
+        if line != last:
+            last, since = line, time.monotonic()
+        if line.startswith((b"<Alarm", b"<Hold")) or time.monotonic() - since > TIMEOUT:
             raise SystemExit(f"qemu-test: {what}: last status {line!r} after {said!r}")
         time.sleep(0.25)
+
+
+def realtime_behind_a_burst(link):
+    """A sender that ignores character counting: 100 slow jogs in one burst (64
+    fill the planner, 9 the receive buffer, the rest wait in the link task; each
+    jog takes 6 s), with a `?` behind the 20th, the 60th and the 100th. Every `?` is
+    answered, once, while jogging; the last while the planner is still full of the
+    jogs ahead of it and some of their lines still wait unanswered (taken in order,
+    it would wait about 3.5 minutes for 36 jogs). Then a 0x18 behind it all resets
+    at once. Nothing here depends on how fast QEMU runs."""
+    polls = (20, 60, 100)
+    burst = b"".join(SLOW_JOG * (b - a) + b"?" for a, b in zip((0,) + polls, polls))
+    link.send(burst)
+    reports, oks = [], 0
+    while len(reports) < len(polls):
+        line = read_line(link, time.monotonic() + TIMEOUT, f"status report {len(reports) + 1} of {len(polls)} behind a burst of jogs")
+        if line == b"ok":
+            oks += 1
+        elif line.startswith(b"<"):
+            reports.append((oks, line))
+        else:
+            raise SystemExit(f"qemu-test: {line!r} in a burst of jogs")
+    for (before, report), sent in zip(reports, polls):
+        print(f"qemu-test: `?` behind {sent} jogs answered after {before} ok: {report!r}")
+        if not report.startswith(b"<Jog|"):
+            raise SystemExit(f"qemu-test: not jogging behind a burst of jogs ({report!r})")
+    before, last = reports[-1]
+    if b"|Bf:0," not in last or before >= polls[-1]:
+        raise SystemExit(f"qemu-test: the last `?` waited for the jogs ahead of it ({before} ok, {last!r})")
+    link.send(b"\x18")
+    got = link.expect(WELCOME, "welcome after soft reset behind a burst of jogs")
+    if b"<" in got:
+        raise SystemExit(f"qemu-test: a `?` answered twice ({got!r})")
+
+
+def boot(elf, icount, monitor=None):
+    """QEMU running `elf` with USART2 on a local TCP socket; the link once the
+    guest runs (it starts when the socket is connected)."""
+    port = free_port()
+    args = [
+        "qemu-system-arm", "-M", "netduinoplus2", "-nographic",
+        "-chardev", f"socket,id=dnc,host=127.0.0.1,port={port},server=on,wait=on",
+        "-serial", "null", "-serial", "chardev:dnc", "-kernel", elf,
+        "-monitor", f"unix:{monitor},server=on,wait=off" if monitor else "none",
+    ] + icount
+    qemu = subprocess.Popen(args)
+    try:
+        return qemu, Link(connect(port, time.monotonic() + TIMEOUT))
+    except BaseException:
+        qemu.kill()
+        qemu.wait()
+        raise
+
+
+def overrun(elf):
+    """The firmware on a 1 MIPS core (`-icount shift=10`, 1 µs per instruction):
+    no turn of its 1 ms control loop fits into its millisecond, so the control
+    task is always behind its ticker. The link must still answer: the welcome, a
+    status report, lines streamed, a `?` behind a burst of jogs, a soft reset."""
+    t0 = time.monotonic()
+    qemu, link = boot(elf, ["-icount", "shift=10,sleep=on"])
+    try:
+        link.expect(WELCOME, "welcome from an overrun control loop")
+        link.send(b"?")
+        link.expect(b">\r\n", "status report from an overrun control loop")
+        stream(link, "#1=1\n#2=#1+1\nM30\n")
+        wait_status(link, b"<Idle|", "idle from an overrun control loop")
+        link.send(SLOW_JOG * 20 + b"?")
+        report = link.expect(b">\r\n", "status report behind jogs from an overrun control loop")
+        if b"<Jog|" not in report:
+            raise SystemExit(f"qemu-test: not jogging ({report!r})")
+        link.send(b"\x18")
+        link.expect(WELCOME, "welcome after soft reset from an overrun control loop")
+    finally:
+        qemu.kill()
+        qemu.wait()
+    print(f"qemu-test: the link answers with the control loop behind all the time ({time.monotonic() - t0:.1f} s)")
 
 
 def stack_region(elf):
@@ -195,16 +295,10 @@ def stack_check(monitor, elf):
 def main():
     elf = subprocess.run([os.path.join(HERE, "qemu-run.sh"), "--build"], check=True,
                          stdout=subprocess.PIPE, text=True).stdout.strip().splitlines()[-1]
-    port = free_port()
     monitor = os.path.join(tempfile.mkdtemp(prefix="qemu-test-"), "monitor")
-    qemu = subprocess.Popen([
-        "qemu-system-arm", "-M", "netduinoplus2", "-nographic",
-        "-chardev", f"socket,id=dnc,host=127.0.0.1,port={port},server=on,wait=on",
-        "-serial", "null", "-serial", "chardev:dnc", "-kernel", elf,
-        "-monitor", f"unix:{monitor},server=on,wait=off",
-    ])
+    print(f"qemu-test: QEMU clock {' '.join(ICOUNT) or 'the host’s'}")
+    qemu, link = boot(elf, ICOUNT, monitor)
     try:
-        link = Link(connect(port, time.monotonic() + TIMEOUT))
         link.expect(WELCOME, "welcome")
         link.send(b"?")
         status = link.expect(b">\r\n", "status report")
@@ -215,36 +309,29 @@ def main():
         t0 = time.monotonic()
         assert len(PROGRAM[:PROGRAM.index("N20")].encode()) + len("N20 X40.\n") <= RX_BUFFER
         stream(link, PROGRAM)
-        wait_status(link, b"<Idle|" + PROGRAM_END, "program ran to its end", 120.0)
+        wait_status(link, b"<Idle|" + PROGRAM_END, "program ran to its end")
         print(f"qemu-test: program streamed and run in {time.monotonic() - t0:.1f} s")
         # Many short lines over the link: not one byte may be lost.
         t0 = time.monotonic()
-        stream(link, STRESS_LINE * STRESS_LINES + "M30\n", 3 * TIMEOUT + STRESS_LINES / 50)
-        wait_status(link, b"<Idle|" + PROGRAM_END, "idle after the line stress", TIMEOUT)
+        stream(link, STRESS_LINE * STRESS_LINES + "M30\n")
+        wait_status(link, b"<Idle|" + PROGRAM_END, "idle after the line stress")
         print(f"qemu-test: {STRESS_LINES} lines streamed in {time.monotonic() - t0:.1f} s")
         # An alarm names the line; lines are refused until $X.
         link.send(ALARM_PROGRAM)
         alarm = link.expect(b"ALARM:20\r\n", "alarm")
         if b"[MSG:ALARM 0010 line 2: G123 " not in alarm:
             raise SystemExit(f"qemu-test: the alarm does not name line 2 ({alarm!r})")
-        wait_status(link, b"<Alarm|", "alarm status", TIMEOUT)
+        wait_status(link, b"<Alarm|", "alarm status")
         link.send(b"$X\n")
         link.expect(b"ok\r\n", "unlocked")
-        wait_status(link, b"<Idle|", "idle after $X", TIMEOUT)
-        # A sender that ignores character counting: 64 jogs fill the planner, the
-        # next 128 bytes the receive buffer, the rest waits in the link task (each
-        # jog takes 6 s). A `?` and a 0x18 behind them act at once all the same.
-        link.send(SLOW_JOG * 100 + b"?")
-        report = link.expect(b">\r\n", "status report behind a full receive buffer")
-        if b"<Jog|" not in report:
-            raise SystemExit(f"qemu-test: not jogging behind a full receive buffer ({report!r})")
-        link.send(b"\x18")
-        link.expect(WELCOME, "welcome after soft reset behind a full receive buffer")
+        wait_status(link, b"<Idle|", "idle after $X")
+        realtime_behind_a_burst(link)
         stack_check(monitor, elf)
-        print("qemu-test: passed")
     finally:
         qemu.kill()
         qemu.wait()
+    overrun(elf)
+    print("qemu-test: passed")
 
 
 if __name__ == "__main__":

@@ -42,6 +42,9 @@ pub struct BoardArgs {
     /// bit flipped, half are dropped), to test link checksums (`lathe send --checksum`).
     #[arg(long, default_value_t = 0.0, value_name = "PERCENT")]
     pub corrupt: f64,
+    /// Line noise the other way: corrupt this percentage of the bytes the board sends.
+    #[arg(long, default_value_t = 0.0, value_name = "PERCENT")]
+    pub corrupt_out: f64,
     /// Seed of the line noise.
     #[arg(long, default_value_t = 1, value_name = "N")]
     pub seed: u64,
@@ -133,10 +136,13 @@ pub fn run(args: &BoardArgs, out: &mut dyn Write) -> Result<u8, Error> {
         }
         None => None,
     };
-    let mut noise = Noise::new(args.corrupt, args.seed);
-    let result = serve(&mut board, &mut master, args, &mut noise, record.as_mut().map(|w| w as &mut dyn Write));
-    if args.corrupt > 0.0 {
-        let _ = writeln!(out, "lathe board: line noise flipped {} and dropped {} bytes", noise.flipped, noise.dropped);
+    let mut noise = [Noise::new(args.corrupt, args.seed), Noise::new(args.corrupt_out, args.seed ^ 0x5EED_0F0F)];
+    let result = serve(&mut board, &mut master, args, &mut noise, record.as_mut().map(|w| w as &mut dyn Write), out);
+    for (n, way) in noise.iter().zip(["received", "sent"]) {
+        if n.threshold > 0 {
+            let _ =
+                writeln!(out, "lathe board: line noise flipped {} and dropped {} bytes {way}", n.flipped, n.dropped);
+        }
     }
     // The slave end stays open until here, so the master never sees a hang-up
     // between two senders.
@@ -149,25 +155,32 @@ pub fn run(args: &BoardArgs, out: &mut dyn Write) -> Result<u8, Error> {
 }
 
 /// The loop: bytes in, simulated time up to the (scaled) wall clock, bytes out.
+/// The controller's link clock is the wall clock (its windows are the sender's
+/// time whatever `--speed` is). Soft resets and feed holds the board carries out
+/// are printed on `log` as they happen.
 fn serve(
     board: &mut VirtualBoard,
     master: &mut TTYPort,
     args: &BoardArgs,
-    noise: &mut Noise,
+    noise: &mut [Noise; 2],
     mut record: Option<&mut dyn Write>,
+    log: &mut dyn Write,
 ) -> std::io::Result<()> {
     let start = Instant::now();
     let mut buf = [0u8; 4096];
     let mut noisy = Vec::new();
     let cfg = board.sim.cfg.clone();
+    let mut seen = board.ctl.counters();
     loop {
-        let wall = start.elapsed().as_secs_f64();
+        let elapsed = start.elapsed();
+        let wall = elapsed.as_secs_f64();
         if args.exit_after.is_some_and(|s| wall >= s) {
             return Ok(());
         }
+        board.link_clock = Some(u64::try_from(elapsed.as_nanos()).unwrap_or(u64::MAX));
         match master.read(&mut buf) {
             Ok(n) => {
-                noise.apply(&buf[..n], &mut noisy);
+                noise[0].apply(&buf[..n], &mut noisy);
                 board.receive(&noisy);
             }
             Err(e) if matches!(e.kind(), std::io::ErrorKind::TimedOut | std::io::ErrorKind::WouldBlock) => {}
@@ -181,8 +194,21 @@ fn serve(
         board.advance(until.max(board.now()));
         let out = board.transmit();
         if !out.is_empty() {
-            master.write_all(&out)?;
+            noise[1].apply(&out, &mut noisy);
+            master.write_all(&noisy)?;
         }
+        let now = board.ctl.counters();
+        if (now.resets, now.holds) != (seen.resets, seen.holds) {
+            // A log nobody reads (its pipe closed) is no reason to stop the board.
+            for _ in seen.resets..now.resets {
+                let _ = writeln!(log, "lathe board: soft reset (0x18)");
+            }
+            for _ in seen.holds..now.holds {
+                let _ = writeln!(log, "lathe board: feed hold (!) from the link");
+            }
+            let _ = log.flush();
+        }
+        seen = now;
         if let (Some(w), Some(done)) = (record.as_mut(), board.executed.as_mut()) {
             for c in done.drain(..) {
                 serde_json::to_writer(&mut **w, &jsonl::record(&c, &cfg))?;

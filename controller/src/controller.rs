@@ -4,16 +4,22 @@
 //! arguments.
 
 use interp_core::axis::Pos;
-use interp_core::canon::{Canon, CanonSink, Full};
+use interp_core::canon::{Canon, CanonSink, Full, SpindleDir};
 use interp_core::program::{Cursor, ProgramMemory};
 use interp_core::{Alarm, AlarmKind, Interpreter, MachineConfig, Panel, Progress};
 use motion_core::motion::{EventKind, State};
 
+use crate::framing::{Checked, LinkSeq};
+use crate::homing::{Homed, Homing};
 use crate::io::{Inputs, MachineIo};
+use crate::lines::{self, Kind, trim};
 use crate::outq::{Class, OutQueue};
 use crate::port::{MotionPort, MotionStatus};
 use crate::report::{Mm, Xyz};
+use crate::rx::Receiver;
 use crate::settings::Settings;
+use crate::starve::StarveWatch;
+use crate::tape::{self, Block, Tape};
 use crate::window::{Store, Window};
 
 /// Receive buffer, bytes (the LF included): what a character-counting sender may
@@ -26,9 +32,6 @@ pub const OUT: usize = 2048;
 pub const STEPS_PER_POLL: usize = 8;
 /// Received lines one poll handles at most.
 pub const LINES_PER_POLL: usize = 4;
-/// How long the link must be quiet before a look-ahead that waits for text (G70–G73
-/// shape, forward GOTO, WHILE's END) is given up as an alarm.
-pub const QUIET_NS: u64 = 200_000_000;
 /// The welcome line senders wait for.
 pub const WELCOME: &str = "Grbl 1.1h ['$' for help]";
 
@@ -76,30 +79,6 @@ pub(crate) enum Job {
     Memory(u32),
 }
 
-/// Real-time commands latched by [`Controller::receive`] for the next poll.
-#[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct Latched {
-    pub status: bool,
-    pub hold: bool,
-    pub resume: bool,
-    pub reset: bool,
-    pub door: bool,
-    pub jog_cancel: bool,
-    pub overrides: bool,
-    pub spindle_stop: bool,
-    pub flood: bool,
-    pub mist: bool,
-}
-
-/// What [`Controller::receive`] did with the tail behind a full receive buffer.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Picked {
-    /// Its real-time bytes were acted on; this many bytes are kept, at its end.
-    Kept(usize),
-    /// A 0x18 at this index: the tail up to it is consumed (the reset drops it).
-    Reset(usize),
-}
-
 /// A look-ahead waiting for text still to come.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Wait {
@@ -109,13 +88,14 @@ pub(crate) struct Wait {
     pub alarm: Alarm,
 }
 
-/// Link line numbering of `N<k> …*<crc>` lines.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct LinkSeq {
-    /// A checksummed line was accepted: every program line must carry one.
-    pub active: bool,
-    /// The number the next line must have.
-    pub expected: u32,
+/// What became of a received line.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Handled {
+    /// Answered; it leaves the receive buffer.
+    Done,
+    /// Cannot be taken yet (the window is full, a jog waits for room in the
+    /// planner): it stays in the receive buffer.
+    Wait,
 }
 
 /// What changed since [`Controller::take_dirty`] last asked: what the shell
@@ -146,11 +126,16 @@ pub struct Counters {
     /// Times a look-ahead (G70–G73 shape, forward GOTO, WHILE's END) waited for
     /// lines not yet received.
     pub lookahead_waits: u32,
+    /// Soft resets (0x18) carried out.
+    pub resets: u32,
+    /// Feed holds from the link (`!`) carried out.
+    pub holds: u32,
 }
 
 /// With link checksums: a partial line that got no byte for this long (ns) has
-/// lost its LF (128 bytes take 11 ms at 115200 baud).
-pub const STALE_LINE_NS: u64 = 20_000_000;
+/// lost its LF (128 bytes take 11 ms at 115200 baud; a USB serial adapter may hold
+/// bytes back 16 ms).
+pub const STALE_LINE_NS: u64 = 50_000_000;
 
 /// The board's controller. `W`: stream window bytes; `T`, `P`, `S`: program
 /// memory text bytes, programs, indexed sequence numbers.
@@ -160,10 +145,8 @@ pub struct Controller<const W: usize, const T: usize, const P: usize, const S: u
     pub(crate) memory: ProgramMemory<T, P, S>,
     pub(crate) settings: Settings,
     pub(crate) startup: [heapless::String<80>; 2],
-    pub(crate) rx: heapless::Vec<u8, RX>,
-    pub(crate) discarding: bool,
+    pub(crate) rx: Receiver,
     pub(crate) out: OutQueue<OUT>,
-    pub(crate) rt: Latched,
     /// Feed, rapid, spindle override, %.
     pub(crate) ovr: [u16; 3],
     /// grbl alarm number in force.
@@ -177,7 +160,7 @@ pub struct Controller<const W: usize, const T: usize, const P: usize, const S: u
     pub(crate) jog: bool,
     /// Where the last jog move ends (machine, nm).
     pub(crate) jog_target: Pos,
-    pub(crate) homing: Option<crate::homing::Homing>,
+    pub(crate) homing: Option<Homing>,
     /// The interpreter's position must be taken from the motion core once at rest.
     pub(crate) need_sync: bool,
     /// The interpreter reached M02/M30; the motion core's End event closes the job.
@@ -187,11 +170,8 @@ pub struct Controller<const W: usize, const T: usize, const P: usize, const S: u
     pub(crate) lookahead: Option<Wait>,
     /// A line could not enter the window even after dropping old text.
     pub(crate) window_stuck: bool,
-    pub(crate) last_rx: u64,
-    /// When the last byte of any kind (a line, `?`, a real-time byte) arrived.
-    pub(crate) last_byte: u64,
-    /// When the stream job ran out of text and motion (see `starve`).
-    pub(crate) starved_at: Option<u64>,
+    /// The link-quiet watch of a streamed job (alarm 4601).
+    pub(crate) starve: StarveWatch,
     /// The stream job has run a block (a job of only `%`, blank or comment lines
     /// is not open).
     pub(crate) job_worked: bool,
@@ -200,9 +180,10 @@ pub struct Controller<const W: usize, const T: usize, const P: usize, const S: u
     pub(crate) now: u64,
     pub(crate) prev_inputs: Inputs,
     pub(crate) door_open: bool,
-    pub(crate) tape: Option<crate::tape::Tape>,
-    pub(crate) xoff: bool,
+    pub(crate) tape: Option<Tape>,
     pub(crate) link: LinkSeq,
+    /// The link line being answered (checksums in use): replies name it.
+    answering: Option<u32>,
     pub(crate) panel: Panel,
     /// `$H` completed since power-on (G28/G30 need it when home switches are fitted).
     pub(crate) homed: bool,
@@ -211,12 +192,6 @@ pub struct Controller<const W: usize, const T: usize, const P: usize, const S: u
     /// Startup block to run next (`$N0`, `$N1`), 2 = none.
     pub(crate) startup_next: u8,
     pub(crate) counters: Counters,
-    /// grbl traffic (`?`, a real-time byte, a `$` line) since power-on or reset.
-    pub(crate) grbl_seen: bool,
-    /// A real-time byte arrived behind this many received bytes not yet handled:
-    /// it counts as grbl traffic only once they are (a `?` right behind a tape's
-    /// opening `%` must not make that `%` a record mark).
-    pub(crate) grbl_after: Option<usize>,
     pub(crate) dirty: Dirty,
 }
 
@@ -277,10 +252,8 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             memory: ProgramMemory::new(),
             settings: Settings::default(),
             startup: [heapless::String::new(), heapless::String::new()],
-            rx: heapless::Vec::new(),
-            discarding: false,
+            rx: Receiver::new(),
             out: OutQueue::default(),
-            rt: Latched::default(),
             ovr: [100; 3],
             alarm: None,
             hold: false,
@@ -297,25 +270,21 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             motion_end: false,
             lookahead: None,
             window_stuck: false,
-            last_rx: 0,
-            last_byte: 0,
-            starved_at: None,
+            starve: StarveWatch::default(),
             job_worked: false,
             record_closed: false,
             now: 0,
             prev_inputs: Inputs::default(),
             door_open: false,
             tape: None,
-            xoff: false,
-            link: LinkSeq { active: false, expected: 1 },
+            link: LinkSeq::new(),
+            answering: None,
             panel: Panel::default(),
             homed: false,
             flood: false,
             mist: false,
             startup_next: 0,
             counters: Counters::default(),
-            grbl_seen: false,
-            grbl_after: None,
             dirty: Dirty::default(),
         }
     }
@@ -405,174 +374,24 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
     /// in the tail consumes the tail up to it (it drops what came before it).
     /// Never blocks, never panics.
     pub fn receive(&mut self, bytes: &mut [u8], now: u64) -> usize {
-        let mut start = 0;
-        loop {
-            let Some(rest) = bytes.get_mut(start..) else { return bytes.len() };
-            let taken = self.take(rest, now);
-            let Some(tail) = rest.get_mut(taken..).filter(|t| !t.is_empty()) else { return bytes.len() };
-            match self.pick_realtime(tail, now) {
-                Picked::Kept(kept) => return bytes.len() - kept,
-                Picked::Reset(at) => start += taken + at + 1,
-            }
-        }
+        let n = self.rx.receive(bytes, now, self.link.active);
+        self.after_receive();
+        n
     }
 
-    /// Takes bytes in order while the receive buffer has room (see
-    /// [`Controller::receive`]); how many were consumed.
-    fn take(&mut self, bytes: &[u8], now: u64) -> usize {
-        for (i, &raw) in bytes.iter().enumerate() {
-            self.last_byte = now;
-            let b = self.stripped(raw);
-            if (self.at_line_boundary() && self.realtime(b, self.rx.len())) || b == XON || b == XOFF {
-                continue;
-            }
-            // Line data (not status polls) is what keeps the link from being quiet.
-            self.last_rx = now;
-            if self.discarding {
-                if b == b'\n' {
-                    self.discarding = false;
-                    self.refuse(11, "line longer than 127 characters");
-                }
-                continue;
-            }
-            if self.rx.is_full() {
-                if self.rx.contains(&b'\n') {
-                    return i;
-                }
-                // A line longer than the buffer: drop it up to its LF.
-                self.rx_consumed(self.rx.len());
-                self.rx.clear();
-                self.discarding = b != b'\n';
-                if b == b'\n' {
-                    self.refuse(11, "line longer than 127 characters");
-                }
-                continue;
-            }
-            let _ = self.rx.push(b);
-            if self.tape.is_some() && !self.xoff && self.rx.len() >= RX * 3 / 4 {
-                self.out.control(XOFF);
-                self.xoff = true;
-            }
-        }
-        bytes.len()
-    }
-
-    /// The unconsumed `tail` behind a full receive buffer: its real-time bytes
-    /// (and XON/XOFF) are latched and removed, the rest is moved to the end of
-    /// `tail`. A tail byte is between lines when the line data before it in the
-    /// stream (the buffer's last byte, then the tail's kept bytes) ends with a LF
-    /// (see [`Controller::at_line_boundary`]). Stops at a 0x18: its index.
-    fn pick_realtime(&mut self, tail: &mut [u8], now: u64) -> Picked {
-        let mut between = !self.discarding && self.rx.last().is_none_or(|&b| b == b'\n');
-        let mut kept = 0;
-        for i in 0..tail.len() {
-            let Some(&raw) = tail.get(i) else { break };
-            self.last_byte = now;
-            let b = self.stripped(raw);
-            if b == XON || b == XOFF {
-                continue;
-            }
-            if (!self.link.active || between) && self.realtime(b, self.rx.len() + kept) {
-                if b == 0x18 {
-                    return Picked::Reset(i);
-                }
-                continue;
-            }
-            self.last_rx = now;
-            if let Some(slot) = tail.get_mut(kept) {
-                *slot = raw;
-            }
-            kept += 1;
-            between = b == b'\n';
-        }
-        tail.copy_within(..kept, tail.len() - kept);
-        Picked::Kept(kept)
-    }
-
-    /// `raw` as the controller reads it: bit 7 stripped for a tape reader that
-    /// sends parity.
-    fn stripped(&self, raw: u8) -> u8 {
-        if self.tape.is_some() && self.settings.parity_strip { raw & 0x7f } else { raw }
-    }
-
-    /// Whether a real-time byte would be acted on now. Always, except while link
-    /// checksums are in use: then only between lines (the first byte after a LF),
-    /// so that line noise turning a byte of a line into `!`, `~` or 0x18 (a flipped
-    /// bit makes `1` a `!`, `X` a 0x18) corrupts that line — caught by its CRC and
-    /// resent — instead of holding or resetting the machine. A sender writes
-    /// real-time bytes between its lines, so they still act at once.
-    fn at_line_boundary(&self) -> bool {
-        !self.link.active || (!self.discarding && self.rx.last().is_none_or(|&b| b == b'\n'))
-    }
-
-    /// With link checksums, a line whose end has not come for [`STALE_LINE_NS`] lost
-    /// its LF to line noise: it is ended here (its CRC fails, the sender is asked to
-    /// resend), so real-time bytes, which count as line data inside a line, act
-    /// again.
-    fn end_stale_line(&mut self) {
-        let partial = !self.discarding && self.rx.last().is_some_and(|&b| b != b'\n');
-        let stale = self.link.active && partial && self.now.saturating_sub(self.last_rx) >= STALE_LINE_NS;
-        if stale && self.rx.push(b'\n').is_err() {
-            self.rx_consumed(self.rx.len());
-            self.rx.clear();
+    /// Answers what the receiver dropped and sends the flow control it asks for.
+    fn after_receive(&mut self) {
+        for _ in 0..self.rx.take_overlong() {
             self.refuse(11, "line longer than 127 characters");
+        }
+        if let Some(b) = self.rx.take_flow() {
+            self.out.control(b);
         }
     }
 
     /// Moves output bytes into `out`; how many. Lines end with CR LF.
     pub fn transmit(&mut self, out: &mut [u8]) -> usize {
         self.out.drain(out)
-    }
-
-    /// A real-time byte: latched, true; any other byte: false. `behind`: received
-    /// bytes not yet handled that came before it.
-    fn realtime(&mut self, b: u8, behind: usize) -> bool {
-        let rt = &mut self.rt;
-        match b {
-            b'?' => rt.status = true,
-            b'!' => rt.hold = true,
-            b'~' => rt.resume = true,
-            0x18 => {
-                rt.reset = true;
-                // What was received before the reset is dropped with it.
-                self.rx.clear();
-                self.discarding = false;
-                self.tape = None;
-                self.xoff = false;
-            }
-            0x84 => rt.door = true,
-            0x85 => rt.jog_cancel = true,
-            0x90..=0x9D => {
-                override_byte(&mut self.ovr, b);
-                rt.overrides = true;
-            }
-            0x9E => rt.spindle_stop = true,
-            0xA0 => rt.flood = true,
-            0xA1 => rt.mist = true,
-            _ => return false,
-        }
-        if b == 0x18 {
-            self.grbl_seen = false;
-            self.grbl_after = None;
-        } else if behind == 0 {
-            self.grbl_seen = true;
-        } else {
-            self.grbl_after.get_or_insert(behind);
-        }
-        true
-    }
-
-    /// `n` received bytes were handled (or dropped): a real-time byte behind them
-    /// now counts as grbl traffic.
-    pub(crate) fn rx_consumed(&mut self, n: usize) {
-        match self.grbl_after {
-            Some(k) if k > n => self.grbl_after = Some(k - n),
-            Some(_) => {
-                self.grbl_seen = true;
-                self.grbl_after = None;
-            }
-            None => {}
-        }
     }
 
     /// Runs a bounded amount of work at time `now` (ns): soft reset, inputs,
@@ -585,8 +404,9 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
         I: MachineIo + ?Sized,
     {
         self.now = now;
-        self.end_stale_line();
-        if core::mem::take(&mut self.rt.reset) {
+        self.rx.end_stale_line(now, self.link.active);
+        self.after_receive();
+        if core::mem::take(&mut self.rx.latched.reset) {
             self.soft_reset(port, inputs);
         }
         self.read_inputs(port, inputs);
@@ -598,15 +418,9 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
         self.run_interpreter(port);
         self.after_motion(port);
         self.watch_stream(port);
-        // XON once the buffer has room again — or when what is left is only the
-        // start of a line (longer than a quarter of the buffer): it needs more bytes
-        // to end, so holding the sender would never release.
-        let partial_only = !self.rx.contains(&b'\n');
-        if self.tape.is_some() && self.xoff && (self.rx.len() <= RX / 4 || partial_only) {
-            self.out.control(XON);
-            self.xoff = false;
-        }
-        if core::mem::take(&mut self.rt.status) {
+        self.rx.release();
+        self.after_receive();
+        if core::mem::take(&mut self.rx.latched.status) {
             self.status_report(port, inputs);
         }
     }
@@ -647,18 +461,300 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
         self.job == Job::Stream && self.interp.program() == 0 && self.interp.cursor().offset >= self.window.len()
     }
 
-    // ----- replies -----
+    // ----- received lines -----
 
-    pub(crate) fn ok(&mut self) {
-        self.counters.ok = self.counters.ok.saturating_add(1);
-        self.out.line(Class::Reply, "ok");
+    /// Handles complete lines in the receive buffer (a few per poll). Never inlined:
+    /// see `soft_reset`.
+    #[inline(never)]
+    fn handle_lines<M: MotionPort + ?Sized>(&mut self, port: &mut M) {
+        for _ in 0..LINES_PER_POLL {
+            let mut line: heapless::Vec<u8, RX> = heapless::Vec::new();
+            match self.rx.line() {
+                Some(l) => {
+                    let _ = line.extend_from_slice(l);
+                }
+                None => return,
+            }
+            let handled = if self.tape.is_some() { self.tape_line(&line) } else { self.line(&line, port) };
+            if handled == Handled::Wait {
+                return;
+            }
+            self.rx.consume_line();
+        }
     }
 
-    /// `[MSG:why]` + `error:n`.
+    /// One grbl-mode line (without its LF): the link's framing, then what it asks.
+    fn line<M: MotionPort + ?Sized>(&mut self, raw: &[u8], port: &mut M) -> Handled {
+        let (text, k) = match self.link.check(trim(raw), self.job == Job::Stream) {
+            Checked::Text(text, k) => (trim(text), k),
+            Checked::Duplicate(k) => {
+                self.answering = Some(k);
+                self.ok();
+                self.answering = None;
+                return Handled::Done;
+            }
+            Checked::Resend => return self.resend(),
+        };
+        self.answering = k;
+        // A framed line's answer is framed (also the one that switches checksums on).
+        self.out.crc |= k.is_some();
+        let handled = self.line_text(text, k.is_some(), port);
+        self.answering = None;
+        if handled == Handled::Done && k.is_some() {
+            self.link.accepted();
+        }
+        self.out.crc = self.link.active;
+        handled
+    }
+
+    /// What a line's text (after the link's framing) asks for; `framed`: it came
+    /// with a link checksum.
+    fn line_text<M: MotionPort + ?Sized>(&mut self, text: &[u8], framed: bool, port: &mut M) -> Handled {
+        match lines::kind(text) {
+            Kind::BadByte(b) => {
+                self.refuse(1, lines::bad_text(b).as_str());
+                Handled::Done
+            }
+            // An empty line counts as a line of the stream (so its line numbers stay
+            // those of the sender's file); in alarm it is just answered.
+            Kind::Blank if self.alarm.is_some() => {
+                self.ok();
+                Handled::Done
+            }
+            Kind::Dollar(cmd) => {
+                self.rx.grbl_seen = true;
+                self.dollar(cmd, port)
+            }
+            // A framed `%` is a record mark: tape DNC software never frames lines.
+            Kind::Percent if !framed && self.tape_starts() => {
+                self.start_tape();
+                Handled::Done
+            }
+            // Blank lines before a job's first line (a grbl sender's wake-up
+            // `\r\n\r\n`) neither start nor number a job; they are grbl traffic:
+            // a `%` after them is a record mark (stream.py sends the file's `%`
+            // lines, racing its first `?`).
+            Kind::Blank if self.job == Job::None => {
+                self.rx.grbl_seen = true;
+                self.ok();
+                Handled::Done
+            }
+            Kind::Blank | Kind::Percent | Kind::Program(_) => self.program_line(text),
+        }
+    }
+
+    /// `[MSG:Resend:<expected>]` + `error:88`.
+    fn resend(&mut self) -> Handled {
+        self.counters.resends = self.counters.resends.saturating_add(1);
+        let n = self.link.expected;
+        self.refuse(88, lines::resend_text(n).as_str());
+        Handled::Done
+    }
+
+    /// Whether a `%` line starts tape mode now (setting `$301`): only while Idle,
+    /// and by default only from a sender that has not spoken grbl since the last
+    /// reset — grbl senders poll `?`, send `$` commands or wake the board with blank
+    /// lines when they connect, tape DNC software does not; a grbl sender's `%` is a
+    /// record mark.
+    fn tape_starts(&self) -> bool {
+        let idle = self.job == Job::None && self.alarm.is_none() && !self.check;
+        idle && match self.settings.tape_detect {
+            0 => !self.rx.grbl_seen,
+            1 => true,
+            _ => false,
+        }
+    }
+
+    /// Program text into the window (`ok`), or an error.
+    fn program_line(&mut self, text: &[u8]) -> Handled {
+        if self.alarm.is_some() {
+            self.refuse(9, "Alarm: $X or reset first");
+            return Handled::Done;
+        }
+        if self.sleep || self.jog || self.homing.is_some() || matches!(self.job, Job::Memory(_)) {
+            self.refuse(8, "Busy: not while sleeping, jogging, homing or running from memory");
+            return Handled::Done;
+        }
+        let mut dwell: heapless::Vec<u8, 24> = heapless::Vec::new();
+        let text = match lines::grbl_sync_dwell(text) {
+            Some(seconds) if self.settings.grbl_dwell && dwell.extend_from_slice(b"G04 X").is_ok() => {
+                let _ = dwell.extend_from_slice(seconds);
+                &dwell[..]
+            }
+            _ => text,
+        };
+        if !self.stream_text(text) {
+            return Handled::Wait;
+        }
+        self.ok();
+        Handled::Done
+    }
+
+    /// Appends program text to the window, starting a stream job if none runs;
+    /// false if it does not fit even after dropping text the run is done with.
+    fn stream_text(&mut self, text: &[u8]) -> bool {
+        if self.job == Job::None {
+            self.window.clear();
+            self.interp.rewind();
+            self.rewind_stream();
+            self.job = Job::Stream;
+            self.job_worked = false;
+            self.record_closed = false;
+        }
+        if self.window.push_line(text) {
+            self.window_stuck = false;
+            return true;
+        }
+        let need = text.len() + 1 - self.window.free().min(text.len() + 1);
+        let keep = self.interp.earliest_offset(0).unwrap_or(self.window.len());
+        // Drop at least an eighth of the window at a time (fewer moves), keeping
+        // as much recent text as possible for backward jumps.
+        let want = need.max(W / 8).min(keep).max(need);
+        match self.window.cut_point(want, keep) {
+            Some(cut) => {
+                self.window.drop_front(cut);
+                self.interp.rebase(0, cut);
+                self.counters.window_dropped = self.counters.window_dropped.saturating_add(cut as u64);
+                let pushed = self.window.push_line(text);
+                self.window_stuck = !pushed;
+                pushed
+            }
+            None => {
+                self.window_stuck = true;
+                false
+            }
+        }
+    }
+
+    // ----- FANUC tape mode -----
+
+    /// `%` while idle (or `$TAPE`): tape mode.
+    pub(crate) fn start_tape(&mut self) {
+        self.tape = Some(Tape::Undecided);
+        self.rx.set_tape(Some(self.settings.parity_strip));
+        self.window.clear();
+        self.rewind_stream();
+        self.msg(format_args!("Tape mode: XON/XOFF, no ok per block, % ends it"));
+        self.ok();
+        self.out.control(XON);
+    }
+
+    /// One block in tape mode: stored, run or dropped as [`Tape::block`] says.
+    fn tape_line(&mut self, raw: &[u8]) -> Handled {
+        let Some(tape) = self.tape else { return Handled::Done };
+        let (block, next, note) = tape.block(trim(raw), self.settings.tape_mode, self.alarm.is_some());
+        if let Some(note) = note {
+            self.msg(format_args!("{note}"));
+        }
+        match block {
+            Block::Skip => {}
+            Block::End(t) => {
+                self.end_tape(t);
+                return Handled::Done;
+            }
+            Block::BadByte(b) => {
+                self.msg(format_args!("Tape: byte 0x{b:02X} is not G-code text: block dropped"));
+                return Handled::Done;
+            }
+            Block::Punch(text) => {
+                if !self.window.push_line(text) {
+                    self.msg(format_args!("Tape: program longer than the window ({W} bytes): not stored"));
+                    self.tape = Some(Tape::Punch { failed: true });
+                    return Handled::Done;
+                }
+            }
+            Block::Drip { text, first } => {
+                // The leading `%` is line 1 of the tape: the program's lines keep the
+                // numbers they have in the sender's file.
+                if first {
+                    if !self.stream_text(b"") {
+                        return Handled::Wait;
+                    }
+                    self.tape = Some(next);
+                }
+                if !self.stream_text(text) {
+                    return Handled::Wait;
+                }
+            }
+        }
+        self.tape = Some(next);
+        Handled::Done
+    }
+
+    /// The closing `%`: a punched program is stored.
+    fn end_tape(&mut self, tape: Tape) {
+        self.tape = None;
+        self.rx.set_tape(None);
+        self.record_closed = true;
+        if tape != (Tape::Punch { failed: false }) {
+            return;
+        }
+        if let Some(n) = tape::program_number(self.window.text()) {
+            self.memory.remove(n);
+        }
+        match self.memory.load(self.window.text(), None) {
+            Ok(n) => {
+                self.dirty.programs = true;
+                self.msg(format_args!("Stored O{n:04}"));
+            }
+            Err(e) => self.msg(format_args!("Tape: not stored: {e}")),
+        }
+        self.window.clear();
+        self.rewind_stream();
+    }
+
+    // ----- link lost mid-stream (starve.rs) -----
+
+    /// Once per poll: a streamed job whose link went quiet mid-run ends in alarm
+    /// 4601 (see [`StarveWatch`]).
+    fn watch_stream<M: MotionPort + ?Sized>(&mut self, port: &mut M) {
+        let starved = self.starved(port);
+        let turning = self.interp.state().spindle.dir != SpindleDir::Stop || port.status().rpm != 0;
+        let lines_s = if turning { self.settings.spindle_stream_timeout_s } else { 0 };
+        let heard = [(self.rx.last_byte, self.settings.starve_timeout_s), (self.rx.last_line_byte, lines_s)];
+        let Some(which) = self.starve.due(self.now, starved, heard) else { return };
+        let seconds = heard[which].1;
+        if which == 1 {
+            // The sender still polls: its stream stopped, not the link.
+            self.msg(format_args!("No program line for {seconds} s with the spindle turning ($306)"));
+        }
+        let line = self.interp.cursor().line;
+        let alarm = Alarm::in_program(0, line, AlarmKind::StreamStarved { seconds });
+        self.program_alarm(alarm, false, port);
+    }
+
+    /// An open stream job that has run out of text and motion.
+    fn starved<M: MotionPort + ?Sized>(&self, port: &M) -> bool {
+        let open = self.job == Job::Stream && self.job_worked && !self.record_closed && !self.interp_done;
+        let waiting = self.alarm.is_none()
+            && !self.check
+            && !self.hold
+            && !self.paused
+            && !self.door
+            && !self.sleep
+            && self.lookahead.is_none();
+        open && waiting && !self.interp.has_pending() && self.stream_drained() && port.status().idle
+    }
+
+    // ----- replies -----
+
+    /// `ok`; `N<k> ok` for link line `k` (checksums in use).
+    pub(crate) fn ok(&mut self) {
+        self.counters.ok = self.counters.ok.saturating_add(1);
+        match self.answering {
+            Some(k) => self.out.fmt(Class::Reply, format_args!("N{k} ok")),
+            None => self.out.line(Class::Reply, "ok"),
+        }
+    }
+
+    /// `[MSG:why]` + `error:n` (`N<k> error:n` for link line `k`).
     pub(crate) fn refuse(&mut self, n: u8, why: &str) {
         self.counters.errors = self.counters.errors.saturating_add(1);
         self.out.fmt(Class::Info, format_args!("[MSG:{why}]"));
-        self.out.fmt(Class::Reply, format_args!("error:{n}"));
+        match self.answering {
+            Some(k) => self.out.fmt(Class::Reply, format_args!("N{k} error:{n}")),
+            None => self.out.fmt(Class::Reply, format_args!("error:{n}")),
+        }
     }
 
     pub(crate) fn msg(&mut self, text: core::fmt::Arguments<'_>) {
@@ -678,6 +774,8 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
     /// stack under the interpreter's deepest step.
     #[inline(never)]
     fn soft_reset<M: MotionPort + ?Sized>(&mut self, port: &mut M, inputs: Inputs) {
+        self.counters.resets = self.counters.resets.saturating_add(1);
+        let moving = !port.status().idle;
         port.reset();
         self.interp.reset();
         self.close_job();
@@ -686,12 +784,19 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
         self.door = false;
         self.ovr = [100; 3];
         self.apply_overrides(port);
-        self.link = LinkSeq { active: false, expected: 1 };
+        self.link = LinkSeq::new();
+        self.out.crc = false;
         self.alarm = if inputs.estop { Some(10) } else { None };
         if inputs.estop {
             port.emergency_stop();
         }
         self.welcome();
+        if moving && self.alarm.is_none() {
+            // Unlike grbl (ALARM:3: its steppers stop dead and may lose steps), the
+            // motion core brakes on the path within the axes' acceleration: the
+            // position is kept, no alarm, no homing needed.
+            self.msg(format_args!("Reset in motion: braked on the path, position kept"));
+        }
     }
 
     /// Drops the job: interpreter rewound to an empty window, holds released; the
@@ -769,21 +874,22 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             self.enter_alarm(1, port);
             return;
         }
-        self.rt.hold |= inputs.feed_hold && !prev.feed_hold;
-        self.rt.resume |= inputs.cycle_start && !prev.cycle_start;
-        self.rt.door |= inputs.door && !prev.door;
+        self.rx.latched.hold |= inputs.feed_hold && !prev.feed_hold;
+        self.rx.latched.resume |= inputs.cycle_start && !prev.cycle_start;
+        self.rx.latched.door |= inputs.door && !prev.door;
     }
 
     fn apply_realtime<M: MotionPort + ?Sized, I: MachineIo + ?Sized>(&mut self, port: &mut M, io: &mut I) {
-        if core::mem::take(&mut self.rt.jog_cancel) && self.jog {
+        if core::mem::take(&mut self.rx.latched.jog_cancel) && self.jog {
             port.reset();
         }
-        if core::mem::take(&mut self.rt.door) && self.alarm.is_none() {
+        if core::mem::take(&mut self.rx.latched.door) && self.alarm.is_none() {
             self.door = true;
             self.hold = true;
             port.feed_hold();
         }
-        if core::mem::take(&mut self.rt.hold) && self.alarm.is_none() {
+        if core::mem::take(&mut self.rx.latched.hold) && self.alarm.is_none() {
+            self.counters.holds = self.counters.holds.saturating_add(1);
             if self.jog {
                 port.reset();
             } else if self.homing.is_none() {
@@ -791,20 +897,24 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
                 port.feed_hold();
             }
         }
-        if core::mem::take(&mut self.rt.resume) {
+        if core::mem::take(&mut self.rx.latched.resume) {
             self.resume(port);
         }
-        if core::mem::take(&mut self.rt.overrides) {
+        let overrides = core::mem::take(&mut self.rx.latched.overrides);
+        if !overrides.is_empty() {
+            for b in overrides {
+                override_byte(&mut self.ovr, b);
+            }
             self.apply_overrides(port);
         }
-        if core::mem::take(&mut self.rt.spindle_stop) && self.hold {
+        if core::mem::take(&mut self.rx.latched.spindle_stop) && self.hold {
             self.msg(format_args!("Spindle stop in hold is not supported"));
         }
-        if core::mem::take(&mut self.rt.flood) {
+        if core::mem::take(&mut self.rx.latched.flood) {
             self.flood = !self.flood;
             io.m_code(if self.flood { 8 } else { 9 }, 0);
         }
-        if core::mem::take(&mut self.rt.mist) {
+        if core::mem::take(&mut self.rx.latched.mist) {
             self.mist = !self.mist;
             io.m_code(if self.mist { 7 } else { 9 }, 0);
         }
@@ -1008,7 +1118,8 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
                 self.lookahead = None;
                 return false;
             }
-            if self.window_stuck || self.now.saturating_sub(self.last_rx) >= QUIET_NS {
+            let quiet_ns = u64::from(self.settings.lookahead_wait_ms) * 1_000_000;
+            if self.window_stuck || self.now.saturating_sub(self.rx.last_line_byte) >= quiet_ns {
                 self.lookahead = None;
                 self.program_alarm(w.alarm, true, port);
             }
@@ -1024,8 +1135,22 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             self.need_sync = true;
             self.sync(port);
         }
-        if self.homing.is_some() {
-            self.homing_step(port);
+        if let Some(h) = self.homing.as_mut() {
+            let home = [self.prev_inputs.home_x, self.prev_inputs.home_z];
+            match h.step(&port.status(), home, self.interp.config(), &self.settings, port) {
+                Homed::Busy => {}
+                Homed::Failed => {
+                    self.homing = None;
+                    self.msg(format_args!("Homing failed: no home switch found"));
+                    self.enter_alarm(9, port);
+                }
+                Homed::Done(pos) => {
+                    self.homing = None;
+                    self.homed = true;
+                    self.interp.set_machine_position(pos);
+                    self.msg(format_args!("Homed"));
+                }
+            }
         }
     }
 
@@ -1066,10 +1191,16 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             }
         }
         let sep = if pins.is_empty() { "" } else { "|Pn:" };
+        // With link checksums: the last link line accepted, so that a sender whose
+        // answers were lost to line noise can find its place again.
+        let mut link: heapless::String<16> = heapless::String::new();
+        if self.link.active {
+            let _ = core::fmt::write(&mut link, format_args!("|Lk:{}", self.link.expected.saturating_sub(1)));
+        }
         self.out.fmt(
             Class::Info,
             format_args!(
-                "<{state}|MPos:{}|FS:{feed},{}|Bf:{},{}|Ln:{}|WCO:{}|Ov:{},{},{}{sep}{pins}>",
+                "<{state}|MPos:{}|FS:{feed},{}|Bf:{},{}|Ln:{}|WCO:{}|Ov:{},{},{}{sep}{pins}{link}>",
                 Xyz::of(&st.position, cfg),
                 st.rpm,
                 st.capacity.saturating_sub(st.queued),

@@ -7,8 +7,10 @@ use interp_core::codes::GCode;
 use interp_core::config::{PARAMS, Param};
 use interp_core::units::Units;
 
-use crate::controller::{Controller, Job, Mode};
-use crate::lines::Handled;
+use crate::controller::{Controller, Handled, Job, Mode};
+use crate::framing::LinkSeq;
+use crate::homing::Homing;
+use crate::jog::{JogFrom, jog_move};
 use crate::outq::Class;
 use crate::port::MotionPort;
 use crate::report::{Value, Xyz};
@@ -107,8 +109,10 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             b"PD" => self.delete_program(value),
             b"LN" => match whole(value) {
                 Some(n) => {
-                    self.link.expected = n.max(1);
-                    self.link.active = n > 0;
+                    self.link = LinkSeq { active: n > 0, expected: n.max(1) };
+                    self.out.crc = n > 0;
+                    // Says which number it took: line noise may have changed it.
+                    self.out.fmt(Class::Info, format_args!("[LN:{n}]"));
                     Ok(())
                 }
                 None => Err((2, "Bad number")),
@@ -356,5 +360,81 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
     /// A parameter by number, for tests and tools.
     pub fn param(&self, n: u16) -> Option<f64> {
         Param::by_number(n).map(|p| settings::param_value(p, self.interp.config()))
+    }
+}
+
+// ----- `$J=` and `$H`: moves the controller makes itself (the interpreter takes
+// the position from the motion core when they end) -----
+
+impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<W, T, P, S> {
+    /// `$J=…`: a jog move (Idle or while jogging).
+    fn jog_line<M: MotionPort + ?Sized>(&mut self, text: &[u8], port: &mut M) -> Handled {
+        if self.alarm.is_some() {
+            self.refuse(9, "Alarm: $X or reset first");
+            return Handled::Done;
+        }
+        if port.status().state == motion_core::motion::State::Stopping {
+            // Braking after a reset or unlock: the jog waits (in the buffer).
+            return Handled::Wait;
+        }
+        if !matches!(self.mode(port), Mode::Idle | Mode::Jog) || self.check {
+            self.refuse(8, "Jog only when idle");
+            return Handled::Done;
+        }
+        let cfg = self.interp.config();
+        let st = self.interp.state();
+        let from = JogFrom {
+            base: if self.jog { self.jog_target } else { st.pos },
+            work_to_machine: st.work_to_machine(cfg),
+            inch_mode: st.modal.units == Units::Inch,
+            soft_limits: self.settings.soft_limits,
+        };
+        let (c, to) = match jog_move(text, &from, cfg) {
+            Ok(m) => m,
+            Err((n, why)) => {
+                self.refuse(n, why);
+                return Handled::Done;
+            }
+        };
+        if port.push(c).is_err() {
+            return Handled::Wait;
+        }
+        self.jog = true;
+        self.jog_target = to;
+        self.ok();
+        Handled::Done
+    }
+
+    /// `$H`: with `$22=0` (no home switches, the default) the axes are declared to
+    /// be at reference position 1 (G28) where they stand; with `$22=1` the homing
+    /// sequence runs ([`Homing`]).
+    fn home<M: MotionPort + ?Sized>(&mut self, port: &mut M) -> Handled {
+        if self.prev_inputs.estop {
+            self.refuse(9, "E-stop is active");
+            return Handled::Done;
+        }
+        if !port.status().idle || self.job != Job::None {
+            self.refuse(8, "Homing only at rest");
+            return Handled::Done;
+        }
+        if self.alarm.take().is_some() {
+            // Clears the core's alarm; the sequence starts once it is at rest.
+            port.reset();
+        }
+        if !self.settings.homing {
+            let r = self.interp.config().reference[0];
+            if !port.set_position(r) {
+                self.refuse(8, "Homing only at rest");
+                return Handled::Done;
+            }
+            self.interp.set_machine_position(r);
+            self.homed = true;
+            self.msg(format_args!("No home switches ($22=0): reference position set where the axes stand"));
+            self.ok();
+            return Handled::Done;
+        }
+        self.homing = Some(Homing::new());
+        self.ok();
+        Handled::Done
     }
 }

@@ -46,21 +46,24 @@ mod controller;
 pub mod crc;
 mod decimal;
 mod dollar;
+mod framing;
 mod homing;
 pub mod io;
+mod jog;
 mod lines;
 pub mod outq;
 pub mod persist;
 pub mod port;
 pub mod report;
+mod rx;
 pub mod settings;
 mod starve;
 mod tape;
 pub mod window;
 
-pub use controller::{Controller, Counters, Dirty, LINES_PER_POLL, Mode, OUT, QUIET_NS, RX, STEPS_PER_POLL, WELCOME};
+pub use controller::{Controller, Counters, Dirty, LINES_PER_POLL, Mode, OUT, RX, STEPS_PER_POLL, WELCOME};
+pub use framing::frame_line;
 pub use io::{Inputs, MachineIo};
-pub use lines::frame_line;
 pub use port::{MotionPort, MotionStatus};
 pub use settings::Settings;
 

@@ -30,18 +30,26 @@ pub struct OutQueue<const N: usize> {
     pub lost_replies: u32,
     /// Info lines dropped.
     pub lost_info: u32,
+    /// Every line gets `*<CRC-16>` of its text (link checksums in use).
+    pub crc: bool,
 }
 
 impl<const N: usize> Default for OutQueue<N> {
     fn default() -> Self {
-        OutQueue { buf: heapless::Deque::new(), flow: None, lost_replies: 0, lost_info: 0 }
+        OutQueue { buf: heapless::Deque::new(), flow: None, lost_replies: 0, lost_info: 0, crc: false }
     }
 }
 
 impl<const N: usize> OutQueue<N> {
-    /// Queues `text` and CR LF, whole or not at all.
+    /// Queues `text` and CR LF, whole or not at all; with [`OutQueue::crc`]
+    /// `text*<crc>` CR LF, the CRC-16/CCITT-FALSE of `text` in 4 upper-case hex
+    /// digits (docs/PROTOCOL.md, Checksums).
     pub fn line(&mut self, class: Class, text: &str) {
-        let need = text.len() + 2;
+        let mut tail: heapless::String<5> = heapless::String::new();
+        if self.crc {
+            let _ = write!(tail, "*{:04X}", crate::crc::crc16(text.as_bytes()));
+        }
+        let need = text.len() + tail.len() + 2;
         let free = N - self.buf.len();
         let room = match class {
             Class::Reply => free >= need,
@@ -54,7 +62,7 @@ impl<const N: usize> OutQueue<N> {
             }
             return;
         }
-        for &b in text.as_bytes().iter().chain(b"\r\n") {
+        for &b in text.as_bytes().iter().chain(tail.as_bytes()).chain(b"\r\n") {
             let _ = self.buf.push_back(b);
         }
     }
@@ -107,6 +115,7 @@ impl<const N: usize> OutQueue<N> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::format;
 
     #[test]
     fn replies_are_kept_when_reports_fill_the_queue() {
@@ -124,6 +133,16 @@ mod tests {
         q.control(0x13);
         let mut out = [0u8; 1];
         assert_eq!((q.drain(&mut out), out[0]), (1, 0x13));
+    }
+
+    #[test]
+    fn with_crc_every_line_carries_the_crc_of_its_text() {
+        let mut q = OutQueue::<64> { crc: true, ..Default::default() };
+        q.line(Class::Reply, "ok");
+        let mut out = [0u8; 16];
+        let n = q.drain(&mut out);
+        let want = format!("ok*{:04X}\r\n", crate::crc::crc16(b"ok"));
+        assert_eq!(core::str::from_utf8(&out[..n]).unwrap(), want);
     }
 
     #[test]

@@ -42,6 +42,14 @@ pub struct Settings {
     /// `$304`: seconds without a byte on the link after which a starved stream job
     /// (open, its text and motion run out) raises alarm 4601; 0 never.
     pub starve_timeout_s: u32,
+    /// `$305`: how long, ms of link time, a look-ahead (G70–G73 reading ns–nf, a
+    /// forward GOTO, WHILE looking for its END) waits for stream lines that have not
+    /// come before it is given up as an alarm.
+    pub lookahead_wait_ms: u32,
+    /// `$306`: seconds without a program line after which a starved stream job with
+    /// the spindle turning raises alarm 4601 even while the sender polls `?` (its
+    /// stream stopped); 0 never.
+    pub spindle_stream_timeout_s: u32,
     /// Soft-limit travel (min, max per axis, nm) while `$20=0`.
     pub travel: [(i64, i64); 2],
 }
@@ -61,14 +69,17 @@ impl Default for Settings {
             grbl_dwell: true,
             parity_strip: false,
             starve_timeout_s: 10,
+            lookahead_wait_ms: 1_000,
+            spindle_stream_timeout_s: 30,
             travel: [(0, 0); 2],
         }
     }
 }
 
 /// The grbl-numbered settings, in `$$` order.
-pub const NUMBERS: &[u16] =
-    &[11, 12, 20, 21, 22, 23, 24, 25, 27, 30, 100, 102, 110, 112, 120, 122, 130, 132, 300, 301, 302, 303, 304];
+pub const NUMBERS: &[u16] = &[
+    11, 12, 20, 21, 22, 23, 24, 25, 27, 30, 100, 102, 110, 112, 120, 122, 130, 132, 300, 301, 302, 303, 304, 305, 306,
+];
 
 /// Why a setting write was refused.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -83,6 +94,10 @@ const NM: f64 = 1e6;
 
 /// Longest `$304`, s (a day).
 const MAX_STARVE_S: u32 = 86_400;
+
+/// `$305` range, ms.
+const MIN_LOOKAHEAD_MS: u32 = 50;
+const MAX_LOOKAHEAD_MS: u32 = 60_000;
 
 /// Soft-limit travel with limits "off": ±1000 m.
 const UNLIMITED: i64 = 1_000_000_000_000;
@@ -118,6 +133,8 @@ pub fn get(n: u16, cfg: &MachineConfig, s: &Settings) -> Option<f64> {
         303 => f64::from(u8::from(s.grbl_dwell)),
         302 => f64::from(u8::from(s.parity_strip)),
         304 => f64::from(s.starve_timeout_s),
+        305 => f64::from(s.lookahead_wait_ms),
+        306 => f64::from(s.spindle_stream_timeout_s),
         _ => return None,
     })
 }
@@ -170,6 +187,14 @@ pub fn set(n: u16, v: f64, cfg: &mut MachineConfig, s: &mut Settings) -> Result<
         303 => s.grbl_dwell = flag(v)?,
         302 => s.parity_strip = flag(v)?,
         304 => s.starve_timeout_s = whole(v)?.min(MAX_STARVE_S),
+        305 => {
+            let ms = whole(v)?;
+            if !(MIN_LOOKAHEAD_MS..=MAX_LOOKAHEAD_MS).contains(&ms) {
+                return Err(bad("is 50 to 60000 ms"));
+            }
+            s.lookahead_wait_ms = ms;
+        }
+        306 => s.spindle_stream_timeout_s = whole(v)?.min(MAX_STARVE_S),
         _ => return Err(SettingError::Unknown),
     }
     Ok(())

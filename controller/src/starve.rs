@@ -14,47 +14,37 @@
 //! Idle (`lathe send`, CNCjs, which polls as long as it is connected), so its last
 //! byte comes after the run-out and nothing fires. A lost link silences the
 //! sender while the board still runs what it had received.
-
-use interp_core::Alarm;
-use interp_core::alarm::AlarmKind;
-
-use crate::controller::{Controller, Job};
-use crate::port::MotionPort;
+//!
+//! With the spindle turning, status polls do not keep the job open: a sender whose
+//! stream stopped (its character count stuck on an `ok` that line noise ate) may
+//! go on polling `?` for ever. Then `$306` seconds without a program line since
+//! before the run-out end the job too.
 
 /// One second, ns.
 const SECOND_NS: u64 = 1_000_000_000;
 
-impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<W, T, P, S> {
-    /// Once per poll: notes when the stream job ran out of text and motion, and
-    /// raises alarm 4601 when the link has been quiet since before that for `$304`
-    /// seconds.
-    pub(crate) fn watch_stream<M: MotionPort + ?Sized>(&mut self, port: &mut M) {
-        if !self.starved(port) {
-            self.starved_at = None;
-            return;
-        }
-        let since = *self.starved_at.get_or_insert(self.now);
-        let timeout_s = self.settings.starve_timeout_s;
-        let quiet = self.now.saturating_sub(self.last_byte);
-        if timeout_s == 0 || self.last_byte >= since || quiet < u64::from(timeout_s) * SECOND_NS {
-            return;
-        }
-        self.starved_at = None;
-        let line = self.interp.cursor().line;
-        let alarm = Alarm::in_program(0, line, AlarmKind::StreamStarved { seconds: timeout_s });
-        self.program_alarm(alarm, false, port);
-    }
+/// When the stream job ran out of text and motion.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct StarveWatch {
+    starved_at: Option<u64>,
+}
 
-    /// An open stream job that has run out of text and motion.
-    fn starved<M: MotionPort + ?Sized>(&self, port: &M) -> bool {
-        let open = self.job == Job::Stream && self.job_worked && !self.record_closed && !self.interp_done;
-        let waiting = self.alarm.is_none()
-            && !self.check
-            && !self.hold
-            && !self.paused
-            && !self.door
-            && !self.sleep
-            && self.lookahead.is_none();
-        open && waiting && !self.interp.has_pending() && self.stream_drained() && port.status().idle
+impl StarveWatch {
+    /// Once per poll at `now`: `starved`, the open stream job has run out of text
+    /// and motion; `heard`, when the link was last heard from and how many seconds
+    /// of silence since before the run-out end the job (0 never): the first whose
+    /// time is up, if any.
+    pub fn due(&mut self, now: u64, starved: bool, heard: [(u64, u32); 2]) -> Option<usize> {
+        if !starved {
+            self.starved_at = None;
+            return None;
+        }
+        let since = *self.starved_at.get_or_insert(now);
+        let up = |&(last, timeout_s): &(u64, u32)| {
+            timeout_s != 0 && last < since && now.saturating_sub(last) >= u64::from(timeout_s) * SECOND_NS
+        };
+        let which = heard.iter().position(up)?;
+        self.starved_at = None;
+        Some(which)
     }
 }

@@ -2,10 +2,8 @@
 //! control and no `ok` per line. The first block decides: an `O` number punches
 //! the program into memory (setting `$300=0` or `1`), anything else is drip-fed
 //! (run as it arrives; `$300=2` always drip-feeds). The closing `%` ends tape mode.
-
-use crate::controller::{Controller, XON};
-use crate::lines::{Handled, trim};
-use crate::port::MotionPort;
+//!
+//! [`Tape`] is the decision; the controller stores or runs what it says.
 
 /// What the tape is doing.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -19,108 +17,88 @@ pub(crate) enum Tape {
     Drip,
 }
 
+/// What a tape block asks of the controller.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Block<'a> {
+    /// Nothing (the leader `%`, a blank line before the first block, a block of a
+    /// program that could not be stored, a drip-fed block in alarm).
+    Skip,
+    /// The closing `%`: tape mode ends; the tape was doing this.
+    End(Tape),
+    /// A byte that cannot be G-code text: the block is dropped.
+    BadByte(u8),
+    /// Store this block of the punched program.
+    Punch(&'a [u8]),
+    /// Run this block; `first`: the tape's first block (its leading `%` then counts
+    /// as line 1 of the job).
+    Drip { text: &'a [u8], first: bool },
+}
+
 /// Whether a block starts with an O number.
 fn starts_program(text: &[u8]) -> bool {
     matches!(text.first(), Some(b'O' | b'o')) && text.get(1).is_some_and(u8::is_ascii_digit)
 }
 
-impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<W, T, P, S> {
-    /// `%` while idle: tape mode.
-    pub(crate) fn start_tape(&mut self) {
-        self.tape = Some(Tape::Undecided);
-        self.window.clear();
-        self.rewind_stream();
-        self.msg(format_args!("Tape mode: XON/XOFF, no ok per block, % ends it"));
-        self.ok();
-        self.out.control(XON);
-    }
-
-    /// One block in tape mode.
-    pub(crate) fn tape_line<M: MotionPort + ?Sized>(&mut self, raw: &[u8], port: &mut M) -> Handled {
-        let _ = port;
-        let text = trim(raw);
-        let Some(tape) = self.tape else { return Handled::Done };
+impl Tape {
+    /// Block `text` (trimmed) under setting `$300` = `mode`: what to do with it, the
+    /// tape's state after it, and a note for the sender (`[MSG:…]`).
+    pub fn block(self, text: &[u8], mode: u8, alarm: bool) -> (Block<'_>, Tape, Option<&'static str>) {
         if text == b"%" {
             // Before the first block a `%` is the tape's leader (after `$TAPE`);
             // after it, the end of the tape.
-            if tape != Tape::Undecided {
-                self.end_tape(tape);
-            }
-            return Handled::Done;
+            let b = if self == Tape::Undecided { Block::Skip } else { Block::End(self) };
+            return (b, self, None);
         }
         if let Some(b) = text.iter().copied().find(|&b| (b < 0x20 && b != b'\t') || b >= 0x7f) {
-            self.msg(format_args!("Tape: byte 0x{b:02X} is not G-code text: block dropped"));
-            return Handled::Done;
+            return (Block::BadByte(b), self, None);
         }
-        let starting = tape == Tape::Undecided;
-        let tape = match tape {
-            Tape::Undecided if text.is_empty() => return Handled::Done,
-            Tape::Undecided => match (self.settings.tape_mode, starts_program(text)) {
+        let mut note = None;
+        let next = match self {
+            Tape::Undecided if text.is_empty() => return (Block::Skip, self, None),
+            Tape::Undecided => match (mode, starts_program(text)) {
                 (0 | 1, true) => Tape::Punch { failed: false },
                 (1, false) => {
-                    self.msg(format_args!("Tape: storing needs an O number first ($300=1)"));
+                    note = Some("Tape: storing needs an O number first ($300=1)");
                     Tape::Punch { failed: true }
                 }
                 _ => Tape::Drip,
             },
             t => t,
         };
-        self.tape = Some(tape);
-        match tape {
-            Tape::Punch { failed: false } => {
-                if !self.window.push_line(text) {
-                    self.msg(format_args!("Tape: program longer than the window ({W} bytes): not stored"));
-                    self.tape = Some(Tape::Punch { failed: true });
-                }
-                Handled::Done
-            }
-            Tape::Drip if self.alarm.is_none() => {
-                // The leading `%` is line 1 of the tape: the program's lines keep the
-                // numbers they have in the sender's file.
-                if starting && !self.stream_text(b"") {
-                    return Handled::Wait;
-                }
-                if self.stream_text(text) { Handled::Done } else { Handled::Wait }
-            }
-            _ => Handled::Done,
-        }
-    }
-
-    /// The closing `%`.
-    fn end_tape(&mut self, tape: Tape) {
-        self.tape = None;
-        self.record_closed = true;
-        if self.xoff {
-            self.xoff = false;
-            self.out.control(XON);
-        }
-        if tape != (Tape::Punch { failed: false }) {
-            return;
-        }
-        let mut number = None;
-        if let Some(n) = program_number(self.window.text()) {
-            self.memory.remove(n);
-            number = Some(n);
-        }
-        match self.memory.load(self.window.text(), None) {
-            Ok(n) => {
-                self.dirty.programs = true;
-                self.msg(format_args!("Stored O{n:04}"));
-            }
-            Err(e) => self.msg(format_args!("Tape: not stored: {e}")),
-        }
-        let _ = number;
-        self.window.clear();
-        self.rewind_stream();
+        let block = match next {
+            Tape::Punch { failed: false } => Block::Punch(text),
+            Tape::Drip if !alarm => Block::Drip { text, first: self == Tape::Undecided },
+            _ => Block::Skip,
+        };
+        (block, next, note)
     }
 }
 
 /// The O number of the first block.
-fn program_number(text: &[u8]) -> Option<u32> {
-    let t = trim(text);
+pub(crate) fn program_number(text: &[u8]) -> Option<u32> {
+    let t = crate::lines::trim(text);
     if !starts_program(t) {
         return None;
     }
     let digits = t.get(1..)?.iter().take_while(|b| b.is_ascii_digit()).count();
     core::str::from_utf8(t.get(1..1 + digits)?).ok()?.parse().ok()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_first_block_decides() {
+        let (b, t, _) = Tape::Undecided.block(b"O0012", 0, false);
+        assert_eq!((b, t), (Block::Punch(b"O0012"), Tape::Punch { failed: false }));
+        let (b, t, _) = Tape::Undecided.block(b"G00 X1", 0, false);
+        assert_eq!((b, t), (Block::Drip { text: b"G00 X1", first: true }, Tape::Drip));
+        let (b, t, note) = Tape::Undecided.block(b"G00 X1", 1, false);
+        assert_eq!((b, t), (Block::Skip, Tape::Punch { failed: true }));
+        assert!(note.is_some());
+        assert_eq!(Tape::Undecided.block(b"%", 0, false).0, Block::Skip);
+        assert_eq!(Tape::Drip.block(b"%", 0, false).0, Block::End(Tape::Drip));
+        assert_eq!(program_number(b" O12 (X)"), Some(12));
+    }
 }

@@ -69,7 +69,7 @@ fn common_variables_and_link_numbers() {
     let answers = r.stream("#500=1.5\n#1=2\nM30\n", 5_000);
     assert!(answers.iter().any(|l| l == "[MSG:Pgm End]"));
     assert_eq!(r.command("$V"), vec!["[VAR:#500=1.5]", "ok"]);
-    assert_eq!(r.command("$LN=5"), vec!["ok"]);
+    assert_eq!(r.command("$LN=5"), vec!["[LN:5]", "ok"]);
     let a = r.command(&controller::frame_line(4, "G00 X1"));
     assert_eq!(a, vec!["ok"], "a duplicate is answered ok and dropped");
     let a = r.command(&controller::frame_line(6, "G00 X1"));

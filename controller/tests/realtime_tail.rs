@@ -154,11 +154,16 @@ mod tail {
         c.poll(1_000_000, &mut port, &mut (), Inputs::default());
         full(&mut c);
         // The buffer ends inside a line: its `!` is line data. After the LF, `?`
-        // is between lines, and so is the `~` after it (`?` is no line data);
-        // the `!` inside the next line is line data again.
-        let mut bytes = b"!\n?~G1 X1!\n".to_vec();
+        // is between lines and acts alone; so is the `~` after it (`?` is no line
+        // data), but with checksums a `~` acts only with the LF behind it (taken
+        // with it); the `!` inside the next line is line data again.
+        let mut bytes = b"!\n?~\nG1 X1!\n".to_vec();
         let n = c.receive(&mut bytes, 2_000_000);
         assert_eq!(&bytes[n..], b"!\nG1 X1!\n");
+        // A `~` not followed by a LF is line data (a damaged line's first byte).
+        let mut bytes = b"~G1 X1\n".to_vec();
+        let n = c.receive(&mut bytes, 2_000_000);
+        assert_eq!(&bytes[n..], b"~G1 X1\n");
     }
 
     #[test]

@@ -96,20 +96,58 @@ fn the_default_is_10_s_and_0_switches_the_watch_off() {
     assert!(at >= last + 10_000_000_000 && at <= last + 10_000_000_000 + 2 * TICK, "{at} vs {last}");
 
     let mut r = rig(Some(0));
+    assert_eq!(r.command("$306=0"), vec!["ok"]);
     stream_for(&mut r, job(4), 0, 100);
-    assert_eq!(alarm_time(&mut r, 30_000), None, "{:?}", r.lines());
+    assert_eq!(alarm_time(&mut r, 40_000), None, "{:?}", r.lines());
 }
 
 #[test]
 fn a_polling_sender_never_starves_and_one_that_finished_polling_neither() {
     // lathe send, CNCjs: `?` every 200 ms while connected. An interactive line
-    // without M30 (an MDI move typed into the sender) stays open for 30 s.
+    // without M30 (an MDI move typed into the sender) with the spindle stopped
+    // stays open for 30 s.
     let mut r = rig(Some(1));
-    stream_for(&mut r, job(2), 200, 30_000);
+    let mut lines = job(2);
+    lines.push("M05".to_string());
+    stream_for(&mut r, lines, 200, 30_000);
     assert!(!r.lines().iter().any(|l| l.starts_with("ALARM")), "{:?}", r.lines());
     // The sender then goes (its last `?` saw Idle): the job stays open, no alarm.
     assert_eq!(alarm_time(&mut r, 10_000), None);
     assert!(r.status().starts_with("<Idle"));
+}
+
+/// Issue 23: a sender whose count is stuck (an `ok` lost to line noise) stops
+/// sending lines but goes on polling `?`; with the spindle turning the job must
+/// not stay open: `$306` s (default 30) after the last program line, alarm 4601.
+#[test]
+fn with_the_spindle_turning_polls_alone_do_not_keep_a_stream_open() {
+    let mut r = rig(Some(1));
+    assert!(r.command("$$").contains(&"$306=30".to_string()));
+    let mut sender = Counting::new(job(2));
+    let mut last_line = 0;
+    for i in 0..40_000u64 {
+        let before = r.pending.len();
+        sender.pump(&mut r);
+        if r.pending.len() > before {
+            last_line = r.now;
+        }
+        if i % 200 == 0 {
+            r.send(b"?");
+        }
+        r.step();
+        for l in r.take_lines() {
+            sender.answer(&l);
+        }
+        if r.lines().iter().any(|l| l.starts_with("ALARM:")) {
+            break;
+        }
+    }
+    let at = r.now;
+    assert!(at >= last_line + 30_000_000_000 && at <= last_line + 30_000_000_000 + 2 * TICK, "{at} vs {last_line}");
+    let out = r.lines();
+    assert!(out.iter().any(|l| l == "[MSG:No program line for 30 s with the spindle turning ($306)]"), "{out:?}");
+    assert!(out.iter().any(|l| l.contains("ALARM 4601")), "{out:?}");
+    assert_eq!(r.port.core.spindle_output().1, 0, "spindle stopped");
 }
 
 #[test]

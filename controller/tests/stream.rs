@@ -129,7 +129,10 @@ fn soft_reset_mid_program_stops_and_welcomes() {
     r.take_lines();
     r.send(&[0x18]);
     r.run_ms(5);
-    assert_eq!(r.take_lines(), vec!["Grbl 1.1h ['$' for help]".to_string()]);
+    assert_eq!(
+        r.take_lines(),
+        ["Grbl 1.1h ['$' for help]", "[MSG:Reset in motion: braked on the path, position kept]"]
+    );
     assert!(r.run_until(2_000, |r| r.port.core.is_idle()));
     let s = r.status();
     assert!(s.starts_with("<Idle"), "{s}");

@@ -34,6 +34,8 @@
 //! | PB15 | Z HOME         |                                                           |
 //! | PA2  | DNC TX         | USART2_TX (AF7)                                           |
 //! | PA3  | DNC RX         | USART2_RX (AF7)                                           |
+//! | PA11 | USB D−         | OTG_FS_DM (AF10): the fast link, CDC-ACM (feature `usb`)  |
+//! | PA12 | USB D+         | OTG_FS_DP (AF10); no VBUS sensing (PA9 is USART1's)       |
 //!
 //! Outputs are active high at the MCU pin (opto/relay drivers on the board) and all
 //! start low, so a reset leaves the spindle, coolant and drives off. Switch inputs use
@@ -43,13 +45,13 @@
 //! interrupts (same port as the STEP pins: one IDR read).
 //!
 //! Kept free on purpose: PA13/PA14 (SWD), PB3 (SWO), PH0/PH1 (8 MHz HSE crystal),
-//! PC14/PC15 (LSE), PB2 (BOOT1), PA9/PA10 (USART1: ROM bootloader, service console),
-//! PA11/PA12 (USB FS, for a USB DNC link later). Spare: PA4/PA5 (DAC outputs, an
+//! PC14/PC15 (LSE), PB2 (BOOT1), PA9/PA10 (USART1: ROM bootloader, service console).
+//! Spare: PA4/PA5 (DAC outputs, an
 //! alternative to PWM for the 0–10 V speed signal), PA7, PA8, PA15, PB4, PB11, PC2,
 //! PC4, PC5 (ADC, e.g. override potentiometers), PC13.
 //!
 //! Timers: TIM2 (32-bit, 84 MHz, no pins) step time base and step-edge compare, TIM7
-//! interpolation period, TIM5 spindle encoder (32-bit) with per-count compares, TIM3
+//! interpolation period, TIM5 spindle encoder (32-bit) with compares at the due counts, TIM3
 //! spindle PWM, TIM4 embassy time driver (no pins); TIM8 (for hardware step pulses
 //! later), TIM1 and TIM6 are free.
 //!
@@ -159,6 +161,28 @@ impl embassy_stm32::interrupt::typelevel::Handler<embassy_stm32::interrupt::type
     }
 }
 
+/// The USB OTG FS interrupt, bound to embassy's driver (the fast link).
+#[cfg(feature = "usb")]
+mod usb_irq {
+    use embassy_stm32::{bind_interrupts, peripherals, usb};
+
+    bind_interrupts!(
+        /// OTG_FS → embassy's USB driver.
+        pub struct UsbIrqs {
+            OTG_FS => usb::InterruptHandler<peripherals::USB_OTG_FS>;
+        }
+    );
+}
+
+/// The USB driver of the fast link (OTG_FS on PA11/PA12).
+#[cfg(feature = "usb")]
+pub type UsbDriver = embassy_stm32::usb::Driver<'static, peripherals::USB_OTG_FS>;
+
+/// Receive buffer of the USB OUT endpoints: one packet each of the control
+/// endpoint and the CDC-ACM data endpoint (64 bytes).
+#[cfg(feature = "usb")]
+static USB_EP_OUT: ConstStaticCell<[u8; 128]> = ConstStaticCell::new([0; 128]);
+
 /// Receive buffer of the DNC link: room for a few program blocks while the
 /// interpreter is busy.
 static DNC_RX_BUF: ConstStaticCell<[u8; 1024]> = ConstStaticCell::new([0; 1024]);
@@ -247,6 +271,9 @@ pub struct Board {
     pub switches: Switches,
     /// Serial DNC link to the host.
     pub dnc: BufferedUart<'static>,
+    /// USB full-speed device (OTG_FS): the fast link, CDC-ACM.
+    #[cfg(feature = "usb")]
+    pub usb: UsbDriver,
     /// Heartbeat LED.
     pub status_led: Output<'static>,
     /// Timers of the step and period interrupts.
@@ -302,6 +329,8 @@ impl Board {
                 config.eager_reads = Some(1);
                 unwrap!(BufferedUart::new(p.USART2, p.PA3, p.PA2, DNC_TX_BUF.take(), DNC_RX_BUF.take(), Irqs, config))
             },
+            #[cfg(feature = "usb")]
+            usb: usb_driver(p.USB_OTG_FS, p.PA12, p.PA11),
             status_led: relay_output(p.PB5),
             timers: MotionTimers { step: Timer::new(p.TIM2), period: Timer::new(p.TIM7) },
             watchdog: IndependentWatchdog::new(p.IWDG, WATCHDOG_TIMEOUT_US),
@@ -328,6 +357,20 @@ fn encoder(qei: Qei<'static, TIM5>) -> Qei<'static, TIM5> {
     qei
 }
 
+/// The OTG_FS device on PA12 (D+) and PA11 (D−). Without VBUS sensing (PA9 stays
+/// USART1's): the device keeps its D+ pull-up on and the host sees it when the
+/// cable is plugged in.
+#[cfg(feature = "usb")]
+fn usb_driver(
+    otg: Peri<'static, peripherals::USB_OTG_FS>,
+    dp: Peri<'static, peripherals::PA12>,
+    dm: Peri<'static, peripherals::PA11>,
+) -> UsbDriver {
+    let mut config = embassy_stm32::usb::Config::default();
+    config.vbus_detection = false;
+    embassy_stm32::usb::Driver::new_fs(otg, usb_irq::UsbIrqs, dp, dm, USB_EP_OUT.take(), config)
+}
+
 /// TIM3 channel 1 on PA6 at [`SPINDLE_PWM_FREQ`], starting at 0 % (spindle stopped).
 fn spindle_pwm(tim: Peri<'static, TIM3>, pin: Peri<'static, peripherals::PA6>) -> SimplePwmChannel<'static, TIM3> {
     let pin = PwmPin::new(pin, OutputType::PushPull);
@@ -346,4 +389,61 @@ fn step_output(pin: Peri<'static, impl Pin>) -> Output<'static> {
 /// A slow on/off output (relay, solid-state relay, LED), starting off.
 fn relay_output(pin: Peri<'static, impl Pin>) -> Output<'static> {
     Output::new(pin, Level::Low, Speed::Low)
+}
+
+/// The bring-up bench's wiring (docs/BRINGUP.md): jumpers from board outputs back to
+/// spare inputs, used only by the `hil_*` test binaries (never by the firmware).
+///
+/// | Jumper       | From → to  | Used by                                   |
+/// |--------------|------------|-------------------------------------------|
+/// | STEP probe   | PC6 → PA8  | TIM1_CH1 (AF1): counts or times X STEP     |
+/// | E-stop drive | PC13 → PC0 | a GPIO output plays the e-stop contact     |
+/// | Quadrature A | PC6 → PA0  | TIM8_CH1 (AF3) drives encoder input A      |
+/// | Quadrature B | PC7 → PA1  | TIM8_CH2 (AF3) drives encoder input B      |
+/// | Index        | PC8 → PD2  | a GPIO output plays the index pulse        |
+///
+/// The quadrature jumpers use the X and Z STEP pins (`hil_encoder` re-purposes them;
+/// PA8 is then unplugged from PC6). Disconnect the drives and the e-stop chain first.
+pub mod bench {
+    use embassy_stm32::pac;
+    use embassy_stm32::pac::gpio::vals::Moder;
+
+    /// The STEP probe: TIM1 (16-bit, 168 MHz on APB2), channel 1 on PA8.
+    pub const PROBE_TIMER: pac::timer::TimAdv = pac::TIM1;
+    /// TIM1's clock.
+    pub const PROBE_TIMER_HZ: u32 = 168_000_000;
+    /// The quadrature generator: TIM8 (168 MHz), channels 1 and 2 on PC6 and PC7.
+    pub const QUAD_TIMER: pac::timer::TimAdv = pac::TIM8;
+    /// TIM8's clock.
+    pub const QUAD_TIMER_HZ: u32 = 168_000_000;
+    /// PC13 in port C's BSRR/ODR: drives the e-stop input (PC0) through its jumper.
+    pub const ESTOP_DRIVE_BIT: u32 = 1 << 13;
+    /// PC8 (C STEP) in port C's BSRR/ODR: drives the index input (PD2).
+    pub const INDEX_DRIVE_BIT: u32 = 1 << 8;
+
+    /// PA8 as TIM1_CH1 (AF1) and TIM1 clocked.
+    pub fn probe_pin() {
+        pac::RCC.apb2enr().modify(|w| w.set_tim1en(true));
+        pac::GPIOA.afr(1).modify(|w| w.set_afr(0, 1));
+        pac::GPIOA.moder().modify(|w| w.set_moder(8, Moder::ALTERNATE));
+    }
+
+    /// PC13 as a push-pull output, low (e-stop released).
+    pub fn estop_drive_pin() {
+        pac::GPIOC.bsrr().write(|w| w.set_br(13, true));
+        pac::GPIOC.moder().modify(|w| w.set_moder(13, Moder::OUTPUT));
+    }
+
+    /// PC6/PC7 as TIM8_CH1/CH2 (AF3) and TIM8 clocked; PC8 stays a GPIO output.
+    pub fn quadrature_pins() {
+        pac::RCC.apb2enr().modify(|w| w.set_tim8en(true));
+        pac::GPIOC.afr(0).modify(|w| {
+            w.set_afr(6, 3);
+            w.set_afr(7, 3);
+        });
+        pac::GPIOC.moder().modify(|w| {
+            w.set_moder(6, Moder::ALTERNATE);
+            w.set_moder(7, Moder::ALTERNATE);
+        });
+    }
 }

@@ -6,10 +6,12 @@
 #![no_main]
 
 use core::cell::RefCell;
+use core::sync::atomic::{AtomicBool, Ordering};
 
 use defmt::{info, unwrap, warn};
 use embassy_executor::Spawner;
 use embassy_futures::select::{Either, select};
+use embassy_futures::yield_now;
 use embassy_stm32::gpio::{Input, Output};
 use embassy_stm32::peripherals::{IWDG, TIM5};
 use embassy_stm32::timer::qei::Qei;
@@ -26,7 +28,7 @@ use firmware::motion::{self, MotionPort};
 use firmware::shell::{self, Ctl, SpindleFollower};
 use hal::MonotonicClock as _;
 use interp_core::config::MachineConfig;
-use motion_driver::timebase::TimeBase;
+use link_driver::held::Held;
 use static_cell::StaticCell;
 use {defmt_rtt as _, panic_probe as _};
 
@@ -58,11 +60,28 @@ fn controller_slot() -> &'static mut core::mem::MaybeUninit<Ctl> {
 /// The controller, shared by the control and link tasks (all in thread mode).
 static CONTROLLER: Mutex<ThreadModeRawMutex, RefCell<Option<&'static mut Ctl>>> = Mutex::new(RefCell::new(None));
 
-/// Set when the controller may have output for the link.
+/// Set when the controller may have output for USART2.
 static TX_READY: Signal<ThreadModeRawMutex, ()> = Signal::new();
 
-/// Set after every poll: the receive buffer may have room again.
+/// Set after every poll: the receive buffer may have room again (USART2's task).
 static POLLED: Signal<ThreadModeRawMutex, ()> = Signal::new();
+
+/// Set when the controller may have output for USB.
+#[cfg(feature = "usb")]
+static USB_TX_READY: Signal<ThreadModeRawMutex, ()> = Signal::new();
+
+/// Set after every poll (the USB receive task's).
+#[cfg(feature = "usb")]
+static USB_POLLED: Signal<ThreadModeRawMutex, ()> = Signal::new();
+
+/// The controller talks to the USB port (a host has it open), not to USART2
+/// (`link_driver::select`).
+static USB_ACTIVE: AtomicBool = AtomicBool::new(false);
+
+/// Whether the controller talks to the USB port now.
+fn usb_active() -> bool {
+    USB_ACTIVE.load(Ordering::Relaxed)
+}
 
 /// Pins and timers nobody touches after set-up, kept so they stay configured.
 struct Kept {
@@ -73,56 +92,17 @@ struct Kept {
 }
 static KEPT: StaticCell<Kept> = StaticCell::new();
 
-/// System clock from the board's 8 MHz crystal: 168 MHz core, 42 MHz APB1
-/// (84 MHz timers), 84 MHz APB2 (168 MHz timers), 48 MHz for USB. Same on the F446.
-#[cfg(not(feature = "qemu"))]
-fn clock_config() -> embassy_stm32::Config {
-    use embassy_stm32::rcc::{
-        AHBPrescaler, APBPrescaler, Hse, HseMode, Pll, PllMul, PllPDiv, PllPreDiv, PllQDiv, PllSource, Sysclk,
-    };
-    use embassy_stm32::time::Hertz;
-    let mut config = embassy_stm32::Config::default();
-    let rcc = &mut config.rcc;
-    rcc.hse = Some(Hse { freq: Hertz::mhz(8), mode: HseMode::Oscillator });
-    rcc.pll_src = PllSource::HSE;
-    rcc.pll = Some(Pll {
-        prediv: PllPreDiv::DIV4,   // 2 MHz PLL input
-        mul: PllMul::MUL168,       // 336 MHz VCO
-        divp: Some(PllPDiv::DIV2), // 168 MHz system clock
-        divq: Some(PllQDiv::DIV7), // 48 MHz USB/SDIO clock
-        divr: None,
-    });
-    rcc.sys = Sysclk::PLL1_P;
-    rcc.ahb_pre = AHBPrescaler::DIV1;
-    rcc.apb1_pre = APBPrescaler::DIV4;
-    rcc.apb2_pre = APBPrescaler::DIV2;
-    config
-}
-
-/// QEMU: the reset clocks (HSI 16 MHz) and no backup domain (QEMU's PWR never
-/// acknowledges DBP).
-#[cfg(feature = "qemu")]
-fn clock_config() -> embassy_stm32::Config {
-    let mut config = embassy_stm32::Config::default();
-    config.rcc.ls = embassy_stm32::rcc::LsConfig::off();
-    config
-}
-
-#[embassy_executor::main]
+/// Boot: clocks, board, store, motion, controller; then the tasks. On the board
+/// embassy's thread-mode executor runs it; the QEMU build runs it on
+/// [`firmware::qemu::run_executor`], which sleeps with WFI (see there).
+#[cfg_attr(not(feature = "qemu"), embassy_executor::main)]
+#[cfg_attr(feature = "qemu", embassy_executor::task)]
 async fn main(spawner: Spawner) {
-    #[cfg(feature = "qemu")]
-    let mut cp = {
-        firmware::qemu::rcc_workaround();
-        let mut cp = unwrap!(cortex_m::Peripherals::take());
-        firmware::qemu::trap_pwr(&mut cp.MPU);
-        cp
-    };
-    let p = embassy_stm32::init(clock_config());
-    #[cfg(feature = "qemu")]
-    {
-        firmware::qemu::untrap_pwr(&mut cp.MPU);
-        firmware::qemu::start_time_driver(&mut cp.SYST);
-    }
+    let p = firmware::chip::init();
+    #[cfg(feature = "usb")]
+    let Board { x, z, c, drive_enable, spindle, aux, switches, dnc, usb, status_led, timers, watchdog, flash } =
+        Board::new(p);
+    #[cfg(not(feature = "usb"))]
     let Board { x, z, c, drive_enable, spindle, aux, switches, dnc, status_led, timers, watchdog, flash } =
         Board::new(p);
     let Spindle { encoder, index, speed, cw, ccw } = spindle;
@@ -135,13 +115,13 @@ async fn main(spawner: Spawner) {
     let _ = flash; // Nothing persists in QEMU (build.rs).
     // One machine description in this frame (it is on the stack under every
     // call below): refused, it is reset in place.
-    let port = match start_motion(&cfg) {
+    let port = match motion::start(&cfg) {
         Ok(port) => port,
         Err(e) => {
             warn!("stored machine description refused ({}): defaults", e);
             cfg = MachineConfig::default();
             settings = controller::Settings::default();
-            unwrap!(start_motion(&cfg))
+            unwrap!(motion::start(&cfg))
         }
     };
     let outputs = Outputs::new(aux, cw, ccw, speed, drive_enable, cfg.spindle.max_rpm);
@@ -159,7 +139,21 @@ async fn main(spawner: Spawner) {
     spawner.spawn(unwrap!(control(port, outputs, Inputs::new(switches), watchdog, saving)));
     spawner.spawn(unwrap!(link_rx(rx)));
     spawner.spawn(unwrap!(link_tx(tx)));
+    #[cfg(feature = "usb")]
+    {
+        let firmware::usb::Usb { device, rx, tx, control } = firmware::usb::build(usb);
+        spawner.spawn(unwrap!(usb_device(device)));
+        spawner.spawn(unwrap!(usb_rx(rx)));
+        spawner.spawn(unwrap!(usb_tx(tx, control)));
+    }
     spawner.spawn(unwrap!(heartbeat(status_led)));
+}
+
+/// The QEMU build's entry: [`main`] on the QEMU executor.
+#[cfg(feature = "qemu")]
+#[cortex_m_rt::entry]
+fn entry() -> ! {
+    firmware::qemu::run_executor(|spawner| spawner.spawn(unwrap!(main(spawner))))
 }
 
 /// The persistence the control task runs (none in QEMU).
@@ -222,34 +216,6 @@ fn open_store(
     Some(store)
 }
 
-/// Builds the motion core at reference position 1 and starts the step, period and
-/// encoder interrupts (on the board) — or, in the QEMU build, the software time base
-/// that the control task advances.
-fn start_motion(cfg: &MachineConfig) -> Result<MotionPort, motion::StartError> {
-    let pos = cfg.reference[0];
-    #[cfg(feature = "hw")]
-    {
-        use firmware::board::{ENCODER_TIMER, TIMER_HZ};
-        let tb = TimeBase::new(TIMER_HZ, cfg.motion.tick_ns).map_err(motion::StartError::TimeBase)?;
-        let mut port = motion::init(cfg, pos, tb, 0, 0)?;
-        let start = motion::isr::start_timers(tb.period_ticks);
-        let raw = ENCODER_TIMER.cnt().read();
-        port.lock(|m| m.engine.set_origin(start, raw));
-        motion::isr::enable();
-        info!("motion: period {} ns = {} ticks of {} Hz", tb.period_ns, tb.period_ticks, tb.timer_hz);
-        Ok(port)
-    }
-    #[cfg(not(feature = "hw"))]
-    {
-        // Software time base: microseconds of embassy time.
-        let tb = TimeBase::new(1_000_000, cfg.motion.tick_ns).map_err(motion::StartError::TimeBase)?;
-        let now = embassy_time::Instant::now().as_micros() as u32;
-        let port = motion::init(cfg, pos, tb, now, 0)?;
-        info!("motion: software time base, period {} ns", tb.period_ns);
-        Ok(port)
-    }
-}
-
 /// Nanoseconds since boot.
 fn now_ns() -> u64 {
     Clock.now_ns()
@@ -302,7 +268,20 @@ async fn control(
         }
         POLLED.signal(());
         TX_READY.signal(());
+        #[cfg(feature = "usb")]
+        {
+            USB_POLLED.signal(());
+            USB_TX_READY.signal(());
+        }
         watchdog.pet();
+        // The ticker returns at once while this loop is behind its ticks (after a
+        // long interpreter step or flash write; in QEMU whenever the host is slower
+        // than the guest's clock), and this task would then run tick after tick
+        // without returning to the executor: the link tasks starve, received bytes
+        // pile up in the UART's ring until it overflows and drops them — a `?` or
+        // feed hold among them — and no reply leaves (issue 18). One turn for every
+        // other ready task per tick.
+        yield_now().await;
     }
 }
 
@@ -321,31 +300,61 @@ fn save(saving: &mut Saving, now: u64, ctl: &mut Ctl, port: &MotionPort) {
 #[cfg(not(persist))]
 fn save(_: &mut Saving, _: u64, _: &mut Ctl, _: &MotionPort) {}
 
-/// Bytes the link receive task holds for the controller: what arrived and its
-/// receive buffer could not take yet. The task keeps reading while it holds bytes,
+/// Bytes the link receive tasks hold for the controller: what arrived and its
+/// receive buffer could not take yet. The tasks keep reading while they hold bytes,
 /// so a real-time byte (`!`, 0x18, `?`) behind a buffer that a sender ignoring
 /// character counting overfilled still acts at once — up to this many bytes behind
-/// it (beyond that, bytes wait in the UART's ring until there is room here).
+/// it (beyond that, bytes wait in the UART's ring, or at the USB host, until there
+/// is room here).
 const HELD: usize = 512;
+
+/// The held bytes, of the link the controller talks to (one sender at a time:
+/// `link_driver::select`; a switch clears them).
+static HELD_BYTES: Mutex<ThreadModeRawMutex, RefCell<Held<HELD>>> = Mutex::new(RefCell::new(Held::new()));
+
+/// Bytes a receive task reads at once.
+const CHUNK: usize = 64;
 
 /// Link receive: bytes from USART2 into the controller as they arrive. What its
 /// receive buffer cannot take yet is held and offered again after every poll and
 /// with every new byte; the controller removes the real-time bytes it acted on
-/// from what is held (`Controller::receive`).
+/// from what is held (`link_driver::held`). While the controller talks to the USB
+/// port, USART2's bytes are read and dropped.
 #[embassy_executor::task]
 async fn link_rx(mut rx: BufferedUartRx<'static>) {
-    let mut buf = [0u8; HELD];
-    let mut len = 0;
+    let mut chunk = [0u8; CHUNK];
     loop {
-        len += arrived(&mut rx, buf.get_mut(len..).unwrap_or(&mut []), len > 0).await;
-        let now = now_ns();
-        let held = buf.get_mut(..len).unwrap_or(&mut []);
-        let taken = CONTROLLER.lock(|c| c.borrow_mut().as_deref_mut().map_or(0, |c| c.receive(held, now)));
-        let taken = taken.min(len);
-        buf.copy_within(taken..len, 0);
-        len -= taken;
+        let (busy, room) = if usb_active() { (false, CHUNK) } else { held_state() };
+        let n = arrived(&mut rx, chunk.get_mut(..room.min(CHUNK)).unwrap_or(&mut []), busy).await;
+        if usb_active() {
+            continue;
+        }
+        hold_and_offer(chunk.get(..n).unwrap_or(&[]));
         TX_READY.signal(());
     }
+}
+
+/// Whether bytes are held, and the room left.
+fn held_state() -> (bool, usize) {
+    HELD_BYTES.lock(|h| {
+        let h = h.borrow();
+        (!h.is_empty(), h.room_len())
+    })
+}
+
+/// Appends `bytes` (they fit: the caller read no more than the room) to the held
+/// bytes and offers them all to the controller.
+fn hold_and_offer(bytes: &[u8]) {
+    let now = now_ns();
+    HELD_BYTES.lock(|h| {
+        let mut held = h.borrow_mut();
+        held.push(bytes);
+        CONTROLLER.lock(|c| {
+            if let Some(ctl) = c.borrow_mut().as_deref_mut() {
+                held.offer(ctl, now);
+            }
+        });
+    });
 }
 
 /// Waits for bytes from the UART into `free` — or, while bytes are `held`, also
@@ -375,7 +384,8 @@ async fn link_tx(mut tx: BufferedUartTx<'static>) {
     let mut buf = [0u8; 128];
     loop {
         TX_READY.wait().await;
-        loop {
+        // USB's task drains the output while the controller talks to the USB port.
+        while !usb_active() {
             let n = CONTROLLER.lock(|c| c.borrow_mut().as_deref_mut().map_or(0, |c| c.transmit(&mut buf)));
             if n == 0 {
                 break;
@@ -398,6 +408,100 @@ async fn send(tx: &mut BufferedUartTx<'static>, bytes: &[u8]) {
                 return;
             }
             Err(_) => {}
+        }
+    }
+}
+
+/// The USB device: enumeration, control requests, bus events.
+#[cfg(feature = "usb")]
+#[embassy_executor::task]
+async fn usb_device(mut device: embassy_usb::UsbDevice<'static, firmware::board::UsbDriver>) -> ! {
+    device.run().await
+}
+
+/// USB receive: packets from the host into the controller, held as USART2's bytes
+/// are (`link_driver::held`). A packet is read only when the held bytes have room
+/// for a whole one; meanwhile the host is NAKed and waits, nothing is lost.
+#[cfg(feature = "usb")]
+#[embassy_executor::task]
+async fn usb_rx(mut rx: firmware::usb::UsbIn) {
+    use link_driver::packets::{Packet, has_room, read};
+    let mut packet: Packet = [0; link_driver::packets::MAX_PACKET];
+    loop {
+        rx.wait_connection().await;
+        loop {
+            let (busy, room) = HELD_BYTES.lock(|h| {
+                let h = h.borrow();
+                (!h.is_empty(), has_room(&h))
+            });
+            let active = usb_active();
+            let got = if active && !room {
+                USB_POLLED.wait().await;
+                Ok(&[][..])
+            } else if active && busy {
+                // A packet read is cancel-safe: a packet not yet taken stays in the
+                // driver for the next read.
+                match select(USB_POLLED.wait(), read(&mut rx, &mut packet)).await {
+                    Either::First(()) => Ok(&[][..]),
+                    Either::Second(r) => r,
+                }
+            } else {
+                read(&mut rx, &mut packet).await
+            };
+            let Ok(bytes) = got else { break };
+            if usb_active() {
+                hold_and_offer(bytes);
+                USB_TX_READY.signal(());
+            }
+        }
+    }
+}
+
+/// USB transmit and port state: follows DTR (the host opening and closing the
+/// port) to move the controller between USART2 and USB (`link_driver::select`),
+/// greets a host that opens the port, and sends the controller's output in bulk
+/// packets while USB is the controller's link (`link_driver::packets::Output`).
+#[cfg(feature = "usb")]
+#[embassy_executor::task]
+async fn usb_tx(mut tx: firmware::usb::UsbOut, control: embassy_usb::class::cdc_acm::ControlChanged<'static>) {
+    use link_driver::packets::Output;
+    use link_driver::select::{Link, Selector, drop_output};
+    let mut selector = Selector::new();
+    let mut output = Output::new();
+    loop {
+        tx.wait_connection().await;
+        output.reset();
+        loop {
+            if let Some(link) = selector.usb_port(control.dtr()) {
+                USB_ACTIVE.store(link == Link::Usb, Ordering::Relaxed);
+                // What the controller had to say, and the bytes held for it, were the
+                // other link's sender's.
+                CONTROLLER.lock(|c| c.borrow_mut().as_deref_mut().map(drop_output));
+                HELD_BYTES.lock(|h| h.borrow_mut().clear());
+                info!("link: {}", if link == Link::Usb { "USB" } else { "USART2" });
+                if link == Link::Usb {
+                    let mut greeting = controller::WELCOME.bytes().chain(*b"\r\n");
+                    let sent = output
+                        .send(&mut tx, |buf| buf.iter_mut().zip(&mut greeting).map(|(slot, b)| *slot = b).count());
+                    if sent.await.is_err() {
+                        break;
+                    }
+                }
+            }
+            if usb_active() {
+                let take =
+                    |buf: &mut [u8]| CONTROLLER.lock(|c| c.borrow_mut().as_deref_mut().map_or(0, |c| c.transmit(buf)));
+                if output.send(&mut tx, take).await.is_err() {
+                    break;
+                }
+            }
+            select(control.control_changed(), USB_TX_READY.wait()).await;
+        }
+        // Unplugged or reset by the host: the port is closed.
+        if selector.usb_port(false).is_some() {
+            USB_ACTIVE.store(false, Ordering::Relaxed);
+            HELD_BYTES.lock(|h| h.borrow_mut().clear());
+            info!("link: USART2");
         }
     }
 }

@@ -5,7 +5,7 @@
 //! | priority | interrupt | does |
 //! |---|---|---|
 //! | P0 [`STEP_PRIORITY`] | TIM2 compare 1 (step), EXTI2 (index) | plays queued STEP/DIR edges through GPIOC's BSRR; latches TIM5's count at the index |
-//! | P1 [`MOTION_PRIORITY`] | TIM7 update (period), TIM5 compare 3/4 (encoder count) | `MotionCore::tick` one period ahead and queues its edges; while locked to the spindle, `on_encoder` per count |
+//! | P1 [`MOTION_PRIORITY`] | TIM7 update (period), TIM5 compare 3/4 (encoder count) | `MotionCore::tick` one period ahead and queues its edges; while locked to the spindle, `on_encoder` at the counts where a step falls due (the compares sit there) |
 //! | P3 [`DRIVER_PRIORITY`] | USART2, TIM4 (embassy time) | serial buffers, task timers |
 //! | thread | executor tasks | control (interpreter + planner via [`MotionPort`]), link, I/O |
 //!
@@ -268,6 +268,34 @@ impl CanonSink for MotionPort {
     }
 }
 
+/// Builds the motion core at reference position 1 and starts the step, period and
+/// encoder interrupts (on the board) — or, in the QEMU build, the software time base
+/// that the control task advances (`soft.rs`).
+pub fn start(cfg: &MachineConfig) -> Result<MotionPort, StartError> {
+    let pos = cfg.reference[0];
+    #[cfg(feature = "hw")]
+    {
+        use crate::board::{ENCODER_TIMER, TIMER_HZ};
+        let tb = TimeBase::new(TIMER_HZ, cfg.motion.tick_ns).map_err(StartError::TimeBase)?;
+        let mut port = init(cfg, pos, tb, 0, 0)?;
+        let start = isr::start_timers(tb.period_ticks);
+        let raw = ENCODER_TIMER.cnt().read();
+        port.lock(|m| m.engine.set_origin(start, raw));
+        isr::enable();
+        defmt::info!("motion: period {} ns = {} ticks of {} Hz", tb.period_ns, tb.period_ticks, tb.timer_hz);
+        Ok(port)
+    }
+    #[cfg(not(feature = "hw"))]
+    {
+        // Software time base: microseconds of embassy time.
+        let tb = TimeBase::new(1_000_000, cfg.motion.tick_ns).map_err(StartError::TimeBase)?;
+        let now = embassy_time::Instant::now().as_micros() as u32;
+        let port = init(cfg, pos, tb, now, 0)?;
+        defmt::info!("motion: software time base, period {} ns", tb.period_ns);
+        Ok(port)
+    }
+}
+
 /// The hardware motion interrupts (not in the QEMU build: QEMU models neither the
 /// timers' compares nor GPIO).
 #[cfg(feature = "hw")]
@@ -275,6 +303,7 @@ pub mod isr {
     use embassy_stm32::interrupt::{self, InterruptExt};
     use embassy_stm32::pac;
     use embassy_stm32::pac::timer::regs::{SrCore, SrGp16};
+    use motion_driver::encoder::Window;
     use motion_driver::engine::Sample;
 
     use super::{DRIVER_PRIORITY, MOTION_PRIORITY, STEP_PRIORITY, index_latch, latch_index, with_motion, with_player};
@@ -351,8 +380,8 @@ pub mod isr {
     }
 
     /// Period interrupt (P1): the next interpolation period, then the player is
-    /// kicked to pick up the new edges; the encoder-count interrupt follows the
-    /// core's wish for counts.
+    /// kicked to pick up the new edges; the encoder compares go where the core
+    /// next needs a count (a pass may have started or ended, a leg been announced).
     fn period_isr() {
         PERIOD_TIMER.sr().write_value(SrCore(0));
         let sample = Sample {
@@ -362,49 +391,66 @@ pub mod isr {
             estop: STEP_PORT.idr().read().0 & ESTOP_BIT != 0,
         };
         // SAFETY: this is a P1 interrupt.
-        let wants = unsafe {
+        let missed = unsafe {
             with_motion(|m| {
                 m.engine.period(&mut m.core, sample);
-                m.core.wants_encoder_edges()
+                let w = m.engine.window(&mut m.core);
+                arm(w);
+                m.engine.reached(&w, ENCODER_TIMER.cnt().read())
             })
         };
-        count_interrupt(wants.unwrap_or(false));
-        interrupt::TIM2.pend();
-    }
-
-    /// Encoder-count interrupts on or off. When on, the compares go one count either
-    /// side of the count now and the count interrupt is pended: counts that came
-    /// while the period ran are handed over at once (it re-arms around the count it
-    /// reads).
-    fn count_interrupt(on: bool) {
-        let raw = ENCODER_TIMER.cnt().read();
-        ENCODER_TIMER.ccr(2).write_value(raw.wrapping_add(1));
-        ENCODER_TIMER.ccr(3).write_value(raw.wrapping_sub(1));
-        ENCODER_TIMER.dier().write(|w| {
-            w.set_ccie(2, on);
-            w.set_ccie(3, on);
-        });
-        if on {
+        if missed == Some(true) {
+            // The count is already at or past a due count: the count interrupt
+            // (same priority) runs right after this one.
             interrupt::TIM5.pend();
         }
+        interrupt::TIM2.pend();
     }
 
-    /// Encoder-count interrupt (P1, only while locked to the spindle): each new count
-    /// goes to the core with its time; the compares move one count either side.
+    /// Sets TIM5's compares: channel 3 at the due count above, channel 4 at the one
+    /// below, each interrupt enabled only when there is one. Flags are cleared
+    /// after the values are written, so only a match with the new values pends
+    /// the interrupt; the caller checks a fresh reading for a count that went past
+    /// a compare before it was set ([`motion_driver::engine::Engine::reached`]).
+    fn arm(w: Window) {
+        if let Some(up) = w.up {
+            ENCODER_TIMER.ccr(2).write_value(up);
+        }
+        if let Some(down) = w.down {
+            ENCODER_TIMER.ccr(3).write_value(down);
+        }
+        ENCODER_TIMER.sr().write_value(SrGp16(!((1 << 3) | (1 << 4))));
+        ENCODER_TIMER.dier().write(|d| {
+            d.set_ccie(2, w.up.is_some());
+            d.set_ccie(3, w.down.is_some());
+        });
+    }
+
+    /// Encoder-count interrupt (P1, while something follows the spindle): the
+    /// counter reached a count where a step falls due. The count goes to the core
+    /// with its time, the step interrupt (P0) is pended at once to play the step,
+    /// then the compares move to the next due counts; again while the counter has
+    /// already reached one of them.
     fn encoder_isr() {
         ENCODER_TIMER.sr().write_value(SrGp16(!((1 << 3) | (1 << 4))));
-        loop {
-            let raw = ENCODER_TIMER.cnt().read();
-            let now = STEP_TIMER.cnt().read();
-            // SAFETY: this is a P1 interrupt.
-            let _ = unsafe { with_motion(|m| m.engine.encoder(&mut m.core, now, raw)) };
-            ENCODER_TIMER.ccr(2).write_value(raw.wrapping_add(1));
-            ENCODER_TIMER.ccr(3).write_value(raw.wrapping_sub(1));
-            if ENCODER_TIMER.cnt().read() == raw {
-                break;
-            }
-        }
-        interrupt::TIM2.pend();
+        // SAFETY: this is a P1 interrupt.
+        let _ = unsafe {
+            with_motion(|m| {
+                loop {
+                    let raw = ENCODER_TIMER.cnt().read();
+                    let now = STEP_TIMER.cnt().read();
+                    if m.engine.encoder(&mut m.core, now, raw) {
+                        // Preempts this interrupt: the step edge is played now.
+                        interrupt::TIM2.pend();
+                    }
+                    let w = m.engine.window(&mut m.core);
+                    arm(w);
+                    if !m.engine.reached(&w, ENCODER_TIMER.cnt().read()) {
+                        break;
+                    }
+                }
+            })
+        };
     }
 
     /// Index interrupt (P0): the count at the index, read within the interrupt's

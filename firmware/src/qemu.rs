@@ -1,6 +1,7 @@
 //! What the QEMU `netduinoplus2` build (feature `qemu`) needs: QEMU's STM32F405 has
 //! no usable TIM4 for embassy's time driver and never sets some ready bits, so this
-//! build keeps time with SysTick and works around the RCC and PWR.
+//! build keeps time with SysTick, works around the RCC and PWR, and runs its tasks
+//! on an executor that sleeps in WFI ([`run_executor`]).
 //!
 //! PWR is not modelled at all (reads are 0), and `embassy_stm32::init` always waits
 //! for PWR's DBP bit (backup-domain unlock), with interrupts masked. During init the
@@ -9,20 +10,27 @@
 //! init the MPU is off again and SysTick runs the time driver.
 
 use core::cell::{Cell, RefCell};
-use core::sync::atomic::{AtomicU32, Ordering};
+use core::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 use core::task::Waker;
 
 use cortex_m::peripheral::syst::SystClkSource;
 use cortex_m::peripheral::{MPU, SYST};
 use critical_section::{CriticalSection, Mutex};
+use embassy_executor::{Spawner, raw};
 use embassy_time_driver::Driver;
 use embassy_time_queue_utils::Queue;
+use static_cell::StaticCell;
 
 /// SysTick interrupts per second: the time driver's resolution is 1 ms (tasks wake
 /// on the next millisecond tick), its clock counts microseconds.
 const SYSTICK_HZ: u32 = 1_000;
-/// Core clock QEMU runs SysTick from (HSI 16 MHz: the build leaves the PLL off).
-const CORE_HZ: u32 = 16_000_000;
+/// The clock QEMU runs SysTick from with CLKSOURCE = core: `netduinoplus2` feeds
+/// the Cortex-M4 a fixed 168 MHz SYSCLK whatever the (barely modelled) RCC says, so
+/// not the 16 MHz HSI this build leaves selected. (With 16 MHz here the time
+/// driver ticked every 95 µs of QEMU's clock: the firmware's millisecond ran 10.5
+/// times too fast, as fast as the host let QEMU deliver ticks, and the control
+/// task was forever behind its ticker — issue 18.)
+const CORE_HZ: u32 = 168_000_000;
 
 /// QEMU's RCC resets CR to a value without HSIRDY; writing the reset value 0x83
 /// (HSION, HSIRDY, trim 16) first lets `embassy_stm32::init` see the HSI ready.
@@ -68,6 +76,42 @@ impl Driver for SysTickDriver {
             q.schedule_wake(at, waker);
             // Wake what is already due; the rest waits for the next tick.
             q.next_expiration(self.now_cs(cs));
+        });
+    }
+}
+
+/// Set by [`pender`] when a task was woken: the executor polls again before it
+/// sleeps.
+static WOKEN: AtomicBool = AtomicBool::new(false);
+
+/// The executor's pender (embassy calls it when a task is woken, from a task or an
+/// interrupt).
+#[unsafe(export_name = "__pender")]
+fn pender(_context: *mut ()) {
+    WOKEN.store(true, Ordering::Release);
+}
+
+/// The QEMU build's thread-mode executor: embassy's raw executor, asleep in WFI
+/// while no task is ready. embassy's own (`executor-thread`) sleeps in WFE, which
+/// QEMU 10 runs as a yield, not a sleep: the guest spins at full host speed and,
+/// under `-icount`, its clock races through the idle loop at a few million
+/// instructions per second of host time. With WFI QEMU halts the CPU until the
+/// next interrupt (SysTick, USART2), so the guest's time is the instructions it
+/// runs while busy and the host's time while idle (`qemu-test.py`).
+pub fn run_executor(init: impl FnOnce(Spawner)) -> ! {
+    static EXECUTOR: StaticCell<raw::Executor> = StaticCell::new();
+    let executor: &'static raw::Executor = EXECUTOR.init(raw::Executor::new(core::ptr::null_mut()));
+    init(executor.spawner());
+    loop {
+        // SAFETY: polled from this loop only, in thread mode.
+        unsafe { executor.poll() };
+        // With interrupts masked, a wake between the check and WFI still ends the
+        // WFI (a pending interrupt does, masked or not), and its handler runs
+        // after `free`.
+        cortex_m::interrupt::free(|_| {
+            if !WOKEN.swap(false, Ordering::AcqRel) {
+                cortex_m::asm::wfi();
+            }
         });
     }
 }

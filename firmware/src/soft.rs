@@ -2,12 +2,13 @@
 //! compares nor GPIO, so the control task does the motion interrupts' work on a
 //! software time base (microseconds of embassy time) once a millisecond: every
 //! period due is computed, its edges are played at once (counted, no pins), and a
-//! simulated spindle encoder turns at the commanded speed — its counts go to the
-//! motion core one by one while a thread is locked to the spindle, as the encoder
-//! count interrupt gives them on the board, and an index pulse is latched every
+//! simulated spindle encoder turns at the commanded speed — a count reaching one of
+//! the compare values the engine gives goes to the motion core, as the encoder
+//! compare interrupt hands it over on the board, and an index pulse is latched every
 //! revolution. So threads (G32, G76, G92) run in QEMU too.
 
 use interp_core::canon::SpindleDir;
+use motion_driver::encoder::Window;
 use motion_driver::engine::Sample;
 
 use crate::motion::{self, MotionPort};
@@ -29,12 +30,14 @@ pub struct SoftMotion {
     phase: u64,
     /// Time (µs) the encoder was advanced to.
     at: u32,
+    /// The compare values the engine gave last (TIM5's channels 3 and 4 on the board).
+    window: Window,
 }
 
 impl SoftMotion {
     /// The encoder stands at count 0 at time `now` (µs).
     pub fn new(cpr: u32, now: u32) -> Self {
-        SoftMotion { cpr: cpr.max(1), raw: 0, phase: 0, at: now }
+        SoftMotion { cpr: cpr.max(1), raw: 0, phase: 0, at: now, window: Window::OFF }
     }
 
     /// Runs the motion work due at `now` (µs of embassy time).
@@ -48,6 +51,7 @@ impl SoftMotion {
             self.turn(port, start);
             let sample = Sample { now: start, raw_count: self.raw, index: motion::index_latch(), estop: false };
             port.lock(|m| m.engine.period(&mut m.core, sample));
+            self.window = self.arm(port, start);
         }
         // The encoder never runs ahead of the periods computed: after a stall its
         // counts and the core's time catch up together.
@@ -64,8 +68,26 @@ impl SoftMotion {
         };
     }
 
+    /// The engine's compare values, with the counts already at or past one handed
+    /// over first (what the board's count interrupt does after setting them).
+    fn arm(&mut self, port: &mut MotionPort, now: u32) -> Window {
+        let raw = self.raw;
+        port.lock(|m| {
+            let mut w = m.engine.window(&mut m.core);
+            for _ in 0..8 {
+                if !m.engine.reached(&w, raw) {
+                    break;
+                }
+                m.engine.encoder(&mut m.core, now, raw);
+                w = m.engine.window(&mut m.core);
+            }
+            w
+        })
+        .unwrap_or(Window::OFF)
+    }
+
     /// Advances the encoder to time `to` (µs) at the commanded spindle speed (M03
-    /// counts up), handing each count to the core while it wants them one by one.
+    /// counts up), handing a count to the core when it reaches a compare value.
     fn turn(&mut self, port: &mut MotionPort, to: u32) {
         let dt = to.wrapping_sub(self.at);
         if dt as i32 <= 0 {
@@ -85,10 +107,12 @@ impl SoftMotion {
             if self.raw.is_multiple_of(self.cpr) {
                 motion::latch_index(self.raw);
             }
+            if Some(self.raw) != self.window.up && Some(self.raw) != self.window.down {
+                continue;
+            }
             // Counts spread evenly over the interval.
             let t = self.at.wrapping_add((u64::from(dt) * k / counts) as u32);
-            let raw = self.raw;
-            port.lock(|m| m.engine.encoder(&mut m.core, t, raw));
+            self.window = self.arm(port, t);
         }
         self.at = to;
     }

@@ -378,7 +378,18 @@ impl Link {
 /// flow control, sent between any two bytes) are not part of the text.
 pub fn has_status_report(out: &[u8]) -> bool {
     let text: Vec<u8> = out.iter().copied().filter(|&b| b != 0x11 && b != 0x13).collect();
-    text.split(|&b| b == b'\n').any(|l| l.starts_with(b"<") && l.trim_ascii_end().ends_with(b">"))
+    text.split(|&b| b == b'\n').any(|l| {
+        let l = strip_checksum(l.trim_ascii_end());
+        l.starts_with(b"<") && l.ends_with(b">")
+    })
+}
+
+/// `line` without the `*<crc>` the board appends to its lines in checksum mode.
+fn strip_checksum(line: &[u8]) -> &[u8] {
+    match line.len().checked_sub(5).and_then(|at| line.split_at_checked(at)) {
+        Some((body, tail)) if tail[0] == b'*' && tail[1..].iter().all(u8::is_ascii_hexdigit) => body,
+        _ => line,
+    }
 }
 
 /// `stream` with every line framed as link line `N<k> …*<crc>` (k from 1, the

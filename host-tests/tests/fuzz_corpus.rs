@@ -76,4 +76,7 @@ fn status_report_is_recognised() {
     // Fuzz finding (board): in tape mode the board's XON may come right before the
     // report; it is flow control, not text (fuzz/corpus/board/finding_xon_status).
     assert!(harness::has_status_report(b"\x11<Idle|MPos:0.000>\r\n"));
+    // In checksum mode every board line carries `*<crc>` (PROTOCOL.md).
+    assert!(harness::has_status_report(b"error:88*345D\r\n<Run|MPos:1.000|Lk:1>*260A\r\n"));
+    assert!(!harness::has_status_report(b"<Run|MPos:1.0*260A\r\n"));
 }

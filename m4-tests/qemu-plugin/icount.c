@@ -4,7 +4,10 @@
  *
  * Markers are the Thumb-2 hint DBG (a no-op that compilers never emit):
  * DBG #1 starts a region, DBG #2 ends it; the markers themselves are not counted
- * (m4-tests' `measure` emits them). At exit it prints the total executed.
+ * (m4-tests' `measure` emits them). Summed regions: DBG #3 starts one, DBG #4 ends it
+ * and adds it to a running sum, DBG #5 prints "instructions: S in N regions (most M)"
+ * and starts a new sum (`measure_sum`, `report_sum`: many short calls, e.g. every
+ * interrupt of a spindle revolution). At exit it prints the total executed.
  *
  * With the argument `profile=FILE` it also writes, at exit, one line per instruction
  * address executed inside regions: "ADDRESS COUNT" (hex, decimal), which
@@ -44,11 +47,12 @@ void qemu_plugin_outs(const char *string);
 __attribute__((visibility("default"))) int qemu_plugin_version = 4;
 
 /* DBG #n is the halfword pair 0xf3af, 0x80f0 | n. */
-enum marker { NONE, START, STOP };
+enum marker { NONE, START, STOP, SUM_START, SUM_STOP, SUM_REPORT };
 
 static uint64_t executed;     /* every instruction so far, markers excluded */
 static uint64_t region_start; /* `executed` at the last start marker */
 static int in_region;
+static uint64_t sum, sum_regions, sum_most; /* summed regions since the last report */
 
 /* Profile: executions per halfword address of the 4 MB flash, inside regions. */
 #define FLASH_HALFWORDS (4u << 20 >> 1)
@@ -77,18 +81,46 @@ static void on_stop(unsigned int vcpu, void *udata)
     qemu_plugin_outs(line);
 }
 
+static void on_sum_stop(unsigned int vcpu, void *udata)
+{
+    in_region = 0;
+    uint64_t n = executed - region_start;
+    sum += n;
+    sum_regions++;
+    if (n > sum_most)
+        sum_most = n;
+}
+
+static void on_sum_report(unsigned int vcpu, void *udata)
+{
+    char line[96];
+    snprintf(line, sizeof line, "instructions: %" PRIu64 " in %" PRIu64 " regions (most %" PRIu64 ")\n", sum,
+             sum_regions, sum_most);
+    qemu_plugin_outs(line);
+    sum = sum_regions = sum_most = 0;
+}
+
 static enum marker marker_of(const struct qemu_plugin_insn *insn)
 {
     uint16_t hw[2];
     if (qemu_plugin_insn_data(insn, hw, sizeof hw) != sizeof hw || hw[0] != 0xf3af ||
         (hw[1] & 0xfff0) != 0x80f0)
         return NONE;
-    return (hw[1] & 0xf) == 1 ? START : (hw[1] & 0xf) == 2 ? STOP : NONE;
+    switch (hw[1] & 0xf) {
+    case 1: return START;
+    case 2: return STOP;
+    case 3: return SUM_START;
+    case 4: return SUM_STOP;
+    case 5: return SUM_REPORT;
+    default: return NONE;
+    }
 }
 
 static void on_translate(qemu_plugin_id_t id, struct qemu_plugin_tb *tb)
 {
-    static const vcpu_udata_cb callbacks[] = {[NONE] = on_insn, [START] = on_start, [STOP] = on_stop};
+    static const vcpu_udata_cb callbacks[] = {[NONE] = on_insn,          [START] = on_start,
+                                              [STOP] = on_stop,          [SUM_START] = on_start,
+                                              [SUM_STOP] = on_sum_stop,  [SUM_REPORT] = on_sum_report};
     for (size_t i = 0; i < qemu_plugin_tb_n_insns(tb); i++) {
         struct qemu_plugin_insn *insn = qemu_plugin_tb_get_insn(tb, i);
         void *addr = (void *)(uintptr_t)qemu_plugin_insn_vaddr(insn);

@@ -70,7 +70,28 @@ pub fn measure<T, R>(f: fn(T) -> R, input: T) -> R {
     black_box(output)
 }
 
-/// Region marker for the icount plugin: `DBG #1` starts a region, `DBG #2` ends it.
+/// As [`measure`], but the plugin adds the count to a running sum instead of
+/// printing it; [`report_sum`] prints the sum. For many short calls (every
+/// interrupt of a spindle revolution), measured without their surroundings.
+#[inline(never)]
+pub fn measure_sum<T, R>(f: fn(T) -> R, input: T) -> R {
+    let f = black_box(f);
+    let input = black_box(input);
+    marker::<3>();
+    let output = f(input);
+    marker::<4>();
+    black_box(output)
+}
+
+/// Makes the plugin print `instructions: S in N regions (most M)` for the
+/// [`measure_sum`] calls since the last report (each counted as [`measure`] counts).
+#[inline(never)]
+pub fn report_sum() {
+    marker::<5>();
+}
+
+/// Region marker for the icount plugin: `DBG #1` starts a region, `DBG #2` ends it
+/// (`#3`/`#4` a summed region, `#5` prints the sum).
 ///
 /// `DBG` is a hint that executes as a no-op (on hardware too) and that compilers
 /// never emit, so the plugin can recognise it by its encoding alone.

@@ -127,6 +127,11 @@ pub struct VirtualBoard {
     home: Pos,
     /// The store on a flash file, when the board has one ([`VirtualBoard::with_flash`]).
     saver: Option<Saver<FileFlash>>,
+    /// The link's clock (ns), when it is not the machine's: `lathe board` gives the
+    /// wall clock, so the controller's link windows (look-ahead wait, stale line,
+    /// starvation watch) are the sender's real time whatever `--speed` is. `None`:
+    /// the simulated time (tests that drive the board directly).
+    pub link_clock: Option<u64>,
     /// Saves written to the flash file so far, and the last one's failure.
     pub saves: u32,
     pub save_error: Option<persist::Error>,
@@ -185,6 +190,7 @@ impl VirtualBoard {
             next_poll: 0,
             home: start,
             saver: None,
+            link_clock: None,
             saves: 0,
             save_error: None,
         })
@@ -271,11 +277,17 @@ impl VirtualBoard {
         self.sim.machine_pos()
     }
 
+    /// The link's time now (see [`VirtualBoard::link_clock`]).
+    fn link_now(&self) -> u64 {
+        self.link_clock.unwrap_or(self.sim.clock.0)
+    }
+
     fn offer(&mut self) {
         if self.pending.is_empty() {
             return;
         }
-        let n = self.ctl.receive(&mut self.pending, self.sim.clock.0);
+        let now = self.link_now();
+        let n = self.ctl.receive(&mut self.pending, now);
         self.pending.drain(..n.min(self.pending.len()));
     }
 
@@ -284,7 +296,8 @@ impl VirtualBoard {
         let inputs = self.inputs();
         self.outputs.now = self.sim.clock.0;
         let mut port = Recorder { core: &mut self.sim.core, log: self.executed.as_mut() };
-        self.ctl.poll(self.sim.clock.0, &mut port, &mut self.outputs, inputs);
+        let link_now = self.link_clock.unwrap_or(self.sim.clock.0);
+        self.ctl.poll(link_now, &mut port, &mut self.outputs, inputs);
         self.offer();
         self.keep();
     }

@@ -30,6 +30,7 @@ use interp_core::program::{ProgramId, ProgramStore};
 use interp_core::{Alarm, Interpreter, MachineConfig, Panel, Progress, SingleProgram};
 use motion_core::motion::{Event, EventKind, Feedback, MotionCore, QUEUE, State};
 use motion_core::stepgen::{DriverTiming, EdgeKind};
+use motion_core::sync::Due;
 
 /// A simulated step/dir driver: counts steps and checks the timing it is given.
 #[derive(Clone, Copy, Debug)]
@@ -162,6 +163,12 @@ pub struct SimOptions {
     pub spindle_dt: f64,
     /// Where the axes stand at the start (machine, nm).
     pub start: Pos,
+    /// While axes follow the spindle, hand every encoder count to the motion core
+    /// (as the firmware did before issue 22). By default only the counts at which
+    /// the core said something falls due are handed over
+    /// ([`MotionCore::encoder_due`](motion_core::motion::MotionCore::encoder_due)),
+    /// as the firmware's encoder compare does; both must step alike.
+    pub every_count: bool,
 }
 
 impl Default for SimOptions {
@@ -174,6 +181,7 @@ impl Default for SimOptions {
             auto_cycle_start: true,
             spindle_dt: 1e-4,
             start: Pos::ZERO,
+            every_count: false,
         }
     }
 }
@@ -205,6 +213,13 @@ pub struct Report {
     pub ended: bool,
     /// Machine position at the end, nm.
     pub end: Pos,
+    /// Encoder counts that came while axes followed the spindle (a thread, a tap,
+    /// polygon turning), and how many of them were handed to the motion core (all
+    /// with [`SimOptions::every_count`], else the due counts: what the firmware's
+    /// count interrupt runs on).
+    pub locked_counts: u64,
+    /// See [`Report::locked_counts`].
+    pub encoder_calls: u64,
 }
 
 /// Where actions come from.
@@ -465,15 +480,29 @@ impl Sim {
         let mut edges = std::mem::take(&mut self.edges);
         edges.clear();
         self.spindle.advance((t + period) as f64 / 1e9, self.opts.spindle_dt, &mut edges);
-        if self.core.wants_encoder_edges() {
-            // Locked to the spindle: every count may move an axis at its own time.
+        let every = self.opts.every_count;
+        let due = if every { self.core.wants_encoder_edges().then_some(Due::NONE) } else { self.core.encoder_due() };
+        if let Some(mut due) = due {
+            // Locked to the spindle: the counts where a step falls due (or every
+            // count) go to the core at their own time, as the encoder compare
+            // interrupt hands them over.
             let faults = self.faults;
-            for e in edges.iter().filter(|e| !faults.encoder_lost_at(e.t)) {
-                self.drain_steps(e.t, &[]);
+            let mut from = 0;
+            self.report.locked_counts += edges.len() as u64;
+            for (i, e) in edges.iter().enumerate() {
+                if faults.encoder_lost_at(e.t) || !(every || due.reached(e.count)) {
+                    continue;
+                }
+                self.report.encoder_calls += 1;
+                self.drain_steps(e.t, &edges[from..i]);
+                from = i;
                 self.count = e.count;
                 self.core.on_encoder(e.t, e.count);
+                if !every {
+                    due = self.core.encoder_due().unwrap_or(Due::NONE);
+                }
             }
-            self.drain_steps(t + period, &[]);
+            self.drain_steps(t + period, &edges[from..]);
         } else {
             self.drain_steps(t + period, &edges);
         }

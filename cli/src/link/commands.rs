@@ -12,8 +12,8 @@ use clap::Args;
 
 use super::LinkError;
 use super::keys::{self, Keys};
-use super::response::Status;
-use super::session::{Feeder, Origin, Session, Timing, Verdict};
+use super::response::{Response, Status};
+use super::session::{Feeder, Origin, Session, Stats, Timing, Verdict};
 use super::source::{Source, SourceLine};
 use super::stream::{StreamConfig, Streamer};
 use super::tape::Tape;
@@ -125,6 +125,8 @@ const COMMAND_WAIT: Duration = Duration::from_secs(3);
 const WELCOME_WAIT: Duration = Duration::from_secs(3);
 /// How long a status report may take.
 const STATUS_WAIT: Duration = Duration::from_secs(1);
+/// The states of a status report (docs/PROTOCOL.md).
+const STATES: [&str; 10] = ["Idle", "Run", "Hold", "Jog", "Alarm", "Door", "Check", "Home", "Sleep", "Tool"];
 /// Tape bytes written at a time.
 const TAPE_CHUNK: usize = 16;
 
@@ -134,12 +136,37 @@ struct Board {
     empty: Option<(u32, u32)>,
 }
 
-/// Opens the port, soft-resets the board, waits for its welcome, and checks it is Idle.
-fn connect(port: &PortArgs, ui: &mut dyn Ui) -> Result<Board, LinkError> {
+/// Opens the port, soft-resets the board, waits for its welcome, and checks it is
+/// Idle. The reset is tried three times (line noise may spoil it or its welcome; a
+/// board left with checksums on by an earlier job needs 0x18 LF), the status report
+/// asked until it names a state.
+fn connect(port: &PortArgs, checksum: bool, ui: &mut dyn Ui) -> Result<Board, LinkError> {
     let mut link = Link::open(&port.port, port.baud)?;
-    let welcome = link.reset(WELCOME_WAIT)?;
+    let mut tries = 0;
+    let welcome = loop {
+        tries += 1;
+        link.set_checked(tries % 2 == 0);
+        match link.reset(WELCOME_WAIT / 3) {
+            Ok(w) => break w,
+            Err(LinkError::Timeout { .. }) if tries < 4 => {}
+            Err(e) => return Err(e),
+        }
+    };
     ui.note(&format!("connected to {}: {welcome}", port.port));
-    let s = link.status(STATUS_WAIT)?;
+    if checksum {
+        // Checked answers first: a plain status report may not come through the
+        // line noise checksums are for.
+        let empty = start_checksums(&mut link, ui)?;
+        return Ok(Board { link, empty });
+    }
+    let mut s = link.status(STATUS_WAIT)?;
+    for _ in 0..4 {
+        let (name, sub) = s.state.split_once(':').unwrap_or((&s.state, "0"));
+        if STATES.contains(&name) && matches!(sub, "0" | "1") {
+            break;
+        }
+        s = link.status(STATUS_WAIT)?;
+    }
     match s.state.as_str() {
         "Idle" => Ok(Board { link, empty: s.buffer }),
         "Alarm" => Err(LinkError::NotReady {
@@ -163,6 +190,7 @@ fn display<'a>(port: &PortArgs, total: usize, out: &'a mut dyn Write) -> (Box<dy
 /// Connects, runs `feeder` to its verdict, reports it; returns the exit status.
 fn job(
     port: &PortArgs,
+    checksum: bool,
     preamble: &[&str],
     feeder: Feeder,
     origin: Origin,
@@ -174,7 +202,7 @@ fn job(
         Feeder::Tape(t) => t.total(),
     };
     let (mut ui, keys) = display(port, total, out);
-    let mut board = connect(port, ui.as_mut())?;
+    let mut board = connect(port, checksum, ui.as_mut())?;
     if let Feeder::Tape(_) = feeder {
         // The board chooses tape mode only when nothing grbl-like came since its last
         // reset, and connecting asked for a status report.
@@ -184,14 +212,17 @@ fn job(
         settle(&mut board.link, command)?;
     }
     let started = Instant::now();
-    let verdict = Session::new(&mut board.link, ui.as_mut(), feeder, origin.clone(), board.empty)
+    let (verdict, stats) = Session::new(&mut board.link, ui.as_mut(), feeder, origin.clone(), board.empty)
         .with_keys(keys.as_ref())
         .with_timing(Timing::at_baud(port.baud))
-        .run()?;
+        .run_stats()?;
     drop(keys);
     let status = verdict.exit_status();
     match verdict {
-        Verdict::Done => ui.note(&format!("{}: done in {:.1} s", origin.name, started.elapsed().as_secs_f64())),
+        Verdict::Done => {
+            ui.note(&format!("{}: done in {:.1} s", origin.name, started.elapsed().as_secs_f64()));
+            ui.note(&link_figures(&stats, checksum, board.link.resets()));
+        }
         v => {
             drop(ui);
             writeln!(err, "lathe: {}: {}", origin.name, describe(&v)).map_err(write_err)?;
@@ -234,7 +265,11 @@ pub fn send(args: &SendArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result
         (Feeder::Tape(Tape::new(&texts(&lines), TAPE_CHUNK)), lines)
     } else {
         let lines = src.stream_lines();
-        let cfg = StreamConfig { checksum: args.checksum, ..StreamConfig::default() };
+        let cfg = StreamConfig {
+            checksum: args.checksum,
+            silence: StreamConfig::silence_at(args.port.baud),
+            ..StreamConfig::default()
+        };
         let streamer = Streamer::new(texts(&lines), cfg).map_err(|t| Error::Unsendable {
             path: args.program.clone(),
             line: lines.get(t.index).map_or(0, |l| l.file_line),
@@ -245,8 +280,63 @@ pub fn send(args: &SendArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result
     // With checksums the board is told first (`$LN=1`), so the very first program
     // line is already checked: before it, a line whose framing noise has destroyed
     // would be read as plain text.
-    let preamble: &[&str] = if args.checksum && !args.tape { &["$LN=1"] } else { &[] };
-    job(&args.port, preamble, feeder, origin(&src.name, &lines), out, err).map(|(status, _)| status)
+    let checksum = args.checksum && !args.tape;
+    job(&args.port, checksum, &[], feeder, origin(&src.name, &lines), out, err).map(|(status, _)| status)
+}
+
+/// Switches the board's link checksums on: `$LN=1`, answered `[LN:1]` (line noise
+/// can spoil an unframed `$` command — a damaged `$LN=1` could set another number —
+/// or its answer; from it on the board's lines carry their CRC). Five tries, each
+/// after a soft reset but the first. Then a status report, if one comes through the
+/// noise within a second: the `Bf:` of the idle board.
+fn start_checksums(link: &mut Link, ui: &mut dyn Ui) -> Result<Option<(u32, u32)>, LinkError> {
+    let mut last = String::new();
+    for attempt in 0..5 {
+        if attempt > 0 {
+            ui.note("soft reset (checksums not confirmed)");
+            match link.reset(WELCOME_WAIT / 3) {
+                Ok(_) | Err(LinkError::Timeout { .. }) => {}
+                Err(e) => return Err(e),
+            }
+        }
+        // The board's answers are framed from `$LN=1` on.
+        link.set_checked(true);
+        link.write(b"$LN=1\n")?;
+        let deadline = Instant::now() + COMMAND_WAIT / 3;
+        loop {
+            match link.line_until(deadline, "[LN:1]") {
+                Ok(Response::Feedback(f)) if f == "[LN:1]" => {
+                    // Its `ok` follows (or was lost): the status report, when one
+                    // comes through, passes over it.
+                    let s = link.status(STATUS_WAIT).ok().filter(|s| s.state == "Idle");
+                    return Ok(s.and_then(|s| s.buffer));
+                }
+                Ok(r) => last = format!("{r:?}"),
+                Err(LinkError::Timeout { .. }) => break,
+                Err(e) => return Err(e),
+            }
+        }
+        // The board may have taken a damaged number and switched checksums on:
+        // the next reset goes as 0x18 LF (on a board without them the LF is a blank
+        // line, answered and forgotten).
+        link.set_checked(true);
+    }
+    Err(LinkError::Timeout { port: link.name().to_owned(), what: format!("checksums switched on ($LN=1): {last}") })
+}
+
+/// How the link went, in one line: `streamed 2005 lines in 12.3 s (163 lines/s);
+/// 31 resend requests, 2 resyncs, 12 damaged answers, 1 soft resets sent`.
+fn link_figures(s: &Stats, checksum: bool, resets: u32) -> String {
+    let time = s.streamed.map_or(0.0, |d| d.as_secs_f64());
+    let rate = if time > 0.0 { s.lines as f64 / time } else { 0.0 };
+    let mut t = format!("streamed {} lines in {time:.2} s ({rate:.0} lines/s)", s.lines);
+    if checksum {
+        t.push_str(&format!(
+            "; {} resend requests, {} resyncs, {} damaged answers, {resets} soft resets sent",
+            s.resend_requests, s.resyncs, s.damaged
+        ));
+    }
+    t
 }
 
 /// Sends the `$` command `command` until the board answers `ok` (a line noise can
@@ -276,7 +366,7 @@ pub fn upload(args: &UploadArgs, out: &mut dyn Write, err: &mut dyn Write) -> Re
     };
     let lines = src.upload_lines(number);
     let feeder = Feeder::Tape(Tape::new(&texts(&lines), TAPE_CHUNK));
-    let (status, board) = job(&args.port, &[], feeder, origin(&src.name, &lines), out, err)?;
+    let (status, board) = job(&args.port, false, &[], feeder, origin(&src.name, &lines), out, err)?;
     match board {
         Some(mut b) if status == 0 => verify_stored(&mut b.link, number, out, err),
         _ => Ok(status),
@@ -310,7 +400,7 @@ pub fn run(args: &RunArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result<u
         message: "longer than the board's receive buffer".into(),
     })?;
     let origin = Origin { name: format!("O{:04}", args.number), file_lines: Vec::new(), command: Some(command) };
-    job(&args.port, &[], Feeder::Counting(streamer), origin, out, err).map(|(status, _)| status)
+    job(&args.port, false, &[], Feeder::Counting(streamer), origin, out, err).map(|(status, _)| status)
 }
 
 /// `lathe status`: one report, pretty-printed; with `--watch` one line per change.

@@ -8,6 +8,8 @@ pub enum Response {
     Ok,
     /// `error:N`: the oldest line in flight was refused.
     Error(u16),
+    /// `N<k> ok` / `N<k> error:N` (link checksums in use): the answer to link line `k`.
+    Answer(u32, Result<(), u16>),
     /// `ALARM:N`: the board stopped in state Alarm.
     Alarm(u16),
     /// `Grbl 1.1h ['$' for help]`: the board (re)started.
@@ -24,11 +26,48 @@ pub enum Response {
     Other(String),
 }
 
-/// Parses one response line (without its line end).
+/// A line of the board as its link framing says (docs/PROTOCOL.md, Checksums:
+/// with checksums in use every line ends in `*<CRC-16 of the text>`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Framed<'a> {
+    /// No `*<crc>` at its end.
+    Plain(&'a str),
+    /// `text*<crc>` with the right CRC: the text.
+    Good(&'a str),
+    /// `*<crc>` that does not match: damaged on the way.
+    Bad,
+}
+
+/// Reads the framing of a board line (without its line end).
+pub fn framing(line: &str) -> Framed<'_> {
+    let line = line.trim_end_matches(['\r', ' ']);
+    match line.rsplit_once('*') {
+        Some((text, crc)) if crc.len() == 4 && crc.bytes().all(|b| b.is_ascii_hexdigit()) => {
+            if u16::from_str_radix(crc, 16).ok() == Some(super::crc::crc16(text.as_bytes())) {
+                Framed::Good(text)
+            } else {
+                Framed::Bad
+            }
+        }
+        _ => Framed::Plain(line),
+    }
+}
+
+/// Parses one response line (without its line end or link framing).
 pub fn parse(line: &str) -> Response {
     let line = line.trim();
     if line == "ok" {
         return Response::Ok;
+    }
+    if let Some((k, reply)) = line.strip_prefix('N').and_then(|t| t.split_once(' '))
+        && let Ok(k) = k.parse::<u32>()
+    {
+        if reply == "ok" {
+            return Response::Answer(k, Ok(()));
+        }
+        if let Some(code) = reply.strip_prefix("error:").and_then(|n| n.trim().parse().ok()) {
+            return Response::Answer(k, Err(code));
+        }
     }
     if let Some(code) = line.strip_prefix("error:").and_then(|n| n.trim().parse().ok()) {
         return Response::Error(code);
@@ -76,6 +115,8 @@ pub struct Status {
     pub overrides: Option<(u32, u32, u32)>,
     /// Active inputs (`Pn:` letters), empty when none.
     pub pins: String,
+    /// `Lk:` (link checksums in use): the last link line the board accepted.
+    pub link: Option<u32>,
 }
 
 impl Status {
@@ -97,6 +138,7 @@ impl Status {
                 "Ln" => s.line = value.trim().parse().ok(),
                 "Ov" => s.overrides = triple(value),
                 "Pn" => s.pins = value.to_owned(),
+                "Lk" => s.link = value.trim().parse().ok(),
                 _ => {}
             }
         }
@@ -205,6 +247,19 @@ mod tests {
         assert_eq!(parse("[PRG:O0001,230]"), Response::Feedback("[PRG:O0001,230]".into()));
         assert_eq!(parse("$110=500.000"), Response::Other("$110=500.000".into()));
         assert_eq!(parse("error:x"), Response::Other("error:x".into()));
+    }
+
+    #[test]
+    fn framed_lines_and_numbered_answers() {
+        let good = format!("N12 ok*{:04X}", super::super::crc::crc16(b"N12 ok"));
+        assert_eq!(framing(&good), Framed::Good("N12 ok"));
+        assert_eq!(parse("N12 ok"), Response::Answer(12, Ok(())));
+        assert_eq!(parse("N3 error:1"), Response::Answer(3, Err(1)));
+        let mut bad = good.clone().into_bytes();
+        bad[1] = b'3';
+        assert_eq!(framing(std::str::from_utf8(&bad).unwrap()), Framed::Bad);
+        assert_eq!(framing("ok"), Framed::Plain("ok"));
+        assert_eq!(Status::parse("Idle|Bf:64,128|Lk:17").link, Some(17));
     }
 
     #[test]

@@ -133,6 +133,33 @@ pub struct Session<'a> {
     heard_at: Instant,
     idle_reports: u32,
     last_progress: (usize, usize),
+    /// When the board last answered a line (`ok`, `error`, a resend request).
+    answered_at: Instant,
+    /// When a line was last written.
+    written_at: Instant,
+    /// Times the lines in flight were found lost and sent again (checksums).
+    resyncs: u32,
+    /// A status report showed the board's receive buffer empty with lines in
+    /// flight: when, and its `Lk:`.
+    empty_seen: Option<(Instant, u32)>,
+    /// Resend requests of the board (a request per damaged line, however many
+    /// answers repeat it).
+    resend_requests: u32,
+}
+
+/// How the link went during a job.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Stats {
+    /// Lines of the job.
+    pub lines: usize,
+    /// From the start until every line was accepted.
+    pub streamed: Option<Duration>,
+    /// Resend requests of the board (checksums).
+    pub resend_requests: u32,
+    /// Lines in flight found lost from the status report and sent again.
+    pub resyncs: u32,
+    /// Lines of the board dropped as damaged.
+    pub damaged: u64,
 }
 
 impl<'a> Session<'a> {
@@ -163,6 +190,11 @@ impl<'a> Session<'a> {
             heard_at: now,
             idle_reports: 0,
             last_progress: (usize::MAX, usize::MAX),
+            answered_at: now,
+            written_at: now,
+            resyncs: 0,
+            empty_seen: None,
+            resend_requests: 0,
         }
     }
 
@@ -179,10 +211,27 @@ impl<'a> Session<'a> {
     }
 
     /// Runs the job to its verdict.
-    pub fn run(mut self) -> Result<Verdict, LinkError> {
+    pub fn run(self) -> Result<Verdict, LinkError> {
+        self.run_stats().map(|(v, _)| v)
+    }
+
+    /// Runs the job to its verdict, with figures of how the link went.
+    pub fn run_stats(mut self) -> Result<(Verdict, Stats), LinkError> {
+        let started = Instant::now();
+        let damaged = self.link.damaged();
         let verdict = self.run_loop();
         self.ui.finish();
-        verdict
+        let stats = Stats {
+            lines: match &self.feeder {
+                Feeder::Counting(s) => s.total(),
+                Feeder::Tape(t) => t.total(),
+            },
+            streamed: self.fed_at.map(|t| t.duration_since(started)),
+            resend_requests: self.resend_requests,
+            resyncs: self.resyncs,
+            damaged: self.link.damaged() - damaged,
+        };
+        verdict.map(|v| (v, stats))
     }
 
     /// The loop: keys, status poll, feed, one incoming item, end checks.
@@ -192,8 +241,8 @@ impl<'a> Session<'a> {
                 return Ok(v);
             }
             let now = Instant::now();
-            if self.may_poll() && now.duration_since(self.polled_at) >= self.timing.poll {
-                self.link.write(b"?")?;
+            if self.may_poll() && now.duration_since(self.polled_at) >= self.poll_period(now) {
+                self.link.realtime(b'?')?;
                 self.polled_at = now;
             }
             self.feed(now)?;
@@ -203,7 +252,7 @@ impl<'a> Session<'a> {
                 if let Some(v) = self.incoming(item)? {
                     return Ok(v);
                 }
-            } else if self.heard_at.elapsed() >= self.timing.dead {
+            } else if self.heard_at.max(self.link.heard()).elapsed() >= self.timing.dead {
                 return Err(LinkError::Timeout {
                     port: self.link.name().to_owned(),
                     what: "any answer (the board stopped talking)".into(),
@@ -220,11 +269,11 @@ impl<'a> Session<'a> {
         let Some(key) = self.keys.and_then(Keys::poll) else { return Ok(None) };
         match key {
             Key::Hold => {
-                self.link.write(b"!")?;
+                self.link.realtime(b'!')?;
                 self.ui.note("feed hold");
             }
             Key::Resume => {
-                self.link.write(b"~")?;
+                self.link.realtime(b'~')?;
                 self.ui.note("resume");
             }
             Key::Reset => {
@@ -235,6 +284,20 @@ impl<'a> Session<'a> {
             Key::Quit => return self.stop_gently(Verdict::Aborted("aborted")).map(Some),
         }
         Ok(None)
+    }
+
+    /// How often to ask for a status report: [`Timing::poll`], or with checksums
+    /// [`STALLED`] while lines are in flight and the board has not answered for as
+    /// long (an answer may have been lost: the report says where the board is).
+    fn poll_period(&self, now: Instant) -> Duration {
+        match &self.feeder {
+            Feeder::Counting(s) if s.checksum() && s.waiting() && now.duration_since(self.answered_at) >= STALLED => {
+                STALLED
+            }
+            // Fed: the end is an Idle report, which line noise may spoil.
+            Feeder::Counting(s) if s.checksum() && self.fed_at.is_some() => STALLED,
+            _ => self.timing.poll,
+        }
     }
 
     /// Whether a status report may be asked: not before a tape's opening `%` (a `?`
@@ -265,6 +328,7 @@ impl<'a> Session<'a> {
                 }
                 while let Some(line) = s.next_line() {
                     self.link.write(line.as_bytes())?;
+                    self.written_at = now;
                 }
             }
             Feeder::Tape(t) => {
@@ -326,14 +390,20 @@ impl<'a> Session<'a> {
     /// Handles one response line.
     fn response(&mut self, r: Response) -> Result<Option<Verdict>, LinkError> {
         match r {
+            // With checksums the board numbers its answers to program lines; a bare
+            // `ok` is not one of them.
+            Response::Ok if self.link.checked() => Ok(None),
             Response::Ok => self.answer(Ok(())),
             Response::Error(code) => self.answer(Err(code)),
+            Response::Answer(k, a) => self.answer_line(k, a),
             Response::Resend(n) => {
+                self.answered_at = Instant::now();
                 // Every line in flight after a damaged one is answered with the same
                 // request: it is shown once.
                 if let Feeder::Counting(s) = &mut self.feeder {
                     let pending = s.resending();
                     if s.resend_request(n, Instant::now()) && !pending {
+                        self.resend_requests += 1;
                         self.ui.note(&format!("board asks to resend from line {n}"));
                     }
                 }
@@ -350,6 +420,10 @@ impl<'a> Session<'a> {
             }
             Response::Status(s) => {
                 self.status(&s);
+                if s.state == "Alarm" {
+                    // Its `ALARM:N` line was lost to line noise.
+                    return Ok(Some(self.alarm(0)));
+                }
                 Ok(None)
             }
             Response::Feedback(t) | Response::Other(t) => {
@@ -372,8 +446,19 @@ impl<'a> Session<'a> {
         self.last_msg = Some(m);
     }
 
+    /// `N<k> ok` or `N<k> error:N` (checksums).
+    fn answer_line(&mut self, k: u32, a: Result<(), u16>) -> Result<Option<Verdict>, LinkError> {
+        self.answered_at = Instant::now();
+        let outcome = match &mut self.feeder {
+            Feeder::Counting(s) => s.answer_line(k, a, Instant::now()),
+            Feeder::Tape(_) => return Ok(None),
+        };
+        self.outcome(outcome)
+    }
+
     /// `ok` or `error:N`.
     fn answer(&mut self, a: Result<(), u16>) -> Result<Option<Verdict>, LinkError> {
+        self.answered_at = Instant::now();
         let outcome = match &mut self.feeder {
             Feeder::Counting(s) => s.answer(a, Instant::now()),
             Feeder::Tape(_) => match a {
@@ -381,6 +466,11 @@ impl<'a> Session<'a> {
                 Err(code) => Outcome::Refused(usize::MAX, code),
             },
         };
+        self.outcome(outcome)
+    }
+
+    /// What an answer meant, acted on.
+    fn outcome(&mut self, outcome: Outcome) -> Result<Option<Verdict>, LinkError> {
         match outcome {
             Outcome::Refused(index, code) => {
                 let line = index.checked_add(1).and_then(|n| u32::try_from(n).ok());
@@ -405,7 +495,10 @@ impl<'a> Session<'a> {
     /// `ALARM:N`, with the program alarm's `[MSG:…]` before it when there was one.
     fn alarm(&mut self, code: u16) -> Verdict {
         self.stop_feeding();
-        let kind = format!("ALARM:{code} {}", response::alarm_text(code));
+        let kind = match code {
+            0 => "state Alarm (its ALARM line was lost on the way)".to_owned(),
+            _ => format!("ALARM:{code} {}", response::alarm_text(code)),
+        };
         let text = match self.alarm_msg.as_deref().and_then(response::program_alarm) {
             Some((number, line, message)) => format!("{}: alarm {number}: {message} ({kind})", self.origin.place(line)),
             None => format!("{}: {kind}", self.origin.name),
@@ -415,8 +508,40 @@ impl<'a> Session<'a> {
     }
 
     /// A status report: shown; counted when Idle with empty queues after feeding.
+    /// With checksums its `Lk:` (the last link line the board took) accounts for
+    /// answers lost on the way; lines in flight that the board has not taken while
+    /// its receive buffer is empty and nothing was answered for a while were lost on
+    /// the way to it: they are sent again.
     fn status(&mut self, s: &Status) {
         self.ui.status(s);
+        if let (Feeder::Counting(streamer), Some(last)) = (&mut self.feeder, s.link) {
+            streamer.taken_up_to(last);
+            let now = Instant::now();
+            let rx_empty = match (s.buffer, self.empty) {
+                (Some((_, free)), Some((_, empty))) => free >= empty,
+                (Some((_, free)), None) => free >= super::stream::RX_BUFFER as u32,
+                _ => false,
+            };
+            // Lines the board holds behind a full receive buffer do not show in one
+            // report's `Bf:`: it takes two, far enough apart, with nothing answered.
+            let quiet = self.timing.char_time * (2 * super::stream::RX_BUFFER as u32) + LOST_AFTER;
+            let stalled = now.duration_since(self.answered_at) >= quiet && now.duration_since(self.written_at) >= quiet;
+            if !(streamer.waiting() && rx_empty && stalled && !streamer.resending()) {
+                self.empty_seen = None;
+            } else {
+                match self.empty_seen {
+                    Some((at, lk)) if lk == last && now.duration_since(at) >= LOST_AFTER && at > self.answered_at => {
+                        let from = streamer.lost_in_flight(last as usize);
+                        self.resyncs += 1;
+                        self.ui.note(&format!("lines lost on the way: resending from line {}", from + 1));
+                        self.answered_at = now;
+                        self.empty_seen = None;
+                    }
+                    Some((_, lk)) if lk == last => {}
+                    _ => self.empty_seen = Some((now, last)),
+                }
+            }
+        }
         let asked_after_fed = self.fed_at.is_some_and(|t| self.polled_at > t);
         if asked_after_fed && s.idle_and_empty(self.empty) {
             self.idle_reports += 1;
@@ -439,10 +564,10 @@ impl<'a> Session<'a> {
     /// alarm, or [`Timing::hold_wait`] passed), then soft-resets it; returns `verdict`.
     fn stop_gently(&mut self, verdict: Verdict) -> Result<Verdict, LinkError> {
         self.stop_feeding();
-        self.link.write(b"!")?;
+        self.link.realtime(b'!')?;
         let deadline = Instant::now() + self.timing.hold_wait;
         while Instant::now() < deadline {
-            self.link.write(b"?")?;
+            self.link.realtime(b'?')?;
             let wait = Instant::now() + self.timing.poll;
             while let Ok(r) = self.link.line_until(wait, "a status report") {
                 if let Response::Status(s) = r
@@ -470,6 +595,15 @@ impl<'a> Session<'a> {
         }
     }
 }
+
+/// With checksums: no answer for this long while lines are in flight makes the
+/// session ask for a status report this often.
+const STALLED: Duration = Duration::from_millis(50);
+
+/// With checksums: lines in flight count as lost when the board's receive buffer is
+/// empty and neither an answer came nor a line was written for this long (plus the
+/// time 256 characters take on the wire).
+const LOST_AFTER: Duration = Duration::from_millis(100);
 
 /// Tape mode writes only while fewer bytes than this wait in the port's output queue,
 /// so that an XOFF takes effect within a few characters.

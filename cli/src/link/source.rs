@@ -1,7 +1,7 @@
 //! A program file as the lines that go over the link.
 //!
 //! The text goes as it is, line by line, with CR dropped, except the tape marks:
-//! in grbl mode the leading `%` line is sent as an empty line (a `%` line would
+//! in grbl mode the leading `%` line is sent as an empty comment `()` (a `%` line would
 //! switch the board to tape mode; the empty line keeps the board's line numbers
 //! equal to the file's), in tape mode the program's own `%` lines are left out (the
 //! sender adds its own). A `%` line after the first block ends the program: what
@@ -78,10 +78,17 @@ impl Source {
     }
 
     /// The lines for grbl streaming: the leading `%` as an empty line, so stream
-    /// line k is file line k.
+    /// line k is file line k — except that the first line goes as an empty comment
+    /// `()` when it is blank: the board neither starts nor numbers a job with blank
+    /// lines (a sender's wake-up `\r\n\r\n`), so a blank first line would shift
+    /// the line numbers.
     pub fn stream_lines(&self) -> Vec<SourceLine> {
         let blanks = (1..=self.leading_percent).map(|n| SourceLine { file_line: n, text: String::new() });
-        blanks.chain(self.lines.iter().cloned()).collect()
+        let mut lines: Vec<SourceLine> = blanks.chain(self.lines.iter().cloned()).collect();
+        if let Some(first) = lines.first_mut().filter(|l| l.text.trim().is_empty()) {
+            first.text = "()".into();
+        }
+        lines
     }
 
     /// The program number of the first block when it is `O<digits>`.
@@ -176,7 +183,10 @@ mod tests {
         let s = Source::parse("p.nc", b"%\r\nO0012 (SHAFT)\r\n\r\nG00 X20\nM30\n%\ntrailing text\n").unwrap();
         assert_eq!(s.leading_percent, 1);
         assert_eq!(s.o_number(), Some(12));
-        assert_eq!(texts(&s.stream_lines()), vec![(1, ""), (2, "O0012 (SHAFT)"), (3, ""), (4, "G00 X20"), (5, "M30")]);
+        assert_eq!(
+            texts(&s.stream_lines()),
+            vec![(1, "()"), (2, "O0012 (SHAFT)"), (3, ""), (4, "G00 X20"), (5, "M30")]
+        );
         assert_eq!(texts(&s.drip_lines()), vec![(2, " (SHAFT)"), (3, ""), (4, "G00 X20"), (5, "M30")]);
         assert_eq!(texts(&s.upload_lines(7)), vec![(2, "O0007 (SHAFT)"), (3, ""), (4, "G00 X20"), (5, "M30")]);
     }

@@ -26,6 +26,17 @@ pub struct StreamConfig {
     pub silence: Duration,
 }
 
+impl StreamConfig {
+    /// How long without an answer, after a resend request, counts as "every line in
+    /// flight answered" at `baud`: the time 256 characters take on the wire (128
+    /// bytes in flight to the board, its answers back) and 10 ms for the board and
+    /// the host (the board answers a line within a millisecond of its LF): 32 ms at
+    /// 115200 baud, 277 ms at 9600.
+    pub fn silence_at(baud: u32) -> Duration {
+        Duration::from_secs(10) * 256 / baud.max(1) + Duration::from_millis(10)
+    }
+}
+
 impl Default for StreamConfig {
     fn default() -> Self {
         StreamConfig { buffer: RX_BUFFER, checksum: false, silence: Duration::from_millis(100) }
@@ -152,6 +163,67 @@ impl Streamer {
         }
     }
 
+    /// `N<k> ok` / `N<k> error:N` (checksums): the board's answer to link line `k`
+    /// (1-based). The board takes link lines strictly in order, so every line in
+    /// flight before `k` was taken too: their answers were lost on the way (line
+    /// noise) and they count as accepted. An answer to a line not in flight (a
+    /// duplicate's) changes nothing.
+    pub fn answer_line(&mut self, k: u32, answer: Result<(), u16>, now: Instant) -> Outcome {
+        let Some(index) = usize::try_from(k).ok().and_then(|k| k.checked_sub(1)) else { return Outcome::Unexpected };
+        if let Some(r) = &mut self.resend {
+            r.last_answer = now;
+        }
+        self.taken_before(index);
+        if self.in_flight.front().is_none_or(|l| l.index != index) {
+            return Outcome::Superseded(index);
+        }
+        self.pop_front();
+        match answer {
+            Ok(()) => {
+                self.taken_before(index + 1);
+                Outcome::Accepted(index)
+            }
+            Err(code) => Outcome::Refused(index, code),
+        }
+    }
+
+    /// The board reports (`Lk:`) that it took every link line up to `last`: lines in
+    /// flight up to it count as accepted (their answers were lost).
+    pub fn taken_up_to(&mut self, last: u32) {
+        self.taken_before(usize::try_from(last).unwrap_or(usize::MAX));
+    }
+
+    /// Lines before index `end` were taken by the board.
+    fn taken_before(&mut self, end: usize) {
+        while self.in_flight.front().is_some_and(|l| l.index < end) {
+            self.pop_front();
+        }
+        let end = end.min(self.next);
+        self.accepted = self.accepted.max(end);
+        if let Some(r) = &mut self.resend {
+            r.from = r.from.max(end);
+        }
+    }
+
+    fn pop_front(&mut self) {
+        if let Some(line) = self.in_flight.pop_front() {
+            self.in_flight_bytes -= line.bytes;
+        }
+    }
+
+    /// The lines in flight were lost (the board reports its buffer empty and has
+    /// not taken them, and no answer comes): sending goes on from the first line the
+    /// board has not taken (0-based `from`). Returns it.
+    pub fn lost_in_flight(&mut self, from: usize) -> usize {
+        let from = from.max(self.accepted).min(self.next);
+        self.in_flight.clear();
+        self.in_flight_bytes = 0;
+        self.resend = None;
+        self.next = from;
+        self.accepted = from;
+        from
+    }
+
     /// `[MSG:Resend:n]`: the board expects link line `n` (1-based) next. Sending
     /// stops until the lines in flight are answered or [`StreamConfig::silence`]
     /// passes; see [`Streamer::tick`]. A number beyond the lines sent is ignored
@@ -214,6 +286,16 @@ impl Streamer {
     /// A resend is pending.
     pub fn resending(&self) -> bool {
         self.resend.is_some()
+    }
+
+    /// Lines are in flight, unanswered.
+    pub fn waiting(&self) -> bool {
+        !self.in_flight.is_empty()
+    }
+
+    /// Lines are framed with checksums.
+    pub fn checksum(&self) -> bool {
+        self.cfg.checksum
     }
 }
 
@@ -338,6 +420,28 @@ mod tests {
         assert_eq!(s.tick(t + Duration::from_millis(100)), Some(0));
         assert_eq!(s.in_flight_bytes(), 0);
         assert!(s.next_line().unwrap().starts_with("N1 "));
+    }
+
+    #[test]
+    fn numbered_answers_account_for_answers_lost_before_them() {
+        let cfg = StreamConfig { checksum: true, ..StreamConfig::default() };
+        let mut s = Streamer::new(lines(8, 10), cfg).unwrap();
+        let t = Instant::now();
+        assert_eq!(drain(&mut s).len(), 6);
+        // The answers to lines 1 and 2 were lost; line 3's came.
+        assert_eq!(s.answer_line(3, Ok(()), t), Outcome::Accepted(2));
+        assert_eq!(s.accepted(), 3);
+        assert_eq!(s.in_flight_bytes(), 3 * 19);
+        // A duplicate's answer changes nothing.
+        assert_eq!(s.answer_line(2, Ok(()), t), Outcome::Superseded(1));
+        assert_eq!(s.answer_line(4, Err(1), t), Outcome::Refused(3, 1));
+        // Line 6's answer lost too: the status report says the board took it.
+        s.taken_up_to(6);
+        assert_eq!((s.accepted(), s.in_flight_bytes()), (6, 0));
+        assert_eq!(drain(&mut s).len(), 2);
+        // Both lost on the way to the board: go on from the first it has not taken.
+        assert_eq!(s.lost_in_flight(6), 6);
+        assert!(s.next_line().unwrap().starts_with("N7 "));
     }
 
     #[test]

@@ -9,7 +9,7 @@ use std::time::{Duration, Instant};
 use serialport::SerialPort;
 
 use super::LinkError;
-use super::response::{self, Response};
+use super::response::{self, Framed, Response};
 use super::tape::{XOFF, XON};
 
 /// Something the board sent.
@@ -64,6 +64,16 @@ pub struct Link {
     name: String,
     splitter: LineSplitter,
     pending: VecDeque<Incoming>,
+    /// Link checksums are in use: every line of the board must carry its CRC (the
+    /// welcome line excepted: a reset switches them off), and real-time commands
+    /// other than `?` go out with a LF behind them.
+    checked: bool,
+    /// Lines dropped as damaged (a wrong CRC, or none while checked).
+    damaged: u64,
+    /// Soft resets sent.
+    resets: u32,
+    /// When the board last sent a line, damaged or not.
+    heard: Instant,
 }
 
 /// How long one read waits for bytes.
@@ -87,7 +97,63 @@ impl Link {
 
     /// A link over an already open port named `name` in messages.
     pub fn from_port(port: Box<dyn SerialPort>, name: &str) -> Link {
-        Link { port, name: name.to_owned(), splitter: LineSplitter::default(), pending: VecDeque::new() }
+        Link {
+            port,
+            name: name.to_owned(),
+            splitter: LineSplitter::default(),
+            pending: VecDeque::new(),
+            checked: false,
+            damaged: 0,
+            resets: 0,
+            heard: Instant::now(),
+        }
+    }
+
+    /// Link checksums on or off (see [`Link::realtime`]; with them on, lines of the
+    /// board without their CRC are dropped as damaged).
+    pub fn set_checked(&mut self, on: bool) {
+        self.checked = on;
+    }
+
+    /// Whether link checksums are in use.
+    pub fn checked(&self) -> bool {
+        self.checked
+    }
+
+    /// When the board last sent a line, damaged or not (a board that talks through
+    /// line noise is not a dead link).
+    pub fn heard(&self) -> Instant {
+        self.heard
+    }
+
+    /// Soft resets sent so far.
+    pub fn resets(&self) -> u32 {
+        self.resets
+    }
+
+    /// Lines of the board dropped as damaged so far.
+    pub fn damaged(&self) -> u64 {
+        self.damaged
+    }
+
+    /// Writes the real-time command `b`: alone, or with link checksums in use (other
+    /// than `?`) followed by a LF, as the board then wants it (docs/PROTOCOL.md).
+    pub fn realtime(&mut self, b: u8) -> Result<(), LinkError> {
+        if self.checked && b != b'?' { self.write(&[b, b'\n']) } else { self.write(&[b]) }
+    }
+
+    /// A line of the board as it may be used: its framing checked and taken off;
+    /// `None` for a damaged line.
+    fn accept(&mut self, line: String) -> Option<String> {
+        let text = match response::framing(&line) {
+            Framed::Good(text) => text,
+            Framed::Plain(text) if !self.checked || text.starts_with("Grbl 1.1") => text,
+            Framed::Plain(_) | Framed::Bad => {
+                self.damaged += 1;
+                return None;
+            }
+        };
+        Some(text.to_owned())
     }
 
     /// The port's name.
@@ -119,7 +185,16 @@ impl Link {
         let deadline = Instant::now() + wait;
         loop {
             if let Some(i) = self.pending.pop_front() {
-                return Ok(Some(i));
+                match i {
+                    Incoming::Line(l) => {
+                        self.heard = Instant::now();
+                        match self.accept(l) {
+                            Some(l) => return Ok(Some(Incoming::Line(l))),
+                            None => continue,
+                        }
+                    }
+                    flow => return Ok(Some(flow)),
+                }
             }
             self.read_some(deadline.saturating_duration_since(Instant::now()))?;
             if self.pending.is_empty() && Instant::now() >= deadline {
@@ -161,7 +236,10 @@ impl Link {
     /// Soft reset (0x18), then the welcome line within `wait`; returns it. (Sent
     /// once: a second reset's late welcome would be taken for the next one's.)
     pub fn reset(&mut self, wait: Duration) -> Result<String, LinkError> {
-        self.write(&[0x18])?;
+        self.realtime(0x18)?;
+        self.resets += 1;
+        // The reset switches the board's checksums off.
+        self.checked = false;
         self.welcome(wait)
     }
 
@@ -180,7 +258,7 @@ impl Link {
     pub fn status(&mut self, wait: Duration) -> Result<response::Status, LinkError> {
         let deadline = Instant::now() + wait;
         loop {
-            self.write(b"?")?;
+            self.realtime(b'?')?;
             let turn = deadline.min(Instant::now() + ASK_AGAIN);
             loop {
                 match self.line_until(turn, "a status report") {
@@ -217,6 +295,7 @@ impl Link {
                 Response::Feedback(t) | Response::Other(t) => lines.push(t),
                 Response::Alarm(code) => lines.push(format!("ALARM:{code}")),
                 Response::Resend(n) => lines.push(format!("[MSG:Resend:{n}]")),
+                Response::Answer(k, r) => lines.push(format!("N{k} {r:?}")),
             }
         }
     }

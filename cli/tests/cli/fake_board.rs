@@ -140,6 +140,13 @@ struct State {
     next_line_at: Instant,
     line_no: u32,
     expected: u32,
+    /// Link checksums in use: lines carry `*<crc>`, answers `N<k> `, reports `Lk:`,
+    /// real-time commands other than `?` come with a LF (swallowed).
+    checksums: bool,
+    /// The link line being answered.
+    answering: Option<u32>,
+    /// A LF after a real-time command is part of it.
+    swallow_lf: bool,
     damaged: bool,
     tape: TapeMode,
     xoff: bool,
@@ -169,6 +176,9 @@ impl State {
             next_line_at: now,
             line_no: 0,
             expected: 1,
+            checksums: false,
+            answering: None,
+            swallow_lf: false,
             damaged: false,
             tape: TapeMode::Off,
             xoff: false,
@@ -187,7 +197,16 @@ impl State {
     }
 
     fn line(&mut self, text: &str) {
-        self.send(&format!("{text}\r\n"));
+        let text = match self.answering {
+            Some(k) if text == "ok" || text.starts_with("error:") => format!("N{k} {text}"),
+            _ => text.to_owned(),
+        };
+        if self.checksums {
+            let crc = crc16(text.as_bytes());
+            self.send(&format!("{text}*{crc:04X}\r\n"));
+        } else {
+            self.send(&format!("{text}\r\n"));
+        }
     }
 
     /// One turn: read what came, act on real-time bytes, take at most one line.
@@ -226,6 +245,10 @@ impl State {
 
     /// A byte from the host: real-time commands at once, the rest into the buffer.
     fn byte(&mut self, b: u8) {
+        if std::mem::take(&mut self.swallow_lf) && b == b'\n' {
+            return;
+        }
+        self.swallow_lf = self.checksums && matches!(b, b'!' | b'~' | 0x18);
         match b {
             b'?' => {
                 self.spoke();
@@ -270,6 +293,7 @@ impl State {
         self.grbl_after = None;
         self.line_no = 0;
         self.expected = 1;
+        self.checksums = false;
         self.machine = if self.script.locked { Machine::Alarm } else { Machine::Idle };
         if !self.script.mute {
             self.line("\r\nGrbl 1.1h ['$' for help]");
@@ -285,8 +309,9 @@ impl State {
         };
         let free = 128usize.saturating_sub(self.rx.len());
         let blocks = if state == "Run" { 60 } else { 64 };
+        let link = if self.checksums { format!("|Lk:{}", self.expected - 1) } else { String::new() };
         let report = format!(
-            "<{state}|MPos:50.000,0.000,-2.000|FS:0,0|Bf:{blocks},{free}|Ln:{}|WCO:0.000,0.000,0.000|Ov:100,100,100>",
+            "<{state}|MPos:50.000,0.000,-2.000|FS:0,0|Bf:{blocks},{free}|Ln:{}|WCO:0.000,0.000,0.000|Ov:100,100,100{link}>",
             self.line_no
         );
         self.line(&report);
@@ -327,6 +352,7 @@ impl State {
         }
         let Some(block) = self.unframe(text) else { return };
         self.block(&block);
+        self.answering = None;
     }
 
     /// Checks the checksum frame when there is one; answers the resend itself.
@@ -345,7 +371,10 @@ impl State {
             self.expected = 1;
         }
         if k < self.expected && crc_ok {
+            self.checksums = true;
+            self.answering = Some(k);
             self.line("ok");
+            self.answering = None;
             return None;
         }
         if k != self.expected || !crc_ok || damaged {
@@ -355,6 +384,8 @@ impl State {
             return None;
         }
         self.expected += 1;
+        self.checksums = true;
+        self.answering = Some(k);
         Some(block)
     }
 
@@ -406,6 +437,8 @@ impl State {
     fn dollar_with_value(&mut self, cmd: &str) {
         if let Some(n) = cmd.strip_prefix("LN=").and_then(|n| n.parse::<u32>().ok()) {
             self.expected = n.max(1);
+            self.checksums = n > 0;
+            self.line(&format!("[LN:{n}]"));
             return self.line("ok");
         }
         if let Some(n) = cmd.strip_prefix("PR=").and_then(|n| n.parse::<u32>().ok()) {

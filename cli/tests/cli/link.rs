@@ -21,9 +21,10 @@ fn send_streams_every_line_within_the_128_byte_buffer_and_exits_0() {
     let o = lathe(&["send", &p, "--port", &board.path, "--quiet"]);
     let seen = board.finish();
     assert_eq!(status(&o), 0, "{}{}", stdout(&o), stderr(&o));
-    // The leading % goes as an empty line, the closing one not at all.
+    // The leading % goes as an empty comment (a blank line would not start the
+    // board's job), the closing one not at all.
     assert_eq!(seen.lines.len(), 64);
-    assert_eq!(seen.lines[0], "");
+    assert_eq!(seen.lines[0], "()");
     assert_eq!(seen.lines[1], "O0012 (SHAFT)");
     assert_eq!(seen.lines[63], "M30");
     assert!(seen.max_buffered <= 128, "{} bytes waited in the board's buffer", seen.max_buffered);

@@ -238,12 +238,17 @@ impl<C: Drive> Rig<C> {
         String::from_utf8_lossy(&self.sent)
             .split("\r\n")
             .filter(|l| !l.is_empty())
-            .map(|l| l.trim_matches(|c| c == '\u{11}' || c == '\u{13}').to_string())
+            .map(|l| unframe(l.trim_matches(|c| c == '\u{11}' || c == '\u{13}')))
             .collect()
     }
 
     /// Output lines not handed out before.
     pub fn take_lines(&mut self) -> Vec<String> {
+        self.take_raw_lines().iter().map(|l| unframe(l)).collect()
+    }
+
+    /// The lines as the controller sent them (with link checksums: `N<k> ok*<crc>`).
+    pub fn take_raw_lines(&mut self) -> Vec<String> {
         // Whole lines only, from the first byte not handed out yet.
         let rest = &self.sent[self.taken.min(self.sent.len())..];
         let Some(end) = rest.windows(2).rposition(|w| w == b"\r\n") else { return Vec::new() };
@@ -396,4 +401,26 @@ pub fn field<'a>(report: &'a str, key: &str) -> &'a str {
     let start = report.find(key).map(|i| i + key.len()).unwrap_or_else(|| panic!("{key} in {report}"));
     let rest = &report[start..];
     &rest[..rest.find(['|', '>']).unwrap_or(rest.len())]
+}
+
+/// A line of the controller without its link framing (checksums in use): the
+/// `*<crc>` checked and dropped, an answer's `N<k> ` dropped (`N7 ok` → `ok`).
+pub fn unframe(line: &str) -> String {
+    let text = match line.rsplit_once('*') {
+        Some((text, crc)) if crc.len() == 4 && crc.bytes().all(|b| b.is_ascii_hexdigit()) => {
+            assert_eq!(
+                u16::from_str_radix(crc, 16).ok(),
+                Some(controller::crc::crc16(text.as_bytes())),
+                "a damaged line from the controller: {line:?}"
+            );
+            text
+        }
+        _ => line,
+    };
+    match text.strip_prefix('N').and_then(|t| t.split_once(' ')) {
+        Some((k, reply)) if k.bytes().all(|b| b.is_ascii_digit()) && (reply == "ok" || reply.starts_with("error:")) => {
+            reply.to_string()
+        }
+        _ => text.to_string(),
+    }
 }

@@ -8,10 +8,11 @@
 //! - [`playback`]: the step interrupt: due edges → one GPIO BSRR word, pulse ends,
 //!   driver timing kept, no STEP rise while e-stop is active.
 //! - [`engine`]: the motion interrupt: e-stop, encoder reading, `MotionCore::tick`
-//!   one period ahead, step events → timed edges; the per-count spindle-sync path.
+//!   one period ahead, step events → timed edges; the spindle-sync path at the
+//!   counts where a step falls due, and the encoder compares that name them.
 //! - [`timebase`]: ns ↔ timer ticks by multiplication.
-//! - [`encoder`]: 32-bit hardware count → the core's 64-bit count, index on the same
-//!   scale.
+//! - [`encoder`]: 32- or 16-bit hardware count → the core's 64-bit count, index on
+//!   the same scale; due counts → compare values.
 //! - [`io`]: switch debouncing, M-code outputs, spindle PWM duty.
 #![no_std]
 

@@ -7,8 +7,10 @@
 //!   in a rapid with both axes at their top rates (the worst case: most steps);
 //! - step interrupt (`Player::run`): one edge, edges on three axes at once, a pulse
 //!   end, nothing due;
-//! - encoder-count interrupt (`Engine::encoder`) in a locked G32 thread at 2000 rpm
-//!   with 4096 counts per revolution.
+//! - encoder-count interrupt (`Engine::encoder`, then `Engine::window` for the
+//!   compares) at the counts where a step of a G32 falls due, 4096 counts per
+//!   revolution: single interrupts, the sum per spindle revolution at 500, 2000 and
+//!   3000 rpm, and the largest part before the step is queued (the step latency).
 //!
 //! The register reads and writes around these bodies (about 10 loads and stores)
 //! and the interrupt entry and exit (12 + 12 cycles on the M4) come on top. Run
@@ -26,6 +28,8 @@ use interp_core::canon::{
 use interp_core::config::MachineConfig;
 use m4_tests::{exit, measure};
 use motion_core::motion::{MotionCore, QUEUE, State};
+use motion_core::sync::Phase;
+use motion_driver::encoder::Window;
 use motion_driver::engine::{Engine, EngineAxis, RING, Sample};
 use motion_driver::playback::{AxisPins, PlayTiming, Player};
 use motion_driver::ring::{Edge, EdgeRing, Timed};
@@ -67,6 +71,10 @@ struct Rig {
     played: u32,
     count: f64,
     counts_per_tick: f64,
+    /// The encoder timer's compare values (TIM5 channels 3 and 4), and its count
+    /// as the count interrupt reads it.
+    window: Window,
+    raw: u32,
 }
 
 /// Rings for the rigs (each rig splits its own three).
@@ -97,7 +105,7 @@ impl Rig {
             0,
             0,
         );
-        Rig { core, engine, player, now: 0, played: 0, count: 0.0, counts_per_tick: 0.0 }
+        Rig { core, engine, player, now: 0, played: 0, count: 0.0, counts_per_tick: 0.0, window: Window::OFF, raw: 0 }
     }
 
     /// The spindle's raw count and the raw count at its last index (every 4096).
@@ -153,12 +161,6 @@ fn period(rig: &mut Rig) {
 /// The step interrupt's body at the rig's time.
 fn step(rig: &mut Rig) -> u32 {
     rig.player.run(rig.now, false).bsrr
-}
-
-/// The encoder-count interrupt's body for the rig's current count.
-fn encoder(rig: &mut Rig) {
-    let (raw, _) = rig.encoder();
-    rig.engine.encoder(&mut rig.core, rig.now, raw);
 }
 
 /// Measures three period interrupts after `warm` periods of `action`.
@@ -245,69 +247,187 @@ fn steps() {
     }
 }
 
-fn thread() {
-    static RINGS_T: [EdgeRing<RING>; 3] = [EdgeRing::new(), EdgeRing::new(), EdgeRing::new()];
-    let mut rig = Rig::new(&RINGS_T, Pos::xz(20 * MM, 5 * MM));
-    // 2000 rpm × 4096 counts: 136.5 counts per 1 ms period.
-    rig.counts_per_tick = 4_096.0 * 2_000.0 / 60_000.0;
-    let on = SpindleCommand { dir: SpindleDir::Cw, rpm: Some(2_000), css: None };
+/// The count interrupt's body (TIM5, P1) as the board runs it: the reading to the
+/// core and the steps it makes queued (the step interrupt is pended then), the
+/// compares set to the next due counts, and whether a fresh reading has already
+/// reached one (then it runs again).
+fn count_isr(rig: &mut Rig) -> bool {
+    count_isr_step(rig);
+    count_isr_window(rig)
+}
+
+/// Its first part: up to the step edges queued (what a due step waits for).
+fn count_isr_step(rig: &mut Rig) -> bool {
+    rig.engine.encoder(&mut rig.core, rig.now, rig.raw)
+}
+
+/// Its second part: the gearbox glides to the next due counts, the compares are set.
+fn count_isr_window(rig: &mut Rig) -> bool {
+    rig.window = rig.engine.window(&mut rig.core);
+    rig.engine.reached(&rig.window, rig.raw)
+}
+
+/// What a thread run measures.
+#[derive(Clone, Copy, PartialEq)]
+enum Sums {
+    /// The whole count interrupt, summed per spindle revolution.
+    Revolutions,
+    /// Only its first part, summed over the pass: the largest is the worst step latency.
+    Latency,
+    /// Only its second part (for profiling).
+    Window,
+    /// A few single interrupts and periods of the locked pass, each printed.
+    Singles,
+}
+
+/// A G32 from X20 Z5 to X`x_end` Z−40 (radius, mm; a taper unless 20) at `lead_um`,
+/// the spindle turning at `rpm` from the start with 4096 counts a revolution and an
+/// index at every 4096th. The count interrupt runs only when the count reaches one
+/// of the compares the engine sets (as TIM5's on the board), the period interrupt
+/// every 84,000 ticks, the edges are played when due.
+fn thread_at(rings: &'static [EdgeRing<RING>; 3], rpm: u32, lead_um: i64, x_end: i64, sums: Sums) {
+    let mut rig = Rig::new(rings, Pos::xz(20 * MM, 5 * MM));
+    let on = SpindleCommand { dir: SpindleDir::Cw, rpm: Some(rpm), css: None };
     let _ = rig.core.push(Canon { line: 1, action: Action::Spindle(on) });
     let thread = ThreadMove {
-        to: at(20 * MM, -40 * MM),
-        lead: 2 * MM,
+        to: at(x_end * MM, -40 * MM),
+        lead: lead_um * 1_000,
         lead_delta: 0,
         start_udeg: 0,
         sync: ThreadSync::Index,
-        spindle: spindle(2_000),
+        spindle: spindle(rpm),
     };
     let _ = rig.core.push(Canon { line: 2, action: Action::Thread(thread) });
-    // Periods until the pass is locked, counts one by one from then on.
-    let ticks_per_count = (f64::from(TIMER_HZ) * 60.0 / (2_000.0 * 4_096.0)) as u32;
+    let _ = rig.core.push(Canon { line: 3, action: Action::End { rewind: false } });
+    let ticks_per_count = f64::from(TIMER_HZ) * 60.0 / (f64::from(rpm) * 4_096.0);
     let period_ticks = rig.engine.time_base().period_ticks;
-    let mut n = 0;
-    while rig.core.state() != State::Locked {
-        rig.period();
-        n += 1;
-        if n > 5_000 {
-            hprintln!("thread never locked: {:?}", rig.core.state());
-            exit(false);
-        }
-    }
-    let mut next_period = rig.engine.base_ticks().wrapping_add(period_ticks);
-    let mut measured = 0;
-    for k in 0..40_000u32 {
-        rig.count += 1.0;
-        rig.now = rig.now.wrapping_add(ticks_per_count);
-        if rig.now.wrapping_sub(next_period) as i32 >= 0 {
-            if (9_000..9_700).contains(&k) {
-                hprintln!("bench period interrupt, G32 locked (the count interrupt waits for it)");
+    let (mut next_period, mut next_count) = (0u32, ticks_per_count);
+    let (mut count, mut edges, mut singles) = (0u32, 0u32, 0u32);
+    let measured_isr = match sums {
+        Sums::Revolutions => |rig: &mut Rig| m4_tests::measure_sum(count_isr, rig),
+        Sums::Latency => |rig: &mut Rig| {
+            m4_tests::measure_sum(count_isr_step, rig);
+            count_isr_window(rig)
+        },
+        Sums::Window => |rig: &mut Rig| {
+            count_isr_step(rig);
+            m4_tests::measure_sum(count_isr_window, rig)
+        },
+        Sums::Singles => count_isr,
+    };
+    for _ in 0..40_000_000u32 {
+        if f64::from(next_period) <= next_count {
+            rig.now = next_period;
+            let locked = rig.core.state() == State::Locked && rig.core.stats().ticks % 37 == 0;
+            if sums == Sums::Singles && locked && singles < 3 {
+                hprintln!("bench period interrupt, G32 locked, {} rpm (the count interrupt waits for it)", rpm);
                 measure(period, &mut rig);
+                singles += 1;
             } else {
                 period(&mut rig);
             }
             next_period = next_period.wrapping_add(period_ticks);
-        }
-        if k == 8_000 {
-            hprintln!("bench encoder-count interrupt, G32 locked, 2000 rpm × 4096 counts");
-        }
-        if (8_000..8_008).contains(&k) {
-            measure(encoder, &mut rig);
-            measured += 1;
+            rig.window = rig.engine.window(&mut rig.core);
+            if rig.engine.reached(&rig.window, rig.raw) {
+                while measured_isr(&mut rig) {}
+            }
+            if rig.core.ended() && rig.core.is_idle() {
+                break;
+            }
         } else {
-            encoder(&mut rig);
+            rig.now = next_count as u32;
+            next_count += ticks_per_count;
+            count += 1;
+            rig.count = f64::from(count);
+            rig.raw = count;
+            if rig.window.up == Some(count) || rig.window.down == Some(count) {
+                let locked = rig.core.gear().is_some_and(|g| g.phase() == Phase::Locked && g.remaining() < 8_000);
+                if sums == Sums::Singles && locked && (3..11).contains(&singles) {
+                    if singles == 3 {
+                        hprintln!("bench count interrupt at a due count, G32 locked: to the step queued, then the compares");
+                    }
+                    measure(count_isr_step, &mut rig);
+                    while measure(count_isr_window, &mut rig) {
+                        count_isr(&mut rig);
+                    }
+                    singles += 1;
+                } else {
+                    while measured_isr(&mut rig) {}
+                }
+            }
+            if sums == Sums::Revolutions && count % 4_096 == 0 && rig.core.gear().is_some() {
+                let e = rig.engine.stats().edges;
+                let phase = rig.core.gear().map(|g| g.phase());
+                hprintln!("revolution {} ({:?}): {} edges; count interrupt:", count / 4_096, phase, e - edges);
+                m4_tests::report_sum();
+            }
+            if count % 4_096 == 0 {
+                edges = rig.engine.stats().edges;
+            }
         }
         rig.play();
     }
-    hprintln!("thread: {} counts to the core, Z at {} steps", rig.engine.stats().sync_counts, rig.core.steps()[2]);
-    if measured != 8 || rig.engine.stats().ring_full != 0 {
+    if sums == Sums::Revolutions {
+        hprintln!("the rest of the pass; count interrupt:");
+        m4_tests::report_sum();
+    }
+    let st = rig.engine.stats();
+    hprintln!(
+        "thread {} rpm, lead {} um, X{} at the end: {} counts, {} count interrupts ({} moved an axis), Z at {} steps, X at {}",
+        rpm,
+        lead_um,
+        x_end,
+        count,
+        st.sync_counts,
+        st.sync_moves,
+        rig.core.steps()[2],
+        rig.core.steps()[0]
+    );
+    if sums == Sums::Latency {
+        hprintln!("count interrupt up to the step queued, over the pass:");
+        m4_tests::report_sum();
+    }
+    if !rig.core.ended() || rig.core.steps()[2] != -40 * 320 || st.ring_full != 0 || rig.core.alarm().is_some() {
+        hprintln!("thread failed: {:?} {:?}", rig.core.state(), rig.core.alarm());
         exit(false);
     }
 }
 
+fn threads() {
+    static T: [[EdgeRing<RING>; 3]; 6] = [const { [EdgeRing::new(), EdgeRing::new(), EdgeRing::new()] }; 6];
+    // Single interrupts of a locked pass, then per revolution: 1.5 mm (the most the
+    // default Z takes at 3000 rpm, 10 % margin) at 500, 2000, 3000 rpm, and the most
+    // the Z's 5000 mm/min allows at 500 and 2000 (9 and 2.25 mm: 24,000 steps/s).
+    thread_at(&T[0], 2_000, 1_500, 20, Sums::Singles);
+    for (k, (rpm, lead)) in [(500, 1_500), (2_000, 1_500), (3_000, 1_500), (500, 9_000)].into_iter().enumerate() {
+        hprintln!("bench count interrupts per spindle revolution, G32 {} um lead at {} rpm × 4096 counts", lead, rpm);
+        thread_at(&T[k + 1], rpm, lead, 20, Sums::Revolutions);
+    }
+    // The worst step latency: a taper (both axes step at some counts) at 3000 rpm.
+    hprintln!("bench count interrupt up to the step queued, taper X20 -> X22 over Z45 at 3000 rpm, 1.5 mm lead");
+    thread_at(&T[5], 3_000, 1_500, 22, Sums::Latency);
+}
+
+/// `BENCH_ONLY=sync` (at build time) measures only the count interrupt of one
+/// 2000 rpm pass, summed per revolution (for `profile.sh bench_isr`); `singles` its
+/// single interrupts; `latency` only their part up to the step queued.
+const ONLY: Option<&str> = option_env!("BENCH_ONLY");
+
 #[entry]
 fn main() -> ! {
+    if let Some(only @ ("sync" | "singles" | "latency" | "window")) = ONLY {
+        static T: [EdgeRing<RING>; 3] = [EdgeRing::new(), EdgeRing::new(), EdgeRing::new()];
+        let sums = match only {
+            "sync" => Sums::Revolutions,
+            "singles" => Sums::Singles,
+            "window" => Sums::Window,
+            _ => Sums::Latency,
+        };
+        thread_at(&T, 2_000, 1_500, 20, sums);
+        exit(true)
+    }
     periods();
     steps();
-    thread();
+    threads();
     exit(true)
 }

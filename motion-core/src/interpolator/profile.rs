@@ -10,8 +10,9 @@ fn braking_2a(v: u64, exit: u64, a: u64) -> u64 {
     (v.saturating_mul(v) - exit * exit).saturating_add(a.saturating_mul(v + exit))
 }
 
-/// Whether running this period at `v` still lets the block end at `exit` or slower.
-fn fits(v: u64, exit: u64, a: u64, rem: u64) -> bool {
+/// Whether running this period at `v` still lets the path reach a boundary `rem`
+/// ahead at `exit` or slower (`v ≤ exit`, or the braking distance fits).
+pub fn fits(v: u64, exit: u64, a: u64, rem: u64) -> bool {
     v <= exit || braking_2a(v, exit, a) <= (2 * a).saturating_mul(rem)
 }
 

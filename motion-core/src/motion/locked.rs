@@ -2,6 +2,7 @@
 //! (with its checks at the measured speed), continuing thread legs, rigid tapping
 //! with the spindle run to stop at the bottom and back, and letting go.
 
+use super::polygon::PolygonGear;
 use super::{MotionCore, State};
 use crate::alarm::AlarmKind;
 use crate::axis::{AXIS_COUNT, Axis};
@@ -9,7 +10,8 @@ use crate::canon::{SpindleDir, ThreadSync};
 use crate::fixed::PATH_FRAC;
 use crate::planner::block::thread_ramp;
 use crate::planner::{Block, BlockKind, Item, ThreadSpec};
-use crate::sync::{Gear, Gearing, Leg, Ratio, ramp_up_steps};
+use crate::stepgen::StepEvent;
+use crate::sync::{Due, Gear, Gearing, Leg, Ratio, ramp_up_steps};
 
 impl<const N: usize> MotionCore<N> {
     /// The leg from the current position to `b`'s end.
@@ -48,6 +50,27 @@ impl<const N: usize> MotionCore<N> {
     /// Length of a leg along each axis, nm.
     fn leg_nm(&self, leg: &Leg) -> [f32; AXIS_COUNT] {
         core::array::from_fn(|i| ((leg.end[i] - leg.start[i]) as f64 * self.p.scale[i].nm_per_step()) as f32)
+    }
+
+    /// The raw encoder counts at which [`MotionCore::on_encoder`] must next be
+    /// called: when the count reaches `up` (counting up) or `down` (counting down);
+    /// nothing moves at the counts between. `None` while no axis follows the
+    /// spindle (no thread or tap gearbox, no polygon turning). A thread's counts that
+    /// move nothing are applied here, ahead of the spindle ([`Gear::glide`]); a
+    /// count given to `on_encoder` anywhere from its last call on is taken
+    /// correctly, so every count still works (only slower).
+    pub fn encoder_due(&mut self) -> Option<Due> {
+        match (self.gear.as_mut(), self.polygon.gear.as_ref()) {
+            (Some(g), None) => Some(g.glide()),
+            (None, None) => None,
+            (g, p) => Some(g.map_or(Due::NONE, |g| g.glide()).merge(p.map_or(Due::NONE, PolygonGear::due))),
+        }
+    }
+
+    /// The next step or direction event of `axis` before `until` after
+    /// [`MotionCore::on_encoder`] moved it (a jump: its step due at once).
+    pub fn next_sync_step(&mut self, axis: usize, until: u64) -> Option<StepEvent> {
+        self.steppers.get_mut(axis)?.next_jump_event(until)
     }
 
     /// A thread pass waits for the spindle and its synchronisation count (SyncWait).

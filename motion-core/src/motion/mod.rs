@@ -111,6 +111,9 @@ pub struct Stats {
     pub max_queued: usize,
     /// Events dropped because nobody collected them.
     pub lost_events: u32,
+    /// Periods whose speed the interpolator's braking test allowed no candidate
+    /// for (0 unless a block was entered too fast to brake for its end).
+    pub overruns: u32,
 }
 
 /// Where the core is.
@@ -315,7 +318,7 @@ impl<const N: usize> MotionCore<N> {
 
     /// Counters.
     pub fn stats(&self) -> Stats {
-        Stats { blocks: self.planner.taken(), ..self.stats }
+        Stats { blocks: self.planner.taken(), overruns: self.interp.overruns(), ..self.stats }
     }
 
     /// The interpolator's commanded position at the end of the last period, Q16
@@ -556,24 +559,31 @@ impl<const N: usize> MotionCore<N> {
     /// Whether encoder counts must come one by one with their times
     /// ([`MotionCore::on_encoder`]): while axes are locked to the spindle or a thread
     /// pass waits for its start count. Otherwise the count of each period is enough.
+    /// (Every count works; [`MotionCore::encoder_due`] names the only ones that
+    /// matter, which is what the firmware and the simulator hand over.)
     pub fn wants_encoder_edges(&self) -> bool {
         self.gear.is_some() || self.polygon.active() || matches!(self.state, State::SyncWait { .. })
     }
 
-    /// An encoder count at time `now`: while axes are locked to the spindle they
-    /// move to the gearbox's position for it at once.
-    pub fn on_encoder(&mut self, now: u64, count: i64) {
-        self.polygon_count(now, count);
-        let Some(g) = self.gear.as_mut() else { return };
+    /// An encoder count at time `now` (any number of counts after the last one
+    /// given): while axes are locked to the spindle they move to the gearbox's
+    /// position for it at once. Returns the axes commanded to move, bit `1 << i`
+    /// for axis `i` (their step events are due now). The firmware calls it only at
+    /// the counts [`MotionCore::encoder_due`] names.
+    pub fn on_encoder(&mut self, now: u64, count: i64) -> u8 {
+        let mut moved = self.polygon_count(now, count);
+        let Some(g) = self.gear.as_mut() else { return moved };
         if g.on_count(count) {
-            let mut pos = *self.interp.start_steps();
-            g.positions(&mut pos);
-            let (long, follower) = g.axes();
-            self.steppers[long].jump(now, pos[long] << STEP_FRAC);
-            if let Some(f) = follower {
-                self.steppers[f].jump(now, pos[f] << STEP_FRAC);
+            let (p, follower) = g.driven();
+            let long = g.leg().long;
+            self.steppers[long].jump(now, p << STEP_FRAC);
+            moved |= 1 << long;
+            if let Some((f, p)) = follower {
+                self.steppers[f].jump(now, p << STEP_FRAC);
+                moved |= 1 << f;
             }
         }
+        moved
     }
 
     /// Gives every stepper this period's ramp, unless the axes are locked to the

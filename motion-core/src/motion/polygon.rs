@@ -19,6 +19,7 @@ use crate::alarm::AlarmKind;
 use crate::axis::Axis;
 use crate::canon::{PolygonSync, SpindleDir};
 use crate::fixed::STEP_FRAC;
+use crate::sync::Due;
 
 /// The tool-spindle gearbox.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -124,15 +125,18 @@ impl PolygonGear {
         self.pos
     }
 
-    /// Takes raw count `count`; true when C's position changed.
+    /// Takes raw count `count` (any number of counts after the last); true when C's
+    /// position changed. C locks when the count reaches the lock count, even if
+    /// that count itself was never given.
     pub fn on_count(&mut self, count: i64) -> bool {
-        let f = self.sigma * count;
+        let f = crate::sync::signed(self.sigma, count);
         if let Some(at) = self.lock_at {
-            self.last = f;
-            if f == at {
-                self.lock_at = None;
+            if f < at {
+                self.last = f;
+                return false;
             }
-            return false;
+            self.lock_at = None;
+            self.last = at;
         }
         let before = self.pos;
         while self.last < f && self.num != 0 {
@@ -145,6 +149,28 @@ impl PolygonGear {
         }
         self.last = f;
         self.pos != before
+    }
+
+    /// The raw counts at which C next steps either way (or locks), for the encoder
+    /// compare: nothing is applied ahead (the spindle may turn back).
+    pub fn due(&self) -> Due {
+        if self.num == 0 {
+            return Due::NONE;
+        }
+        if let Some(at) = self.lock_at {
+            return Due::forward(self.sigma, 0, Some(at), None);
+        }
+        let (mut up, mut a) = (1, self.acc + self.num);
+        while a < self.den {
+            a += self.num;
+            up += 1;
+        }
+        let (mut down, mut b) = (1, self.acc - self.num);
+        while b >= 0 {
+            b -= self.num;
+            down += 1;
+        }
+        Due::forward(self.sigma, 0, Some(self.last + up), Some(self.last - down))
     }
 
     fn forward(&mut self) {
@@ -198,6 +224,56 @@ mod tests {
             g.on_count(c);
         }
         assert_eq!(g.steps(), 9000);
+    }
+
+    /// Drives `a` with every count of `path` and `b` only at its due counts;
+    /// asserts the same C position after every count.
+    fn same_as_every_count(a: &mut PolygonGear, b: &mut PolygonGear, path: impl IntoIterator<Item = i64>) -> usize {
+        let mut taken = 0;
+        for c in path {
+            a.on_count(c);
+            if b.due().reached(c) {
+                b.on_count(c);
+                taken += 1;
+                assert!(!b.due().reached(c), "count {c}");
+            }
+            assert_eq!(a.steps(), b.steps(), "count {c}");
+        }
+        taken
+    }
+
+    #[test]
+    fn only_the_counts_where_c_steps_are_taken_both_ways() {
+        // P2 Q3 on 1000 C steps a turn: 1500 steps per 4096 counts (a count in
+        // 2.7 taken); P3 Q1 counting down; and more than a step a count (P1 Q5 on
+        // 3600 steps: every count taken).
+        for (p, q, rev, sigma, most) in [(2, 3, 1_000, 1, 17_000), (3, 1, 1_000, -1, 6_000), (1, 5, 3_600, 1, 46_000)] {
+            let mut a = PolygonGear::new(p, q, rev, 4_096, sigma, sigma * 4_096, 0).unwrap();
+            let mut b = a;
+            let fwd = |c: i64| sigma * c;
+            let path = (1..=30_000).chain((20_000..30_000).rev()).chain(20_000..=26_000).map(fwd);
+            let taken = same_as_every_count(&mut a, &mut b, path);
+            assert!(a.locked());
+            assert!(taken <= most, "P{p} Q{q}: {taken} counts taken");
+        }
+    }
+
+    #[test]
+    fn c_locks_at_the_index_even_when_that_count_comes_late() {
+        let mut g = PolygonGear::new(1, 2, 1_000, 4_096, 1, 100, 0).unwrap();
+        assert_eq!(g.due(), Due::new(Some(100), None));
+        // The interrupt ran at count 103: C locked at 100 and is 3 counts along.
+        let mut every = g;
+        for c in 1..=103 {
+            every.on_count(c);
+        }
+        assert!(g.on_count(103) || g.steps() == 0);
+        assert!(g.locked());
+        assert_eq!(g.steps(), every.steps());
+        g.stop();
+        g.on_count(100 + 4_096);
+        assert!(g.finished());
+        assert_eq!(g.due(), Due::NONE);
     }
 
     #[test]
@@ -299,16 +375,19 @@ impl<const N: usize> MotionCore<N> {
         }
     }
 
-    /// An encoder count: C to the gearbox's position for it; G50.2 done on a whole turn.
-    pub(super) fn polygon_count(&mut self, now: u64, count: i64) {
-        let Some(g) = self.polygon.gear.as_mut() else { return };
+    /// An encoder count: C to the gearbox's position for it; G50.2 done on a whole
+    /// turn. Returns C's bit (`1 << index`) if C was commanded to move, else 0.
+    pub(super) fn polygon_count(&mut self, now: u64, count: i64) -> u8 {
+        let Some(g) = self.polygon.gear.as_mut() else { return 0 };
         let c = Axis::C.index();
-        if g.on_count(count) {
+        let moved = g.on_count(count);
+        if moved {
             self.steppers[c].jump(now, (self.polygon.base + g.steps()) << STEP_FRAC);
         }
         if g.finished() {
             self.polygon_release();
         }
+        u8::from(moved) << c
     }
 
     /// Lets C go: its step count is taken back by the whole turns it made, so that

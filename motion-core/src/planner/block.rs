@@ -81,8 +81,9 @@ pub struct TapSpec {
 pub enum BlockKind {
     /// A straight line, all axes interpolated together.
     Line,
-    /// A rapid with each axis at its own rate (dog-leg path, G28/G30).
-    Independent,
+    /// A rapid with each axis at its own rate (dog-leg path, G28/G30), with
+    /// `2^62 / length` of each axis's own move.
+    Independent([i64; AXIS_COUNT]),
     /// An arc in a plane.
     Arc(ArcGeom),
     /// A thread pass locked to the spindle.
@@ -92,25 +93,57 @@ pub enum BlockKind {
 }
 
 /// Look-ahead state of a block (speeds in nm per interpolation period).
+///
+/// A planned entry speed `e` is the speed of the interpolation period that
+/// reaches (or crosses) the block's start. The look-ahead keeps it as
+/// `u = (e − a/2)²` in Q16 (`a` the block's acceleration `accel_q8`, `a/2` its
+/// `half_q8`): the interpolator's discrete profile brakes from `e` to `e'` over a
+/// block of length `L` exactly when `u ≤ u' + 2a·L`, so planning is additions and
+/// the interpolator's tests need no root ([`lookahead`](super::lookahead),
+/// [`crate::interpolator`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Plan {
     /// Path length, Q8 nm.
     pub len_q8: u64,
+    /// `2·a·L` in Q16 (`accel_q8 · len_q8 · 2`, saturating).
+    pub two_a_len: u64,
+    /// The highest planned entry the junction allows, as `u` (0: the block starts
+    /// from rest).
+    pub max_u: u64,
+    /// The planned entry as `u`; 0: the block starts from rest (the path does
+    /// not blend into it). Speeds stay below 2^30 Q8 (4 m/period), `u` below 2^60.
+    pub entry_u: u64,
     /// Path acceleration the axes allow along this block, nm/period².
     pub accel: f32,
+    /// `accel` in Q8 nm/period², rounded down to an even number (what the
+    /// interpolator brakes with; `half_q8` is half of it).
+    pub accel_q8: u32,
     /// Highest path speed the axes allow (feed limits, arcs' normal acceleration
     /// and chord tolerance), nm/period.
     pub cap: f32,
     /// The programmed speed at 100 % override (junction speeds stay below it).
     pub nominal: f32,
-    /// Square of the highest entry speed the junction with the previous block allows.
-    pub max_entry_sq: f32,
-    /// Square of the planned entry speed.
-    pub entry_sq: f32,
-    /// The planned entry speed, Q8 nm/period (what the interpolator brakes to).
-    pub entry_q8: u64,
-    /// `2 · accel · length`, for the backward pass.
-    pub two_a_len: f32,
+    /// The smallest entry above 0 as `u`: the larger acceleration of the two
+    /// blocks at the junction (a slower entry starts the block from rest).
+    pub floor_u: u64,
+    /// The junction's own limit, nm/period (`max_u` is the smaller of it and the
+    /// chain's curvature speed, [`bend`](super::bend), which rises as the path
+    /// beyond the junction arrives).
+    pub pending: f32,
+}
+
+impl Plan {
+    /// Half the acceleration, Q8 nm/period² (exact: `accel_q8` is even).
+    #[inline]
+    pub fn half_q8(&self) -> u64 {
+        u64::from(self.accel_q8 / 2)
+    }
+
+    /// The planned entry speed, Q8 nm/period (0 when the block starts from rest);
+    /// by a square root: the interpolator's hot path works with `entry_u`.
+    pub fn entry_q8(&self) -> u64 {
+        if self.entry_u == 0 { 0 } else { self.half_q8() + sqrt_u64(self.entry_u).0 }
+    }
 }
 
 /// A block in the motion queue.
@@ -149,8 +182,6 @@ pub struct Exec {
     /// The programmed speed: Q8 nm per period (feed per minute) or Q8 nm per
     /// revolution (feed per revolution); 0 for rapids.
     pub rate_q8: i64,
-    /// Independent rapids: `2^62 / length` of each axis's own move.
-    pub axis_inv: [i64; AXIS_COUNT],
 }
 
 impl Exec {
@@ -160,7 +191,7 @@ impl Exec {
     /// slot (as a call, the result was built on the stack and copied; zeroed in the
     /// slot and filled later, it cost a `memclr` of 80 bytes and two copies).
     #[inline(always)]
-    pub fn new(kind: &BlockKind, feed: FeedSpec, len_q8: u64, start: &Pos, end: &Pos, p: &MotionParams) -> Self {
+    pub fn new(feed: FeedSpec, len_q8: u64, end: &Pos, p: &MotionParams) -> Self {
         let present = |i: usize| p.limits[i].present;
         let end_steps = core::array::from_fn(|i| if present(i) { p.scale[i].steps(end.0[i]) } else { 0 });
         let rate_q8 = match feed {
@@ -168,15 +199,14 @@ impl Exec {
             FeedSpec::PerMin(f) => p.rate_q8(f),
             FeedSpec::PerRev(f) => f.saturating_mul(1 << PATH_FRAC),
         };
-        let axis_inv = if *kind == BlockKind::Independent { axis_inverses(start, end, p) } else { [0; AXIS_COUNT] };
-        Exec { end_steps, inv_len: inverse62(len_q8), rate_q8, axis_inv }
+        Exec { end_steps, inv_len: inverse62(len_q8), rate_q8 }
     }
 
     /// [`Exec::new`] as a call (threads and taps: rare blocks, no need to grow the
     /// code by another inlined copy).
     #[inline(never)]
-    fn outlined(kind: &BlockKind, feed: FeedSpec, len_q8: u64, start: &Pos, end: &Pos, p: &MotionParams) -> Self {
-        Self::new(kind, feed, len_q8, start, end, p)
+    fn outlined(feed: FeedSpec, len_q8: u64, end: &Pos, p: &MotionParams) -> Self {
+        Self::new(feed, len_q8, end, p)
     }
 }
 
@@ -201,6 +231,8 @@ pub struct Prepared {
     pub dir_out: Dir,
     /// End point, machine coordinates, nm (X radius).
     pub end: Pos,
+    /// Path length, nm.
+    pub len: f32,
 }
 
 /// Length (nm) and unit direction of a straight move. f32 on the FPU: the length
@@ -216,15 +248,20 @@ fn straight(start: &Pos, end: &Pos) -> (f32, Dir) {
     (len, d.map(|v| v * inv))
 }
 
-/// The fastest path speed and acceleration the axes allow along `dir`.
+/// The fastest path speed and the path acceleration the axes allow along `dir`:
+/// a rapid's (or a thread's) acceleration is the most the axes allow along it; a
+/// cutting move's is that of the slowest axis it moves, smaller (up to √2 on a
+/// diagonal) but the same for every direction of the same axes, so the blocks of a
+/// blended chain share one acceleration and the look-ahead's braking test holds
+/// across all of them at once (see [`lookahead`](super::lookahead)).
 #[inline(always)]
-fn axis_caps(dir: &Dir, p: &MotionParams, rapid: bool) -> (f32, f32) {
+fn axis_caps(dir: &Dir, p: &MotionParams, rapid: bool, along: bool) -> (f32, f32) {
     let (mut cap, mut accel) = (f32::MAX, f32::MAX);
     for (u, lim) in dir.iter().zip(&p.limits) {
         let u = u.abs();
         if u > 1e-9 && lim.present {
             cap = minf(cap, if rapid { lim.rapid } else { lim.feed } / u);
-            accel = minf(accel, lim.accel / u);
+            accel = minf(accel, if along { lim.accel / u } else { lim.accel });
         }
     }
     (cap, accel)
@@ -239,16 +276,24 @@ fn len_q8(len: f32) -> Result<u64, AlarmKind> {
 }
 
 fn plan(len: u64, accel: f32, cap: f32, nominal: f32) -> Plan {
-    let len_nm = f32_of(len as i64) / (1u32 << PATH_FRAC) as f32;
+    let accel_q8 = ((accel * (1u32 << PATH_FRAC) as f32) as u32).max(2) & !1;
+    let h = u64::from(accel_q8 / 2);
     Plan {
         len_q8: len,
+        // At most 2^62: added to a `u` (below 2^60) it cannot overflow.
+        two_a_len: if len < 1 << 30 {
+            u64::from(accel_q8) * len * 2
+        } else {
+            u64::from(accel_q8).saturating_mul(len).saturating_mul(2).min(1 << 62)
+        },
+        max_u: 0,
+        entry_u: 0,
         accel,
+        accel_q8,
         cap,
         nominal: minf(nominal, cap),
-        max_entry_sq: 0.0,
-        entry_sq: 0.0,
-        entry_q8: 0,
-        two_a_len: 2.0 * accel * len_nm,
+        floor_u: h * h,
+        pending: 0.0,
     }
 }
 
@@ -277,12 +322,16 @@ pub fn line(
         (false, FeedMode::PerMin) => FeedSpec::PerMin(m.feed.value),
         (false, FeedMode::PerRev) => FeedSpec::PerRev(m.feed.value),
     };
-    let (mut cap, accel) = axis_caps(&dir, p, rapid);
+    let (mut cap, accel) = axis_caps(&dir, p, rapid, rapid);
     if !rapid {
         cap = minf(cap, p.path_feed);
     }
-    let kind = if rapid && m.independent { BlockKind::Independent } else { BlockKind::Line };
-    let len = len_q8(len)?;
+    let kind = if rapid && m.independent {
+        BlockKind::Independent(axis_inverses(start, &m.to.machine, p))
+    } else {
+        BlockKind::Line
+    };
+    let (len_nm, len) = (len, len_q8(len)?);
     *slot = Item::Motion(Block {
         line,
         kind,
@@ -292,9 +341,9 @@ pub fn line(
         exact_stop: m.exact_stop || rapid,
         entry_at_max: false,
         plan: plan(len, accel, cap, nominal(feed, &m.spindle, p, cap)),
-        exec: Exec::new(&kind, feed, len, start, &m.to.machine, p),
+        exec: Exec::new(feed, len, &m.to.machine, p),
     });
-    Ok(Prepared { dir_in: dir, dir_out: dir, end: m.to.machine })
+    Ok(Prepared { dir_in: dir, dir_out: dir, end: m.to.machine, len: len_nm })
 }
 
 /// Start angle and signed sweep of an arc in turns × 2^32 from the radius vectors
@@ -470,7 +519,7 @@ pub fn arc(start: &Pos, a: &ArcMove, p: &MotionParams, line: u32, slot: &mut Ite
     let bend = sqrtf(minf(accel * r, 8.0 * r * p.chord_tolerance));
     let cap = minf(minf(minf(la.feed, lb.feed), p.path_feed), bend);
     let geom = ArcGeom { axes, center: c, r0: r0_nm, r1: r1_nm, theta0, sweep };
-    let len = len_q8(len)?;
+    let (len_nm, len) = (len, len_q8(len)?);
     *slot = Item::Motion(Block {
         line,
         kind: BlockKind::Arc(geom),
@@ -480,10 +529,15 @@ pub fn arc(start: &Pos, a: &ArcMove, p: &MotionParams, line: u32, slot: &mut Ite
         exact_stop: a.exact_stop,
         entry_at_max: false,
         plan: plan(len, accel, cap, nominal(feed, &a.spindle, p, cap)),
-        exec: Exec::new(&BlockKind::Arc(geom), feed, len, start, &a.to.machine, p),
+        exec: Exec::new(feed, len, &a.to.machine, p),
     });
     let ccw = sweep > 0;
-    Ok(Prepared { dir_in: tangent(axes, s, r0f, ccw), dir_out: tangent(axes, e, r1f, ccw), end: a.to.machine })
+    Ok(Prepared {
+        dir_in: tangent(axes, s, r0f, ccw),
+        dir_out: tangent(axes, e, r1f, ccw),
+        end: a.to.machine,
+        len: len_nm,
+    })
 }
 
 /// The axis that travels furthest (the thread's or tap's long axis).
@@ -554,13 +608,13 @@ pub fn thread(
     // Path speed whose long-axis part is the largest lead × rpm.
     let v = p.per_tick(rpm * lead.max(lead_end) as f32) / along;
     check_speed(&dir, v, p).map_err(|a| AlarmKind::ThreadTooFast { letter: a.letter() })?;
-    let (_, accel) = axis_caps(&dir, p, false);
+    let (_, accel) = axis_caps(&dir, p, false, true);
     let cpt = p.per_tick(rpm) * p.cpr as f32;
     let ramp = thread_ramp(&spec, lead_end, cpt, p.cpr, accel * along)?;
     if t.sync == ThreadSync::Index && ramp_up_nm(&spec, ramp, p.cpr) > len * along {
         return Err(AlarmKind::ThreadRampTooLong);
     }
-    let len = len_q8(len)?;
+    let (len_nm, len) = (len, len_q8(len)?);
     *slot = Item::Motion(Block {
         line,
         kind: BlockKind::Thread(spec),
@@ -570,9 +624,9 @@ pub fn thread(
         exact_stop: true,
         entry_at_max: false,
         plan: plan(len, accel, v.max(1.0), v),
-        exec: Exec::outlined(&BlockKind::Thread(spec), FeedSpec::PerRev(lead), len, start, &t.to.machine, p),
+        exec: Exec::outlined(FeedSpec::PerRev(lead), len, &t.to.machine, p),
     });
-    Ok(Prepared { dir_in: dir, dir_out: dir, end: t.to.machine })
+    Ok(Prepared { dir_in: dir, dir_out: dir, end: t.to.machine, len: len_nm })
 }
 
 /// The lead after `length` nm along the long axis of a thread starting at `lead`
@@ -625,11 +679,11 @@ pub fn tap(start: &Pos, t: &TapMove, p: &MotionParams, line: u32, slot: &mut Ite
     // The axis follows the spindle's own acceleration: lead × rev/period².
     let period_s = p.tick_ns as f32 / 1e9;
     let rev_per_tick2 = p.spindle_accel_rpm_s as f32 / 60.0 * period_s * period_s;
-    let (_, accel) = axis_caps(&dir, p, false);
+    let (_, accel) = axis_caps(&dir, p, false, true);
     if t.lead as f32 * rev_per_tick2 / along > accel {
         return Err(too_fast(long));
     }
-    let len = len_q8(len)?;
+    let (len_nm, len) = (len, len_q8(len)?);
     *slot = Item::Motion(Block {
         line,
         kind: BlockKind::Tap(TapSpec { lead: t.lead, dir: t.dir, long }),
@@ -639,16 +693,9 @@ pub fn tap(start: &Pos, t: &TapMove, p: &MotionParams, line: u32, slot: &mut Ite
         exact_stop: true,
         entry_at_max: false,
         plan: plan(len, accel, v.max(1.0), v),
-        exec: Exec::outlined(
-            &BlockKind::Tap(TapSpec { lead: t.lead, dir: t.dir, long }),
-            FeedSpec::PerRev(t.lead),
-            len,
-            start,
-            &t.to.machine,
-            p,
-        ),
+        exec: Exec::outlined(FeedSpec::PerRev(t.lead), len, &t.to.machine, p),
     });
-    Ok(Prepared { dir_in: dir, dir_out: dir, end: t.to.machine })
+    Ok(Prepared { dir_in: dir, dir_out: dir, end: t.to.machine, len: len_nm })
 }
 
 #[cfg(test)]

@@ -9,17 +9,47 @@
 //! - the chord limit `2·tol / sin(φ/2)` per period: the interpolation point before
 //!   and after the corner are joined by a straight step path that must stay within
 //!   the chord tolerance of the corner;
-//! - the programmed speeds of both blocks.
+//! - the programmed speeds of both blocks;
+//! - once settled, the curvature of the chain around it ([`bend`](super::bend)).
 //!
-//! The backward pass works with squared speeds (no roots) from the newest block
-//! back to the first one whose entry speed it does not change.
+//! The first three model a corner between blocks longer than a period's travel.
+//! Where the shorter block `L` is too short for that, each applies only if the
+//! corner is still one: the deviation circle only if its tangent
+//! `δ·sin(φ/2) / (1 − cos(φ/2))` fits in `L/2`; the chord limit only if the corner
+//! strays more than the tolerance from a chord within the two blocks,
+//! `2·L·sin(φ/2) > tol`; an axis's jump only if the corner moves that axis off its
+//! line by more than one period's jump, `L·|u₂ − u₁| > J`. Otherwise the corner is
+//! a sample of a curve (CAM output, whose points are rounded to the input
+//! increment: a 0.5 µm rounding turns a 0.02 mm block by 0.025 rad), and the
+//! curvature limit of the chain takes over.
+//!
+//! The backward pass plans the interpolator's discrete profile exactly. A speed is
+//! the distance of one period; braking by `a` a period from `v` to `e`, the period
+//! at `e` ending on the boundary, takes `B(v) = (v² − e² + a·(v + e)) / 2a`. A block
+//! of length `L` entered at `e₀` can brake to its exit `e₁` when
+//! `(e₀ − a/2)² ≤ (e₁ − a/2)² + 2·a·L`, and that relation chains: the interpolator
+//! that can brake for one boundary at this block's acceleration can brake for every
+//! later one (its test in [`crate::interpolator`]). So a block gives up nothing of
+//! its entry speed to the discrete profile — before, each block gave up one period
+//! of acceleration, which capped a chain of short blocks at about one block a
+//! period. The pass works with `u = (e − a/2)²` in Q16 integers ([`Plan`]): a
+//! braking-bound entry is `u = u' + 2aL`, an addition, exact (one root only where
+//! the acceleration changes from one block to the next). An entry below the
+//! larger acceleration of the two blocks at its junction is 0 (the block before
+//! ends at rest), so an entry only ever rises as blocks arrive.
+//!
+//! The backward pass runs from the newest block back to the first one whose entry
+//! it does not change.
 
-use super::block::{Block, Dir};
+use super::Item;
+use super::block::{Block, Dir, Plan};
 use super::machine::MotionParams;
-use crate::fixed::{PATH_FRAC, maxf, minf, sqrtf, u64_of};
+use crate::fixed::{PATH_FRAC, minf, sqrtf};
+use canon::units::f32_of_u64;
 
-/// Highest speed (nm/period) through the junction from direction `a` into `b`.
-pub fn junction_speed(a: &Dir, b: &Dir, p: &MotionParams) -> f32 {
+/// Highest speed (nm/period) through the junction from direction `a` into `b`;
+/// `short` is the length (nm) of the shorter of the two blocks.
+pub fn junction_speed(a: &Dir, b: &Dir, short: f32, p: &MotionParams) -> f32 {
     let cos_phi: f32 = a.iter().zip(b).map(|(x, y)| x * y).sum::<f32>().clamp(-1.0, 1.0);
     if cos_phi <= -0.999_999 {
         return 0.0;
@@ -28,55 +58,132 @@ pub fn junction_speed(a: &Dir, b: &Dir, p: &MotionParams) -> f32 {
     if cos_phi < 0.999_999 {
         let cos_half = sqrtf((1.0 + cos_phi) / 2.0);
         let sin_half = sqrtf((1.0 - cos_phi) / 2.0);
-        let jd = p.accel_min * p.junction_deviation * cos_half / (1.0 - cos_half);
-        v = minf(sqrtf(jd), 2.0 * p.chord_tolerance / sin_half);
+        let one_minus = 1.0 - cos_half;
+        let half_short = 0.5 * short;
+        if p.junction_deviation * sin_half <= half_short * one_minus {
+            v = sqrtf(p.accel_min * p.junction_deviation * cos_half / one_minus);
+        }
+        if half_short * sin_half > 0.25 * p.chord_tolerance {
+            v = minf(v, 2.0 * p.chord_tolerance / sin_half);
+        }
     }
     for ((x, y), lim) in a.iter().zip(b).zip(&p.limits) {
         let jump = (y - x).abs();
-        if lim.present && jump > 1e-7 {
+        if lim.present && jump > 1e-7 && short * jump > lim.jump {
             v = minf(v, lim.jump / jump);
         }
     }
     v
 }
 
-/// Sets `block`'s entry from the square of the highest entry that still lets the
-/// block brake to `exit_sq` by its end. The discrete profile brakes one period
-/// late at worst, so a braking-bound entry gives up one period of acceleration.
-/// Returns whether the entry changed.
+/// `u` of a junction limit `v` (nm/period) into a block with `plan`: 0 below the
+/// junction's floor (the block then starts from rest).
+pub fn max_u(plan: &Plan, v: f32) -> u64 {
+    let v_q8 = (v * (1u32 << PATH_FRAC) as f32) as u32;
+    if v_q8 < plan.accel_q8 {
+        return 0;
+    }
+    let u = square(v_q8 - plan.accel_q8 / 2);
+    if u < plan.floor_u { 0 } else { u }
+}
+
+/// `x²` of a 32-bit `x`: one 32 × 32 → 64-bit multiply.
+#[inline(always)]
+fn square(x: u32) -> u64 {
+    u64::from(x) * u64::from(x)
+}
+
+/// Sets the junction's floor into a block with `plan` from the acceleration
+/// `prev_q8` (Q8) of the block before: the larger of the two accelerations.
+#[inline]
+pub fn set_floor(plan: &mut Plan, prev_q8: u32) {
+    // The block's own acceleration is the floor `plan` starts with.
+    if prev_q8 > plan.accel_q8 {
+        plan.floor_u = square(prev_q8 - plan.accel_q8 / 2);
+    }
+}
+
+/// Sets the highest entry speed `v` (nm/period) the junction into `block` allows.
+pub fn set_max_entry(block: &mut Block, v: f32) {
+    block.entry_at_max = false;
+    block.plan.max_u = max_u(&block.plan, v);
+}
+
+/// `(e − h)²` for the entry `u_next` (0: at rest) of a block whose half
+/// acceleration is `h_next`, seen from a block whose half acceleration is `h`.
+fn exit_term(u_next: u64, h_next: u32, h: u32) -> u64 {
+    if u_next == 0 {
+        return square(h);
+    }
+    if h_next == h {
+        return u_next;
+    }
+    // The entry rounded down (f32 root, less one): the next entry is at least
+    // this block's acceleration (the junction's floor), so a smaller estimate
+    // only lowers `(e − h)²` and the entry planned from it.
+    let e = h_next + (sqrtf(f32_of_u64(u_next)) as u32).saturating_sub(1);
+    square(e.saturating_sub(h))
+}
+
+/// Sets `block`'s entry from the entry `u_next` (half acceleration `h_next`) of
+/// the block after it: the highest entry from which the interpolator's profile
+/// brakes to it by the block's end, at most the junction's limit. Returns whether
+/// the entry changed.
 ///
-/// An entry already at the junction's limit stays there when the exit still
-/// reaches it: the same `sqrtf(max_entry_sq)` as before, not computed again.
-fn set_entry(block: &mut Block, exit_sq: f32) -> bool {
-    let plan = &mut block.plan;
-    let reach = exit_sq + plan.two_a_len;
-    let at_max = reach >= plan.max_entry_sq;
-    if at_max && block.entry_at_max {
+/// An entry at the junction's limit stays there: exits only rise as blocks
+/// arrive, and a raised limit clears `entry_at_max`.
+fn set_entry(block: &mut Block, u_next: u64, h_next: u32) -> bool {
+    if block.entry_at_max {
         return false;
     }
+    let plan = &mut block.plan;
+    let h = plan.accel_q8 / 2;
+    let reach = exit_term(u_next, h_next, h) + plan.two_a_len;
+    let at_max = reach >= plan.max_u;
     block.entry_at_max = at_max;
-    let entry = if at_max { sqrtf(plan.max_entry_sq) } else { maxf(sqrtf(reach) - plan.accel, 0.0) };
-    let entry_sq = entry * entry;
-    let changed = entry_sq != plan.entry_sq;
-    plan.entry_sq = entry_sq;
-    plan.entry_q8 = u64_of(entry * (1u32 << PATH_FRAC) as f32);
+    let mut u = if at_max { plan.max_u } else { reach };
+    // Below the junction's floor: from rest.
+    if u < plan.floor_u {
+        u = 0;
+    }
+    let changed = u != plan.entry_u;
+    plan.entry_u = u;
     changed
 }
 
-/// Re-plans the entry speeds of `blocks` (oldest first; the last one ends at
-/// rest, and the first one is the next to run). Stops at the first block whose
-/// entry does not change: nothing before it can change either.
-pub fn backward_pass<'a, I>(newest_first: I)
-where
-    I: Iterator<Item = Option<&'a mut Block>>,
-{
-    let mut exit_sq = 0.0f32;
-    for (k, item) in newest_first.enumerate() {
-        let Some(block) = item else { return };
-        if !set_entry(block, exit_sq) && k >= 1 {
-            return;
+/// Re-plans the entry speeds of the queue given as its two contiguous parts
+/// (`front` then `back`, oldest first; the last block ends at rest, the first is
+/// the next to run), newest first. Stops at the first block whose entry does not
+/// change (nothing before it can change either) or at a command (a barrier).
+pub fn backward_pass(front: &mut [Item], back: &mut [Item]) {
+    let mut pass = Pass { u_next: 0, h_next: 0, first: true };
+    if pass.run(back) {
+        pass.run(front);
+    }
+}
+
+/// The backward pass's state between the queue's two parts.
+struct Pass {
+    /// The entry of the block after (as `u`, 0: at rest) and its half acceleration.
+    u_next: u64,
+    h_next: u32,
+    /// No block visited yet (the newest is always re-planned).
+    first: bool,
+}
+
+impl Pass {
+    /// Re-plans `items` newest first; false where the pass stops.
+    #[inline(always)]
+    fn run(&mut self, items: &mut [Item]) -> bool {
+        for item in items.iter_mut().rev() {
+            let Item::Motion(block) = item else { return false };
+            if !set_entry(block, self.u_next, self.h_next) && !self.first {
+                return false;
+            }
+            self.first = false;
+            (self.u_next, self.h_next) = (block.plan.entry_u, block.plan.accel_q8 / 2);
         }
-        exit_sq = block.plan.entry_sq;
+        true
     }
 }
 
@@ -97,20 +204,20 @@ mod tests {
     #[test]
     fn straight_on_is_unlimited_and_reversal_stops() {
         let p = params();
-        assert_eq!(junction_speed(&dir(30.0), &dir(30.0), &p), f32::MAX);
-        assert_eq!(junction_speed(&dir(0.0), &dir(180.0), &p), 0.0);
+        assert_eq!(junction_speed(&dir(30.0), &dir(30.0), 1e9, &p), f32::MAX);
+        assert_eq!(junction_speed(&dir(0.0), &dir(180.0), 1e9, &p), 0.0);
     }
 
     #[test]
     fn right_angle_follows_the_formulas() {
         let p = params();
-        let v = junction_speed(&dir(0.0), &dir(90.0), &p);
+        let v = junction_speed(&dir(0.0), &dir(90.0), 1e9, &p);
         // δ = 10 µm, a = 500 nm/ms²: v² = a·δ·0.7071/0.2929 → 3474 nm/ms;
         // chord: 2 × 1 µm / sin 45° = 2828 nm/ms; jump: 5000 nm/ms / 1.
         assert!((v - 2_828.4).abs() < 1.0, "{v}");
         let mut loose = p;
         loose.chord_tolerance = 1e6;
-        let v = junction_speed(&dir(0.0), &dir(90.0), &loose);
+        let v = junction_speed(&dir(0.0), &dir(90.0), 1e9, &loose);
         assert!((v - 3_474.3).abs() < 1.0, "{v}");
     }
 
@@ -120,10 +227,10 @@ mod tests {
         // 2°: X speed jumps by v·sin 2°; the jump limit is 5 µm/ms.
         let jump = 5_000.0 / libm::sinf(2f32.to_radians());
         let chord = 2.0 * 1_000.0 / libm::sinf(1f32.to_radians());
-        let v = junction_speed(&dir(0.0), &dir(2.0), &p);
+        let v = junction_speed(&dir(0.0), &dir(2.0), 1e9, &p);
         assert!((v - chord.min(jump)).abs() < 2.0, "{v}");
         p.chord_tolerance = 1e6;
-        let v = junction_speed(&dir(0.0), &dir(2.0), &p);
+        let v = junction_speed(&dir(0.0), &dir(2.0), 1e9, &p);
         assert!((v - jump).abs() < 2.0, "{v} vs {jump}");
     }
 }

@@ -2,8 +2,10 @@
 //! and acceleration limits per interpolation period, the driver timing, and the
 //! spindle encoder. Derived once from [`MachineConfig`]; every motion layer reads it.
 
+use super::bend;
 use crate::alarm::AlarmKind;
 use crate::axis::AXIS_COUNT;
+use crate::canon::units::IncrementSystem;
 use crate::config::{ConfigError, Drive, MachineConfig, Param};
 use crate::fixed::{Divisor, STEP_FRAC, gcd, mul_shr};
 use crate::stepgen::DriverTiming;
@@ -138,6 +140,12 @@ pub struct MotionParams {
     pub spindle_accel_rpm_s: u32,
     /// Speed ripple margin of the thread checks (1.10 for 10 %).
     pub thread_margin: f32,
+    /// How far the path of a blended chain must be known beyond a junction before
+    /// the curvature there is settled, nm (see [`bend`](super::bend)).
+    pub settle_len: f32,
+    /// Half the input increment (metric), nm: how far programmed points stray
+    /// from the curve they sample.
+    pub input_noise: f32,
     /// nm/min → nm per period.
     per_min: f32,
     /// nm/min → Q8 nm per period, in Q32.
@@ -182,18 +190,27 @@ impl MotionParams {
             accel_min = accel_min.min(accel);
         }
         let path_feed = cfg.params.get(Param::MaxCuttingFeed);
+        let path_feed = if path_feed > 0 { (path_feed as f64 * per_min) as f32 } else { f32::MAX };
+        let input_noise = match cfg.increments {
+            IncrementSystem::IsB => 500.0,
+            IncrementSystem::IsC => 50.0,
+        };
+        let fastest = limits.iter().filter(|l| l.present).map(|l| l.feed).fold(0.0f32, f32::max);
+        let settle_len = bend::settle_len(path_feed.min(fastest * core::f32::consts::SQRT_2), accel_min, input_noise);
         Ok(MotionParams {
             tick_ns: m.tick_ns,
             scale,
             limits,
             timing,
-            path_feed: if path_feed > 0 { (path_feed as f64 * per_min) as f32 } else { f32::MAX },
+            path_feed,
             junction_deviation: m.junction_deviation.max(0) as f32,
             chord_tolerance: m.chord_tolerance.max(1) as f32,
             accel_min,
             cpr: cfg.spindle.encoder_cpr,
             spindle_accel_rpm_s: cfg.spindle.accel_rpm_per_s.max(1),
             thread_margin: 1.0 + f32::from(m.thread_margin_pct) / 100.0,
+            settle_len,
+            input_noise,
             per_min: per_min as f32,
             rate_q32: libm::round(per_min * 256.0 * 4_294_967_296.0) as i64,
         })

@@ -8,6 +8,7 @@
 //! machine can stop in time. A command (spindle, coolant, dwell, stop …) is a
 //! barrier: the motion before it ends at rest and it runs when that motion has.
 
+pub mod bend;
 pub mod block;
 pub mod lookahead;
 pub mod machine;
@@ -95,14 +96,19 @@ pub enum PushError {
 /// How the next block may join the queue's last motion.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Tail {
-    /// Where the last motion ends (machine, nm).
-    end: Pos,
+    /// Where the last motion ends (machine, nm) — `ends[cur]` — and where it
+    /// started, `ends[cur ^ 1]` (the end before: a new end goes into the other
+    /// slot, so the start stays known for one more block without a copy).
+    ends: [Pos; 2],
+    cur: usize,
     /// Direction at its end.
     dir: Dir,
     /// Its programmed speed.
     nominal: f32,
     /// Whether the next block may blend with it (G64 cutting move without exact stop).
     blend: bool,
+    /// Its length, nm (the curvature of a chain of short blocks).
+    len: f32,
     /// The long axis of a thread block (a continuing thread may follow).
     thread: Option<Axis>,
     /// The lead a thread sequence with a G34 in it ends with, nm/rev: a block
@@ -117,22 +123,61 @@ pub struct Planner<const N: usize> {
     tail: Tail,
     /// Motion blocks taken out so far.
     taken: u64,
+    /// How many entries at the queue's end are blended blocks of one acceleration
+    /// (`run_accel_q8`): the interpolator's braking test for one boundary among them
+    /// holds for all later ones.
+    run: usize,
+    run_accel_q8: u32,
+    /// The chain at the queue's end: its curvature and waiting junctions.
+    bend: bend::Bend,
+}
+
+impl Tail {
+    /// Where the last motion ends.
+    #[inline(always)]
+    fn end(&self) -> &Pos {
+        &self.ends[self.cur & 1]
+    }
+
+    /// Where the last motion started.
+    #[inline(always)]
+    fn start(&self) -> &Pos {
+        &self.ends[(self.cur ^ 1) & 1]
+    }
 }
 
 impl<const N: usize> Planner<N> {
     /// An empty queue with the axes at `pos` (machine, nm).
     pub fn new(pos: Pos) -> Self {
-        Planner { queue: heapless::Deque::new(), tail: Self::rest(pos), taken: 0 }
+        Planner {
+            queue: heapless::Deque::new(),
+            tail: Self::rest(pos),
+            taken: 0,
+            run: 0,
+            run_accel_q8: 0,
+            bend: bend::Bend::default(),
+        }
     }
 
     fn rest(end: Pos) -> Tail {
-        Tail { end, dir: [0.0; AXIS_COUNT], nominal: 0.0, blend: false, thread: None, thread_lead: None }
+        Tail {
+            ends: [end; 2],
+            cur: 0,
+            dir: [0.0; AXIS_COUNT],
+            nominal: 0.0,
+            blend: false,
+            len: 0.0,
+            thread: None,
+            thread_lead: None,
+        }
     }
 
     /// Drops everything queued; the next block starts from `pos`.
     pub fn clear(&mut self, pos: Pos) {
         self.queue.clear();
         self.tail = Self::rest(pos);
+        self.run = 0;
+        self.bend.clear();
     }
 
     /// Whether no more can be queued.
@@ -152,7 +197,7 @@ impl<const N: usize> Planner<N> {
 
     /// Where the queued motion ends (machine, nm).
     pub fn tail_end(&self) -> Pos {
-        self.tail.end
+        *self.tail.end()
     }
 
     /// The next entry.
@@ -184,13 +229,12 @@ impl<const N: usize> Planner<N> {
         self.taken
     }
 
-    /// Planned entry speed of the next block, Q8 nm/period (0 if the next entry is
-    /// not a motion block the running one may blend into).
-    pub fn front_entry_q8(&self) -> u64 {
-        match self.queue.front() {
-            Some(Item::Motion(b)) => b.plan.entry_q8,
-            _ => 0,
-        }
+    /// The blended run at the queue's end: the queue index from which every entry
+    /// is a blended block of one acceleration, and that acceleration (Q8
+    /// nm/period²). Its entry speeds chain exactly at that acceleration
+    /// ([`lookahead`]).
+    pub fn uniform_run(&self) -> (usize, u32) {
+        (self.queue.len() - self.run.min(self.queue.len()), self.run_accel_q8)
     }
 
     /// Prepares `c` and queues it, re-planning the entry speeds.
@@ -198,9 +242,8 @@ impl<const N: usize> Planner<N> {
         if self.queue.is_full() {
             return Err(PushError::Full);
         }
-        let start = self.tail.end;
         let full_circle = matches!(c.action, Action::Arc(a) if a.full_circle);
-        if c.action.endpoint().is_some_and(|e| e.machine == start) && !full_circle {
+        if c.action.endpoint().is_some_and(|e| e.machine == *self.tail.end()) && !full_circle {
             return Ok(()); // no motion
         }
         if !matches!(
@@ -215,35 +258,36 @@ impl<const N: usize> Planner<N> {
         if self.queue.push_back(placeholder).is_err() {
             return Err(PushError::Full);
         }
-        let Some(slot) = self.queue.back_mut() else { return Err(PushError::Full) };
-        let (thread, thread_lead) = (self.tail.thread, self.tail.thread_lead);
+        let Planner { queue, tail, .. } = self;
+        let Some(slot) = queue.back_mut() else { return Err(PushError::Full) };
+        let start = tail.end();
         let prepared = match &c.action {
-            Action::Rapid(m) => block::line(&start, m, true, p, c.line, slot),
-            Action::Linear(m) => block::line(&start, m, false, p, c.line, slot),
-            Action::Arc(a) => block::arc(&start, a, p, c.line, slot),
+            Action::Rapid(m) => block::line(start, m, true, p, c.line, slot),
+            Action::Linear(m) => block::line(start, m, false, p, c.line, slot),
+            Action::Arc(a) => block::arc(start, a, p, c.line, slot),
             Action::Thread(t) => {
                 let mut t = *t;
                 // A continuing thread needs a thread to continue (2.17.1 note 2).
-                if thread.is_none() {
+                if tail.thread.is_none() {
                     t.sync = ThreadSync::Index;
                 }
-                block::thread(&start, &t, thread, thread_lead, p, c.line, slot)
+                block::thread(start, &t, tail.thread, tail.thread_lead, p, c.line, slot)
             }
-            Action::Tap(t) => block::tap(&start, t, p, c.line, slot),
+            Action::Tap(t) => block::tap(start, t, p, c.line, slot),
             // Not reached: only motion gets here.
             _ => {
-                self.queue.pop_back();
+                queue.pop_back();
                 return Ok(());
             }
         };
-        match prepared {
+        match &prepared {
             Ok(prep) => {
-                self.push_motion(&prep, p);
+                self.push_motion(prep, p);
                 Ok(())
             }
             Err(e) => {
                 self.queue.pop_back();
-                Err(PushError::Alarm(e))
+                Err(PushError::Alarm(*e))
             }
         }
     }
@@ -260,6 +304,8 @@ impl<const N: usize> Planner<N> {
             _ => return Ok(()),
         };
         self.queue.push_back(Item::Command { line, cmd }).map_err(|_| PushError::Full)?;
+        self.bend.clear();
+        self.run = 0;
         self.tail.blend = false;
         self.tail.thread = None;
         self.tail.thread_lead = None;
@@ -269,28 +315,73 @@ impl<const N: usize> Planner<N> {
     /// Plans the block just written into the queue's last slot, which ends at
     /// `prep.end`.
     fn push_motion(&mut self, prep: &Prepared, p: &MotionParams) {
-        let Some(Item::Motion(b)) = self.queue.back_mut() else { return };
+        let Planner { queue, tail, bend, run, run_accel_q8, .. } = self;
+        let Some(Item::Motion(b)) = queue.back_mut() else { return };
         let blends = matches!(b.kind, BlockKind::Line | BlockKind::Arc(_)) && b.feed != FeedSpec::Rapid;
-        if self.tail.blend && blends {
-            let v = lookahead::junction_speed(&self.tail.dir, &prep.dir_in, p);
-            let v = minf(minf(v, self.tail.nominal), minf(b.plan.nominal, b.plan.cap));
-            b.plan.max_entry_sq = v * v;
+        let len = prep.len;
+        let joins = tail.blend && blends;
+        // Dense: a block at the junction is shorter than two periods at its speed,
+        // so a period may span two junctions; the chain's curvature then limits it
+        // too (below). Elsewhere the junction's own limit is all.
+        let mut dense = false;
+        if joins {
+            let v = lookahead::junction_speed(&tail.dir, &prep.dir_in, minf(tail.len, len), p);
+            let pending = minf(minf(v, tail.nominal), minf(b.plan.nominal, b.plan.cap));
+            b.plan.pending = pending;
+            lookahead::set_floor(&mut b.plan, *run_accel_q8);
+            dense = len < 2.0 * pending || tail.len < 2.0 * pending;
+            if !dense {
+                lookahead::set_max_entry(b, pending);
+            }
         }
-        self.tail = Tail {
-            end: prep.end,
-            dir: prep.dir_out,
-            nominal: b.plan.nominal,
-            blend: blends && !b.exact_stop,
-            thread: if let BlockKind::Thread(t) = b.kind { Some(t.long) } else { None },
-            thread_lead: match b.kind {
-                BlockKind::Thread(t) if t.lead_delta != 0 || t.keep_lead => Some(t.lead_end),
-                _ => None,
-            },
+        // The run of one acceleration at the queue's end, counted through dense
+        // junctions (where the interpolator's test needs it).
+        *run = if dense && b.plan.accel_q8 == *run_accel_q8 { *run + 1 } else { 1 };
+        *run_accel_q8 = b.plan.accel_q8;
+        let nominal = b.plan.nominal;
+        let blend = blends && !b.exact_stop;
+        let (thread, thread_lead) = match b.kind {
+            BlockKind::Thread(t) => (Some(t.long), (t.lead_delta != 0 || t.keep_lead).then_some(t.lead_end)),
+            _ => (None, None),
         };
-        lookahead::backward_pass(self.queue.iter_mut().rev().map(|item| match item {
-            Item::Motion(b) => Some(b),
-            Item::Command { .. } => None,
-        }));
+        // The chain's curvature: this junction's limit now, and earlier ones raised
+        // as the path beyond them becomes known.
+        if dense {
+            let lim = bend::Limits {
+                settle_len: p.settle_len,
+                noise: p.input_noise,
+                tol: p.chord_tolerance,
+                a_n: p.accel_min * 0.5,
+            };
+            let curve = bend.push(tail.start(), tail.end(), &prep.end, len, &lim, |from_end, count, v| {
+                raise(queue, from_end, count, v)
+            });
+            raise(queue, 1, 1, curve);
+        } else {
+            bend.restart(len);
+        }
+        let cur = (tail.cur ^ 1) & 1;
+        tail.ends[cur] = prep.end;
+        (tail.cur, tail.dir, tail.nominal, tail.blend, tail.len) = (cur, prep.dir_out, nominal, blend, len);
+        (tail.thread, tail.thread_lead) = (thread, thread_lead);
+        let (front, back) = self.queue.as_mut_slices();
+        lookahead::backward_pass(front, back);
+    }
+}
+
+/// Raises the highest entry of `count` queued blocks, starting `from_end` entries
+/// before the queue's end, to the smaller of their junction's own limit and the
+/// chain's curvature speed `curve` (nm/period), where that is higher than before.
+fn raise<const N: usize>(queue: &mut heapless::Deque<Item, N>, from_end: usize, count: usize, curve: f32) {
+    let len = queue.len();
+    for i in len.saturating_sub(from_end)..(len + count).saturating_sub(from_end) {
+        if let Some(Item::Motion(b)) = queue.get_mut(i) {
+            let u = lookahead::max_u(&b.plan, minf(b.plan.pending, curve));
+            if u > b.plan.max_u {
+                b.plan.max_u = u;
+                b.entry_at_max = false;
+            }
+        }
     }
 }
 
@@ -299,23 +390,21 @@ mod tests {
     use super::*;
     use crate::canon::{Endpoint, Feed, FeedMode, Move, SpindleSpeed};
     use crate::config::MachineConfig;
-    use crate::fixed::{maxf, sqrtf};
     use canon::xorshift::XorShift;
 
     /// The entries of `queue` re-planned from rest at its end without stopping
-    /// early (the pass as it was before its early stops).
-    fn full_replan(queue: &[Block]) -> std::vec::Vec<(f32, u64)> {
-        let mut exit_sq = 0.0f32;
+    /// early (the pass as it would be without its early stops), from the
+    /// definition: `u = min(u_max, (e' − a/2)² + 2aL)`, 0 below the junction's floor.
+    fn full_replan(queue: &[Block]) -> std::vec::Vec<u64> {
+        let mut exit_q8 = 0u64;
         let mut out = std::vec::Vec::new();
         for b in queue.iter().rev() {
-            let reach = exit_sq + b.plan.two_a_len;
-            let entry = if reach >= b.plan.max_entry_sq {
-                sqrtf(b.plan.max_entry_sq)
-            } else {
-                maxf(sqrtf(reach) - b.plan.accel, 0.0)
-            };
-            exit_sq = entry * entry;
-            out.push((entry * entry, crate::fixed::u64_of(entry * (1u32 << crate::fixed::PATH_FRAC) as f32)));
+            let h = b.plan.half_q8();
+            let d = if exit_q8 == 0 { h } else { exit_q8.abs_diff(h) };
+            let u = (d * d + b.plan.two_a_len).min(b.plan.max_u);
+            let u = if u < b.plan.floor_u { 0 } else { u };
+            exit_q8 = if u == 0 { 0 } else { h + canon::units::sqrt_u64(u).0 };
+            out.push(u);
         }
         out.reverse();
         out
@@ -355,8 +444,11 @@ mod tests {
                     .collect();
                 let want = full_replan(&blocks);
                 for (b, w) in blocks.iter().zip(&want) {
-                    assert_eq!((b.plan.entry_sq, b.plan.entry_q8), *w, "push {k}");
-                    capped += usize::from(b.entry_at_max && b.plan.max_entry_sq > 0.0);
+                    // Equal where the acceleration does not change from one block to
+                    // the next (no root taken), within the root's rounding where it does.
+                    let tol = 2 * canon::units::sqrt_u64(b.plan.entry_u).0 + 2;
+                    assert!(b.plan.entry_u.abs_diff(*w) <= tol, "push {k}: {} vs {w}", b.plan.entry_u);
+                    capped += usize::from(b.entry_at_max && b.plan.max_u > 0);
                 }
             }
         }

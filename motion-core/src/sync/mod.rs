@@ -36,6 +36,19 @@
 //! Everything is integer in units of `1/(2R·den)` step (threads) or `1/(2·den)` step
 //! (taps): a locked count adds `2R·w` and `2·n2` to `w`, a ramp count a few products
 //! more; no division.
+//!
+//! **Only the counts where something falls due.** Most counts move nothing: at a
+//! 2 mm lead on 3.125 µm steps a step falls due every 6.4 counts. [`Gear::glide`]
+//! applies, in a tight loop of additions, the counts ahead that only add to the
+//! accumulators (no step, no change of phase, no deceleration start) and returns
+//! the raw count at which the next count must be taken ([`Due`]); the firmware sets
+//! the encoder timer's compare there and is interrupted only then. Applying a
+//! count before the spindle reaches it is safe because such a count changes no
+//! output and a thread's position depends only on the furthest count reached;
+//! an announced next leg ([`Gear::set_next`]) cannot change what those counts did
+//! (it only adds room before the end). A tap and the polygon gearbox
+//! ([`crate::motion::polygon`]) follow the spindle both ways, so they apply
+//! nothing ahead and name a count either side.
 
 use crate::alarm::AlarmKind;
 use crate::axis::AXIS_COUNT;
@@ -51,6 +64,86 @@ pub struct Leg {
     pub end: [i64; AXIS_COUNT],
     /// Index of the long (lead) axis.
     pub long: usize,
+}
+
+/// The raw encoder counts at which a gearbox must next be given the count: when the
+/// counter, counting up, reaches [`Due::up`], or, counting down, reaches
+/// [`Due::down`]. Counts strictly between them move nothing. (Kept as two plain
+/// counts, `i64::MAX` / `i64::MIN` for "nothing that way": the count interrupt
+/// merges and compares them.)
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Due {
+    up: i64,
+    down: i64,
+}
+
+impl Default for Due {
+    fn default() -> Self {
+        Due::NONE
+    }
+}
+
+impl Due {
+    /// Nothing falls due either way.
+    pub const NONE: Due = Due { up: i64::MAX, down: i64::MIN };
+
+    /// The count to wait for counting up (`None`: nothing falls due that way), and
+    /// counting down.
+    pub const fn new(up: Option<i64>, down: Option<i64>) -> Due {
+        Due {
+            up: match up {
+                Some(u) => u,
+                None => i64::MAX,
+            },
+            down: match down {
+                Some(d) => d,
+                None => i64::MIN,
+            },
+        }
+    }
+
+    /// The count to wait for while counting up.
+    pub fn up(&self) -> Option<i64> {
+        (self.up != i64::MAX).then_some(self.up)
+    }
+
+    /// The count to wait for while counting down.
+    pub fn down(&self) -> Option<i64> {
+        (self.down != i64::MIN).then_some(self.down)
+    }
+
+    /// From counts in a gearbox's forward sense: forward count `f` is raw count
+    /// `sigma·(f + origin)`; `ahead` and `back` are the forward counts due going
+    /// forward and back.
+    #[inline]
+    pub fn forward(sigma: i64, origin: i64, ahead: Option<i64>, back: Option<i64>) -> Due {
+        let raw = |f: i64| signed(sigma, f + origin);
+        if sigma < 0 { Due::new(back.map(raw), ahead.map(raw)) } else { Due::new(ahead.map(raw), back.map(raw)) }
+    }
+
+    /// The nearer of both dues each way (two gearboxes on one encoder).
+    #[inline]
+    pub fn merge(self, other: Due) -> Due {
+        Due { up: self.up.min(other.up), down: self.down.max(other.down) }
+    }
+
+    /// Whether raw count `c` has reached either due count.
+    #[inline]
+    pub fn reached(&self, c: i64) -> bool {
+        c >= self.up || c <= self.down
+    }
+}
+
+/// Counts one [`Gear::glide`] applies at most: it bounds the count interrupt's time
+/// (a few instructions a count) where steps are far apart, as at the start of a long
+/// ramp; the interrupt at the count where it stopped glides on.
+const GLIDE_MAX: u32 = 1_024;
+
+/// `v` in the direction `sigma` (±1): a negation, not a 64-bit multiplication.
+#[inline]
+pub(crate) fn signed(sigma: i64, v: i64) -> i64 {
+    if sigma < 0 { -v } else { v }
 }
 
 /// Long-axis steps per encoder count, `n / d`, reduced.
@@ -277,6 +370,9 @@ pub struct Gear {
     /// `2R·w + dw·R²` a count (the second number); `None` until the exact test first
     /// runs (or when the numbers do not fit: then the exact test runs every count).
     to_start: Option<(i64, i64)>,
+    /// The counts from one step to the next the last glide found (the next is the
+    /// same, one more or one fewer, nearly always): where the next glide looks first.
+    spacing: u32,
     /// Speed at the end of the running leg, steps per count (checks only).
     end_speed: f64,
     /// Long-axis steps from the leg's start, and the leg's length and direction.
@@ -336,6 +432,94 @@ impl Follower {
     }
 }
 
+/// A stretch of counts for [`Gear::glide`]: count `j` adds `a + j·d` units; they
+/// glide while their sum stays below `room`, at most `most`, and with `end` =
+/// `(x, step)` while `x − sum − j·step` stays positive.
+#[derive(Clone, Copy)]
+struct Run {
+    room: i64,
+    a: i64,
+    d: i64,
+    most: u32,
+    end: Option<(i64, i64)>,
+}
+
+impl Run {
+    /// Whether the counts' sums only grow (every increment at least zero; near the
+    /// end the distance falls every count) and the products of [`Run::glides`] stay
+    /// inside i64 (plain multiplications: a checked 64-bit product is a library
+    /// call on the M4). Then whether `n` counts glide is monotone in `n`; else the
+    /// counts go one by one (huge G34 denominators, an increment below zero).
+    #[inline]
+    fn monotone(&self) -> bool {
+        const A: i64 = 1 << 50;
+        const D: i64 = 1 << 40;
+        let (x, step) = self.end.unwrap_or((0, 0));
+        if !(0..A).contains(&self.a) || !(-D..D).contains(&self.d) || !(-A..A).contains(&step) || x >= 1 << 61 {
+            return false;
+        }
+        // The increments and the distance's fall are straight lines in the count:
+        // at least zero (positive) at both ends of the stretch, so all along it.
+        let last = self.a + self.d * i64::from(self.most);
+        last >= 0 && (self.end.is_none() || (self.a + step > 0 && last + step > 0))
+    }
+
+    /// What the first `n` counts add: `n·a + d·n(n − 1)/2`.
+    #[inline]
+    fn sum(&self, n: u32) -> i64 {
+        let n = i64::from(n);
+        n * self.a + self.d * (n * (n - 1) / 2)
+    }
+
+    /// How many counts glide (a [`Run::monotone`] run): `hint`, one more or one
+    /// fewer when one of them is it (two or three sums), else a binary search (at
+    /// most 11 sums for GLIDE_MAX).
+    fn search(&self, hint: u32) -> u32 {
+        let h = hint;
+        match (self.glides(h), self.glides(h + 1)) {
+            (true, false) => h,
+            (true, true) if !self.glides(h + 2) => h + 1,
+            (false, _) if h > 0 && self.glides(h - 1) => h - 1,
+            _ => {
+                let (mut lo, mut hi) = (0, self.most + 1);
+                while hi - lo > 1 {
+                    let mid = lo + (hi - lo) / 2;
+                    if self.glides(mid) { lo = mid } else { hi = mid }
+                }
+                lo
+            }
+        }
+    }
+
+    /// How many counts glide and what they add, count by count (additions and
+    /// checked subtractions: any run). An increment below zero could step back:
+    /// it ends the glide.
+    fn one_by_one(&self) -> (u32, i64) {
+        let (mut n, mut sum, mut inc) = (0u32, 0i64, self.a);
+        let (mut x, step) = self.end.unwrap_or((i64::MAX, 0));
+        while n < self.most && inc >= 0 && sum + inc < self.room {
+            match x.checked_sub(inc).and_then(|v| v.checked_sub(step)) {
+                Some(after) if after > 0 => x = if self.end.is_some() { after } else { x },
+                _ => break,
+            }
+            sum += inc;
+            inc += self.d;
+            n += 1;
+        }
+        (n, sum)
+    }
+
+    /// Whether the first `n` counts all glide (for a [`Run::monotone`] run).
+    #[inline]
+    fn glides(&self, n: u32) -> bool {
+        if n > self.most {
+            return false;
+        }
+        let s = self.sum(n);
+        s < self.room && self.end.is_none_or(|(x, step)| x - s - step * i64::from(n) > 0)
+    }
+}
+
 impl Gear {
     fn new(mode: Mode, leg: Leg, gearing: Gearing, ramp: i64, sigma: i64, origin: i64) -> Result<Self, AlarmKind> {
         if gearing.n1 <= 0 || gearing.den <= 0 {
@@ -361,6 +545,7 @@ impl Gear {
             w: gearing.n1,
             dw: 2 * gearing.n1,
             to_start: None,
+            spacing: 0,
             end_speed,
             p: 0,
             delta: 0,
@@ -583,6 +768,15 @@ impl Gear {
         if self.way_out { self.p } else { self.delta - self.p }
     }
 
+    /// Whole-step position of the long axis, and of the taper's follower (its
+    /// index and position) if there is one: the axes the gearbox moves.
+    #[inline]
+    pub fn driven(&self) -> (i64, Option<(usize, i64)>) {
+        let leg = &self.leg;
+        let long = leg.start[leg.long] + signed(self.long_sign, self.p);
+        (long, self.follower.as_ref().map(|(i, sign, f)| (*i, leg.start[*i] + signed(*sign, f.pos))))
+    }
+
     /// Whole-step position of every axis: the leg's start, with the long axis and
     /// the taper's follower where the spindle has taken them.
     pub fn positions(&self, out: &mut [i64; AXIS_COUNT]) {
@@ -596,7 +790,7 @@ impl Gear {
 
     /// Processes raw encoder count `c`, one count at a time; true if an axis moved.
     pub fn on_count(&mut self, c: i64) -> bool {
-        let fwd = self.sigma * c - self.origin;
+        let fwd = signed(self.sigma, c) - self.origin;
         let mut moved = false;
         match self.mode {
             Mode::Tap => {
@@ -607,17 +801,232 @@ impl Gear {
                 }
             }
             Mode::Thread => {
-                while self.m < fwd {
-                    self.m += 1;
-                    if self.m > self.m_max {
-                        self.m_max = self.m;
-                        moved |= self.thread_count();
-                    }
+                // Counts up to `m_max` were taken (or applied ahead by `glide`):
+                // a thread follows the furthest count reached, never back.
+                while self.m_max < fwd {
+                    self.m_max += 1;
+                    moved |= self.thread_count();
                 }
-                self.m = fwd.min(self.m);
+                self.m = fwd;
             }
         }
         moved
+    }
+
+    /// Applies the counts ahead that move nothing (a thread's counts that only add
+    /// to the accumulators: no step, no change of phase, no deceleration start) and
+    /// returns the raw counts at which the next count must be taken. A tap follows
+    /// the spindle both ways: nothing is applied ahead, and the counts of the next
+    /// step either way are named. No division: the counts to the next step are
+    /// the last glide's, one more or one fewer (checked by a few products), else
+    /// found by a binary search over the sums of the increments, else (numbers
+    /// that could leave 64 bits) counted one by one; at most [`GLIDE_MAX`].
+    #[inline]
+    pub fn glide(&mut self) -> Due {
+        if let Some(due) = self.glide_constant() {
+            return due;
+        }
+        match self.glide_ramp() {
+            Some(due) => due,
+            None => self.glide_any(),
+        }
+    }
+
+    /// [`Gear::glide`] in a ramp (up or down), kept small: the counts to the step
+    /// as many as the last time, one more or one fewer, checked on the sums
+    /// `S(n) = n·a + d·n(n − 1)/2` of the ramp's increments. `None` otherwise.
+    #[inline(never)]
+    fn glide_ramp(&mut self) -> Option<Due> {
+        if self.mode != Mode::Thread {
+            return None;
+        }
+        // Count j from now adds a + j·d; `most` counts before the next special one.
+        let (a, d, most) = match self.phase {
+            Phase::RampUp { k } => {
+                let stop = if k < self.ramp / 2 { self.ramp / 2 } else { self.ramp };
+                (self.w, self.dw, stop - 1 - k)
+            }
+            Phase::RampDown { u } => (self.w * (2 * u - 1), -2 * self.w, u - 1),
+            _ => return None,
+        };
+        let h = i64::from(self.spacing) - 1;
+        if h < 1
+            || h + 1 >= most.min(i64::from(GLIDE_MAX))
+            || !(0..1 << 50).contains(&a)
+            || !(-(1 << 40)..1 << 40).contains(&d)
+        {
+            return None;
+        }
+        let room = self.unit - self.acc;
+        // Exactly n glide: S(n) < room ≤ S(n + 1), with every increment to the
+        // (n+1)-th at least zero. S(h) once, its neighbours by one increment.
+        let inc = a + d * h;
+        let s = h * a + d * (h * (h - 1) / 2);
+        let (n, glided) = if s < room && s + inc >= room && inc >= 0 {
+            (h, s)
+        } else if s + inc < room && s + 2 * inc + d >= room && inc + d >= 0 {
+            (h + 1, s + inc)
+        } else if s >= room && s - inc + d < room && inc >= d {
+            (h - 1, s - inc + d)
+        } else {
+            return None;
+        };
+        self.acc += glided;
+        self.phase = match self.phase {
+            Phase::RampUp { k } => {
+                self.w += n * self.dw;
+                Phase::RampUp { k: k + n }
+            }
+            Phase::RampDown { u } => Phase::RampDown { u: u - n },
+            p => p,
+        };
+        self.remember(n as u32);
+        self.m_max += n;
+        Some(self.due())
+    }
+
+    /// [`Gear::glide`] for nearly every interrupt, kept small: locked at a constant
+    /// lead, the step after as many counts as the last one, one more or one fewer.
+    /// `None` otherwise.
+    #[inline(always)]
+    fn glide_constant(&mut self) -> Option<Due> {
+        if self.mode != Mode::Thread || self.phase != Phase::Locked || self.dw != 0 {
+            return None;
+        }
+        // Near the end the distance to the deceleration start, falling by the
+        // increment each count, must stay positive.
+        let end = match self.decel_left() {
+            Some(left) if left <= self.ramp_zone => match self.to_start {
+                Some((x, 0)) => Some(x),
+                _ => return None,
+            },
+            _ => None,
+        };
+        let (inc, room, k) = (self.two_r * self.w, self.unit - self.acc, self.spacing);
+        if !(2..GLIDE_MAX).contains(&k) || !(1..1 << 52).contains(&inc) {
+            return None;
+        }
+        // k − 1 counts glide and the k-th steps: (k − 1)·inc < room ≤ k·inc (room > 0).
+        let steps_at = |k: u32| room <= i64::from(k) * inc;
+        let k = match (steps_at(k - 1), steps_at(k)) {
+            (false, true) => k,
+            (false, false) if steps_at(k + 1) => k + 1,
+            (true, _) if !steps_at(k - 2) => k - 1,
+            _ => return None,
+        };
+        let n = i64::from(k - 1);
+        let glided = n * inc;
+        if let Some(x) = end {
+            if x - glided <= 0 {
+                return None;
+            }
+            self.to_start = Some((x - glided, 0));
+        }
+        self.remember(k - 1);
+        self.acc += glided;
+        self.m_max += n;
+        Some(self.due())
+    }
+
+    /// [`Gear::glide`] in every case.
+    #[inline(never)]
+    fn glide_any(&mut self) -> Due {
+        if self.mode == Mode::Tap {
+            let (up, down) = self.tap_due();
+            return Due::forward(self.sigma, self.origin, Some(self.m + up), Some(self.m - down));
+        }
+        let room = self.unit - self.acc;
+        let n = match self.phase {
+            Phase::RampUp { k } => {
+                // Up to the synchronised count (R/2) and the lock (R), which change
+                // the increments; count k + 1 adds w, each next one dw more.
+                let stop = if k < self.ramp / 2 { self.ramp / 2 } else { self.ramp };
+                let most = (stop - 1 - k).clamp(0, i64::from(GLIDE_MAX)) as u32;
+                let (n, sum) = self.glide_by(Run { room, a: self.w, d: self.dw, most, end: None });
+                let n = i64::from(n);
+                (self.acc, self.w, self.phase) = (self.acc + sum, self.w + n * self.dw, Phase::RampUp { k: k + n });
+                n
+            }
+            Phase::Locked => {
+                // Near the end each count also takes `inc + dw·R²` off the distance to
+                // the deceleration start (as `near_end`), which must stay positive.
+                let end = match self.decel_left() {
+                    Some(left) if left <= self.ramp_zone => {
+                        if self.to_start.is_none() {
+                            self.to_start = self.exact_to_start(left);
+                        }
+                        let Some(end) = self.to_start else { return self.due() };
+                        Some(end)
+                    }
+                    _ => None,
+                };
+                let run = Run { room, a: self.two_r * self.w, d: self.two_r * self.dw, most: GLIDE_MAX, end };
+                let (n, sum) = self.glide_by(run);
+                let n = i64::from(n);
+                if let Some((x, step)) = end {
+                    self.to_start = Some((x - sum - n * step, step));
+                }
+                (self.acc, self.w) = (self.acc + sum, self.w + n * self.dw);
+                n
+            }
+            Phase::RampDown { u } => {
+                // Count u adds w·(2u − 1), each next one 2w less; the last (u = 1) ends.
+                let most = (u - 1).clamp(0, i64::from(GLIDE_MAX)) as u32;
+                let run = Run { room, a: self.w * (2 * u - 1), d: -2 * self.w, most, end: None };
+                let (n, sum) = self.glide_by(run);
+                let n = i64::from(n);
+                (self.acc, self.phase) = (self.acc + sum, Phase::RampDown { u: u - n });
+                n
+            }
+            Phase::Waiting | Phase::Done => 0,
+        };
+        self.m_max += n;
+        self.due()
+    }
+
+    /// The raw count of a thread's next count to take (none once done).
+    fn due(&self) -> Due {
+        let ahead = (self.phase != Phase::Done).then_some(self.m_max + 1);
+        Due::forward(self.sigma, self.origin, ahead, None)
+    }
+
+    /// How many of the counts ahead glide, and what they add: count `j` (from 0)
+    /// adds `a + j·d` to the accumulator, and glides while the sum stays below
+    /// `room` (no step) and, with `end` = `(x, step)`, while `x` less the sum and
+    /// `step` a count stays positive (no deceleration start); at most `most`.
+    /// From the sums `S(n) = n·a + d·n(n − 1)/2` (a few products): the last
+    /// glide's count, one more or one fewer, else a binary search; counts one by
+    /// one only where the sums could leave i64 or shrink.
+    fn glide_by(&mut self, r: Run) -> (u32, i64) {
+        let n = if r.monotone() { r.search(self.spacing.saturating_sub(1)) } else { r.one_by_one().0 };
+        self.remember(n);
+        (n, r.sum(n))
+    }
+
+    /// Keeps the spacing of steps a glide of `n` counts found (a glide that finds
+    /// the next count due at once, as a second glide before any count does, tells
+    /// nothing about it).
+    #[inline]
+    fn remember(&mut self, n: u32) {
+        if n > 0 {
+            self.spacing = n + 1;
+        }
+    }
+
+    /// A tap's counts to its next step forward and back (its increment is constant).
+    fn tap_due(&self) -> (i64, i64) {
+        let inc = 2 * self.gearing.n1;
+        let (mut up, mut a) = (1, self.acc + inc);
+        while a < self.unit {
+            a += inc;
+            up += 1;
+        }
+        let (mut down, mut b) = (1, self.acc - inc);
+        while b >= 0 {
+            b -= inc;
+            down += 1;
+        }
+        (up, down)
     }
 
     /// One forward count of a thread pass.
@@ -701,16 +1110,22 @@ impl Gear {
     /// accumulator units), on the count where going on at `inc` would leave less
     /// than the next count's speed needs to stop: `rem − inc ≤ (w + dw)·R²`.
     fn ramp_down_jump(&mut self, inc: i64) -> Option<i64> {
-        let left = match self.next {
-            None => self.delta - self.p,
-            Some(n) if self.next_last && n.same_motion => self.delta - self.p + n.len,
-            Some(_) => return None,
-        };
+        let left = self.decel_left()?;
         // Far from the end the products below could overflow; the ramp is short.
         if left > self.ramp_zone {
             return None;
         }
         self.near_end(left, inc)
+    }
+
+    /// Long-axis steps to where the pass must be at rest, when it decelerates in
+    /// this leg (no next leg, or a last one continuing the same motion).
+    fn decel_left(&self) -> Option<i64> {
+        match self.next {
+            None => Some(self.delta - self.p),
+            Some(n) if self.next_last && n.same_motion => Some(self.delta - self.p + n.len),
+            Some(_) => None,
+        }
     }
 
     /// [`Gear::ramp_down_jump`] in the ramp zone, `left` steps from the end. The
@@ -837,6 +1252,202 @@ mod tests {
             out.push((c, pos[2], pos[0]));
         }
         out
+    }
+
+    /// Drives `a` with every raw count of `path` and `b` only at the counts its
+    /// [`Gear::glide`] names (as the encoder compare does; with `late`, only at
+    /// every `late`-th count of the path, as an interrupt held up would); `hook`
+    /// runs on both after each count (an announcement from the period). Asserts
+    /// that both put the axes at the same place after every count `b` has seen, and
+    /// that what `b` names next is never a count already reached. Returns how many
+    /// counts `b` took.
+    fn same_as_every_count(
+        a: &mut Gear,
+        b: &mut Gear,
+        path: impl IntoIterator<Item = i64>,
+        late: usize,
+        mut hook: impl FnMut(i64, &mut Gear),
+    ) -> usize {
+        let (mut pa, mut pb) = ([0; AXIS_COUNT], [0; AXIS_COUNT]);
+        let mut due = b.glide();
+        let mut taken = 0;
+        for (k, c) in path.into_iter().enumerate() {
+            a.on_count(c);
+            if due.reached(c) && k % late.max(1) == 0 {
+                b.on_count(c);
+                due = b.glide();
+                taken += 1;
+                assert!(!due.reached(c), "count {c}: due again at once ({due:?})");
+            }
+            hook(c, a);
+            hook(c, b);
+            due = b.glide();
+            if k % late.max(1) == 0 {
+                a.positions(&mut pa);
+                b.positions(&mut pb);
+                assert_eq!(pa, pb, "count {c}");
+            }
+        }
+        assert_eq!(a.phase(), b.phase());
+        taken
+    }
+
+    fn up(from: i64, to: i64) -> impl Iterator<Item = i64> {
+        from..=to
+    }
+
+    #[test]
+    fn gliding_steps_at_exactly_the_counts_every_count_would() {
+        let ratio = Ratio { n: 5, d: 32 };
+        let g34 = Gearing::new(2_000_000, 100_000, 1, 3_125, CPR).unwrap();
+        let shrinking = Gearing::new(2_000_000, -20_000, 1, 3_125, CPR).unwrap();
+        let coarse = Gearing::new(6_000_000, 0, 1, 3_125, CPR).unwrap();
+        // 0.05 mm: 256 counts a step; a G34 on an odd scale whose numbers are too
+        // big for the glide's products (the counts go one by one).
+        let fine = Gearing::new(50_000, 0, 1, 3_125, CPR).unwrap();
+        let odd = Gearing::new(1_234_567, 7_654, 7, 3_331, CPR).unwrap();
+        assert!(odd.den > 1 << 30, "{odd:?}");
+        for (name, gearing, ramp, x) in [
+            ("fine lead", fine, 20_000, 0),
+            ("G34 with a huge denominator", odd, 30_000, 0),
+            ("constant lead", Gearing::from(ratio), 2_000, 0),
+            ("taper", Gearing::from(ratio), 400, 1_000),
+            ("G34 growing", g34, 2_000, 3_000),
+            ("G34 shrinking", shrinking, 8_000, 0),
+            ("6 mm lead: more than a step some counts", coarse, 30_000, -500),
+        ] {
+            for late in [1, 3] {
+                let len = if name == "fine lead" { 400 } else { 20_000 };
+                let mut a = Gear::thread(leg(len, x), gearing, ramp, 1, 5_000).unwrap();
+                let mut b = a;
+                let taken = same_as_every_count(&mut a, &mut b, up(4_000, 500_000), late, |_, _| {});
+                assert_eq!(a.phase(), Phase::Done, "{name}");
+                let mut end = [0; AXIS_COUNT];
+                b.positions(&mut end);
+                assert_eq!((end[2], end[0]), (-len, x), "{name}");
+                // A step (or a change of phase) at each count taken, few others.
+                // (the fine lead: and a checkpoint every GLIDE_MAX counts of its ramps)
+                assert!(taken <= len as usize + x.unsigned_abs() as usize + 40, "{name}: {taken} counts taken");
+                assert_eq!(b.glide(), Due::NONE, "{name}: nothing more falls due");
+            }
+        }
+    }
+
+    #[test]
+    fn gliding_a_reversed_encoder_names_the_count_below() {
+        // Forward rotation counts down (sigma −1): the due count is below.
+        let ratio = Ratio { n: 5, d: 32 };
+        let mut a = Gear::thread(leg(6_400, 0), ratio, 1_000, -1, -2_000).unwrap();
+        let mut b = a;
+        let due = b.glide();
+        assert_eq!(due, Due::new(None, Some(-2_001)));
+        same_as_every_count(&mut a, &mut b, (-120_000..=-1_000).rev(), 1, |_, _| {});
+        assert_eq!(b.phase(), Phase::Done);
+    }
+
+    #[test]
+    fn a_thread_ignores_counts_back_and_goes_on_where_it_was() {
+        let ratio = Ratio { n: 5, d: 32 };
+        let mut a = Gear::thread(leg(6_400, 0), ratio, 1_000, 1, 0).unwrap();
+        let mut b = a;
+        // Forward, back 300 counts (a spindle that jerked back), forward again.
+        let path = (1..=20_000).chain((19_700..20_000).rev()).chain(19_700..=60_000);
+        same_as_every_count(&mut a, &mut b, path, 1, |_, _| {});
+        assert_eq!(b.phase(), Phase::Done);
+    }
+
+    #[test]
+    fn a_leg_announced_while_gliding_is_taken_as_count_by_count() {
+        // The next leg is announced at a count the glide may already have passed
+        // (the period's announcement comes at any count): a continuation, a short
+        // pull-out sharing the deceleration, and a G34 continued at the lead reached.
+        let ratio = Ratio { n: 5, d: 32 };
+        let g34 = Gearing::new(2_000_000, 100_000, 1, 3_125, CPR).unwrap();
+        let first = leg(8_000, 0);
+        let cases = [
+            (Gearing::from(ratio), Leg { start: first.end, end: [800, 0, -16_000, 0], long: 2 }, true, false),
+            (Gearing::from(ratio), Leg { start: first.end, end: [80, 0, -8_100, 0], long: 2 }, true, false),
+            (g34, Leg { start: first.end, end: [0, 0, -20_000, 0], long: 2 }, true, true),
+            (Gearing::from(ratio), Leg { start: first.end, end: [0, -900, -14_000, 0], long: 2 }, false, false),
+        ];
+        for (k, (gearing, next, last, keep)) in cases.into_iter().enumerate() {
+            for at in [3_000, 20_001, 37_777, 47_000] {
+                let mut a = Gear::thread(first, gearing, 400, 1, 0).unwrap();
+                let mut b = a;
+                let announce = |c: i64, g: &mut Gear| {
+                    if c == at {
+                        let _ = g.set_next(next, gearing, last, keep);
+                    }
+                };
+                same_as_every_count(&mut a, &mut b, up(1, 300_000), 1, announce);
+                assert_eq!(a.legs_done(), b.legs_done(), "case {k} at {at}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_tap_glides_both_ways_without_applying_anything_ahead() {
+        let ratio = Ratio::new(1_500_000, 1, 3_125, CPR).unwrap();
+        let way_in = leg(3_200, 400);
+        let mut a = Gear::tap(way_in, ratio, 1, 500).unwrap();
+        let mut b = a;
+        // In, a jitter around the bottom, out (the spindle reverses), with back
+        // and forth on the way.
+        let path = (501..=28_000)
+            .chain((27_000..28_000).rev())
+            .chain(27_000..=27_900)
+            .chain((27_890..27_900).rev())
+            .chain(27_890..=27_895)
+            .chain((500..27_895).rev());
+        same_as_every_count(&mut a, &mut b, path, 1, |_, _| {});
+        let mut end = [0; AXIS_COUNT];
+        b.positions(&mut end);
+        assert_eq!((end[2], end[0]), (0, 0));
+        // The due counts are those of the next step either way.
+        let due = b.glide();
+        let (u, d) = (due.up().unwrap(), due.down().unwrap());
+        let mut probe = b;
+        assert!((501..u).all(|c| !probe.on_count(c)) && probe.on_count(u));
+        let mut probe = b;
+        assert!((d + 1..500).rev().all(|c| !probe.on_count(c)) && probe.on_count(d));
+    }
+
+    #[test]
+    fn the_glide_search_finds_what_counting_one_by_one_finds() {
+        // Runs of every shape the gearbox makes: constant, growing (ramp-up, G34),
+        // shrinking (the deceleration), near the end (a distance that must stay
+        // positive), each from every hint.
+        let mut rng = canon::xorshift::XorShift::new(22);
+        let mut next = || rng.next_u64();
+        let mut searched = [0; 2];
+        for k in 0..3_000 {
+            let most = 1 + (next() % u64::from(GLIDE_MAX)) as u32;
+            let a = (next() % 200_000) as i64;
+            let d = (next() % 2_000) as i64 - if k % 2 == 0 { 0 } else { 1_000 };
+            let room = 1 + (next() % 50_000_000) as i64;
+            let end = (k % 3 == 0).then(|| ((next() % 60_000_000) as i64, (next() % 3_000) as i64));
+            let r = Run { room, a, d, most, end };
+            let (n, sum) = r.one_by_one();
+            if r.monotone() {
+                searched[usize::from(end.is_some())] += 1;
+                for hint in [0, n.saturating_sub(1), n, n + 1, most / 2, most] {
+                    assert_eq!(r.search(hint), n, "{k}: hint {hint}");
+                }
+                assert_eq!(r.sum(n), sum);
+            }
+        }
+        assert!(searched[0] > 1_000 && searched[1] > 500, "{searched:?}");
+    }
+
+    #[test]
+    fn dues_merge_to_the_nearer_count_each_way() {
+        let a = Due::new(Some(10), None);
+        let b = Due::new(Some(7), Some(-3));
+        assert_eq!(a.merge(b), b);
+        assert_eq!((a.up(), a.down()), (Some(10), None));
+        assert_eq!(Due::NONE.merge(a), a);
+        assert!(b.reached(7) && b.reached(-3) && !b.reached(0));
+        assert_eq!(Due::forward(-1, 100, Some(5), Some(-2)), Due::new(Some(-98), Some(-105)));
     }
 
     #[test]
