@@ -45,10 +45,6 @@ fn machine_path(r: &Run) -> Vec<[f64; 3]> {
     r.actions.iter().filter_map(machine).collect()
 }
 
-fn close(a: [f64; 3], b: [f64; 3]) -> bool {
-    a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1.5e-6)
-}
-
 #[test]
 fn the_mill_machine_file_and_power_on_modes() {
     let cfg = mill();
@@ -278,7 +274,7 @@ fn g10_sets_work_offsets_and_the_offset_pages() {
 fn g54_1_selects_an_additional_work_frame() {
     let r = go("G54.1 P1\nG00 X10. Y10. Z10.\nM30\n");
     assert_eq!(machine_path(&r), vec![[-390.0, -90.0, -250.0]]);
-    assert_eq!(r.interp.state().modal.work_frame, 6);
+    assert_eq!((r.interp.state().modal.work_frame, r.interp.state().modal.extra_frame), (0, 1));
     assert_eq!(alarms("G54.1 P49\nM30\n"), vec![(1, 4011)]);
     assert_eq!(alarms("G54.1 G00 X1\nM30\n"), vec![(1, 4006)]);
 }
@@ -326,4 +322,18 @@ fn helix_on_the_simulated_machine() {
     let step = cfg.axes.iter().filter(|a| a.present).map(|a| a.drive.per_nm as f64 / a.drive.steps as f64);
     let bound = step.fold(0.0, f64::max) + cfg.motion.chord_tolerance as f64;
     assert!(r.max_dev_nm <= bound, "deviation {} nm on line {}", r.max_dev_nm, r.max_dev_line);
+}
+
+/// A reset cancels tool length and cutter compensation (G49, G40) and the
+/// transformations; the tool in the spindle and the one selected stay.
+#[test]
+fn reset_cancels_the_offsets_and_keeps_the_tools() {
+    let mut r = go("T3 M06\nT5\nG00 X0 Y0 Z50.\nG43 H1\nG68 X0 Y0 R10.\nM30\n");
+    assert_ne!(r.interp.state().tool.offset, interp_core::Pos::ZERO);
+    r.interp.reset();
+    let st = r.interp.state();
+    assert_eq!(st.tool.offset, interp_core::Pos::ZERO);
+    assert_eq!((st.tool.tool, st.mill.selected, st.mill.length_sign), (3, 5, 0));
+    assert_eq!(st.mill.frame.active, 0);
+    assert_eq!(st.modal.plane, Plane::Xy);
 }

@@ -89,7 +89,7 @@ fn plunge_and_retract_between_compensated_moves_are_made_at_the_corner() {
     let m08 = names.iter().position(|n| n == "M08").unwrap();
     assert!(names[..m08].iter().filter(|n| n.starts_with("linear")).count() == 1, "M08 after the plunge: {names:?}");
     let retract = at(9);
-    let last = r.actions.iter().filter(|c| c.line == 8).filter_map(xyz).last().unwrap();
+    let last = r.actions.iter().filter(|c| c.line == 8).filter_map(xyz).next_back().unwrap();
     assert_eq!([retract[0], retract[1]], [last[0], last[1]]);
     assert_eq!(retract[2], 10.0);
     let cancel = at(10);
@@ -139,7 +139,7 @@ fn interference_is_an_alarm_and_the_faulty_move_does_not_run() {
 #[test]
 fn a_new_d_changes_the_radius_from_its_block() {
     let r = go("G00 X-20. Y0 Z-5.\nG41 D1 G01 X0 Y0 F300\nX20.\nD2 X40.\nX60.\nG40 X70. Y-10.\nM30\n");
-    let y = |line: u32| r.actions.iter().filter(|c| c.line == line).filter_map(xyz).last().unwrap()[1];
+    let y = |line: u32| r.actions.iter().filter(|c| c.line == line).filter_map(xyz).next_back().unwrap()[1];
     assert!((y(3) - 5.0).abs() < 1e-6);
     assert!((y(5) - 3.98).abs() < 1e-6, "{}", y(5));
 }
@@ -170,7 +170,7 @@ fn rotation_before_compensation() {
     };
     let edges = [(6, (0.0, 30.0), (40.0, 30.0)), (7, (40.0, 30.0), (40.0, 0.0))];
     for (line, a, b) in edges {
-        let p = r.actions.iter().filter(|c| c.line == line).filter_map(xyz).last().unwrap();
+        let p = r.actions.iter().filter(|c| c.line == line).filter_map(xyz).next_back().unwrap();
         let d = left_of(rot(a), rot(b), (p[0], p[1]));
         assert!((d - 5.0).abs() < 1e-6, "line {line}: {d}");
     }

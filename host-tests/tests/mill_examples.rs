@@ -81,9 +81,9 @@ fn bolt_circle_points_and_levels() {
         assert!(near((h[0], h[1]), (40.0 * a.cos(), 40.0 * a.sin())), "hole {k}: {h:?} (local frame)");
         assert_eq!(h[2], -10.0);
     }
-    let after_last = r.actions.iter().filter(|c| c.line == 16).filter_map(xyz).last().unwrap();
+    let after_last = r.actions.iter().filter(|c| c.line == 16).filter_map(xyz).next_back().unwrap();
     assert_eq!(after_last[2], 50.0, "G98: back to the initial level");
-    let before_last = r.actions.iter().filter(|c| c.line == 15).filter_map(xyz).last().unwrap();
+    let before_last = r.actions.iter().filter(|c| c.line == 15).filter_map(xyz).next_back().unwrap();
     assert_eq!(before_last[2], 2.0, "G99: stays on R");
     let m = r.actions.iter().filter(|c| matches!(c.action, Action::Linear(_))).filter_map(mxyz).next().unwrap();
     assert!(near((m[0], m[1]), (-300.0 + 140.0, -200.0 + 60.0)), "the local origin X100 Y60: {m:?}");
@@ -128,7 +128,7 @@ fn pockets_scaled_and_rotated() {
 #[test]
 fn drilling_levels_dwells_and_taps() {
     let r = run("drilling_g98_g99.nc");
-    let last_z = |line: u32| r.actions.iter().filter(|c| c.line == line).filter_map(xyz).last().unwrap()[2];
+    let last_z = |line: u32| r.actions.iter().filter(|c| c.line == line).filter_map(xyz).next_back().unwrap()[2];
     assert_eq!([last_z(9), last_z(10), last_z(11)], [2.0, 2.0, 30.0]);
     assert_eq!([last_z(13), last_z(14)], [2.0, 30.0]);
     let k = kind_names(&r);

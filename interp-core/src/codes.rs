@@ -335,6 +335,7 @@ impl GCode {
     }
 
     /// The modal group of the code.
+    #[inline(always)]
     pub fn group(self) -> Group {
         use GCode::*;
         match self {

@@ -156,20 +156,11 @@ enum Next {
 
 /// The lathe interpreter.
 #[derive(Debug)]
+#[repr(C)]
 pub struct Interpreter {
-    cfg: MachineConfig,
-    state: State,
-    cursor: Cursor,
-    /// Whether `cursor` has been set to the main program's start.
-    positioned: bool,
-    /// The program a run starts with.
-    main: ProgramId,
-    /// Actions waiting for the sink; also where a block stages its actions.
-    outbox: Outbox,
-    /// The block being read, reused from block to block.
-    block: Block,
-    /// The block checked, reused from block to block.
-    cmd: Command,
+    // In declaration order (`repr(C)`): what every step reads first, the large
+    // rarely used parts last, so the hot fields are reached by the Cortex-M4's
+    // short load offsets whatever the large ones grow to.
     phase: Phase,
     /// The language blocks are read in now (the machine's at power-on and reset;
     /// `G290`/`G291` switch it).
@@ -177,19 +168,32 @@ pub struct Interpreter {
     /// A block other than `%`/`O` has been executed in the current program level
     /// (a later `%` or `O` ends the record).
     started: bool,
-    vars: Variables,
-    calls: heapless::Vec<Frame, MAX_CALL_DEPTH>,
-    loops: Loops,
+    /// Whether `cursor` has been set to the main program's start.
+    positioned: bool,
     budget: u16,
-    /// The canned cycle being delivered (see [`crate::cycles`]).
-    cycle: Option<Expansion>,
-    /// A cycle block whose dry run is still going on.
-    validating: Option<Validating>,
+    /// The program a run starts with.
+    main: ProgramId,
+    cursor: Cursor,
     /// Where the block the last step read (or failed to read) begins.
     last_block: Cursor,
     /// A held move that nose compensation found faulty while the failed block ran
     /// (its line), for [`Interpreter::alarm_stop`].
     fault_line: Option<u32>,
+    /// The block being read, reused from block to block.
+    block: Block,
+    /// The block checked, reused from block to block.
+    cmd: Command,
+    state: State,
+    /// Actions waiting for the sink; also where a block stages its actions.
+    outbox: Outbox,
+    cfg: MachineConfig,
+    loops: Loops,
+    calls: heapless::Vec<Frame, MAX_CALL_DEPTH>,
+    /// The canned cycle being delivered (see [`crate::cycles`]).
+    cycle: Option<Expansion>,
+    /// A cycle block whose dry run is still going on.
+    validating: Option<Validating>,
+    vars: Variables,
 }
 
 impl Interpreter {
@@ -304,6 +308,12 @@ impl Interpreter {
         self.state = State::power_on(&self.cfg, old.pos);
         self.state.frames.shift = old.frames.shift;
         self.state.tool = old.tool;
+        if self.cfg.kind == crate::config::MachineKind::Mill {
+            // A machining centre's reset cancels tool length and cutter radius (G49,
+            // G40); the tool in the spindle and the one selected stay.
+            self.state.tool = crate::modal::ToolState { tool: old.tool.tool, ..Default::default() };
+            self.state.mill.selected = old.mill.selected;
+        }
         if keep_local {
             self.state.frames.local = old.frames.local;
         }
@@ -323,6 +333,8 @@ impl Interpreter {
         self.started = false;
         self.state.moved = false;
         self.state.contour.clear();
+        // The offsets may have been edited since (config_mut).
+        self.state.refresh_extra_frame(&self.cfg);
         self.calls.clear();
         self.loops.clear();
     }
@@ -761,6 +773,8 @@ impl Interpreter {
         for &(s, v) in &c.writes {
             s.apply(&mut self.cfg, v);
         }
+        // A G10 may have moved the G54.1 frame in force.
+        self.state.refresh_extra_frame(&self.cfg);
         if let Some(r) = c.resume.filter(|r| r.offset > self.cursor.offset) {
             self.jump(Cursor { program: self.cursor.program, ..r });
         }

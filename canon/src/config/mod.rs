@@ -305,18 +305,11 @@ impl MachineConfig {
 
     /// The machine-coordinate origin of work frame `frame`: G54–G59 (0–5), G54.1
     /// P1–P48 (6–53); without the external offset.
-    #[inline]
     pub fn work_offset(&self, frame: u8) -> Pos {
         match self.work_offsets.get(usize::from(frame)) {
             Some(p) => *p,
-            None => self.extra_offset(frame),
+            None => self.extra_offsets.get(frame.saturating_sub(5)).unwrap_or(Pos::ZERO),
         }
-    }
-
-    /// [`MachineConfig::work_offset`] of a G54.1 frame (out of line: rare).
-    #[inline(never)]
-    fn extra_offset(&self, frame: u8) -> Pos {
-        self.extra_offsets.get(frame.saturating_sub(5)).unwrap_or(Pos::ZERO)
     }
 
     /// A machining centre with X, Y, Z in radius (travel X −500–0, Y −400–0,

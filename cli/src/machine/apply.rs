@@ -236,7 +236,7 @@ fn apply_work_offsets(w: &WorkOffsets, cfg: &mut MachineConfig) -> Result<(), St
             seen.push(r.p);
             let mut pos = cfg.extra_offsets.get(r.p).ok_or_else(|| field("p must be 1 to 48"))?;
             let xyz = Point { x: r.x, y: r.y, z: r.z, c: None };
-            pos = point(pos, &xyz, cfg, &field("").trim_end_matches(": ").to_string())?;
+            pos = point(pos, &xyz, cfg, field("").trim_end_matches(": "))?;
             if !cfg.extra_offsets.set(r.p, pos) {
                 return Err(field("coordinates must be within +-2147 mm"));
             }

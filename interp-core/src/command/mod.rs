@@ -121,7 +121,8 @@ impl Command {
         cycle: CycleArgs::None,
     };
 
-    /// The code that consumes the block's axis words.
+    /// The code that consumes the block's axis words (a machining centre's G51,
+    /// G51.1 and G68 take them too: its checker asks [`GSet::frame`] first).
     pub fn axis_user(&self, state: &State) -> GCode {
         use cycle::{is_hole, is_multiple};
         match (self.g.stroke, self.g.polar) {
@@ -135,9 +136,6 @@ impl Command {
             Some(true) => return GCode::PolygonOn,
             Some(false) => return GCode::PolygonOff,
             None => {}
-        }
-        if let Some(f) = self.g.frame {
-            return f;
         }
         match self.g.one_shot {
             Some(c) if gset::uses_axes(c) || is_multiple(c) => c,

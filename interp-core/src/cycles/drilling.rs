@@ -22,7 +22,7 @@ use crate::canon::{Plane, SpindleDir};
 use crate::codes::GCode;
 use crate::command::{Command, CycleArgs};
 use crate::config::{MachineConfig, Param};
-use crate::modal::mill::{on, xyz};
+use crate::modal::mill::{narrow, on, xyz};
 use crate::modal::{RigidTap, State};
 use crate::moves::frame;
 
@@ -40,8 +40,14 @@ pub fn hole_block(
         return Err(AlarmKind::RotationPlaneChange);
     }
     let here_work = st.work_pos(cfg);
-    let here = if f.active != 0 { f.prog } else { xyz(&here_work) };
-    let initial = *st.mill.initial.get_or_insert(here[2]);
+    let here = if f.active != 0 { f.prog() } else { xyz(&here_work) };
+    let initial = match st.mill.initial {
+        Some(z) => i64::from(z),
+        None => {
+            st.mill.initial = Some(narrow(here[2])?);
+            here[2]
+        }
+    };
     let g91 = st.modal.incremental;
     let mem = &mut st.cycle.hole;
     if let Some(r) = r {

@@ -197,6 +197,15 @@ impl HoleGen {
         }
     }
 
+    /// The lead of a tapping cycle (what the emitter's [`Step::Tap`] and
+    /// [`Step::FeedPerRev`] move at), 0 for the others.
+    pub fn lead(&self) -> i64 {
+        match self.work {
+            HoleWork::RigidTap { lead, .. } | HoleWork::FloatTap { lead, .. } => lead,
+            _ => 0,
+        }
+    }
+
     /// The current hole's position with the drilling axis at `v`.
     #[inline(never)]
     fn at(&self, v: i64) -> Pos {
@@ -280,11 +289,11 @@ impl HoleGen {
                 push(out, Step::RapidTo(self.at(self.reached - dir * d)))?;
                 push(out, Step::FeedTo(self.at(next)))?;
             }
-            HoleWork::RigidTap { lead, dir: sd, .. } => {
-                push(out, Step::Tap { to: self.at(next), lead, dir: sd })?;
+            HoleWork::RigidTap { dir: sd, .. } => {
+                push(out, Step::Tap { to: self.at(next), dir: sd })?;
             }
-            HoleWork::FloatTap { lead, stop_at_bottom, .. } => {
-                push(out, Step::FeedPerRev(self.at(next), lead))?;
+            HoleWork::FloatTap { stop_at_bottom, .. } => {
+                push(out, Step::FeedPerRev(self.at(next)))?;
                 if stop_at_bottom {
                     push(out, Step::Spindle(SpindleDir::Stop))?;
                 }
@@ -298,11 +307,11 @@ impl HoleGen {
         }
         let back = if deep { self.r_level } else { next - dir * d };
         match self.work {
-            HoleWork::RigidTap { lead, dir: sd, .. } => {
-                push(out, Step::Tap { to: self.at(back), lead, dir: reverse(sd) })?;
+            HoleWork::RigidTap { dir: sd, .. } => {
+                push(out, Step::Tap { to: self.at(back), dir: reverse(sd) })?;
                 if deep {
                     // Deep rigid peck: back in to the depth reached, locked to the spindle.
-                    push(out, Step::Tap { to: self.at(next), lead, dir: sd })?;
+                    push(out, Step::Tap { to: self.at(next), dir: sd })?;
                 }
             }
             _ => push(out, Step::RapidTo(self.at(back)))?,
@@ -342,19 +351,19 @@ impl HoleGen {
                 push(out, Step::RapidTo(self.at(self.initial)))?;
                 return push(out, Step::Spindle(restart));
             }
-            HoleWork::RigidTap { lead, dir, dwell_r_ms, restore, .. } => {
-                push(out, Step::Tap { to: r, lead, dir: reverse(dir) })?;
+            HoleWork::RigidTap { dir, dwell_r_ms, restore, .. } => {
+                push(out, Step::Tap { to: r, dir: reverse(dir) })?;
                 if dwell_r_ms > 0 {
                     push(out, Step::Dwell(dwell_r_ms))?;
                 }
                 push(out, Step::Spindle(restore))?;
             }
-            HoleWork::FloatTap { lead, dir, after, .. } => {
+            HoleWork::FloatTap { dir, after, .. } => {
                 if self.dwell_ms > 0 {
                     push(out, Step::Dwell(self.dwell_ms))?;
                 }
                 push(out, Step::Spindle(reverse(dir)))?;
-                push(out, Step::FeedPerRev(r, lead))?;
+                push(out, Step::FeedPerRev(r))?;
                 push(out, Step::Spindle(after))?;
             }
         }
@@ -516,9 +525,9 @@ mod tests {
         assert_eq!(
             steps(mill(tap))[2..],
             [
-                Step::FeedPerRev(xyz(10, 20, -10), 1),
+                Step::FeedPerRev(xyz(10, 20, -10)),
                 Step::Spindle(SpindleDir::Cw),
-                Step::FeedPerRev(xyz(10, 20, 2), 1),
+                Step::FeedPerRev(xyz(10, 20, 2)),
                 Step::Spindle(SpindleDir::Ccw),
                 Step::RapidTo(xyz(10, 20, 50)),
             ]

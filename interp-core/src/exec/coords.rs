@@ -9,6 +9,7 @@ use crate::command::cycle::is_hole;
 use crate::config::{MachineConfig, MachineKind, Param};
 use crate::env::Environment;
 use crate::modal::State;
+use crate::modal::mill::{FRAME_AXES, narrow};
 use crate::moves::motion::{endpoint, rapid_to, target};
 use crate::stage::Staged;
 
@@ -89,9 +90,9 @@ pub(super) fn reference_return(
     if mill {
         // G29 comes back through this point: each axis named keeps it, in work
         // coordinates (seed 004 @5400: "系统对中间点有记憶功能").
-        for a in Axis::ALL {
+        for (i, a) in FRAME_AXES.into_iter().enumerate() {
             if cmd.axes[a.index()].is_some() {
-                st.mill.g28[a] = middle.work[a];
+                st.mill.g28[i] = narrow(middle.work[a])?;
                 st.mill.g28_axes.insert(a);
             }
         }
@@ -129,10 +130,10 @@ pub(super) fn return_from_reference(
         if !env.referenced(a) {
             return Err(AlarmKind::ReferenceNotEstablished { letter: a.letter() });
         }
-        if !st.mill.g28_axes.contains(a) {
+        let Some(i) = FRAME_AXES.iter().position(|x| *x == a).filter(|_| st.mill.g28_axes.contains(a)) else {
             return Err(AlarmKind::NoIntermediatePoint { letter: a.letter() });
-        }
-        middle[a] = st.mill.g28[a];
+        };
+        middle[a] = i64::from(st.mill.g28[i]);
         end[a] = if w.incremental { middle[a].checked_add(w.value).ok_or(AlarmKind::Overflow)? } else { w.value };
     }
     let (middle, end) = (endpoint(middle, st, cfg)?, endpoint(end, st, cfg)?);

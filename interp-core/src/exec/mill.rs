@@ -35,6 +35,7 @@ pub(super) fn prepare(
     cfg: &MachineConfig,
     adapted: &mut Command,
 ) -> Result<Prepared, AlarmKind> {
+    st.refresh_extra_frame(cfg);
     frame::switch(cmd, st, cfg)?;
     let f = &st.mill.frame;
     if f.active & on::ROTATE != 0 && f.rot_plane != st.modal.plane {
@@ -180,7 +181,10 @@ pub(super) fn after(st: &mut State, cfg: &MachineConfig, prepared: &Prepared) {
         return;
     }
     match prepared.prog {
-        Some(p) => st.mill.frame.prog = p,
+        Some(p) => {
+            // Checked in frame::adapt: within ±2,147 mm.
+            let _ = st.mill.frame.set_prog(p);
+        }
         None => frame::resync(st, cfg),
     }
 }

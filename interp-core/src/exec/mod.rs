@@ -248,7 +248,9 @@ fn apply_modal(cmd: &Command, st: &mut State) {
         m.nose_comp = n;
     }
     if let Some(w) = g.work_frame {
-        m.work_frame = w;
+        // G54.1 P1–P48 (6–53) stand on G54's slot; their offset is the mill's
+        // business (exec::mill::prepare).
+        (m.work_frame, m.extra_frame) = if w < 6 { (w, 0) } else { (0, w - 5) };
     }
     if let Some(d) = g.drilling {
         m.drilling = d;

@@ -99,12 +99,24 @@ enum Aside {
     /// A move along the compensation plane's normal only (a mill's plunge or
     /// retract between compensated moves): made where the compensated path is
     /// when its turn comes, at the corner. Its machine coordinate on the normal,
-    /// its feed and [`PLUNGE_RAPID`]/[`PLUNGE_PER_REV`]/[`PLUNGE_EXACT`] flags.
+    /// its feed with the [`PLUNGE_RAPID`]/[`PLUNGE_PER_REV`]/[`PLUNGE_EXACT`]
+    /// flags in the top byte; the 64-bit values in halves, so the entry keeps the
+    /// 4-byte alignment and the size of the others.
     Plunge {
-        to: i64,
-        feed: i64,
-        flags: u8,
+        to: [u32; 2],
+        feed: [u32; 2],
     },
+}
+
+/// An `i64` in two halves (see [`Aside::Plunge`]).
+fn halves(v: i64) -> [u32; 2] {
+    let u = v as u64;
+    [u as u32, (u >> 32) as u32]
+}
+
+/// The `i64` of [`halves`].
+fn whole(h: [u32; 2]) -> i64 {
+    (u64::from(h[0]) | (u64::from(h[1]) << 32)) as i64
 }
 
 /// [`Aside::Plunge`] flag: a rapid.
@@ -113,6 +125,9 @@ const PLUNGE_RAPID: u8 = 1;
 const PLUNGE_PER_REV: u8 = 2;
 /// [`Aside::Plunge`] flag: exact stop at its end.
 const PLUNGE_EXACT: u8 = 4;
+/// The bits of [`Aside::Plunge`]'s feed that hold the feed (nm/min or nm/rev, far
+/// below 2^56).
+const FEED_BITS: i64 = (1 << 56) - 1;
 
 impl Aside {
     fn of(a: &Action) -> Option<Aside> {
@@ -139,7 +154,9 @@ impl Aside {
             Aside::Stop { optional } => Action::Stop { optional },
             Aside::End { rewind } => Action::End { rewind },
             Aside::Polygon(p) => Action::Polygon(p),
-            Aside::Plunge { to, feed, flags } => {
+            Aside::Plunge { to, feed } => {
+                let (to, packed) = (whole(to), whole(feed));
+                let (feed, flags) = (packed & FEED_BITS, (packed >> 56) as u8);
                 let mut ep = *at;
                 let shift = ep.machine[normal] - ep.work[normal];
                 ep.machine[normal] = to;
@@ -171,7 +188,8 @@ impl Aside {
         if m.exact_stop {
             flags |= PLUNGE_EXACT;
         }
-        Some(Aside::Plunge { to: m.to.machine[normal], feed: m.feed.value, flags })
+        let feed = (m.feed.value & FEED_BITS) | (i64::from(flags) << 56);
+        Some(Aside::Plunge { to: halves(m.to.machine[normal]), feed: halves(feed) })
     }
 }
 

@@ -5,8 +5,32 @@
 //! rotation). Their logic is in [`crate::moves::frame`] and `exec`; the data lives
 //! here, in the [`State`](super::State), so a failed block undoes it too.
 
+use crate::alarm::AlarmKind;
 use crate::axis::{Axis, AxisSet, Pos};
 use crate::canon::Plane;
+
+/// A coordinate of the machining centre's modal data, kept in 32 bits (±2,147 mm
+/// or ±2,147°: beyond any machine this board drives) so that the data, copied
+/// with the state four times in the interpreter, stays small. `None` (alarm 4017)
+/// for a value beyond it.
+pub fn narrow(v: i64) -> Result<i32, AlarmKind> {
+    i32::try_from(v).map_err(|_| AlarmKind::Overflow)
+}
+
+/// Three coordinates narrowed ([`narrow`]).
+pub fn narrow3(v: [i64; 3]) -> Result<[i32; 3], AlarmKind> {
+    Ok([narrow(v[0])?, narrow(v[1])?, narrow(v[2])?])
+}
+
+/// Three coordinates widened.
+pub fn wide3(v: [i32; 3]) -> [i64; 3] {
+    v.map(i64::from)
+}
+
+/// An angle in µdeg brought into ±360° (what a G91 angle adds up to).
+pub fn turn(udeg: i64) -> i32 {
+    (udeg % 360_000_000) as i32
+}
 
 /// The modal data of a machining centre.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -23,13 +47,13 @@ pub struct Mill {
     pub d: u16,
     /// The tool T selected for the next M06.
     pub selected: u16,
-    /// G28's intermediate point, work coordinates, per axis (the axes set in `g28_axes`).
-    pub g28: Pos,
+    /// G28's intermediate point, work coordinates of X, Y, Z (those in `g28_axes`).
+    pub g28: [i32; 3],
     /// The axes G28 has given an intermediate point since power-on or reset.
     pub g28_axes: AxisSet,
     /// The initial level of the hole-cycle mode in force, on the drilling axis
-    /// (work): remembered from the mode's first hole to G80 or G00–G03.
-    pub initial: Option<i64>,
+    /// (programmed): remembered from the mode's first hole to G80 or G00–G03.
+    pub initial: Option<i32>,
     /// The programmable transformations.
     pub frame: Frame,
 }
@@ -42,7 +66,7 @@ impl Default for Mill {
             h: 0,
             d: 0,
             selected: 0,
-            g28: Pos::ZERO,
+            g28: [0; 3],
             g28_axes: AxisSet::EMPTY,
             initial: None,
             frame: Frame::default(),
@@ -77,24 +101,24 @@ pub struct Frame {
     /// G51.1: the mirrored axes (bit per X, Y, Z).
     pub mirror: u8,
     /// G51.1: the mirror positions (programmed coordinates).
-    pub mirror_at: [i64; 3],
+    pub mirror_at: [i32; 3],
     /// G51: the centre (programmed coordinates, mirrored).
-    pub scale_at: [i64; 3],
+    pub scale_at: [i32; 3],
     /// G51: the factors of X, Y, Z in thousandths (negative mirrors).
     pub scale: [i32; 3],
     /// G68: the centre in the plane (after mirror and scaling).
-    pub rot_at: (i64, i64),
-    /// G68: the angle, µdeg, counter-clockwise positive.
-    pub rot_udeg: i64,
+    pub rot_at: [i32; 2],
+    /// G68: the angle, µdeg, counter-clockwise positive (within ±360°).
+    pub rot_udeg: i32,
     /// G68: the plane of the rotation.
     pub rot_plane: Plane,
     /// G16: radius of the last polar command, nm.
-    pub polar_r: i64,
-    /// G16: angle of the last polar command, µdeg.
-    pub polar_udeg: i64,
+    pub polar_r: i32,
+    /// G16: angle of the last polar command, µdeg (within ±360°).
+    pub polar_udeg: i32,
     /// The programmed position (before the transformations), work coordinates:
     /// what G91 adds to while a transformation is in force.
-    pub prog: [i64; 3],
+    pub prog: [i32; 3],
 }
 
 impl Default for Frame {
@@ -105,7 +129,7 @@ impl Default for Frame {
             mirror_at: [0; 3],
             scale_at: [0; 3],
             scale: [1_000; 3],
-            rot_at: (0, 0),
+            rot_at: [0; 2],
             rot_udeg: 0,
             rot_plane: Plane::Xy,
             polar_r: 0,
@@ -133,4 +157,17 @@ impl Frame {
 /// The mill's `Pos` with only X, Y and Z.
 pub fn xyz(p: &Pos) -> [i64; 3] {
     [p[Axis::X], p[Axis::Y], p[Axis::Z]]
+}
+
+impl Frame {
+    /// The programmed position.
+    pub fn prog(&self) -> [i64; 3] {
+        wide3(self.prog)
+    }
+
+    /// Sets the programmed position (alarm 4017 beyond ±2,147 mm).
+    pub fn set_prog(&mut self, p: [i64; 3]) -> Result<(), AlarmKind> {
+        self.prog = narrow3(p)?;
+        Ok(())
+    }
 }

@@ -18,7 +18,7 @@ use crate::canon::Plane;
 use crate::codes::GCode;
 use crate::command::{AxisWord, Command, CycleArgs};
 use crate::modal::State;
-use crate::modal::mill::{FRAME_AXES, Frame, on, xyz};
+use crate::modal::mill::{FRAME_AXES, Frame, narrow, narrow3, on, turn, xyz};
 
 /// µdeg per radian.
 const UDEG_PER_RAD: f64 = 180e6 / core::f64::consts::PI;
@@ -40,24 +40,24 @@ impl Frame {
     }
 
     fn forward_f(&self, v: &mut [f64; 3], point: bool) {
-        let origin = |c: i64| if point { c as f64 } else { 0.0 };
+        let origin = |c: i32| if point { f64::from(c) } else { 0.0 };
         if self.active & on::MIRROR != 0 {
-            for i in 0..3 {
+            for (i, (v, at)) in v.iter_mut().zip(self.mirror_at).enumerate() {
                 if self.mirror & (1 << i) != 0 {
-                    v[i] = 2.0 * origin(self.mirror_at[i]) - v[i];
+                    *v = 2.0 * origin(at) - *v;
                 }
             }
         }
         if self.active & on::SCALE != 0 {
-            for i in 0..3 {
-                let c = origin(self.scale_at[i]);
-                v[i] = c + (v[i] - c) * f64::from(self.scale[i]) / 1e3;
+            for ((v, at), k) in v.iter_mut().zip(self.scale_at).zip(self.scale) {
+                let c = origin(at);
+                *v = c + (*v - c) * f64::from(k) / 1e3;
             }
         }
         if self.active & on::ROTATE != 0 {
             let (a, b) = plane_index(self.rot_plane);
-            let (ca, cb) = (origin(self.rot_at.0), origin(self.rot_at.1));
-            let (s, c) = libm::sincos(self.rot_udeg as f64 / UDEG_PER_RAD);
+            let (ca, cb) = (origin(self.rot_at[0]), origin(self.rot_at[1]));
+            let (s, c) = libm::sincos(f64::from(self.rot_udeg) / UDEG_PER_RAD);
             let (x, y) = (v[a] - ca, v[b] - cb);
             v[a] = ca + x * c - y * s;
             v[b] = cb + x * s + y * c;
@@ -69,22 +69,22 @@ impl Frame {
         let mut v = w.map(|c| c as f64);
         if self.active & on::ROTATE != 0 {
             let (a, b) = plane_index(self.rot_plane);
-            let (ca, cb) = (self.rot_at.0 as f64, self.rot_at.1 as f64);
-            let (s, c) = libm::sincos(-(self.rot_udeg as f64) / UDEG_PER_RAD);
+            let (ca, cb) = (f64::from(self.rot_at[0]), f64::from(self.rot_at[1]));
+            let (s, c) = libm::sincos(-f64::from(self.rot_udeg) / UDEG_PER_RAD);
             let (x, y) = (v[a] - ca, v[b] - cb);
             v[a] = ca + x * c - y * s;
             v[b] = cb + x * s + y * c;
         }
         if self.active & on::SCALE != 0 {
-            for i in 0..3 {
-                let c = self.scale_at[i] as f64;
-                v[i] = c + (v[i] - c) * 1e3 / f64::from(self.scale[i]);
+            for ((v, at), k) in v.iter_mut().zip(self.scale_at).zip(self.scale) {
+                let c = f64::from(at);
+                *v = c + (*v - c) * 1e3 / f64::from(k);
             }
         }
         if self.active & on::MIRROR != 0 {
-            for i in 0..3 {
+            for (i, (v, at)) in v.iter_mut().zip(self.mirror_at).enumerate() {
                 if self.mirror & (1 << i) != 0 {
-                    v[i] = 2.0 * self.mirror_at[i] as f64 - v[i];
+                    *v = 2.0 * f64::from(at) - *v;
                 }
             }
         }
@@ -115,7 +115,7 @@ fn plane_index(p: Plane) -> (usize, usize) {
 
 /// The programmed position while a transformation is in force.
 fn prog(st: &State) -> [i64; 3] {
-    st.mill.frame.prog
+    st.mill.frame.prog()
 }
 
 /// G15/G16, G50/G51, G50.1/G51.1 and G68/G69 of the block put in force (after the
@@ -132,7 +132,8 @@ pub fn switch(cmd: &Command, st: &mut State, cfg: &crate::config::MachineConfig)
     let was = st.mill.frame.active;
     if was == 0 {
         // From here on G91 adds to the programmed position: where the tool is.
-        st.mill.frame.prog = xyz(&st.work_pos(cfg));
+        let here = xyz(&st.work_pos(cfg));
+        st.mill.frame.set_prog(here)?;
     }
     let f = &mut st.mill.frame;
     match cmd.g.polar_coord {
@@ -140,9 +141,9 @@ pub fn switch(cmd: &Command, st: &mut State, cfg: &crate::config::MachineConfig)
             f.active |= on::POLAR;
             // Radius and angle of where the tool is, for words left out.
             let (a, b) = plane_index(st.modal.plane);
-            let (x, y) = (f.prog[a] as f64, f.prog[b] as f64);
-            f.polar_r = libm::round(libm::hypot(x, y)) as i64;
-            f.polar_udeg = libm::round(libm::atan2(y, x) * UDEG_PER_RAD) as i64;
+            let (x, y) = (f64::from(f.prog[a]), f64::from(f.prog[b]));
+            f.polar_r = narrow(libm::round(libm::hypot(x, y)) as i64)?;
+            f.polar_udeg = turn(libm::round(libm::atan2(y, x) * UDEG_PER_RAD) as i64);
         }
         Some(false) => f.active &= !on::POLAR,
         _ => {}
@@ -156,7 +157,7 @@ pub fn switch(cmd: &Command, st: &mut State, cfg: &crate::config::MachineConfig)
             for (i, a) in FRAME_AXES.into_iter().enumerate() {
                 if let Some(w) = cmd.axes[a.index()] {
                     f.mirror |= 1 << i;
-                    f.mirror_at[i] = w.value;
+                    f.mirror_at[i] = narrow(w.value)?;
                 }
             }
             if f.mirror != 0 {
@@ -184,14 +185,14 @@ pub fn switch(cmd: &Command, st: &mut State, cfg: &crate::config::MachineConfig)
             let CycleArgs::Scale { p, ijk } = cmd.cycle else { return Ok(()) };
             // The centre: the X/Y/Z given, the programmed position for the others
             // (FANUC), mirrored as the points will be.
-            let mut center = f.prog;
+            let mut center = f.prog();
             for (i, a) in FRAME_AXES.into_iter().enumerate() {
                 if let Some(w) = cmd.axes[a.index()] {
                     center[i] = w.value;
                 }
             }
             let mirror_only = Frame { active: f.active & on::MIRROR, ..*f };
-            f.scale_at = mirror_only.forward(center);
+            f.scale_at = narrow3(mirror_only.forward(center))?;
             f.scale = match p {
                 Some(k) => [k; 3],
                 None => ijk.map(|k| k.unwrap_or(1_000)),
@@ -211,9 +212,9 @@ pub fn switch(cmd: &Command, st: &mut State, cfg: &crate::config::MachineConfig)
             let incremental = cmd.g.incremental.unwrap_or(st.modal.incremental);
             let before = f.active & on::ROTATE != 0;
             // G91: the angle adds to the rotation in force (FANUC).
-            f.rot_udeg = if incremental && before { f.rot_udeg.saturating_add(r) } else { r };
+            f.rot_udeg = turn(if incremental && before { i64::from(f.rot_udeg) + r } else { r });
             let (a, b) = plane_index(plane);
-            let mut center = f.prog;
+            let mut center = f.prog();
             for (i, axis) in FRAME_AXES.into_iter().enumerate() {
                 if let Some(w) = cmd.axes[axis.index()] {
                     center[i] = w.value;
@@ -223,7 +224,7 @@ pub fn switch(cmd: &Command, st: &mut State, cfg: &crate::config::MachineConfig)
             // scales the rotation centre, not the angle).
             let before_rotation = Frame { active: f.active & (on::MIRROR | on::SCALE), ..*f };
             let c = before_rotation.forward(center);
-            f.rot_at = (c[a], c[b]);
+            f.rot_at = [narrow(c[a])?, narrow(c[b])?];
             f.rot_plane = plane;
             f.active |= on::ROTATE;
         }
@@ -255,23 +256,24 @@ pub fn programmed_target(cmd: &Command, st: &mut State) -> Result<[i64; 3], Alar
         let (r_word, a_word) = (cmd.axes[ia], cmd.axes[ib]);
         // Seed 004 @4336: an absolute radius is measured from the local origin, an
         // incremental one from the current point.
+        let p = f.prog();
         let (pole, r) = match r_word {
-            Some(AxisWord { incremental: true, value }) => ((f.prog[ia], f.prog[ib]), value),
+            Some(AxisWord { incremental: true, value }) => ((p[ia], p[ib]), value),
             Some(w) => ((0, 0), w.value),
-            None => ((0, 0), f.polar_r),
+            None => ((0, 0), i64::from(f.polar_r)),
         };
         let angle = match a_word {
             Some(AxisWord { incremental: true, value }) => {
-                f.polar_udeg.checked_add(value).ok_or(AlarmKind::Overflow)?
+                i64::from(f.polar_udeg).checked_add(value).ok_or(AlarmKind::Overflow)?
             }
             Some(w) => w.value,
-            None => f.polar_udeg,
+            None => i64::from(f.polar_udeg),
         };
         let (s, c) = libm::sincos(angle as f64 / UDEG_PER_RAD);
         t[ia] = pole.0 + libm::round(r as f64 * c) as i64;
         t[ib] = pole.1 + libm::round(r as f64 * s) as i64;
-        f.polar_r = r;
-        f.polar_udeg = angle;
+        f.polar_r = narrow(r)?;
+        f.polar_udeg = turn(angle);
     }
     Ok(t)
 }
@@ -293,6 +295,7 @@ pub fn adapt(cmd: &Command, st: &mut State, arc: bool, adapted: &mut Command) ->
     let target = programmed_target(cmd, st)?;
     let f = st.mill.frame;
     let work = f.forward(target);
+    narrow3(target)?;
     // Every axis of the frame, given or not: a rotation moves an axis the block
     // leaves out, and one left out stays where the programmed position is.
     for (i, a) in FRAME_AXES.into_iter().enumerate() {
@@ -325,7 +328,9 @@ pub fn adapt(cmd: &Command, st: &mut State, arc: bool, adapted: &mut Command) ->
 /// transformations did not plan: G28, G53, a hole cycle …).
 pub fn resync(st: &mut State, cfg: &crate::config::MachineConfig) {
     let w = xyz(&st.work_pos(cfg));
-    st.mill.frame.prog = st.mill.frame.inverse(w);
+    let p = st.mill.frame.inverse(w);
+    // Beyond ±2,147 mm only after a move the limits refused: keep the old one.
+    let _ = st.mill.frame.set_prog(p);
 }
 
 /// The work position of programmed point `p` with the other axes from `base`.

@@ -2,7 +2,8 @@
 //! a G01 block, a G02 block with R, and a G01 block under G96 (surface speed), each
 //! read, checked and executed into a sink; then the same steps into the motion
 //! planner (text to planned block: the step with its action queued, prepared and
-//! look-ahead planned). Run through `bench.sh bench_interp`.
+//! look-ahead planned); then a machining centre's 3-axis G01 blocks the same two
+//! ways. Run through `bench.sh bench_interp`.
 #![no_std]
 #![no_main]
 
@@ -20,6 +21,14 @@ const PROGRAM: &[u8] = b"G00 X40. Z2.\nG99 M3 S1200\nG01 Z0 F0.12\n\
 N100 G01 X40.412 Z-0.05\nN101 G01 X40.824 Z-0.1\nN102 G01 X41.234 Z-0.15\n\
 N103 G02 X42.1 Z-1.2 R25.\nN104 G03 X43.05 Z-2.3 R25.\n\
 G96 S200\nN105 G01 X43.5 Z-2.5\nN106 G01 X44.0 Z-2.7\nM30\n";
+
+/// A machining centre's stretch (`MachineConfig::mill`): setup, then 3-axis G01s.
+const MILL_PROGRAM: &[u8] = b"G00 X-100. Y-100. Z-10.\nM3 S1200\nG01 Z-20. F300\n\
+N100 G01 X-99.588 Y-99.712 Z-20.05\nN101 G01 X-99.176 Y-99.424 Z-20.1\nN102 G01 X-98.766 Y-99.137 Z-20.15\nM30\n";
+
+/// What the steps of [`MILL_PROGRAM`] read, in order.
+const MILL_LABELS: [&str; 6] =
+    ["mill setup G00", "mill setup M3 S", "mill setup G01 F", "mill G01 XYZ", "mill G01 XYZ", "mill G01 XYZ"];
 
 /// Keeps the last action so the work can't be optimised away.
 struct Last(Option<Canon>);
@@ -58,17 +67,19 @@ impl CanonSink for Plan {
 struct Bench<S> {
     interp: Interpreter,
     sink: S,
+    program: &'static [u8],
 }
 
 /// Runs one step.
 fn step<S: CanonSink>(b: &mut Bench<S>) -> bool {
-    matches!(b.interp.step(&SingleProgram(PROGRAM), &Panel::default(), &mut b.sink), Ok(Progress::Executed { .. }))
+    let program = SingleProgram(b.program);
+    matches!(b.interp.step(&program, &Panel::default(), &mut b.sink), Ok(Progress::Executed { .. }))
 }
 
 /// Runs the program's steps, measuring each (`only`: just the one at that index)
 /// with the label `what: label`.
-fn run<S: CanonSink>(b: &mut Bench<S>, what: &str, only: Option<usize>) {
-    for (k, label) in LABELS.into_iter().enumerate() {
+fn run<S: CanonSink>(b: &mut Bench<S>, what: &str, only: Option<usize>, labels: &[&str]) {
+    for (k, &label) in labels.iter().enumerate() {
         if only.is_some_and(|o| o != k) {
             if !step(b) {
                 exit(false);
@@ -104,18 +115,33 @@ fn main() -> ! {
     // it; `BENCH_ONLY=pK` only the K-th step into the planner.
     let only = option_env!("BENCH_ONLY");
     let pick = |prefix: &str| only.and_then(|k| k.strip_prefix(prefix)?.parse::<usize>().ok());
+    // `BENCH_ONLY=mK` / `mpK`: the K-th step of the mill's program.
     let (steps, planned) = match only {
+        Some(k) if k.starts_with('m') => (Some(usize::MAX), Some(usize::MAX)),
         Some(k) if k.starts_with('p') => (Some(usize::MAX), pick("p")),
         Some(_) => (pick(""), Some(usize::MAX)),
         None => (None, None),
     };
+    let (mill_steps, mill_planned) = match only {
+        Some(k) if k.starts_with("mp") => (Some(usize::MAX), pick("mp")),
+        Some(k) if k.starts_with('m') => (pick("m"), Some(usize::MAX)),
+        Some(_) => (Some(usize::MAX), Some(usize::MAX)),
+        None => (None, None),
+    };
     let cfg = MachineConfig::default();
-    let mut b = Bench { interp: Interpreter::new(cfg.clone()), sink: Last(None) };
-    run(&mut b, "step", steps);
+    let mut b = Bench { interp: Interpreter::new(cfg.clone()), sink: Last(None), program: PROGRAM };
+    run(&mut b, "step", steps, &LABELS);
     hprintln!("size of Interpreter: {} bytes", core::mem::size_of::<Interpreter>());
     let Ok(params) = MotionParams::new(&cfg) else { exit(false) };
     let plan = Plan { planner: Planner::new(Pos::ZERO), params };
-    let mut b = Bench { interp: Interpreter::new(cfg), sink: plan };
-    run(&mut b, "text to planned block", planned);
+    let mut b = Bench { interp: Interpreter::new(cfg), sink: plan, program: PROGRAM };
+    run(&mut b, "text to planned block", planned, &LABELS);
+    let cfg = MachineConfig::mill();
+    let mut b = Bench { interp: Interpreter::new(cfg.clone()), sink: Last(None), program: MILL_PROGRAM };
+    run(&mut b, "step", mill_steps, &MILL_LABELS);
+    let Ok(params) = MotionParams::new(&cfg) else { exit(false) };
+    let plan = Plan { planner: Planner::new(Pos::ZERO), params };
+    let mut b = Bench { interp: Interpreter::new(cfg), sink: plan, program: MILL_PROGRAM };
+    run(&mut b, "text to planned block", mill_planned, &MILL_LABELS);
     exit(true)
 }

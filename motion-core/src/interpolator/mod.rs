@@ -232,9 +232,10 @@ impl Segment {
                 out[a.ia] = a.scale[0].q16(a.center[0] + mul_shr(r, i64::from(c), TRIG_FRAC));
                 out[a.ib] = a.scale[1].q16(a.center[1] + mul_shr(r, i64::from(sn), TRIG_FRAC));
                 if a.helical {
-                    for i in 0..AXIS_COUNT {
-                        if i != a.ia && i != a.ib && self.delta[i] != 0 {
-                            out[i] = self.start[i] + mul_q32(self.delta[i], f);
+                    let moving = out.iter_mut().zip(&self.start).zip(&self.delta).enumerate();
+                    for (i, ((o, st), d)) in moving {
+                        if i != a.ia && i != a.ib && *d != 0 {
+                            *o = st + mul_q32(*d, f);
                         }
                     }
                 }

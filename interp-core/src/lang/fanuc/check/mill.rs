@@ -49,7 +49,10 @@ fn words_of(code: GCode) -> (Letters, &'static str) {
 }
 
 /// Checks the block's words against the M series and converts them into `cmd`;
-/// marks the blocks that need the machining centre's execution paths.
+/// marks the blocks that need the machining centre's execution paths. Out of
+/// line and cold: the lathe's way through the checker keeps its registers.
+#[cold]
+#[inline(never)]
 pub(super) fn check(
     block: &Block,
     user: GCode,
@@ -115,6 +118,15 @@ fn check_letters(
         }
         allowed = allowed.with(if f == MFunction::Call { Letters::of(b"PL") } else { Letters::of(b"P") });
     }
+    let present = block.present();
+    // Most blocks: every letter allowed, every axis word on an axis the machine
+    // has (the per-letter loop below names the first fault otherwise).
+    let absent =
+        Axis::ALL.into_iter().filter(|a| !cfg.axis(*a).present).fold(0, |m, a| m | 1u32 << (a.letter() - b'A'));
+    let axes_absent = if user == GCode::Dwell { 0 } else { absent };
+    if present & (UNUSED.0 | !allowed.with(ALWAYS).0 | axes_absent) == 0 {
+        return Ok(());
+    }
     for letter in block.letters() {
         if UNUSED.contains(letter) {
             return Err(AlarmKind::ImproperAddress { letter });
@@ -145,7 +157,7 @@ fn convert(
     use GCode::*;
     if user == Dwell {
         cmd.dwell_ms = Some(dwell_ms(block, fmt)?);
-    } else {
+    } else if block.present() & AXES.0 != 0 {
         convert_axes(block, user, state, cfg, fmt, cmd)?;
     }
     match user {
@@ -176,6 +188,20 @@ fn convert(
         }
         cmd.g.work_frame = Some(5 + p as u8);
     }
+    if block.present() & Letters::of(b"FSTHD").0 != 0 {
+        other_words(block, cfg, fmt, cmd)?;
+    }
+    if block.chamfer.is_some() || block.corner.is_some() {
+        cmd.corner = corner_word(block, fmt)?;
+    }
+    if user == ReturnFromReference && !cmd.has_axes() {
+        return Err(AlarmKind::MissingWord { letter: b'X', context: "G29" });
+    }
+    required_words(user, cmd)
+}
+
+/// F, S, T, H, D.
+fn other_words(block: &Block, cfg: &MachineConfig, fmt: &NumberFormat, cmd: &mut Command) -> Result<(), AlarmKind> {
     if let Some(f) = block.get(b'F') {
         if f.is_negative() {
             return Err(AlarmKind::IllegalMinusSign { letter: b'F' });
@@ -194,11 +220,7 @@ fn convert(
     }
     cmd.h = offset_number(block, b'H')?;
     cmd.d = offset_number(block, b'D')?;
-    cmd.corner = corner_word(block, fmt)?;
-    if user == ReturnFromReference && !cmd.has_axes() {
-        return Err(AlarmKind::MissingWord { letter: b'X', context: "G29" });
-    }
-    required_words(user, cmd)
+    Ok(())
 }
 
 /// H or D: an offset row number, 0 (none) to the table's last.
@@ -230,16 +252,44 @@ fn convert_axes(
 ) -> Result<(), AlarmKind> {
     let g91 = cmd.g.incremental.unwrap_or(state.modal.incremental);
     let absolute = matches!(user, GCode::ScalingOn | GCode::MirrorOn | GCode::MirrorOff | GCode::RotationOn);
-    let angle_axis = polar(user, state, cmd).then(|| cmd.g.plane.unwrap_or(state.modal.plane).axes().1);
-    for axis in Axis::ALL {
-        let Some(n) = block.get(axis.letter()) else { continue };
-        let value = if Some(axis) == angle_axis {
-            fmt.angle_udeg(&n).ok_or(AlarmKind::Overflow)?
-        } else {
-            axis_value(axis, &n, cfg, fmt)?
-        };
-        cmd.axes[axis.index()] = Some(AxisWord { value, incremental: g91 && !absolute });
+    let incremental = g91 && !absolute;
+    if state.mill.frame.active & on::POLAR != 0 || cmd.g.polar_coord.is_some() {
+        let angle_axis = polar(user, state, cmd).then(|| cmd.g.plane.unwrap_or(state.modal.plane).axes().1);
+        for axis in Axis::ALL {
+            let Some(n) = block.get(axis.letter()) else { continue };
+            let value = if Some(axis) == angle_axis {
+                fmt.angle_udeg(&n).ok_or(AlarmKind::Overflow)?
+            } else {
+                axis_value(axis, &n, cfg, fmt)?
+            };
+            cmd.axes[axis.index()] = Some(AxisWord { value, incremental });
+        }
+        return Ok(());
     }
+    // One call per axis with constant letters (as the lathe's checker reads them).
+    linear_word(Axis::X, block, incremental, fmt, cmd)?;
+    linear_word(Axis::Y, block, incremental, fmt, cmd)?;
+    linear_word(Axis::Z, block, incremental, fmt, cmd)?;
+    if let Some(n) = block.get(b'C') {
+        cmd.axes[Axis::C.index()] = Some(AxisWord { value: axis_value(Axis::C, &n, cfg, fmt)?, incremental });
+    }
+    Ok(())
+}
+
+/// The word of linear `axis` (radius, no diameter on a mill), if given.
+#[inline(always)]
+fn linear_word(
+    axis: Axis,
+    block: &Block,
+    incremental: bool,
+    fmt: &NumberFormat,
+    cmd: &mut Command,
+) -> Result<(), AlarmKind> {
+    if block.present() & (1 << (axis.letter() - b'A')) == 0 {
+        return Ok(());
+    }
+    let value = length_nm(fmt, &block.value(axis.letter())).ok_or(AlarmKind::Overflow)?;
+    cmd.axes[axis.index()] = Some(AxisWord { value, incremental });
     Ok(())
 }
 

@@ -49,6 +49,8 @@ pub fn check_into(block: &Block, state: &State, cfg: &MachineConfig, cmd: &mut C
     let flow_m = cmd.m.iter().map(|&(_, f)| f).find(|f| f.is_flow());
     let user = cmd.axis_user(state);
     if cfg.kind == MachineKind::Mill {
+        // A machining centre's G51, G51.1 and G68 take the axis words too.
+        let user = cmd.g.frame.unwrap_or(user);
         mill::check(block, user, flow_m, state, cfg, &fmt, cmd)?;
     } else {
         words::check_letters(block, user, flow_m, cfg)?;

@@ -310,6 +310,7 @@ pub(super) fn dwell_ms(block: &Block, fmt: &NumberFormat) -> Result<u32, AlarmKi
 }
 
 /// Words a code cannot do without.
+#[inline]
 pub(super) fn required_words(user: GCode, cmd: &Command) -> Result<(), AlarmKind> {
     use GCode::*;
     let (context, needs_axis) = match user {
