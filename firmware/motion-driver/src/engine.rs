@@ -159,7 +159,7 @@ impl<const A: usize> Engine<A> {
     /// Whether channel `i` may drive the core's axis `core_axis` now: it already
     /// does, or its edges have all been played.
     pub fn can_set_core_axis(&self, i: usize, core_axis: usize) -> bool {
-        self.axes.get(i).is_some_and(|ax| ax.core_axis == core_axis || (ax.tx.len() == 0 && ax.carry.is_none()))
+        self.axes.get(i).is_some_and(|ax| ax.core_axis == core_axis || (ax.tx.is_empty() && ax.carry.is_none()))
     }
 
     /// Makes channel `i` drive the core's axis `core_axis` (a board's third channel
