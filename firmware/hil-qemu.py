@@ -54,7 +54,7 @@ def run(name, elf):
 
 
 def main():
-    subprocess.run(["cargo", "build", "-q", "--release", "--no-default-features", "--features", "f405,qemu",
+    subprocess.run(["cargo", "build", "-q", "--release", "--no-default-features", "--features", "f405,qemu,siemens,mill",
                     "--target-dir", TARGET, "--bins"], cwd=HERE, check=True)
     names = sorted(os.path.basename(p)[:-3] for p in glob.glob(os.path.join(HERE, "src", "bin", "hil_*.rs")))
     failed = []

@@ -12,7 +12,7 @@ cd "$(dirname "$0")"
 # A target directory of its own: the chip and time-driver features differ from the
 # board build, and sharing one directory would rebuild embassy at every switch.
 target_dir=${CARGO_TARGET_DIR:-$(realpath ..)/target}/qemu
-cargo build -q --release --no-default-features --features f405,qemu --target-dir "$target_dir"
+cargo build -q --release --no-default-features --features f405,qemu,siemens,mill --target-dir "$target_dir"
 elf=$(realpath "$target_dir/thumbv7em-none-eabihf/release/firmware")
 
 case "${1:-}" in

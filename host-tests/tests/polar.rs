@@ -171,3 +171,29 @@ fn the_polar_example_runs_on_a_machine_with_a_c_axis() {
     let r = ok(&text, 0.8);
     assert!(matches!(r.actions.last().map(|c| c.action), Some(Action::End { rewind: true })));
 }
+
+/// A block's other actions keep their place around the polar moves (the moves leave
+/// the block's outbox, the rest stays in order: `cycles::polar_block`): a spindle
+/// start staged before the block's move comes before the first X/C move, an M05
+/// after it comes after the last, exactly as the same block does outside G12.1.
+#[test]
+fn actions_of_a_polar_block_stay_before_and_after_its_moves() {
+    let order = |text: &str| -> Vec<&'static str> {
+        let r = ok(text, 0.0);
+        let mut out = Vec::new();
+        for c in r.actions.iter().filter(|c| c.line == 4) {
+            let k = match c.action {
+                Action::Linear(_) | Action::Rapid(_) => "move",
+                _ => "other",
+            };
+            if out.last() != Some(&k) {
+                out.push(k);
+            }
+        }
+        out
+    };
+    let polar = order("G98 G00 X60 C0 Z0\nG12.1\nG01 X40 F100\nG01 X20 C10 S300 M05\nG13.1\nM30\n");
+    let plain = order("G98 G00 X60 C0 Z0\nG01 X40 F100\nM03 S300\nG01 X20 C10 S300 M05\nM30\n");
+    assert!(polar.contains(&"move") && polar.contains(&"other"), "{polar:?}");
+    assert_eq!(polar, plain);
+}

@@ -565,28 +565,26 @@ pub fn polar_block(st: &mut State, cfg: &MachineConfig, out: &mut CycleStage<'_>
     if !out.actions.iter().any(|c| c.action.endpoint().is_some()) {
         return Ok(());
     }
+    // The moves leave the outbox; what stays keeps its order, the actions staged
+    // before the first move ahead of the cycle and the rest (M05, M30 …) after it.
+    // Rotated in place: copies of the outbox (2.3 KB each) would sit on the control
+    // task's stack under the profile reader (firmware/stack-bound.py).
     let mut moves: heapless::Vec<Canon, { polar::MOVES }> = heapless::Vec::new();
-    let mut after: heapless::Vec<Canon, { crate::stage::STAGE }> = heapless::Vec::new();
     let mut before = 0;
-    let all: heapless::Vec<Canon, { crate::stage::STAGE }> = out.actions.iter().copied().collect();
-    out.actions.clear();
-    for c in all {
+    for _ in 0..out.actions.len() {
+        let Some(c) = out.actions.pop_front() else { break };
         if c.action.endpoint().is_some() {
             moves.push(c).map_err(|_| AlarmKind::ContourBufferFull)?;
-        } else if moves.is_empty() {
-            out.actions.push_back(c).map_err(|_| AlarmKind::Overflow)?;
-            before += 1;
         } else {
-            after.push(c).map_err(|_| AlarmKind::Overflow)?;
+            before += usize::from(moves.is_empty());
+            // Never full: one action out, one back.
+            out.actions.push_back(c).map_err(|_| AlarmKind::Overflow)?;
         }
     }
-    let _ = before;
     let line = moves.first().map_or(0, |c| c.line);
     let generator = polar::PolarGen::new(&moves, st.work_pos(cfg), cfg.motion.chord_tolerance)?;
     start_cycle(Emitter::new(*st, line), Gen::Polar(generator), out)?;
-    for c in after {
-        out.actions.push_back(c).map_err(|_| AlarmKind::Overflow)?;
-    }
+    out.staged.split = Some(before);
     Ok(())
 }
 
