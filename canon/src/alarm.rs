@@ -114,10 +114,13 @@ pub enum AlarmKind {
     IllegalReferenceNumber,
     /// 0076: M98 names a program that is not in program memory (3.1.6 note 1).
     ProgramNotFound { program: u32 },
-    /// 0076: M98 without P (3.1.6 note 4).
+    /// 0076: M98, G65 or G66 without P (3.1.6 note 4; FANUC 0i alarm 076).
     SubprogramNumberMissing,
-    /// 0077: a subprogram call deeper than 12 levels (3.1.6).
+    /// 0077: a subprogram or macro call deeper than 12 levels (3.1.6).
     CallNestingTooDeep,
+    /// 0077: a macro call (G65, G66, a G or M code) deeper than 4 macro levels
+    /// (FANUC 0i: 4 levels of macro calls within the 12 levels of calls).
+    MacroNestingTooDeep,
     /// 0078: GOTO, M99 P or M91/M92 P names a sequence number the program lacks.
     JumpTargetNotFound { seq: u32 },
     /// 0111: a macro calculation overflowed the number range.
@@ -134,6 +137,8 @@ pub enum AlarmKind {
     TooManyBrackets,
     /// 0119: a function argument outside its domain (ASIN/ACOS, SQRT, EXP …).
     ArgumentOutOfRange { function: &'static str },
+    /// 0122: a fourth G66 while three modal calls are in force (FANUC 0i alarm 122).
+    ModalCallsTooDeep,
     /// 0123: GOTO, WHILE, DO or END in MDI.
     ControlInMdi,
     /// 0124: WHILE/DO without a matching END (2.24.2).
@@ -148,6 +153,9 @@ pub enum AlarmKind {
     MacroAndNcInOneBlock,
     /// 0128: a GOTO target that is not a whole number 1–99999 (note 1).
     SequenceOutOfRange,
+    /// 0129: an address that cannot be an argument of a macro call (G, N, O; P
+    /// of a call by G or M code; an eleventh I/J/K group; FANUC 0i alarm 129).
+    IllegalArgumentAddress { letter: Letter },
     /// 0142: a G51 scale factor outside 0.001–999.999 (P) or ±0.001–±9.999 (I/J/K),
     /// or zero (FANUC 0i-M PS0142; seed 004 @4506, @4740).
     IllegalScale { letter: Letter },
@@ -212,6 +220,9 @@ pub enum AlarmKind {
     M99NotAlone,
     /// 4043: the external input M91/M92 test does not exist on this machine.
     InputNotAvailable { input: u16 },
+    /// 4050: more of the variables #34–#400 and #601–#999 would hold a value at
+    /// once than the controller keeps (they are stored only while not null).
+    VariablesFull,
     /// 0014: thread lead zero or out of range, G34 K out of range, or a G34 lead that
     /// would become zero, negative or exceed the maximum (2.17.2).
     IllegalLead,
@@ -305,7 +316,7 @@ pub enum AlarmKind {
     /// 4049: G15/G16, G50/G51, G50.1/G51.1 or G68/G69 while cutter compensation is
     /// in force.
     FrameInCutterComp,
-    /// 4050: G51.1/G50.1 while scaling or rotation is in force, or G51/G50 while
+    /// 4051: G51.1/G50.1 while scaling or rotation is in force, or G51/G50 while
     /// rotation is (FANUC's order: mirror, scaling, rotation; cancel the other way).
     FrameOrder,
     /// 0034: nose compensation starting up or cancelling in an arc block (2.18.3).
@@ -342,7 +353,7 @@ impl AlarmKind {
             IllegalOffsetNumber { .. } | IllegalToolNumber { .. } => 30,
             IllegalReferenceNumber => 46,
             ProgramNotFound { .. } | SubprogramNumberMissing => 76,
-            CallNestingTooDeep => 77,
+            CallNestingTooDeep | MacroNestingTooDeep => 77,
             JumpTargetNotFound { .. } => 78,
             MacroOverflow => 111,
             DivideByZero => 112,
@@ -351,11 +362,13 @@ impl AlarmKind {
             WriteProtectedVariable { .. } => 116,
             TooManyBrackets => 118,
             ArgumentOutOfRange { .. } => 119,
+            ModalCallsTooDeep => 122,
             ControlInMdi => 123,
             MissingEnd { .. } | EndWithoutDo { .. } | LoopsCrossed { .. } => 124,
             IllegalLoopNumber { .. } => 126,
             MacroAndNcInOneBlock => 127,
             SequenceOutOfRange => 128,
+            IllegalArgumentAddress { .. } => 129,
             ReferenceNotEstablished { .. } => 224,
             OvertravelPositive { .. } => 500,
             OvertravelNegative { .. } => 501,
@@ -386,6 +399,7 @@ impl AlarmKind {
             FlowInMdi { .. } => 4041,
             M99NotAlone => 4042,
             InputNotAvailable { .. } => 4043,
+            VariablesFull => 4050,
             IllegalLead => 14,
             CycleAddressMissing { .. } => 61,
             CycleValueIllegal { .. } => 62,
@@ -422,7 +436,7 @@ impl AlarmKind {
             ChamferPlaneChange | RotationPlaneChange => 212,
             NoIntermediatePoint { .. } => 4048,
             FrameInCutterComp => 4049,
-            FrameOrder => 4050,
+            FrameOrder => 4051,
             OffsetValueOutOfRange => 32,
             ReferenceInCycle => 44,
             PeckDepthMissing => 45,
@@ -484,8 +498,9 @@ impl fmt::Display for AlarmKind {
             IllegalToolNumber { number } => write!(f, "tool number {number} is not on the turret"),
             IllegalReferenceNumber => write!(f, "G30 P must be 1, 2, 3 or 4"),
             ProgramNotFound { program } => write!(f, "program O{program:04} not found"),
-            SubprogramNumberMissing => write!(f, "M98 needs P with the program number"),
-            CallNestingTooDeep => write!(f, "subprograms nested deeper than 12 levels"),
+            SubprogramNumberMissing => write!(f, "M98, G65 and G66 need P with the program number"),
+            CallNestingTooDeep => write!(f, "subprograms and macros nested deeper than 12 levels"),
+            MacroNestingTooDeep => write!(f, "macro calls (G65, G66, G or M code) nested deeper than 4 levels"),
             JumpTargetNotFound { seq } => write!(f, "sequence number N{seq} not found"),
             MacroOverflow => write!(f, "macro calculation out of the number range"),
             DivideByZero => write!(f, "division by zero (/, MOD or TAN of 90 degrees)"),
@@ -494,6 +509,7 @@ impl fmt::Display for AlarmKind {
             WriteProtectedVariable { number } => write!(f, "variable #{number} cannot be assigned"),
             TooManyBrackets => write!(f, "brackets nested deeper than 5 levels"),
             ArgumentOutOfRange { function } => write!(f, "argument of {function} out of range"),
+            ModalCallsTooDeep => write!(f, "a fourth modal call G66 while three are in force"),
             ControlInMdi => write!(f, "GOTO, WHILE, DO and END cannot be used in MDI"),
             MissingEnd { label } => write!(f, "DO{label} has no matching END{label}"),
             EndWithoutDo { label } => write!(f, "END{label} without DO{label}"),
@@ -501,6 +517,7 @@ impl fmt::Display for AlarmKind {
             IllegalLoopNumber { label } => write!(f, "loop number {label} is not 1, 2 or 3"),
             MacroAndNcInOneBlock => write!(f, "macro statement and NC words in one block"),
             SequenceOutOfRange => write!(f, "jump target is not a sequence number 1-99999"),
+            IllegalArgumentAddress { letter } => write!(f, "address {} cannot be a macro call argument", Ch(letter)),
             ReferenceNotEstablished { letter } => {
                 write!(f, "axis {} has not been referenced (home it before G28/G30)", Ch(letter))
             }
@@ -539,6 +556,7 @@ impl fmt::Display for AlarmKind {
             FlowInMdi { m } => write!(f, "M{m:02} cannot be used in MDI"),
             M99NotAlone => write!(f, "M99 must be alone in its block (N and P only)"),
             InputNotAvailable { input } => write!(f, "external input {input} for M91/M92 does not exist"),
+            VariablesFull => write!(f, "more than 128 of the variables #34-#400 and #601-#999 hold values"),
             IllegalLead => write!(f, "thread lead zero, out of range or becoming negative (G34 K)"),
             CycleAddressMissing { letter } => write!(f, "G70-G73 needs address {}", Ch(letter)),
             CycleValueIllegal { what } => write!(f, "illegal value in cycle: {what}"),
@@ -765,9 +783,13 @@ pub const CATALOG: &[CatalogEntry] = &[
     CatalogEntry {
         code: 76,
         title: "program not found",
-        when: "M98 P names a program not in memory (3.1.6 note 1), or M98 has no P (note 4)",
+        when: "M98, G65 or G66 P names a program not in memory (3.1.6 note 1), a G, M or T code calls a program not in memory, or M98/G65/G66 has no P (note 4)",
     },
-    CatalogEntry { code: 77, title: "subprogram nesting too deep", when: "a 13th nested M98 call (3.1.6: 12 levels)" },
+    CatalogEntry {
+        code: 77,
+        title: "subprogram nesting too deep",
+        when: "a 13th nested call (3.1.6: 12 levels, macro calls included), or a 5th nested macro call (G65, G66, G or M code; FANUC 0i: 4 levels)",
+    },
     CatalogEntry {
         code: 78,
         title: "sequence number not found",
@@ -796,6 +818,11 @@ pub const CATALOG: &[CatalogEntry] = &[
         title: "argument out of range",
         when: "ASIN/ACOS outside -1..1, SQRT < 0, EXP beyond +-80, ATAN[0]/[0], AND/OR/XOR not on 0..2^32-1 integers",
     },
+    CatalogEntry {
+        code: 122,
+        title: "four-fold macro modal call",
+        when: "a G66 while three modal calls are in force (FANUC 0i)",
+    },
     CatalogEntry { code: 123, title: "control statement in MDI", when: "GOTO, WHILE, DO or END entered in MDI" },
     CatalogEntry {
         code: 124,
@@ -812,6 +839,11 @@ pub const CATALOG: &[CatalogEntry] = &[
         code: 128,
         title: "illegal sequence number",
         when: "GOTO target not a whole number 1-99999 (2.24.2 note 1)",
+    },
+    CatalogEntry {
+        code: 129,
+        title: "illegal argument address",
+        when: "G, N or O among the arguments of a macro call, P in a call by G or M code, more than 10 I/J/K groups (FANUC 0i)",
     },
     CatalogEntry {
         code: 142,
@@ -1037,6 +1069,11 @@ pub const CATALOG: &[CatalogEntry] = &[
     },
     CatalogEntry {
         code: 4050,
+        title: "variables full",
+        when: "a 129th variable of #34-#400 and #601-#999 would hold a value at once (setting one to null frees its place)",
+    },
+    CatalogEntry {
+        code: 4051,
         title: "transformations out of order",
         when: "G51.1/G50.1 while G51 or G68 is in force, or G51/G50 while G68 is (FANUC: mirror, scaling, \
                rotation, cancelled in the reverse order)",
@@ -1139,6 +1176,10 @@ mod tests {
             ProgramNotFound { program: 12 },
             SubprogramNumberMissing,
             CallNestingTooDeep,
+            MacroNestingTooDeep,
+            ModalCallsTooDeep,
+            IllegalArgumentAddress { letter: b'G' },
+            VariablesFull,
             JumpTargetNotFound { seq: 10 },
             MacroOverflow,
             DivideByZero,

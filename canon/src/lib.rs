@@ -184,7 +184,10 @@ impl SpindleSpeed {
 /// f32 (hardware on the Cortex-M4F) is plenty: a speed, not a position, and its
 /// 24-bit mantissa keeps the rounding error far below one rev/min.
 pub fn css_rpm(css: u32, x: i64) -> u32 {
-    let d_mm = 2.0 * (x.unsigned_abs() as f32) / 1e6;
+    // The radius through u32 (capped at 4.29 m, beyond any lathe): u32 → f32 is one
+    // instruction, u64 → f32 a library call of some 60 (this runs every G96 block).
+    let r = x.unsigned_abs().min(u64::from(u32::MAX)) as u32;
+    let d_mm = 2.0 * (r as f32) / 1e6;
     if d_mm == 0.0 {
         return u32::MAX;
     }

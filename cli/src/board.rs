@@ -48,6 +48,35 @@ pub struct BoardArgs {
     /// Seed of the line noise.
     #[arg(long, default_value_t = 1, value_name = "N")]
     pub seed: u64,
+    /// Log the link's traffic to FILE: a line per read or write, `<ms> < ` bytes the
+    /// board received, `<ms> > ` bytes it sent, both as the other side got them
+    /// (after --corrupt/--corrupt-out), non-printing bytes as `\xNN`.
+    #[arg(long, value_name = "FILE")]
+    pub trace: Option<PathBuf>,
+}
+
+/// The link's traffic in a file (`--trace`).
+struct Trace {
+    file: std::io::BufWriter<std::fs::File>,
+}
+
+impl Trace {
+    /// One chunk: `way` `<` received, `>` sent, at `ms` of wall-clock time.
+    fn chunk(&mut self, ms: f64, way: char, bytes: &[u8]) -> std::io::Result<()> {
+        write!(self.file, "{ms:.1} {way} ")?;
+        for &b in bytes {
+            match b {
+                b'\\' => self.file.write_all(b"\\\\")?,
+                0x20..=0x7e => self.file.write_all(&[b])?,
+                b'\n' => self.file.write_all(b"\\n")?,
+                b'\r' => self.file.write_all(b"\\r")?,
+                _ => write!(self.file, "\\x{b:02X}")?,
+            }
+        }
+        // Flushed per chunk: the board is usually ended by a signal (noise.py).
+        self.file.write_all(b"\n")?;
+        self.file.flush()
+    }
 }
 
 /// Deterministic line noise on received bytes (xorshift64*).
@@ -137,7 +166,27 @@ pub fn run(args: &BoardArgs, out: &mut dyn Write) -> Result<u8, Error> {
         None => None,
     };
     let mut noise = [Noise::new(args.corrupt, args.seed), Noise::new(args.corrupt_out, args.seed ^ 0x5EED_0F0F)];
-    let result = serve(&mut board, &mut master, args, &mut noise, record.as_mut().map(|w| w as &mut dyn Write), out);
+    let mut trace = match &args.trace {
+        Some(path) => Some(Trace {
+            file: std::io::BufWriter::new(
+                std::fs::File::create(path)
+                    .map_err(|source| Error::Write { target: path.display().to_string(), source })?,
+            ),
+        }),
+        None => None,
+    };
+    let result = serve(
+        &mut board,
+        &mut master,
+        args,
+        &mut noise,
+        record.as_mut().map(|w| w as &mut dyn Write),
+        trace.as_mut(),
+        out,
+    );
+    if let Some(t) = trace.as_mut() {
+        let _ = t.file.flush();
+    }
     for (n, way) in noise.iter().zip(["received", "sent"]) {
         if n.threshold > 0 {
             let _ =
@@ -164,6 +213,7 @@ fn serve(
     args: &BoardArgs,
     noise: &mut [Noise; 2],
     mut record: Option<&mut dyn Write>,
+    mut trace: Option<&mut Trace>,
     log: &mut dyn Write,
 ) -> std::io::Result<()> {
     let start = Instant::now();
@@ -181,6 +231,9 @@ fn serve(
         match master.read(&mut buf) {
             Ok(n) => {
                 noise[0].apply(&buf[..n], &mut noisy);
+                if let Some(t) = trace.as_mut() {
+                    t.chunk(wall * 1e3, '<', &noisy)?;
+                }
                 board.receive(&noisy);
             }
             Err(e) if matches!(e.kind(), std::io::ErrorKind::TimedOut | std::io::ErrorKind::WouldBlock) => {}
@@ -195,6 +248,9 @@ fn serve(
         let out = board.transmit();
         if !out.is_empty() {
             noise[1].apply(&out, &mut noisy);
+            if let Some(t) = trace.as_mut() {
+                t.chunk(wall * 1e3, '>', &noisy)?;
+            }
             master.write_all(&noisy)?;
         }
         let now = board.ctl.counters();

@@ -18,7 +18,7 @@ use crate::port::{MotionPort, MotionStatus};
 use crate::report::{Mm, Xyz};
 use crate::rx::Receiver;
 use crate::settings::Settings;
-use crate::starve::StarveWatch;
+use crate::starve::{Attendance, StarveWatch, Starved};
 use crate::tape::{self, Block, Tape};
 use crate::window::{Store, Window};
 
@@ -172,6 +172,9 @@ pub struct Controller<const W: usize, const T: usize, const P: usize, const S: u
     pub(crate) window_stuck: bool,
     /// The link-quiet watch of a streamed job (alarm 4601).
     pub(crate) starve: StarveWatch,
+    /// Whether the stream job is a streamed program and when it was last fed or
+    /// touched (`$306`).
+    pub(crate) attendance: Attendance,
     /// The stream job has run a block (a job of only `%`, blank or comment lines
     /// is not open).
     pub(crate) job_worked: bool,
@@ -271,6 +274,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             lookahead: None,
             window_stuck: false,
             starve: StarveWatch::default(),
+            attendance: Attendance::default(),
             job_worked: false,
             record_closed: false,
             now: 0,
@@ -502,6 +506,8 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
         self.answering = None;
         if handled == Handled::Done && k.is_some() {
             self.link.accepted();
+            // Framed lines come from a sender streaming a file (`$304`, `$306`).
+            self.attendance.streamed |= self.job == Job::Stream;
         }
         self.out.crc = self.link.active;
         handled
@@ -600,9 +606,11 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             self.job = Job::Stream;
             self.job_worked = false;
             self.record_closed = false;
+            self.attendance.start(self.now);
         }
         if self.window.push_line(text) {
             self.window_stuck = false;
+            self.attendance.line(self.now);
             return true;
         }
         let need = text.len() + 1 - self.window.free().min(text.len() + 1);
@@ -617,6 +625,9 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
                 self.counters.window_dropped = self.counters.window_dropped.saturating_add(cut as u64);
                 let pushed = self.window.push_line(text);
                 self.window_stuck = !pushed;
+                if pushed {
+                    self.attendance.line(self.now);
+                }
                 pushed
             }
             None => {
@@ -675,6 +686,8 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
                 if !self.stream_text(text) {
                     return Handled::Wait;
                 }
+                // A drip-fed tape is a program, however slow its reader (`$304`, `$306`).
+                self.attendance.streamed = true;
             }
         }
         self.tape = Some(next);
@@ -705,18 +718,21 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
 
     // ----- link lost mid-stream (starve.rs) -----
 
-    /// Once per poll: a streamed job whose link went quiet mid-run ends in alarm
-    /// 4601 (see [`StarveWatch`]).
+    /// Once per poll: a streamed program whose link went quiet mid-run, or that was
+    /// left unattended with the spindle turning, ends in alarm 4601 (see
+    /// [`StarveWatch`], [`Attendance`]). Lines typed by hand (MDI) never do.
     fn watch_stream<M: MotionPort + ?Sized>(&mut self, port: &mut M) {
-        let starved = self.starved(port);
+        let starved = self.starved(port) && self.attendance.streamed;
         let turning = self.interp.state().spindle.dir != SpindleDir::Stop || port.status().rpm != 0;
-        let lines_s = if turning { self.settings.spindle_stream_timeout_s } else { 0 };
-        let heard = [(self.rx.last_byte, self.settings.starve_timeout_s), (self.rx.last_line_byte, lines_s)];
-        let Some(which) = self.starve.due(self.now, starved, heard) else { return };
-        let seconds = heard[which].1;
-        if which == 1 {
+        let quiet = (self.rx.last_byte, self.settings.starve_timeout_s);
+        let unattended = (self.attendance.at, if turning { self.settings.spindle_stream_timeout_s } else { 0 });
+        let Some(which) = self.starve.due(self.now, starved, quiet, unattended) else { return };
+        let seconds = if which == Starved::Quiet { quiet.1 } else { unattended.1 };
+        if which == Starved::Unattended {
             // The sender still polls: its stream stopped, not the link.
-            self.msg(format_args!("No program line for {seconds} s with the spindle turning ($306)"));
+            self.msg(format_args!(
+                "No program line nor operator action for {seconds} s with the spindle turning ($306)"
+            ));
         }
         let line = self.interp.cursor().line;
         let alarm = Alarm::in_program(0, line, AlarmKind::StreamStarved { seconds });
@@ -890,6 +906,19 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
     }
 
     fn apply_realtime<M: MotionPort + ?Sized, I: MachineIo + ?Sized>(&mut self, port: &mut M, io: &mut I) {
+        let rt = &self.rx.latched;
+        let touched = rt.hold
+            || rt.resume
+            || rt.door
+            || rt.jog_cancel
+            || rt.spindle_stop
+            || rt.flood
+            || rt.mist
+            || !rt.overrides.is_empty();
+        if touched {
+            // The operator is at the machine (`$306`).
+            self.attendance.action(self.now);
+        }
         if core::mem::take(&mut self.rx.latched.jog_cancel) && self.jog {
             port.reset();
         }

@@ -385,6 +385,8 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
 impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<W, T, P, S> {
     /// `$J=…`: a jog move (Idle or while jogging).
     fn jog_line<M: MotionPort + ?Sized>(&mut self, text: &[u8], port: &mut M) -> Handled {
+        // The operator is at the machine (`$306`).
+        self.attendance.action(self.now);
         if self.alarm.is_some() {
             self.refuse(9, "Alarm: $X or reset first");
             return Handled::Done;

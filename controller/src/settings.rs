@@ -41,16 +41,18 @@ pub struct Settings {
     pub grbl_dwell: bool,
     /// `$302`: strip bit 7 (even parity) from tape bytes.
     pub parity_strip: bool,
-    /// `$304`: seconds without a byte on the link after which a starved stream job
-    /// (open, its text and motion run out) raises alarm 4601; 0 never.
+    /// `$304`: seconds without a byte on the link after which a starved streamed
+    /// program (open, its text and motion run out; not lines typed by hand) raises
+    /// alarm 4601; 0 never.
     pub starve_timeout_s: u32,
     /// `$305`: how long, ms of link time, a look-ahead (G70–G73 reading ns–nf, a
     /// forward GOTO, WHILE looking for its END) waits for stream lines that have not
     /// come before it is given up as an alarm.
     pub lookahead_wait_ms: u32,
-    /// `$306`: seconds without a program line after which a starved stream job with
-    /// the spindle turning raises alarm 4601 even while the sender polls `?` (its
-    /// stream stopped); 0 never.
+    /// `$306`: seconds without a program line or operator action after which a
+    /// starved streamed program with the spindle turning raises alarm 4601 even
+    /// while the sender polls `?` (its stream stopped); lines typed by hand (MDI)
+    /// never; 0 never.
     pub spindle_stream_timeout_s: u32,
     /// Soft-limit travel (min, max per axis X, Y, Z, nm) while `$20=0`.
     pub travel: [(i64, i64); 3],

@@ -6,6 +6,7 @@
 mod common;
 
 use common::{Counting, Rig, TICK};
+use controller::crc::crc16;
 
 /// A rig past its welcome line, with `$304=seconds` unless `None`.
 fn rig(seconds: Option<u32>) -> Rig {
@@ -145,9 +146,143 @@ fn with_the_spindle_turning_polls_alone_do_not_keep_a_stream_open() {
     let at = r.now;
     assert!(at >= last_line + 30_000_000_000 && at <= last_line + 30_000_000_000 + 2 * TICK, "{at} vs {last_line}");
     let out = r.lines();
-    assert!(out.iter().any(|l| l == "[MSG:No program line for 30 s with the spindle turning ($306)]"), "{out:?}");
+    assert!(
+        out.iter().any(|l| l == "[MSG:No program line nor operator action for 30 s with the spindle turning ($306)]"),
+        "{out:?}"
+    );
     assert!(out.iter().any(|l| l.contains("ALARM 4601")), "{out:?}");
     assert_eq!(r.port.core.spindle_output().1, 0, "spindle stopped");
+}
+
+/// Runs `ms` ms polling `?` every 200 ms (a connected sender), calling `at(rig, i)`
+/// each ms; stops at an `ALARM:` line: its time.
+fn polled(r: &mut Rig, ms: u64, mut at: impl FnMut(&mut Rig, u64)) -> Option<u64> {
+    for i in 0..ms {
+        if i % 200 == 0 {
+            r.send(b"?");
+        }
+        at(r, i);
+        r.step();
+        if r.lines().iter().any(|l| l.starts_with("ALARM:")) {
+            return Some(r.now);
+        }
+    }
+    None
+}
+
+/// A rig with `$306=5` (the rule, not the default, is tested here).
+fn rig306() -> Rig {
+    let mut r = rig(None);
+    assert_eq!(r.command("$306=5"), vec!["ok"]);
+    r
+}
+
+/// Manual work: a machinist types `M03 S500` and a few positioning moves into a
+/// sender's console (lines seconds apart), jogs now and then, and stands with the
+/// spindle on while the sender polls — far longer than `$306`. That is not a
+/// stalled program stream: `$306` never ends it (nor does `$304`: the sender polls).
+#[test]
+fn manual_work_with_the_spindle_turning_is_never_ended_by_306() {
+    let mut r = rig306();
+    let typed = [(0, "M03 S500"), (2_000, "G98 G00 X40 Z5"), (3_500, "G01 Z-2 F100"), (5_000, "G00 Z5")];
+    let jogs = [8_000, 9_000, 9_500];
+    let alarm = polled(&mut r, 25_000, |r, i| {
+        if let Some((_, l)) = typed.iter().find(|(t, _)| *t == i) {
+            r.send(format!("{l}\n").as_bytes());
+        }
+        if jogs.contains(&i) {
+            r.send(b"$J=G91 X-0.5 F200\n");
+        }
+    });
+    assert_eq!(alarm, None, "{:?}", r.lines());
+    assert!(r.port.core.spindle_output().1 > 0, "the spindle still turns");
+    assert!(r.status().starts_with("<Idle"));
+    // The same lines sent at once by a sender (a macro, a file): a streamed program.
+    let mut r = rig306();
+    let t0 = r.now;
+    let at = polled(&mut r, 10_000, |r, i| {
+        if i == 0 {
+            for (_, l) in typed {
+                r.send(format!("{l}\n").as_bytes());
+            }
+        }
+    })
+    .expect("alarm 4601");
+    assert!(at_or_just_after(at, t0 + 5_000_000_000), "{at}");
+}
+
+/// The same manual work from a terminal that never polls (`screen`, a console
+/// without status display): the link is silent for far longer than `$304`, and
+/// still nothing ends it — the lines were typed, not streamed.
+#[test]
+fn manual_work_from_a_terminal_that_does_not_poll_is_never_ended_by_304() {
+    let mut r = rig(Some(2));
+    assert_eq!(r.command("$306=5"), vec!["ok"]);
+    for (i, l) in ["M03 S500", "G98 G00 X40 Z5", "G01 Z-2 F100", "G00 Z5"].iter().enumerate() {
+        r.send(format!("{l}\n").as_bytes());
+        r.run_ms(if i == 3 { 1 } else { 1_500 });
+    }
+    assert_eq!(alarm_time(&mut r, 30_000), None, "{:?}", r.lines());
+    assert!(r.port.core.spindle_output().1 > 0, "the spindle still turns");
+    assert!(r.status().starts_with("<Idle"));
+}
+
+/// A drip-fed tape is a streamed program however slowly its reader sends (a
+/// 110-baud teletype: a line every two seconds), and a framed line (`lathe send
+/// --checksum`) is one from its first line: both are watched.
+#[test]
+fn a_slow_tape_and_framed_lines_are_streamed_programs() {
+    let mut r = Rig::new();
+    r.ctl.settings_mut().starve_timeout_s = 1;
+    r.send(b"%\n");
+    for l in job(2) {
+        r.send(format!("{l}\n").as_bytes());
+        r.run_ms(2_000);
+    }
+    assert!(alarm_time(&mut r, 5_000).is_some(), "slow tape cut mid-job: {:?}", r.lines());
+
+    let mut r = rig(Some(2));
+    assert_eq!(r.command("$LN=1"), vec!["[LN:1]", "ok"]);
+    for (k, l) in ["G98 G00 X20 Z0", "M03 S500"].iter().enumerate() {
+        let body = format!("N{} {l}", k + 1);
+        let crc = crc16(body.as_bytes());
+        r.send(format!("{body}*{crc:04X}\n").as_bytes());
+        r.run_ms(1_500);
+    }
+    let at = alarm_time(&mut r, 5_000).expect("two framed lines seconds apart: alarm 4601");
+    assert!(at > 3_000 * TICK, "{at}");
+}
+
+/// `$306` counts from the last program line or operator action: an override or a
+/// jog while a stalled program stands shows that someone is at the machine.
+#[test]
+fn an_operator_action_restarts_the_306_time() {
+    for action in [&b"\x91"[..], b"$J=G91 Z1 F300\n"] {
+        let mut r = rig306();
+        let mut sender = Counting::new(job(3));
+        let (mut last_line, mut acted) = (0, 0);
+        let alarm = polled(&mut r, 15_000, |r, i| {
+            let before = r.pending.len();
+            sender.pump(r);
+            if r.pending.len() > before {
+                last_line = r.now;
+            }
+            for l in r.take_lines() {
+                sender.answer(&l);
+            }
+            if i == 3_000 {
+                r.send(action);
+                acted = r.now;
+            }
+        })
+        .expect("alarm 4601");
+        assert!(last_line < 1_000 * TICK && acted > last_line);
+        assert!(at_or_just_after(alarm, acted + 5_000_000_000), "{alarm} vs {acted} ({action:?})");
+    }
+}
+
+fn at_or_just_after(t: u64, due: u64) -> bool {
+    t >= due && t <= due + 3 * TICK
 }
 
 #[test]

@@ -150,16 +150,27 @@ fn parser_vars() -> &'static interp_core::lang::fanuc::macros::Variables {
 
 /// One line through the reader and, when it is an NC block, the block check.
 fn parse_line(line: &[u8], n: u32, fmt: &interp_core::units::NumberFormat) {
-    use interp_core::lang::fanuc::parse::{Block, Read, read_block_into, read_statement_into, skip_level};
-    static CFG: OnceLock<(MachineConfig, interp_core::modal::State)> = OnceLock::new();
-    let (cfg, state) = CFG.get_or_init(|| {
+    use interp_core::config::Param;
+    use interp_core::lang::fanuc::calls::{CallCodes, CallRead, Calls};
+    use interp_core::lang::fanuc::parse::{Block, Read, read_block_into, read_program_block, skip_level};
+    static CFG: OnceLock<(MachineConfig, interp_core::modal::State, CallCodes)> = OnceLock::new();
+    let (cfg, state, codes) = CFG.get_or_init(|| {
         let cfg = MachineConfig::default();
         let state = interp_core::modal::State::power_on(&cfg, Pos::ZERO);
-        (cfg, state)
+        // Odd lines are read with codes that call: G100 and M50 macros, M06 and T
+        // subprograms.
+        let mut p = cfg.params;
+        for (param, v) in [(Param::CallG9010, 100), (Param::CallM9020, 50), (Param::SubM9001, 6), (Param::TCodeCall, 1)]
+        {
+            p.set(param, v);
+        }
+        (cfg, state, CallCodes::of(&p, 0))
     });
+    let codes = if n % 2 == 1 { *codes } else { CallCodes::BUILT_IN };
     let _ = skip_level(line);
     let mut block = Block::default();
-    match read_statement_into(line, n, parser_vars(), fmt, &mut block) {
+    let mut calls = Calls { codes, read: CallRead::EMPTY };
+    match read_program_block(line, n, parser_vars(), fmt, &mut block, &mut calls) {
         Ok(Read::Nc) => {
             assert_eq!(block.line, n, "the block keeps its line");
             for letter in block.letters() {
@@ -170,7 +181,13 @@ fn parse_line(line: &[u8], n: u32, fmt: &interp_core::units::NumberFormat) {
                 let _ = write!(Discard, "{kind}");
             }
         }
-        Ok(Read::Macro(m)) => assert_eq!(m.line, n, "the statement keeps its line"),
+        Ok(Read::Macro(m)) => {
+            assert_eq!(m.line, n, "the statement keeps its line");
+            if m.statement == interp_core::lang::fanuc::macros::MacroStatement::Call {
+                assert_eq!(calls.read.block.line, n, "the call keeps its line");
+                assert!(block.is_empty(), "a call block leaves no words");
+            }
+        }
         Err(kind) => {
             let _ = write!(Discard, "{kind}");
         }

@@ -165,8 +165,8 @@ fn scaling_then_rotation() {
     let r = go("G00 X0 Y0 Z10.\nG51 X0 Y0 P2000\nG68 X5. Y0 R90.\nG01 X10. Y0 F300\nG69\nG50\nM30\n");
     // S(10, 0) = (20, 0); the centre S(5, 0) = (10, 0); 90° about it: (10, 10).
     near(&points(&r, 4..=4), &[(10.0, 10.0)]);
-    assert_eq!(alarms("G68 X0 Y0 R10.\nG51 X0 Y0 P2000\nM30\n"), vec![(2, 4050)]);
-    assert_eq!(alarms("G51 X0 Y0 P2000\nG51.1 X0\nM30\n"), vec![(2, 4050)]);
+    assert_eq!(alarms("G68 X0 Y0 R10.\nG51 X0 Y0 P2000\nM30\n"), vec![(2, 4051)]);
+    assert_eq!(alarms("G51 X0 Y0 P2000\nG51.1 X0\nM30\n"), vec![(2, 4051)]);
 }
 
 /// G51.1 mirror image about the positions given: G02 turns into G03 for one axis

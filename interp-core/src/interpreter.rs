@@ -11,7 +11,9 @@
 //! Control flow: GOTO, IF…GOTO, M91/M92 and M99 P move the cursor within a program;
 //! M98 pushes a frame (12 levels, 3.1.6) holding the return cursor and the
 //! caller's open loops; WHILE/DO push a loop entry (3 per level) whose END is found
-//! when the loop is entered, so a jump out of the range closes it.
+//! when the loop is entered, so a jump out of the range closes it. A frame also
+//! says how its program was entered ([`Entry`]): a FANUC macro call (G65, G66, a G
+//! or M code; [`macro_calls`]) starts a level of local variables that M99 ends.
 
 use crate::alarm::{Alarm, AlarmKind};
 use crate::axis::Pos;
@@ -21,15 +23,18 @@ use crate::config::{MachineConfig, Param};
 use crate::cycles::{CycleStage, Expansion};
 use crate::env::Environment;
 use crate::exec::execute;
+use crate::lang::fanuc::calls::{CallCodes, CallRead, Caller, Calls, ModalCalls};
 use crate::lang::fanuc::check::check_into;
 use crate::lang::fanuc::macros::find_loop_end;
 use crate::lang::fanuc::macros::{MacroStatement, Variables};
-use crate::lang::fanuc::parse::{Block, MacroBlock, Read, read_statement_into, skip_level};
+use crate::lang::fanuc::parse::{Block, MacroBlock, Read, read_program_block, skip_level};
 use crate::lang::{Language, ProgramText};
 use crate::modal::State;
 use crate::program::{Cursor, ProgramId, ProgramStore, next_block};
 use crate::stage::{Flow, Outbox, Staged};
 use crate::units::NumberFormat;
+
+mod macro_calls;
 
 /// Subprogram nesting: the main program may call 12 levels deep (3.1.6).
 pub const MAX_CALL_DEPTH: usize = 12;
@@ -102,6 +107,20 @@ struct Loop {
 /// The open loops of one program level.
 type Loops = heapless::Vec<Loop, MAX_LOOP_DEPTH>;
 
+/// How a program level was entered: what its return gives back. (Two bytes: a
+/// [`Next`] that carries one stays as small as before.)
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Entry {
+    /// M98 (`Caller::Program`), or a subprogram call by an M or T code
+    /// (`Caller::Subprogram`): the caller's local variables go on.
+    Subprogram(Caller),
+    /// A FANUC macro call — G65, a G or M code — with a new level of local
+    /// variables #1–#33.
+    Macro(Caller),
+    /// The G66 modal call `i` after a move: a macro call too.
+    Modal(u8),
+}
+
 /// A subprogram call in progress.
 #[derive(Clone, Debug)]
 struct Frame {
@@ -111,6 +130,11 @@ struct Frame {
     loops: Loops,
     /// Runs of the subprogram still to come after the current one (M98 L/packed P).
     repeats_left: u16,
+    /// How the program was entered.
+    entry: Entry,
+    /// The code calls the caller's level had switched off (FANUC: see
+    /// [`Caller::switches_off`]).
+    off: u8,
 }
 
 /// What a cycle block hands the interpreter besides its expansion (see
@@ -146,11 +170,25 @@ enum Next {
     Go,
     Pause,
     End,
-    Call { start: Cursor, repeats: u16 },
-    Return { to: Option<Cursor> },
-    Repeat { start: Cursor },
-    Restart { start: Cursor },
-    Jump { to: Cursor },
+    /// Into a called program (a call by T code finds its value for #149 in the
+    /// block's command).
+    Call {
+        start: Cursor,
+        repeats: u16,
+        entry: Entry,
+    },
+    Return {
+        to: Option<Cursor>,
+    },
+    Repeat {
+        start: Cursor,
+    },
+    Restart {
+        start: Cursor,
+    },
+    Jump {
+        to: Cursor,
+    },
     Language(Language),
 }
 
@@ -179,6 +217,8 @@ pub struct Interpreter {
     /// A held move that nose compensation found faulty while the failed block ran
     /// (its line), for [`Interpreter::alarm_stop`].
     fault_line: Option<u32>,
+    /// The code calls the level in force switches off ([`Caller::switches_off`]).
+    codes_off: u8,
     /// The block being read, reused from block to block.
     block: Block,
     /// The block checked, reused from block to block.
@@ -193,7 +233,37 @@ pub struct Interpreter {
     cycle: Option<Expansion>,
     /// A cycle block whose dry run is still going on.
     validating: Option<Validating>,
+    /// The codes that call programs at the level in force, and the macro call
+    /// block just read with its arguments (`#1–#33` of the level it starts).
+    macro_calls: Calls,
+    /// The G66 modal calls in force.
+    modal: ModalCalls,
     vars: Variables,
+}
+
+/// The machine configuration of an [`Interpreter`], borrowed to be changed (see
+/// [`Interpreter::config_mut`]).
+pub struct ConfigMut<'a> {
+    interp: &'a mut Interpreter,
+}
+
+impl core::ops::Deref for ConfigMut<'_> {
+    type Target = MachineConfig;
+    fn deref(&self) -> &MachineConfig {
+        &self.interp.cfg
+    }
+}
+
+impl core::ops::DerefMut for ConfigMut<'_> {
+    fn deref_mut(&mut self) -> &mut MachineConfig {
+        &mut self.interp.cfg
+    }
+}
+
+impl Drop for ConfigMut<'_> {
+    fn drop(&mut self) {
+        self.interp.refresh_codes();
+    }
 }
 
 impl Interpreter {
@@ -222,7 +292,17 @@ impl Interpreter {
             validating: None,
             last_block: Cursor::start(0),
             fault_line: None,
+            macro_calls: Calls { codes: CallCodes::BUILT_IN, read: CallRead::EMPTY },
+            modal: ModalCalls::default(),
+            codes_off: 0,
         }
+        .with_codes()
+    }
+
+    /// The interpreter with the codes that call programs made from its parameters.
+    fn with_codes(mut self) -> Self {
+        self.refresh_codes();
+        self
     }
 
     /// The machine configuration.
@@ -231,8 +311,10 @@ impl Interpreter {
     }
 
     /// Mutable machine configuration (offset and parameter edits between runs).
-    pub fn config_mut(&mut self) -> &mut MachineConfig {
-        &mut self.cfg
+    /// When the borrow ends, what the interpreter keeps from the parameters (the
+    /// codes that call programs, 6001 and 6050–6089) follows them.
+    pub fn config_mut(&mut self) -> ConfigMut<'_> {
+        ConfigMut { interp: self }
     }
 
     /// The interpreter state (modal codes, position, frames, tool …).
@@ -270,6 +352,11 @@ impl Interpreter {
     /// Subprogram levels now active (0 in the main program).
     pub fn call_depth(&self) -> usize {
         self.calls.len()
+    }
+
+    /// G66 modal calls in force.
+    pub fn modal_calls(&self) -> usize {
+        self.modal.len()
     }
 
     /// Where the next block will be read.
@@ -337,6 +424,7 @@ impl Interpreter {
         self.state.refresh_extra_frame(&self.cfg);
         self.calls.clear();
         self.loops.clear();
+        self.drop_calls();
     }
 
     /// Cycle start after M00/M01.
@@ -482,13 +570,26 @@ impl Interpreter {
                 return Ok(Progress::Skipped { line });
             }
             let fmt = self.number_format();
-            let read = read_statement_into(raw.text, line, &self.vars, &fmt, &mut self.block);
+            let read = read_program_block(raw.text, line, &self.vars, &fmt, &mut self.block, &mut self.macro_calls);
             match read {
                 Ok(Read::Nc) => return self.nc_block(at, fmt, programs, env, sink),
-                Ok(Read::Macro(m)) => {
+                Ok(Read::Macro(m)) if m.statement != MacroStatement::Call => {
                     self.started = true;
                     if let Err(k) = self.macro_statement(&m, at, programs) {
                         return Err(self.alarm_stop(sink, at.program, line, k));
+                    }
+                }
+                Ok(Read::Macro(_)) => {
+                    self.started = true;
+                    match self.macro_call(programs) {
+                        Ok(None) => {}
+                        Ok(Some(next)) => {
+                            // Into the called program: a step reads one program.
+                            self.go(next);
+                            self.deliver(sink);
+                            return Ok(Progress::Executed { line });
+                        }
+                        Err(k) => return Err(self.alarm_stop(sink, at.program, line, k)),
                     }
                 }
                 Err(k) => return Err(self.alarm_stop(sink, at.program, line, k)),
@@ -522,8 +623,12 @@ impl Interpreter {
             return Err(alarm(AlarmKind::IllegalCharacter { found: c }));
         }
         let fmt = self.number_format();
-        match read_statement_into(raw, 0, &self.vars, &fmt, &mut self.block).map_err(alarm)? {
+        let read = read_program_block(raw, 0, &self.vars, &fmt, &mut self.block, &mut self.macro_calls);
+        match read.map_err(alarm)? {
             Read::Macro(m) => match m.statement {
+                MacroStatement::Call => {
+                    return Err(alarm(AlarmKind::NotSupportedYet { what: "a macro call (G65/G66/G67) in MDI" }));
+                }
                 MacroStatement::Assign { var, value } => self.vars.set(var, value).map_err(alarm)?,
                 MacroStatement::Nop => {}
                 _ => return Err(alarm(AlarmKind::ControlInMdi)),
@@ -643,6 +748,9 @@ impl Interpreter {
         check_into(&self.block, &self.state, &self.cfg, &mut self.cmd)?;
         let cmd = &self.cmd;
         if program.is_none() {
+            if self.block.sub_call().is_some() {
+                return Err(AlarmKind::NotSupportedYet { what: "a subprogram call by M or T code in MDI" });
+            }
             if let Some(&(m, _)) = cmd.m.iter().find(|(_, f)| f.is_flow()) {
                 return Err(AlarmKind::FlowInMdi { m });
             }
@@ -812,7 +920,7 @@ impl Interpreter {
     #[inline]
     fn route<P: ProgramStore + ?Sized>(&self, flow: Flow, programs: &P) -> Result<Next, AlarmKind> {
         match flow {
-            Flow::Continue => Ok(Next::Go),
+            Flow::Continue if !self.modal.any_due() => Ok(Next::Go),
             _ => self.route_flow(flow, programs),
         }
     }
@@ -823,18 +931,10 @@ impl Interpreter {
         let here = self.cursor.program;
         let start_of = |id| programs.start(id).ok_or(AlarmKind::ProgramNotFound { program: id });
         Ok(match flow {
-            Flow::Continue => Next::Go,
+            Flow::Continue => self.modal_call_after_move(programs)?,
             Flow::Stop => Next::Pause,
             Flow::End => Next::End,
-            Flow::Call { program, repeats } => {
-                if program == here {
-                    return Err(AlarmKind::SelfCall { program });
-                }
-                if self.calls.is_full() {
-                    return Err(AlarmKind::CallNestingTooDeep);
-                }
-                Next::Call { start: start_of(program)?, repeats }
-            }
+            Flow::Call { program, repeats, by } => self.subprogram_call(program, repeats, by, programs)?,
             Flow::Return { seq } => match self.calls.last() {
                 // M99 in a main program: run it again from the top, P ignored (note 4).
                 None => Next::Restart { start: start_of(here)? },
@@ -872,14 +972,17 @@ impl Interpreter {
             Next::Go => {}
             Next::Pause => self.phase = Phase::Paused,
             Next::End => self.phase = Phase::Ended,
-            Next::Call { start, repeats } => {
+            Next::Call { start, repeats, entry } => {
                 let frame = Frame {
                     ret: self.cursor,
                     loops: core::mem::take(&mut self.loops),
                     repeats_left: repeats.saturating_sub(1),
+                    entry,
+                    off: self.codes_off,
                 };
                 // `route` checked that there is room.
                 let _ = self.calls.push(frame);
+                self.enter_call(entry);
                 self.enter(start);
             }
             Next::Repeat { start } => {
@@ -894,6 +997,7 @@ impl Interpreter {
                     self.loops = f.loops;
                     self.cursor = f.ret;
                     self.started = true;
+                    self.leave_call(f.entry, f.off);
                 }
                 if let Some(to) = to {
                     self.jump(to);
@@ -938,6 +1042,8 @@ impl Interpreter {
             }
             MacroStatement::Loop { label, enter } => self.loop_start(label, enter, at, programs),
             MacroStatement::End { label } => self.loop_end(label),
+            // Taken by `step` before (a call ends the step).
+            MacroStatement::Call => Ok(()),
         }
     }
 

@@ -36,11 +36,12 @@ def run(lathe, work, prog, want, noise, seed, speed, timeout):
     pty = os.path.join(work, f"board-{seed}.pty")
     record = os.path.join(work, f"record-{seed}.jsonl")
     log = os.path.join(work, f"board-{seed}.log")
+    trace = os.path.join(work, f"trace-{seed}.txt")
     with open(log, "w") as board_log:
         board = subprocess.Popen(
             [lathe, "board", "--pty", pty, "--speed", str(speed), "--record", record,
              "--corrupt", str(noise), "--corrupt-out", str(noise), "--seed", str(seed),
-             "--exit-after", str(timeout + 30)],
+             "--trace", trace, "--exit-after", str(timeout + 30)],
             stdout=board_log, stderr=subprocess.STDOUT)
     try:
         for _ in range(100):
@@ -73,8 +74,12 @@ def run(lathe, work, prog, want, noise, seed, speed, timeout):
     holds = text.count("feed hold (!)")
     figures = re.search(r"streamed (\d+) lines in ([\d.]+) s \((\d+) lines/s\); (\d+) resend requests, "
                         r"(\d+) resyncs, (\d+) damaged answers, (\d+) soft resets sent", out)
-    sender_resets = int(figures.group(7)) if figures else 1
+    # Without the closing figures (a stuck or failed run): the connecting reset and
+    # every one the sender noted (retries of `$LN=1`, stopping a job).
+    sender_resets = int(figures.group(7)) if figures else 1 + out.count("soft reset")
+    open(os.path.join(work, f"send-{seed}.txt"), "w").write(out)
     return {
+        "trace": trace, "log": log,
         "rc": rc, "elapsed": elapsed, "same": got == want, "actions": got.count("\n"),
         "resets": resets, "sender_resets": sender_resets, "holds": holds,
         "figures": figures.groups() if figures else None, "out": out,
@@ -91,6 +96,9 @@ def main():
     ap.add_argument("--speed", type=float, default=50)
     ap.add_argument("--timeout", type=float, default=300)
     ap.add_argument("--first-seed", type=int, default=1)
+    ap.add_argument("--keep", action="store_true", help="keep the traces of runs that passed too")
+    ap.add_argument("--slow", type=float, default=60,
+                    help="a run that takes longer than this many seconds fails as stalled (soak)")
     a = ap.parse_args()
     work = tempfile.mkdtemp(prefix="link-noise.")
     prog = os.path.join(work, "program.nc")
@@ -99,7 +107,7 @@ def main():
     failed = 0
     if a.mode == "soak":
         noise = float(a.noise)
-        totals = {"stuck": 0, "failed": 0, "resets": 0, "holds": 0, "differ": 0}
+        totals = {"stuck": 0, "slow": 0, "failed": 0, "resets": 0, "holds": 0, "differ": 0}
         for i in range(a.runs):
             seed = a.first_seed + i
             r = run(a.lathe, work, prog, want, noise, seed, a.speed, a.timeout)
@@ -107,6 +115,8 @@ def main():
             bad = []
             if r["rc"] == "stuck":
                 totals["stuck"] += 1; bad.append("stuck")
+            elif r["elapsed"] > a.slow:
+                totals["slow"] += 1; bad.append(f"stalled (longer than {a.slow:.0f} s)")
             elif r["rc"] != 0:
                 totals["failed"] += 1; bad.append(f"exit {r['rc']}")
             if extra > 0:
@@ -122,8 +132,14 @@ def main():
             if bad:
                 failed += 1
                 print("    " + r["out"].strip().replace("\n", "\n    ")[-1500:], flush=True)
+                print(f"    kept: {r['trace']} (link traffic), {r['log']}", flush=True)
+            elif not a.keep:
+                for f in (r["trace"], r["log"], os.path.join(work, f"record-{seed}.jsonl"),
+                          os.path.join(work, f"send-{seed}.txt")):
+                    if os.path.exists(f):
+                        os.remove(f)
         print(f"{a.runs} runs of {a.blocks} blocks at {noise} % noise both ways: {a.runs - failed} passed, {failed} failed"
-              f" (stuck {totals['stuck']}, exit != 0 {totals['failed']}, resets nobody sent {totals['resets']},"
+              f" (stuck {totals['stuck']}, stalled {totals['slow']}, exit != 0 {totals['failed']}, resets nobody sent {totals['resets']},"
               f" holds {totals['holds']}, records differing from lathe sim {totals['differ']})")
     else:
         print(f"{a.blocks} blocks, lathe board --speed {a.speed}, noise both ways:")

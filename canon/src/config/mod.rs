@@ -8,7 +8,7 @@ pub mod params;
 pub mod tools;
 
 pub use motion::{Drive, MotionConfig};
-pub use params::{PARAMS, Param, ParamDef, ParamError, ParamUnit, Parameters};
+pub use params::{CALL_G, CALL_M, PARAMS, Param, ParamDef, ParamError, ParamUnit, Parameters, SUB_M};
 pub use tools::{MAX_OFFSET_VALUE, MAX_OFFSETS, MillPage, ToolOffset, ToolTable};
 
 use crate::axis::{AXIS_COUNT, Axis, Pos};

@@ -99,8 +99,68 @@ pub enum Param {
     ResetCancelsLocal,
     /// No.5170: 1 = reverse-thread rigid tapping option (2.22.2).
     ReverseTapping,
+    /// No.6001#5 (TCS, FANUC 0i): 1 = a T code calls subprogram O9000, the T value in #149.
+    TCodeCall,
     /// No.6023: maximum cutting feed along the path (2.2 note 3).
     MaxCuttingFeed,
+    /// No.6050 (FANUC 0i): the G code that calls macro O9010 (0 = none).
+    CallG9010,
+    /// No.6051 (FANUC 0i): the G code that calls macro O9011 (0 = none).
+    CallG9011,
+    /// No.6052 (FANUC 0i): the G code that calls macro O9012 (0 = none).
+    CallG9012,
+    /// No.6053 (FANUC 0i): the G code that calls macro O9013 (0 = none).
+    CallG9013,
+    /// No.6054 (FANUC 0i): the G code that calls macro O9014 (0 = none).
+    CallG9014,
+    /// No.6055 (FANUC 0i): the G code that calls macro O9015 (0 = none).
+    CallG9015,
+    /// No.6056 (FANUC 0i): the G code that calls macro O9016 (0 = none).
+    CallG9016,
+    /// No.6057 (FANUC 0i): the G code that calls macro O9017 (0 = none).
+    CallG9017,
+    /// No.6058 (FANUC 0i): the G code that calls macro O9018 (0 = none).
+    CallG9018,
+    /// No.6059 (FANUC 0i): the G code that calls macro O9019 (0 = none).
+    CallG9019,
+    /// No.6071 (FANUC 0i): the M code that calls subprogram O9001 (0 = none).
+    SubM9001,
+    /// No.6072 (FANUC 0i): the M code that calls subprogram O9002 (0 = none).
+    SubM9002,
+    /// No.6073 (FANUC 0i): the M code that calls subprogram O9003 (0 = none).
+    SubM9003,
+    /// No.6074 (FANUC 0i): the M code that calls subprogram O9004 (0 = none).
+    SubM9004,
+    /// No.6075 (FANUC 0i): the M code that calls subprogram O9005 (0 = none).
+    SubM9005,
+    /// No.6076 (FANUC 0i): the M code that calls subprogram O9006 (0 = none).
+    SubM9006,
+    /// No.6077 (FANUC 0i): the M code that calls subprogram O9007 (0 = none).
+    SubM9007,
+    /// No.6078 (FANUC 0i): the M code that calls subprogram O9008 (0 = none).
+    SubM9008,
+    /// No.6079 (FANUC 0i): the M code that calls subprogram O9009 (0 = none).
+    SubM9009,
+    /// No.6080 (FANUC 0i): the M code that calls macro O9020 (0 = none).
+    CallM9020,
+    /// No.6081 (FANUC 0i): the M code that calls macro O9021 (0 = none).
+    CallM9021,
+    /// No.6082 (FANUC 0i): the M code that calls macro O9022 (0 = none).
+    CallM9022,
+    /// No.6083 (FANUC 0i): the M code that calls macro O9023 (0 = none).
+    CallM9023,
+    /// No.6084 (FANUC 0i): the M code that calls macro O9024 (0 = none).
+    CallM9024,
+    /// No.6085 (FANUC 0i): the M code that calls macro O9025 (0 = none).
+    CallM9025,
+    /// No.6086 (FANUC 0i): the M code that calls macro O9026 (0 = none).
+    CallM9026,
+    /// No.6087 (FANUC 0i): the M code that calls macro O9027 (0 = none).
+    CallM9027,
+    /// No.6088 (FANUC 0i): the M code that calls macro O9028 (0 = none).
+    CallM9028,
+    /// No.6089 (FANUC 0i): the M code that calls macro O9029 (0 = none).
+    CallM9029,
     /// No.7013: dwell at R point in rigid tapping (2.22.2).
     TapDwellAtR,
 }
@@ -165,7 +225,37 @@ defs! {
     InitialPerRev 5154 Bool 0.0 "feed mode at power-on: 0 = G98 per minute, 1 = G99 per revolution (2.20 note 1)";
     ResetCancelsLocal 5160 Bool 0.0 "1 = reset cancels the G52 local coordinate system (2.12.3 note 5)";
     ReverseTapping 5170 Bool 0.0 "rigid tapping spindle direction: 0 = M03 in, M04 out; 1 = M04 in, M03 out (2.22.2 note 7)";
+    TCodeCall 6001 Bool 0.0 "(bit 5, TCS) 1 = a T code calls subprogram O9000 with the T value in #149, instead of indexing the turret (FANUC 0i)";
     MaxCuttingFeed 6023 MmPerMin 5000.0 "maximum cutting feed along the path (2.2 note 3)";
+    CallG9010 6050 Count 0.0 "G code that calls macro O9010 with its arguments, as G65 P9010 would; 0 = none (FANUC 0i)";
+    CallG9011 6051 Count 0.0 "G code that calls macro O9011 with its arguments, as G65 P9011 would; 0 = none (FANUC 0i)";
+    CallG9012 6052 Count 0.0 "G code that calls macro O9012 with its arguments, as G65 P9012 would; 0 = none (FANUC 0i)";
+    CallG9013 6053 Count 0.0 "G code that calls macro O9013 with its arguments, as G65 P9013 would; 0 = none (FANUC 0i)";
+    CallG9014 6054 Count 0.0 "G code that calls macro O9014 with its arguments, as G65 P9014 would; 0 = none (FANUC 0i)";
+    CallG9015 6055 Count 0.0 "G code that calls macro O9015 with its arguments, as G65 P9015 would; 0 = none (FANUC 0i)";
+    CallG9016 6056 Count 0.0 "G code that calls macro O9016 with its arguments, as G65 P9016 would; 0 = none (FANUC 0i)";
+    CallG9017 6057 Count 0.0 "G code that calls macro O9017 with its arguments, as G65 P9017 would; 0 = none (FANUC 0i)";
+    CallG9018 6058 Count 0.0 "G code that calls macro O9018 with its arguments, as G65 P9018 would; 0 = none (FANUC 0i)";
+    CallG9019 6059 Count 0.0 "G code that calls macro O9019 with its arguments, as G65 P9019 would; 0 = none (FANUC 0i)";
+    SubM9001 6071 Count 0.0 "M code that calls subprogram O9001, as M98 P9001 would; 0 = none (FANUC 0i)";
+    SubM9002 6072 Count 0.0 "M code that calls subprogram O9002, as M98 P9002 would; 0 = none (FANUC 0i)";
+    SubM9003 6073 Count 0.0 "M code that calls subprogram O9003, as M98 P9003 would; 0 = none (FANUC 0i)";
+    SubM9004 6074 Count 0.0 "M code that calls subprogram O9004, as M98 P9004 would; 0 = none (FANUC 0i)";
+    SubM9005 6075 Count 0.0 "M code that calls subprogram O9005, as M98 P9005 would; 0 = none (FANUC 0i)";
+    SubM9006 6076 Count 0.0 "M code that calls subprogram O9006, as M98 P9006 would; 0 = none (FANUC 0i)";
+    SubM9007 6077 Count 0.0 "M code that calls subprogram O9007, as M98 P9007 would; 0 = none (FANUC 0i)";
+    SubM9008 6078 Count 0.0 "M code that calls subprogram O9008, as M98 P9008 would; 0 = none (FANUC 0i)";
+    SubM9009 6079 Count 0.0 "M code that calls subprogram O9009, as M98 P9009 would; 0 = none (FANUC 0i)";
+    CallM9020 6080 Count 0.0 "M code that calls macro O9020 with its arguments, as G65 P9020 would; 0 = none (FANUC 0i)";
+    CallM9021 6081 Count 0.0 "M code that calls macro O9021 with its arguments, as G65 P9021 would; 0 = none (FANUC 0i)";
+    CallM9022 6082 Count 0.0 "M code that calls macro O9022 with its arguments, as G65 P9022 would; 0 = none (FANUC 0i)";
+    CallM9023 6083 Count 0.0 "M code that calls macro O9023 with its arguments, as G65 P9023 would; 0 = none (FANUC 0i)";
+    CallM9024 6084 Count 0.0 "M code that calls macro O9024 with its arguments, as G65 P9024 would; 0 = none (FANUC 0i)";
+    CallM9025 6085 Count 0.0 "M code that calls macro O9025 with its arguments, as G65 P9025 would; 0 = none (FANUC 0i)";
+    CallM9026 6086 Count 0.0 "M code that calls macro O9026 with its arguments, as G65 P9026 would; 0 = none (FANUC 0i)";
+    CallM9027 6087 Count 0.0 "M code that calls macro O9027 with its arguments, as G65 P9027 would; 0 = none (FANUC 0i)";
+    CallM9028 6088 Count 0.0 "M code that calls macro O9028 with its arguments, as G65 P9028 would; 0 = none (FANUC 0i)";
+    CallM9029 6089 Count 0.0 "M code that calls macro O9029 with its arguments, as G65 P9029 would; 0 = none (FANUC 0i)";
     TapDwellAtR 7013 Ms 0.0 "rigid tapping dwell at the R level after tapping, ms (2.22.2 step 6, default 0 ms)";
 }
 
@@ -247,9 +337,77 @@ impl Parameters {
             }
             _ => {}
         }
+        if let Some(problem) = call_code_problem(p, value) {
+            return bad(problem);
+        }
         self.set(p, to_internal(def.unit, value));
         Ok(())
     }
+}
+
+/// Parameters 6050–6059: the G codes that call macros O9010–O9019.
+pub const CALL_G: [Param; 10] = [
+    Param::CallG9010,
+    Param::CallG9011,
+    Param::CallG9012,
+    Param::CallG9013,
+    Param::CallG9014,
+    Param::CallG9015,
+    Param::CallG9016,
+    Param::CallG9017,
+    Param::CallG9018,
+    Param::CallG9019,
+];
+/// Parameters 6071–6079: the M codes that call subprograms O9001–O9009.
+pub const SUB_M: [Param; 9] = [
+    Param::SubM9001,
+    Param::SubM9002,
+    Param::SubM9003,
+    Param::SubM9004,
+    Param::SubM9005,
+    Param::SubM9006,
+    Param::SubM9007,
+    Param::SubM9008,
+    Param::SubM9009,
+];
+/// Parameters 6080–6089: the M codes that call macros O9020–O9029.
+pub const CALL_M: [Param; 10] = [
+    Param::CallM9020,
+    Param::CallM9021,
+    Param::CallM9022,
+    Param::CallM9023,
+    Param::CallM9024,
+    Param::CallM9025,
+    Param::CallM9026,
+    Param::CallM9027,
+    Param::CallM9028,
+    Param::CallM9029,
+];
+
+/// M codes no parameter may turn into a call: the program-flow codes.
+const FLOW_M: [f64; 7] = [1.0, 2.0, 30.0, 91.0, 92.0, 98.0, 99.0];
+
+/// What is wrong with `value` (a whole number, 0 or more) for a parameter of
+/// 6050–6089: a G code 1–9999 other than G65–G67, an M code 1–999 other than
+/// the program-flow codes (0 = none).
+fn call_code_problem(p: Param, value: f64) -> Option<&'static str> {
+    if CALL_G.contains(&p) {
+        if value > 9_999.0 {
+            return Some("must be a G code 1-9999, or 0 for none");
+        }
+        if (65.0..=67.0).contains(&value) {
+            return Some("cannot be G65, G66 or G67");
+        }
+    }
+    if SUB_M.contains(&p) || CALL_M.contains(&p) {
+        if value > 999.0 {
+            return Some("must be an M code 1-999, or 0 for none");
+        }
+        if FLOW_M.contains(&value) {
+            return Some("cannot be M01, M02, M30, M91, M92, M98 or M99");
+        }
+    }
+    None
 }
 
 impl ParamUnit {
@@ -317,5 +475,24 @@ mod tests {
         assert!(p.set_from_file(5147, f64::NAN).is_err());
         assert_eq!(p.get(Param::RoughingDepth), 2_500_000, "rejected values change nothing");
         assert_eq!(Param::by_number(5152), Some(Param::DisableCoordinateSetting));
+    }
+
+    #[test]
+    fn call_code_parameters_take_only_codes_that_can_call() {
+        let mut p = Parameters::default();
+        assert_eq!(p.set_from_file(6050, 100.0), Ok(()));
+        assert_eq!(p.get(Param::CallG9010), 100);
+        assert_eq!(p.set_from_file(6059, 9999.0), Ok(()));
+        assert!(p.set_from_file(6051, 10_000.0).is_err());
+        assert!(p.set_from_file(6052, 65.0).is_err());
+        assert!(p.set_from_file(6053, 100.5).is_err());
+        assert_eq!(p.set_from_file(6071, 6.0), Ok(()));
+        assert_eq!(p.set_from_file(6089, 999.0), Ok(()));
+        for m in [1.0, 2.0, 30.0, 98.0, 99.0, 1000.0] {
+            assert!(p.set_from_file(6080, m).is_err(), "M{m}");
+        }
+        assert_eq!(p.set_from_file(6001, 1.0), Ok(()));
+        assert!(p.flag(Param::TCodeCall));
+        assert_eq!([CALL_G[0], SUB_M[8], CALL_M[9]].map(|q| q.def().number), [6050, 6079, 6089]);
     }
 }

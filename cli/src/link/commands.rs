@@ -92,7 +92,8 @@ pub struct StatusArgs {
 /// Options of `lathe settings`.
 #[derive(Clone, Debug, Args)]
 pub struct SettingsArgs {
-    /// Settings to write, `$n=value` (or `n=value`); without any, print all (`$$`).
+    /// Settings to write, `$n=value` (or `n=value`), numbered parameters as
+    /// `$Pn=value` (`$P6050=100`); without any, print all (`$$`).
     #[arg(value_name = "$n=value", value_parser = parse_setting)]
     pub writes: Vec<String>,
     /// Port options.
@@ -106,17 +107,20 @@ pub struct SettingsArgs {
     pub unlock: bool,
 }
 
-/// `$n=value` or `n=value` → `$n=value`.
+/// `$n=value` or `n=value` → `$n=value`; a parameter `$Pn=value` (`Pn=value`)
+/// likewise.
 fn parse_setting(s: &str) -> Result<String, String> {
     let body = s.strip_prefix('$').unwrap_or(s);
-    let (n, value) = body.split_once('=').ok_or("expected $n=value")?;
+    let (key, value) = body.split_once('=').ok_or("expected $n=value")?;
+    let n = key.strip_prefix(['P', 'p']).unwrap_or(key);
     if n.is_empty() || !n.bytes().all(|b| b.is_ascii_digit()) {
-        return Err("the setting number must be digits, as in $110=500".into());
+        return Err("the setting number must be digits, as in $110=500 (a parameter: $P6050=100)".into());
     }
+    let key = if n.len() < key.len() { format!("P{n}") } else { n.to_string() };
     if value.is_empty() || !value.bytes().all(|b| b.is_ascii_graphic() && !matches!(b, b'?' | b'!' | b'~')) {
         return Err("the value must be printable characters without blanks".into());
     }
-    Ok(format!("${n}={value}"))
+    Ok(format!("${key}={value}"))
 }
 
 /// How long a `$` command may take to be answered.
@@ -492,6 +496,9 @@ mod tests {
     fn settings_are_written_with_their_dollar() {
         assert_eq!(parse_setting("$110=500"), Ok("$110=500".into()));
         assert_eq!(parse_setting("300=1"), Ok("$300=1".into()));
+        assert_eq!(parse_setting("$P6050=100"), Ok("$P6050=100".into()));
+        assert_eq!(parse_setting("p6001=1"), Ok("$P6001=1".into()));
+        assert!(parse_setting("$P=1").is_err());
         assert!(parse_setting("$X").is_err());
         assert!(parse_setting("$1a=2").is_err());
         assert!(parse_setting("$1=").is_err());

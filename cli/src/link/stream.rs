@@ -152,6 +152,15 @@ impl Streamer {
             // A link error is never a refusal: the `[MSG:Resend:n]` before it says
             // what to send again. (After line noise has eaten a line end, answers
             // and lines in flight may be out of step; the board's number rules.)
+            // When line noise ate that message, the line was still not taken: it is
+            // sent again (were it taken after all, the board answers the duplicate
+            // `N<k> ok` and drops it). Without this, a refused last line whose
+            // request was lost left nothing in flight and nothing to resend: the
+            // job never ended (noise soak, 1 % both ways, run 97 of 100).
+            match &mut self.resend {
+                Some(r) => r.from = r.from.min(line.index),
+                None => self.resend = Some(Resend { from: line.index, last_answer: now }),
+            }
             return Outcome::Superseded(line.index);
         }
         match answer {
@@ -442,6 +451,25 @@ mod tests {
         // Both lost on the way to the board: go on from the first it has not taken.
         assert_eq!(s.lost_in_flight(6), 6);
         assert!(s.next_line().unwrap().starts_with("N7 "));
+    }
+
+    #[test]
+    fn an_error_88_whose_resend_request_was_lost_resends_its_line() {
+        let cfg = StreamConfig { checksum: true, ..StreamConfig::default() };
+        let mut s = Streamer::new(lines(3, 10), cfg).unwrap();
+        let t = Instant::now();
+        assert_eq!(drain(&mut s).len(), 3);
+        assert_eq!(s.answer_line(1, Ok(()), t), Outcome::Accepted(0));
+        assert_eq!(s.answer_line(2, Ok(()), t), Outcome::Accepted(1));
+        // Line 3 arrived damaged; `[MSG:Resend:3]` was damaged on the way back and
+        // dropped, the plain `error:88` came through.
+        assert_eq!(s.answer(Err(88), t), Outcome::Superseded(2));
+        assert!(s.resending());
+        assert!(!s.all_accepted());
+        assert_eq!(s.tick(t), Some(2), "nothing left in flight: resend at once");
+        assert!(s.next_line().unwrap().starts_with("N3 "));
+        assert_eq!(s.answer_line(3, Ok(()), t), Outcome::Accepted(2));
+        assert!(s.all_accepted());
     }
 
     #[test]

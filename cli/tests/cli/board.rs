@@ -321,3 +321,37 @@ fn hold_resume_overrides_reset_and_errors_on_the_wire() {
     raw.until("ok\r\n");
     assert!(raw.status().starts_with("<Idle|"));
 }
+
+/// docs/MACROS.md on the board: the macros uploaded into its memory, G100 made a
+/// call by `$P6050=100` over the link, the programs that call them streamed. What
+/// the board runs is what `lathe sim --lib` interprets.
+#[test]
+fn streamed_programs_call_macros_in_the_boards_memory() {
+    let lib = example("macros/lib");
+    for (name, param) in [("grooves_g66.nc", None), ("g100_wide_grooves.nc", Some("$P6050=100"))] {
+        let record = scratch(&format!("board-macros-{name}.jsonl"), "");
+        let board = Board::start(&format!("macros-{name}"), &["--speed", "20", "--record", &record]);
+        for m in ["O9110.nc", "O9010.nc"] {
+            let o = lathe(&["upload", &format!("{lib}/{m}"), "--port", &board.link, "--quiet"]);
+            assert_eq!(o.status.code(), Some(0), "{}{}", stdout(&o), stderr(&o));
+        }
+        let mut want_args = vec!["sim".to_string(), example(&format!("macros/{name}")), "--lib".into(), lib.clone()];
+        if let Some(p) = param {
+            let o = lathe(&["settings", p, "--port", &board.link]);
+            assert_eq!(o.status.code(), Some(0), "{}{}", stdout(&o), stderr(&o));
+            // The board's machine with 6050 = 100 (the example's also has a C axis).
+            want_args.extend(["--machine".into(), scratch("g100.toml", "[parameters]\n6050 = 100\n")]);
+        }
+        let program = example(&format!("macros/{name}"));
+        let o = lathe(&["send", &program, "--port", &board.link, "--quiet"]);
+        assert_eq!(o.status.code(), Some(0), "{name}: {}{}", stdout(&o), stderr(&o));
+        assert!(stdout(&o).contains("[MSG:Pgm End]"), "{}", stdout(&o));
+        want_args.extend(["--format".into(), "jsonl".into()]);
+        let want = lathe(&want_args.iter().map(String::as_str).collect::<Vec<_>>());
+        let want = stdout(&want);
+        let got = wait_lines(&record, want.lines().count());
+        // The macros' lines count from their stored text (without the file's `%`).
+        assert_eq!(without_lines(&got), without_lines(&want), "{name}");
+        assert!(want.contains("\"program\":9110") || want.contains("\"program\":9010"), "{name} calls a macro");
+    }
+}

@@ -95,8 +95,15 @@ fn an_alarm_is_reported_with_its_message_and_stops_the_stream() {
     assert_eq!(seen.resets, 1, "the board is left in its alarm");
 }
 
+/// `lathe send --tape` end to end over a pty: the tape goes out whole and is
+/// drip-fed. How the sender honours XOFF is checked in
+/// `tape_flow::tape_mode_honours_xoff_within_one_chunk_of_reading_it`, where the
+/// board answers in the order of reads and writes: here two processes share the
+/// machine's cores, so how many bytes cross a DC3 on the way, or wait in the fake's
+/// buffer, depends on how they were scheduled (this test failed on that with 6 busy
+/// processes on 2 cores: more than 512 bytes buffered).
 #[test]
-fn tape_mode_honours_xoff_and_drip_feeds_without_the_o_number() {
+fn tape_mode_drip_feeds_without_the_o_number() {
     let board = FakeBoard::start(Script { line_period: std::time::Duration::from_millis(3), ..Script::default() });
     let p = scratch("link-tape.nc", program(80));
     let o = lathe(&["send", &p, "--port", &board.path, "--quiet", "--tape"]);
@@ -108,14 +115,6 @@ fn tape_mode_honours_xoff_and_drip_feeds_without_the_o_number() {
     assert_eq!(seen.drip[82], "M30");
     assert!(seen.programs.is_empty());
     assert_eq!(seen.resets, 2, "a second reset after the status check, so that % starts tape mode");
-    assert!(seen.xoffs >= 1, "the tape was long enough to fill the buffer");
-    // The fake counts every byte it reads after sending XOFF, including what already
-    // sat in the pty when it sent it: on a loaded machine (tests run in parallel on 2
-    // cores) the fake itself lags. The sender stops within a chunk of seeing DC3.
-    assert!(seen.after_xoff <= 384, "{} bytes came after XOFF", seen.after_xoff);
-    // For the same reason the fake's buffer can hold what came after its XOFF on top
-    // of the 128 bytes at which it sends it (seen with 6 busy processes on 2 cores).
-    assert!(seen.max_buffered <= 128 + 384, "{}", seen.max_buffered);
 }
 
 #[test]

@@ -107,3 +107,69 @@ fn library_problems_are_errors_naming_the_file() {
     let o = lathe(&["check", &format!("{dir}/main.nc"), "--lib", &dir]);
     assert_eq!(status(&o), 0, "{}{}", stdout(&o), stderr(&o));
 }
+
+/// The macro examples of `examples/macros/` (docs/MACROS.md): each checks without an
+/// alarm, simulates to M30, and renders exactly as the SVG committed beside it.
+#[test]
+fn every_macro_example_checks_simulates_and_matches_its_render() {
+    let dir = format!("{EXAMPLES}/macros");
+    let (lib, machine) = (format!("{dir}/lib"), format!("{dir}/machine.toml"));
+    let mut programs: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "nc"))
+        .collect();
+    programs.sort();
+    assert_eq!(programs.len(), 3);
+    for p in &programs {
+        let p = p.to_str().unwrap();
+        let with = |args: &[&str]| lathe(&[args, &["--lib", &lib, "--machine", &machine]].concat());
+        let o = with(&["check", p]);
+        assert_eq!(status(&o), 0, "{p}: {}{}", stdout(&o), stderr(&o));
+        assert!(stdout(&o).ends_with("no alarms\n"), "{p}: {}", stdout(&o));
+        let summary = stdout(&with(&["sim", p]));
+        assert!(summary.contains("alarms      none\n") && summary.contains("end         M30\n"), "{p}: {summary}");
+        // The render names the file as given: as from the repository's root.
+        let name = p.rsplit('/').next().unwrap();
+        let svg = stdout(&with(&["sim", p, "--format", "svg"])).replace(p, &format!("examples/macros/{name}"));
+        let committed = std::fs::read_to_string(p.replace(".nc", ".svg")).unwrap();
+        assert!(svg == committed, "{p}: the render differs; regenerate it as docs/MACROS.md says");
+    }
+}
+
+#[test]
+fn the_macro_examples_make_the_moves_they_promise() {
+    let dir = format!("{EXAMPLES}/macros");
+    let (lib, machine) = (format!("{dir}/lib"), format!("{dir}/machine.toml"));
+    let moves = |name: &str| -> Vec<serde_json::Value> {
+        let o = lathe(&["sim", &format!("{dir}/{name}"), "--lib", &lib, "--machine", &machine, "--format", "jsonl"]);
+        assert_eq!(status(&o), 0, "{}", stderr(&o));
+        stdout(&o)
+            .lines()
+            .map(|l| serde_json::from_str(l).unwrap())
+            .filter(|v: &serde_json::Value| v["kind"] == "linear")
+            .collect()
+    };
+    // G66: a plunge to X26 after each of the four moves, at its Z, from O9110.
+    let grooves: Vec<(f64, f64, u64)> = moves("grooves_g66.nc")
+        .iter()
+        .map(|v| (v["x"].as_f64().unwrap(), v["z"].as_f64().unwrap(), v["program"].as_u64().unwrap()))
+        .collect();
+    assert_eq!(grooves, [(26.0, -10.0, 9110), (26.0, -20.0, 9110), (26.0, -30.0, 9110), (26.0, -42.0, 9110)]);
+    // G100 (6050 = 100 calls O9010): 4 plunges across 12 mm, 3 across 8 mm.
+    let plunges: Vec<(f64, f64)> = moves("g100_wide_grooves.nc")
+        .iter()
+        .map(|v| (v["x"].as_f64().unwrap(), (v["z"].as_f64().unwrap() * 1000.0).round() / 1000.0))
+        .collect();
+    assert_eq!(
+        plunges,
+        [(30.0, -10.0), (30.0, -12.667), (30.0, -15.333), (30.0, -18.0), (34.0, -35.0), (34.0, -37.0), (34.0, -39.0)]
+    );
+    // G65 bolt circles: the feeds of the holes go down to Z-12 (six) and Z-8 (four).
+    let bottoms: Vec<f64> = moves("bolt_circle_g65.nc")
+        .iter()
+        .map(|v| v["z"].as_f64().unwrap())
+        .filter(|z| *z == -12.0 || *z == -8.0)
+        .collect();
+    assert_eq!(bottoms, [-12.0; 6].into_iter().chain([-8.0; 4]).collect::<Vec<_>>());
+}

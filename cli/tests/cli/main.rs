@@ -13,6 +13,7 @@ mod machine;
 mod macros;
 mod sim;
 mod svg;
+mod tape_flow;
 
 use std::path::PathBuf;
 use std::process::{Command, Output};

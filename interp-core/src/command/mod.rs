@@ -34,7 +34,19 @@ pub struct AxisWord {
     pub incremental: bool,
 }
 
-/// What an M98, M99, M91 or M92 of the block asks for, with its P (and L).
+/// How a subprogram call was made.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum CallBy {
+    /// M98.
+    M98,
+    /// A code the language lets call a subprogram (FANUC: an M code of parameters
+    /// 6071–6079, or with 6001#5 a T code, whose value the front end passes on).
+    Code,
+}
+
+/// What an M98, M99, M91 or M92 of the block asks for, with its P (and L), or a
+/// subprogram call by an M or T code.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum FlowWord {
@@ -44,6 +56,8 @@ pub enum FlowWord {
         program: u32,
         /// Repetitions, 1–9999 (`L`, or the digits before the last four of P).
         repeats: u16,
+        /// M98 or a code.
+        by: CallBy,
     },
     /// M99 [P…]: return to the caller, at sequence `seq` if given (3.1.7).
     Return {
@@ -120,6 +134,58 @@ impl Command {
         corner: None,
         cycle: CycleArgs::None,
     };
+
+    /// Whether the block commands a move along an axis: it has an axis word and the
+    /// code that uses it is a move, a turning, threading or hole cycle, or a
+    /// reference or machine-coordinate move (not G04, G22, G50, G52, G12.1 …). A
+    /// FANUC G66 modal call follows such blocks. A machining centre's G51, G51.1
+    /// and G68 take the axis words as their centre: no move.
+    pub fn moves_axes(&self, state: &State) -> bool {
+        use GCode::*;
+        self.axes.iter().any(Option::is_some)
+            && self.g.frame.is_none()
+            && matches!(
+                self.axis_user(state),
+                Rapid
+                    | Linear
+                    | ArcCw
+                    | ArcCcw
+                    | EllipseCw
+                    | EllipseCcw
+                    | ParabolaCw
+                    | ParabolaCcw
+                    | Thread
+                    | VariableLeadThread
+                    | TurningCycle
+                    | ThreadCycle
+                    | FacingCycle
+                    | ReferenceReturn
+                    | ReferenceReturnN
+                    | MachineCoordinates
+                    | FacePeckCycle
+                    | GroovePeckCycle
+                    | MultiThreadCycle
+                    | FaceDrill
+                    | FaceTap
+                    | FaceBore
+                    | SideDrill
+                    | SideTap
+                    | SideBore
+                    | ReturnFromReference
+                    | HighSpeedPeck
+                    | LeftTap
+                    | FineBore
+                    | Drill
+                    | DrillDwell
+                    | PeckDrill
+                    | Tap
+                    | Bore
+                    | BoreSpindleStop
+                    | BackBore
+                    | BoreManual
+                    | BoreDwell
+            )
+    }
 
     /// The code that consumes the block's axis words (a machining centre's G51,
     /// G51.1 and G68 take them too: its checker asks [`GSet::frame`] first).

@@ -13,6 +13,7 @@ use crate::config::MachineConfig;
 use crate::env::Environment;
 use crate::lang::ProgramText;
 use crate::lang::fanuc::check::check;
+use crate::lang::fanuc::macros::MacroStatement;
 use crate::lang::fanuc::parse::{Block, Read, read_with};
 use crate::modal::State;
 use crate::program::{Cursor, find_sequence_from, next_block};
@@ -229,10 +230,14 @@ pub fn next_shape_block<E: Environment + ?Sized>(
             return Err(AlarmKind::SequenceNotFound { n: src.nf });
         }
         // Words may use variables (read as the cycle block saw them); a macro
-        // statement cannot be part of a shape.
+        // statement or call (G65, G66, G67) cannot be part of a shape.
         let mut block = Block::default();
-        if let Read::Macro(_) = read_with(raw.text, raw.line, src.program.vars, src.program.fmt, &mut block)? {
-            return Err(AlarmKind::ProfileForbiddenCode { what: "a macro statement" });
+        match read_with(raw.text, raw.line, src.program.vars, src.program.fmt, &mut block)? {
+            Read::Nc => {}
+            Read::Macro(m) if m.statement == MacroStatement::Call => {
+                return Err(AlarmKind::ProfileForbiddenCode { what: "a macro call (G65, G66, G67)" });
+            }
+            Read::Macro(_) => return Err(AlarmKind::ProfileForbiddenCode { what: "a macro statement" }),
         }
         let last = block.seq == Some(src.nf);
         // Note 4: block skip as the switch stands when the block is read.

@@ -326,7 +326,7 @@ fn program_flow(
     }
     Ok(match cmd.flow {
         None => Flow::Continue,
-        Some(FlowWord::Call { program, repeats }) => Flow::Call { program, repeats },
+        Some(FlowWord::Call { program, repeats, by }) => Flow::Call { program, repeats, by },
         Some(FlowWord::Return { seq }) => Flow::Return { seq },
         Some(FlowWord::Jump { seq, high }) => {
             let input = cfg.jump_input;

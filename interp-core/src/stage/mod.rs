@@ -126,12 +126,15 @@ pub enum Flow {
     Stop,
     /// M02/M30.
     End,
-    /// M98: call subprogram `program` `repeats` times, after the block's other codes.
+    /// M98 (or an M or T code that calls): call subprogram `program` `repeats`
+    /// times, after the block's other codes.
     Call {
         /// O number.
         program: u32,
         /// Repetitions.
         repeats: u16,
+        /// M98 or a code.
+        by: crate::command::CallBy,
     },
     /// M99: return to the caller (at sequence `seq`), or restart a main program.
     Return {

@@ -13,6 +13,7 @@ use cortex_m_semihosting::hprintln;
 use interp_core::canon::RecordingSink;
 use interp_core::lang::fanuc::macros::Variables;
 use interp_core::lang::fanuc::parse::{Statement, read_statement};
+use interp_core::program::{ProgramMemory, ProgramStore};
 use interp_core::units::NumberFormat;
 use interp_core::{Alarm, Interpreter, MachineConfig, Panel, Progress, SingleProgram};
 use m4_tests::{exit, measure};
@@ -37,11 +38,15 @@ fn read(input: (&[u8], &Variables, &NumberFormat)) -> bool {
 const LOOP: &[u8] = b"#1=0\nWHILE [#1 LT 1000000] DO1\n#1=#1+1\nEND1\nM30\n";
 
 /// One interpreter step: the default budget of statements.
-fn step(input: (&mut Interpreter, &SingleProgram<'_>, &Panel)) -> Result<Progress, Alarm> {
+fn step<P: ProgramStore>(input: (&mut Interpreter, &P, &Panel)) -> Result<Progress, Alarm> {
     let (interp, store, panel) = input;
     let mut sink = RecordingSink::<1>::new();
     interp.step(store, panel, &mut sink)
 }
+
+/// G65 calls with two arguments (docs/MACROS.md), the macro one statement and M99.
+const CALLS: &[u8] = b"G65 P9100 A1. B2.\nG65 P9100 A3. B4.\nG65 P9100 A5. B6.\nM30\n";
+const MACRO: &[u8] = b"O9100\n#3=#1+#2\nM99\n";
 
 #[entry]
 fn main() -> ! {
@@ -69,6 +74,32 @@ fn main() -> ! {
             hprintln!("unexpected: {:?}", r);
             exit(false);
         }
+    }
+    // A G65 call, as three steps: the call block (a new level with #1, #2, into
+    // O9100), the called program's O line, its #3=#1+#2 and the M99 back to level 0.
+    // The first call runs unmeasured (warm-up), the second is measured.
+    let mut memory = ProgramMemory::<256, 4, 8>::new();
+    let (Ok(main), Ok(_)) = (memory.load(CALLS, Some(0)), memory.load(MACRO, None)) else { exit(false) };
+    let mut interp = Interpreter::new(MachineConfig::default());
+    interp.select_main(main);
+    for _ in 0..3 {
+        let _ = step((&mut interp, &memory, &panel));
+    }
+    for (what, level) in [
+        ("G65 P9100 A3. B4. (call, 2 arguments)", 1),
+        ("O9100 (the called program's O line)", 1),
+        ("O9100: #3=#1+#2, M99 (return)", 0),
+    ] {
+        hprintln!("bench step: {}", what);
+        let done = measure(step, (&mut interp, &memory, &panel));
+        if !matches!(done, Ok(Progress::Executed { .. } | Progress::Skipped { .. })) || interp.macro_level() != level {
+            hprintln!("unexpected: {:?} at level {}", done.map(|_| ()).is_ok(), interp.macro_level());
+            exit(false);
+        }
+    }
+    if interp.variables().get(3) != Ok(None) {
+        hprintln!("unexpected: #3 of level 0 set");
+        exit(false);
     }
     hprintln!("interpreter: {} bytes, variables: {} bytes", size_of::<Interpreter>(), size_of::<Variables>());
     exit(true)

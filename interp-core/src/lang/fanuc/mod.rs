@@ -3,8 +3,10 @@
 //!
 //! - [`parse`]: one block of text into words, or an evaluated macro statement;
 //! - [`macros`]: variables #n, expressions, GOTO/IF/WHILE;
-//! - [`check`]: the words into a [`crate::command::Command`] (meaning, units).
+//! - [`check`]: the words into a [`crate::command::Command`] (meaning, units);
+//! - [`calls`]: G65/G66/G67 and the calls by G, M and T codes (FANUC 0i).
 
+pub mod calls;
 pub mod check;
 pub mod macros;
 pub mod parse;

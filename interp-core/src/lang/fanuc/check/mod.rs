@@ -10,7 +10,7 @@ mod words;
 use crate::alarm::AlarmKind;
 use crate::axis::{AXIS_COUNT, Axis};
 use crate::codes::{MFunction, m_codes_conflict, m_function};
-use crate::command::{Command, FlowWord};
+use crate::command::{CallBy, Command, FlowWord};
 use crate::config::{MachineConfig, MachineKind};
 use crate::lang::fanuc::parse::{Block, MAX_M};
 use crate::modal::State;
@@ -60,10 +60,27 @@ pub fn check_into(block: &Block, state: &State, cfg: &MachineConfig, cmd: &mut C
     Ok(())
 }
 
-/// The P (and L) of M98, M99, M91, M92.
+/// The alarm for M codes `first` and `second` that contradict each other; a
+/// subprogram call by an M or T code stands in the block as an M98 and is named
+/// by its own code.
+#[cold]
+fn conflict(block: &Block, first: u16, second: u16) -> AlarmKind {
+    match block.sub_call() {
+        Some(call) if first == 98 && call.t.is_some() => crate::lang::fanuc::parse::T_WITH_FLOW,
+        Some(call) if first == 98 => AlarmKind::ConflictingMCodes { first: call.m, second },
+        _ => AlarmKind::ConflictingMCodes { first, second },
+    }
+}
+
+/// The P (and L) of M98, M99, M91, M92, or a subprogram call by an M or T code.
 fn flow_word(block: &Block, f: MFunction) -> Result<FlowWord, AlarmKind> {
     let p = |max| block.get(b'P').map(|n| crate::lang::fanuc::parse::whole(b'P', &n, max)).transpose();
     match f {
+        // A subprogram call by an M code (6071–6079) or a T code (6001#5), standing
+        // in the block as an M98 (FANUC 0i: as M98 P would, without P or L).
+        MFunction::Call if let Some(call) = block.sub_call() => {
+            Ok(FlowWord::Call { program: call.program, repeats: 1, by: CallBy::Code })
+        }
         MFunction::Call => {
             let p = p(99_999_999)?.ok_or(AlarmKind::SubprogramNumberMissing)?;
             let (program, repeats) = match block.get(b'L') {
@@ -78,7 +95,7 @@ fn flow_word(block: &Block, f: MFunction) -> Result<FlowWord, AlarmKind> {
             if !(1..=9_999).contains(&repeats) {
                 return Err(AlarmKind::ValueOutOfRange { letter: b'L' });
             }
-            Ok(FlowWord::Call { program, repeats: repeats as u16 })
+            Ok(FlowWord::Call { program, repeats: repeats as u16, by: CallBy::M98 })
         }
         MFunction::Return => {
             let alone = block.g.is_empty()
@@ -111,7 +128,7 @@ fn resolve_m(
     for (i, &m) in block.m.iter().enumerate() {
         let f = m_function(m, cfg).ok_or(AlarmKind::UnknownMCode { m })?;
         if let Some(&other) = block.m[..i].iter().find(|&&o| m_codes_conflict(o, m)) {
-            return Err(AlarmKind::ConflictingMCodes { first: other, second: m });
+            return Err(conflict(block, other, m));
         }
         // Capacity equals the reader's, so this push cannot fail.
         let _ = out.push((m, f));

@@ -36,8 +36,9 @@ impl Letters {
 
 /// Axis addresses, absolute and incremental.
 const AXES: Letters = Letters::of(b"XYZCUVWH");
-/// Words every block may hold.
-pub(super) const ALWAYS: Letters = Letters::of(b"FST");
+/// Words every block may hold (and a subprogram call by an M or T code, which is
+/// not a word).
+pub(super) const ALWAYS: Letters = Letters::of(b"FST").with(Letters(crate::lang::fanuc::parse::SUB_CALL));
 /// Letters no function of this controller uses.
 const UNUSED: Letters = Letters::of(b"D");
 
@@ -75,7 +76,8 @@ pub(super) fn check_letters(
         Some((l, name)) => (Letters::of(l), name),
         None => words_of(user),
     };
-    if let Some(f) = flow {
+    // A subprogram call by an M or T code stands as an M98 but takes no P or L.
+    if let Some(f) = flow.filter(|_| block.sub_call().is_none()) {
         if allowed.contains(b'P') && block.has(b'P') {
             return Err(AlarmKind::WordNotAllowed {
                 letter: b'P',

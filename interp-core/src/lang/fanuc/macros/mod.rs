@@ -14,8 +14,8 @@ mod vars;
 pub use expr::MAX_BRACKET_DEPTH;
 pub use statement::{MAX_SEQUENCE, MacroStatement};
 pub use vars::{
-    COMMON_COUNT, CommonStore, FIRST_COMMON, LAST_COMMON, MAX_VARIABLE, Value, Variables, parse_common_line,
-    write_commons,
+    COMMON_COUNT, CommonStore, FIRST_COMMON, LAST_COMMON, LOCAL_COUNT, Locals, MAX_MACRO_LEVEL, MAX_VARIABLE,
+    POOL_SIZE, Value, Variables, parse_common_line, write_commons,
 };
 
 pub(crate) use expr::{Eval, Rounding, format, nullable};

@@ -43,6 +43,10 @@ pub enum MacroStatement {
         /// Loop number 1–3.
         label: u8,
     },
+    /// A macro call (G65, G66, G67, a G or M code that calls; note 7 counts it a
+    /// macro statement): what it asks for and its arguments are in the
+    /// [`CallRead`](crate::lang::fanuc::calls::CallRead) the reader was given.
+    Call,
 }
 
 /// Words that begin a macro statement.

@@ -29,6 +29,7 @@ fn statement_in(text: &str, vars: &Variables) -> Result<MacroStatement, AlarmKin
     match read_statement(text.as_bytes(), 1, vars, &METRIC)? {
         Statement::Macro(m) => Ok(m.statement),
         Statement::Nc(b) => panic!("{text}: read as NC {b:?}"),
+        Statement::Call(c, _) => panic!("{text}: read as a call {c:?}"),
     }
 }
 
@@ -59,6 +60,7 @@ fn nc_in(text: &str, vars: &Variables, fmt: &NumberFormat) -> Result<Block, Alar
     match read_statement(text.as_bytes(), 1, vars, fmt)? {
         Statement::Nc(b) => Ok(b),
         Statement::Macro(m) => panic!("{text}: read as macro {m:?}"),
+        Statement::Call(c, _) => panic!("{text}: read as a call {c:?}"),
     }
 }
 
@@ -456,4 +458,18 @@ fn loop_marks_are_found_without_evaluating() {
     assert_eq!(loop_mark(b"G01 X1"), None);
     assert_eq!(loop_mark(b"#1=1"), None);
     assert_eq!(loop_mark(b"IF [1 EQ 1] GOTO 1"), None);
+}
+
+#[test]
+fn read_statement_gives_a_call_block_with_its_arguments() {
+    use crate::lang::fanuc::calls::{Caller, MacroCall};
+    let vars = Variables::new();
+    let Ok(Statement::Call(c, args)) = read_statement(b"N7 G65 P9100 L2 A1. B-2.5", 3, &vars, &METRIC) else {
+        panic!("not read as a call");
+    };
+    assert_eq!((c.line, c.seq), (3, Some(7)));
+    assert_eq!(c.call, MacroCall::Simple { program: 9100, repeats: 2, by: Caller::Program });
+    assert_eq!(args.defined().collect::<std::vec::Vec<_>>(), [(1, 1.0), (2, -2.5)]);
+    // Without P: alarm 0076, from the call path as from the interpreter.
+    assert_eq!(read_statement(b"G65 A1.", 1, &vars, &METRIC).map_err(|k| k.code()).err(), Some(76));
 }

@@ -4,9 +4,11 @@
 
 mod reader;
 
-pub use reader::{read_block, read_block_into, read_statement, read_statement_into, read_with};
+pub use reader::{read_block, read_block_into, read_program_block, read_statement, read_statement_into, read_with};
 
-use crate::lang::fanuc::macros::MacroStatement;
+use crate::alarm::AlarmKind;
+use crate::lang::fanuc::calls::{CallBlock, SubCall};
+use crate::lang::fanuc::macros::{Locals, MacroStatement};
 use crate::units::Number;
 
 /// What one block of program text is (2.24.2 notes 7 and 8).
@@ -20,6 +22,8 @@ pub enum Statement {
     Nc(Block),
     /// A macro statement, evaluated.
     Macro(MacroBlock),
+    /// A macro call (G65, G66, G67, a G or M code that calls) with its arguments.
+    Call(CallBlock, Locals),
 }
 
 impl Statement {
@@ -28,6 +32,7 @@ impl Statement {
         match self {
             Statement::Nc(b) => b.line,
             Statement::Macro(m) => m.line,
+            Statement::Call(c, _) => c.line,
         }
     }
 }
@@ -37,7 +42,8 @@ impl Statement {
 pub enum Read {
     /// An NC statement: its words are in the block.
     Nc,
-    /// A macro statement, evaluated (the block is left empty).
+    /// A macro statement, evaluated (the block is left empty). A macro call is
+    /// [`MacroStatement::Call`].
     Macro(MacroBlock),
 }
 
@@ -102,7 +108,27 @@ pub struct Block {
     pub corner: Option<Number>,
     /// Of `,C` and `,R`, `,R` was written last (2.23 note 9: the last one counts).
     pub corner_last: bool,
+    /// A subprogram call by an M code (parameters 6071–6079) or a T code (6001#5),
+    /// meaningful where [`SUB_CALL`] is set in `present`. The block holds an M98 in
+    /// its place (checked and run as one, after the block's other codes); the code
+    /// itself is not among the M codes or the T word.
+    sub: SubCall,
 }
+
+/// The bit of `present` that says the block holds a subprogram call by an M or T
+/// code (the letters take bits 0–25): clearing the block clears it with them, and a
+/// block without one pays for nothing.
+pub(crate) const SUB_CALL: u32 = 1 << 31;
+
+/// The M code a subprogram call by an M or T code stands in the block as.
+const M98: u16 = 98;
+
+/// A T code that calls O9000 in a block with an M code that stops, ends, calls or
+/// jumps.
+pub(crate) const T_WITH_FLOW: AlarmKind = AlarmKind::WordNotAllowed {
+    letter: b'T',
+    context: "M codes that stop, end, call or jump while T codes call O9000 (parameter 6001)",
+};
 
 impl Default for Block {
     fn default() -> Self {
@@ -118,6 +144,7 @@ impl Default for Block {
             chamfer: None,
             corner: None,
             corner_last: false,
+            sub: SubCall { program: 0, m: 0, t: None },
         }
     }
 }
@@ -143,10 +170,43 @@ impl Block {
         (i < 26 && self.present & (1 << i) != 0).then(|| self.values[usize::from(i)])
     }
 
-    /// The addresses given, bit `letter - 'A'` each (beyond N, O, G, M).
+    /// The addresses given, bit `letter - 'A'` each (beyond N, O, G, M), and
+    /// [`SUB_CALL`].
     #[inline]
     pub(crate) fn present(&self) -> u32 {
         self.present
+    }
+
+    /// The subprogram call by an M or T code the block holds, if any.
+    #[inline]
+    pub fn sub_call(&self) -> Option<SubCall> {
+        (self.present & SUB_CALL != 0).then_some(self.sub)
+    }
+
+    /// Puts a subprogram call by an M or T code into the block, as an M98 (one per
+    /// block, and none with another M code that stops, ends, calls or jumps).
+    #[cold]
+    #[inline(never)]
+    pub(crate) fn set_sub_call(&mut self, call: SubCall) -> Result<(), AlarmKind> {
+        if let Some(first) = self.sub_call() {
+            return Err(match (first.t, call.t) {
+                (Some(_), Some(_)) => AlarmKind::DuplicateAddress { letter: b'T' },
+                (None, None) => AlarmKind::ConflictingMCodes { first: first.m, second: call.m },
+                _ => T_WITH_FLOW,
+            });
+        }
+        let flow = |m: &&u16| matches!(**m, 0 | 1 | 2 | 30 | 91 | 92 | 98 | 99);
+        if let Some(&first) = self.m.iter().find(flow) {
+            return Err(if call.t.is_some() {
+                T_WITH_FLOW
+            } else {
+                AlarmKind::ConflictingMCodes { first, second: call.m }
+            });
+        }
+        self.m.push(M98).map_err(|_| AlarmKind::TooManyMCodes)?;
+        self.sub = call;
+        self.present |= SUB_CALL;
+        Ok(())
     }
 
     /// The value stored for address `letter` (uppercase ASCII), meaningful only
@@ -163,7 +223,7 @@ impl Block {
 
     /// The addresses given (beyond N, O, G, M), in alphabetical order.
     pub fn letters(&self) -> impl Iterator<Item = u8> + '_ {
-        let mut bits = self.present;
+        let mut bits = self.present & !SUB_CALL;
         core::iter::from_fn(move || {
             if bits == 0 {
                 return None;
@@ -187,6 +247,7 @@ impl Block {
     }
 
     /// True if the block commands nothing (blank, comment only, or only N/O).
+    #[inline]
     pub fn is_empty(&self) -> bool {
         self.g.is_empty() && self.m.is_empty() && self.present == 0 && self.chamfer.is_none() && self.corner.is_none()
     }
@@ -194,8 +255,7 @@ impl Block {
 
 /// A whole number written without sign or decimal point, at most `max` (N, O, M,
 /// S, T, G04 P …); the alarm names the address.
-pub(crate) fn whole(letter: u8, n: &Number, max: u32) -> Result<u32, crate::alarm::AlarmKind> {
-    use crate::alarm::AlarmKind;
+pub(crate) fn whole(letter: u8, n: &Number, max: u32) -> Result<u32, AlarmKind> {
     if n.has_point {
         return Err(AlarmKind::IllegalDecimalPoint { letter });
     }

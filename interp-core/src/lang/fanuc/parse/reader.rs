@@ -6,8 +6,11 @@
 use super::{Block, MacroBlock, Read, Statement, whole};
 use crate::alarm::AlarmKind;
 use crate::alarm::GNum;
-use crate::lang::fanuc::macros::{Eval, Rounding, Variables, format, nullable, starts_statement, statement};
-use crate::units::{Number, NumberFormat, pow10};
+use crate::lang::fanuc::calls::{CallBlock, CallCode, CallCodes, CallRead, Caller, Calls, MCall, MacroCall, SubCall};
+use crate::lang::fanuc::macros::{
+    Eval, MacroStatement, Rounding, Value, Variables, format, nullable, starts_statement, statement,
+};
+use crate::units::{InputMode, Number, NumberFormat, pow10};
 
 /// Most digits before the decimal point.
 const MAX_INT_DIGITS: u8 = 9;
@@ -22,16 +25,32 @@ const MAX_WHOLE_VALUE: f64 = 99_999_999.0;
 ///
 /// This is the reader every consumer of program text uses — the interpreter (through
 /// [`read_statement_into`]), and the canned cycles reading their profile blocks.
+/// Only G65, G66 and G67 call here: codes that parameters 6050–6089 make calls are
+/// recognised by [`read_program_block`].
 pub fn read_statement(text: &[u8], line: u32, vars: &Variables, fmt: &NumberFormat) -> Result<Statement, AlarmKind> {
     let mut block = Block::default();
-    Ok(match read_statement_into(text, line, vars, fmt, &mut block)? {
+    let mut reader = Reader::new(text, Some(vars), Some(*fmt), &CallCodes::BUILT_IN);
+    Ok(match reader.statement(line, &mut block, None)? {
         Read::Nc => Statement::Nc(block),
+        Read::Macro(m) if m.statement == MacroStatement::Call => read_call(text, line, vars, fmt)?,
         Read::Macro(m) => Statement::Macro(m),
     })
 }
 
+/// A macro call block of [`read_statement`], read again with its arguments (only
+/// a call pays for the 33 vacant locals it starts from).
+#[cold]
+#[inline(never)]
+fn read_call(text: &[u8], line: u32, vars: &Variables, fmt: &NumberFormat) -> Result<Statement, AlarmKind> {
+    let mut block = Block::default();
+    let mut call = CallRead::EMPTY;
+    Reader::new(text, Some(vars), Some(*fmt), &CallCodes::BUILT_IN).statement(line, &mut block, Some(&mut call))?;
+    Ok(Statement::Call(call.block, call.args))
+}
+
 /// [`read_statement`] into `block`, reusing its storage (the interpreter's per-block
-/// path: nothing large is copied). An NC statement's words end up in `block`.
+/// path: nothing large is copied). An NC statement's words end up in `block`; a
+/// macro call's arguments are checked and dropped.
 pub fn read_statement_into(
     text: &[u8],
     line: u32,
@@ -39,7 +58,22 @@ pub fn read_statement_into(
     fmt: &NumberFormat,
     block: &mut Block,
 ) -> Result<Read, AlarmKind> {
-    Reader { text, pos: 0, vars: Some(vars), fmt: Some(*fmt) }.statement(line, block)
+    Reader::new(text, Some(vars), Some(*fmt), &CallCodes::BUILT_IN).statement(line, block, None)
+}
+
+/// A block of a program as the interpreter reads it: [`read_statement_into`] with
+/// the codes that call programs (`calls.codes`); a macro call block is read into
+/// `calls.read` (its arguments `#1–#33`, vacant where not given).
+pub fn read_program_block(
+    text: &[u8],
+    line: u32,
+    vars: &Variables,
+    fmt: &NumberFormat,
+    block: &mut Block,
+    calls: &mut Calls,
+) -> Result<Read, AlarmKind> {
+    let Calls { codes, read } = calls;
+    Reader::new(text, Some(vars), Some(*fmt), codes).statement(line, block, Some(read))
 }
 
 /// [`read_statement_into`] with what is available: without `vars` a `#` raises
@@ -51,7 +85,7 @@ pub fn read_with(
     fmt: Option<NumberFormat>,
     block: &mut Block,
 ) -> Result<Read, AlarmKind> {
-    Reader { text, pos: 0, vars, fmt }.statement(line, block)
+    Reader::new(text, vars, fmt, &CallCodes::BUILT_IN).statement(line, block, None)
 }
 
 /// Reads an NC block that uses no variables (tools and tests). A `#`, a ROUND in a
@@ -64,22 +98,31 @@ pub fn read_block(text: &[u8], line: u32) -> Result<Block, AlarmKind> {
 
 /// [`read_block`] into `block`, reusing its storage.
 pub fn read_block_into(text: &[u8], line: u32, block: &mut Block) -> Result<(), AlarmKind> {
-    match (Reader { text, pos: 0, vars: None, fmt: None }).statement(line, block)? {
+    match Reader::new(text, None, None, &CallCodes::BUILT_IN).statement(line, block, None)? {
         Read::Nc => Ok(()),
         Read::Macro(_) => Err(format("macro statement (use read_statement)")),
     }
 }
 
-struct Reader<'a, 'v> {
+struct Reader<'a, 'v, 'c> {
     text: &'a [u8],
     pos: usize,
     vars: Option<&'v Variables>,
     fmt: Option<NumberFormat>,
+    /// The codes that call programs.
+    codes: &'c CallCodes,
+    /// A call code began the block: the call, and where its words begin.
+    call: Option<(CallCode, usize)>,
 }
 
-impl Reader<'_, '_> {
-    /// The whole block: skip mark, sequence number, then a macro statement or words.
-    fn statement(&mut self, line: u32, block: &mut Block) -> Result<Read, AlarmKind> {
+impl<'a, 'v, 'c> Reader<'a, 'v, 'c> {
+    fn new(text: &'a [u8], vars: Option<&'v Variables>, fmt: Option<NumberFormat>, codes: &'c CallCodes) -> Self {
+        Reader { text, pos: 0, vars, fmt, codes, call: None }
+    }
+
+    /// The whole block: skip mark, sequence number, then a macro statement, a macro
+    /// call or words.
+    fn statement(&mut self, line: u32, block: &mut Block, call: Option<&mut CallRead>) -> Result<Read, AlarmKind> {
         block.clear(line);
         self.skip_blanks_and_comments()?;
         if self.peek() == Some(b'/') {
@@ -109,8 +152,17 @@ impl Reader<'_, '_> {
             block.clear(line);
             return Ok(Read::Macro(MacroBlock { line, skip_level, seq, statement }));
         }
-        self.words(block)?;
-        Ok(Read::Nc)
+        match self.words(block) {
+            Ok(()) => Ok(Read::Nc),
+            // A call code began the block: the rest is the call's.
+            Err(_) if let Some((code, at)) = self.call => {
+                self.pos = at;
+                let (skip_level, seq) = (block.skip_level, block.seq);
+                self.macro_call(code, line, block, call)?;
+                Ok(Read::Macro(MacroBlock { line, skip_level, seq, statement: MacroStatement::Call }))
+            }
+            Err(k) => Err(k),
+        }
     }
 
     /// A macro statement, and nothing but comments after it (note 7).
@@ -195,25 +247,161 @@ impl Reader<'_, '_> {
 
     /// Stores the value `n` of address `letter` in the block.
     #[inline(always)]
-    fn store(&self, letter: u8, n: Number, block: &mut Block) -> Result<(), AlarmKind> {
+    fn store(&mut self, letter: u8, n: Number, block: &mut Block) -> Result<(), AlarmKind> {
         match letter {
             b'G' => {
                 let tenths = g_tenths(&n)?;
+                if self.codes.g_may_call(tenths)
+                    && let Some(code) = self.codes.g_call(tenths)
+                {
+                    return self.call_code(code, block);
+                }
                 block.g.push(tenths).map_err(|_| AlarmKind::ValueOutOfRange { letter })
             }
             b'M' => {
-                let m = whole(letter, &n, 999)?;
-                block.m.push(m as u16).map_err(|_| AlarmKind::TooManyMCodes)
+                let m = whole(letter, &n, 999)? as u16;
+                if self.codes.m_may_call()
+                    && let Some(call) = self.codes.m_call(m)
+                {
+                    return self.m_call(call, m, block);
+                }
+                block.m.push(m).map_err(|_| AlarmKind::TooManyMCodes)
             }
             b'N' => set_once(&mut block.seq, letter, whole(letter, &n, 99_999)?),
             b'O' => set_once(&mut block.program, letter, whole(letter, &n, 9_999)?),
             _ => {
                 if letter == b'T' {
-                    whole(letter, &n, 99_999_999)?;
+                    let t = whole(letter, &n, 99_999_999)?;
+                    if self.codes.t_calls() {
+                        return block.set_sub_call(SubCall { program: 9_000, m: 0, t: Some(t) });
+                    }
                 }
                 if block.set(letter, n) { Ok(()) } else { Err(AlarmKind::DuplicateAddress { letter }) }
             }
         }
+    }
+
+    /// A call code (G65–G67, a G or M code that calls a macro) read as a word: it
+    /// must begin the block (2.24.2 note 7: a macro call is a macro statement); the
+    /// words after it are the call's, read by [`Reader::macro_call`].
+    #[cold]
+    #[inline(never)]
+    fn call_code(&mut self, code: CallCode, block: &Block) -> Result<(), AlarmKind> {
+        if !block.is_empty() {
+            return Err(AlarmKind::MacroAndNcInOneBlock);
+        }
+        self.call = Some((code, self.pos));
+        // Out of the words loop (the alarm is not raised: `statement` reads the rest
+        // of the block as the call's).
+        Err(AlarmKind::MacroAndNcInOneBlock)
+    }
+
+    /// An M code that calls: a macro (a call block, as G65), or a subprogram after
+    /// the block's other codes (as M98).
+    #[cold]
+    #[inline(never)]
+    fn m_call(&mut self, call: MCall, m: u16, block: &mut Block) -> Result<(), AlarmKind> {
+        match call {
+            MCall::Macro(program) => self.call_code(CallCode::M { program }, block),
+            MCall::Subprogram(program) => block.set_sub_call(SubCall { program, m, t: None }),
+        }
+    }
+
+    /// The words of a call block after its code (at `self.pos`): P (G65/G66) and L,
+    /// and the arguments (FANUC 0i argument specification I and II) into `args`.
+    /// Out of line: the registers of the per-block path stay free of it.
+    #[inline(never)]
+    fn macro_call(
+        &mut self,
+        code: CallCode,
+        line: u32,
+        block: &mut Block,
+        mut read: Option<&mut CallRead>,
+    ) -> Result<(), AlarmKind> {
+        if let Some(r) = read.as_deref_mut() {
+            r.args.clear();
+        }
+        let takes_p = matches!(code, CallCode::G65 | CallCode::G66);
+        let mut program = match code {
+            CallCode::G { program } | CallCode::M { program } => Some(program),
+            _ => None,
+        };
+        let (mut p_given, mut repeats) = (false, None);
+        let mut spec = Arguments::default();
+        loop {
+            self.skip_blanks_and_comments()?;
+            let Some(c) = self.peek() else { break };
+            let two_letters =
+                c.is_ascii_alphabetic() && self.text.get(self.pos + 1).is_some_and(u8::is_ascii_alphabetic);
+            if c == b'#' || two_letters && starts_statement(self.text, self.pos) {
+                return Err(AlarmKind::MacroAndNcInOneBlock);
+            }
+            self.pos += 1;
+            let letter = c.to_ascii_uppercase();
+            match letter {
+                b'P' if takes_p => {
+                    if core::mem::replace(&mut p_given, true) {
+                        return Err(AlarmKind::DuplicateAddress { letter });
+                    }
+                    program = self.count(letter)?;
+                }
+                b'L' if code != CallCode::G67 => {
+                    if repeats.is_some() {
+                        return Err(AlarmKind::DuplicateAddress { letter });
+                    }
+                    repeats = Some(self.count(letter)?.unwrap_or(1));
+                }
+                b'A'..=b'Z' if code != CallCode::G67 && SPEC_I[usize::from(letter - b'A')] != 0 => {
+                    let var = spec.variable(letter)?;
+                    let v = self.argument(letter)?;
+                    if let (Some(r), Some(v)) = (read.as_deref_mut(), v) {
+                        r.args.set(var, Some(v));
+                    }
+                }
+                b'A'..=b'Z' | b',' => return Err(AlarmKind::IllegalArgumentAddress { letter }),
+                b'/' => return Err(AlarmKind::MisplacedBlockSkip),
+                c @ (b'0'..=b'9' | b'+' | b'-' | b'.' | b'[' | b'=' | b']') => {
+                    return Err(AlarmKind::AddressNotFound { found: c });
+                }
+                other => return Err(AlarmKind::IllegalCharacter { found: other }),
+            }
+        }
+        let repeats = repeats.unwrap_or(1) as u16;
+        let by = match code {
+            CallCode::G { .. } => Caller::GCode,
+            CallCode::M { .. } => Caller::MCodeMacro,
+            _ => Caller::Program,
+        };
+        let call = match code {
+            CallCode::G67 => MacroCall::Cancel,
+            CallCode::G66 => MacroCall::Modal { program: program.ok_or(AlarmKind::SubprogramNumberMissing)?, repeats },
+            _ => MacroCall::Simple { program: program.ok_or(AlarmKind::SubprogramNumberMissing)?, repeats, by },
+        };
+        let (skip_level, seq) = (block.skip_level, block.seq);
+        block.clear(line);
+        if let Some(r) = read {
+            r.block = CallBlock { line, skip_level, seq, call };
+        }
+        Ok(())
+    }
+
+    /// A P or L of a call: a whole number 1–9999 (`None` for a null variable).
+    fn count(&mut self, letter: u8) -> Result<Option<u32>, AlarmKind> {
+        let Some(n) = self.value(letter)? else { return Ok(None) };
+        match whole(letter, &n, 9_999)? {
+            0 => Err(AlarmKind::ValueOutOfRange { letter }),
+            v => Ok(Some(v)),
+        }
+    }
+
+    /// An argument's value: a macro value as computed, or a number read by
+    /// [`argument_value`]; `None` (vacant) for a null variable.
+    fn argument(&mut self, letter: u8) -> Result<Value, AlarmKind> {
+        if let Some(v) = self.macro_value(letter)? {
+            return Ok(v);
+        }
+        let n = self.number(letter)?;
+        Ok(Some(argument_value(&n, letter, self.fmt)))
     }
 
     /// `,C` or `,R`.
@@ -237,6 +425,16 @@ impl Reader<'_, '_> {
     /// The value after an address: a number as written, or a macro value
     /// (`#i`, `-#i`, `[expr]`, `-[expr]`); `None` for a null variable.
     fn value(&mut self, letter: u8) -> Result<Option<Number>, AlarmKind> {
+        match self.macro_value(letter)? {
+            None => self.number(letter).map(Some),
+            Some(None) => Ok(None),
+            Some(Some(x)) => macro_number(letter, x).map(Some),
+        }
+    }
+
+    /// A macro value after an address (`#i`, `-#i`, `[expr]`, `-[expr]`), evaluated;
+    /// `None` (nothing read) if a plain number follows.
+    fn macro_value(&mut self, letter: u8) -> Result<Option<Value>, AlarmKind> {
         self.skip_blanks();
         let mut at = self.pos;
         let negative = match self.peek() {
@@ -250,7 +448,7 @@ impl Reader<'_, '_> {
             _ => false,
         };
         if !matches!(self.text.get(at), Some(b'#' | b'[')) {
-            return self.number(letter).map(Some);
+            return Ok(None);
         }
         if matches!(letter, b'N' | b'O') {
             return Err(format("N and O take no variables"));
@@ -258,10 +456,7 @@ impl Reader<'_, '_> {
         let mut e = Eval::new(self.text, at, self.vars, self.rounding(letter));
         let v = nullable(e.primary()?)?;
         self.pos = e.pos;
-        match v {
-            None => Ok(None),
-            Some(x) => macro_number(letter, if negative { -x } else { x }).map(Some),
-        }
+        Ok(Some(v.map(|x| if negative { -x } else { x })))
     }
 
     /// How ROUND rounds in a word of `letter`: to the least input increment of the
@@ -389,6 +584,82 @@ fn macro_number(letter: u8, v: f64) -> Result<Number, AlarmKind> {
         }
         _ => Number::from_f64(v).ok_or(too_big),
     }
+}
+
+/// Argument specification I (FANUC 0i): the variable each address sets, 0 for the
+/// addresses that are no arguments (G, L, N, O, P). I, J and K are the first
+/// triple of specification II as well.
+const SPEC_I: [u16; 26] = [1, 2, 3, 7, 8, 9, 0, 11, 4, 5, 6, 0, 13, 0, 0, 0, 17, 18, 19, 20, 21, 22, 23, 24, 25, 26];
+
+/// Most I/J/K triples of argument specification II.
+const MAX_IJK_GROUPS: u16 = 10;
+
+/// Which arguments a call block has given: type I letters once each; I, J, K in
+/// triples (argument specification II: A B C, then up to ten I J K as #4–#33).
+#[derive(Default)]
+struct Arguments {
+    /// Type I letters given, bit `letter - 'A'`.
+    given: u32,
+    /// The triple the last I/J/K went into.
+    group: u16,
+    /// The last of I (1), J (2), K (3) given; 0 before the first.
+    last_ijk: u16,
+}
+
+impl Arguments {
+    /// The variable address `letter` sets. An I, J or K starts a new triple unless
+    /// it comes after the last one's letter in I J K order; a letter of
+    /// specification I only once (alarm 4004); an eleventh triple is alarm 0129. Of
+    /// two arguments for one variable the later one counts (`I4. D5.`: #7 = 5).
+    fn variable(&mut self, letter: u8) -> Result<u16, AlarmKind> {
+        let order = match letter {
+            b'I' => 1,
+            b'J' => 2,
+            b'K' => 3,
+            _ => {
+                let bit = 1 << (letter - b'A');
+                if self.given & bit != 0 {
+                    return Err(AlarmKind::DuplicateAddress { letter });
+                }
+                self.given |= bit;
+                return Ok(SPEC_I[usize::from(letter - b'A')]);
+            }
+        };
+        if self.last_ijk != 0 && order <= self.last_ijk {
+            self.group += 1;
+        }
+        if self.group >= MAX_IJK_GROUPS {
+            return Err(AlarmKind::IllegalArgumentAddress { letter });
+        }
+        self.last_ijk = order;
+        Ok(4 + 3 * self.group + order - 1)
+    }
+}
+
+/// An argument written as a number. With a decimal point it is what is written;
+/// without one a whole number (2.24.1: `#1=123` is 123.000) under calculator-type
+/// input, and under least-increment input (parameter 3401 = 0) a count of the
+/// address's least input increments, as FANUC 0i reads arguments: X Y Z U V W I J
+/// K R in the linear increment (`X60` = 0.060 mm in IS-B), A B C in the angle
+/// increment, the other addresses as written.
+fn argument_value(n: &Number, letter: u8, fmt: Option<NumberFormat>) -> f64 {
+    let Some(f) = fmt.filter(|f| !n.has_point && f.input == InputMode::LeastIncrement) else {
+        return n.to_f64();
+    };
+    let per_unit = match letter {
+        b'X' | b'Y' | b'Z' | b'U' | b'V' | b'W' | b'I' | b'J' | b'K' | b'R' => {
+            f.units.nm_per_unit() / f.increments.linear_nm(f.units)
+        }
+        b'A' | b'B' | b'C' => 1_000_000 / f.increments.angle_udeg(),
+        _ => 1,
+    };
+    let mut frac_digits = 0;
+    let mut r = per_unit;
+    while r >= 10 {
+        r /= 10;
+        frac_digits += 1;
+    }
+    Number { mantissa: n.mantissa, frac_digits, has_point: true }.to_f64()
 }
 
 fn set_once(slot: &mut Option<u32>, letter: u8, v: u32) -> Result<(), AlarmKind> {
