@@ -32,7 +32,7 @@
 //! | PB13 | Z LIMIT        | both ends in series, NC, high = tripped                   |
 //! | PB14 | X HOME         | high = on the switch                                      |
 //! | PB15 | Z HOME         |                                                           |
-//! | PB11 | Y LIMIT        | a mill's; both ends in series, NC, high = tripped         |
+//! | PC2  | Y LIMIT        | a mill's; both ends in series, NC, high = tripped (no PB11 on the F446RE) |
 //! | PA8  | Y HOME         | a mill's; high = on the switch                            |
 //! | PA2  | DNC TX         | USART2_TX (AF7)                                           |
 //! | PA3  | DNC RX         | USART2_RX (AF7)                                           |
@@ -49,7 +49,7 @@
 //! Kept free on purpose: PA13/PA14 (SWD), PB3 (SWO), PH0/PH1 (8 MHz HSE crystal),
 //! PC14/PC15 (LSE), PB2 (BOOT1), PA9/PA10 (USART1: ROM bootloader, service console).
 //! Spare: PA4/PA5 (DAC outputs, an
-//! alternative to PWM for the 0–10 V speed signal), PA7, PA15, PB4, PC2,
+//! alternative to PWM for the 0–10 V speed signal), PA7, PA15, PB4,
 //! PC4, PC5 (ADC, e.g. override potentiometers), PC13.
 //!
 //! The third step channel drives the machine kind's third axis (`$311`,
@@ -335,7 +335,7 @@ impl Board {
                 z_limit: Input::new(p.PB13, Pull::Up),
                 x_home: Input::new(p.PB14, Pull::Up),
                 z_home: Input::new(p.PB15, Pull::Up),
-                y_limit: Input::new(p.PB11, Pull::Up),
+                y_limit: Input::new(p.PC2, Pull::Up),
                 y_home: Input::new(p.PA8, Pull::Up),
             },
             dnc: {

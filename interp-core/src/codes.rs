@@ -182,7 +182,8 @@ impl GCode {
     pub fn from_tenths(table: CodeTable, tenths: u16) -> Option<GCode> {
         match table {
             CodeTable::Lathe(system) => Self::lathe(system, tenths),
-            CodeTable::Mill => Self::mill(tenths),
+            CodeTable::Mill if crate::MILL => Self::mill(tenths),
+            CodeTable::Mill => None,
         }
     }
 
@@ -460,7 +461,7 @@ pub fn m_function(m: u16, cfg: &MachineConfig) -> Option<MFunction> {
         3 => MFunction::SpindleCw,
         4 => MFunction::SpindleCcw,
         5 => MFunction::SpindleStop,
-        6 if cfg.kind == crate::config::MachineKind::Mill => MFunction::ToolChange,
+        6 if crate::is_mill(cfg) => MFunction::ToolChange,
         7 | 8 | 10 | 12 | 19 | 20 | 29 | 31 | 32 | 41..=48 | 63 | 64 => MFunction::Aux(Before),
         9 | 11 | 13 | 33 | 65 => MFunction::Aux(After),
         _ => return cfg.user_m(m).map(|u| MFunction::Aux(u.timing)),
@@ -506,9 +507,21 @@ mod tests {
         assert_eq!(GCode::from_tenths(a, 70), None);
     }
 
+    /// A build without the `mill` feature has no M-series table: a machine of
+    /// kind mill (refused by the board's `$311`) would read no G code (alarm 0010).
+    #[cfg(not(feature = "mill"))]
+    #[test]
+    fn without_the_mill_feature_the_mill_table_is_empty() {
+        for tenths in [0, 10, 170, 430, 810, 900] {
+            assert_eq!(GCode::from_tenths(CodeTable::Mill, tenths), None);
+        }
+        assert!(!crate::MILL);
+    }
+
     /// The mill's table holds no lathe-only code: the same number never silently
     /// means the lathe's cycle on a mill (alarm 0010 instead), and the numbers the
     /// M series uses for something else mean its own code.
+    #[cfg(feature = "mill")]
     #[test]
     fn the_mill_table_refuses_lathe_codes() {
         let m = CodeTable::Mill;

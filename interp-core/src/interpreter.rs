@@ -395,7 +395,7 @@ impl Interpreter {
         self.state = State::power_on(&self.cfg, old.pos);
         self.state.frames.shift = old.frames.shift;
         self.state.tool = old.tool;
-        if self.cfg.kind == crate::config::MachineKind::Mill {
+        if crate::is_mill(&self.cfg) {
             // A machining centre's reset cancels tool length and cutter radius (G49,
             // G40); the tool in the spindle and the one selected stay.
             self.state.tool = crate::modal::ToolState { tool: old.tool.tool, ..Default::default() };
@@ -421,7 +421,9 @@ impl Interpreter {
         self.state.moved = false;
         self.state.contour.clear();
         // The offsets may have been edited since (config_mut).
-        self.state.refresh_extra_frame(&self.cfg);
+        if crate::MILL {
+            self.state.refresh_extra_frame(&self.cfg);
+        }
         self.calls.clear();
         self.loops.clear();
         self.drop_calls();
@@ -882,7 +884,9 @@ impl Interpreter {
             s.apply(&mut self.cfg, v);
         }
         // A G10 may have moved the G54.1 frame in force.
-        self.state.refresh_extra_frame(&self.cfg);
+        if crate::MILL {
+            self.state.refresh_extra_frame(&self.cfg);
+        }
         if let Some(r) = c.resume.filter(|r| r.offset > self.cursor.offset) {
             self.jump(Cursor { program: self.cursor.program, ..r });
         }

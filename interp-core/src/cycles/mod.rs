@@ -334,7 +334,7 @@ fn cycle_words(cmd: &Command, st: &mut State, cfg: &MachineConfig) -> Result<boo
         }
         // A machining centre's M29 stands alone and taps at the S in force (seed
         // 004 @8320); a lathe's takes S in its block (2.22.1).
-        let mill = cfg.kind == crate::config::MachineKind::Mill;
+        let mill = crate::is_mill(cfg);
         let s = if mill { cmd.speed.or(Some(st.spindle.rpm)) } else { cmd.speed };
         let rpm = s.filter(|s| *s > 0).ok_or(AlarmKind::RigidTapSpeed)?;
         st.cycle.rigid = RigidTap::Pending { rpm, before: st.spindle.dir };
@@ -404,7 +404,7 @@ fn cycle_block<X: Executor>(
         return Ok(true);
     }
     if args::is_hole(code) {
-        let block = if args::is_mill_hole(code) { drilling::hole_block } else { single::hole_block };
+        let block = if crate::MILL && args::is_mill_hole(code) { drilling::hole_block } else { single::hole_block };
         if let Some(generator) = block(code, cmd, st, ctx.cfg)? {
             let em = Emitter { lead: generator.lead(), ..Emitter::new(*st, cmd.line) };
             start_cycle(em, Gen::Hole(generator), ctx.out)?;
@@ -641,7 +641,7 @@ impl Expansion {
             st.cycle.single = cycle.single;
         }
         st.spindle.dir = end.spindle.dir;
-        if st.mill.frame.active != 0 {
+        if crate::MILL && st.mill.frame.active != 0 {
             // A machining centre's transformation: the programmed position is where
             // the cycle left the tool.
             crate::moves::frame::resync(st, cfg);

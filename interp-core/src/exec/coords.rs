@@ -6,7 +6,7 @@ use crate::axis::Axis;
 use crate::canon::Endpoint;
 use crate::command::Command;
 use crate::command::cycle::is_hole;
-use crate::config::{MachineConfig, MachineKind, Param};
+use crate::config::{MachineConfig, Param};
 use crate::env::Environment;
 use crate::modal::State;
 use crate::modal::mill::{FRAME_AXES, narrow};
@@ -82,7 +82,7 @@ pub(super) fn reference_return(
             return Err(AlarmKind::ReferenceNotEstablished { letter: a.letter() });
         }
     }
-    let mill = cfg.kind == MachineKind::Mill;
+    let mill = crate::is_mill(cfg);
     if mill && is_hole(st.modal.drilling) {
         return Err(AlarmKind::ReferenceInCycle);
     }

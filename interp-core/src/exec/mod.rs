@@ -36,7 +36,7 @@ pub fn execute(
     let from = st.polar.map_or(st.pos, |p| p.virtual_pos());
     let chained = cycles::before_block(cmd, st, cfg)?;
     apply_modal(cmd, st);
-    if cmd.g.mill {
+    if crate::MILL && cmd.g.mill {
         return mill_block(cmd, st, cfg, env, out, from, chained);
     }
     full(cmd, st, cfg, env, out, from, chained)
@@ -104,8 +104,8 @@ fn full(
         Some(GCode::LocalFrame) => coords::local_frame(cmd, st),
         Some(GCode::MachineCoordinates) => coords::machine_move(cmd, st, cfg, out)?,
         Some(GCode::ReferenceReturn | GCode::ReferenceReturnN) => coords::reference_return(cmd, st, cfg, env, out)?,
-        Some(GCode::ReturnFromReference) => coords::return_from_reference(cmd, st, cfg, env, out)?,
-        Some(GCode::DataSetting) => mill::data(cmd, st, cfg, out)?,
+        Some(GCode::ReturnFromReference) if crate::MILL => coords::return_from_reference(cmd, st, cfg, env, out)?,
+        Some(GCode::DataSetting) if crate::MILL => mill::data(cmd, st, cfg, out)?,
         Some(GCode::Language(_)) => {}
         _ if cmd.g.stroke.is_some() || cmd.g.frame.is_some() => {}
         _ if cmd.g.polygon.is_some() => polygon::switch(cmd, st, cfg, out)?,
@@ -267,7 +267,7 @@ fn apply_modal(cmd: &Command, st: &mut State) {
 /// with their next move. A machining centre's T selects and M06 changes
 /// ([`mill::tool`]).
 fn tool_change(cmd: &Command, st: &mut State, cfg: &MachineConfig, out: &mut Staged<'_>) -> Result<(), AlarmKind> {
-    if cfg.kind == crate::config::MachineKind::Mill {
+    if crate::is_mill(cfg) {
         return mill::tool(cmd, st, cfg, out);
     }
     let Some((tool, offset_number)) = cmd.tool else { return Ok(()) };

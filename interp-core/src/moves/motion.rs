@@ -184,7 +184,7 @@ fn arc(
     let plane = st.modal.plane;
     // A machining centre's arc may move the axis normal to its plane: helical
     // interpolation (FANUC); a lathe's may not (2.3 note 7).
-    let helical = cfg.kind == crate::config::MachineKind::Mill;
+    let helical = crate::is_mill(cfg);
     reject_axes_outside(cmd, plane, helical)?;
     let cw = st.modal.motion == GCode::ArcCw;
     let (pa, pb) = plane.axes();

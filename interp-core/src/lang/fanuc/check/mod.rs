@@ -11,7 +11,7 @@ use crate::alarm::AlarmKind;
 use crate::axis::{AXIS_COUNT, Axis};
 use crate::codes::{MFunction, m_codes_conflict, m_function};
 use crate::command::{CallBy, Command, FlowWord};
-use crate::config::{MachineConfig, MachineKind};
+use crate::config::MachineConfig;
 use crate::lang::fanuc::parse::{Block, MAX_M};
 use crate::modal::State;
 use crate::units::NumberFormat;
@@ -48,7 +48,7 @@ pub fn check_into(block: &Block, state: &State, cfg: &MachineConfig, cmd: &mut C
     cmd.cycle = crate::command::cycle::CycleArgs::None;
     let flow_m = cmd.m.iter().map(|&(_, f)| f).find(|f| f.is_flow());
     let user = cmd.axis_user(state);
-    if cfg.kind == MachineKind::Mill {
+    if crate::is_mill(cfg) {
         // A machining centre's G51, G51.1 and G68 take the axis words too.
         let user = cmd.g.frame.unwrap_or(user);
         mill::check(block, user, flow_m, state, cfg, &fmt, cmd)?;
