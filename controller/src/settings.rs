@@ -262,7 +262,9 @@ pub fn set(n: u16, v: f64, cfg: &mut MachineConfig, s: &mut Settings) -> Result<
         306 => s.spindle_stream_timeout_s = whole(v)?.min(MAX_STARVE_S),
         311 => match whole(v)? {
             0 => set_kind(MachineKind::Lathe, cfg, s),
-            1 if !interp_core::MILL => return Err(bad("is 0: this firmware has no mill profile (built without feature mill)")),
+            1 if !interp_core::MILL => {
+                return Err(bad("is 0: this firmware has no mill profile (built without feature mill)"));
+            }
             1 => set_kind(MachineKind::Mill, cfg, s),
             _ => return Err(bad("is 0 (lathe) or 1 (mill)")),
         },
