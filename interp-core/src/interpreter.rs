@@ -272,6 +272,10 @@ impl Interpreter {
     pub fn new(cfg: MachineConfig) -> Self {
         let state = State::power_on(&cfg, Pos::ZERO);
         let language = cfg.language;
+        // The codes that call programs, made from the parameters here: a
+        // `.with_codes()` on the finished value moved the whole interpreter (~28 KB)
+        // through the boot task's stack twice (firmware::shell::build: 62 KB).
+        let codes = CallCodes::of(&cfg.params, 0);
         Interpreter {
             cfg,
             state,
@@ -292,17 +296,10 @@ impl Interpreter {
             validating: None,
             last_block: Cursor::start(0),
             fault_line: None,
-            macro_calls: Calls { codes: CallCodes::BUILT_IN, read: CallRead::EMPTY },
+            macro_calls: Calls { codes, read: CallRead::EMPTY },
             modal: ModalCalls::default(),
             codes_off: 0,
         }
-        .with_codes()
-    }
-
-    /// The interpreter with the codes that call programs made from its parameters.
-    fn with_codes(mut self) -> Self {
-        self.refresh_codes();
-        self
     }
 
     /// The machine configuration.
