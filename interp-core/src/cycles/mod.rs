@@ -404,11 +404,7 @@ fn cycle_block<X: Executor>(
         return Ok(true);
     }
     if args::is_hole(code) {
-        let block = if crate::MILL && args::is_mill_hole(code) { drilling::hole_block } else { single::hole_block };
-        if let Some(generator) = block(code, cmd, st, ctx.cfg)? {
-            let em = Emitter { lead: generator.lead(), ..Emitter::new(*st, cmd.line) };
-            start_cycle(em, Gen::Hole(generator), ctx.out)?;
-        }
+        hole_cycle(code, cmd, st, ctx)?;
         return Ok(true);
     }
     if st.modal.plane != Plane::Zx {
@@ -420,14 +416,32 @@ fn cycle_block<X: Executor>(
         }
     }
     match code {
-        GCode::TurningCycle | GCode::FacingCycle | GCode::ThreadCycle => {
-            if let Some(generator) = single::single_block(code, cmd, st, ctx.cfg)? {
-                start_cycle(Emitter::new(*st, cmd.line), generator, ctx.out)?;
-            }
-        }
+        GCode::TurningCycle | GCode::FacingCycle | GCode::ThreadCycle => single_cycle(code, cmd, st, ctx)?,
         _ => multiple::<X>(code, cmd, st, ctx)?,
     }
     Ok(true)
+}
+
+/// A hole cycle's block (G83–G89 of a lathe, G73–G89 of a machining centre). Out of
+/// line: its emitter (a copy of the state) stays out of [`cycle_block`]'s frame,
+/// which is on the recursion of a G71–G73 profile (docs/STACK.md).
+#[inline(never)]
+fn hole_cycle(code: GCode, cmd: &Command, st: &mut State, ctx: &mut Ctx<'_, '_>) -> Result<(), AlarmKind> {
+    let block = if crate::MILL && args::is_mill_hole(code) { drilling::hole_block } else { single::hole_block };
+    if let Some(generator) = block(code, cmd, st, ctx.cfg)? {
+        let em = Emitter { lead: generator.lead(), ..Emitter::new(*st, cmd.line) };
+        start_cycle(em, Gen::Hole(generator), ctx.out)?;
+    }
+    Ok(())
+}
+
+/// G90/G92/G94's block, out of line as [`hole_cycle`].
+#[inline(never)]
+fn single_cycle(code: GCode, cmd: &Command, st: &mut State, ctx: &mut Ctx<'_, '_>) -> Result<(), AlarmKind> {
+    if let Some(generator) = single::single_block(code, cmd, st, ctx.cfg)? {
+        start_cycle(Emitter::new(*st, cmd.line), generator, ctx.out)?;
+    }
+    Ok(())
 }
 
 /// G70–G76: the setup blocks write their parameters, the cycles start their
