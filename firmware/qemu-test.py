@@ -179,8 +179,8 @@ def realtime_behind_a_burst(link):
     """A sender that ignores character counting: 100 slow jogs in one burst (64
     fill the planner, 9 the receive buffer, the rest wait in the link task; each
     jog takes 6 s), with a `?` behind the 20th, the 60th and the 100th. Every `?` is
-    answered, once, while jogging; the last while the planner is still full of the
-    jogs ahead of it and some of their lines still wait unanswered (taken in order,
+    answered, once, while jogging; the last while some of the jogs' lines ahead of it
+    still wait unanswered (taken in order,
     it would wait about 3.5 minutes for 36 jogs). Then a 0x18 behind it all resets
     at once. Nothing here depends on how fast QEMU runs."""
     polls = (20, 60, 100)
@@ -199,8 +199,12 @@ def realtime_behind_a_burst(link):
         print(f"qemu-test: `?` behind {sent} jogs answered after {before} ok: {report!r}")
         if not report.startswith(b"<Jog|"):
             raise SystemExit(f"qemu-test: not jogging behind a burst of jogs ({report!r})")
+    # The last `?` is answered before the jogs ahead of it are all taken (fewer `ok`
+    # than jogs): it did not wait in line. How full the planner is at that moment
+    # depends on when the host's bytes reach the guest (a loaded host delivers the
+    # burst in pieces): not asserted.
     before, last = reports[-1]
-    if b"|Bf:0," not in last or before >= polls[-1]:
+    if before >= polls[-1]:
         raise SystemExit(f"qemu-test: the last `?` waited for the jogs ahead of it ({before} ok, {last!r})")
     link.send(b"\x18")
     got = link.expect(WELCOME, "welcome after soft reset behind a burst of jogs")

@@ -282,6 +282,14 @@ def main():
     nm = subprocess.run(["arm-none-eabi-nm", args.elf], check=True, stdout=subprocess.PIPE, text=True).stdout
     syms = {p[2]: int(p[0], 16) for p in (l.split() for l in nm.splitlines()) if len(p) == 3}
     args.stack = syms["_stack_start"] - syms["_stack_end"]
+    # The controller's static (`firmware::CTL`, or `CTL_SLOT` in the F405's CCM): no
+    # function on the boot path may have a frame that could hold it (half its size is
+    # far above any other frame): the controller is built in place, never on the stack
+    # and copied.
+    nm_c = subprocess.run(["arm-none-eabi-nm", "-S", "-C", args.elf], check=True, stdout=subprocess.PIPE, text=True).stdout
+    ctl = [int(p[1], 16) for p in (l.split() for l in nm_c.splitlines())
+           if len(p) == 4 and p[3] in ("firmware::CTL", "firmware::CTL_SLOT")]
+    ctl_size = max(ctl, default=0)
     sys.setrecursionlimit(100000)
     g = Graph(args.elf)
     failed = []
@@ -315,6 +323,12 @@ def main():
         d, unres, rec = show(f"  task {label}, poll at {a:#010x}", a)
         if control and args.task_limit and d > args.task_limit:
             failed.append(f"the control task needs {d} bytes > {args.task_limit}")
+        if boot and ctl_size:
+            big = max(reach(g, a), key=lambda x: g.frame[x])
+            print(f"    controller {ctl_size} bytes; largest frame on the boot path {g.frame[big]} ({g.names[big][:70]})")
+            if 2 * g.frame[big] >= ctl_size:
+                failed.append(f"{g.names[big][:70]} has a {g.frame[big]}-byte frame, half the {ctl_size}-byte "
+                              "controller or more: it is built on the stack, not in place")
         worst_task = max(worst_task, d)
     # Interrupts: every vector that is not the default handler.
     default = max(set(w for _, w in vt[2:]), key=[w for _, w in vt[2:]].count)

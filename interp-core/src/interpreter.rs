@@ -272,9 +272,10 @@ impl Interpreter {
     pub fn new(cfg: MachineConfig) -> Self {
         let state = State::power_on(&cfg, Pos::ZERO);
         let language = cfg.language;
-        // The codes that call programs, made from the parameters here: a
-        // `.with_codes()` on the finished value moved the whole interpreter (~28 KB)
-        // through the boot task's stack twice (firmware::shell::build: 62 KB).
+        // The codes are computed before the literal, which is returned as it is:
+        // a value passed through a `self`-taking method would be built on the stack
+        // and copied (the board builds its controller in place, see
+        // `Controller::new_in`).
         let codes = CallCodes::of(&cfg.params, 0);
         Interpreter {
             cfg,

@@ -344,7 +344,9 @@ fn thread_at(rings: &'static [EdgeRing<RING>; 3], rpm: u32, lead_um: i64, x_end:
                 let locked = rig.core.gear().is_some_and(|g| g.phase() == Phase::Locked && g.remaining() < 8_000);
                 if sums == Sums::Singles && locked && (3..11).contains(&singles) {
                     if singles == 3 {
-                        hprintln!("bench count interrupt at a due count, G32 locked: to the step queued, then the compares");
+                        hprintln!(
+                            "bench count interrupt at a due count, G32 locked: to the step queued, then the compares"
+                        );
                     }
                     measure(count_isr_step, &mut rig);
                     while measure(count_isr_window, &mut rig) {

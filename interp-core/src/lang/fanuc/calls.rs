@@ -91,6 +91,16 @@ const G65: u16 = 650;
 const G66: u16 = 660;
 const G67: u16 = 670;
 
+/// `out[i]` = the code parameter `params[i]` names, times `scale` (0 where the
+/// parameter is 0, over `max`, or past the reader's G codes in tenths, G6553.5). Out of line and over slices: one short loop
+/// instead of 29 unrolled lookups (it runs only when parameters change).
+#[inline(never)]
+fn fill(params: &Parameters, list: &[Param], max: u16, scale: u16, out: &mut [u16]) {
+    for (slot, &p) in out.iter_mut().zip(list) {
+        *slot = u16::try_from(params.get(p)).ok().filter(|&v| v <= max).and_then(|v| v.checked_mul(scale)).unwrap_or(0);
+    }
+}
+
 impl CallCodes {
     /// No code calls but G65, G66 and G67 (the machine's defaults; MDI; a shape's blocks).
     pub const BUILT_IN: CallCodes =
@@ -99,23 +109,17 @@ impl CallCodes {
     /// The codes parameters 6001#5 and 6050–6089 make calls, but those `off`
     /// (bits of [`off`]) switches off. Of two parameters naming one code, the lower
     /// number wins; an M code in both 6080–6089 and 6071–6079 calls the macro.
+    #[inline(never)]
     pub fn of(params: &Parameters, off: u8) -> CallCodes {
         let mut c = CallCodes::BUILT_IN;
-        let code = |p: Param, max: i64| u16::try_from(params.get(p)).ok().filter(|&v| i64::from(v) <= max);
         if off & off::G_MACRO == 0 {
-            for (slot, p) in c.g.iter_mut().zip(CALL_G) {
-                *slot = code(p, 9_999).unwrap_or(0) * 10;
-            }
+            fill(params, &CALL_G, 9_999, 10, &mut c.g);
         }
         if off & off::M_MACRO == 0 {
-            for (slot, p) in c.m_macro.iter_mut().zip(CALL_M) {
-                *slot = code(p, 999).unwrap_or(0);
-            }
+            fill(params, &CALL_M, 999, 1, &mut c.m_macro);
         }
         if off & off::M_SUB == 0 {
-            for (slot, p) in c.m_sub.iter_mut().zip(SUB_M) {
-                *slot = code(p, 999).unwrap_or(0);
-            }
+            fill(params, &SUB_M, 999, 1, &mut c.m_sub);
         }
         c.t = off & off::T_SUB == 0 && params.flag(Param::TCodeCall);
         c.any_m = c.m_macro.iter().chain(&c.m_sub).any(|&m| m != 0);
@@ -407,6 +411,16 @@ mod tests {
         );
         // Inside a subprogram called by an M or T code: all are off.
         assert_eq!(CallCodes::of(&p, Caller::Subprogram.switches_off()), CallCodes::BUILT_IN);
+    }
+
+    #[test]
+    fn a_g_code_past_the_readers_range_calls_nothing_and_wraps_to_nothing() {
+        let mut p = Parameters::default();
+        // G7000 in tenths does not fit a u16: it must not wrap to G446.4.
+        p.set(Param::CallG9011, 7000);
+        let c = CallCodes::of(&p, 0);
+        assert_eq!((c.g_call(4464), c.g_call(7000)), (None, None));
+        assert_eq!(c, CallCodes::BUILT_IN);
     }
 
     #[test]
