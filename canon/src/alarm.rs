@@ -466,6 +466,40 @@ impl fmt::Display for Ch {
     }
 }
 
+impl AlarmKind {
+    /// The text of an alarm only the machining-centre profile raises.
+    #[cfg(feature = "mill")]
+    fn mill_text(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        use AlarmKind::*;
+        match *self {
+            RotationPlaneChange => write!(f, "plane change or an arc outside the plane of G68 rotation"),
+            NoIntermediatePoint { letter } => {
+                write!(f, "G29 moves axis {} but no G28 gave it an intermediate point", Ch(letter))
+            }
+            FrameInCutterComp => {
+                write!(f, "G15/G16, G50/G51, G50.1/G51.1 and G68/G69 only with cutter compensation cancelled (G40)")
+            }
+            FrameOrder => {
+                write!(f, "G51.1 before G51 before G68, cancelled the other way round (G69, then G50, then G50.1)")
+            }
+            OffsetValueOutOfRange => write!(f, "G10 offset value out of range"),
+            ReferenceInCycle => write!(f, "G28/G29/G30 while a hole cycle is in force (G80 first)"),
+            PeckDepthMissing => write!(f, "G73/G83 need a peck depth Q greater than zero"),
+            IllegalScale { letter } => {
+                write!(f, "scale factor {} out of range (P 0.001-999.999, I/J/K +-0.001-9.999)", Ch(letter))
+            }
+            _ => Ok(()),
+        }
+    }
+
+    /// Without the machining-centre profile (feature `mill`) nothing raises these:
+    /// their texts stay out of the image (the code still names them).
+    #[cfg(not(feature = "mill"))]
+    fn mill_text(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("machining-centre alarm")
+    }
+}
+
 impl fmt::Display for AlarmKind {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         use AlarmKind::*;
@@ -616,22 +650,14 @@ impl fmt::Display for AlarmKind {
             ChamferNoMove { what } => write!(f, "no G01/G02/G03 move after chamfer/corner R: {what}"),
             ChamferTooLarge => write!(f, "chamfer or corner R is larger than the moves it joins"),
             ChamferPlaneChange => write!(f, "plane selection or a move out of the plane after chamfer/corner R"),
-            RotationPlaneChange => write!(f, "plane change or an arc outside the plane of G68 rotation"),
-            NoIntermediatePoint { letter } => {
-                write!(f, "G29 moves axis {} but no G28 gave it an intermediate point", Ch(letter))
-            }
-            FrameInCutterComp => {
-                write!(f, "G15/G16, G50/G51, G50.1/G51.1 and G68/G69 only with cutter compensation cancelled (G40)")
-            }
-            FrameOrder => {
-                write!(f, "G51.1 before G51 before G68, cancelled the other way round (G69, then G50, then G50.1)")
-            }
-            OffsetValueOutOfRange => write!(f, "G10 offset value out of range"),
-            ReferenceInCycle => write!(f, "G28/G29/G30 while a hole cycle is in force (G80 first)"),
-            PeckDepthMissing => write!(f, "G73/G83 need a peck depth Q greater than zero"),
-            IllegalScale { letter } => {
-                write!(f, "scale factor {} out of range (P 0.001-999.999, I/J/K +-0.001-9.999)", Ch(letter))
-            }
+            RotationPlaneChange
+            | NoIntermediatePoint { .. }
+            | FrameInCutterComp
+            | FrameOrder
+            | OffsetValueOutOfRange
+            | ReferenceInCycle
+            | PeckDepthMissing
+            | IllegalScale { .. } => self.mill_text(f),
             ContourBufferFull => write!(f, "too many actions between a held move and the next move"),
             PolarCodeNotAllowed { code } => write!(f, "{code} is not allowed in polar interpolation (G12.1)"),
             PolarArcNeedsR => write!(f, "arcs in polar interpolation take R, not I/J/K"),

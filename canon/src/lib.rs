@@ -19,6 +19,11 @@
 #[cfg(test)]
 extern crate std;
 
+/// Whether this build carries the FANUC 0i-M machining-centre profile (feature
+/// `mill`, set by interp-core's): without it no helical arc and no M06 reach the
+/// motion core, which then leaves their code out (`interp_core::MILL` is this).
+pub const MILL: bool = cfg!(feature = "mill");
+
 pub mod alarm;
 pub mod axis;
 pub mod config;

@@ -996,6 +996,8 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
                 EventKind::Stop { .. } => self.paused = true,
                 // A machining centre's M06 by hand: the core has stopped (and the
                 // spindle); the operator loads the tool and presses cycle start.
+                // (Only the mill profile makes them: a build without it leaves this out.)
+                EventKind::ToolChange(_) if !interp_core::MILL => {}
                 EventKind::ToolChange(t) if t.manual => {
                     self.paused = true;
                     self.msg(format_args!("Load T{:02}", t.tool));

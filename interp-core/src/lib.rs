@@ -51,7 +51,7 @@ pub use ::canon;
 /// feature `mill`, docs/FIRMWARE-SIZES.md). Without it a board refuses `$311=1`,
 /// and a machine configuration of kind mill reads no block (alarm 0010 for
 /// every G code: the M-series table is not in the image).
-pub const MILL: bool = cfg!(feature = "mill");
+pub const MILL: bool = ::canon::MILL;
 
 /// Whether `cfg` runs as a machining centre in this build: every M-series path
 /// is behind this test, so a build without the `mill` feature leaves them out.

@@ -20,6 +20,7 @@ use crate::alarm::AlarmKind;
 use crate::axis::Pos;
 use crate::canon::{Action, ArcMove, Canon, Move, Plane, SpindleSpeed};
 use crate::geom::path::{Elem, V2, intersect, nearest, wrap_tau};
+use crate::modal::lookahead::Waiting;
 pub use crate::modal::lookahead::{Comp, Side};
 use crate::stage::Staged;
 
@@ -234,6 +235,10 @@ pub(super) fn plunge(
     start: Pos,
     out: &mut Staged<'_>,
 ) -> Result<bool, AlarmKind> {
+    // Only a mill plunges (this leaves the code out of a build without the profile).
+    if !crate::MILL {
+        return Ok(false);
+    }
     let Some(to) = c.action.endpoint() else { return Ok(false) };
     let normal = comp.plane.normal();
     let only_normal = crate::axis::Axis::ALL.into_iter().all(|a| a == normal || to.machine[a] == start[a]);
@@ -289,14 +294,29 @@ fn emit_to_corner(buf: &mut Buffer, comp: &Comp, e2: Option<&Elem>, out: &mut St
             last = *m;
         }
     }
-    // What waited behind the held move happens where the tool now is; a plunge
-    // moves from there along the plane's normal.
-    let at = moved_to(*held.action.endpoint().ok_or(AlarmKind::NoseCompGouge)?, comp.plane, last.plus(tip));
-    let spindle = spindle_of(&held.action);
+    emit_waiting(after, &held.action, comp, last.plus(tip), out)?;
+    Ok(join.start2)
+}
+
+/// Emits what waited behind `held` once the tool stands at `tool` (in the plane):
+/// a mill's plunge moves from there along the plane's normal.
+fn emit_waiting(
+    after: impl Iterator<Item = Waiting>,
+    held: &Action,
+    comp: &Comp,
+    tool: V2,
+    out: &mut Staged<'_>,
+) -> Result<(), AlarmKind> {
+    if !crate::MILL {
+        // Without the mill profile nothing but non-motion actions wait.
+        return after.into_iter().try_for_each(|c| put(out, c.plain()));
+    }
+    let at = moved_to(*held.endpoint().ok_or(AlarmKind::NoseCompGouge)?, comp.plane, tool);
+    let spindle = spindle_of(held);
     for c in after {
         put(out, c.canon(&at, comp.plane.normal(), spindle))?;
     }
-    Ok(join.start2)
+    Ok(())
 }
 
 /// The spindle speed a move runs at (what a plunge behind it runs at too).

@@ -227,7 +227,8 @@ fn through_stages(
         } else if cancel {
             cancel = false;
             let ct = &mut st.contour;
-            if comp::in_plane_move(&c.action, start, ct.comp.plane) {
+            // A lathe's moves all count as in the plane (its plunges are a mill's).
+            if !crate::MILL || comp::in_plane_move(&c.action, start, ct.comp.plane) {
                 comp::cancel_with(&mut ct.offset, &mut ct.comp, *c, start, out)?;
             } else {
                 // G40 with a move along the normal only (a retract): the held move
@@ -300,7 +301,10 @@ fn to_offset(st: &mut State, c: Canon, start: Pos, out: &mut Staged<'_>) -> Resu
     if c.action.endpoint().is_none() {
         return if ct.offset.is_holding() { ct.offset.push(c) } else { put(out, c) };
     }
-    if !comp::in_plane_move(&c.action, start, ct.comp.plane) && comp::plunge(&mut ct.offset, &ct.comp, c, start, out)? {
+    if crate::MILL
+        && !comp::in_plane_move(&c.action, start, ct.comp.plane)
+        && comp::plunge(&mut ct.offset, &ct.comp, c, start, out)?
+    {
         return Ok(());
     }
     if ct.comp.engaged {

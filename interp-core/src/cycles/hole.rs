@@ -239,7 +239,11 @@ impl HoleGen {
             Phase::Done => return Ok(false),
             Phase::Position => {
                 push(out, Step::RapidTo(self.at(self.positioning_level())))?;
-                if let HoleWork::BackBore { shift, restart } = self.work {
+                // The boring works of a machining centre (G86/G88/G76/G87) come only
+                // from its table: without the profile their code is left out.
+                if crate::MILL
+                    && let HoleWork::BackBore { shift, restart } = self.work
+                {
                     self.back_bore_in(shift, restart, out)?;
                 } else {
                     push(out, Step::RapidTo(self.at(self.r_level)))?;
@@ -329,6 +333,23 @@ impl HoleGen {
         match self.work {
             HoleWork::Drill { .. } => push(out, Step::RapidTo(r))?,
             HoleWork::Bore => push(out, Step::FeedTo(r))?,
+            HoleWork::RigidTap { dir, dwell_r_ms, restore, .. } => {
+                push(out, Step::Tap { to: r, dir: reverse(dir) })?;
+                if dwell_r_ms > 0 {
+                    push(out, Step::Dwell(dwell_r_ms))?;
+                }
+                push(out, Step::Spindle(restore))?;
+            }
+            HoleWork::FloatTap { dir, after, .. } => {
+                if self.dwell_ms > 0 {
+                    push(out, Step::Dwell(self.dwell_ms))?;
+                }
+                push(out, Step::Spindle(reverse(dir)))?;
+                push(out, Step::FeedPerRev(r))?;
+                push(out, Step::Spindle(after))?;
+            }
+            // The machining centre's boring works, below, come only from its table.
+            _ if !crate::MILL => {}
             HoleWork::BoreStop { restart } | HoleWork::BoreManual { restart } => {
                 push(out, Step::Spindle(SpindleDir::Stop))?;
                 if matches!(self.work, HoleWork::BoreManual { .. }) {
@@ -350,21 +371,6 @@ impl HoleGen {
                 push(out, Step::RapidTo(self.at(self.initial) + shift))?;
                 push(out, Step::RapidTo(self.at(self.initial)))?;
                 return push(out, Step::Spindle(restart));
-            }
-            HoleWork::RigidTap { dir, dwell_r_ms, restore, .. } => {
-                push(out, Step::Tap { to: r, dir: reverse(dir) })?;
-                if dwell_r_ms > 0 {
-                    push(out, Step::Dwell(dwell_r_ms))?;
-                }
-                push(out, Step::Spindle(restore))?;
-            }
-            HoleWork::FloatTap { dir, after, .. } => {
-                if self.dwell_ms > 0 {
-                    push(out, Step::Dwell(self.dwell_ms))?;
-                }
-                push(out, Step::Spindle(reverse(dir)))?;
-                push(out, Step::FeedPerRev(r))?;
-                push(out, Step::Spindle(after))?;
             }
         }
         if !self.stay_at_r {

@@ -154,6 +154,9 @@ impl Aside {
             Aside::Stop { optional } => Action::Stop { optional },
             Aside::End { rewind } => Action::End { rewind },
             Aside::Polygon(p) => Action::Polygon(p),
+            // Only a mill's compensation makes plunges (`contour::comp::plunge`):
+            // without the profile the arm below is all that is compiled.
+            Aside::Plunge { .. } if !crate::MILL => Action::Dwell { ms: 0 },
             Aside::Plunge { to, feed } => {
                 let (to, packed) = (whole(to), whole(feed));
                 let (feed, flags) = (packed & FEED_BITS, (packed >> 56) as u8);

@@ -169,7 +169,8 @@ impl Segment {
         let path = match b.kind {
             BlockKind::Arc(g) => {
                 let mut a = arc_path(&g, p);
-                a.helical = (0..AXIS_COUNT).any(|i| i != a.ia && i != a.ib && delta[i] != 0);
+                // Only a machining centre's arcs move a third axis.
+                a.helical = canon::MILL && (0..AXIS_COUNT).any(|i| i != a.ia && i != a.ib && delta[i] != 0);
                 Path::Arc(a)
             }
             BlockKind::Independent(inv) => Path::Independent(independent(from, &end_steps, &inv, p)),
@@ -231,7 +232,7 @@ impl Segment {
                 let (c, sn) = cos_sin(th as u32);
                 out[a.ia] = a.scale[0].q16(a.center[0] + mul_shr(r, i64::from(c), TRIG_FRAC));
                 out[a.ib] = a.scale[1].q16(a.center[1] + mul_shr(r, i64::from(sn), TRIG_FRAC));
-                if a.helical {
+                if canon::MILL && a.helical {
                     let moving = out.iter_mut().zip(&self.start).zip(&self.delta).enumerate();
                     for (i, ((o, st), d)) in moving {
                         if i != a.ia && i != a.ib && *d != 0 {

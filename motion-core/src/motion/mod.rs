@@ -722,7 +722,8 @@ impl<const N: usize> MotionCore<N> {
                 self.state = State::Stopped;
             }
             Command::Polygon(sync) => self.polygon_command(sync),
-            Command::ToolChange(t) => {
+            // Made only by a machining centre's M06.
+            Command::ToolChange(t) if canon::MILL => {
                 self.emit(line, EventKind::ToolChange(t));
                 if t.manual {
                     // The operator's hands go to the spindle: it stops, and starts
@@ -735,6 +736,7 @@ impl<const N: usize> MotionCore<N> {
                     self.state = State::Stopped;
                 }
             }
+            Command::ToolChange(_) => {}
             Command::End { rewind } => {
                 self.set_spindle(SpindleDir::Stop, 0);
                 self.emit(line, EventKind::End { rewind });

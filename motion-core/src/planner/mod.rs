@@ -303,7 +303,7 @@ impl<const N: usize> Planner<N> {
             Action::Stop { optional } => Command::Stop { optional },
             Action::End { rewind } => Command::End { rewind },
             Action::Polygon(p) => Command::Polygon(p),
-            Action::ToolChange(t) => Command::ToolChange(t),
+            Action::ToolChange(t) if canon::MILL => Command::ToolChange(t),
             _ => return Ok(()),
         };
         self.queue.push_back(Item::Command { line, cmd }).map_err(|_| PushError::Full)?;
