@@ -299,9 +299,7 @@ impl Emitter {
         let mut w: Pos = self.st.work_pos(cfg);
         w[Axis::X] = p.x;
         w[Axis::Z] = p.z;
-        let to = motion::endpoint(w, &self.st, cfg)?;
-        check_limits(&to.machine, cfg)?;
-        Ok((to.machine != self.st.pos).then_some(to))
+        self.target_pos(w, cfg)
     }
 
     fn speed(&self, cfg: &MachineConfig, p: Pt) -> crate::canon::SpindleSpeed {

@@ -161,8 +161,9 @@ pub fn hole_block(
     cfg: &MachineConfig,
 ) -> Result<Option<HoleGen>, AlarmKind> {
     use GCode::*;
-    if st.modal.plane != Plane::Zx {
-        return Err(AlarmKind::CycleNotInZxPlane);
+    let axis = hole_axis(code, st.modal.plane);
+    if !cfg.axis(axis).present {
+        return Err(AlarmKind::AxisNotConfigured { letter: axis.letter() });
     }
     let CycleArgs::Hole { r, dwell_ms, q, repeat } = cmd.cycle else { return Ok(None) };
     let mem = &mut st.cycle.hole;
@@ -178,10 +179,13 @@ pub fn hole_block(
     if cmd.g.drilling.is_none() && !cmd.has_axes() {
         return Ok(None);
     }
-    // Face holes run along Z, positioned in X and C; side holes along X,
-    // positioned in Z and C (C standing in for the plane's second axis).
-    let (axis, plane) =
-        if matches!(code, FaceDrill | FaceTap | FaceBore) { (Axis::Z, Plane::Xy) } else { (Axis::X, Plane::Yz) };
+    // The holes are positioned in the plane normal to the drilling axis (on a
+    // lathe C stands in for the plane's second axis).
+    let plane = match axis {
+        Axis::Z => Plane::Xy,
+        Axis::X => Plane::Yz,
+        _ => Plane::Zx,
+    };
     let here = st.work_pos(cfg);
     let mut position = here;
     let mut step = Pos::ZERO;
@@ -230,6 +234,21 @@ pub fn hole_block(
         repeat: repeat.unwrap_or(1),
     };
     Ok(Some(HoleGen::new(spec)))
+}
+
+/// The axis a hole cycle works along. Drilling and boring: Z for the face codes
+/// (G83, G85), X for the side codes (G87, G89), whatever the plane (2.13 note 4 keeps
+/// only G70–G76 and G90/G92/G94 to the ZX plane). Tapping follows the plane (2.22.2
+/// and 2.22.3 note 6): G84 in G17/G18/G19 taps along X/Z/Y, G88 along Y/X/Z.
+fn hole_axis(code: GCode, plane: Plane) -> Axis {
+    use GCode::*;
+    match (code, plane) {
+        (FaceTap, Plane::Xy) | (SideTap, Plane::Zx) => Axis::X,
+        (FaceTap, Plane::Yz) | (SideTap, Plane::Xy) => Axis::Y,
+        (FaceTap, Plane::Zx) | (SideTap, Plane::Yz) => Axis::Z,
+        (FaceDrill | FaceBore, _) => Axis::Z,
+        _ => Axis::X,
+    }
 }
 
 /// The lead of tapping at `rpm`: F/S under feed per minute (seed 004 @8614: "螺距
