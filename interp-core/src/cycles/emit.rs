@@ -265,6 +265,8 @@ impl Emitter {
                 Action::Linear(Move { to, feed, spindle, exact_stop, independent: false })
             }
             Step::Dwell(ms) => Action::Dwell { ms },
+            // M19 and the operator's stop: only a machining centre's boring works.
+            Step::Aux(_) | Step::Stop if !crate::MILL => return Ok(()),
             Step::Aux(m) => Action::Aux { m },
             Step::Stop => Action::Stop { optional: false },
             Step::Spindle(dir) => {

@@ -96,6 +96,8 @@ impl Setting {
     pub fn apply(self, cfg: &mut crate::config::MachineConfig, v: i64) {
         match self {
             Setting::Param(p) => cfg.params.set(p, v),
+            // The offsets are written only by a machining centre's G10.
+            _ if !crate::MILL => {}
             Setting::WorkOffset { frame: Setting::EXTERNAL, axis } => cfg.external_offset[axis] = v,
             Setting::WorkOffset { frame, axis } => match cfg.work_offsets.get_mut(usize::from(frame)) {
                 Some(p) => p[axis] = v,
