@@ -214,12 +214,13 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             b"$" => {
                 // The settings go back to their defaults; the offsets and the
                 // reference positions stay (G54.1's too).
-                let mut fresh = interp_core::MachineConfig::default();
-                fresh.work_offsets = cfg.work_offsets;
-                fresh.extra_offsets = cfg.extra_offsets;
-                fresh.tools = cfg.tools;
-                fresh.reference = cfg.reference;
-                *cfg = fresh;
+                *cfg = interp_core::MachineConfig {
+                    work_offsets: cfg.work_offsets,
+                    extra_offsets: cfg.extra_offsets,
+                    tools: cfg.tools,
+                    reference: cfg.reference,
+                    ..Default::default()
+                };
                 self.settings = settings::Settings::default();
             }
             b"#" => {
