@@ -1,5 +1,6 @@
 %
 O0300 (TWO PARTS IN TWO FIXTURES: G54 AND G55, LOCAL FRAME FOR A GROOVE)
+(--machine examples/machines/two_fixtures.toml : G55 IS 60 MM FURTHER IN -Z)
 G21 G98
 T0202
 M03 S1200

@@ -9,7 +9,7 @@
 #   LATHE: the lathe binary (default: target/debug/lathe, built by `cargo build -p lathe`)
 #
 # Per program, from a comment in its first 10 lines:
-#   --machine examples/machines/NAME.toml   run it on that machine (e.g. a C axis)
+#   --machine examples/DIR/NAME.toml        run it on that machine (e.g. a C axis)
 #   CHECK ONLY                              `lathe check` only, no `lathe sim`
 # Files in a directory named lib/ are subprograms: they are given to every program
 # with --lib, not run alone. A fresh common-variable file (--vars) per program keeps
@@ -36,10 +36,10 @@ while IFS= read -r prog; do
     count=$((count + 1))
     head=$(head -n 10 "$prog")
     opts=("${libs[@]}")
-    machine=$(grep -oiE -- '--machine +examples/machines/[A-Za-z0-9_.-]+\.toml' <<<"$head" | head -n 1 | sed -E 's/^--machine +//I' || true)
+    machine=$(grep -oiE -- '--machine +examples/[A-Za-z0-9_/.-]+\.toml' <<<"$head" | head -n 1 | sed -E 's/^--machine +//I' || true)
     if [ -n "$machine" ]; then
         # The comment may be upper case (FANUC programs are): find the file whatever its case.
-        real=$(find examples/machines -maxdepth 1 -iname "$(basename "$machine")" | head -n 1)
+        real=$(find examples -ipath "$machine" -name '*.toml' | head -n 1)
         opts+=(--machine "${real:-$machine}")
     fi
     rm -f "$tmp/vars"

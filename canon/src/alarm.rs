@@ -630,11 +630,15 @@ pub const CATALOG: &[CatalogEntry] = &[
         when: "a value or symbol stands where an address letter belongs",
     },
     CatalogEntry { code: 5, title: "no data after address", when: "a letter with no number after it" },
-    CatalogEntry { code: 6, title: "illegal minus sign", when: "minus sign on N, O, G, M, T, S, P of G04, L" },
+    CatalogEntry {
+        code: 6,
+        title: "illegal minus sign",
+        when: "minus sign on N, O, G, M, S, T, F, L, G04 P/X/U, a ,C/,R corner, a cycle's count or depth word",
+    },
     CatalogEntry {
         code: 7,
         title: "illegal decimal point",
-        when: "decimal point on N, O, M, T, L, G04 P (2.6), cycle P/Q",
+        when: "decimal point on N, O, M, S, T, L, G04 P (2.6), cycle P/Q",
     },
     CatalogEntry { code: 9, title: "improper address", when: "unknown letter, or an axis the machine does not have" },
     CatalogEntry {

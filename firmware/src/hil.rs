@@ -13,6 +13,21 @@ use defmt::{error, info, warn};
 /// Whether this build runs on QEMU (hardware checks are skipped).
 pub const QEMU: bool = cfg!(feature = "qemu");
 
+/// The QEMU build's entry of a bring-up test: the test's `main` task on the QEMU
+/// executor (on the board, `#[embassy_executor::main]` on `main` is the entry).
+/// Invoked once at the end of each `src/bin/hil_*.rs`.
+#[macro_export]
+macro_rules! hil_qemu_entry {
+    () => {
+        /// The QEMU build's entry: `main` on the QEMU executor.
+        #[cfg(feature = "qemu")]
+        #[cortex_m_rt::entry]
+        fn entry() -> ! {
+            firmware::qemu::run_executor(|spawner| spawner.spawn(defmt::unwrap!(main(spawner))))
+        }
+    };
+}
+
 /// One bring-up test's checks and result.
 pub struct Report {
     name: &'static str,

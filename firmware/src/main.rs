@@ -142,7 +142,7 @@ async fn main(spawner: Spawner) {
     #[cfg(feature = "usb")]
     {
         let firmware::usb::Usb { device, rx, tx, control } = firmware::usb::build(usb);
-        spawner.spawn(unwrap!(usb_device(device)));
+        spawner.spawn(unwrap!(firmware::usb::device(device)));
         spawner.spawn(unwrap!(usb_rx(rx)));
         spawner.spawn(unwrap!(usb_tx(tx, control)));
     }
@@ -410,13 +410,6 @@ async fn send(tx: &mut BufferedUartTx<'static>, bytes: &[u8]) {
             Err(_) => {}
         }
     }
-}
-
-/// The USB device: enumeration, control requests, bus events.
-#[cfg(feature = "usb")]
-#[embassy_executor::task]
-async fn usb_device(mut device: embassy_usb::UsbDevice<'static, firmware::board::UsbDriver>) -> ! {
-    device.run().await
 }
 
 /// USB receive: packets from the host into the controller, held as USART2's bytes

@@ -25,3 +25,10 @@ pub fn build(driver: UsbDriver) -> Usb {
     static BUFFERS: StaticCell<link_driver::usb::Buffers<'static>> = StaticCell::new();
     link_driver::usb::build(driver, BUFFERS.init(link_driver::usb::Buffers::default()))
 }
+
+/// The USB device's task: enumeration, control requests, bus events (spawned by the
+/// firmware and by the `hil_link_echo` bring-up test).
+#[embassy_executor::task]
+pub async fn device(mut device: embassy_usb::UsbDevice<'static, UsbDriver>) -> ! {
+    device.run().await
+}

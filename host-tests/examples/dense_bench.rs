@@ -17,24 +17,14 @@
 
 use std::time::Instant;
 
+use host_tests::fast_lathe;
 use interp_core::axis::{AXIS_COUNT, Axis, Pos};
-use interp_core::config::Param;
 use interp_core::{Interpreter, MachineConfig, Panel, Progress, SingleProgram};
 use motion_core::motion::{Feedback, MotionCore, QUEUE, State};
 use sim::{Sim, SimOptions};
 
 const MM: i64 = 1_000_000;
 const FEED: f64 = 6_000.0;
-
-fn machine(accel: i64) -> MachineConfig {
-    let mut cfg = MachineConfig::default();
-    for ax in [Axis::X, Axis::Z] {
-        cfg.axes[ax.index()].accel_per_s2 = accel * MM;
-        cfg.axes[ax.index()].max_feed_per_min = 10_000 * MM;
-    }
-    cfg.params.set(Param::MaxCuttingFeed, 10_000 * MM);
-    cfg
-}
 
 /// X (radius, mm) of the curve at Z (mm).
 fn x_at(z: f64) -> f64 {
@@ -115,7 +105,7 @@ fn main() {
     let path = middle_path();
     for accel in [500, 2_000, 5_000] {
         for seg in [0.01, 0.02, 0.05] {
-            let cfg = machine(accel);
+            let cfg = fast_lathe(accel);
             let text = program(seg);
             let opts = SimOptions { samples: true, start: Pos::xz(40 * MM, 0), ..SimOptions::default() };
             let mut sim = Sim::new(cfg.clone(), opts).unwrap();

@@ -94,6 +94,19 @@ pub fn run_lib(main: &str, library: &[&str]) -> Run {
     run_programs(main, library, MachineConfig::default(), Panel::default())
 }
 
+/// The default lathe with X and Z at `accel` mm/s² and a 10 m/min cutting feed (axes
+/// and parameter 6023): the machine of the dense-program tests and benchmark.
+pub fn fast_lathe(accel: i64) -> MachineConfig {
+    const MM: i64 = 1_000_000;
+    let mut cfg = MachineConfig::default();
+    for ax in [interp_core::axis::Axis::X, interp_core::axis::Axis::Z] {
+        cfg.axes[ax.index()].accel_per_s2 = accel * MM;
+        cfg.axes[ax.index()].max_feed_per_min = 10_000 * MM;
+    }
+    cfg.params.set(interp_core::config::Param::MaxCuttingFeed, 10_000 * MM);
+    cfg
+}
+
 /// Runs `text` on the default machine.
 pub fn run(text: &str) -> Run {
     run_with(text, MachineConfig::default(), Panel::default())

@@ -8,9 +8,9 @@
 //! The motion core and the simulated machine then check feed hold, exact stops,
 //! threads after a chain, G96, the override and the path deviation.
 
+use host_tests::fast_lathe;
 use interp_core::axis::{AXIS_COUNT, Axis, Pos};
 use interp_core::canon::{Action, Canon, CanonSink, Endpoint, Feed, FeedMode, Move, SpindleSpeed};
-use interp_core::config::Param;
 use interp_core::{MachineConfig, Panel};
 use motion_core::interpolator::{Interpolator, Live, Status};
 use motion_core::motion::{Feedback, MotionCore, QUEUE, State};
@@ -18,18 +18,6 @@ use motion_core::planner::{Item, MotionParams, Planner};
 use sim::{Sim, SimOptions};
 
 const MM: i64 = 1_000_000;
-
-/// The default lathe with X and Z at `accel` mm/s² and 10 m/min cutting feed
-/// (axes and parameter 6023).
-fn machine(accel: i64) -> MachineConfig {
-    let mut cfg = MachineConfig::default();
-    for ax in [Axis::X, Axis::Z] {
-        cfg.axes[ax.index()].accel_per_s2 = accel * MM;
-        cfg.axes[ax.index()].max_feed_per_min = 10_000 * MM;
-    }
-    cfg.params.set(Param::MaxCuttingFeed, 10_000 * MM);
-    cfg
-}
 
 fn spindle() -> SpindleSpeed {
     SpindleSpeed { rpm: Some(1_000), css: None, max_rpm: 3_000 }
@@ -183,7 +171,7 @@ fn q8_per_period(mm_min: i64) -> u64 {
 /// 20 down — five blocks a period.
 #[test]
 fn a_dense_straight_chain_runs_the_analytic_trapezoid() {
-    let cfg = machine(5_000);
+    let cfg = fast_lathe(5_000);
     let actions = chain(straight, 20_000.0, 2_000, 6_000);
     let t = run(&cfg, Pos::xz(40 * MM, 0), &actions, normal());
     // Continuous trapezoid: L/v + v/a = 40/100 + 100/5000 s = 420 ms.
@@ -214,7 +202,7 @@ fn queue_limit(a: f64, d: f64) -> f64 {
 /// within a few periods; every junction crossed at or below its entry.
 #[test]
 fn a_dense_smooth_curve_runs_at_the_programmed_feed() {
-    let cfg = machine(5_000);
+    let cfg = fast_lathe(5_000);
     let actions = chain(wave, 20_000.0, 2_000, 6_000);
     let t = run(&cfg, Pos::xz(40 * MM, 0), &actions, normal());
     // Path length a little over 40 mm (the S adds 0.4 %).
@@ -229,7 +217,7 @@ fn a_dense_smooth_curve_runs_at_the_programmed_feed() {
 /// end just fits, `v² + a·v ≤ 2·a·D` with D the queued path.
 #[test]
 fn the_queue_limits_dense_blocks_on_a_slow_machine() {
-    let cfg = machine(500);
+    let cfg = fast_lathe(500);
     let actions = chain(straight, 20_000.0, 3_000, 6_000);
     let t = run(&cfg, Pos::xz(40 * MM, 0), &actions, normal());
     let middle = &t.speeds[t.speeds.len() / 3..2 * t.speeds.len() / 3];
@@ -248,7 +236,7 @@ fn the_queue_limits_dense_blocks_on_a_slow_machine() {
 fn junction_speeds_hold_at_every_boundary_of_random_dense_chains() {
     let mut rng = interp_core::canon::xorshift::XorShift::new(0x5eed_cafe_f00d_1234);
     for round in 0..12 {
-        let cfg = machine([500, 2_000, 5_000][round % 3]);
+        let cfg = fast_lathe([500, 2_000, 5_000][round % 3]);
         let mut at = (40_000_000i64, 0i64);
         let mut dir = 0.0f64;
         let mut actions = Vec::new();
@@ -273,7 +261,7 @@ fn junction_speeds_hold_at_every_boundary_of_random_dense_chains() {
 /// it starts from rest.
 #[test]
 fn a_dense_chain_stops_exactly_at_an_exact_stop() {
-    let cfg = machine(5_000);
+    let cfg = fast_lathe(5_000);
     let mut actions = chain(straight, 20_000.0, 2_000, 6_000);
     let Action::Linear(ref mut m) = actions[999].action else { unreachable!() };
     m.exact_stop = true;
@@ -312,7 +300,7 @@ fn a_dense_chain_stops_exactly_at_an_exact_stop() {
 /// start finishes the chain on its end point.
 #[test]
 fn feed_hold_mid_chain_stops_within_the_braking_distance() {
-    let cfg = machine(5_000);
+    let cfg = fast_lathe(5_000);
     let actions = chain(wave, 20_000.0, 2_000, 6_000);
     let hold_from = 200u64;
     let resume_at = 400u64;
@@ -337,7 +325,7 @@ fn feed_hold_mid_chain_stops_within_the_braking_distance() {
 /// 100 % it keeps the programmed feed (junction speeds are planned at 100 %).
 #[test]
 fn feed_override_scales_a_dense_chain() {
-    let cfg = machine(5_000);
+    let cfg = fast_lathe(5_000);
     let actions = chain(straight, 20_000.0, 1_000, 6_000);
     for (pct, want) in [(128u64, 3_000), (384, 6_000)] {
         let t = run(&cfg, Pos::xz(40 * MM, 0), &actions, move |_| Live { feed_ovr: pct, ..Live::NORMAL });
@@ -353,7 +341,7 @@ fn feed_override_scales_a_dense_chain() {
 #[test]
 fn the_simulated_machine_runs_dense_programs_at_the_programmed_feed_within_a_step() {
     for seg in [0.01, 0.02, 0.05] {
-        let cfg = machine(5_000);
+        let cfg = fast_lathe(5_000);
         let mut text = String::from("G98 G00 X80. Z0.\nG01 F6000\n");
         let n = (40.0 / seg) as usize;
         for k in 1..=n {
@@ -396,7 +384,7 @@ fn the_simulated_machine_runs_dense_programs_at_the_programmed_feed_within_a_ste
 /// starts at its index as always.
 #[test]
 fn a_period_never_crosses_into_a_thread() {
-    let cfg = machine(5_000);
+    let cfg = fast_lathe(5_000);
     let mut text = String::from("G98 G00 X80. Z1.\nM3 S500\nG01 F6000\n");
     for k in 1..=500 {
         text.push_str(&format!("Z{:.3}\n", 1.0 - k as f64 * 0.02));
@@ -418,7 +406,7 @@ fn a_period_never_crosses_into_a_thread() {
 /// of each period (it is updated every 4 periods), across blocks.
 #[test]
 fn constant_surface_speed_follows_x_along_a_dense_chain() {
-    let cfg = machine(5_000);
+    let cfg = fast_lathe(5_000);
     let mut text = String::from("G98 G00 X80. Z0.\nG50 S3000\nG96 S200 M3\nG01 F3000\n");
     for k in 1..=2_000 {
         text.push_str(&format!("X{:.3}\n", 80.0 - k as f64 * 0.02));
@@ -449,7 +437,7 @@ fn constant_surface_speed_follows_x_along_a_dense_chain() {
 /// queue's rate: the panel and the interpreter as the board runs them.
 #[test]
 fn the_interpreter_keeps_the_queue_full_at_5000_blocks_per_second() {
-    let cfg = machine(5_000);
+    let cfg = fast_lathe(5_000);
     let mut text = String::from("G98 G01 F6000\n");
     for k in 1..=5_000 {
         let (x, z) = wave(k as f64 * 20_000.0);

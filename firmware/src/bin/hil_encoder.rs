@@ -128,9 +128,4 @@ fn index_pulse() {
     spin_us(5);
 }
 
-/// The QEMU build's entry: [`main`] on the QEMU executor.
-#[cfg(feature = "qemu")]
-#[cortex_m_rt::entry]
-fn entry() -> ! {
-    firmware::qemu::run_executor(|spawner| spawner.spawn(defmt::unwrap!(main(spawner))))
-}
+firmware::hil_qemu_entry!();

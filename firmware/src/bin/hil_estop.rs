@@ -67,9 +67,4 @@ async fn main(_spawner: Spawner) {
     r.finish()
 }
 
-/// The QEMU build's entry: [`main`] on the QEMU executor.
-#[cfg(feature = "qemu")]
-#[cortex_m_rt::entry]
-fn entry() -> ! {
-    firmware::qemu::run_executor(|spawner| spawner.spawn(unwrap!(main(spawner))))
-}
+firmware::hil_qemu_entry!();

@@ -138,9 +138,4 @@ extern "C" fn TIM6_DAC() {
     cortex_m::peripheral::SCB::sys_reset();
 }
 
-/// The QEMU build's entry: [`main`] on the QEMU executor.
-#[cfg(feature = "qemu")]
-#[cortex_m_rt::entry]
-fn entry() -> ! {
-    firmware::qemu::run_executor(|spawner| spawner.spawn(defmt::unwrap!(main(spawner))))
-}
+firmware::hil_qemu_entry!();

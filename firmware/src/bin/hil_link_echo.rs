@@ -42,7 +42,7 @@ async fn main(spawner: Spawner) {
     #[cfg(feature = "usb")]
     {
         let usb = firmware::usb::build(board.usb);
-        spawner.spawn(defmt::unwrap!(usb_device(usb.device)));
+        spawner.spawn(defmt::unwrap!(firmware::usb::device(usb.device)));
         spawner.spawn(defmt::unwrap!(usb_echo(usb.rx, usb.tx)));
     }
     #[cfg(not(feature = "usb"))]
@@ -78,13 +78,6 @@ async fn uart_echo(mut rx: BufferedUartRx<'static>, mut tx: BufferedUartTx<'stat
     }
 }
 
-/// The USB device.
-#[cfg(feature = "usb")]
-#[embassy_executor::task]
-async fn usb_device(mut device: embassy_usb::UsbDevice<'static, firmware::board::UsbDriver>) -> ! {
-    device.run().await
-}
-
 /// USB: every packet received, sent back (a zero-length packet after a full one).
 #[cfg(feature = "usb")]
 #[embassy_executor::task]
@@ -115,9 +108,4 @@ async fn usb_echo(mut rx: firmware::usb::UsbIn, mut tx: firmware::usb::UsbOut) {
     }
 }
 
-/// The QEMU build's entry: [`main`] on the QEMU executor.
-#[cfg(feature = "qemu")]
-#[cortex_m_rt::entry]
-fn entry() -> ! {
-    firmware::qemu::run_executor(|spawner| spawner.spawn(defmt::unwrap!(main(spawner))))
-}
+firmware::hil_qemu_entry!();

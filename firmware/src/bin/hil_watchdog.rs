@@ -81,9 +81,4 @@ async fn main(_spawner: Spawner) {
     r.finish()
 }
 
-/// The QEMU build's entry: [`main`] on the QEMU executor.
-#[cfg(feature = "qemu")]
-#[cortex_m_rt::entry]
-fn entry() -> ! {
-    firmware::qemu::run_executor(|spawner| spawner.spawn(defmt::unwrap!(main(spawner))))
-}
+firmware::hil_qemu_entry!();

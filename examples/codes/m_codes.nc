@@ -1,0 +1,17 @@
+%
+O1100 (M CODES OF TABLE 1.2 AND SECTION 3.1.8)
+N10 G21 G18 G99
+N20 M10                          (CHUCK CLAMP)
+N30 M41                          (SPINDLE GEAR 1)
+N40 M03 S900                     (SPINDLE CLOCKWISE, 900 REV/MIN)
+N50 G00 X42. Z2. M08             (COOLANT ON BEFORE THE MOVE)
+N60 G01 Z-25. F0.15
+N70 X46.
+N80 G00 Z2. M09                  (COOLANT OFF AFTER THE MOVE)
+N90 M05                          (SPINDLE STOP)
+N100 M01                         (OPTIONAL STOP: ONLY WITH THE SWITCH ON)
+N110 M04 S400                    (COUNTER-CLOCKWISE)
+N120 G01 X40. F0.2
+N130 G00 X100. Z100. M05
+N140 M30                         (END, REWIND)
+%
