@@ -1150,6 +1150,7 @@ impl Gear {
     /// deceleration from this count's speed must start (`unit·left − now − w·R²` in
     /// accumulator units), on the count where going on at `inc` would leave less
     /// than the next count's speed needs to stop: `rem − inc ≤ (w + dw)·R²`.
+    /// Out of line: the locked count's fast path stays small.
     #[inline(never)]
     fn ramp_down_jump(&mut self, inc: i64) -> Option<i64> {
         let left = self.decel_left()?;
@@ -1158,7 +1159,7 @@ impl Gear {
             return None;
         }
         // The count being taken is `m_max`.
-        if self.find_decel(left, self.m_max) {
+        if self.dw == 0 && self.find_decel(left, self.m_max) {
             return (self.m_max == self.dec_at).then_some(self.dec_jump);
         }
         self.near_end(left, inc)
