@@ -1254,7 +1254,9 @@ impl Gear {
         (rem - i128::from(inc) <= (w + i128::from(self.dw)) * r2).then(|| (rem - w * r2).max(0) as i64)
     }
 
-    /// Adds `inc` units to the long axis's exact position; moves whole steps.
+    /// Adds `inc` units to the long axis's exact position; moves whole steps. Out
+    /// of line: its step and leg change would be copied into every caller.
+    #[inline(never)]
     fn add(&mut self, inc: i64) -> bool {
         self.acc += inc;
         let mut moved = false;
@@ -1287,6 +1289,7 @@ impl Gear {
     /// (multiplications only) and, while locked, the speed goes on from the lead
     /// reached (`keep_lead`: the running leg's next increment less its own half
     /// change plus the new one's) or starts at the new leg's own lead.
+    #[inline(never)]
     fn take_next(&mut self) {
         let Some(n) = self.next.take() else { return };
         self.legs_done += 1;
