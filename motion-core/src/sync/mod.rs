@@ -978,10 +978,9 @@ impl Gear {
                 let mut most = GLIDE_MAX;
                 let end = match self.decel_left() {
                     Some(left) if left <= self.ramp_zone => {
-                        if self.dec_at == i64::MAX && !self.find_decel(left, self.m_max + 1) {
-                            if self.to_start.is_none() {
-                                self.to_start = self.exact_to_start(left);
-                            }
+                        if self.dec_at == i64::MAX && !self.find_decel(left, self.m_max + 1) && self.to_start.is_none()
+                        {
+                            self.to_start = self.exact_to_start(left);
                         }
                         if self.dec_at != i64::MAX {
                             most = (self.dec_at - self.m_max - 1).clamp(0, i64::from(GLIDE_MAX)) as u32;
