@@ -80,7 +80,11 @@ impl LinkSeq {
         let (text, k) = match frame(raw, self.active) {
             Frame::Good { k, body, star } => (raw.get(body..star).unwrap_or(&[]), k),
             Frame::Bad => return Checked::Resend,
-            Frame::Plain if self.active && raw.first() != Some(&b'$') && !raw.is_empty() => return Checked::Resend,
+            // An empty line too: no checksum sender sends one unframed, line noise
+            // makes them (a flipped ENQ is a CR, a dropped `!` leaves the LF of
+            // `!` LF, a partial line of a CR goes stale), and inside a job it would
+            // count as a line of the stream and shift every line number after it.
+            Frame::Plain if self.active && raw.first() != Some(&b'$') => return Checked::Resend,
             Frame::Plain => return Checked::Text(raw, None),
         };
         // Line 1 restarts the numbering for a new job, but never inside a streamed

@@ -10,6 +10,8 @@ use crate::controller::{RX, STALE_LINE_NS, XOFF, XON};
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Latched {
     pub status: bool,
+    /// ENQ (0x05): the short link report `[LK:…]` asked.
+    pub link: bool,
     pub hold: bool,
     pub resume: bool,
     pub reset: bool,
@@ -47,7 +49,18 @@ enum Acts {
 
 /// Whether `b` is one of the real-time command bytes.
 fn is_realtime(b: u8) -> bool {
-    matches!(b, b'?' | b'!' | b'~' | 0x18 | 0x84 | 0x85 | 0x90..=0x9D | 0x9E | 0xA0 | 0xA1)
+    matches!(b, b'?' | ENQ | b'!' | b'~' | 0x18 | 0x84 | 0x85 | 0x90..=0x9D | 0x9E | 0xA0 | 0xA1)
+}
+
+/// ENQ (Ctrl-E): asks for the short link report `[LK:<last link line>,<free rx
+/// bytes>]` (docs/PROTOCOL.md, Checksums).
+pub(crate) const ENQ: u8 = 0x05;
+
+/// The queries: real-time bytes that act anywhere, alone, even under checksums (they
+/// only ask for an answer, so a byte line noise turns into one costs nothing but
+/// the damaged line, which its CRC catches).
+fn is_query(b: u8) -> bool {
+    b == b'?' || b == ENQ
 }
 
 /// The receive buffer and what goes with it.
@@ -85,6 +98,7 @@ impl Receiver {
             discarding: false,
             latched: Latched {
                 status: false,
+                link: false,
                 hold: false,
                 resume: false,
                 reset: false,
@@ -137,7 +151,7 @@ impl Receiver {
             if core::mem::take(&mut command_lf) || b == XON || b == XOFF {
                 continue;
             }
-            if (self.at_line_boundary(framed) || b == b'?') && is_realtime(b) {
+            if (self.at_line_boundary(framed) || is_query(b)) && is_realtime(b) {
                 match self.acts(b, bytes.get(i + 1).map(|&n| self.stripped(n)), framed) {
                     Acts::Alone => {
                         self.realtime(b, self.buf.len());
@@ -204,8 +218,11 @@ impl Receiver {
                 continue;
             }
             let next = tail.get(i + 1).map(|&n| self.stripped(n));
-            let acts =
-                if (!framed || between || b == b'?') && is_realtime(b) { self.acts(b, next, framed) } else { Acts::No };
+            let acts = if (!framed || between || is_query(b)) && is_realtime(b) {
+                self.acts(b, next, framed)
+            } else {
+                Acts::No
+            };
             if matches!(acts, Acts::Alone | Acts::WithLf) {
                 self.realtime(b, self.buf.len() + kept);
                 if b == 0x18 {
@@ -232,7 +249,7 @@ impl Receiver {
     }
 
     /// Whether a real-time byte would be acted on now. Always, except while link
-    /// checksums are in use: then `?` anywhere (a byte line noise turns into `?` goes
+    /// checksums are in use: then the queries `?` and ENQ anywhere (a byte line noise turns into `?` goes
     /// missing from its line, whose CRC then fails, as for a dropped byte; and a
     /// sender's status polls never become data of a line whose LF was lost, which
     /// would keep that line from going stale), every other one only between lines
@@ -247,14 +264,14 @@ impl Receiver {
 
     /// Whether real-time byte `b`, met between lines, acts (`next`: the byte after
     /// it, if it came yet). Without link checksums it acts alone, as in grbl. With
-    /// them (`framed`), `?` acts alone and every other real-time byte only when a
+    /// them (`framed`), `?` and ENQ act alone and every other real-time byte only when a
     /// LF follows it (`!` LF, 0x18 LF …; the LF is part of the command): line noise
     /// that drops the `N` of a framed line makes the line's second byte the first
     /// after a LF, and one flipped bit of it (`8` → 0x18, `1` → `!`) must not reset
     /// or hold the machine — it then acts only if the noise also turns the third
     /// byte into a LF.
     fn acts(&self, b: u8, next: Option<u8>, framed: bool) -> Acts {
-        match (framed && b != b'?', next) {
+        match (framed && !is_query(b), next) {
             (false, _) => Acts::Alone,
             (true, Some(b'\n')) => Acts::WithLf,
             (true, Some(_)) => Acts::No,
@@ -268,6 +285,7 @@ impl Receiver {
         let rt = &mut self.latched;
         match b {
             b'?' => rt.status = true,
+            ENQ => rt.link = true,
             b'!' => rt.hold = true,
             b'~' => rt.resume = true,
             0x18 => {

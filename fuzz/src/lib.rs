@@ -470,13 +470,27 @@ pub fn board(data: &[u8]) {
         link.poll();
     }
     link.out.clear();
-    let mut pending = b"\n?".to_vec();
+    // ENQ with the `?`: the short link report `[LK:<last>,<free>]` comes too.
+    let mut pending = b"\n?\x05".to_vec();
     for _ in 0..1_000 {
         link.offer(&mut pending);
         link.poll();
-        if has_status_report(&link.out) {
+        if has_status_report(&link.out) && has_link_report(&link.out) {
             return;
         }
     }
-    panic!("no status report after `?`: {:?}", String::from_utf8_lossy(&link.out));
+    panic!("no status report after `?` or no `[LK:…]` after ENQ: {:?}", String::from_utf8_lossy(&link.out));
+}
+
+/// Whether `out` holds a complete link report line `[LK:<last>,<free>]` (the
+/// answer to ENQ), its two numbers whole and the free bytes at most 128.
+pub fn has_link_report(out: &[u8]) -> bool {
+    let text: Vec<u8> = out.iter().copied().filter(|&b| b != 0x11 && b != 0x13).collect();
+    text.split(|&b| b == b'\n').any(|l| {
+        let l = strip_checksum(l.trim_ascii_end());
+        let Some(body) = l.strip_prefix(b"[LK:").and_then(|r| r.strip_suffix(b"]")) else { return false };
+        let mut it =
+            body.split(|&b| b == b',').map(|n| std::str::from_utf8(n).ok().and_then(|n| n.parse::<u32>().ok()));
+        matches!((it.next(), it.next(), it.next()), (Some(Some(_)), Some(Some(free)), None) if free <= 128)
+    })
 }

@@ -190,3 +190,54 @@ fn g84_floating_program() {
         ]
     );
 }
+
+/// 2.22.2 and 2.22.3 note 6: the plane chooses the tapping axis — G84 in G17/G18/G19
+/// taps along X/Z/Y, G88 along Y/X/Z; a plane whose axis the machine lacks (Y on
+/// this lathe) is alarm 0009. Drilling keeps its axis in every plane (2.13 note 4
+/// keeps only G70–G76 and G90/G92/G94 to the ZX plane).
+#[test]
+fn the_plane_chooses_the_tapping_axis() {
+    // G84 in G17: rigid tap along X from X50 (the initial level, no R) to X20, Z stays.
+    let r = run("G98\nG0 X50 Z0\nM29 S1000\nG17 G84 X20 F2000\nG80\nM30\n", &[]);
+    assert!(r.alarms.is_empty(), "{:?}", r.alarms);
+    let taps: Vec<_> = r
+        .actions
+        .iter()
+        .filter_map(|c| match c.action {
+            Action::Tap(t) => Some((t.dir, t.to.work.0[0], t.to.work.0[2])),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(taps, vec![(SpindleDir::Cw, 10_000_000, 0), (SpindleDir::Ccw, 25_000_000, 0)]);
+    // G88 in G19: floating tap along Z (per revolution, lead F/S = 2), X stays.
+    let r = run("G98\nG0 X50 Z0\nM3 S800\nG19 G88 Z-20 F1600\nG80\nM30\n", &[]);
+    assert!(r.alarms.is_empty(), "{:?}", r.alarms);
+    assert_eq!(moves(&r)[1..], [('l', 50.0, -20.0), ('l', 50.0, 0.0)]);
+    // G84 in G19 and G88 in G17 tap along Y: not on this lathe.
+    assert_eq!(run("G98\nG0 X50 Z0\nM3 S800\nG19 G84 Y-5 F1600\nM30\n", &[]).alarm_codes(), vec![(4, 9)]);
+    assert_eq!(run("G98\nG0 X50 Z0\nM3 S800\nG17 G88 Y-5 F1600\nM30\n", &[]).alarm_codes(), vec![(4, 9)]);
+    // G83 in G17 drills along Z as in G18.
+    let r = run("G98\nG0 X50 Z0\nG17 G83 Z-10 R-2 F100\nG80\nM30\n", &[]);
+    assert!(r.alarms.is_empty(), "{:?}", r.alarms);
+    assert_eq!(moves(&r)[1..], [('r', 50.0, -2.0), ('l', 50.0, -10.0), ('r', 50.0, -2.0), ('r', 50.0, 0.0)]);
+}
+
+/// With a Y axis, G84 in G19 taps along Y: the tap's end point moves Y only.
+#[test]
+fn g84_in_g19_taps_along_y_on_a_machine_with_y() {
+    let mut cfg = machine(&[]);
+    cfg.axes[1] = AxisConfig { min: -100_000_000, max: 100_000_000, ..AxisConfig::linear(0, 0, 6_000) };
+    let r = run_with("G98\nG0 X50 Z0\nM29 S1000\nG19 G84 Y-12 F2000\nG80\nM30\n", cfg, Panel::default());
+    assert!(r.alarms.is_empty(), "{:?}", r.alarms);
+    let taps: Vec<_> = r
+        .actions
+        .iter()
+        .filter_map(|c| match c.action {
+            Action::Tap(t) => Some(t.to.work.0),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(taps.len(), 2);
+    assert_eq!((taps[0][0], taps[0][1], taps[0][2]), (25_000_000, -12_000_000, 0));
+    assert_eq!((taps[1][0], taps[1][1], taps[1][2]), (25_000_000, 0, 0));
+}

@@ -7,44 +7,14 @@
 #
 # CNCjs strips comments, blank and `%` lines before sending (so line numbers differ)
 # and appends `G4 P0.5` (the board runs it as a 0.5 s dwell, setting $303): the
-# comparison ignores line numbers and allows that one trailing dwell.
+# comparison ignores line numbers and allows that one trailing dwell
+# (sender-harness.sh --compare actions).
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 lathe="$1"; shift
-work="$(mktemp -d)"
-trap 'kill "${board_pid:-0}" 2>/dev/null || true; rm -rf "$work"' EXIT
 failed=0
 for program in "$@"; do
-    name="$(basename "$program")"
-    pty="$work/board.pty"
-    "$lathe" board --pty "$pty" --speed 20 --record "$work/$name.board.jsonl" --exit-after 900 > "$work/board.log" 2>&1 &
-    board_pid=$!
-    for _ in $(seq 100); do [ -e "$pty" ] && break; sleep 0.1; done
-    "$lathe" sim "$program" --format jsonl > "$work/$name.sim.jsonl"
-    if "$here/run.sh" "$pty" "$program" --timeout 300 > "$work/run.log" 2>&1; then
-        sleep 0.5
-        if python3 - "$work/$name.sim.jsonl" "$work/$name.board.jsonl" <<'PY'
-import json, sys
-def load(p):
-    out = []
-    for l in open(p):
-        r = json.loads(l); r.pop("line", None); r.pop("program", None); out.append(r)
-    return out
-want, got = load(sys.argv[1]), load(sys.argv[2])
-if got and got[-1] == {"kind": "dwell", "seconds": 0.5}:
-    got = got[:-1]
-if got != want:
-    n = next((i for i, (a, b) in enumerate(zip(got, want)) if a != b), min(len(got), len(want)))
-    print(f"  {len(got)} actions on the board, {len(want)} from lathe sim; first difference at {n}:")
-    print("  board:", got[n] if n < len(got) else None)
-    print("  sim:  ", want[n] if n < len(want) else None)
-    sys.exit(1)
-print(f"  {len(got)} actions, identical to lathe sim")
-PY
-        then echo "ok   $name"; else echo "FAIL $name (actions differ)"; failed=1; fi
-    else
-        echo "FAIL $name (CNCjs did not complete the job)"; sed 's/^/  /' "$work/run.log" | tail -5; failed=1
-    fi
-    kill "$board_pid" 2>/dev/null || true; wait "$board_pid" 2>/dev/null || true
+    "$here/sender-harness.sh" --name CNCjs --compare actions --timeout 330 --exit-after 900 "$lathe" "$program" \
+        -- "$here/run.sh" @PTY@ @PROGRAM@ --timeout 300 || failed=1
 done
 exit $failed

@@ -18,6 +18,9 @@ pub enum Response {
     Status(Status),
     /// `[MSG:Resend:n]`: the board expects link line `n` next (checksum mode).
     Resend(u32),
+    /// `[LK:<last>,<free>]`, the answer to ENQ (0x05): the last link line the board
+    /// accepted and its free receive-buffer bytes.
+    Link(u32, u32),
     /// `[MSG:text]` other than a resend request.
     Msg(String),
     /// Any other `[…]` feedback line (`[PRG:…]`, `[GC:…]`, `[VER:…]` …), brackets kept.
@@ -86,6 +89,9 @@ pub fn parse(line: &str) -> Response {
             Some(n) => Response::Resend(n),
             None => Response::Msg(msg.to_owned()),
         };
+    }
+    if let Some((last, free)) = line.strip_prefix("[LK:").and_then(|r| r.strip_suffix(']')).and_then(pair) {
+        return Response::Link(last, free);
     }
     if line.starts_with('[') {
         return Response::Feedback(line.to_owned());
@@ -260,6 +266,8 @@ mod tests {
         assert_eq!(framing(std::str::from_utf8(&bad).unwrap()), Framed::Bad);
         assert_eq!(framing("ok"), Framed::Plain("ok"));
         assert_eq!(Status::parse("Idle|Bf:64,128|Lk:17").link, Some(17));
+        assert_eq!(parse("[LK:1999,93]"), Response::Link(1999, 93));
+        assert_eq!(parse("[LK:19x,93]"), Response::Feedback("[LK:19x,93]".into()));
     }
 
     #[test]

@@ -31,6 +31,10 @@ pub struct LineSplitter {
 /// A line longer than this without LF is handed on as it is.
 const MAX_LINE: usize = 1024;
 
+/// ENQ (Ctrl-E), the board's short link query: answered `[LK:<last link line
+/// accepted>,<free receive-buffer bytes>]` (docs/PROTOCOL.md, Checksums).
+pub const ENQ: u8 = 0x05;
+
 impl LineSplitter {
     /// Takes `bytes`, appending what they complete to `out`.
     pub fn push(&mut self, bytes: &[u8], out: &mut VecDeque<Incoming>) {
@@ -137,9 +141,10 @@ impl Link {
     }
 
     /// Writes the real-time command `b`: alone, or with link checksums in use (other
-    /// than `?`) followed by a LF, as the board then wants it (docs/PROTOCOL.md).
+    /// than the queries `?` and ENQ) followed by a LF, as the board then wants it
+    /// (docs/PROTOCOL.md).
     pub fn realtime(&mut self, b: u8) -> Result<(), LinkError> {
-        if self.checked && b != b'?' { self.write(&[b, b'\n']) } else { self.write(&[b]) }
+        if self.checked && b != b'?' && b != ENQ { self.write(&[b, b'\n']) } else { self.write(&[b]) }
     }
 
     /// A line of the board as it may be used: its framing checked and taken off;
@@ -296,6 +301,7 @@ impl Link {
                 Response::Alarm(code) => lines.push(format!("ALARM:{code}")),
                 Response::Resend(n) => lines.push(format!("[MSG:Resend:{n}]")),
                 Response::Answer(k, r) => lines.push(format!("N{k} {r:?}")),
+                Response::Link(last, free) => lines.push(format!("[LK:{last},{free}]")),
             }
         }
     }

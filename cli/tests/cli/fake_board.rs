@@ -31,10 +31,19 @@ pub struct Script {
     pub alarm: Option<&'static str>,
     /// Checksum mode: the first time this link line number arrives, treat it as damaged.
     pub damage: Option<u32>,
+    /// Checksum mode: the first time this link line number arrives, it is lost on
+    /// the way (no answer, not taken).
+    pub lose: Option<u32>,
+    /// Checksum mode: every status report arrives damaged (its CRC wrong), as a
+    /// ~115-byte report mostly does under 3 % line noise — until the line lost
+    /// ([`Script::lose`]) has been taken (the sender's end needs an Idle report).
+    pub garble_reports: bool,
     /// Start in state Alarm (after every reset too).
     pub locked: bool,
     /// Never send the welcome line.
     pub mute: bool,
+    /// Fall silent for good once this many program lines were taken (a dead link).
+    pub dies_after: Option<u32>,
 }
 
 impl Default for Script {
@@ -44,8 +53,11 @@ impl Default for Script {
             refuse: None,
             alarm: None,
             damage: None,
+            lose: None,
+            garble_reports: false,
             locked: false,
             mute: false,
+            dies_after: None,
         }
     }
 }
@@ -148,6 +160,7 @@ struct State {
     /// A LF after a real-time command is part of it.
     swallow_lf: bool,
     damaged: bool,
+    lost: bool,
     tape: TapeMode,
     xoff: bool,
     /// Something grbl-like (`?`, a real-time byte, a `$` line) came since the last
@@ -180,6 +193,7 @@ impl State {
             answering: None,
             swallow_lf: false,
             damaged: false,
+            lost: false,
             tape: TapeMode::Off,
             xoff: false,
             grbl_spoken: false,
@@ -193,6 +207,9 @@ impl State {
     }
 
     fn send(&mut self, text: &str) {
+        if self.script.dies_after.is_some_and(|n| self.line_no >= n) {
+            return;
+        }
         let _ = self.port.write_all(text.as_bytes());
     }
 
@@ -254,6 +271,12 @@ impl State {
                 self.spoke();
                 self.report();
             }
+            // ENQ: the short link report.
+            0x05 => {
+                self.spoke();
+                let free = 128usize.saturating_sub(self.rx.len());
+                self.line(&format!("[LK:{},{free}]", self.expected - 1));
+            }
             b'!' => {
                 self.spoke();
                 self.held = true;
@@ -314,6 +337,10 @@ impl State {
             "<{state}|MPos:50.000,0.000,-2.000|FS:0,0|Bf:{blocks},{free}|Ln:{}|WCO:0.000,0.000,0.000|Ov:100,100,100{link}>",
             self.line_no
         );
+        let lost_pending = self.script.lose.is_some_and(|k| self.expected <= k);
+        if self.checksums && self.script.garble_reports && lost_pending {
+            return self.send(&format!("{report}*0000\r\n"));
+        }
         self.line(&report);
     }
 
@@ -363,6 +390,10 @@ impl State {
         let k: u32 = k.parse().unwrap_or(0);
         let block = block.rsplit_once('*').map_or(block, |(b, _)| b).to_owned();
         let crc_ok = u16::from_str_radix(crc, 16).ok() == Some(crc16(body.as_bytes()));
+        if self.script.lose == Some(k) && !self.lost {
+            self.lost = true;
+            return None;
+        }
         let damaged = self.script.damage == Some(k) && !self.damaged;
         if damaged {
             self.damaged = true;

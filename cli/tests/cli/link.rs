@@ -63,6 +63,42 @@ fn send_with_checksums_resends_a_damaged_line_and_still_exits_0() {
     assert!(seen.max_buffered <= 128);
 }
 
+/// Issue 23 at 3 % line noise: nearly every status report arrives damaged, and the
+/// job's last line is lost on the way. The sender finds it from the board's short
+/// `[LK:…]` answer to ENQ (the reports never get through) and finishes.
+#[test]
+fn send_with_checksums_finds_a_lost_last_line_from_the_enq_answer_alone() {
+    let board = FakeBoard::start(Script { lose: Some(34), garble_reports: true, ..Script::default() });
+    let p = scratch("link-send-lost.nc", program(30));
+    let o = lathe(&["send", &p, "--port", &board.path, "--quiet", "--checksum"]);
+    let seen = board.finish();
+    let out = stdout(&o);
+    assert_eq!(status(&o), 0, "{out}{}", stderr(&o));
+    assert!(out.contains("lines lost on the way: resending from line 34\n"), "{out}");
+    assert!(out.contains("streamed 34 lines") && out.contains(", 1 resyncs,"), "{out}");
+    let last: Vec<_> = seen.lines.iter().filter(|l| l.starts_with("N34 ")).collect();
+    assert_eq!(last.len(), 2, "lost once, sent again: {last:?}");
+}
+
+/// A board that falls silent mid-job (a dead link) still ends the job with a clear
+/// error: after 5 s without a byte and at least 20 queries (`?`, ENQ) unanswered.
+#[test]
+fn send_gives_up_on_a_board_that_stopped_talking_after_5_s_and_20_queries() {
+    let board = FakeBoard::start(Script { dies_after: Some(10), ..Script::default() });
+    let p = scratch("link-send-dies.nc", program(30));
+    let t = std::time::Instant::now();
+    let o = lathe(&["send", &p, "--port", &board.path, "--quiet", "--checksum"]);
+    let waited = t.elapsed();
+    board.finish();
+    let err = stderr(&o);
+    assert_eq!(status(&o), 2, "{}{err}", stdout(&o));
+    assert!(err.contains("the board stopped talking: nothing for 5."), "{err}");
+    let queries: u32 =
+        err.split(" s, ").nth(1).and_then(|r| r.split(' ').next()).and_then(|n| n.parse().ok()).unwrap_or(0);
+    assert!(queries >= 20, "{err}");
+    assert!(waited >= std::time::Duration::from_secs(5) && waited < std::time::Duration::from_secs(15), "{waited:?}");
+}
+
 #[test]
 fn a_refused_line_is_named_by_file_and_line_the_job_stops_and_exits_1() {
     let board = FakeBoard::start(Script { refuse: Some("G12.1"), ..Script::default() });

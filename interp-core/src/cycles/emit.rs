@@ -67,8 +67,16 @@ pub enum Step {
     RapidTo(Pos),
     /// Cutting feed to a point at the cycle's feed.
     Feed(Pt),
-    /// Cutting feed to a point at a feed per revolution (floating tapping follows the spindle).
-    FeedPerRev(Pt, i64),
+    /// Cutting feed along one axis (X, Y or Z) to `to` (work, X as a radius) at a
+    /// feed per revolution: floating tapping follows the spindle.
+    FeedPerRev {
+        /// The axis that moves.
+        axis: Axis,
+        /// Its end coordinate, nm.
+        to: i64,
+        /// Feed, nm/rev.
+        lead: i64,
+    },
     /// Arc at the cycle's feed.
     Arc {
         /// End point.
@@ -91,10 +99,12 @@ pub enum Step {
         /// Index or continue.
         sync: ThreadSync,
     },
-    /// Rigid tapping move along one axis.
+    /// Rigid tapping move along one axis (X, Y or Z).
     Tap {
-        /// End point.
-        to: Pt,
+        /// The axis that moves.
+        axis: Axis,
+        /// Its end coordinate (work, X as a radius), nm.
+        to: i64,
         /// Lead, nm/rev.
         lead: i64,
         /// Spindle direction during the move.
@@ -213,10 +223,12 @@ impl Emitter {
                 let exact_stop = self.st.modal.exact_stop_mode;
                 Action::Linear(Move { to, feed, spindle: self.speed(cfg, p), exact_stop, independent: false })
             }
-            Step::FeedPerRev(p, value) => {
-                let Some(to) = self.target(p, cfg)? else { return Ok(()) };
-                let feed = Feed { mode: FeedMode::PerRev, value };
-                Action::Linear(Move { to, feed, spindle: self.speed(cfg, p), exact_stop: true, independent: false })
+            Step::FeedPerRev { axis, to, lead } => {
+                let w = self.along(axis, to, cfg);
+                let Some(to) = self.target_pos(w, cfg)? else { return Ok(()) };
+                let feed = Feed { mode: FeedMode::PerRev, value: lead };
+                let spindle = spindle_speed(&self.st, cfg, w[Axis::X]);
+                Action::Linear(Move { to, feed, spindle, exact_stop: true, independent: false })
             }
             Step::Arc { to, center, cw } => self.arc(to, center, cw, cfg)?,
             Step::Thread { to: p, lead, delta, start_udeg, sync } => {
@@ -229,12 +241,13 @@ impl Emitter {
                 }
                 Action::Thread(ThreadMove { to, lead, lead_delta: delta, start_udeg, sync, spindle })
             }
-            Step::Tap { to: p, lead, dir } => {
-                let Some(to) = self.target(p, cfg)? else { return Ok(()) };
+            Step::Tap { axis, to, lead, dir } => {
+                let w = self.along(axis, to, cfg);
+                let Some(to) = self.target_pos(w, cfg)? else { return Ok(()) };
                 // The spindle is position-controlled in the tapping direction at the M29 speed.
                 let mut locked = self.st;
                 locked.spindle.dir = dir;
-                let spindle = spindle_speed(&locked, cfg, p.x);
+                let spindle = spindle_speed(&locked, cfg, w[Axis::X]);
                 Action::Tap(TapMove { to, lead, dir, spindle })
             }
             Step::FeedTo { x, c, z, feed, .. } => {
@@ -275,6 +288,19 @@ impl Emitter {
         let mut w: Pos = self.st.work_pos(cfg);
         w[Axis::X] = p.x;
         w[Axis::Z] = p.z;
+        self.target_pos(w, cfg)
+    }
+
+    /// The work position with `axis` at `to` and the other axes where they are.
+    fn along(&self, axis: Axis, to: i64, cfg: &MachineConfig) -> Pos {
+        let mut w = self.st.work_pos(cfg);
+        w[axis] = to;
+        w
+    }
+
+    /// The end point of a move to work position `w` (all axes), inside the limits;
+    /// `None` when the move would not move.
+    fn target_pos(&self, w: Pos, cfg: &MachineConfig) -> Result<Option<crate::canon::Endpoint>, AlarmKind> {
         let to = motion::endpoint(w, &self.st, cfg)?;
         check_limits(&to.machine, cfg)?;
         Ok((to.machine != self.st.pos).then_some(to))

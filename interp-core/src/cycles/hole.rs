@@ -189,10 +189,10 @@ impl HoleGen {
             }
             HoleWork::Drill { .. } | HoleWork::Bore => push(out, Step::Feed(self.pt(next)))?,
             HoleWork::RigidTap { lead, dir: sd, .. } => {
-                push(out, Step::Tap { to: self.pt(next), lead, dir: sd })?;
+                push(out, Step::Tap { axis: self.axis, to: next, lead, dir: sd })?;
             }
             HoleWork::FloatTap { lead, .. } => {
-                push(out, Step::FeedPerRev(self.pt(next), lead))?;
+                push(out, Step::FeedPerRev { axis: self.axis, to: next, lead })?;
                 push(out, Step::Spindle(SpindleDir::Stop))?;
             }
         }
@@ -204,10 +204,10 @@ impl HoleGen {
         let back = if deep { self.r_level } else { next - dir * d };
         match self.work {
             HoleWork::RigidTap { lead, dir: sd, .. } => {
-                push(out, Step::Tap { to: self.pt(back), lead, dir: reverse(sd) })?;
+                push(out, Step::Tap { axis: self.axis, to: back, lead, dir: reverse(sd) })?;
                 if deep {
                     // Deep rigid peck: back in to the depth reached, locked to the spindle.
-                    push(out, Step::Tap { to: self.pt(next), lead, dir: sd })?;
+                    push(out, Step::Tap { axis: self.axis, to: next, lead, dir: sd })?;
                 }
             }
             _ => push(out, Step::RapidTo(self.at(back)))?,
@@ -225,7 +225,7 @@ impl HoleGen {
             HoleWork::Drill { .. } => push(out, Step::RapidTo(self.at(self.r_level)))?,
             HoleWork::Bore => push(out, Step::Feed(r))?,
             HoleWork::RigidTap { lead, dir, dwell_r_ms, restore, .. } => {
-                push(out, Step::Tap { to: r, lead, dir: reverse(dir) })?;
+                push(out, Step::Tap { axis: self.axis, to: self.r_level, lead, dir: reverse(dir) })?;
                 if dwell_r_ms > 0 {
                     push(out, Step::Dwell(dwell_r_ms))?;
                 }
@@ -236,7 +236,7 @@ impl HoleGen {
                     push(out, Step::Dwell(self.dwell_ms))?;
                 }
                 push(out, Step::Spindle(reverse(dir)))?;
-                push(out, Step::FeedPerRev(r, lead))?;
+                push(out, Step::FeedPerRev { axis: self.axis, to: self.r_level, lead })?;
                 push(out, Step::Spindle(SpindleDir::Stop))?;
             }
         }

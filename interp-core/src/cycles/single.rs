@@ -8,7 +8,7 @@ use super::thread::{Pullout, ThreadCycleGen, check_variable_lead, long_axis};
 use super::{Ctx, CycleArgs, Gen, args};
 use crate::alarm::AlarmKind;
 use crate::axis::{Axis, Pos};
-use crate::canon::{FeedMode, SpindleDir};
+use crate::canon::{FeedMode, Plane, SpindleDir};
 use crate::codes::GCode;
 use crate::command::Command;
 use crate::config::{MachineConfig, Param};
@@ -161,8 +161,9 @@ pub fn hole_block(
     cfg: &MachineConfig,
 ) -> Result<Option<HoleGen>, AlarmKind> {
     use GCode::*;
-    if st.modal.plane != crate::canon::Plane::Zx {
-        return Err(AlarmKind::CycleNotInZxPlane);
+    let axis = hole_axis(code, st.modal.plane);
+    if !cfg.axis(axis).present {
+        return Err(AlarmKind::AxisNotConfigured { letter: axis.letter() });
     }
     let CycleArgs::Hole { r, dwell_ms, q, repeat } = cmd.cycle else { return Ok(None) };
     let mem = &mut st.cycle.hole;
@@ -178,7 +179,6 @@ pub fn hole_block(
     if cmd.g.drilling.is_none() && !cmd.has_axes() {
         return Ok(None);
     }
-    let axis = if matches!(code, FaceDrill | FaceTap | FaceBore) { Axis::Z } else { Axis::X };
     let here = st.work_pos(cfg);
     let mut position = here;
     let mut step = Pos::ZERO;
@@ -224,6 +224,21 @@ pub fn hole_block(
         repeat: repeat.unwrap_or(1),
     };
     Ok(Some(HoleGen::new(spec)))
+}
+
+/// The axis a hole cycle works along. Drilling and boring: Z for the face codes
+/// (G83, G85), X for the side codes (G87, G89), whatever the plane (2.13 note 4 keeps
+/// only G70–G76 and G90/G92/G94 to the ZX plane). Tapping follows the plane (2.22.2
+/// and 2.22.3 note 6): G84 in G17/G18/G19 taps along X/Z/Y, G88 along Y/X/Z.
+fn hole_axis(code: GCode, plane: Plane) -> Axis {
+    use GCode::*;
+    match (code, plane) {
+        (FaceTap, Plane::Xy) | (SideTap, Plane::Zx) => Axis::X,
+        (FaceTap, Plane::Yz) | (SideTap, Plane::Xy) => Axis::Y,
+        (FaceTap, Plane::Zx) | (SideTap, Plane::Yz) => Axis::Z,
+        (FaceDrill | FaceBore, _) => Axis::Z,
+        _ => Axis::X,
+    }
 }
 
 /// Rigid (after M29) or floating tapping, with the lead F/S (G98) or F (G99).
