@@ -92,6 +92,10 @@ impl EngineAxis {
 pub struct Engine<const A: usize> {
     tb: TimeBase,
     axes: [EngineAxis; A],
+    /// For each core axis (bit `i` of what [`MotionCore::on_encoder`] moved), its
+    /// index in `axes` (`u8::MAX`: not driven): the count interrupt visits only
+    /// the axes that moved.
+    slot: [u8; 8],
     /// Start of the period computed last (the one after the period playing, between
     /// two period interrupts): core time (ns) and step timer tick.
     base_ns: u64,
@@ -105,9 +109,16 @@ impl<const A: usize> Engine<A> {
     /// An engine whose period 0 starts at timer tick `start` (core time 0), with the
     /// encoder's raw count `raw_count` as count 0.
     pub fn new(tb: TimeBase, axes: [EngineAxis; A], start: u32, raw_count: u32) -> Self {
+        let mut slot = [u8::MAX; 8];
+        for (i, ax) in axes.iter().enumerate() {
+            if let (Some(s), Ok(i)) = (slot.get_mut(ax.core_axis), u8::try_from(i)) {
+                *s = i;
+            }
+        }
         Engine {
             tb,
             axes,
+            slot,
             base_ns: 0,
             base_ticks: start,
             encoder: Encoder::new(raw_count),
@@ -214,11 +225,13 @@ impl<const A: usize> Engine<A> {
         // Only the axes the count moved (the gearbox's, C in polygon turning); an
         // edge due now is at tick `now` (no conversion).
         let horizon = self.base_ns + 2 * u64::from(self.tb.period_ns);
-        let mut edges = 0;
-        for ax in &mut self.axes {
-            if moved & (1 << ax.core_axis) == 0 {
+        let (mut edges, mut bits) = (0, moved);
+        while bits != 0 {
+            let core_axis = bits.trailing_zeros() as usize;
+            bits &= bits - 1;
+            let Some(ax) = self.slot.get(core_axis).and_then(|&i| self.axes.get_mut(usize::from(i))) else {
                 continue;
-            }
+            };
             if ax.carry.is_some() {
                 // The ring was full before: the general way.
                 let (tb, base_ns, base_ticks) = (self.tb, self.base_ns, self.base_ticks);
