@@ -6,26 +6,14 @@
 //! cycles and cutter compensation are in `mill_frames.rs`, `mill_holes.rs` and
 //! `mill_comp.rs`.
 
+mod mill_common;
+
 use host_tests::{Run, kind_names, run_with};
 use interp_core::canon::{Action, Canon, Plane, ToolChange};
 use interp_core::codes::GCode;
 use interp_core::config::{MachineKind, ToolChanger};
-use interp_core::{Axis, MachineConfig, Panel};
-
-/// examples/machines/mill.toml: G54 at X-300 Y-200 Z-250, H1 100 mm, D1 5 mm …
-pub fn mill() -> MachineConfig {
-    lathe::machine::parse(include_str!("../../examples/machines/mill.toml")).expect("mill.toml parses")
-}
-
-fn go(text: &str) -> Run {
-    let r = run_with(text, mill(), Panel::default());
-    assert!(r.alarms.is_empty(), "{:?}", r.alarms);
-    r
-}
-
-fn alarms(text: &str) -> Vec<(u32, u16)> {
-    run_with(text, mill(), Panel::default()).alarm_codes()
-}
+use interp_core::{Axis, Panel};
+use mill_common::{alarms, go, mill};
 
 /// Work end point (X, Y, Z) mm of a motion action.
 fn work(c: &Canon) -> Option<[f64; 3]> {

@@ -6,19 +6,12 @@
 //! cut short; plunges and retracts along Z between compensated moves are made at
 //! the corner; an overcut is alarm 3605 and the faulty move does not run.
 
+mod mill_common;
+
 use host_tests::{Run, run_with};
+use interp_core::Panel;
 use interp_core::canon::{Action, Canon};
-use interp_core::{MachineConfig, Panel};
-
-fn mill() -> MachineConfig {
-    lathe::machine::parse(include_str!("../../examples/machines/mill.toml")).expect("mill.toml parses")
-}
-
-fn go(text: &str) -> Run {
-    let r = run_with(text, mill(), Panel::default());
-    assert!(r.alarms.is_empty(), "{:?}", r.alarms);
-    r
-}
+use mill_common::{go, mill};
 
 /// Work (X, Y, Z) mm.
 fn xyz(c: &Canon) -> Option<[f64; 3]> {

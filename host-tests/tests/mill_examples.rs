@@ -4,19 +4,18 @@
 //! rotated pockets, the G98/G99 drilling levels, the offsets G10 sets, the
 //! compensated contour. Expected points are computed here.
 
+mod mill_common;
+
 use std::fs;
 use std::path::PathBuf;
 
 use host_tests::{Run, kind_names, run_programs};
+use interp_core::Panel;
 use interp_core::canon::{Action, Canon};
-use interp_core::{MachineConfig, Panel};
+use mill_common::mill;
 
 fn dir() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../examples/mill")
-}
-
-fn mill() -> MachineConfig {
-    lathe::machine::parse(include_str!("../../examples/machines/mill.toml")).expect("mill.toml parses")
 }
 
 fn texts(sub: &str) -> Vec<(String, String)> {

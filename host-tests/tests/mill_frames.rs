@@ -3,23 +3,12 @@
 //! rotation, in the seed's order (scaling before rotation) and FANUC's (mirror
 //! first). Every expected point is computed here from the seed's formulas.
 
+mod mill_common;
+
 use host_tests::{Run, run_with};
+use interp_core::Panel;
 use interp_core::canon::{Action, Canon};
-use interp_core::{MachineConfig, Panel};
-
-fn mill() -> MachineConfig {
-    lathe::machine::parse(include_str!("../../examples/machines/mill.toml")).expect("mill.toml parses")
-}
-
-fn go(text: &str) -> Run {
-    let r = run_with(text, mill(), Panel::default());
-    assert!(r.alarms.is_empty(), "{:?}", r.alarms);
-    r
-}
-
-fn alarms(text: &str) -> Vec<(u32, u16)> {
-    run_with(text, mill(), Panel::default()).alarm_codes()
-}
+use mill_common::{alarms, go, mill};
 
 /// Work end point (X, Y) mm of a motion action.
 fn xy(c: &Canon) -> Option<(f64, f64)> {

@@ -4,23 +4,11 @@
 //! G00–G03 cancelling the mode and its data, tapping (floating and M29 rigid),
 //! the boring cycles, and the alarms. Levels are work Z in mm.
 
-use host_tests::{Run, kind_names, run_with};
+mod mill_common;
+
+use host_tests::{Run, kind_names};
 use interp_core::canon::{Action, Canon, SpindleDir};
-use interp_core::{MachineConfig, Panel};
-
-fn mill() -> MachineConfig {
-    lathe::machine::parse(include_str!("../../examples/machines/mill.toml")).expect("mill.toml parses")
-}
-
-fn go(text: &str) -> Run {
-    let r = run_with(text, mill(), Panel::default());
-    assert!(r.alarms.is_empty(), "{:?}", r.alarms);
-    r
-}
-
-fn alarms(text: &str) -> Vec<(u32, u16)> {
-    run_with(text, mill(), Panel::default()).alarm_codes()
-}
+use mill_common::{alarms, go};
 
 /// Moves as (kind, X, Y, Z) mm work, kind r rapid, l linear, p tap.
 fn moves(r: &Run) -> Vec<(char, f64, f64, f64)> {

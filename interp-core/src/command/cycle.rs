@@ -200,27 +200,7 @@ pub fn is_thread(code: GCode) -> bool {
 /// without G80).
 pub fn is_hole(code: GCode) -> bool {
     use GCode::*;
-    matches!(
-        code,
-        FaceDrill
-            | FaceTap
-            | FaceBore
-            | SideDrill
-            | SideTap
-            | SideBore
-            | HighSpeedPeck
-            | LeftTap
-            | FineBore
-            | Drill
-            | DrillDwell
-            | PeckDrill
-            | Tap
-            | Bore
-            | BoreSpindleStop
-            | BackBore
-            | BoreManual
-            | BoreDwell
-    )
+    matches!(code, FaceDrill | FaceTap | FaceBore | SideDrill | SideTap | SideBore) || is_mill_hole(code)
 }
 
 /// A machining centre's hole cycles (G73–G89 of the M series).
