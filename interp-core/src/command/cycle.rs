@@ -197,10 +197,33 @@ pub fn is_thread(code: GCode) -> bool {
 }
 
 /// The hole cycles: a lathe's G83–G89, a machining centre's G73–G89 (group 10
-/// without G80).
+/// without G80). The mill's codes are listed here again rather than asked of
+/// [`is_mill_hole`]: one test of the whole set; the call form cost a plain G01 31
+/// instructions (`m4-tests/bench.sh bench_interp`). The same holds for
+/// `Command::moves_axes`.
 pub fn is_hole(code: GCode) -> bool {
     use GCode::*;
-    matches!(code, FaceDrill | FaceTap | FaceBore | SideDrill | SideTap | SideBore) || is_mill_hole(code)
+    matches!(
+        code,
+        FaceDrill
+            | FaceTap
+            | FaceBore
+            | SideDrill
+            | SideTap
+            | SideBore
+            | HighSpeedPeck
+            | LeftTap
+            | FineBore
+            | Drill
+            | DrillDwell
+            | PeckDrill
+            | Tap
+            | Bore
+            | BoreSpindleStop
+            | BackBore
+            | BoreManual
+            | BoreDwell
+    )
 }
 
 /// A machining centre's hole cycles (G73–G89 of the M series).

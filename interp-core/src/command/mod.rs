@@ -142,33 +142,49 @@ impl Command {
     /// and G68 take the axis words as their centre: no move.
     pub fn moves_axes(&self, state: &State) -> bool {
         use GCode::*;
-        let user = self.axis_user(state);
         self.axes.iter().any(Option::is_some)
             && self.g.frame.is_none()
-            && (cycle::is_hole(user)
-                || matches!(
-                    user,
-                    Rapid
-                        | Linear
-                        | ArcCw
-                        | ArcCcw
-                        | EllipseCw
-                        | EllipseCcw
-                        | ParabolaCw
-                        | ParabolaCcw
-                        | Thread
-                        | VariableLeadThread
-                        | TurningCycle
-                        | ThreadCycle
-                        | FacingCycle
-                        | ReferenceReturn
-                        | ReferenceReturnN
-                        | MachineCoordinates
-                        | FacePeckCycle
-                        | GroovePeckCycle
-                        | MultiThreadCycle
-                        | ReturnFromReference
-                ))
+            && matches!(
+                self.axis_user(state),
+                Rapid
+                    | Linear
+                    | ArcCw
+                    | ArcCcw
+                    | EllipseCw
+                    | EllipseCcw
+                    | ParabolaCw
+                    | ParabolaCcw
+                    | Thread
+                    | VariableLeadThread
+                    | TurningCycle
+                    | ThreadCycle
+                    | FacingCycle
+                    | ReferenceReturn
+                    | ReferenceReturnN
+                    | MachineCoordinates
+                    | FacePeckCycle
+                    | GroovePeckCycle
+                    | MultiThreadCycle
+                    | FaceDrill
+                    | FaceTap
+                    | FaceBore
+                    | SideDrill
+                    | SideTap
+                    | SideBore
+                    | ReturnFromReference
+                    | HighSpeedPeck
+                    | LeftTap
+                    | FineBore
+                    | Drill
+                    | DrillDwell
+                    | PeckDrill
+                    | Tap
+                    | Bore
+                    | BoreSpindleStop
+                    | BackBore
+                    | BoreManual
+                    | BoreDwell
+            )
     }
 
     /// The code that consumes the block's axis words (a machining centre's G51,
