@@ -13,7 +13,10 @@ a program with an illegal G code: the alarm message names its line, ALARM:20,
 `$X` unlocks; then a sender that ignores character counting: 100 slow jogs in one
 burst with a `?` behind the 20th, 60th and 100th — every `?` answered, the last
 while the jogs ahead of it still fill the planner — and a soft reset (0x18) behind
-them acted on at once (the welcome again). Then the same firmware once more on a
+them acted on at once (the welcome again). Then the mill profile: `$311=1` switches
+the running board to a machining centre (`$I` says mill), a G17 G01 X Y Z block
+runs on the third step channel (now Y) and the status reports show Y moving and
+ending where the block says. Then the same firmware once more on a
 CPU far too slow for its 1 ms control loop (`-icount shift=10`: 1,000 instructions
 per millisecond), which is behind its ticks all the time: the link must still
 answer (issue 18: the control task then kept the executor to itself, and received
@@ -303,6 +306,46 @@ def stack_check(monitor, elf):
         raise SystemExit(f"qemu-test: the stack's high-water mark {depth} is over {STACK_MARK_LIMIT} bytes")
 
 
+# The mill stage: `$311=1`, then a G17 G01 block moving X, Y and Z at once (the
+# lathe's X -5–160 and Z -600–300 mm travel, the mill's Y -400–0) and M30.
+MILL_PROGRAM = "G17 G90 G94 G21\nG01 X30. Y-20. Z10. F600\nM30\n"
+MILL_END = b"<Idle|MPos:30.000,-20.000,10.000|"
+
+
+def mill(link):
+    """The board switched to the mill profile runs a 3-axis block: `$I` names the
+    kind, status reports show Y between its ends while the block runs and the end
+    position exactly."""
+    link.send(b"$311=1\n")
+    said = link.expect(b"ok\r\n", "$311=1 accepted")
+    if b"[MSG:Machine kind: mill]" not in said:
+        raise SystemExit(f"qemu-test: $311=1 answered {said!r}")
+    link.send(b"$I\n")
+    info = link.expect(b"ok\r\n", "$I")
+    if b"[VER:1.1h.mill:]" not in info:
+        raise SystemExit(f"qemu-test: $I on a mill answered {info!r}")
+    stream(link, MILL_PROGRAM)
+    ys, last, since = set(), None, time.monotonic()
+    while True:
+        link.send(b"?")
+        line = read_line(link, time.monotonic() + TIMEOUT, "mill status")
+        if not line.startswith(b"<"):
+            continue
+        y = line.split(b"MPos:", 1)[1].split(b"|", 1)[0].split(b",")[1]
+        ys.add(float(y))
+        if line.startswith(MILL_END):
+            break
+        if line.startswith((b"<Alarm", b"<Hold")) or time.monotonic() - since > TIMEOUT:
+            raise SystemExit(f"qemu-test: mill block: last status {line!r}")
+        if line != last:
+            last, since = line, time.monotonic()
+        time.sleep(0.05)
+    moving = sorted(y for y in ys if -20.0 < y < 0.0)
+    if not moving:
+        raise SystemExit(f"qemu-test: no status report with Y between 0 and -20 (Y seen: {sorted(ys)})")
+    print(f"qemu-test: mill profile: G01 X Y Z ran to {MILL_END.decode()}; Y seen moving at {moving[:4]}")
+
+
 def main():
     elf = subprocess.run([os.path.join(HERE, "qemu-run.sh"), "--build"], check=True,
                          stdout=subprocess.PIPE, text=True).stdout.strip().splitlines()[-1]
@@ -337,6 +380,7 @@ def main():
         link.expect(b"ok\r\n", "unlocked")
         wait_status(link, b"<Idle|", "idle after $X")
         realtime_behind_a_burst(link)
+        mill(link)
         stack_check(monitor, elf)
     finally:
         qemu.kill()

@@ -12,7 +12,10 @@
 #   --machine examples/DIR/NAME.toml        run it on that machine (e.g. a C axis)
 #   CHECK ONLY                              `lathe check` only, no `lathe sim`
 # Files in a directory named lib/ are subprograms: they are given to every program
-# with --lib, not run alone. A fresh common-variable file (--vars) per program keeps
+# with --lib, not run alone. The mill examples (examples/mill/) are a machine of their
+# own: they run on examples/machines/mill.toml with examples/mill/lib only (its O0100
+# and O0200 are not the lathe examples' programs of those numbers), and the lathe
+# examples never see that lib. A fresh common-variable file (--vars) per program keeps
 # the runs independent of each other.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -28,7 +31,8 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
 libs=()
-while IFS= read -r d; do libs+=(--lib "$d"); done < <(find examples -type d -name lib | sort)
+while IFS= read -r d; do libs+=(--lib "$d"); done < <(find examples -type d -name lib -not -path 'examples/mill/*' | sort)
+mill_libs=(--lib examples/mill/lib)
 
 failed=0
 count=0
@@ -36,6 +40,7 @@ while IFS= read -r prog; do
     count=$((count + 1))
     head=$(head -n 10 "$prog")
     opts=("${libs[@]}")
+    case "$prog" in examples/mill/*) opts=("${mill_libs[@]}" --machine examples/machines/mill.toml) ;; esac
     machine=$(grep -oiE -- '--machine +examples/[A-Za-z0-9_/.-]+\.toml' <<<"$head" | head -n 1 | sed -E 's/^--machine +//I' || true)
     if [ -n "$machine" ]; then
         # The comment may be upper case (FANUC programs are): find the file whatever its case.

@@ -103,6 +103,13 @@ pub enum AlarmKind {
     IllegalOffsetNumber { number: u16 },
     /// 0030: tool number not on the turret.
     IllegalToolNumber { number: u16 },
+    /// 0032: a G10 offset value (or a work offset of G10 L20) outside the range
+    /// the table holds (FANUC 0i-M PS0032).
+    OffsetValueOutOfRange,
+    /// 0044: G28, G29 or G30 while a hole cycle is in force (FANUC 0i-M PS0044).
+    ReferenceInCycle,
+    /// 0045: G73/G83 without a peck depth Q (FANUC 0i-M PS0045).
+    PeckDepthMissing,
     /// 0046: G30 with P other than 1–4.
     IllegalReferenceNumber,
     /// 0076: M98 names a program that is not in program memory (3.1.6 note 1).
@@ -149,6 +156,12 @@ pub enum AlarmKind {
     /// 0129: an address that cannot be an argument of a macro call (G, N, O; P
     /// of a call by G or M code; an eleventh I/J/K group; FANUC 0i alarm 129).
     IllegalArgumentAddress { letter: Letter },
+    /// 0142: a G51 scale factor outside 0.001–999.999 (P) or ±0.001–±9.999 (I/J/K),
+    /// or zero (FANUC 0i-M PS0142; seed 004 @4506, @4740).
+    IllegalScale { letter: Letter },
+    /// 0212: a plane change, or an arc outside the rotation plane, while G68 rotates
+    /// the coordinates (FANUC 0i-M PS0212).
+    RotationPlaneChange,
     /// 0224: G28/G30 before the axis has been referenced (2.11.2 note 2).
     ReferenceNotEstablished { letter: Letter },
     /// 0500: the move would pass the positive soft limit.
@@ -301,6 +314,14 @@ pub enum AlarmKind {
     },
     /// 4044: more actions wait behind a held move than the look-ahead holds.
     ContourBufferFull,
+    /// 4048: G29 without a G28 intermediate point for an axis it moves.
+    NoIntermediatePoint { letter: Letter },
+    /// 4049: G15/G16, G50/G51, G50.1/G51.1 or G68/G69 while cutter compensation is
+    /// in force.
+    FrameInCutterComp,
+    /// 4051: G51.1/G50.1 while scaling or rotation is in force, or G51/G50 while
+    /// rotation is (FANUC's order: mirror, scaling, rotation; cancel the other way).
+    FrameOrder,
     /// 0034: nose compensation starting up or cancelling in an arc block (2.18.3).
     NoseCompArc,
     /// 0037: plane selection while nose compensation is active.
@@ -434,7 +455,14 @@ impl AlarmKind {
             ChamferInThread => 50,
             ChamferNoMove { .. } => 51,
             ChamferTooLarge => 55,
-            ChamferPlaneChange => 212,
+            ChamferPlaneChange | RotationPlaneChange => 212,
+            NoIntermediatePoint { .. } => 4048,
+            FrameInCutterComp => 4049,
+            FrameOrder => 4051,
+            OffsetValueOutOfRange => 32,
+            ReferenceInCycle => 44,
+            PeckDepthMissing => 45,
+            IllegalScale { .. } => 142,
             ContourBufferFull => 4044,
             PolarCodeNotAllowed { .. } => 4045,
             PolarArcNeedsR => 4046,
@@ -459,6 +487,40 @@ struct Ch(u8);
 impl fmt::Display for Ch {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         if self.0.is_ascii_graphic() { write!(f, "{}", self.0 as char) } else { write!(f, "0x{:02X}", self.0) }
+    }
+}
+
+impl AlarmKind {
+    /// The text of an alarm only the machining-centre profile raises.
+    #[cfg(feature = "mill")]
+    fn mill_text(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        use AlarmKind::*;
+        match *self {
+            RotationPlaneChange => write!(f, "plane change or an arc outside the plane of G68 rotation"),
+            NoIntermediatePoint { letter } => {
+                write!(f, "G29 moves axis {} but no G28 gave it an intermediate point", Ch(letter))
+            }
+            FrameInCutterComp => {
+                write!(f, "G15/G16, G50/G51, G50.1/G51.1 and G68/G69 only with cutter compensation cancelled (G40)")
+            }
+            FrameOrder => {
+                write!(f, "G51.1 before G51 before G68, cancelled the other way round (G69, then G50, then G50.1)")
+            }
+            OffsetValueOutOfRange => write!(f, "G10 offset value out of range"),
+            ReferenceInCycle => write!(f, "G28/G29/G30 while a hole cycle is in force (G80 first)"),
+            PeckDepthMissing => write!(f, "G73/G83 need a peck depth Q greater than zero"),
+            IllegalScale { letter } => {
+                write!(f, "scale factor {} out of range (P 0.001-999.999, I/J/K +-0.001-9.999)", Ch(letter))
+            }
+            _ => Ok(()),
+        }
+    }
+
+    /// Without the machining-centre profile (feature `mill`) nothing raises these:
+    /// their texts stay out of the image (the code still names them).
+    #[cfg(not(feature = "mill"))]
+    fn mill_text(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("machining-centre alarm")
     }
 }
 
@@ -613,6 +675,14 @@ impl fmt::Display for AlarmKind {
             ChamferNoMove { what } => write!(f, "no G01/G02/G03 move after chamfer/corner R: {what}"),
             ChamferTooLarge => write!(f, "chamfer or corner R is larger than the moves it joins"),
             ChamferPlaneChange => write!(f, "plane selection or a move out of the plane after chamfer/corner R"),
+            RotationPlaneChange
+            | NoIntermediatePoint { .. }
+            | FrameInCutterComp
+            | FrameOrder
+            | OffsetValueOutOfRange
+            | ReferenceInCycle
+            | PeckDepthMissing
+            | IllegalScale { .. } => self.mill_text(f),
             ContourBufferFull => write!(f, "too many actions between a held move and the next move"),
             PolarCodeNotAllowed { code } => write!(f, "{code} is not allowed in polar interpolation (G12.1)"),
             PolarArcNeedsR => write!(f, "arcs in polar interpolation take R, not I/J/K"),
@@ -624,8 +694,8 @@ impl fmt::Display for AlarmKind {
             NoseCompArc => write!(f, "nose compensation cannot start up or cancel in an arc block"),
             NoseCompPlaneChange => write!(f, "plane selection while nose compensation is active"),
             NoseCompReversed => write!(f, "G41/G42 reversed while nose compensation is active"),
-            ToolChangeInNoseComp => write!(f, "T code while nose compensation is active"),
-            NoseCompGouge => write!(f, "nose compensation would gouge the part"),
+            ToolChangeInNoseComp => write!(f, "tool change (lathe T, mill M06) while radius compensation is active"),
+            NoseCompGouge => write!(f, "radius compensation would gouge the part"),
             NoseCompCornerAngle => write!(f, "nose compensation corner angle below 0.1 degrees"),
             #[cfg(feature = "siemens")]
             Siemens(k) => k.fmt(f),
@@ -974,11 +1044,26 @@ pub const CATALOG: &[CatalogEntry] = &[
         when: "T word selects a tool or offset outside the tool table",
     },
     CatalogEntry {
+        code: 32,
+        title: "G10 offset value out of range",
+        when: "G10 L10-L13 value beyond +-999.999 mm, or G10 L20 work offset beyond +-2,147 mm (mill)",
+    },
+    CatalogEntry {
         code: 34,
         title: "arc in compensation start-up or cancel",
         when: "the first move after G41/G42 or the G40 move is an arc (2.18.3)",
     },
     CatalogEntry { code: 37, title: "plane change in compensation", when: "G17/G18/G19 while G41/G42 is in force" },
+    CatalogEntry {
+        code: 44,
+        title: "reference return in a hole cycle",
+        when: "G28, G29 or G30 while G73-G89 is in force on a mill (FANUC 0i-M PS0044)",
+    },
+    CatalogEntry {
+        code: 45,
+        title: "peck depth missing",
+        when: "G73/G83 on a mill without Q, or Q0 (FANUC 0i-M PS0045)",
+    },
     CatalogEntry { code: 46, title: "illegal reference number", when: "G30 P other than 1-4 (2.11.2)" },
     CatalogEntry {
         code: 50,
@@ -1090,6 +1175,11 @@ pub const CATALOG: &[CatalogEntry] = &[
         title: "illegal argument address",
         when: "G, N or O among the arguments of a macro call, P in a call by G or M code, more than 10 I/J/K groups (FANUC 0i)",
     },
+    CatalogEntry {
+        code: 142,
+        title: "illegal scale factor",
+        when: "G51 P outside 0.001-999.999, I/J/K outside +-0.001-+-9.999 or zero (seed 004 @4506, @4740)",
+    },
     CatalogEntry { code: 200, title: "rigid tap S missing", when: "M29 without S or with S0 (2.22.1)" },
     CatalogEntry {
         code: 203,
@@ -1099,8 +1189,9 @@ pub const CATALOG: &[CatalogEntry] = &[
     CatalogEntry { code: 204, title: "axis move in rigid tap", when: "axis motion between M29 and G84/G88 (2.22.1)" },
     CatalogEntry {
         code: 212,
-        title: "plane change after chamfer/corner R",
-        when: "G17/G18/G19 in the block after a ,C/,R block, or a chamfered move leaving the plane (2.23 note 4)",
+        title: "illegal plane selection",
+        when: "G17/G18/G19 in the block after a ,C/,R block, or a chamfered move leaving the plane (2.23 note 4); \
+               on a mill a plane change, or an arc in another plane, while G68 rotation is in force",
     },
     CatalogEntry {
         code: 220,
@@ -1143,13 +1234,17 @@ pub const CATALOG: &[CatalogEntry] = &[
         title: "nose compensation reversed",
         when: "G41 to G42 or back directly while compensating (2.18.4)",
     },
-    CatalogEntry { code: 3577, title: "tool change in nose compensation", when: "T code in G41/G42 (2.18.4)" },
+    CatalogEntry {
+        code: 3577,
+        title: "tool change in radius compensation",
+        when: "T code in G41/G42 on a lathe (2.18.4); M06 in G41/G42 on a mill",
+    },
     CatalogEntry {
         code: 3605,
-        title: "nose compensation gouge",
-        when: "interference check finds overcutting (2.18.4): a move whose offset runs against it (named by the \
-               alarm; the machine stops before it), an inside arc smaller than the nose, a G90/G94 cut shorter \
-               than the nose",
+        title: "radius compensation gouge",
+        when: "interference check finds overcutting (2.18.4; a mill's cutter compensation the same way): a move \
+               whose offset runs against it (named by the alarm; the machine stops before it), an inside arc \
+               smaller than the nose or cutter, a G90/G94 cut shorter than the nose",
     },
     CatalogEntry {
         code: 3607,
@@ -1293,9 +1388,25 @@ pub const CATALOG: &[CatalogEntry] = &[
         when: "G51.2 (its P/Q/R/S valid) on a machine without a C axis: the C axis drive is the tool spindle that 2.8 note 6 requires",
     },
     CatalogEntry {
+        code: 4048,
+        title: "G29 without G28",
+        when: "G29 moves an axis that no G28 since power-on or reset has given an intermediate point",
+    },
+    CatalogEntry {
+        code: 4049,
+        title: "transformation in cutter compensation",
+        when: "G15/G16, G50/G51, G50.1/G51.1 or G68/G69 while G41/G42 is in force (cancel with G40 first)",
+    },
+    CatalogEntry {
         code: 4050,
         title: "variables full",
         when: "a 129th variable of #34-#400 and #601-#999 would hold a value at once (setting one to null frees its place)",
+    },
+    CatalogEntry {
+        code: 4051,
+        title: "transformations out of order",
+        when: "G51.1/G50.1 while G51 or G68 is in force, or G51/G50 while G68 is (FANUC: mirror, scaling, \
+               rotation, cancelled in the reverse order)",
     },
     CatalogEntry {
         code: 4052,
@@ -1692,6 +1803,14 @@ mod tests {
             ChamferTooLarge,
             ChamferPlaneChange,
             ContourBufferFull,
+            NoIntermediatePoint { letter: b'X' },
+            FrameInCutterComp,
+            FrameOrder,
+            OffsetValueOutOfRange,
+            ReferenceInCycle,
+            PeckDepthMissing,
+            IllegalScale { letter: b'P' },
+            RotationPlaneChange,
             PolarCodeNotAllowed { code: GNum(0) },
             PolarArcNeedsR,
             PolygonNoToolSpindle,

@@ -19,6 +19,11 @@
 #[cfg(test)]
 extern crate std;
 
+/// Whether this build carries the FANUC 0i-M machining-centre profile (feature
+/// `mill`, set by interp-core's): without it no helical arc and no M06 reach the
+/// motion core, which then leaves their code out (`interp_core::MILL` is this).
+pub const MILL: bool = cfg!(feature = "mill");
+
 pub mod alarm;
 pub mod axis;
 pub mod config;
@@ -86,11 +91,30 @@ pub enum Action {
         /// True for M30 (rewind).
         rewind: bool,
     },
+    /// Tool change of a machining centre (M06 after T, seed 004 @813): the tool T
+    /// selected goes into the spindle — by the tool changer, or by the operator
+    /// after a stop ("load T02", cycle start to go on), as the machine file says.
+    ToolChange(ToolChange),
     /// Polygon turning (G51.2/G50.2, 2.8): from the next spindle index on, the C
     /// axis (the tool spindle) turns Q/P revolutions per work-spindle revolution,
     /// locked to the encoder; `None` (G50.2) ends it once C is a whole number of
     /// revolutions from where it locked.
     Polygon(Option<PolygonSync>),
+}
+
+/// A machining centre's tool change (M06): what the board needs to drive a tool
+/// changer or to stop for a change by hand.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct ToolChange {
+    /// The tool to put in the spindle: the T selected before M06 (0 empties it).
+    pub tool: u16,
+    /// The tool in the spindle until now (0 = none).
+    pub previous: u16,
+    /// A change by hand: the machine stops, the operator is asked to load `tool`,
+    /// cycle start goes on. Otherwise the tool changer (ATC) changes it and reports
+    /// done (machine file `tool_changer`).
+    pub manual: bool,
 }
 
 /// The ratio of polygon turning (G51.2 P Q, 2.8).
@@ -214,6 +238,17 @@ impl Plane {
             Plane::Xy => (Axis::X, Axis::Y),
             Plane::Zx => (Axis::Z, Axis::X),
             Plane::Yz => (Axis::Y, Axis::Z),
+        }
+    }
+
+    /// The axis normal to the plane (G17: Z, G18: Y, G19: X): a machining centre's
+    /// tool axis, along which G43/G44 put the tool length.
+    #[inline]
+    pub const fn normal(self) -> Axis {
+        match self {
+            Plane::Xy => Axis::Z,
+            Plane::Zx => Axis::Y,
+            Plane::Yz => Axis::X,
         }
     }
 

@@ -438,6 +438,10 @@ fn render(
 ) -> std::io::Result<Vec<u8>> {
     Ok(match format {
         Format::Summary => Summary::new(name, r, cfg).with_motion(m.cloned()).to_string().into_bytes(),
+        // A mill: plan (X-Y) and side (X-Z) views; a lathe: the X-Z plane.
+        Format::Svg if cfg.kind == interp_core::config::MachineKind::Mill => {
+            crate::svg_mill::render(name, r, cfg).into_bytes()
+        }
         Format::Svg => svg::render(name, r, cfg, overlay).into_bytes(),
         Format::Jsonl => {
             let mut buf = Vec::new();

@@ -166,6 +166,9 @@ const NOSE: Setup = Setup::Machine(include_str!("../../examples/machines/nose_ra
 /// The machine of examples/machines/polar_c_axis.toml: a C axis for polar interpolation.
 const C_AXIS: Setup = Setup::Machine(include_str!("../../examples/machines/polar_c_axis.toml"));
 
+/// The machine of examples/machines/mill.toml: a 3-axis machining centre.
+const MILL: Setup = Setup::Machine(include_str!("../../examples/machines/mill.toml"));
+
 /// Shorthand for a [`Proof`] of the main program run with `setup`.
 const fn on(setup: Setup, case: &'static str, code: u16, program: &'static str, line: u32) -> Proof {
     Proof { case, code, setup, program, in_program: 0, line }
@@ -198,6 +201,11 @@ pub const PROOFS: &[Proof] = &[
     on(NOSE, "comp_ends_on_arc", 34, "T0101\nG00 X20 Z5\nG42 G01 Z0 F0.1\nG40 G02 X30 Z-5 R5\nM30\n", 4),
     on(NOSE, "plane_change_in_comp", 37, "T0101\nG00 X20 Z5\nG42 G01 Z0 F0.1\nG17 X30\nM30\n", 4),
     on(C_AXIS, "polar_start_in_comp", 37, "G00 X60 C0\nG42 G01 X50 F100\nG12.1\nM30\n", 3),
+    on(MILL, "mill_lathe_code", 10, "G00 X-10 Y-10\nG71 U1 R0.5\nM30\n", 2),
+    on(MILL, "mill_h_outside_table", 30, "G00 X-10 Y-10\nG43 Z50 H33\nM30\n", 2),
+    on(MILL, "mill_g10_value_too_large", 32, "G00 X-10\nG10 L10 P1 R1000.\nM30\n", 2),
+    on(MILL, "mill_g28_in_hole_cycle", 44, "G00 X0 Y0 Z50\nG81 X10 Z-5 R2 F100\nG28 Z0\nM30\n", 3),
+    on(MILL, "mill_g83_without_q", 45, "G00 X0 Y0 Z50\nG83 X10 Z-5 R2 F100\nM30\n", 2),
     plain("g30_p7", 46, "G00 X1\nG30 P7 U0\nM30\n", 2),
     plain("chamfer_in_thread", 50, "M3 S500\nG32 W-30 F2 ,C1\nM30\n", 2),
     plain("chamfer_then_rapid", 51, "G01 W-20 F100 ,C1\nG00 U10\nM30\n", 2),
@@ -267,7 +275,9 @@ pub const PROOFS: &[Proof] = &[
     plain("s_after_m29", 203, "M29 S100\nS200\nM30\n", 2),
     plain("m29_twice", 203, "M29 S100\nM29 S100\nM30\n", 2),
     plain("move_after_m29", 204, "M29 S100\nG00 X10\nM30\n", 2),
+    on(MILL, "mill_g51_p_out_of_range", 142, "G00 X0 Y0\nG51 X0 Y0 P1000000\nM30\n", 2),
     plain("plane_after_chamfer", 212, "G01 W-20 F100 ,C1\nG19 U10\nM30\n", 2),
+    on(MILL, "mill_plane_change_in_g68", 212, "G68 X0 Y0 R30.\nG00 X10 Y0\nG18\nM30\n", 3),
     plain(
         "g71_type1_not_monotone_in_x",
         329,
@@ -362,6 +372,19 @@ pub const PROOFS: &[Proof] = &[
     on(C_AXIS, "polar_arc_with_i", 4046, "G00 X60 C0\nG12.1\nG02 X40 C10 I5 F100\nM30\n", 3),
     plain("m99_with_x", 4042, "G00 X1\nM99 X1\nM30\n", 2),
     plain("g51_2_without_tool_spindle", 4047, "G00 X1\nG51.2 P1 Q2\nM30\n", 2),
+    on(MILL, "mill_g29_without_g28", 4048, "G00 X10 Y10\nG29 X0 Y0\nM30\n", 2),
+    on(MILL, "mill_g51_in_cutter_comp", 4049, "G00 X-10 Y-10 Z10\nG41 D1 G01 X0 Y0 F300\nG51 X0 Y0 P2000\nM30\n", 3),
+    on(MILL, "mill_g51_1_after_g51", 4051, "G51 X0 Y0 P2000\nG51.1 X0\nM30\n", 2),
+    on(MILL, "mill_hole_cycle_without_r", 4006, "G00 X0 Y0 Z50\nG81 X10 Z-5 F100\nM30\n", 2),
+    on(MILL, "mill_u_address", 9, "G00 X1\nG00 U10\nM30\n", 2),
+    on(MILL, "mill_m06_in_cutter_comp", 3577, "G00 X-10 Y-10 Z10\nG41 D1 G01 X0 Y0 F300\nT2 M06\nM30\n", 3),
+    on(
+        MILL,
+        "mill_groove_narrower_than_cutter",
+        3605,
+        "G00 X-10 Y10 Z-5\nG41 D1 G01 X0 Y0 F300\nX20\nY-4\nX24\nY0\nX50\nG40 X60 Y10\nM30\n",
+        5,
+    ),
     on(C_AXIS, "c_move_in_polygon_turning", 220, "G51.2 P1 Q2 S300\nG00 X50\nG00 C10\nG50.2\nM30\n", 3),
     on(C_AXIS, "polar_in_polygon_turning", 221, "G51.2 P1 Q2 S300\nG00 X50\nG12.1\nG13.1\nG50.2\nM30\n", 3),
     plain("variables_full", 4050, "#1=0\nWHILE [#1 LT 200] DO1\n#[200+#1]=1\n#1=#1+1\nEND1\nM30\n", 3),

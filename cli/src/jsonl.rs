@@ -3,7 +3,7 @@
 //! Every object starts with `line` (1-based source line), then `program` for an
 //! action of a subprogram (its O number; `line` is then a line of the file it came
 //! from; absent for the main program), and `kind`; positions are
-//! work coordinates in mm with X as a diameter (`mx`/`mz`: machine coordinates),
+//! work coordinates in mm with X as a diameter on a lathe (as it is on a mill; `mx`/`mz`: machine coordinates),
 //! feeds in mm/min or mm/rev, surface speeds in m/min, angles in degrees. Key
 //! order is the field order of the record types below and never changes.
 
@@ -66,6 +66,15 @@ pub enum Body {
         tool: u16,
         /// Offset number (0 = cancelled).
         offset: u16,
+    },
+    /// M06 of a machining centre: the tool selected goes into the spindle.
+    ToolChange {
+        /// The tool put in.
+        tool: u16,
+        /// The tool taken out (0 = none).
+        previous: u16,
+        /// By hand (the machine stops for the operator) or by the tool changer.
+        manual: bool,
     },
     /// A machine output switched by an M code.
     Aux {
@@ -217,6 +226,7 @@ pub fn record(c: &Canon, cfg: &MachineConfig) -> Record {
         Action::Dwell { ms } => Body::Dwell { seconds: f64::from(*ms) / 1e3 },
         Action::Spindle(s) => spindle_record(s),
         Action::Tool { tool, offset } => Body::Tool { tool: *tool, offset: *offset },
+        Action::ToolChange(t) => Body::ToolChange { tool: t.tool, previous: t.previous, manual: t.manual },
         Action::Aux { m } => Body::Aux { m: *m },
         Action::Stop { optional } => Body::Stop { optional: *optional },
         Action::End { rewind } => Body::End { rewind: *rewind },
@@ -236,11 +246,17 @@ pub fn write(run: &Run, cfg: &MachineConfig, out: &mut dyn Write) -> io::Result<
     Ok(())
 }
 
+/// X for output: a diameter on a lathe that programs diameters, the coordinate
+/// itself on a mill.
+fn x_of(radius_nm: i64, cfg: &MachineConfig) -> f64 {
+    if cfg.diameter_x { dia(radius_nm) } else { mm(radius_nm) }
+}
+
 /// Work coordinates of `ep` for output; Y and C only on machines that have them.
 fn point(ep: &Endpoint, cfg: &MachineConfig) -> Point {
     let w = &ep.work;
     Point {
-        x: dia(w[Axis::X]),
+        x: x_of(w[Axis::X], cfg),
         y: cfg.axis(Axis::Y).present.then(|| mm(w[Axis::Y])),
         z: mm(w[Axis::Z]),
         c: cfg.axis(Axis::C).present.then(|| deg(w[Axis::C])),
@@ -256,7 +272,7 @@ fn move_record(m: &Move, cfg: &MachineConfig, rapid: bool) -> MoveRecord {
         css: css(&m.spindle),
         exact_stop: m.exact_stop,
         independent: rapid.then_some(m.independent),
-        mx: dia(m.to.machine[Axis::X]),
+        mx: x_of(m.to.machine[Axis::X], cfg),
         mz: mm(m.to.machine[Axis::Z]),
     }
 }
@@ -266,7 +282,7 @@ fn arc_record(a: &ArcMove, cfg: &MachineConfig) -> ArcRecord {
     let y_arc = a.plane != Plane::Zx && cfg.axis(Axis::Y).present;
     ArcRecord {
         to: point(&a.to, cfg),
-        cx: dia(c[Axis::X]),
+        cx: x_of(c[Axis::X], cfg),
         cy: y_arc.then(|| mm(c[Axis::Y])),
         cz: mm(c[Axis::Z]),
         cw: a.cw,
@@ -281,7 +297,7 @@ fn arc_record(a: &ArcMove, cfg: &MachineConfig) -> ArcRecord {
             Plane::Zx => "zx",
             Plane::Yz => "yz",
         },
-        mx: dia(a.to.machine[Axis::X]),
+        mx: x_of(a.to.machine[Axis::X], cfg),
         mz: mm(a.to.machine[Axis::Z]),
     }
 }
@@ -297,7 +313,7 @@ fn thread_record(t: &ThreadMove, cfg: &MachineConfig) -> ThreadRecord {
         },
         lead_delta: mm(t.lead_delta),
         rpm: t.spindle.rpm,
-        mx: dia(t.to.machine[Axis::X]),
+        mx: x_of(t.to.machine[Axis::X], cfg),
         mz: mm(t.to.machine[Axis::Z]),
     }
 }
@@ -308,7 +324,7 @@ fn tap_record(t: &TapMove, cfg: &MachineConfig) -> TapRecord {
         lead: mm(t.lead),
         dir: spindle_dir(t.dir),
         rpm: t.spindle.rpm,
-        mx: dia(t.to.machine[Axis::X]),
+        mx: x_of(t.to.machine[Axis::X], cfg),
         mz: mm(t.to.machine[Axis::Z]),
     }
 }
@@ -336,5 +352,25 @@ fn spindle_dir(d: SpindleDir) -> &'static str {
         SpindleDir::Cw => "cw",
         SpindleDir::Ccw => "ccw",
         SpindleDir::Stop => "stop",
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::program::{OnAlarm, run};
+
+    /// A mill's X is a coordinate, not a diameter; Y is carried.
+    #[test]
+    fn a_mill_record_carries_x_as_it_is_and_y() {
+        let cfg = crate::machine::parse(include_str!("../../examples/machines/mill.toml")).unwrap();
+        let r =
+            run(b"G90 G54 G00 X40. Y-25.5 Z10.\nM30\n", &cfg, &interp_core::Panel::default(), OnAlarm::Stop).unwrap();
+        let mut out = Vec::new();
+        write(&r, &cfg, &mut out).unwrap();
+        let first = String::from_utf8(out).unwrap().lines().next().unwrap().to_string();
+        assert!(first.contains("\"x\":40.0,\"y\":-25.5,\"z\":10.0"), "{first}");
+        // G54 is X-300 Y-200 Z-250 in mill.toml: machine X -260.
+        assert!(first.contains("\"mx\":-260.0,\"mz\":-240.0"), "{first}");
     }
 }

@@ -19,6 +19,7 @@ pub mod path;
 pub mod program;
 pub mod summary;
 pub mod svg;
+pub mod svg_mill;
 pub mod timing;
 pub mod units;
 pub mod vars;

@@ -886,10 +886,20 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             port.emergency_stop();
             return;
         }
-        let limit = (inputs.limit_x && !prev.limit_x) || (inputs.limit_z && !prev.limit_z);
-        if limit && self.settings.hard_limits && self.homing.is_none() && self.alarm.is_none() {
+        let tripped = [
+            (inputs.limit_x, prev.limit_x, 'X'),
+            (inputs.limit_y, prev.limit_y, 'Y'),
+            (inputs.limit_z, prev.limit_z, 'Z'),
+        ]
+        .into_iter()
+        .find(|&(now, before, _)| now && !before);
+        if let Some((_, _, axis)) = tripped
+            && self.settings.hard_limits
+            && self.homing.is_none()
+            && self.alarm.is_none()
+        {
             port.emergency_stop();
-            self.msg(format_args!("Hard limit {}", if inputs.limit_x { 'X' } else { 'Z' }));
+            self.msg(format_args!("Hard limit {axis}"));
             self.enter_alarm(1, port);
             return;
         }
@@ -987,6 +997,15 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
                     io.m_code(m, e.line);
                 }
                 EventKind::Stop { .. } => self.paused = true,
+                // A machining centre's M06 by hand: the core has stopped (and the
+                // spindle); the operator loads the tool and presses cycle start.
+                // (Only the mill profile makes them: a build without it leaves this out.)
+                EventKind::ToolChange(_) if !interp_core::MILL => {}
+                EventKind::ToolChange(t) if t.manual => {
+                    self.paused = true;
+                    self.msg(format_args!("Load T{:02}", t.tool));
+                }
+                EventKind::ToolChange(t) => io.tool(t.tool, 0),
                 EventKind::End { .. } => {
                     self.motion_end = true;
                     self.try_finish();
@@ -1162,7 +1181,8 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             self.sync(port);
         }
         if let Some(h) = self.homing.as_mut() {
-            let home = [self.prev_inputs.home_x, self.prev_inputs.home_z];
+            let i = &self.prev_inputs;
+            let home = [i.home_x, i.home_y, i.home_z];
             match h.step(&port.status(), home, self.interp.config(), &self.settings, port) {
                 Homed::Busy => {}
                 Homed::Failed => {
@@ -1206,6 +1226,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
         let mut pins: heapless::String<8> = heapless::String::new();
         for (on, c) in [
             (inputs.limit_x, 'X'),
+            (inputs.limit_y, 'Y'),
             (inputs.limit_z, 'Z'),
             (inputs.feed_hold, 'H'),
             (inputs.cycle_start, 'S'),

@@ -1,5 +1,6 @@
-//! `$H` homing with home switches (`$22=1`): a sequence per axis, X first: seek
-//! toward the home switch at `$25` (toward plus unless `$23` has the axis's bit),
+//! `$H` homing with home switches (`$22=1`): a sequence per axis, the axis that
+//! takes the tool away from the work first — a lathe X then Z, a mill Z then X
+//! then Y (as grbl homes a mill; [`order`]): seek toward the home switch at `$25` (toward plus unless `$23` has the axis's bit),
 //! brake when the switch input is seen, redefine the axis so that the point where
 //! the switch tripped is the reference position, then move to `$27` short of that
 //! point at `$24`. The moves go straight to the motion port; the controller takes
@@ -7,6 +8,7 @@
 
 use interp_core::MachineConfig;
 use interp_core::axis::{Axis, Pos};
+use interp_core::config::MachineKind;
 
 use crate::jog::feed_move;
 use crate::port::{MotionPort, MotionStatus};
@@ -15,7 +17,7 @@ use crate::settings::Settings;
 /// Where a homing sequence is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct Homing {
-    /// 0: X, 1: Z.
+    /// Index into [`order`] of the axis being homed.
     axis: usize,
     phase: Phase,
 }
@@ -43,12 +45,18 @@ pub(crate) enum Homed {
     Done(Pos),
 }
 
-const AXES: [Axis; 2] = [Axis::X, Axis::Z];
+/// The axes `$H` homes, in order: the one that clears the tool from the work
+/// first (a lathe's cross slide X, a mill's quill or head Z).
+pub(crate) fn order(kind: MachineKind) -> &'static [Axis] {
+    match kind {
+        MachineKind::Lathe => &[Axis::X, Axis::Z],
+        MachineKind::Mill => &[Axis::Z, Axis::X, Axis::Y],
+    }
+}
 
-/// +1 or -1: the direction toward axis `i`'s home switch.
-fn home_dir(i: usize, s: &Settings) -> i64 {
-    let bit = AXES[i].index();
-    if s.homing_dir_mask & (1 << bit) != 0 { -1 } else { 1 }
+/// +1 or -1: the direction toward axis `a`'s home switch (`$23` bit 0 X, 1 Y, 2 Z).
+fn home_dir(a: Axis, s: &Settings) -> i64 {
+    if s.homing_dir_mask & (1 << a.index()) != 0 { -1 } else { 1 }
 }
 
 impl Homing {
@@ -58,20 +66,22 @@ impl Homing {
     }
 
     /// One poll: `st` the motion core's status, `home` the home switch inputs
-    /// (X, Z).
+    /// (X, Y, Z).
     pub fn step<M: MotionPort + ?Sized>(
         &mut self,
         st: &MotionStatus,
-        home: [bool; 2],
+        home: [bool; 3],
         cfg: &MachineConfig,
         s: &Settings,
         port: &mut M,
     ) -> Homed {
-        let switch = home[self.axis];
+        let axes = order(cfg.kind);
+        let Some(&a) = axes.get(self.axis) else { return Homed::Failed };
+        let switch = home.get(a.index()).copied().unwrap_or(false);
         match self.phase {
             Phase::Start if st.idle => {
                 self.phase = Phase::Seek;
-                seek(self.axis, st.position, cfg, s, port);
+                seek(a, st.position, cfg, s, port);
             }
             Phase::Seek if switch => {
                 port.reset();
@@ -79,20 +89,19 @@ impl Homing {
             }
             Phase::Seek if st.idle => return Homed::Failed,
             Phase::Braking { trip } if st.idle => {
-                let a = AXES[self.axis];
                 let reference = cfg.reference[0][a];
                 let mut pos = st.position;
                 pos[a] = reference + (st.position[a] - trip[a]);
                 port.set_position(pos);
                 // Pull off from the switch point (the axis braked beyond it).
                 let mut to = pos;
-                to[a] = reference - i64::from(s.homing_pulloff_um) * 1_000 * home_dir(self.axis, s);
+                to[a] = reference - i64::from(s.homing_pulloff_um) * 1_000 * home_dir(a, s);
                 let feed = i64::from(s.homing_feed) * 1_000_000;
                 let _ = port.push(feed_move(to, to, feed, cfg.spindle.max_rpm));
                 self.phase = Phase::PullOff;
             }
             Phase::PullOff if st.idle => {
-                if self.axis + 1 < AXES.len() {
+                if self.axis + 1 < axes.len() {
                     *self = Homing { axis: self.axis + 1, phase: Phase::Start };
                 } else {
                     return Homed::Done(st.position);
@@ -104,13 +113,12 @@ impl Homing {
     }
 }
 
-/// Starts the seek of axis `i` from `from` toward its switch.
-fn seek<M: MotionPort + ?Sized>(i: usize, from: Pos, cfg: &MachineConfig, s: &Settings, port: &mut M) {
-    let a = AXES[i];
+/// Starts the seek of axis `a` from `from` toward its switch.
+fn seek<M: MotionPort + ?Sized>(a: Axis, from: Pos, cfg: &MachineConfig, s: &Settings, port: &mut M) {
     let ax = cfg.axis(a);
     let travel = (ax.max - ax.min).saturating_mul(3) / 2;
     let mut to = from;
-    to[a] = from[a].saturating_add(travel * home_dir(i, s));
+    to[a] = from[a].saturating_add(travel * home_dir(a, s));
     let feed = i64::from(s.homing_seek) * 1_000_000;
     let _ = port.push(feed_move(to, to, feed, cfg.spindle.max_rpm));
 }

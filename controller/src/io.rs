@@ -11,10 +11,14 @@ pub struct Inputs {
     pub estop: bool,
     /// X limit switch (either end).
     pub limit_x: bool,
+    /// Y limit switch (either end; a mill's).
+    pub limit_y: bool,
     /// Z limit switch (either end).
     pub limit_z: bool,
     /// X home switch.
     pub home_x: bool,
+    /// Y home switch (a mill's).
+    pub home_y: bool,
     /// Z home switch.
     pub home_z: bool,
     /// Feed hold button.

@@ -22,12 +22,15 @@ impl fmt::Display for Mm {
     }
 }
 
-/// A position as the wire shows it: `x,0.000,z` (X a diameter on a diameter
-/// machine; Y always 0, as grbl senders expect three axes).
+/// A position as the wire shows it: `x,y,z`, always three axes as grbl senders
+/// expect (X a diameter on a diameter machine; Y 0 on a lathe without one, the
+/// real Y on a mill).
 #[derive(Clone, Copy, Debug)]
 pub struct Xyz {
     /// X, nm, radius.
     pub x: i64,
+    /// Y, nm.
+    pub y: i64,
     /// Z, nm.
     pub z: i64,
     /// Show X doubled.
@@ -37,14 +40,14 @@ pub struct Xyz {
 impl Xyz {
     /// `pos` for machine `cfg`.
     pub fn of(pos: &Pos, cfg: &MachineConfig) -> Self {
-        Xyz { x: pos[Axis::X], z: pos[Axis::Z], diameter: cfg.diameter_x }
+        Xyz { x: pos[Axis::X], y: pos[Axis::Y], z: pos[Axis::Z], diameter: cfg.diameter_x }
     }
 }
 
 impl fmt::Display for Xyz {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let x = if self.diameter { self.x.saturating_mul(2) } else { self.x };
-        write!(f, "{},0.000,{}", Mm(x), Mm(self.z))
+        write!(f, "{},{},{}", Mm(x), Mm(self.y), Mm(self.z))
     }
 }
 
@@ -90,7 +93,8 @@ mod tests {
         assert_eq!(format!("{}", Mm(-499)), "0.000");
         assert_eq!(format!("{}", Mm(i64::MAX)), "9223372036854.776");
         assert_eq!(format!("{}", Mm(i64::MIN)), "-9223372036854.776");
-        assert_eq!(format!("{}", Xyz { x: 10_000_000, z: -5_000_000, diameter: true }), "20.000,0.000,-5.000");
+        assert_eq!(format!("{}", Xyz { x: 10_000_000, y: 0, z: -5_000_000, diameter: true }), "20.000,0.000,-5.000");
+        assert_eq!(format!("{}", Xyz { x: -1_000, y: 25_400_000, z: -3, diameter: false }), "-0.001,25.400,0.000");
         assert_eq!(format!("{}", Value(640.5)), "640.5");
         assert_eq!(format!("{}", Value(0.01)), "0.01");
         assert_eq!(format!("{}", Value(400.0)), "400");

@@ -3,11 +3,13 @@
 //! numbered parameters are `$P<n>`.
 //!
 //! Axis values of X are per millimetre of **slide travel** (radius), as the
-//! drive sees them; positions on the wire are diameters.
+//! drive sees them; positions on the wire are diameters on a lathe. The axis
+//! settings of Y (`$101`, `$111`, `$121`, `$131`) exist on a mill only; `$311`
+//! selects the machine kind (docs/MILL-BOARD.md).
 
 use interp_core::MachineConfig;
 use interp_core::axis::Axis;
-use interp_core::config::{Language, Param, ParamUnit};
+use interp_core::config::{AxisConfig, Language, MachineKind, Param, ParamUnit};
 
 /// The controller's own settings (the rest live in the machine description).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -18,7 +20,7 @@ pub struct Settings {
     pub hard_limits: bool,
     /// `$22`: home switches fitted; `$H` runs the homing sequence.
     pub homing: bool,
-    /// `$23`: homing direction mask, bit 0 X, bit 2 Z: set = toward minus.
+    /// `$23`: homing direction mask, bit 0 X, bit 1 Y, bit 2 Z: set = toward minus.
     pub homing_dir_mask: u8,
     /// `$24`: homing locate feed, mm/min.
     pub homing_feed: u32,
@@ -52,8 +54,8 @@ pub struct Settings {
     /// while the sender polls `?` (its stream stopped); lines typed by hand (MDI)
     /// never; 0 never.
     pub spindle_stream_timeout_s: u32,
-    /// Soft-limit travel (min, max per axis, nm) while `$20=0`.
-    pub travel: [(i64, i64); 2],
+    /// Soft-limit travel (min, max per axis X, Y, Z, nm) while `$20=0`.
+    pub travel: [(i64, i64); 3],
 }
 
 impl Default for Settings {
@@ -73,15 +75,15 @@ impl Default for Settings {
             starve_timeout_s: 10,
             lookahead_wait_ms: 1_000,
             spindle_stream_timeout_s: 30,
-            travel: [(0, 0); 2],
+            travel: [(0, 0); 3],
         }
     }
 }
 
 /// The grbl-numbered settings, in `$$` order.
 pub const NUMBERS: &[u16] = &[
-    11, 12, 20, 21, 22, 23, 24, 25, 27, 30, 100, 102, 110, 112, 120, 122, 130, 132, 300, 301, 302, 303, 304, 305, 306,
-    310,
+    11, 12, 20, 21, 22, 23, 24, 25, 27, 30, 100, 101, 102, 110, 111, 112, 120, 121, 122, 130, 131, 132, 300, 301, 302,
+    303, 304, 305, 306, 310, 311,
 ];
 
 /// Why a setting write was refused.
@@ -105,14 +107,70 @@ const MAX_LOOKAHEAD_MS: u32 = 60_000;
 /// Soft-limit travel with limits "off": ±1000 m.
 const UNLIMITED: i64 = 1_000_000_000_000;
 
-fn lin(a: Axis) -> usize {
-    if a == Axis::X { 0 } else { 1 }
+/// The axis of a per-axis setting `$1n0`/`$1n1`/`$1n2` (grbl's X, Y, Z).
+fn setting_axis(n: u16) -> Axis {
+    match n % 10 {
+        0 => Axis::X,
+        1 => Axis::Y,
+        _ => Axis::Z,
+    }
 }
 
-/// The value of setting `n` (file units: mm, mm/min, mm/s², counts).
+/// Whether setting `n` belongs to an axis the machine does not have (Y on a lathe).
+fn missing_axis(n: u16, cfg: &MachineConfig) -> bool {
+    (100..=132).contains(&n) && !cfg.axis(setting_axis(n)).present
+}
+
+/// The Y axis `$311=1` gives a machine that had none: the built-in machining
+/// centre's (`MachineConfig::mill`: travel −400–0 mm, rapid 8 m/min).
+const MILL_Y: AxisConfig = AxisConfig::linear(-400, 0, 8_000);
+
+/// `$311`: the machine kind as its number (0 lathe, 1 mill).
+fn kind_number(k: MachineKind) -> f64 {
+    match k {
+        MachineKind::Lathe => 0.0,
+        MachineKind::Mill => 1.0,
+    }
+}
+
+/// `$311`: switches the profile. A mill programs X in radius and has a Y axis (the
+/// built-in machining centre's travel and rates until `$101`–`$131` set its own);
+/// a lathe programs X as a diameter and has none. The other axes keep their
+/// settings. Idempotent: the boot applies the stored value again.
+fn set_kind(kind: MachineKind, cfg: &mut MachineConfig, s: &mut Settings) {
+    if cfg.kind == kind {
+        return;
+    }
+    cfg.kind = kind;
+    let y = &mut cfg.axes[Axis::Y.index()];
+    match kind {
+        MachineKind::Mill => {
+            cfg.diameter_x = false;
+            if !y.present {
+                *y = MILL_Y;
+            }
+        }
+        MachineKind::Lathe => {
+            cfg.diameter_x = true;
+            *y = AxisConfig::ABSENT;
+        }
+    }
+    if !s.soft_limits {
+        let y = &mut cfg.axes[Axis::Y.index()];
+        s.travel[1] = (y.min, y.max);
+        if y.present {
+            (y.min, y.max) = (-UNLIMITED, UNLIMITED);
+        }
+    }
+}
+
+/// The value of setting `n` (file units: mm, mm/min, mm/s², counts); `None` for a
+/// setting the machine does not have (Y's on a lathe).
 pub fn get(n: u16, cfg: &MachineConfig, s: &Settings) -> Option<f64> {
-    let ax = |n: u16| if n.is_multiple_of(10) { Axis::X } else { Axis::Z };
-    let a = cfg.axis(ax(n));
+    if missing_axis(n, cfg) {
+        return None;
+    }
+    let a = cfg.axis(setting_axis(n));
     Some(match n {
         11 => cfg.motion.junction_deviation as f64 / NM,
         12 => cfg.motion.chord_tolerance as f64 / NM,
@@ -124,11 +182,11 @@ pub fn get(n: u16, cfg: &MachineConfig, s: &Settings) -> Option<f64> {
         25 => f64::from(s.homing_seek),
         27 => f64::from(s.homing_pulloff_um) / 1e3,
         30 => f64::from(cfg.spindle.max_rpm),
-        100 | 102 => a.drive.steps as f64 * NM / a.drive.per_nm.max(1) as f64,
-        110 | 112 => a.rapid_per_min as f64 / NM,
-        120 | 122 => a.accel_per_s2 as f64 / NM,
-        130 | 132 => {
-            let (lo, hi) = if s.soft_limits { (a.min, a.max) } else { s.travel[lin(ax(n))] };
+        100..=102 => a.drive.steps as f64 * NM / a.drive.per_nm.max(1) as f64,
+        110..=112 => a.rapid_per_min as f64 / NM,
+        120..=122 => a.accel_per_s2 as f64 / NM,
+        130..=132 => {
+            let (lo, hi) = if s.soft_limits { (a.min, a.max) } else { s.travel[usize::from(n % 10)] };
             (hi - lo) as f64 / NM
         }
         300 => f64::from(s.tape_mode),
@@ -142,6 +200,7 @@ pub fn get(n: u16, cfg: &MachineConfig, s: &Settings) -> Option<f64> {
             Language::Fanuc => 0.0,
             Language::Siemens => 1.0,
         },
+        311 => kind_number(cfg.kind),
         _ => return None,
     })
 }
@@ -156,7 +215,10 @@ pub fn set(n: u16, v: f64, cfg: &mut MachineConfig, s: &mut Settings) -> Result<
     let flag = |v: f64| if v == 0.0 || v == 1.0 { Ok(v == 1.0) } else { Err(bad("must be 0 or 1")) };
     let whole = |v: f64| if libm::trunc(v) == v { Ok(v as u32) } else { Err(bad("must be a whole number")) };
     let positive = |v: f64| if v > 0.0 { Ok(libm::round(v * NM) as i64) } else { Err(bad("must be above 0")) };
-    let ax = if n.is_multiple_of(10) { Axis::X } else { Axis::Z };
+    if missing_axis(n, cfg) {
+        return Err(bad("no Y axis on a lathe ($311=1 makes a mill)"));
+    }
+    let ax = setting_axis(n);
     match n {
         11 => cfg.motion.junction_deviation = positive(v)?,
         12 => cfg.motion.chord_tolerance = positive(v)?,
@@ -168,7 +230,7 @@ pub fn set(n: u16, v: f64, cfg: &mut MachineConfig, s: &mut Settings) -> Result<
         25 => s.homing_seek = whole(v)?.max(1),
         27 => s.homing_pulloff_um = libm::round(v * 1e3) as u32,
         30 => cfg.spindle.max_rpm = whole(v)?.max(1),
-        100 | 102 => {
+        100..=102 => {
             let d = &mut cfg.axes[ax.index()].drive;
             // Exact ratio: steps per metre over a metre.
             d.steps = libm::round(v * 1000.0) as i64;
@@ -177,11 +239,11 @@ pub fn set(n: u16, v: f64, cfg: &mut MachineConfig, s: &mut Settings) -> Result<
                 return Err(bad("must be above 0"));
             }
         }
-        110 | 112 => cfg.axes[ax.index()].rapid_per_min = positive(v)?,
-        120 | 122 => cfg.axes[ax.index()].accel_per_s2 = positive(v)?,
-        130 | 132 => {
+        110..=112 => cfg.axes[ax.index()].rapid_per_min = positive(v)?,
+        120..=122 => cfg.axes[ax.index()].accel_per_s2 = positive(v)?,
+        130..=132 => {
             let travel = positive(v)?;
-            let t = &mut s.travel[lin(ax)];
+            let t = &mut s.travel[usize::from(n % 10)];
             let a = &mut cfg.axes[ax.index()];
             if s.soft_limits {
                 a.min = a.max - travel;
@@ -209,6 +271,14 @@ pub fn set(n: u16, v: f64, cfg: &mut MachineConfig, s: &mut Settings) -> Result<
                 _ => return Err(bad("is 0 (FANUC) or 1 (SINUMERIK)")),
             }
         }
+        311 => match whole(v)? {
+            0 => set_kind(MachineKind::Lathe, cfg, s),
+            1 if !interp_core::MILL => {
+                return Err(bad("is 0: this firmware has no mill profile (built without feature mill)"));
+            }
+            1 => set_kind(MachineKind::Mill, cfg, s),
+            _ => return Err(bad("is 0 (lathe) or 1 (mill)")),
+        },
         _ => return Err(SettingError::Unknown),
     }
     Ok(())
@@ -219,8 +289,11 @@ fn set_soft_limits(on: bool, cfg: &mut MachineConfig, s: &mut Settings) {
     if on == s.soft_limits {
         return;
     }
-    for (i, a) in [Axis::X, Axis::Z].into_iter().enumerate() {
+    for (i, a) in [Axis::X, Axis::Y, Axis::Z].into_iter().enumerate() {
         let ax = &mut cfg.axes[a.index()];
+        if !ax.present {
+            continue;
+        }
         if on {
             (ax.min, ax.max) = s.travel[i];
         } else {

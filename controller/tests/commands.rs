@@ -261,7 +261,7 @@ fn setting_310_selects_the_sinumerik_language_from_the_next_reset() {
     r.send(&[0x18]);
     r.run_ms(20);
     r.take_lines();
-    assert!(r.command("$I").iter().any(|l| l.contains("SINUMERIK language")), "{:?}", r.command("$I"));
+    assert!(r.command("$I").iter().any(|l| l.contains("SINUMERIK lathe language")), "{:?}", r.command("$I"));
     let answers = r.stream("R1=25 ; SINUMERIK\nG0 X=R1*2 Z=IC(5)\nM30\n", 20_000);
     assert!(answers.iter().any(|l| l == "[MSG:Pgm End]"), "{answers:?}");
     assert_eq!(r.ctl.interpreter().siemens_vars().r(1), Ok(25.0));

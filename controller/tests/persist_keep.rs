@@ -135,3 +135,28 @@ fn the_f446_store_holds_a_full_program_memory_and_can_replace_a_program() {
     assert_eq!(again.interpreter().variables().get(600).unwrap(), Some(600.5));
     assert_eq!(keep::fingerprint(&again), before);
 }
+
+/// `$311=1` is stored and applied first at power-on, so the Y axis it gives is
+/// there for `$101`/`$131` stored after it (docs/MILL-BOARD.md).
+#[test]
+fn the_machine_kind_and_y_settings_survive_a_restart() {
+    use interp_core::axis::Axis;
+    use interp_core::config::MachineKind;
+    let mut flash = Flash::new();
+    let (mut ctl, _core) = controller_after(&["$311=1\n", "$101=800\n", "$131=250\n"]);
+    {
+        let mut store = Persist::new(&mut flash, 0..8 * 2048).unwrap();
+        keep::save(&mut store, &mut ctl).unwrap();
+    }
+    let mut store = Persist::new(&mut flash, 0..8 * 2048).unwrap();
+    let mut cfg = MachineConfig::default();
+    let mut settings = Settings::default();
+    let refused = keep::load_config(&mut store, &mut cfg, &mut settings).unwrap();
+    assert!(refused.is_empty(), "{refused:?}");
+    assert_eq!(cfg.kind, MachineKind::Mill);
+    assert!(!cfg.diameter_x);
+    assert!(cfg.axis(Axis::Y).present);
+    assert_eq!(controller::settings::get(311, &cfg, &settings), Some(1.0));
+    assert_eq!(controller::settings::get(101, &cfg, &settings), Some(800.0));
+    assert_eq!(controller::settings::get(131, &cfg, &settings), Some(250.0));
+}

@@ -8,11 +8,11 @@
 //! |------|----------------|-----------------------------------------------------------|
 //! | PC6  | X STEP         | step interrupt via GPIOC BSRR; TIM8_CH1 capable (AF3)     |
 //! | PC7  | Z STEP         | TIM8_CH2 capable (AF3)                                    |
-//! | PC8  | C STEP         | TIM8_CH3 capable (AF3); optional rotary axis              |
+//! | PC8  | C / Y STEP     | third channel (TIM8_CH3 capable, AF3): C on a lathe, Y on a mill |
 //! | PC9  | DRIVE ENABLE   | shared by all step drivers; high = enabled                |
 //! | PC10 | X DIR          | same port as the steps: one BSRR write sets DIR and STEP  |
 //! | PC11 | Z DIR          |                                                           |
-//! | PC12 | C DIR          |                                                           |
+//! | PC12 | C / Y DIR      | third channel: C on a lathe, Y on a mill ($311)           |
 //! | PA0  | SPINDLE ENC A  | TIM5_CH1 (AF2), 32-bit timer in encoder mode              |
 //! | PA1  | SPINDLE ENC B  | TIM5_CH2 (AF2)                                            |
 //! | PD2  | SPINDLE INDEX  | EXTI2 (own IRQ vector): latches TIM5's count in its ISR   |
@@ -32,6 +32,8 @@
 //! | PB13 | Z LIMIT        | both ends in series, NC, high = tripped                   |
 //! | PB14 | X HOME         | high = on the switch                                      |
 //! | PB15 | Z HOME         |                                                           |
+//! | PC2  | Y LIMIT        | a mill's; both ends in series, NC, high = tripped (no PB11 on the F446RE) |
+//! | PA8  | Y HOME         | a mill's; high = on the switch                            |
 //! | PA2  | DNC TX         | USART2_TX (AF7)                                           |
 //! | PA3  | DNC RX         | USART2_RX (AF7)                                           |
 //! | PA11 | USB D−         | OTG_FS_DM (AF10): the fast link, CDC-ACM (feature `usb`)  |
@@ -47,8 +49,14 @@
 //! Kept free on purpose: PA13/PA14 (SWD), PB3 (SWO), PH0/PH1 (8 MHz HSE crystal),
 //! PC14/PC15 (LSE), PB2 (BOOT1), PA9/PA10 (USART1: ROM bootloader, service console).
 //! Spare: PA4/PA5 (DAC outputs, an
-//! alternative to PWM for the 0–10 V speed signal), PA7, PA8, PA15, PB4, PB11, PC2,
+//! alternative to PWM for the 0–10 V speed signal), PA7, PA15, PB4,
 //! PC4, PC5 (ADC, e.g. override potentiometers), PC13.
+//!
+//! The third step channel drives the machine kind's third axis (`$311`,
+//! docs/MILL-BOARD.md): the C axis of a lathe or the Y axis of a mill — a mill's Y
+//! drive is wired to PC8/PC12. Its edges pass through the same ring as C's would:
+//! a fourth ring (2 KB) does not fit the static RAM budget. On a mill the spindle
+//! encoder is optional (M29 rigid tapping and M19 orientation need it).
 //!
 //! Timers: TIM2 (32-bit, 84 MHz, no pins) step time base and step-edge compare, TIM7
 //! interpolation period, TIM5 spindle encoder (32-bit) with compares at the due counts, TIM3
@@ -83,7 +91,8 @@ pub const SPINDLE_PWM_FREQ: Hertz = Hertz(1_000);
 /// Clock of TIM2/TIM5/TIM7 (APB1 timers at 2 × 42 MHz with the 168 MHz clock tree).
 pub const TIMER_HZ: u32 = 84_000_000;
 
-/// STEP/DIR pins of X, Z and C on port C (the step interrupt writes GPIOC's BSRR).
+/// STEP/DIR pins of X, Z and the third channel (C on a lathe, Y on a mill) on port
+/// C (the step interrupt writes GPIOC's BSRR).
 pub const STEP_PINS: [AxisPins; 3] =
     [AxisPins { step: 6, dir: 10 }, AxisPins { step: 7, dir: 11 }, AxisPins { step: 8, dir: 12 }];
 
@@ -239,10 +248,14 @@ pub struct Switches {
     pub x_limit: Input<'static>,
     /// Z travel limits, both ends in series (high = tripped).
     pub z_limit: Input<'static>,
+    /// Y travel limits of a mill, both ends in series (high = tripped).
+    pub y_limit: Input<'static>,
     /// X home switch (high = on the switch).
     pub x_home: Input<'static>,
     /// Z home switch (high = on the switch).
     pub z_home: Input<'static>,
+    /// Y home switch of a mill (high = on the switch).
+    pub y_home: Input<'static>,
 }
 
 /// The timers of the motion interrupts, clocked and reset; `motion::start` programs them.
@@ -259,7 +272,8 @@ pub struct Board {
     pub x: Axis,
     /// Carriage (length) axis.
     pub z: Axis,
-    /// Optional rotary (spindle-as-axis) drive.
+    /// The third channel: a lathe's optional rotary (spindle-as-axis) drive C, a
+    /// mill's Y.
     pub c: Axis,
     /// Enable line shared by all drives (high = enabled).
     pub drive_enable: Output<'static>,
@@ -321,6 +335,8 @@ impl Board {
                 z_limit: Input::new(p.PB13, Pull::Up),
                 x_home: Input::new(p.PB14, Pull::Up),
                 z_home: Input::new(p.PB15, Pull::Up),
+                y_limit: Input::new(p.PC2, Pull::Up),
+                y_home: Input::new(p.PA8, Pull::Up),
             },
             dnc: {
                 let mut config = usart::Config::default();

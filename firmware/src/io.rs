@@ -152,6 +152,8 @@ fn raw_levels(s: &Switches) -> u16 {
         (Switch::ZLimit, s.z_limit.is_high()),
         (Switch::XHome, s.x_home.is_high()),
         (Switch::ZHome, s.z_home.is_high()),
+        (Switch::YLimit, s.y_limit.is_high()),
+        (Switch::YHome, s.y_home.is_high()),
     ];
     pins.iter().filter(|(_, on)| *on).fold(0, |acc, (sw, _)| acc | sw.bit())
 }
@@ -176,7 +178,7 @@ impl InputLevels {
 
 impl DigitalInputs for InputLevels {
     /// Input `n` of [`Switch::ALL`] (0 e-stop, 1 feed hold, 2 cycle start, 3 X limit,
-    /// 4 Z limit, 5 X home, 6 Z home).
+    /// 4 Z limit, 5 X home, 6 Z home, 7 Y limit, 8 Y home).
     fn input(&self, n: u16) -> bool {
         Switch::ALL.get(usize::from(n)).is_some_and(|s| self.active(*s))
     }

@@ -175,7 +175,7 @@ type Saving = ();
 fn start_saving(store: Option<firmware::saved::Store>, ctl: &mut Ctl) -> Saving {
     store.map(|mut s| {
         if let Err(e) = firmware::saved::load_rest(&mut s, ctl) {
-            warn!("persist: stored variables/programs: {}", defmt::Display2Format(&e));
+            warn!("persist: stored variables/programs: {}", e);
         }
         info!("persist: {} programs in memory", ctl.memory().numbers().count());
         &mut *SAVER.init_with(|| firmware::saved::Saver::new(s, ctl))
@@ -196,7 +196,7 @@ fn open_store(
     let mut store = match firmware::saved::open(flash) {
         Ok(s) => s,
         Err(e) => {
-            warn!("persist: no store: {}", defmt::Display2Format(&e));
+            warn!("persist: no store: {}", e);
             return None;
         }
     };
@@ -207,11 +207,11 @@ fn open_store(
             *cfg = MachineConfig::default();
             *settings = controller::Settings::default();
             if let Err(e) = store.format() {
-                warn!("persist: format failed: {}", defmt::Display2Format(&e));
+                warn!("persist: format failed: {}", e);
                 return None;
             }
         }
-        Err(e) => warn!("persist: stored settings: {}", defmt::Display2Format(&e)),
+        Err(e) => warn!("persist: stored settings: {}", e),
     }
     Some(store)
 }

@@ -25,7 +25,7 @@ use core::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 use embassy_stm32::interrupt::Priority;
 use interp_core::axis::{Axis, Pos};
 use interp_core::canon::{Canon, CanonSink, Full};
-use interp_core::config::MachineConfig;
+use interp_core::config::{MachineConfig, MachineKind};
 use motion_core::motion::{MotionCore, QUEUE};
 use motion_driver::engine::{Engine, EngineAxis, RING};
 use motion_driver::playback::{PlayTiming, Player};
@@ -34,8 +34,17 @@ use motion_driver::timebase::{TimeBase, TimeBaseError};
 
 use crate::board::STEP_PINS;
 
-/// Driven axes: X, Z, C (the core's axis indices), on [`STEP_PINS`] in this order.
-pub const AXES: [Axis; 3] = [Axis::X, Axis::Z, Axis::C];
+/// Driven axes of a machine kind, on [`STEP_PINS`] in this order: X, Z and the
+/// third channel — C on a lathe, Y on a mill.
+pub const fn axes(kind: MachineKind) -> [Axis; 3] {
+    match kind {
+        MachineKind::Lathe => [Axis::X, Axis::Z, Axis::C],
+        MachineKind::Mill => [Axis::X, Axis::Z, Axis::Y],
+    }
+}
+
+/// The step channel whose axis depends on the machine kind.
+pub const THIRD_CHANNEL: usize = 2;
 
 /// The step interrupt and the index latch.
 pub const STEP_PRIORITY: Priority = Priority::P0;
@@ -160,16 +169,17 @@ pub fn init(cfg: &MachineConfig, pos: Pos, tb: TimeBase, start: u32, raw_count: 
     let (Some((tx, px)), Some((tz, pz)), Some((tc, pc))) = (rx.split(), rz.split(), rc.split()) else {
         return Err(StartError::Twice);
     };
+    let axes = axes(cfg.kind);
     let timing = |a: Axis| core.stepper(a.index()).map(|s| PlayTiming::new(s.timing(), &tb));
-    let (Some(ttx), Some(ttz), Some(ttc)) = (timing(AXES[0]), timing(AXES[1]), timing(AXES[2])) else {
+    let (Some(ttx), Some(ttz), Some(ttc)) = (timing(axes[0]), timing(axes[1]), timing(axes[2])) else {
         return Err(StartError::Config);
     };
     let [pins_x, pins_z, pins_c] = STEP_PINS;
     let player = Player::new([(px, pins_x, ttx), (pz, pins_z, ttz), (pc, pins_c, ttc)]);
     let axes = [
-        EngineAxis::new(AXES[0].index(), tx),
-        EngineAxis::new(AXES[1].index(), tz),
-        EngineAxis::new(AXES[2].index(), tc),
+        EngineAxis::new(axes[0].index(), tx),
+        EngineAxis::new(axes[1].index(), tz),
+        EngineAxis::new(axes[2].index(), tc),
     ];
     // SAFETY: as above; the core is written, the engine now, then the cell is ready.
     unsafe { core::ptr::addr_of_mut!((*slot).engine).write(Engine::new(tb, axes, start, raw_count)) };

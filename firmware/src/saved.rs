@@ -21,7 +21,7 @@
 use controller::Settings;
 use controller::persist::keep;
 use controller::persist::{Error, Persist, Rewritable};
-use defmt::{Display2Format, info, warn};
+use defmt::{info, warn};
 use embassy_stm32::flash::{Blocking, Flash};
 use embassy_stm32::pac;
 use embassy_stm32::pac::iwdg::vals::{Key, Pr};
@@ -94,7 +94,7 @@ impl Saver {
         match self.0.save(ctl) {
             Ok(()) => info!("persist: saved"),
             // Not retried until something changes again (a full store stays full).
-            Err(e) => warn!("persist: {}", Display2Format(&e)),
+            Err(e) => warn!("persist: {}", e),
         }
         watchdog_timeout(WATCHDOG_TIMEOUT_US);
     }

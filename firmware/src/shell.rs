@@ -115,8 +115,16 @@ impl controller::MotionPort for MotionPort {
             if !m.core.is_idle() {
                 return Err(AlarmKind::MotionConfigInvalid { what: "the machine is moving" });
             }
+            // `$311`: the third step channel follows the machine kind (C on a
+            // lathe, Y on a mill), once its last edges have been played.
+            let third = crate::motion::axes(cfg.kind)[crate::motion::THIRD_CHANNEL].index();
+            if !m.engine.can_set_core_axis(crate::motion::THIRD_CHANNEL, third) {
+                return Err(AlarmKind::MotionConfigInvalid { what: "the machine is moving" });
+            }
             // In place: no second ~21 KB core on the stack.
-            m.core.rebuild(cfg)
+            m.core.rebuild(cfg)?;
+            m.engine.set_core_axis(crate::motion::THIRD_CHANNEL, third);
+            Ok(())
         })
         .unwrap_or(Err(AlarmKind::MotionConfigInvalid { what: "motion core not started" }))
     }
@@ -148,8 +156,10 @@ pub fn inputs(levels: InputLevels) -> controller::Inputs {
     controller::Inputs {
         estop: levels.active(Switch::EStop),
         limit_x: levels.active(Switch::XLimit),
+        limit_y: levels.active(Switch::YLimit),
         limit_z: levels.active(Switch::ZLimit),
         home_x: levels.active(Switch::XHome),
+        home_y: levels.active(Switch::YHome),
         home_z: levels.active(Switch::ZHome),
         feed_hold: levels.active(Switch::FeedHold),
         cycle_start: levels.active(Switch::CycleStart),

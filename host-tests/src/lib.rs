@@ -150,6 +150,7 @@ pub fn kind_names(r: &Run) -> Vec<String> {
             Action::Dwell { ms } => format!("dwell {ms}"),
             Action::Spindle(s) => format!("spindle {:?} {:?}", s.dir, s.rpm),
             Action::Tool { tool, offset } => format!("tool {tool} {offset}"),
+            Action::ToolChange(t) => format!("change T{} (manual {})", t.tool, t.manual),
             Action::Aux { m } => format!("M{m:02}"),
             Action::Stop { optional } => format!("stop {optional}"),
             Action::End { rewind } => format!("end {rewind}"),

@@ -81,6 +81,59 @@ pub enum GCode {
     /// G290 (to SINUMERIK mode) / G291 (to the FANUC-style ISO dialect): the
     /// language the following blocks are read in, in a block of its own.
     Language(Language),
+    // The M series of a machining centre (seed 004): meanings no lathe code has.
+    /// G10: programmable data input (work offsets L2/L20, offset pages L10–L13).
+    DataSetting,
+    /// G15: polar coordinate command off.
+    PolarCoordOff,
+    /// G16: polar coordinate command (radius and angle in the plane).
+    PolarCoordOn,
+    /// G29: return from the reference position through G28's intermediate point.
+    ReturnFromReference,
+    /// G43: tool length compensation + (H).
+    LengthPlus,
+    /// G44: tool length compensation − (H).
+    LengthMinus,
+    /// G49: tool length compensation cancelled.
+    LengthOff,
+    /// G50: scaling off.
+    ScalingOff,
+    /// G51: scaling (P, or I/J/K per axis) about X/Y/Z.
+    ScalingOn,
+    /// G50.1: programmable mirror image off.
+    MirrorOff,
+    /// G51.1: programmable mirror image about the X/Y/Z given.
+    MirrorOn,
+    /// G54.1 P1–P48: an additional work frame.
+    ExtraWorkFrame,
+    /// G68: coordinate rotation by R about X/Y in the plane.
+    RotationOn,
+    /// G69: coordinate rotation off.
+    RotationOff,
+    /// G73: high-speed peck drilling (back by d after each peck).
+    HighSpeedPeck,
+    /// G74: left-hand (counter) tapping.
+    LeftTap,
+    /// G76: fine boring (oriented stop and shift Q at the bottom).
+    FineBore,
+    /// G81: drilling (feed in, rapid out).
+    Drill,
+    /// G82: drilling with a dwell at the bottom (counter boring).
+    DrillDwell,
+    /// G83: deep-hole peck drilling (back to R after each peck).
+    PeckDrill,
+    /// G84: right-hand tapping.
+    Tap,
+    /// G85: boring (feed in, feed out).
+    Bore,
+    /// G86: boring (spindle stop at the bottom, rapid out).
+    BoreSpindleStop,
+    /// G87: back boring.
+    BackBore,
+    /// G88: boring with a dwell, a stop for the operator and a rapid out.
+    BoreManual,
+    /// G89: boring with a dwell at the bottom, feed out.
+    BoreDwell,
 }
 
 /// Modal groups (FANUC numbering in the comments). Group 00 codes act in their block only.
@@ -117,6 +170,16 @@ pub enum Group {
     Polygon,
     /// 21: G12.1/G13.1.
     Polar,
+    /// Mill 08: G43/G44/G49.
+    LengthComp,
+    /// Mill 11: G50/G51.
+    Scaling,
+    /// Mill 22: G50.1/G51.1.
+    Mirror,
+    /// Mill 16: G68/G69.
+    Rotation,
+    /// Mill 17: G15/G16.
+    PolarCoord,
 }
 
 impl GCode {
@@ -125,7 +188,8 @@ impl GCode {
     pub fn from_tenths(table: CodeTable, tenths: u16) -> Option<GCode> {
         match table {
             CodeTable::Lathe(system) => Self::lathe(system, tenths),
-            CodeTable::Mill => Self::mill(tenths),
+            CodeTable::Mill if crate::MILL => Self::mill(tenths),
+            CodeTable::Mill => None,
         }
     }
 
@@ -191,6 +255,9 @@ impl GCode {
             30 => ArcCcw,
             40 => Dwell,
             90 => ExactStopOnce,
+            100 => DataSetting,
+            150 => PolarCoordOff,
+            160 => PolarCoordOn,
             170 => PlaneXy,
             180 => PlaneZx,
             190 => PlaneYz,
@@ -199,18 +266,42 @@ impl GCode {
             220 => StrokeCheckOn,
             230 => StrokeCheckOff,
             280 => ReferenceReturn,
+            290 => ReturnFromReference,
             300 => ReferenceReturnN,
             400 => NoseCompOff,
             410 => NoseCompLeft,
             420 => NoseCompRight,
+            430 => LengthPlus,
+            440 => LengthMinus,
+            490 => LengthOff,
+            500 => ScalingOff,
+            501 => MirrorOff,
+            510 => ScalingOn,
+            511 => MirrorOn,
             520 => LocalFrame,
             530 => MachineCoordinates,
             540..=590 if tenths.is_multiple_of(10) => WorkFrame(((tenths - 540) / 10) as u8),
+            541 => ExtraWorkFrame,
             610 => ExactStopMode,
             640 => ContinuousMode,
+            680 => RotationOn,
+            690 => RotationOff,
+            730 => HighSpeedPeck,
+            740 => LeftTap,
+            760 => FineBore,
             800 => DrillCancel,
+            810 => Drill,
+            820 => DrillDwell,
+            830 => PeckDrill,
+            840 => Tap,
+            850 => Bore,
+            860 => BoreSpindleStop,
+            870 => BackBore,
+            880 => BoreManual,
+            890 => BoreDwell,
             900 => Absolute,
             910 => Incremental,
+            920 => SetCoordinates,
             940 => FeedPerMin,
             950 => FeedPerRev,
             980 => ReturnInitial,
@@ -251,6 +342,7 @@ impl GCode {
     }
 
     /// The modal group of the code.
+    #[inline(always)]
     pub fn group(self) -> Group {
         use GCode::*;
         match self {
@@ -258,20 +350,29 @@ impl GCode {
             | VariableLeadThread | TurningCycle | ThreadCycle | FacingCycle => Group::Motion,
             Dwell | ExactStopOnce | ReferenceReturn | ReferenceReturnN | LocalFrame | MachineCoordinates
             | SetCoordinates | FinishCycle | RoughTurnCycle | RoughFaceCycle | PatternCycle | FacePeckCycle
-            | GroovePeckCycle | MultiThreadCycle | Language(_) | CycleCall => Group::NonModal,
+            | GroovePeckCycle | MultiThreadCycle | Language(_) | CycleCall | DataSetting | ReturnFromReference => {
+                Group::NonModal
+            }
             CssOn | CssOff => Group::SpindleMode,
             Absolute | Incremental => Group::Distance,
             StrokeCheckOn | StrokeCheckOff => Group::StrokeCheck,
             FeedPerMin | FeedPerRev => Group::FeedMode,
             Inch | Metric => Group::Units,
             NoseCompOff | NoseCompLeft | NoseCompRight => Group::NoseComp,
-            DrillCancel | FaceDrill | FaceTap | FaceBore | SideDrill | SideTap | SideBore => Group::Drilling,
+            DrillCancel | FaceDrill | FaceTap | FaceBore | SideDrill | SideTap | SideBore | HighSpeedPeck | LeftTap
+            | FineBore | Drill | DrillDwell | PeckDrill | Tap | Bore | BoreSpindleStop | BackBore | BoreManual
+            | BoreDwell => Group::Drilling,
             ReturnInitial | ReturnR => Group::ReturnLevel,
-            WorkFrame(_) => Group::WorkFrame,
+            WorkFrame(_) | ExtraWorkFrame => Group::WorkFrame,
             ExactStopMode | ContinuousMode => Group::PathMode,
             PlaneXy | PlaneZx | PlaneYz => Group::Plane,
             PolygonOn | PolygonOff => Group::Polygon,
             PolarOn | PolarOff => Group::Polar,
+            LengthPlus | LengthMinus | LengthOff => Group::LengthComp,
+            ScalingOn | ScalingOff => Group::Scaling,
+            MirrorOn | MirrorOff => Group::Mirror,
+            RotationOn | RotationOff => Group::Rotation,
+            PolarCoordOn | PolarCoordOff => Group::PolarCoord,
         }
     }
 }
@@ -302,6 +403,9 @@ pub enum MFunction {
     JumpIfLow,
     /// M92: jump when the external input is 1 (3.1.5).
     JumpIfHigh,
+    /// M06 of a machining centre: the tool selected by T goes into the spindle
+    /// (seed 004 @813, @10392).
+    ToolChange,
     /// Any other M code: a machine output switched before or after the motion.
     Aux(MTiming),
 }
@@ -319,6 +423,8 @@ fn m_class(m: u16) -> Option<u8> {
     Some(match m {
         // Stops, ends, calls, returns and jumps: at most one per block.
         0 | 1 | 2 | 30 | 91 | 92 | 98 | 99 => 0,
+        // M06 and M29 start things that exclude each other and the stops.
+        6 => 0,
         3..=5 => 1,
         9 => 2,
         10 | 11 => 3,
@@ -363,6 +469,7 @@ pub fn m_function(m: u16, cfg: &MachineConfig) -> Option<MFunction> {
         3 => MFunction::SpindleCw,
         4 => MFunction::SpindleCcw,
         5 => MFunction::SpindleStop,
+        6 if crate::is_mill(cfg) => MFunction::ToolChange,
         7 | 8 | 10 | 12 | 19 | 20 | 29 | 31 | 32 | 41..=48 | 63 | 64 => MFunction::Aux(Before),
         9 | 11 | 13 | 33 | 65 => MFunction::Aux(After),
         _ => return cfg.user_m(m).map(|u| MFunction::Aux(u.timing)),
@@ -372,8 +479,9 @@ pub fn m_function(m: u16, cfg: &MachineConfig) -> Option<MFunction> {
 /// Checks the machine's user M codes (after [`MachineConfig::validate`]): none of
 /// them a code the manual's tables already define, none listed twice.
 pub fn check_user_m_codes(cfg: &MachineConfig) -> Result<(), ConfigError> {
+    let standard = MachineConfig { kind: cfg.kind, ..MachineConfig::default() };
     for (i, u) in cfg.user_m_codes.iter().enumerate() {
-        if m_function(u.m, &MachineConfig::default()).is_some() {
+        if m_function(u.m, &standard).is_some() {
             return Err(ConfigError::UserMStandard { m: u.m });
         }
         if cfg.user_m_codes[..i].iter().any(|o| o.m == u.m) {
@@ -407,18 +515,56 @@ mod tests {
         assert_eq!(GCode::from_tenths(a, 70), None);
     }
 
+    /// A build without the `mill` feature has no M-series table: a machine of
+    /// kind mill (refused by the board's `$311`) would read no G code (alarm 0010).
+    #[cfg(not(feature = "mill"))]
+    #[test]
+    fn without_the_mill_feature_the_mill_table_is_empty() {
+        for tenths in [0, 10, 170, 430, 810, 900] {
+            assert_eq!(GCode::from_tenths(CodeTable::Mill, tenths), None);
+        }
+        assert!(!crate::MILL);
+    }
+
     /// The mill's table holds no lathe-only code: the same number never silently
-    /// means the lathe's cycle on a mill (alarm 0010 instead).
+    /// means the lathe's cycle on a mill (alarm 0010 instead), and the numbers the
+    /// M series uses for something else mean its own code.
+    #[cfg(feature = "mill")]
     #[test]
     fn the_mill_table_refuses_lathe_codes() {
         let m = CodeTable::Mill;
-        for lathe_only in [121, 131, 320, 340, 502, 512, 700, 710, 720, 730, 740, 750, 760, 920, 960, 970, 21, 22] {
+        let a = CodeTable::Lathe(GCodeSystem::A);
+        for lathe_only in [121, 131, 320, 340, 502, 512, 700, 710, 720, 750, 960, 970, 21, 22, 31, 32] {
             assert_eq!(GCode::from_tenths(m, lathe_only), None, "G{}", lathe_only / 10);
         }
-        assert_eq!(GCode::from_tenths(m, 900), Some(GCode::Absolute));
+        for (tenths, mill) in [
+            (500, GCode::ScalingOff),
+            (510, GCode::ScalingOn),
+            (730, GCode::HighSpeedPeck),
+            (740, GCode::LeftTap),
+            (760, GCode::FineBore),
+            (830, GCode::PeckDrill),
+            (840, GCode::Tap),
+            (850, GCode::Bore),
+            (870, GCode::BackBore),
+            (880, GCode::BoreManual),
+            (890, GCode::BoreDwell),
+            (900, GCode::Absolute),
+            (920, GCode::SetCoordinates),
+            (980, GCode::ReturnInitial),
+            (990, GCode::ReturnR),
+        ] {
+            assert_eq!(GCode::from_tenths(m, tenths), Some(mill), "G{}", tenths / 10);
+            assert_ne!(GCode::from_tenths(a, tenths), Some(mill), "G{} means the same on a lathe", tenths / 10);
+        }
         assert_eq!(GCode::from_tenths(m, 940), Some(GCode::FeedPerMin));
-        assert_eq!(GCode::from_tenths(m, 980), Some(GCode::ReturnInitial));
         assert_eq!(GCode::from_tenths(m, 170), Some(GCode::PlaneXy));
+        assert_eq!(GCode::from_tenths(m, 541), Some(GCode::ExtraWorkFrame));
+        assert_eq!(GCode::from_tenths(m, 511), Some(GCode::MirrorOn));
+        for (t, g) in [(810, GCode::Drill), (820, GCode::DrillDwell), (860, GCode::BoreSpindleStop)] {
+            assert_eq!(GCode::from_tenths(m, t), Some(g));
+            assert_eq!(GCode::from_tenths(a, t), None, "G{} is no lathe code", t / 10);
+        }
         for t in [CodeTable::Mill, CodeTable::Lathe(GCodeSystem::A), CodeTable::Lathe(GCodeSystem::C)] {
             assert_eq!(GCode::from_tenths(t, 2900), Some(GCode::Language(Language::Siemens)));
             assert_eq!(GCode::from_tenths(t, 2910), Some(GCode::Language(Language::Fanuc)));

@@ -46,6 +46,24 @@ pub mod stage;
 // modules are re-exported under their old paths (`interp_core::axis::Pos`,
 // `interp_core::canon::Action`, `interp_core::config::MachineConfig` …).
 pub use ::canon;
+
+/// Whether this build carries the FANUC 0i-M machining-centre profile (cargo
+/// feature `mill`, docs/FIRMWARE-SIZES.md). Without it a board refuses `$311=1`,
+/// and a machine configuration of kind mill reads no block (alarm 0010 for
+/// every G code: the M-series table is not in the image).
+pub const MILL: bool = ::canon::MILL;
+
+/// Whether this build carries SINUMERIK mode (cargo feature `siemens`,
+/// `lang::siemens`). Without it G290 and a power-on language of SINUMERIK raise
+/// alarm 4007.
+pub const SIEMENS: bool = cfg!(feature = "siemens");
+
+/// Whether `cfg` runs as a machining centre in this build: every M-series path
+/// is behind this test, so a build without the `mill` feature leaves them out.
+#[inline(always)]
+pub(crate) fn is_mill(cfg: &config::MachineConfig) -> bool {
+    MILL && cfg.kind == config::MachineKind::Mill
+}
 pub use ::canon::{alarm, axis, config, units};
 
 pub use ::canon::{Action, Canon, CanonSink};

@@ -326,8 +326,10 @@ impl VirtualBoard {
         Inputs {
             estop: s.estop,
             limit_x: beyond(Axis::X),
+            limit_y: beyond(Axis::Y),
             limit_z: beyond(Axis::Z),
             home_x: pos[Axis::X] > self.home[Axis::X],
+            home_y: cfg.axis(Axis::Y).present && pos[Axis::Y] > self.home[Axis::Y],
             home_z: pos[Axis::Z] > self.home[Axis::Z],
             feed_hold: s.feed_hold,
             cycle_start: s.cycle_start,

@@ -45,8 +45,10 @@ impl Element {
                 if along > sweep.abs() {
                     return if dist2(p, a) < dist2(p, b) { *a } else { *b };
                 }
-                let r = r0 + (r1 - r0) * along / sweep.abs();
-                let mut q = *b;
+                let f = along / sweep.abs();
+                let r = r0 + (r1 - r0) * f;
+                // A helix: the axes outside the plane move linearly with the arc.
+                let mut q: P = core::array::from_fn(|i| a[i] + (b[i] - a[i]) * f);
                 q[*ia] = c.0 + r * phi.cos();
                 q[*ib] = c.1 + r * phi.sin();
                 q

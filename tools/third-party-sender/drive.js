@@ -133,6 +133,7 @@ function stream(opts, port, secret) {
       if (opts.verbose) say(`< ${line}`);
       if (/^> /.test(line)) st.lastLine = line;
       if (/^\[MSG:/.test(line)) st.lastMsg = line;
+      if (/^\[MSG:Load T\d+\]/.test(line)) onToolChange(socket, opts, () => finished, say, line);
       if (/^ALARM/.test(line)) finish(1, `${line} ${st.lastMsg || ''} ${describe(st)}`);
       if (/^error/.test(line) && st.running) finish(1, `${line} for ${errorLine(st.lastLine, gcode)}: ${describe(st)}`);
     });
@@ -167,6 +168,19 @@ function onPause(socket, opts, isFinished, say) {
   }, 300);
 }
 
+/**
+ * A tool change by hand on the board (a mill's M06): the board has stopped the
+ * motion and the spindle and waits for cycle start; the operator loads the tool
+ * and presses it (CNCjs's cycle start sends `~`).
+ */
+function onToolChange(socket, opts, isFinished, say, msg) {
+  setTimeout(() => {
+    if (isFinished()) return;
+    say(`the board asks for a tool by hand (${msg.trim()}); cycle start as an operator would (sends ~)`);
+    socket.emit('command', opts.device, 'cyclestart');
+  }, 300);
+}
+
 /** One-line progress for messages. */
 function describe(st) {
   if (!st.open) return 'CNCjs never opened the port';
@@ -193,7 +207,12 @@ async function main() {
   const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'cncjs-'));
   const secret = crypto.randomBytes(24).toString('hex');
   const configFile = path.join(dir, 'cncrc.json');
-  fs.writeFileSync(configFile, JSON.stringify({ secret, state: { controller: { exception: { ignoreErrors: false } } } }));
+  // Tool change policy "Send M6 commands" (1): CNCjs's default comments M6 out and
+  // pauses its own job, so the board would never see the tool change. With it sent,
+  // the board stops for a change by hand (docs/MILL-BOARD.md) and says
+  // [MSG:Load Tnn]; onToolChange presses cycle start as the operator would.
+  const config = { secret, state: { controller: { exception: { ignoreErrors: false } } }, tool: { toolChangePolicy: 1 } };
+  fs.writeFileSync(configFile, JSON.stringify(config));
   const logFile = path.join(dir, 'cncjs.log');
   const logStream = fs.createWriteStream(logFile);
   const log = (t) => { logStream.write(t); if (opts.verbose) process.stderr.write(t); };

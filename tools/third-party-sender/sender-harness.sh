@@ -19,12 +19,15 @@
 #   --ok-if REGEX / --fail-if REGEX   (grep -E) on the sender's output
 #   --timeout S        the sender's time limit (default 300)
 #   --exit-after S     the board's (default 600)
+#   --machine FILE     the board and `lathe sim` run that machine file (a mill:
+#                      examples/machines/mill.toml)
 #
 # Prints `ok   <program>: …` or `FAIL <program>: …` with the sender's and the board's
 # last lines; exit status 0 or 1. Used by board-test.sh (CNCjs), stream-py-test.sh
 # and grbl-streamer-test.sh.
 set -euo pipefail
 name="" compare=exact ok_if="" fail_if="" timeout=300 exit_after=600
+machine=()
 while [ $# -gt 0 ]; do
     case "$1" in
         --name) name="$2"; shift 2 ;;
@@ -33,6 +36,7 @@ while [ $# -gt 0 ]; do
         --fail-if) fail_if="$2"; shift 2 ;;
         --timeout) timeout="$2"; shift 2 ;;
         --exit-after) exit_after="$2"; shift 2 ;;
+        --machine) machine=(--machine "$2"); shift 2 ;;
         *) break ;;
     esac
 done
@@ -47,10 +51,10 @@ work="$(mktemp -d)"
 trap 'kill "${board_pid:-0}" 2>/dev/null || true; wait "${board_pid:-0}" 2>/dev/null || true; rm -rf "$work"' EXIT
 pty="$work/board.pty" sim="$work/sim.jsonl" record="$work/board.jsonl"
 
-"$lathe" board --pty "$pty" --speed 20 --record "$record" --exit-after "$exit_after" > "$work/board.log" 2>&1 &
+"$lathe" board "${machine[@]}" --pty "$pty" --speed 20 --record "$record" --exit-after "$exit_after" > "$work/board.log" 2>&1 &
 board_pid=$!
 for _ in $(seq 100); do [ -e "$pty" ] && break; sleep 0.1; done
-"$lathe" sim "$program" --format jsonl > "$sim"
+"$lathe" sim "${machine[@]}" "$program" --format jsonl > "$sim"
 want=$(wc -l < "$sim")
 
 cmd=()

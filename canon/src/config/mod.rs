@@ -9,7 +9,7 @@ pub mod tools;
 
 pub use motion::{Drive, MotionConfig};
 pub use params::{CALL_G, CALL_M, PARAMS, Param, ParamDef, ParamError, ParamUnit, Parameters, SUB_M};
-pub use tools::{MAX_OFFSETS, ToolOffset, ToolTable};
+pub use tools::{MAX_OFFSET_VALUE, MAX_OFFSETS, MillPage, ToolOffset, ToolTable};
 
 use crate::axis::{AXIS_COUNT, Axis, Pos};
 use crate::units::{IncrementSystem, InputMode};
@@ -66,6 +66,65 @@ pub enum CodeTable {
     Lathe(GCodeSystem),
     /// The M series of a machining centre.
     Mill,
+}
+
+/// How a machining centre changes tools at M06.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum ToolChanger {
+    /// By hand: the machine stops and asks the operator to load the tool.
+    #[default]
+    Manual,
+    /// An automatic tool changer driven by the board's outputs.
+    Automatic,
+}
+
+/// Number of additional work coordinate systems (G54.1 P1–P48, seed 004 @2112).
+pub const EXTRA_FRAMES: usize = 48;
+
+/// The 48 additional work offsets of G54.1 P1–P48 (a machining centre's; set by
+/// G10 L20). X, Y and Z of each, machine coordinates, held as `i32` nanometres
+/// (±2,147 mm, beyond any machine this board drives) to keep them within the
+/// board's RAM: 576 bytes instead of 1,536.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ExtraOffsets {
+    rows: [[i32; 3]; EXTRA_FRAMES],
+}
+
+impl Default for ExtraOffsets {
+    fn default() -> Self {
+        ExtraOffsets { rows: [[0; 3]; EXTRA_FRAMES] }
+    }
+}
+
+impl ExtraOffsets {
+    /// The three linear axes an extra offset holds.
+    const AXES: [Axis; 3] = [Axis::X, Axis::Y, Axis::Z];
+
+    /// Offset `p` (1–48) as a position (C zero); `None` outside 1–48.
+    pub fn get(&self, p: u8) -> Option<Pos> {
+        let row = self.rows.get(usize::from(p).checked_sub(1)?)?;
+        let mut out = Pos::ZERO;
+        for (a, v) in Self::AXES.into_iter().zip(row) {
+            out[a] = i64::from(*v);
+        }
+        Some(out)
+    }
+
+    /// Sets offset `p` (1–48) to `pos` (X, Y, Z); false if `p` is outside 1–48 or a
+    /// coordinate outside ±2,147 mm (nothing is changed then).
+    pub fn set(&mut self, p: u8, pos: Pos) -> bool {
+        let Some(i) = usize::from(p).checked_sub(1).filter(|i| *i < EXTRA_FRAMES) else { return false };
+        let mut row = [0i32; 3];
+        for (slot, a) in row.iter_mut().zip(Self::AXES) {
+            match i32::try_from(pos[a]) {
+                Ok(v) => *slot = v,
+                Err(_) => return false,
+            }
+        }
+        self.rows[i] = row;
+        true
+    }
 }
 
 /// Limits and rates of one axis.
@@ -178,8 +237,12 @@ pub struct MachineConfig {
     pub reference: [Pos; 4],
     /// Work offsets of G54–G59, machine coordinates of each work zero.
     pub work_offsets: [Pos; 6],
-    /// External work offset, added to all six.
+    /// External work offset, added to all six (and to G54.1's).
     pub external_offset: Pos,
+    /// Work offsets of G54.1 P1–P48 (a machining centre's).
+    pub extra_offsets: ExtraOffsets,
+    /// How M06 changes tools on a machining centre.
+    pub tool_changer: ToolChanger,
     /// Highest tool (turret station) number.
     pub tool_count: u16,
     /// Tool offsets: geometry, wear, nose radius, tip direction.
@@ -214,6 +277,8 @@ impl Default for MachineConfig {
             reference: [Pos::xz(150_000_000, 250_000_000); 4],
             work_offsets: [Pos::ZERO; 6],
             external_offset: Pos::ZERO,
+            extra_offsets: ExtraOffsets::default(),
+            tool_changer: ToolChanger::Manual,
             tool_count: 12,
             tools: ToolTable::default(),
             spindle: SpindleConfig {
@@ -236,6 +301,29 @@ impl MachineConfig {
     #[inline]
     pub fn axis(&self, a: Axis) -> &AxisConfig {
         &self.axes[a.index()]
+    }
+
+    /// The machine-coordinate origin of work frame `frame`: G54–G59 (0–5), G54.1
+    /// P1–P48 (6–53); without the external offset.
+    pub fn work_offset(&self, frame: u8) -> Pos {
+        match self.work_offsets.get(usize::from(frame)) {
+            Some(p) => *p,
+            None => self.extra_offsets.get(frame.saturating_sub(5)).unwrap_or(Pos::ZERO),
+        }
+    }
+
+    /// A machining centre with X, Y, Z in radius (travel X −500–0, Y −400–0,
+    /// Z −400–0 mm from the reference position at machine zero), the M-series codes
+    /// and the built-in rates: what the tests and `examples/machines/mill.toml`
+    /// start from.
+    pub fn mill() -> Self {
+        let mut c =
+            MachineConfig { kind: MachineKind::Mill, diameter_x: false, tool_count: 24, ..MachineConfig::default() };
+        c.axes[Axis::X.index()] = AxisConfig::linear(-500, 0, 8_000);
+        c.axes[Axis::Y.index()] = AxisConfig::linear(-400, 0, 8_000);
+        c.axes[Axis::Z.index()] = AxisConfig::linear(-400, 0, 6_000);
+        c.reference = [Pos::ZERO; 4];
+        c
     }
 
     /// The G-code table blocks are read in.

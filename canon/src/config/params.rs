@@ -86,6 +86,9 @@ pub enum Param {
     RoughingDepth,
     /// No.5148: retract e of G71/G72 (2.16.1).
     RoughingRetract,
+    /// No.5149: where a machining centre's G76/G87 shift the tool after the
+    /// oriented stop: 1 = +X, 2 = −X, 3 = +Y, 4 = −Y (FANUC 0i-M: 5101 #4/#5).
+    BoreShiftDirection,
     /// No.5152: 1 = G50 coordinate setting disabled (2.12.1 note 3).
     DisableCoordinateSetting,
     /// No.5153: motion mode at power-on: 0 = G00, 1 = G01 (2.1 note 2).
@@ -202,7 +205,7 @@ defs! {
     OffsetDigits 5002 Count 2.0 "digits of the offset number at the end of T (T0101: 2)";
     DeepPeckDrilling 5101 Bool 0.0 "G83/G87 with Q: 0 = high-speed peck (back d of 5113), 1 = deep peck (back to R each peck) (2.21.1)";
     DeepPeckTapping 5102 Bool 0.0 "rigid G84/G88 with Q: 0 = high-speed peck (back d of 5114), 1 = deep peck (back to R) (2.22.2)";
-    PeckDrillClearance 5113 Mm 0.5 "G83/G87 peck: return d (high-speed) or clearance above the last depth (deep), mm (2.21.1)";
+    PeckDrillClearance 5113 Mm 0.5 "G83/G87 peck (mill: G73, G83): return d (high-speed) or clearance above the last depth (deep), mm (2.21.1)";
     PeckTapClearance 5114 Mm 0.5 "rigid tapping peck: return d of the high-speed peck, mm (2.22.2)";
     ThreadChamfer 5130 TenthLead 10.0 "G92/G76 pull-out along the long axis in 0.1 x lead (10 = one lead); G76 P(r) sets it (2.17.3 note 1, 2.17.4)";
     ThreadChamferAngle 5131 Deg 0.0 "G92/G76 pull-out angle from the long axis, degrees; 0 = 45 (2.17.3 note 1)";
@@ -216,6 +219,7 @@ defs! {
     PatternDivisions 5146 Count 1.0 "G73 number of passes d; G73 R(d) sets it (2.16.3)";
     RoughingDepth 5147 Mm 1.0 "depth of cut dd of G71/G72, mm (G71: radius); G71 U(dd) / G72 W(dd) set it (2.16.1, 2.16.2)";
     RoughingRetract 5148 Mm 0.5 "G71/G72 retract e (45 degrees), mm; G71/G72 R(e) sets it (2.16.1, 2.16.2)";
+    BoreShiftDirection 5149 Count 1.0 "mill G76/G87: direction of the shift Q after the oriented spindle stop, 1 = +X, 2 = -X, 3 = +Y, 4 = -Y (FANUC 0i-M 5101 #4/#5)";
     DisableCoordinateSetting 5152 Bool 0.0 "1 = G50 X/Z coordinate setting disabled (2.12.1 note 3)";
     InitialLinear 5153 Bool 0.0 "motion mode at power-on: 0 = G00, 1 = G01 (2.1 note 2)";
     InitialPerRev 5154 Bool 0.0 "feed mode at power-on: 0 = G98 per minute, 1 = G99 per revolution (2.20 note 1)";

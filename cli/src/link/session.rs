@@ -477,6 +477,13 @@ impl<'a> Session<'a> {
             self.alarm_msg = Some(m.clone());
         } else {
             self.ui.note(&format!("[MSG:{m}]"));
+            if let Some(tool) = m.strip_prefix("Load T") {
+                // A machining centre's M06 by hand: the board waits, spindle
+                // stopped, for cycle start.
+                self.ui.note(&format!(
+                    "tool change: put tool T{tool} in the spindle, then press c or ~ here (or the board's cycle start)"
+                ));
+            }
         }
         self.last_msg = Some(m);
     }

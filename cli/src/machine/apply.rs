@@ -4,15 +4,15 @@
 use std::collections::BTreeMap;
 
 use interp_core::config::{
-    AxisConfig, GCodeSystem, Language, MAX_OFFSETS, MAX_USER_M, MTiming, MachineKind, MotionConfig, Param, ParamError,
-    Parameters, UserMCode,
+    AxisConfig, GCodeSystem, Language, MAX_OFFSETS, MAX_USER_M, MTiming, MachineKind, MillPage, MotionConfig, Param,
+    ParamError, Parameters, ToolChanger, UserMCode,
 };
 use interp_core::units::IncrementSystem;
 use interp_core::{Axis, MachineConfig, Pos};
 
 use super::file::{
     AxisFile, GCodeSystemName, IncrementName, InputName, KindName, LanguageName, MachineFile, MotionFile, Offset,
-    ParamKey, Point, Spindle, TimingName, UserM, WorkOffsets,
+    ParamKey, Point, Spindle, TimingName, ToolChangerName, UserM, WorkOffsets,
 };
 
 /// Largest magnitude of an internal value from a file: 10⁹ mm, far beyond any machine.
@@ -20,9 +20,10 @@ const MAX_INTERNAL: f64 = 1e15;
 /// Internal units per file unit of rates and accelerations (mm → nm, deg → µdeg).
 const RATE_SCALE: f64 = 1e6;
 
-/// Internal units per file unit of positions of axis `a`: X diameter mm → radius nm.
-pub(super) fn position_scale(a: Axis) -> f64 {
-    if a == Axis::X { 5e5 } else { 1e6 }
+/// Internal units per file unit of positions of axis `a` on `cfg`: X diameter mm
+/// → radius nm on a lathe with diameter programming, mm → nm otherwise.
+pub(super) fn position_scale(a: Axis, cfg: &MachineConfig) -> f64 {
+    if a == Axis::X && cfg.diameter_x { 5e5 } else { 1e6 }
 }
 
 /// The file's name of axis `a` (`x`, `y`, `z`, `c`).
@@ -36,12 +37,13 @@ pub(super) fn apply(file: &MachineFile, cfg: &mut MachineConfig) -> Result<(), S
     if let Some(axes) = &file.axes {
         for (a, f) in [(Axis::X, &axes.x), (Axis::Y, &axes.y), (Axis::Z, &axes.z), (Axis::C, &axes.c)] {
             if let Some(f) = f {
-                apply_axis(a, f, &mut cfg.axes[a.index()])?;
+                let scale = position_scale(a, cfg);
+                apply_axis(a, f, scale, &mut cfg.axes[a.index()])?;
             }
         }
     }
     if let Some(r) = &file.reference {
-        cfg.reference = references(r, &cfg.reference)?;
+        cfg.reference = references(r, cfg)?;
     }
     if let Some(w) = &file.work_offsets {
         apply_work_offsets(w, cfg)?;
@@ -107,6 +109,12 @@ fn apply_modes(file: &MachineFile, cfg: &mut MachineConfig) {
     if let Some(i) = file.jump_input {
         cfg.jump_input = i;
     }
+    if let Some(t) = file.tool_changer {
+        cfg.tool_changer = match t {
+            ToolChangerName::Manual => ToolChanger::Manual,
+            ToolChangerName::Automatic => ToolChanger::Automatic,
+        };
+    }
 }
 
 /// `input` sets parameter 3401; giving both would leave one of them ignored.
@@ -139,11 +147,11 @@ fn set(target: &mut i64, v: Option<f64>, scale: f64, field: &str) -> Result<(), 
 }
 
 /// One axis table: the axis exists, the given values replace the built-in ones.
-fn apply_axis(a: Axis, f: &AxisFile, ax: &mut AxisConfig) -> Result<(), String> {
+fn apply_axis(a: Axis, f: &AxisFile, scale: f64, ax: &mut AxisConfig) -> Result<(), String> {
     let field = |k: &str| format!("axes.{}.{k}", axis_name(a));
     ax.present = true;
-    set(&mut ax.min, f.min, position_scale(a), &field("min"))?;
-    set(&mut ax.max, f.max, position_scale(a), &field("max"))?;
+    set(&mut ax.min, f.min, scale, &field("min"))?;
+    set(&mut ax.max, f.max, scale, &field("max"))?;
     set(&mut ax.rapid_per_min, f.rapid, RATE_SCALE, &field("rapid"))?;
     set(&mut ax.max_feed_per_min, f.max_feed, RATE_SCALE, &field("max_feed"))?;
     set(&mut ax.accel_per_s2, f.accel, RATE_SCALE, &field("accel"))?;
@@ -181,22 +189,23 @@ fn apply_motion(f: &MotionFile, m: &mut MotionConfig) -> Result<(), String> {
 }
 
 /// `base` with the coordinates given in `p` replaced.
-fn point(base: Pos, p: &Point, field: &str) -> Result<Pos, String> {
+fn point(base: Pos, p: &Point, cfg: &MachineConfig, field: &str) -> Result<Pos, String> {
     let mut out = base;
     for (a, v) in [(Axis::X, p.x), (Axis::Y, p.y), (Axis::Z, p.z), (Axis::C, p.c)] {
-        set(&mut out[a], v, position_scale(a), &format!("{field}.{}", axis_name(a)))?;
+        set(&mut out[a], v, position_scale(a, cfg), &format!("{field}.{}", axis_name(a)))?;
     }
     Ok(out)
 }
 
 /// One to four reference positions; the ones not given equal the first.
-fn references(points: &[Point], base: &[Pos; 4]) -> Result<[Pos; 4], String> {
+fn references(points: &[Point], cfg: &MachineConfig) -> Result<[Pos; 4], String> {
+    let base = &cfg.reference;
     if points.is_empty() || points.len() > base.len() {
         return Err(format!("reference: give 1 to 4 positions, not {}", points.len()));
     }
     let mut out = *base;
     for (i, p) in points.iter().enumerate() {
-        out[i] = point(base[i], p, &format!("reference[{}]", i + 1))?;
+        out[i] = point(base[i], p, cfg, &format!("reference[{}]", i + 1))?;
     }
     for i in points.len()..out.len() {
         out[i] = out[0];
@@ -208,18 +217,40 @@ fn apply_work_offsets(w: &WorkOffsets, cfg: &mut MachineConfig) -> Result<(), St
     let frames = [&w.g54, &w.g55, &w.g56, &w.g57, &w.g58, &w.g59];
     for (i, p) in frames.into_iter().enumerate() {
         if let Some(p) = p {
-            cfg.work_offsets[i] = point(cfg.work_offsets[i], p, &format!("work_offsets.g{}", 54 + i))?;
+            cfg.work_offsets[i] = point(cfg.work_offsets[i], p, cfg, &format!("work_offsets.g{}", 54 + i))?;
         }
     }
     if let Some(p) = &w.external {
-        cfg.external_offset = point(cfg.external_offset, p, "work_offsets.external")?;
+        cfg.external_offset = point(cfg.external_offset, p, cfg, "work_offsets.external")?;
+    }
+    if let Some(rows) = &w.g54_1 {
+        if cfg.kind != MachineKind::Mill {
+            return Err("work_offsets.g54_1: G54.1 is a mill's (kind = \"mill\")".into());
+        }
+        let mut seen = Vec::new();
+        for r in rows {
+            let field = |k: &str| format!("work_offsets.g54_1 p = {}: {k}", r.p);
+            if seen.contains(&r.p) {
+                return Err(field("given twice"));
+            }
+            seen.push(r.p);
+            let mut pos = cfg.extra_offsets.get(r.p).ok_or_else(|| field("p must be 1 to 48"))?;
+            let xyz = Point { x: r.x, y: r.y, z: r.z, c: None };
+            pos = point(pos, &xyz, cfg, field("").trim_end_matches(": "))?;
+            if !cfg.extra_offsets.set(r.p, pos) {
+                return Err(field("coordinates must be within +-2147 mm"));
+            }
+        }
     }
     Ok(())
 }
 
-/// Tool offset rows, each number once.
+/// Tool offset rows, each number once: a lathe's X/Z/nose radius/tip, a mill's
+/// length and radius (H and D pages).
 fn apply_offsets(rows: &[Offset], cfg: &mut MachineConfig) -> Result<(), String> {
     let mut seen = Vec::new();
+    let mill = cfg.kind == MachineKind::Mill;
+    let x_scale = position_scale(Axis::X, cfg);
     for r in rows {
         let field = |k: &str| format!("offsets number {}: {k}", r.number);
         if seen.contains(&r.number) {
@@ -227,9 +258,28 @@ fn apply_offsets(rows: &[Offset], cfg: &mut MachineConfig) -> Result<(), String>
         }
         seen.push(r.number);
         let row = cfg.tools.get_mut(r.number).ok_or_else(|| field(&format!("must be 1 to {MAX_OFFSETS}")))?;
-        set(&mut row.x, r.x, position_scale(Axis::X), &field("x"))?;
+        if mill {
+            if r.x.is_some() || r.z.is_some() || r.x_wear.is_some() || r.z_wear.is_some() || r.tip.is_some() {
+                return Err(field("a mill's row has length, length_wear, radius and radius_wear"));
+            }
+            for (page, v, name) in [
+                (MillPage::Length, r.length, "length"),
+                (MillPage::LengthWear, r.length_wear, "length_wear"),
+                (MillPage::Radius, r.radius, "radius"),
+                (MillPage::RadiusWear, r.radius_wear, "radius_wear"),
+            ] {
+                if let Some(v) = v {
+                    row.set_mill(page, internal(v, 1e6, &field(name))?);
+                }
+            }
+            continue;
+        }
+        if r.length.is_some() || r.length_wear.is_some() || r.radius_wear.is_some() {
+            return Err(field("length, length_wear and radius_wear are a mill's (kind = \"mill\")"));
+        }
+        set(&mut row.x, r.x, x_scale, &field("x"))?;
         set(&mut row.z, r.z, 1e6, &field("z"))?;
-        set(&mut row.x_wear, r.x_wear, position_scale(Axis::X), &field("x_wear"))?;
+        set(&mut row.x_wear, r.x_wear, x_scale, &field("x_wear"))?;
         set(&mut row.z_wear, r.z_wear, 1e6, &field("z_wear"))?;
         set(&mut row.radius, r.radius, 1e6, &field("radius"))?;
         match r.tip {

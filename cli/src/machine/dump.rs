@@ -4,15 +4,16 @@
 use std::collections::BTreeMap;
 
 use interp_core::config::{
-    AxisConfig, GCodeSystem, Language, MTiming, MachineKind, MotionConfig, PARAMS, Param, ParamUnit, ToolOffset,
+    AxisConfig, EXTRA_FRAMES, GCodeSystem, Language, MTiming, MachineKind, MillPage, MotionConfig, PARAMS, Param,
+    ParamUnit, ToolChanger, ToolOffset,
 };
 use interp_core::units::IncrementSystem;
 use interp_core::{Axis, MachineConfig, Pos};
 
 use super::apply::position_scale;
 use super::file::{
-    Axes, AxisFile, GCodeSystemName, IncrementName, InputName, KindName, LanguageName, MachineFile, MotionFile, Offset,
-    ParamKey, Point, Spindle, TimingName, UserM, WorkOffsets,
+    Axes, AxisFile, ExtraOffset, GCodeSystemName, IncrementName, InputName, KindName, LanguageName, MachineFile,
+    MotionFile, Offset, ParamKey, Point, Spindle, TimingName, ToolChangerName, UserM, WorkOffsets,
 };
 
 /// Every setting of `cfg` as a machine file (offset rows that are all zero left out).
@@ -43,6 +44,10 @@ pub(super) fn file_of(cfg: &MachineConfig) -> MachineFile {
         diameter_programming: Some(cfg.diameter_x),
         rapid_independent: Some(cfg.rapid_independent),
         tool_count: Some(cfg.tool_count),
+        tool_changer: (cfg.kind == MachineKind::Mill).then_some(match cfg.tool_changer {
+            ToolChanger::Manual => ToolChangerName::Manual,
+            ToolChanger::Automatic => ToolChangerName::Automatic,
+        }),
         reference: Some(cfg.reference.iter().map(|p| point(cfg, *p)).collect()),
         axes: Some(axes(cfg)),
         work_offsets: Some(work_offsets(cfg)),
@@ -80,7 +85,7 @@ fn external(v: i64, scale: f64) -> f64 {
 
 /// A position with the machine's axes (Y and C only if present).
 fn point(cfg: &MachineConfig, p: Pos) -> Point {
-    let coord = |a: Axis| cfg.axis(a).present.then(|| external(p[a], position_scale(a)));
+    let coord = |a: Axis| cfg.axis(a).present.then(|| external(p[a], position_scale(a, cfg)));
     Point { x: coord(Axis::X), y: coord(Axis::Y), z: coord(Axis::Z), c: coord(Axis::C) }
 }
 
@@ -88,8 +93,8 @@ fn axes(cfg: &MachineConfig) -> Axes {
     let axis = |a: Axis| {
         let ax: &AxisConfig = cfg.axis(a);
         ax.present.then(|| AxisFile {
-            min: Some(external(ax.min, position_scale(a))),
-            max: Some(external(ax.max, position_scale(a))),
+            min: Some(external(ax.min, position_scale(a, cfg))),
+            max: Some(external(ax.max, position_scale(a, cfg))),
             rapid: Some(external(ax.rapid_per_min, 1e6)),
             max_feed: Some(external(ax.max_feed_per_min, 1e6)),
             accel: Some(external(ax.accel_per_s2, 1e6)),
@@ -114,22 +119,48 @@ fn work_offsets(cfg: &MachineConfig) -> WorkOffsets {
         g58: w(4),
         g59: w(5),
         external: Some(point(cfg, cfg.external_offset)),
+        g54_1: (cfg.kind == MachineKind::Mill).then(|| {
+            (1..=EXTRA_FRAMES as u8)
+                .filter_map(|p| cfg.extra_offsets.get(p).filter(|o| *o != Pos::ZERO).map(|o| (p, o)))
+                .map(|(p, o)| ExtraOffset {
+                    p,
+                    x: Some(external(o[Axis::X], 1e6)),
+                    y: Some(external(o[Axis::Y], 1e6)),
+                    z: Some(external(o[Axis::Z], 1e6)),
+                })
+                .collect()
+        }),
     }
 }
 
-/// The offset rows that are not all zero.
+/// The offset rows that are not all zero: a lathe's X/Z rows, a mill's H/D rows.
 fn offsets(cfg: &MachineConfig) -> Vec<Offset> {
+    let mill = cfg.kind == MachineKind::Mill;
     (1..=interp_core::config::MAX_OFFSETS as u16)
         .filter_map(|n| cfg.tools.get(n).filter(|r| **r != ToolOffset::default()).map(|r| (n, r)))
-        .map(|(number, r)| Offset {
-            number,
-            x: Some(external(r.x, position_scale(Axis::X))),
-            z: Some(external(r.z, 1e6)),
-            x_wear: Some(external(r.x_wear, position_scale(Axis::X))),
-            z_wear: Some(external(r.z_wear, 1e6)),
-            radius: Some(external(r.radius, 1e6)),
-            tip: Some(r.tip),
-            clearance: (r.clearance_udeg != 0).then(|| external(i64::from(r.clearance_udeg), 1e6)),
+        .map(|(number, r)| {
+            if mill {
+                let v = |page| Some(external(r.mill_value(page), 1e6));
+                return Offset {
+                    number,
+                    length: v(MillPage::Length),
+                    length_wear: v(MillPage::LengthWear),
+                    radius: v(MillPage::Radius),
+                    radius_wear: v(MillPage::RadiusWear),
+                    ..Offset::default()
+                };
+            }
+            Offset {
+                number,
+                x: Some(external(r.x, position_scale(Axis::X, cfg))),
+                z: Some(external(r.z, 1e6)),
+                x_wear: Some(external(r.x_wear, position_scale(Axis::X, cfg))),
+                z_wear: Some(external(r.z_wear, 1e6)),
+                radius: Some(external(r.radius, 1e6)),
+                tip: Some(r.tip),
+                clearance: (r.clearance_udeg != 0).then(|| external(i64::from(r.clearance_udeg), 1e6)),
+                ..Offset::default()
+            }
         })
         .collect()
 }

@@ -27,8 +27,11 @@ pub struct MachineFile {
     pub diameter_programming: Option<bool>,
     /// G00 moves each axis at its own rate.
     pub rapid_independent: Option<bool>,
-    /// Highest turret station.
+    /// Highest turret station (a mill's highest tool number).
     pub tool_count: Option<u16>,
+    /// A mill's tool change at M06: `manual` (a stop: the operator loads the tool)
+    /// or `automatic` (the tool changer).
+    pub tool_changer: Option<ToolChangerName>,
     /// Reference positions 1–4, machine coordinates; fewer than 4: the rest equal the first.
     pub reference: Option<Vec<Point>>,
     /// Travel and rates per axis.
@@ -95,6 +98,16 @@ pub enum KindName {
     Lathe,
     /// A machining centre (M series).
     Mill,
+}
+
+/// How a mill changes tools.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ToolChangerName {
+    /// By hand, after a stop.
+    Manual,
+    /// By the tool changer.
+    Automatic,
 }
 
 /// Programming language.
@@ -214,14 +227,40 @@ pub struct WorkOffsets {
     pub g59: Option<Point>,
     /// Added to all six.
     pub external: Option<Point>,
+    /// A mill's G54.1 P1–P48, each with its `p`.
+    pub g54_1: Option<Vec<ExtraOffset>>,
 }
 
-/// One row of the tool offset page.
+/// One of a mill's G54.1 work offsets.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct ExtraOffset {
+    /// P: 1–48.
+    pub p: u8,
+    /// X, mm.
+    pub x: Option<f64>,
+    /// Y, mm.
+    pub y: Option<f64>,
+    /// Z, mm.
+    pub z: Option<f64>,
+}
+
+/// One row of the tool offset page: a lathe's X/Z geometry and wear, nose radius
+/// and tip; a mill's tool length (H) and cutter radius (D), geometry and wear.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Offset {
     /// Offset number.
     pub number: u16,
+    /// Mill: tool length (H), geometry, mm.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub length: Option<f64>,
+    /// Mill: tool length (H), wear, mm.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub length_wear: Option<f64>,
+    /// Mill: cutter radius (D), wear, mm (`radius` is its geometry).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub radius_wear: Option<f64>,
     /// X geometry, diameter mm.
     pub x: Option<f64>,
     /// Z geometry, mm.

@@ -17,10 +17,15 @@ use interp_core::MachineConfig;
 use crate::error::Error;
 use file::MachineFile;
 
-/// The machine described by the TOML text `text`; the error names the field.
+/// The machine described by the TOML text `text`; the error names the field. A
+/// file of `kind = "mill"` starts from the built-in machining centre
+/// ([`MachineConfig::mill`]: X, Y, Z in radius), any other from the built-in lathe.
 pub fn parse(text: &str) -> Result<MachineConfig, String> {
     let file: MachineFile = toml::from_str(text).map_err(|e| e.to_string().trim_end().to_owned())?;
-    let mut cfg = MachineConfig::default();
+    let mut cfg = match file.kind {
+        Some(file::KindName::Mill) => MachineConfig::mill(),
+        _ => MachineConfig::default(),
+    };
     apply::apply(&file, &mut cfg)?;
     Ok(cfg)
 }

@@ -19,9 +19,10 @@ use interp_core::config::{MAX_OFFSETS, PARAMS, Param};
 /// Parameter record number of grbl setting `$n`: `SETTING_KEY + n` (parameter
 /// numbers of the interpreter are below 10000).
 pub const SETTING_KEY: u16 = 0xE000;
-/// The grbl settings stored, in the order they are applied at boot (`$20` before
-/// the travel `$130`/`$132` it moves aside).
-const SETTINGS: [&[u16]; 2] = [NUMBERS, &[301]];
+/// The grbl settings stored, in the order they are applied at boot (`$311` first:
+/// the machine kind gives the Y axis `$101`–`$131` set; `$20` before the travel
+/// `$130`–`$132` it moves aside).
+const SETTINGS: [&[u16]; 3] = [&[311], NUMBERS, &[301]];
 
 /// Every stored grbl setting number, in order.
 fn setting_numbers() -> impl Iterator<Item = u16> {

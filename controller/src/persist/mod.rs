@@ -115,7 +115,6 @@ const BUF_LEN: usize = MAX_CHUNK + 64;
 
 /// Why a persistence operation failed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum Error {
     /// The flash reported an error (on the simulated flash: a power cut).
     Flash(NorFlashErrorKind),
@@ -149,6 +148,29 @@ pub enum Error {
     },
     /// The storage crate reported a logic or serialisation error.
     Internal,
+}
+
+/// The board's log of a store error, without `core::fmt` (written by hand: the flash
+/// error kind has no `defmt::Format`).
+#[cfg(feature = "defmt")]
+impl defmt::Format for Error {
+    fn format(&self, f: defmt::Formatter<'_>) {
+        match self {
+            Error::Flash(NorFlashErrorKind::NotAligned) => defmt::write!(f, "flash error: not aligned"),
+            Error::Flash(NorFlashErrorKind::OutOfBounds) => defmt::write!(f, "flash error: out of bounds"),
+            Error::Flash(_) => defmt::write!(f, "flash error"),
+            Error::Full => defmt::write!(f, "persistent storage is full"),
+            Error::Corrupted => defmt::write!(f, "persistent storage is corrupted: format it"),
+            Error::BadRange => defmt::write!(f, "bad flash range for persistent storage"),
+            Error::BadNumber => defmt::write!(f, "number out of range"),
+            Error::TooBig => defmt::write!(f, "program too big for persistent storage"),
+            Error::BufferTooSmall { needed } => defmt::write!(f, "buffer too small: {} bytes needed", needed),
+            Error::NoProgram { program } => defmt::write!(f, "program O{=u16} is not stored", program),
+            Error::TooManyPrograms => defmt::write!(f, "more stored programs than room for them"),
+            Error::Damaged { program } => defmt::write!(f, "stored program O{=u16} is damaged", program),
+            Error::Internal => defmt::write!(f, "internal storage error"),
+        }
+    }
 }
 
 impl fmt::Display for Error {

@@ -81,12 +81,21 @@ impl EngineAxis {
     pub fn queued(&self) -> u32 {
         self.tx.len()
     }
+
+    /// The motion core's axis this channel drives.
+    pub fn core_axis(&self) -> usize {
+        self.core_axis
+    }
 }
 
 /// The motion interrupt's state for `A` driven axes.
 pub struct Engine<const A: usize> {
     tb: TimeBase,
     axes: [EngineAxis; A],
+    /// For each core axis (bit `i` of what [`MotionCore::on_encoder`] moved), its
+    /// index in `axes` (`u8::MAX`: not driven): the count interrupt visits only
+    /// the axes that moved.
+    slot: [u8; 8],
     /// Start of the period computed last (the one after the period playing, between
     /// two period interrupts): core time (ns) and step timer tick.
     base_ns: u64,
@@ -100,9 +109,16 @@ impl<const A: usize> Engine<A> {
     /// An engine whose period 0 starts at timer tick `start` (core time 0), with the
     /// encoder's raw count `raw_count` as count 0.
     pub fn new(tb: TimeBase, axes: [EngineAxis; A], start: u32, raw_count: u32) -> Self {
+        let mut slot = [u8::MAX; 8];
+        for (i, ax) in axes.iter().enumerate() {
+            if let (Some(s), Ok(i)) = (slot.get_mut(ax.core_axis), u8::try_from(i)) {
+                *s = i;
+            }
+        }
         Engine {
             tb,
             axes,
+            slot,
             base_ns: 0,
             base_ticks: start,
             encoder: Encoder::new(raw_count),
@@ -151,6 +167,25 @@ impl<const A: usize> Engine<A> {
         &self.axes
     }
 
+    /// Whether channel `i` may drive the core's axis `core_axis` now: it already
+    /// does, or its edges have all been played.
+    pub fn can_set_core_axis(&self, i: usize, core_axis: usize) -> bool {
+        self.axes.get(i).is_some_and(|ax| ax.core_axis == core_axis || (ax.tx.is_empty() && ax.carry.is_none()))
+    }
+
+    /// Makes channel `i` drive the core's axis `core_axis` (a board's third channel
+    /// is C on a lathe, Y on a mill: `$311`) if [`Self::can_set_core_axis`];
+    /// returns whether it does.
+    pub fn set_core_axis(&mut self, i: usize, core_axis: usize) -> bool {
+        if !self.can_set_core_axis(i, core_axis) {
+            return false;
+        }
+        if let Some(ax) = self.axes.get_mut(i) {
+            ax.core_axis = core_axis;
+        }
+        true
+    }
+
     /// The period interrupt: computes the period after the one playing, queues its
     /// edges, and moves on to it.
     pub fn period<const N: usize>(&mut self, core: &mut MotionCore<N>, s: Sample) {
@@ -190,11 +225,13 @@ impl<const A: usize> Engine<A> {
         // Only the axes the count moved (the gearbox's, C in polygon turning); an
         // edge due now is at tick `now` (no conversion).
         let horizon = self.base_ns + 2 * u64::from(self.tb.period_ns);
-        let mut edges = 0;
-        for ax in &mut self.axes {
-            if moved & (1 << ax.core_axis) == 0 {
+        let (mut edges, mut bits) = (0, moved);
+        while bits != 0 {
+            let core_axis = bits.trailing_zeros() as usize;
+            bits &= bits - 1;
+            let Some(ax) = self.slot.get(core_axis).and_then(|&i| self.axes.get_mut(usize::from(i))) else {
                 continue;
-            }
+            };
             if ax.carry.is_some() {
                 // The ring was full before: the general way.
                 let (tb, base_ns, base_ticks) = (self.tb, self.base_ns, self.base_ticks);

@@ -67,12 +67,17 @@ pub enum Switch {
     XHome,
     /// Z home switch.
     ZHome,
+    /// Y limit (either end; a mill's).
+    YLimit,
+    /// Y home switch (a mill's).
+    YHome,
 }
 
 impl Switch {
     /// Every switch, in the order of their bits in a [`Debounce`] sample and their
-    /// `hal::DigitalInputs` numbers (0–6).
-    pub const ALL: [Switch; 7] = [
+    /// `hal::DigitalInputs` numbers (0–8; Y's after the lathe's so that their
+    /// numbers stay).
+    pub const ALL: [Switch; 9] = [
         Switch::EStop,
         Switch::FeedHold,
         Switch::CycleStart,
@@ -80,6 +85,8 @@ impl Switch {
         Switch::ZLimit,
         Switch::XHome,
         Switch::ZHome,
+        Switch::YLimit,
+        Switch::YHome,
     ];
 
     /// The switch's bit in a sample.

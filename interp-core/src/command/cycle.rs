@@ -130,6 +130,29 @@ pub enum CycleArgs {
         /// +Z, µdeg (0 when omitted).
         q_udeg: i64,
     },
+    /// G10 (mill): L, P and R of programmable data input; the axis words are the
+    /// block's.
+    Data {
+        /// L: 2, 10–13 or 20.
+        l: u8,
+        /// P: frame (L2: 0–6, L20: 1–48) or offset number (L10–L13).
+        p: u16,
+        /// R: the offset value (L10–L13), nm.
+        r: Option<i64>,
+    },
+    /// G51 (mill): P, or I/J/K per axis, in thousandths (negative = mirror); the
+    /// centre is the block's X/Y/Z.
+    Scale {
+        /// P: one factor for every axis.
+        p: Option<i32>,
+        /// I, J, K: the factors of X, Y, Z.
+        ijk: [Option<i32>; 3],
+    },
+    /// G68 (mill): the angle R in µdeg; the centre is the block's axis words.
+    Rotate {
+        /// R, µdeg (counter-clockwise positive).
+        r_udeg: Option<i64>,
+    },
     /// G83–G89 hole data.
     Hole {
         /// R: initial level → R level, signed radius value.
@@ -175,10 +198,54 @@ pub fn is_thread(code: GCode) -> bool {
     matches!(code, GCode::Thread | GCode::VariableLeadThread)
 }
 
-/// G83–G89 (group 10 without G80).
+/// The hole cycles: a lathe's G83–G89, a machining centre's G73–G89 (group 10
+/// without G80). The mill's codes are listed here again rather than asked of
+/// [`is_mill_hole`]: one test of the whole set; the call form cost a plain G01 31
+/// instructions (`m4-tests/bench.sh bench_interp`). The same holds for
+/// `Command::moves_axes`.
 pub fn is_hole(code: GCode) -> bool {
     use GCode::*;
-    matches!(code, FaceDrill | FaceTap | FaceBore | SideDrill | SideTap | SideBore)
+    matches!(
+        code,
+        FaceDrill
+            | FaceTap
+            | FaceBore
+            | SideDrill
+            | SideTap
+            | SideBore
+            | HighSpeedPeck
+            | LeftTap
+            | FineBore
+            | Drill
+            | DrillDwell
+            | PeckDrill
+            | Tap
+            | Bore
+            | BoreSpindleStop
+            | BackBore
+            | BoreManual
+            | BoreDwell
+    )
+}
+
+/// A machining centre's hole cycles (G73–G89 of the M series).
+pub fn is_mill_hole(code: GCode) -> bool {
+    use GCode::*;
+    matches!(
+        code,
+        HighSpeedPeck
+            | LeftTap
+            | FineBore
+            | Drill
+            | DrillDwell
+            | PeckDrill
+            | Tap
+            | Bore
+            | BoreSpindleStop
+            | BackBore
+            | BoreManual
+            | BoreDwell
+    )
 }
 
 /// Whether the F word of `code` is a thread lead rather than a feed.

@@ -5,8 +5,13 @@ use crate::codes::{GCode, Group};
 use crate::units::Units;
 
 /// The G codes of one block, one slot per modal group.
+///
+/// Word-aligned: the set is cleared for every block ([`GSet::NONE`]), and a
+/// byte-aligned copy of its 26 bytes is a byte loop on the Cortex-M4 (~180
+/// instructions) where an aligned one is a few word stores.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[repr(align(4))]
 pub struct GSet {
     /// Group 01.
     pub motion: Option<GCode>,
@@ -38,13 +43,39 @@ pub struct GSet {
     pub polar: Option<bool>,
     /// Group 20: Some(true) = G51.2, Some(false) = G50.2.
     pub polygon: Option<bool>,
+    /// Mill group 08: G43, G44 or G49.
+    pub length: Option<GCode>,
+    /// Mill group 17: Some(true) = G16, Some(false) = G15.
+    pub polar_coord: Option<bool>,
+    /// Mill groups 11, 22, 16: G50/G51, G50.1/G51.1 or G68/G69 (one per block: they
+    /// take the block's axis words).
+    pub frame: Option<GCode>,
+    /// A machining centre's block that needs more than a lathe's plain way: H, D,
+    /// T, M06, G10, G28–G30, G43/G44/G49, G54.1, G15/G16, G50/G51, G50.1/G51.1,
+    /// G68/G69, a hole cycle, or any block while a transformation is in force. Set
+    /// by the mill's checker; execution then takes the full way and the block's
+    /// undo saves the mill's data.
+    pub mill: bool,
 }
+
+/// `work_frame` of a block with G54.1 until its P is read (the checker then puts
+/// frame 5 + P there: 6–53).
+pub const EXTRA_FRAME: u8 = u8::MAX;
 
 /// Whether a group-00 code takes the block's axis words for itself.
 pub fn uses_axes(c: GCode) -> bool {
     use GCode::*;
-    matches!(c, Dwell | ReferenceReturn | ReferenceReturnN | SetCoordinates | LocalFrame | MachineCoordinates)
-        || super::cycle::is_multiple(c)
+    matches!(
+        c,
+        Dwell
+            | ReferenceReturn
+            | ReferenceReturnN
+            | SetCoordinates
+            | LocalFrame
+            | MachineCoordinates
+            | DataSetting
+            | ReturnFromReference
+    ) || super::cycle::is_multiple(c)
 }
 
 impl GSet {
@@ -65,6 +96,10 @@ impl GSet {
         stroke: None,
         polar: None,
         polygon: None,
+        length: None,
+        polar_coord: None,
+        frame: None,
+        mill: false,
     };
 
     /// Puts `code` into its group's slot (the front end has checked that the
@@ -94,11 +129,16 @@ impl GSet {
             PolarOff => self.polar = Some(false),
             PolygonOn => self.polygon = Some(true),
             PolygonOff => self.polygon = Some(false),
+            PolarCoordOn => self.polar_coord = Some(true),
+            PolarCoordOff => self.polar_coord = Some(false),
+            ExtraWorkFrame => self.work_frame = Some(EXTRA_FRAME),
             _ => match code.group() {
                 Group::Motion => self.motion = Some(code),
                 Group::NonModal => self.one_shot = Some(code),
                 Group::NoseComp => self.nose_comp = Some(code),
                 Group::Drilling => self.drilling = Some(code),
+                Group::LengthComp => self.length = Some(code),
+                Group::Scaling | Group::Mirror | Group::Rotation => self.frame = Some(code),
                 // Polar, polygon and stroke-check codes that reach here are the
                 // cancel codes of modes that are never on: nothing to record.
                 _ => {}

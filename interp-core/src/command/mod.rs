@@ -14,7 +14,7 @@ pub mod hole;
 pub mod job;
 
 pub use cycle::CycleArgs;
-pub use gset::{GSet, uses_axes};
+pub use gset::{EXTRA_FRAME, GSet, uses_axes};
 // The `,C`/`,R` (FANUC) and `CHF=`/`RND=` (SINUMERIK) request is held by the
 // contour look-ahead: defined with it.
 pub use crate::modal::Corner;
@@ -100,8 +100,13 @@ pub struct Command {
     pub feed: Option<i64>,
     /// S as written (rev/min, surface speed, or G50 clamp).
     pub speed: Option<u32>,
-    /// T: turret station and offset number.
+    /// T: turret station and offset number (a machining centre's T selects a tool:
+    /// offset 0).
     pub tool: Option<(u16, u16)>,
+    /// Mill: H, the tool length offset number.
+    pub h: Option<u16>,
+    /// Mill: D, the cutter radius offset number.
+    pub d: Option<u16>,
     /// M98/M99/M91/M92 with their words.
     pub flow: Option<FlowWord>,
     /// `,C`/`,R`: the corner to insert after the block's move (2.23).
@@ -125,6 +130,8 @@ impl Command {
         feed: None,
         speed: None,
         tool: None,
+        h: None,
+        d: None,
         flow: None,
         corner: None,
         cycle: CycleArgs::None,
@@ -133,10 +140,12 @@ impl Command {
     /// Whether the block commands a move along an axis: it has an axis word and the
     /// code that uses it is a move, a turning, threading or hole cycle, or a
     /// reference or machine-coordinate move (not G04, G22, G50, G52, G12.1 …). A
-    /// FANUC G66 modal call follows such blocks.
+    /// FANUC G66 modal call follows such blocks. A machining centre's G51, G51.1
+    /// and G68 take the axis words as their centre: no move.
     pub fn moves_axes(&self, state: &State) -> bool {
         use GCode::*;
         self.axes.iter().any(Option::is_some)
+            && self.g.frame.is_none()
             && matches!(
                 self.axis_user(state),
                 Rapid
@@ -164,10 +173,24 @@ impl Command {
                     | SideDrill
                     | SideTap
                     | SideBore
+                    | ReturnFromReference
+                    | HighSpeedPeck
+                    | LeftTap
+                    | FineBore
+                    | Drill
+                    | DrillDwell
+                    | PeckDrill
+                    | Tap
+                    | Bore
+                    | BoreSpindleStop
+                    | BackBore
+                    | BoreManual
+                    | BoreDwell
             )
     }
 
-    /// The code that consumes the block's axis words.
+    /// The code that consumes the block's axis words (a machining centre's G51,
+    /// G51.1 and G68 take them too: its checker asks [`GSet::frame`] first).
     pub fn axis_user(&self, state: &State) -> GCode {
         use cycle::{is_hole, is_multiple};
         match (self.g.stroke, self.g.polar) {

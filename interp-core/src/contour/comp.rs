@@ -18,8 +18,9 @@
 use super::{Buffer, in_plane, moved_to};
 use crate::alarm::AlarmKind;
 use crate::axis::Pos;
-use crate::canon::{Action, ArcMove, Canon, Move, Plane};
+use crate::canon::{Action, ArcMove, Canon, Move, Plane, SpindleSpeed};
 use crate::geom::path::{Elem, V2, intersect, nearest, wrap_tau};
+use crate::modal::lookahead::Waiting;
 pub use crate::modal::lookahead::{Comp, Side};
 use crate::stage::Staged;
 
@@ -159,6 +160,7 @@ pub(super) fn start_up(buf: &mut Buffer, comp: &mut Comp, c: Canon, start: Pos) 
     let centre = in_plane(&start, comp.plane).minus(comp.tip_vector());
     comp.engaged = true;
     comp.starting = true;
+    comp.off_path = false;
     comp.centre = centre.round();
     buf.hold(c, start);
     Ok(())
@@ -203,13 +205,61 @@ pub(super) fn cancel_with(
 }
 
 /// Ends the held move on its normal (G40 or a temporary cancel without a move),
-/// and emits what waits behind it.
+/// and emits what waits behind it. The tool then stands off the programmed path,
+/// at the held move's offset end point (`comp.centre`, `comp.off_path`).
 pub(super) fn end_here(buf: &mut Buffer, comp: &mut Comp, out: &mut Staged<'_>) -> Result<(), AlarmKind> {
     if buf.is_holding() {
-        emit_to_corner(buf, comp, None, out)?;
+        let end = emit_to_corner(buf, comp, None, out)?;
+        comp.centre = end.round();
+        comp.off_path = true;
     }
     comp.engaged = false;
     Ok(())
+}
+
+/// Whether move `a` from `start` moves in `plane` (else it moves only along the
+/// other axes: a plunge or retract of a mill).
+pub(super) fn in_plane_move(a: &Action, start: Pos, plane: Plane) -> bool {
+    let Some(to) = a.endpoint() else { return false };
+    matches!(a, Action::Arc(_)) || in_plane(&to.machine, plane).minus(in_plane(&start, plane)).len() >= 1.0
+}
+
+/// A move along the plane's normal while compensating: behind the held move (made
+/// at its corner), or — with the tool off the path after a temporary cancel or a
+/// G40 — where the tool stands; before start-up as it is. Returns false for a move
+/// that changes another axis too (the caller alarms as for a move without length).
+pub(super) fn plunge(
+    buf: &mut Buffer,
+    comp: &Comp,
+    c: Canon,
+    start: Pos,
+    out: &mut Staged<'_>,
+) -> Result<bool, AlarmKind> {
+    // Only a mill plunges (this leaves the code out of a build without the profile).
+    if !crate::MILL {
+        return Ok(false);
+    }
+    let Some(to) = c.action.endpoint() else { return Ok(false) };
+    let normal = comp.plane.normal();
+    let only_normal = crate::axis::Axis::ALL.into_iter().all(|a| a == normal || to.machine[a] == start[a]);
+    if !only_normal {
+        return Ok(false);
+    }
+    if comp.engaged && buf.is_holding() {
+        return buf.push_plunge(c, normal);
+    }
+    if !comp.off_path {
+        put(out, c)?;
+        return Ok(true);
+    }
+    let to = moved_to(*to, comp.plane, V2::of(comp.centre).plus(comp.tip_vector()));
+    let action = match c.action {
+        Action::Rapid(m) => Action::Rapid(Move { to, ..m }),
+        Action::Linear(m) => Action::Linear(Move { to, ..m }),
+        _ => return Ok(false),
+    };
+    put(out, Canon { line: c.line, action })?;
+    Ok(true)
 }
 
 /// Emits the held move to its corner point with `e2` (or to its offset end point
@@ -244,10 +294,40 @@ fn emit_to_corner(buf: &mut Buffer, comp: &Comp, e2: Option<&Elem>, out: &mut St
             last = *m;
         }
     }
-    for c in after {
-        put(out, c)?;
-    }
+    emit_waiting(after, &held.action, comp, last.plus(tip), out)?;
     Ok(join.start2)
+}
+
+/// Emits what waited behind `held` once the tool stands at `tool` (in the plane):
+/// a mill's plunge moves from there along the plane's normal.
+fn emit_waiting(
+    after: impl Iterator<Item = Waiting>,
+    held: &Action,
+    comp: &Comp,
+    tool: V2,
+    out: &mut Staged<'_>,
+) -> Result<(), AlarmKind> {
+    if !crate::MILL {
+        // Without the mill profile nothing but non-motion actions wait.
+        return after.into_iter().try_for_each(|c| put(out, c.plain()));
+    }
+    let at = moved_to(*held.endpoint().ok_or(AlarmKind::NoseCompGouge)?, comp.plane, tool);
+    let spindle = spindle_of(held);
+    for c in after {
+        put(out, c.canon(&at, comp.plane.normal(), spindle))?;
+    }
+    Ok(())
+}
+
+/// The spindle speed a move runs at (what a plunge behind it runs at too).
+fn spindle_of(a: &Action) -> SpindleSpeed {
+    match a {
+        Action::Rapid(m) | Action::Linear(m) => m.spindle,
+        Action::Arc(m) => m.spindle,
+        Action::Thread(t) => t.spindle,
+        Action::Tap(t) => t.spindle,
+        _ => SpindleSpeed { rpm: None, css: None, max_rpm: 0 },
+    }
 }
 
 /// Alarm 3605 when the offset element from `from` to `to` runs against the

@@ -88,6 +88,9 @@ struct CompPlan {
     cancel: bool,
     /// A temporary cancel before the block's moves (G28, G30, G50, G52, G53, G51.2).
     pause: bool,
+    /// A mill's D changed the radius while compensating: the held move ends on its
+    /// normal with the old radius and the block's moves start up with the new one.
+    restart: bool,
 }
 
 /// G40/G41/G42 of the block checked against 2.18.4 and put in force: a direct
@@ -97,7 +100,7 @@ fn plan_comp(cmd: &Command, st: &mut State) -> Result<CompPlan, AlarmKind> {
     use GCode::*;
     let was = st.contour.comp.side;
     if st.contour.no_comp {
-        return Ok(CompPlan { cancel: false, pause: false });
+        return Ok(CompPlan { cancel: false, pause: false, restart: false });
     }
     let now = match st.modal.nose_comp {
         NoseCompLeft => Some(Side::Left),
@@ -126,15 +129,17 @@ fn plan_comp(cmd: &Command, st: &mut State) -> Result<CompPlan, AlarmKind> {
             engaged: false,
             centre: (0, 0),
             starting: false,
+            off_path: false,
         };
         st.contour.comp = comp;
     }
+    let restart = was.is_some() && now.is_some() && st.contour.comp.radius != st.tool.nose_radius;
     // G51.2 turns C to its phase: a move outside the plane, run uncompensated.
     let pause = matches!(
         cmd.g.one_shot,
         Some(ReferenceReturn | ReferenceReturnN | SetCoordinates | LocalFrame | MachineCoordinates)
     ) || cmd.g.polygon == Some(true);
-    Ok(CompPlan { cancel: was.is_some() && now.is_none(), pause: was.is_some() && now.is_some() && pause })
+    Ok(CompPlan { cancel: was.is_some() && now.is_none(), pause: was.is_some() && now.is_some() && pause, restart })
 }
 
 /// Whether [`after_block`] has nothing to do for the block: no corner asked for,
@@ -192,9 +197,10 @@ fn through_stages(
     while let Some(c) = out.actions.pop_front() {
         acts.push(c).map_err(|_| AlarmKind::Overflow)?;
     }
-    if plan.pause {
+    if plan.pause || plan.restart {
         // The held moves end before the block's own actions (the G28 move …).
         flush(st, out)?;
+        st.contour.comp.radius = st.tool.nose_radius;
     }
     let split = out.split.unwrap_or(acts.len());
     let last_move = acts[..split].iter().rposition(|c| c.action.endpoint().is_some());
@@ -220,7 +226,19 @@ fn through_stages(
             put(out, *c)?;
         } else if cancel {
             cancel = false;
-            comp::cancel_with(&mut st.contour.offset, &mut st.contour.comp, *c, start, out)?;
+            let ct = &mut st.contour;
+            // A lathe's moves all count as in the plane (its plunges are a mill's).
+            if !crate::MILL || comp::in_plane_move(&c.action, start, ct.comp.plane) {
+                comp::cancel_with(&mut ct.offset, &mut ct.comp, *c, start, out)?;
+            } else {
+                // G40 with a move along the normal only (a retract): the held move
+                // ends on its normal and the retract is made there; the next move
+                // leaves the offset path.
+                comp::end_here(&mut ct.offset, &mut ct.comp, out)?;
+                if !comp::plunge(&mut ct.offset, &ct.comp, *c, start, out)? {
+                    return Err(AlarmKind::NoseCompGouge);
+                }
+            }
             st.contour.comp = Comp::default();
         } else {
             match request.filter(|_| Some(i) == last_move) {
@@ -283,6 +301,12 @@ fn to_offset(st: &mut State, c: Canon, start: Pos, out: &mut Staged<'_>) -> Resu
     if c.action.endpoint().is_none() {
         return if ct.offset.is_holding() { ct.offset.push(c) } else { put(out, c) };
     }
+    if crate::MILL
+        && !comp::in_plane_move(&c.action, start, ct.comp.plane)
+        && comp::plunge(&mut ct.offset, &ct.comp, c, start, out)?
+    {
+        return Ok(());
+    }
     if ct.comp.engaged {
         comp::advance(&mut ct.offset, &mut ct.comp, c, start, out)
     } else {
@@ -320,7 +344,7 @@ pub fn flush(st: &mut State, out: &mut Staged<'_>) -> Result<(), AlarmKind> {
         to_offset(st, c, start, out)?;
     }
     for c in after {
-        to_offset(st, c, start, out)?;
+        to_offset(st, c.plain(), start, out)?;
     }
     comp::end_here(&mut st.contour.offset, &mut st.contour.comp, out)
 }
@@ -385,7 +409,7 @@ fn join(st: &mut State, next: Canon, from: Pos, out: &mut Staged<'_>) -> Result<
         at = c.action.endpoint().map_or(at, |e| e.machine);
     }
     for c in rest {
-        to_offset(st, c, at, out)?;
+        to_offset(st, c.plain(), at, out)?;
     }
     Ok(shaped.next_start)
 }

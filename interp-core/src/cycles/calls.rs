@@ -105,7 +105,8 @@ impl<X: Executor> Engine for CallEngine<'_, '_, '_, X> {
         if let Some(dir) = spindle {
             generator = generator.starting(dir);
         }
-        start_cycle(Emitter::new(*st, cmd.line), Gen::Hole(generator), self.ctx.out).map(|_| ())
+        let em = Emitter { lead: generator.lead(), ..Emitter::new(*st, cmd.line) };
+        start_cycle(em, Gen::Hole(generator), self.ctx.out).map(|_| ())
     }
 
     fn thread(&mut self, spec: &MultiThreadSpec, cmd: &Command, st: &mut State) -> Result<(), AlarmKind> {

@@ -40,9 +40,9 @@ pub enum Step {
     /// Cutting feed at the cycle's feed to a work position of all axes (the hole
     /// cycles).
     FeedTo(Pos),
-    /// Cutting feed to a work position at a feed per revolution (floating tapping
-    /// follows the spindle).
-    FeedPerRev(Pos, i64),
+    /// Cutting feed to a work position at the cycle's lead per revolution
+    /// ([`Emitter::lead`]: floating tapping follows the spindle).
+    FeedPerRev(Pos),
     /// Arc at the cycle's feed.
     Arc {
         /// End point.
@@ -65,12 +65,10 @@ pub enum Step {
         /// Index or continue.
         sync: ThreadSync,
     },
-    /// Rigid tapping move along one axis (X, Y or Z).
+    /// Rigid tapping move along one axis at the cycle's lead ([`Emitter::lead`]).
     Tap {
         /// End point (work, all axes).
         to: Pos,
-        /// Lead, nm/rev.
-        lead: i64,
         /// Spindle direction during the move.
         dir: SpindleDir,
     },
@@ -156,13 +154,15 @@ pub struct Emitter {
     pub line: u32,
     /// The cycle's cutting feed.
     pub feed: Feed,
+    /// The cycle's tapping lead, nm/rev (hole cycles that tap).
+    pub lead: i64,
 }
 
 impl Emitter {
     /// An emitter for the cycle block on `line`, cutting at the feed in force.
     pub fn new(st: State, line: u32) -> Self {
         let feed = Feed { mode: st.modal.feed_mode, value: st.feed.get(st.modal.feed_mode) };
-        Emitter { st, line, feed }
+        Emitter { st, line, feed, lead: 0 }
     }
 
     /// The current work position in the ZX plane.
@@ -197,9 +197,9 @@ impl Emitter {
                 let spindle = spindle_speed(&self.st, cfg, w[Axis::X]);
                 Action::Linear(Move { to, feed, spindle, exact_stop, independent: false })
             }
-            Step::FeedPerRev(w, value) => {
+            Step::FeedPerRev(w) => {
                 let Some(to) = self.target_pos(w, cfg)? else { return Ok(()) };
-                let feed = Feed { mode: FeedMode::PerRev, value };
+                let feed = Feed { mode: FeedMode::PerRev, value: self.lead };
                 let spindle = spindle_speed(&self.st, cfg, w[Axis::X]);
                 Action::Linear(Move { to, feed, spindle, exact_stop: true, independent: false })
             }
@@ -214,7 +214,8 @@ impl Emitter {
                 }
                 Action::Thread(ThreadMove { to, lead, lead_delta: delta, start_udeg, sync, spindle })
             }
-            Step::Tap { to: w, lead, dir } => {
+            Step::Tap { to: w, dir } => {
+                let lead = self.lead;
                 let Some(to) = self.target_pos(w, cfg)? else { return Ok(()) };
                 // The spindle is position-controlled in the tapping direction at the M29 speed.
                 let mut locked = self.st;
@@ -240,6 +241,8 @@ impl Emitter {
                 self.feed.value = v;
                 return Ok(());
             }
+            // M19 and the operator's stop: only the boring works of a machining centre and SINUMERIK.
+            Step::Aux(_) | Step::Stop if !super::hole::BORING => return Ok(()),
             Step::Aux(m) => Action::Aux { m },
             Step::Stop => Action::Stop { optional: false },
             Step::Spindle(dir) => {

@@ -27,6 +27,11 @@ pub use crate::command::hole::{DeepDrill, Degression, HoleSpec, HoleWork};
 /// M19: spindle orientation before a boring cycle's shift (seed 004 @10321).
 const ORIENT: u16 = 19;
 
+/// Whether this build has a language that asks for the boring works with a
+/// spindle stop, an operator stop or an oriented shift (FANUC M G86/G88/G76/G87,
+/// SINUMERIK CYCLE86-89): without one their code is left out.
+pub(crate) const BORING: bool = crate::MILL || crate::SIEMENS;
+
 /// Where a hole cycle is.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct HoleGen {
@@ -96,6 +101,15 @@ impl HoleGen {
         HoleGen { spindle: Some(dir), ..self }
     }
 
+    /// The lead of a tapping cycle (what the emitter's [`Step::Tap`] and
+    /// [`Step::FeedPerRev`] move at), 0 for the others.
+    pub fn lead(&self) -> i64 {
+        match self.work {
+            HoleWork::RigidTap { lead, .. } | HoleWork::FloatTap { lead, .. } => lead,
+            _ => 0,
+        }
+    }
+
     /// The current hole's position with the drilling axis at `v`.
     #[inline(never)]
     fn at(&self, v: i64) -> Pos {
@@ -129,7 +143,9 @@ impl HoleGen {
             Phase::Done => return Ok(false),
             Phase::Position => {
                 push(out, Step::RapidTo(self.at(self.positioning_level())))?;
-                if let HoleWork::BackBore { shift, restart } = self.work {
+                // The boring works of a machining centre (G86/G88/G76/G87) and of the
+                // SINUMERIK CYCLE86-89: without either their code is left out.
+                if BORING && let HoleWork::BackBore { shift, restart } = self.work {
                     self.back_bore_in(shift, restart, out)?;
                 } else {
                     push(out, Step::RapidTo(self.at(self.r_level)))?;
@@ -186,11 +202,11 @@ impl HoleGen {
                 push(out, Step::RapidTo(self.at(self.reached - dir * d)))?;
                 push(out, Step::FeedTo(self.at(next)))?;
             }
-            HoleWork::RigidTap { lead, dir: sd, .. } => {
-                push(out, Step::Tap { to: self.at(next), lead, dir: sd })?;
+            HoleWork::RigidTap { dir: sd, .. } => {
+                push(out, Step::Tap { to: self.at(next), dir: sd })?;
             }
-            HoleWork::FloatTap { lead, stop_at_bottom, .. } => {
-                push(out, Step::FeedPerRev(self.at(next), lead))?;
+            HoleWork::FloatTap { stop_at_bottom, .. } => {
+                push(out, Step::FeedPerRev(self.at(next)))?;
                 if stop_at_bottom {
                     push(out, Step::Spindle(SpindleDir::Stop))?;
                 }
@@ -208,11 +224,11 @@ impl HoleGen {
         }
         let back = if deep { self.r_level } else { next - dir * d };
         match self.work {
-            HoleWork::RigidTap { lead, dir: sd, .. } => {
-                push(out, Step::Tap { to: self.at(back), lead, dir: reverse(sd) })?;
+            HoleWork::RigidTap { dir: sd, .. } => {
+                push(out, Step::Tap { to: self.at(back), dir: reverse(sd) })?;
                 if deep {
                     // Deep rigid peck: back in to the depth reached, locked to the spindle.
-                    push(out, Step::Tap { to: self.at(next), lead, dir: sd })?;
+                    push(out, Step::Tap { to: self.at(next), dir: sd })?;
                 }
             }
             _ => push(out, Step::RapidTo(self.at(back)))?,
@@ -280,6 +296,13 @@ impl HoleGen {
                 push(out, Step::Feedrate(feed_out))?;
                 push(out, Step::FeedTo(r))?;
             }
+            // The boring works below come only from a machining centre's table
+            // and the SINUMERIK cycles.
+            HoleWork::BoreStop { .. }
+            | HoleWork::BoreManual { .. }
+            | HoleWork::FineBore { .. }
+            | HoleWork::BackBore { .. }
+                if !BORING => {}
             HoleWork::BoreStop { restart } | HoleWork::BoreManual { restart } => {
                 push(out, Step::Spindle(SpindleDir::Stop))?;
                 if matches!(self.work, HoleWork::BoreManual { .. }) {
@@ -302,19 +325,19 @@ impl HoleGen {
                 push(out, Step::RapidTo(self.at(self.initial)))?;
                 return push(out, Step::Spindle(restart));
             }
-            HoleWork::RigidTap { lead, dir, dwell_r_ms, restore, .. } => {
-                push(out, Step::Tap { to: r, lead, dir: reverse(dir) })?;
+            HoleWork::RigidTap { dir, dwell_r_ms, restore, .. } => {
+                push(out, Step::Tap { to: r, dir: reverse(dir) })?;
                 if dwell_r_ms > 0 {
                     push(out, Step::Dwell(dwell_r_ms))?;
                 }
                 push(out, Step::Spindle(restore))?;
             }
-            HoleWork::FloatTap { lead, dir, after, .. } => {
+            HoleWork::FloatTap { dir, after, .. } => {
                 if self.dwell_ms > 0 {
                     push(out, Step::Dwell(self.dwell_ms))?;
                 }
                 push(out, Step::Spindle(reverse(dir)))?;
-                push(out, Step::FeedPerRev(r, lead))?;
+                push(out, Step::FeedPerRev(r))?;
                 push(out, Step::Spindle(after))?;
             }
         }
@@ -477,9 +500,9 @@ mod tests {
         assert_eq!(
             steps(mill(tap))[2..],
             [
-                Step::FeedPerRev(xyz(10, 20, -10), 1),
+                Step::FeedPerRev(xyz(10, 20, -10)),
                 Step::Spindle(SpindleDir::Cw),
-                Step::FeedPerRev(xyz(10, 20, 2), 1),
+                Step::FeedPerRev(xyz(10, 20, 2)),
                 Step::Spindle(SpindleDir::Ccw),
                 Step::RapidTo(xyz(10, 20, 50)),
             ]

@@ -29,6 +29,7 @@
 #[cfg(feature = "siemens")]
 mod calls;
 pub mod curve;
+mod drilling;
 mod emit;
 mod finish;
 #[cfg_attr(not(feature = "siemens"), allow(dead_code))]
@@ -311,7 +312,7 @@ impl<'a> core::ops::DerefMut for CycleStage<'a> {
 /// tapping, and the M29 rules (2.22.1). Returns whether the previous block was a
 /// thread block.
 #[inline]
-pub fn before_block(cmd: &Command, st: &mut State) -> Result<bool, AlarmKind> {
+pub fn before_block(cmd: &Command, st: &mut State, cfg: &MachineConfig) -> Result<bool, AlarmKind> {
     let quiet = cmd.m.is_empty()
         && cmd.g.drilling.is_none()
         && cmd.g.one_shot.is_none()
@@ -326,25 +327,42 @@ pub fn before_block(cmd: &Command, st: &mut State) -> Result<bool, AlarmKind> {
         }
         return Ok(false);
     }
-    cycle_words(cmd, st)
+    cycle_words(cmd, st, cfg)
 }
 
 /// [`before_block`] for a block with M words, a drilling or group 00 code, or
 /// with a thread chain or a rigid tap in progress.
 #[inline(never)]
-fn cycle_words(cmd: &Command, st: &mut State) -> Result<bool, AlarmKind> {
+fn cycle_words(cmd: &Command, st: &mut State, cfg: &MachineConfig) -> Result<bool, AlarmKind> {
+    use GCode::{FaceTap, LeftTap, SideTap, Tap};
     let chained = core::mem::replace(&mut st.cycle.thread_chain, false);
     if cmd.g.one_shot.is_some_and(|c| c != GCode::Dwell) || cmd.g.motion.is_some() {
         st.cycle.single = None;
     }
+    if let Some(code) = cmd.g.drilling.filter(|c| args::is_mill_hole(*c)) {
+        if !args::is_hole(st.modal.drilling) {
+            // A machining centre's hole mode starts: G00–G03 cancelled the mode
+            // with its data (seed 004 @10250); a new initial level follows.
+            st.cycle.hole = Default::default();
+            st.mill.initial = None;
+        }
+        if !matches!(code, Tap | LeftTap) && st.cycle.rigid != RigidTap::Off {
+            // Another cycle code ends rigid tapping (seed 004 @8400).
+            st.cycle.rigid = RigidTap::Off;
+        }
+    }
     let m29 = cmd.m.iter().any(|&(m, _)| m == 29);
-    let taps = matches!(cmd.g.drilling, Some(GCode::FaceTap | GCode::SideTap))
-        || (cmd.g.drilling.is_none() && matches!(st.modal.drilling, GCode::FaceTap | GCode::SideTap));
+    let taps = matches!(cmd.g.drilling, Some(FaceTap | SideTap | Tap | LeftTap))
+        || (cmd.g.drilling.is_none() && matches!(st.modal.drilling, FaceTap | SideTap | Tap | LeftTap));
     if m29 {
         if st.cycle.rigid != RigidTap::Off {
             return Err(AlarmKind::RigidTapSequence);
         }
-        let rpm = cmd.speed.filter(|s| *s > 0).ok_or(AlarmKind::RigidTapSpeed)?;
+        // A machining centre's M29 stands alone and taps at the S in force (seed
+        // 004 @8320); a lathe's takes S in its block (2.22.1).
+        let mill = crate::is_mill(cfg);
+        let s = if mill { cmd.speed.or(Some(st.spindle.rpm)) } else { cmd.speed };
+        let rpm = s.filter(|s| *s > 0).ok_or(AlarmKind::RigidTapSpeed)?;
         st.cycle.rigid = RigidTap::Pending { rpm, before: st.spindle.dir };
     } else if matches!(st.cycle.rigid, RigidTap::Pending { .. }) && !taps {
         if cmd.speed.is_some() {
@@ -379,6 +397,7 @@ pub fn after_spindle(cmd: &Command, st: &mut State, out: &mut Staged<'_>) -> Res
 }
 
 /// The cycle code that takes the block's motion, if any.
+#[inline(always)]
 pub fn cycle_of(cmd: &Command, st: &State) -> Option<GCode> {
     let user = cmd.axis_user(st);
     args::is_cycle(user).then_some(user)
@@ -386,7 +405,7 @@ pub fn cycle_of(cmd: &Command, st: &State) -> Option<GCode> {
 
 /// Executes the block's cycle, if it has one; false if the block is not a cycle
 /// block (plain motion goes on as usual).
-#[inline]
+#[inline(always)]
 pub fn execute<X: Executor>(
     cmd: &Command,
     st: &mut State,
@@ -415,9 +434,7 @@ fn cycle_block<X: Executor>(
         return Ok(true);
     }
     if args::is_hole(code) {
-        if let Some(generator) = single::hole_block(code, cmd, st, ctx.cfg)? {
-            start_cycle(Emitter::new(*st, cmd.line), Gen::Hole(generator), ctx.out)?;
-        }
+        hole_cycle(code, cmd, st, ctx)?;
         return Ok(true);
     }
     if st.modal.plane != Plane::Zx {
@@ -429,14 +446,32 @@ fn cycle_block<X: Executor>(
         }
     }
     match code {
-        GCode::TurningCycle | GCode::FacingCycle | GCode::ThreadCycle => {
-            if let Some(generator) = single::single_block(code, cmd, st, ctx.cfg)? {
-                start_cycle(Emitter::new(*st, cmd.line), generator, ctx.out)?;
-            }
-        }
+        GCode::TurningCycle | GCode::FacingCycle | GCode::ThreadCycle => single_cycle(code, cmd, st, ctx)?,
         _ => multiple::<X>(code, cmd, st, ctx)?,
     }
     Ok(true)
+}
+
+/// A hole cycle's block (G83–G89 of a lathe, G73–G89 of a machining centre). Out of
+/// line: its emitter (a copy of the state) stays out of [`cycle_block`]'s frame,
+/// which is on the recursion of a G71–G73 profile (docs/STACK.md).
+#[inline(never)]
+fn hole_cycle(code: GCode, cmd: &Command, st: &mut State, ctx: &mut Ctx<'_, '_>) -> Result<(), AlarmKind> {
+    let block = if crate::MILL && args::is_mill_hole(code) { drilling::hole_block } else { single::hole_block };
+    if let Some(generator) = block(code, cmd, st, ctx.cfg)? {
+        let em = Emitter { lead: generator.lead(), ..Emitter::new(*st, cmd.line) };
+        start_cycle(em, Gen::Hole(generator), ctx.out)?;
+    }
+    Ok(())
+}
+
+/// G90/G92/G94's block, out of line as [`hole_cycle`].
+#[inline(never)]
+fn single_cycle(code: GCode, cmd: &Command, st: &mut State, ctx: &mut Ctx<'_, '_>) -> Result<(), AlarmKind> {
+    if let Some(generator) = single::single_block(code, cmd, st, ctx.cfg)? {
+        start_cycle(Emitter::new(*st, cmd.line), generator, ctx.out)?;
+    }
+    Ok(())
 }
 
 /// G70–G76: the setup blocks write their parameters, the cycles start their
@@ -621,7 +656,7 @@ fn target(cmd: &Command, st: &State, cfg: &MachineConfig) -> Result<Pt, AlarmKin
 /// Stages a parameter write (applied only if the block succeeds).
 fn write(ctx: &mut Ctx<'_, '_>, id: Param, v: Option<i64>) -> Result<(), AlarmKind> {
     if let Some(v) = v {
-        ctx.out.params.push((id, v)).map_err(|_| AlarmKind::Overflow)?;
+        ctx.out.writes.push((crate::stage::Setting::Param(id), v)).map_err(|_| AlarmKind::Overflow)?;
     }
     Ok(())
 }
@@ -655,7 +690,7 @@ impl Expansion {
     /// from the block's state `st` — the position back at the start point, the
     /// spindle as the cycle leaves it (floating tapping stops it, 2.22.3 note 2;
     /// rigid tapping restores it) and, after G70, the modal changes of its blocks.
-    pub fn settle(&self, st: &mut State) {
+    pub fn settle(&self, st: &mut State, cfg: &MachineConfig) {
         let end = self.final_state();
         st.pos = end.pos;
         st.moved |= end.moved;
@@ -665,6 +700,11 @@ impl Expansion {
             st.cycle.single = cycle.single;
         }
         st.spindle.dir = end.spindle.dir;
+        if crate::MILL && st.mill.frame.active != 0 {
+            // A machining centre's transformation: the programmed position is where
+            // the cycle left the tool.
+            crate::moves::frame::resync(st, cfg);
+        }
     }
 }
 
@@ -686,7 +726,9 @@ mod tests {
         // from block to block (336 bytes here, 304 on the M4): returning it by
         // value cost ~330 instructions a block. And the FANUC macro calls' state:
         // a call block as read with its arguments (264 + 24), the G66 modal calls
-        // (832), the call codes (64).
+        // (832), the call codes (64). And a machining centre's part of the
+        // configuration (the 48 G54.1 offsets, 576 bytes) and of the state (~150
+        // bytes in each of its four copies).
         let vars = core::mem::size_of::<crate::lang::fanuc::macros::Variables>();
         assert!(vars <= 4_240, "Variables is {vars} bytes");
         let calls = core::mem::size_of::<crate::lang::fanuc::calls::CallRead>()
@@ -701,7 +743,9 @@ mod tests {
             + 1024;
         #[cfg(not(feature = "siemens"))]
         let siemens = 0;
-        assert!(interp < 17 * 1024 + vars + exp + calls + siemens, "Interpreter is {interp} bytes");
-        assert!(interp <= 28_264 + siemens, "Interpreter is {interp} bytes");
+        assert!(interp < 17 * 1024 + 1_536 + vars + exp + calls + siemens, "Interpreter is {interp} bytes");
+        // 28,264 on main before the mill profile; the mill adds 1,200 (G54.1 table,
+        // the mill's part of the state in the interpreter's and the dry run's copies).
+        assert!(interp <= 29_464 + siemens, "Interpreter is {interp} bytes");
     }
 }

@@ -179,8 +179,8 @@ pub fn hole_block(
     if cmd.g.drilling.is_none() && !cmd.has_axes() {
         return Ok(None);
     }
-    // The positioning plane is the one across the drilling axis (C standing in
-    // for the plane's second axis on a lathe without Y).
+    // The holes are positioned in the plane normal to the drilling axis (on a
+    // lathe C stands in for the plane's second axis).
     let plane = match axis {
         Axis::Z => Plane::Xy,
         Axis::X => Plane::Yz,
@@ -251,26 +251,32 @@ fn hole_axis(code: GCode, plane: Plane) -> Axis {
     }
 }
 
-/// Rigid (after M29) or floating tapping, with the lead F/S (G98) or F (G99).
-fn tap_work(st: &mut State, cfg: &MachineConfig, q: i64) -> Result<HoleWork, AlarmKind> {
+/// The lead of tapping at `rpm`: F/S under feed per minute (seed 004 @8614: "螺距
+/// T=F/S"), F under feed per revolution; alarms for F0 and a stopped spindle.
+pub(super) fn tap_lead(st: &State, rpm: u32) -> Result<i64, AlarmKind> {
     let mode = st.modal.feed_mode;
     let f = st.feed.get(mode);
     if f <= 0 {
         return Err(AlarmKind::FeedZero);
     }
-    let lead_of = |rpm: u32| -> Result<i64, AlarmKind> {
-        match mode {
-            FeedMode::PerRev => Ok(f),
-            FeedMode::PerMin if rpm > 0 => Ok(crate::units::div_round(f, i64::from(rpm))),
-            FeedMode::PerMin => Err(AlarmKind::FeedPerRevSpindleStopped),
-        }
-    };
+    match mode {
+        FeedMode::PerRev => Ok(f),
+        FeedMode::PerMin if rpm > 0 => Ok(crate::units::div_round(f, i64::from(rpm))),
+        FeedMode::PerMin => Err(AlarmKind::FeedPerRevSpindleStopped),
+    }
+}
+
+/// Rigid (after M29) or floating tapping, with the lead F/S (G98) or F (G99).
+fn tap_work(st: &mut State, cfg: &MachineConfig, q: i64) -> Result<HoleWork, AlarmKind> {
+    if st.feed.get(st.modal.feed_mode) <= 0 {
+        return Err(AlarmKind::FeedZero);
+    }
     match st.cycle.rigid {
         RigidTap::Pending { rpm, before } | RigidTap::Active { rpm, before } => {
             st.cycle.rigid = RigidTap::Active { rpm, before };
             let dir = if cfg.params.flag(Param::ReverseTapping) { SpindleDir::Ccw } else { SpindleDir::Cw };
             Ok(HoleWork::RigidTap {
-                lead: lead_of(rpm)?,
+                lead: tap_lead(st, rpm)?,
                 q,
                 deep: cfg.params.flag(Param::DeepPeckTapping),
                 d: cfg.params.get(Param::PeckTapClearance),
@@ -291,7 +297,7 @@ fn tap_work(st: &mut State, cfg: &MachineConfig, q: i64) -> Result<HoleWork, Ala
             st.cycle.tap_dir = dir;
             // 2.22.3: M05 at the bottom and at R, M03/M04 again for the next hole.
             Ok(HoleWork::FloatTap {
-                lead: lead_of(st.spindle.rpm)?,
+                lead: tap_lead(st, st.spindle.rpm)?,
                 dir,
                 turning,
                 after: SpindleDir::Stop,

@@ -5,9 +5,11 @@ use crate::alarm::AlarmKind;
 use crate::axis::Axis;
 use crate::canon::Endpoint;
 use crate::command::Command;
+use crate::command::cycle::is_hole;
 use crate::config::{MachineConfig, Param};
 use crate::env::Environment;
 use crate::modal::State;
+use crate::modal::mill::{FRAME_AXES, narrow};
 use crate::moves::motion::{endpoint, rapid_to, target};
 use crate::stage::Staged;
 
@@ -80,7 +82,21 @@ pub(super) fn reference_return(
             return Err(AlarmKind::ReferenceNotEstablished { letter: a.letter() });
         }
     }
+    let mill = crate::is_mill(cfg);
+    if mill && is_hole(st.modal.drilling) {
+        return Err(AlarmKind::ReferenceInCycle);
+    }
     let middle = endpoint(target(cmd, st, cfg)?, st, cfg)?;
+    if mill {
+        // G29 comes back through this point: each axis named keeps it, in work
+        // coordinates (seed 004 @5400: "系统对中间点有记憶功能").
+        for (i, a) in FRAME_AXES.into_iter().enumerate() {
+            if cmd.axes[a.index()].is_some() {
+                st.mill.g28[i] = narrow(middle.work[a])?;
+                st.mill.g28_axes.insert(a);
+            }
+        }
+    }
     let reference = cfg.reference[usize::from(cmd.reference - 1)];
     let mut machine = middle.machine;
     for a in Axis::ALL {
@@ -91,4 +107,36 @@ pub(super) fn reference_return(
     let home = Endpoint { machine, work: machine - st.work_to_machine(cfg) };
     rapid_to(middle, st, cfg, out, true)?;
     rapid_to(home, st, cfg, out, true)
+}
+
+/// G29 (a machining centre's, seed 004 @5826): each axis named rapids to the
+/// intermediate point G28 or G30 gave it, then to the point commanded — in work
+/// coordinates under G90, as a displacement from the intermediate point under
+/// G91. The axes move independently, as G28's do.
+pub(super) fn return_from_reference(
+    cmd: &Command,
+    st: &mut State,
+    cfg: &MachineConfig,
+    env: &dyn Environment,
+    out: &mut Staged<'_>,
+) -> Result<(), AlarmKind> {
+    if is_hole(st.modal.drilling) {
+        return Err(AlarmKind::ReferenceInCycle);
+    }
+    let here = st.work_pos(cfg);
+    let (mut middle, mut end) = (here, here);
+    for a in Axis::ALL {
+        let Some(w) = cmd.axes[a.index()] else { continue };
+        if !env.referenced(a) {
+            return Err(AlarmKind::ReferenceNotEstablished { letter: a.letter() });
+        }
+        let Some(i) = FRAME_AXES.iter().position(|x| *x == a).filter(|_| st.mill.g28_axes.contains(a)) else {
+            return Err(AlarmKind::NoIntermediatePoint { letter: a.letter() });
+        };
+        middle[a] = i64::from(st.mill.g28[i]);
+        end[a] = if w.incremental { middle[a].checked_add(w.value).ok_or(AlarmKind::Overflow)? } else { w.value };
+    }
+    let (middle, end) = (endpoint(middle, st, cfg)?, endpoint(end, st, cfg)?);
+    rapid_to(middle, st, cfg, out, true)?;
+    rapid_to(end, st, cfg, out, true)
 }

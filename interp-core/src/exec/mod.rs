@@ -5,6 +5,7 @@
 //! cycles, the contour look-ahead and the move helpers ([`crate::moves`]) below it.
 
 mod coords;
+mod mill;
 mod polygon;
 
 use crate::alarm::AlarmKind;
@@ -33,8 +34,65 @@ pub fn execute(
     polar::check_codes(cmd, st)?;
     polygon::check_block(cmd, st)?;
     let from = st.polar.map_or(st.pos, |p| p.virtual_pos());
-    let chained = cycles::before_block(cmd, st)?;
+    let chained = cycles::before_block(cmd, st, cfg)?;
     apply_modal(cmd, st);
+    if crate::MILL && cmd.g.mill {
+        return mill_block(cmd, st, cfg, env, out, from, chained);
+    }
+    full(cmd, st, cfg, env, out, from, chained)
+}
+
+/// [`execute`] of a machining centre's block that needs its paths (see
+/// [`crate::command::GSet::mill`]): tool length, D, the transformations, T/M06,
+/// G10, G29 around the full way. Never inlined: the adapted copy of the block stays
+/// out of [`execute`]'s frame.
+#[inline(never)]
+fn mill_block(
+    cmd: &Command,
+    st: &mut State,
+    cfg: &MachineConfig,
+    env: &dyn Environment,
+    out: &mut CycleStage<'_>,
+    from: Pos,
+    chained: bool,
+) -> Result<Flow, AlarmKind> {
+    let mut adapted = cmd.clone();
+    let prepared = mill::prepare(cmd, st, cfg, &mut adapted)?;
+    let (motion, side) = (st.modal.motion, st.modal.nose_comp);
+    if prepared.mirrored {
+        // A mirror image turns G02 into G03 and G41 into G42 (FANUC); the modal
+        // codes stay as programmed.
+        st.modal.motion = match motion {
+            GCode::ArcCw => GCode::ArcCcw,
+            GCode::ArcCcw => GCode::ArcCw,
+            m => m,
+        };
+        st.modal.nose_comp = match side {
+            GCode::NoseCompLeft => GCode::NoseCompRight,
+            GCode::NoseCompRight => GCode::NoseCompLeft,
+            c => c,
+        };
+    }
+    let done = full(&adapted, st, cfg, env, out, from, chained);
+    st.modal.motion = motion;
+    st.modal.nose_comp = side;
+    let flow = done?;
+    mill::after(st, cfg, &prepared);
+    Ok(flow)
+}
+
+/// [`execute`] after the block's modal codes, for every block that does not take
+/// the short way.
+#[allow(clippy::too_many_arguments)]
+fn full(
+    cmd: &Command,
+    st: &mut State,
+    cfg: &MachineConfig,
+    env: &dyn Environment,
+    out: &mut CycleStage<'_>,
+    from: Pos,
+    chained: bool,
+) -> Result<Flow, AlarmKind> {
     stroke::apply(cmd, st, cfg)?;
     spindle::before_motion(cmd, st, cfg, out)?;
     cycles::after_spindle(cmd, st, out)?;
@@ -46,8 +104,10 @@ pub fn execute(
         Some(GCode::LocalFrame) => coords::local_frame(cmd, st),
         Some(GCode::MachineCoordinates) => coords::machine_move(cmd, st, cfg, out)?,
         Some(GCode::ReferenceReturn | GCode::ReferenceReturnN) => coords::reference_return(cmd, st, cfg, env, out)?,
+        Some(GCode::ReturnFromReference) if crate::MILL => coords::return_from_reference(cmd, st, cfg, env, out)?,
+        Some(GCode::DataSetting) if crate::MILL => mill::data(cmd, st, cfg, out)?,
         Some(GCode::Language(_)) => {}
-        _ if cmd.g.stroke.is_some() => {}
+        _ if cmd.g.stroke.is_some() || cmd.g.frame.is_some() => {}
         _ if cmd.g.polygon.is_some() => polygon::switch(cmd, st, cfg, out)?,
         _ if polar::mode_change(cmd, st, cfg)? => {}
         _ if st.polar.is_some() => polar::execute(cmd, st, cfg, out)?,
@@ -82,6 +142,7 @@ fn is_plain(cmd: &Command, st: &State) -> bool {
     cmd.m.is_empty()
         && cmd.tool.is_none()
         && cmd.flow.is_none()
+        && !g.mill
         && g.one_shot.is_none()
         && g.stroke.is_none()
         && g.polygon.is_none()
@@ -102,7 +163,7 @@ fn plain(
     out: &mut CycleStage<'_>,
 ) -> Result<Flow, AlarmKind> {
     let from = st.pos;
-    let chained = cycles::before_block(cmd, st)?;
+    let chained = cycles::before_block(cmd, st, cfg)?;
     apply_modal(cmd, st);
     spindle::before_motion(cmd, st, cfg, out)?;
     cycle_or_motion(cmd, st, cfg, env, out, chained)?;
@@ -212,7 +273,9 @@ fn apply_modal(cmd: &Command, st: &mut State) {
         m.nose_comp = n;
     }
     if let Some(w) = g.work_frame {
-        m.work_frame = w;
+        // G54.1 P1–P48 (6–53) stand on G54's slot; their offset is the mill's
+        // business (exec::mill::prepare).
+        (m.work_frame, m.extra_frame) = if w < 6 { (w, 0) } else { (0, w - 5) };
     }
     if let Some(d) = g.drilling {
         m.drilling = d;
@@ -226,8 +289,12 @@ fn apply_modal(cmd: &Command, st: &mut State) {
 }
 
 /// T: index the turret and put the offset in force; the axes pick the offset up
-/// with their next move.
+/// with their next move. A machining centre's T selects and M06 changes
+/// ([`mill::tool`]).
 fn tool_change(cmd: &Command, st: &mut State, cfg: &MachineConfig, out: &mut Staged<'_>) -> Result<(), AlarmKind> {
+    if crate::is_mill(cfg) {
+        return mill::tool(cmd, st, cfg, out);
+    }
     let Some((tool, offset_number)) = cmd.tool else { return Ok(()) };
     let row = match offset_number {
         0 => ToolOffset::default(),

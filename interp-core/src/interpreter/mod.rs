@@ -158,7 +158,7 @@ struct Frame {
 #[derive(Clone, Debug, Default)]
 struct BlockCycle {
     split: usize,
-    params: heapless::Vec<(Param, i64), 8>,
+    writes: heapless::Vec<(crate::stage::Setting, i64), 8>,
     resume: Option<Cursor>,
 }
 
@@ -212,26 +212,13 @@ enum Next {
 }
 
 /// The lathe interpreter.
+///
+/// Not `repr(C)`: with a fixed field order the compiler built the ~29 KB value on
+/// the boot task's stack (firmware::shell::build's frame 27 KB, stack-bound.py's
+/// boot-path gate) and a plain G01 took 14 instructions more on the Cortex-M4
+/// than with the compiler's own order.
 #[derive(Debug)]
 pub struct Interpreter {
-    state: State,
-    /// The block checked, reused from block to block.
-    cmd: Command,
-    /// Actions waiting for the sink; also where a block stages its actions.
-    outbox: Outbox,
-    /// The block being read, reused from block to block.
-    block: Block,
-    cursor: Cursor,
-    /// Where the block the last step read (or failed to read) begins.
-    last_block: Cursor,
-    /// A held move that nose compensation found faulty while the failed block ran
-    /// (its line), for [`Interpreter::alarm_stop`].
-    fault_line: Option<u32>,
-    /// The program a run starts with.
-    main: ProgramId,
-    budget: u16,
-    /// Whether `cursor` has been set to the main program's start.
-    positioned: bool,
     phase: Phase,
     /// The language blocks are read in now (the machine's at power-on and reset;
     /// `G290`/`G291` switch it).
@@ -239,23 +226,41 @@ pub struct Interpreter {
     /// A block other than `%`/`O` has been executed in the current program level
     /// (a later `%` or `O` ends the record).
     started: bool,
-    loops: Loops,
+    /// Whether `cursor` has been set to the main program's start.
+    positioned: bool,
+    budget: u16,
+    /// The program a run starts with.
+    main: ProgramId,
+    cursor: Cursor,
+    /// Where the block the last step read (or failed to read) begins.
+    last_block: Cursor,
+    /// A held move that nose compensation found faulty while the failed block ran
+    /// (its line), for [`Interpreter::alarm_stop`].
+    fault_line: Option<u32>,
+    /// The code calls the level in force switches off ([`Caller::switches_off`]).
+    codes_off: u8,
+    /// The block being read, reused from block to block.
+    block: Block,
+    /// The block checked, reused from block to block.
+    cmd: Command,
+    state: State,
+    /// Actions waiting for the sink; also where a block stages its actions.
+    outbox: Outbox,
     cfg: MachineConfig,
+    loops: Loops,
+    calls: heapless::Vec<Frame, MAX_CALL_DEPTH>,
     /// The canned cycle being delivered (see [`crate::cycles`]).
     cycle: Option<Expansion>,
-    vars: Variables,
-    calls: heapless::Vec<Frame, MAX_CALL_DEPTH>,
     /// A cycle block whose dry run is still going on.
     validating: Option<Validating>,
-    /// The SINUMERIK front end's state: variables, the block's words, MCALL.
-    siemens: siemens::Front,
     /// The codes that call programs at the level in force, and the macro call
     /// block just read with its arguments (`#1–#33` of the level it starts).
     macro_calls: Calls,
     /// The G66 modal calls in force.
     modal: ModalCalls,
-    /// The code calls the level in force switches off ([`Caller::switches_off`]).
-    codes_off: u8,
+    vars: Variables,
+    /// The SINUMERIK front end's state: variables, the block's words, MCALL.
+    siemens: siemens::Front,
 }
 
 /// The machine configuration of an [`Interpreter`], borrowed to be changed (see
@@ -411,6 +416,12 @@ impl Interpreter {
         self.state = State::power_on(&self.cfg, old.pos);
         self.state.frames.shift = old.frames.shift;
         self.state.tool = old.tool;
+        if crate::is_mill(&self.cfg) {
+            // A machining centre's reset cancels tool length and cutter radius (G49,
+            // G40); the tool in the spindle and the one selected stay.
+            self.state.tool = crate::modal::ToolState { tool: old.tool.tool, ..Default::default() };
+            self.state.mill.selected = old.mill.selected;
+        }
         if keep_local {
             self.state.frames.local = old.frames.local;
         }
@@ -430,6 +441,10 @@ impl Interpreter {
         self.started = false;
         self.state.moved = false;
         self.state.contour.clear();
+        // The offsets may have been edited since (config_mut).
+        if crate::MILL {
+            self.state.refresh_extra_frame(&self.cfg);
+        }
         self.calls.clear();
         self.loops.clear();
         self.siemens.rewind();
@@ -729,7 +744,7 @@ impl Interpreter {
             Ok(false) => Ok(Progress::Yielded { line }),
             Ok(true) => {
                 if let Some(mut v) = self.validating.take() {
-                    v.dry.settle(&mut v.state);
+                    v.dry.settle(&mut v.state, &self.cfg);
                     self.state = v.state;
                     self.commit_cycle(&v.block);
                     self.go(v.next);
@@ -823,9 +838,9 @@ impl Interpreter {
         let faulty = staged.faulty_move;
         if done.is_ok() {
             cycle.split = staged.split.unwrap_or(staged.actions.len());
-            if !staged.params.is_empty() {
-                // Only cycle blocks set parameters: most blocks move nothing here.
-                cycle.params = core::mem::take(&mut staged.params);
+            if !staged.writes.is_empty() {
+                // Only cycle and G10 blocks write settings: most blocks move nothing here.
+                cycle.writes = core::mem::take(&mut staged.writes);
             }
             cycle.resume = staged.resume;
         }
@@ -907,7 +922,7 @@ impl Interpreter {
     #[inline]
     fn commit_cycle(&mut self, c: &BlockCycle) {
         // Most blocks start no cycle and write no parameter.
-        if self.cycle.is_some() || !c.params.is_empty() || c.resume.is_some() {
+        if self.cycle.is_some() || !c.writes.is_empty() || c.resume.is_some() {
             self.hand_over(c);
         }
     }
@@ -918,8 +933,12 @@ impl Interpreter {
         if let Some(exp) = self.cycle.as_mut() {
             exp.take_tail(&mut self.outbox, c.split);
         }
-        for &(p, v) in &c.params {
-            self.cfg.params.set(p, v);
+        for &(s, v) in &c.writes {
+            s.apply(&mut self.cfg, v);
+        }
+        // A G10 may have moved the G54.1 frame in force.
+        if crate::MILL {
+            self.state.refresh_extra_frame(&self.cfg);
         }
         if let Some(r) = c.resume.filter(|r| r.offset > self.cursor.offset) {
             self.jump(Cursor { program: self.cursor.program, ..r });

@@ -5,8 +5,8 @@
 //! that reads it) sits below that layer.
 
 use crate::alarm::AlarmKind;
-use crate::axis::Pos;
-use crate::canon::{Action, Canon, Plane};
+use crate::axis::{Axis, Pos};
+use crate::canon::{Action, Canon, Endpoint, Feed, FeedMode, Move, Plane, SpindleSpeed};
 
 /// What `,C` or `,R` asks for at the end of a block's move (2.23).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -52,11 +52,23 @@ pub struct Comp {
     /// The held move is the start-up move (it starts off the offset path: no
     /// interference check on it).
     pub starting: bool,
+    /// After a temporary cancel the tool stands at `centre`, an offset point, not
+    /// at the programmed point: a move along the plane's normal keeps it there.
+    pub off_path: bool,
 }
 
 impl Default for Comp {
     fn default() -> Self {
-        Comp { side: None, radius: 0, tip: 0, plane: Plane::Zx, engaged: false, centre: (0, 0), starting: false }
+        Comp {
+            side: None,
+            radius: 0,
+            tip: 0,
+            plane: Plane::Zx,
+            engaged: false,
+            centre: (0, 0),
+            starting: false,
+            off_path: false,
+        }
     }
 }
 
@@ -69,14 +81,56 @@ pub const HOLD: usize = 4;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 enum Aside {
-    Dwell { ms: u32 },
+    Dwell {
+        ms: u32,
+    },
     Spindle(crate::canon::SpindleCommand),
-    Tool { tool: u16, offset: u16 },
-    Aux { m: u16 },
-    Stop { optional: bool },
-    End { rewind: bool },
+    Tool {
+        tool: u16,
+        offset: u16,
+    },
+    Aux {
+        m: u16,
+    },
+    Stop {
+        optional: bool,
+    },
+    End {
+        rewind: bool,
+    },
     Polygon(Option<crate::canon::PolygonSync>),
+    /// A move along the compensation plane's normal only (a mill's plunge or
+    /// retract between compensated moves): made where the compensated path is
+    /// when its turn comes, at the corner. Its machine coordinate on the normal,
+    /// its feed with the [`PLUNGE_RAPID`]/[`PLUNGE_PER_REV`]/[`PLUNGE_EXACT`]
+    /// flags in the top byte; the 64-bit values in halves, so the entry keeps the
+    /// 4-byte alignment and the size of the others.
+    Plunge {
+        to: [u32; 2],
+        feed: [u32; 2],
+    },
 }
+
+/// An `i64` in two halves (see [`Aside::Plunge`]).
+fn halves(v: i64) -> [u32; 2] {
+    let u = v as u64;
+    [u as u32, (u >> 32) as u32]
+}
+
+/// The `i64` of [`halves`].
+fn whole(h: [u32; 2]) -> i64 {
+    (u64::from(h[0]) | (u64::from(h[1]) << 32)) as i64
+}
+
+/// [`Aside::Plunge`] flag: a rapid.
+const PLUNGE_RAPID: u8 = 1;
+/// [`Aside::Plunge`] flag: feed per revolution.
+const PLUNGE_PER_REV: u8 = 2;
+/// [`Aside::Plunge`] flag: exact stop at its end.
+const PLUNGE_EXACT: u8 = 4;
+/// The bits of [`Aside::Plunge`]'s feed that hold the feed (nm/min or nm/rev, far
+/// below 2^56).
+const FEED_BITS: i64 = (1 << 56) - 1;
 
 impl Aside {
     fn of(a: &Action) -> Option<Aside> {
@@ -92,7 +146,9 @@ impl Aside {
         })
     }
 
-    fn action(self) -> Action {
+    /// The action; a plunge ends at `at` (where the compensated path is, machine and
+    /// work) with its own coordinate on `normal`.
+    fn action(self, at: &Endpoint, normal: Axis, spindle: SpindleSpeed) -> Action {
         match self {
             Aside::Dwell { ms } => Action::Dwell { ms },
             Aside::Spindle(s) => Action::Spindle(s),
@@ -101,7 +157,67 @@ impl Aside {
             Aside::Stop { optional } => Action::Stop { optional },
             Aside::End { rewind } => Action::End { rewind },
             Aside::Polygon(p) => Action::Polygon(p),
+            // Only a mill's compensation makes plunges (`contour::comp::plunge`):
+            // without the profile the arm below is all that is compiled.
+            Aside::Plunge { .. } if !crate::MILL => Action::Dwell { ms: 0 },
+            Aside::Plunge { to, feed } => {
+                let (to, packed) = (whole(to), whole(feed));
+                let (feed, flags) = (packed & FEED_BITS, (packed >> 56) as u8);
+                let mut ep = *at;
+                let shift = ep.machine[normal] - ep.work[normal];
+                ep.machine[normal] = to;
+                ep.work[normal] = to - shift;
+                let mode = if flags & PLUNGE_PER_REV != 0 { FeedMode::PerRev } else { FeedMode::PerMin };
+                let m = Move {
+                    to: ep,
+                    feed: Feed { mode, value: feed },
+                    spindle,
+                    exact_stop: flags & PLUNGE_EXACT != 0,
+                    independent: false,
+                };
+                if flags & PLUNGE_RAPID != 0 { Action::Rapid(m) } else { Action::Linear(m) }
+            }
         }
+    }
+
+    /// A plunge of move `c` (a rapid or a line) along `normal`.
+    fn plunge(c: &Canon, normal: Axis) -> Option<Aside> {
+        let (m, rapid) = match c.action {
+            Action::Rapid(m) => (m, true),
+            Action::Linear(m) => (m, false),
+            _ => return None,
+        };
+        let mut flags = if rapid { PLUNGE_RAPID } else { 0 };
+        if m.feed.mode == FeedMode::PerRev {
+            flags |= PLUNGE_PER_REV;
+        }
+        if m.exact_stop {
+            flags |= PLUNGE_EXACT;
+        }
+        let feed = (m.feed.value & FEED_BITS) | (i64::from(flags) << 56);
+        Some(Aside::Plunge { to: halves(m.to.machine[normal]), feed: halves(feed) })
+    }
+}
+
+/// An action waiting behind a held move, with its line.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Waiting {
+    line: u32,
+    aside: Aside,
+}
+
+impl Waiting {
+    /// The action, a plunge made at `at` (see [`Aside::action`]).
+    pub(crate) fn canon(self, at: &Endpoint, normal: Axis, spindle: SpindleSpeed) -> Canon {
+        Canon { line: self.line, action: self.aside.action(at, normal, spindle) }
+    }
+
+    /// The action of a waiting non-motion action (never a plunge: those wait only
+    /// in the compensation's stage, which emits them with [`Waiting::canon`]).
+    pub(crate) fn plain(self) -> Canon {
+        let at = Endpoint { machine: Pos::ZERO, work: Pos::ZERO };
+        let none = SpindleSpeed { rpm: None, css: None, max_rpm: 0 };
+        self.canon(&at, Axis::Z, none)
     }
 }
 
@@ -114,7 +230,7 @@ pub struct Buffer {
     /// Machine position where the held move starts (as programmed).
     pub(crate) start: Pos,
     /// The actions after it (with their lines), in order.
-    after: [Option<(u32, Aside)>; HOLD],
+    after: [Option<Waiting>; HOLD],
 }
 
 impl Default for Buffer {
@@ -136,16 +252,28 @@ impl Buffer {
     /// Appends a non-motion action behind the held move (alarm 4044 when full).
     pub(crate) fn push(&mut self, c: Canon) -> Result<(), AlarmKind> {
         let aside = Aside::of(&c.action).ok_or(AlarmKind::ContourBufferFull)?;
+        self.wait(c.line, aside)
+    }
+
+    /// Appends move `c`, which moves along `normal` only, behind the held move
+    /// (alarm 4044 when full); false if it is no rapid or line.
+    pub(crate) fn push_plunge(&mut self, c: Canon, normal: Axis) -> Result<bool, AlarmKind> {
+        let Some(aside) = Aside::plunge(&c, normal) else { return Ok(false) };
+        self.wait(c.line, aside)?;
+        Ok(true)
+    }
+
+    fn wait(&mut self, line: u32, aside: Aside) -> Result<(), AlarmKind> {
         let slot = self.after.iter_mut().find(|s| s.is_none()).ok_or(AlarmKind::ContourBufferFull)?;
-        *slot = Some((c.line, aside));
+        *slot = Some(Waiting { line, aside });
         Ok(())
     }
 
     /// Takes the held move and the actions after it, leaving the buffer empty.
-    pub(crate) fn take(&mut self) -> (Option<Canon>, impl Iterator<Item = Canon> + use<>) {
+    pub(crate) fn take(&mut self) -> (Option<Canon>, impl Iterator<Item = Waiting> + use<>) {
         let (held, after) = (self.held, self.after);
         *self = Buffer::default();
-        (held, after.into_iter().flatten().map(|(line, a)| Canon { line, action: a.action() }))
+        (held, after.into_iter().flatten())
     }
 }
 

@@ -6,13 +6,15 @@
 //! look-ahead's buffers in [`lookahead`]); their logic stays with them.
 
 pub mod lookahead;
+pub mod mill;
 
 pub use lookahead::{Buffer, Comp, Contour, Corner, HOLD, Marks, Side};
+pub use mill::Mill;
 
 use crate::axis::{Axis, Pos};
 use crate::canon::{FeedMode, Plane, SpindleDir};
 use crate::codes::GCode;
-use crate::config::{MachineConfig, Param};
+use crate::config::{MachineConfig, MachineKind, Param};
 use crate::units::{NM_PER_MM, Units};
 
 /// One field per modal group (table 1.1), with the power-on states of the notes.
@@ -21,7 +23,7 @@ use crate::units::{NM_PER_MM, Units};
 pub struct Modal {
     /// Group 01: G00 or G01 at power-on (parameter 5153), G02/G03, later the cycles.
     pub motion: GCode,
-    /// Group 16: G18 at power-on (2.13 note 3).
+    /// Group 16: G18 at power-on on a lathe (2.13 note 3), G17 on a machining centre.
     pub plane: Plane,
     /// Group 06: G21 unless parameter 10 says inch (2.9 note 1).
     pub units: Units,
@@ -33,8 +35,12 @@ pub struct Modal {
     pub css: bool,
     /// Group 07: G40 at power-on.
     pub nose_comp: GCode,
-    /// Group 14: G54 (frame 0) at power-on (2.12.2 note 1).
+    /// Group 14: G54 (frame 0) at power-on (2.12.2 note 1): G54–G59 are 0–5. A
+    /// machining centre's G54.1 P1–P48 leave it at 0 and set `extra_frame`.
     pub work_frame: u8,
+    /// G54.1 P1–P48 in force (0 = none): its offset, less G54's, is in
+    /// [`Frames::extra`] (the work frame of every move stays one array index).
+    pub extra_frame: u8,
     /// Group 15: G61 exact-stop mode; G64 at power-on (2.14).
     pub exact_stop_mode: bool,
     /// Group 10: drilling cycle in force; G80 at power-on.
@@ -57,6 +63,9 @@ pub struct Frames {
     pub shift: Pos,
     /// G52 local frame origin in work coordinates (2.12.3).
     pub local: Pos,
+    /// G54.1 P in force: its offset minus G54's ([`Modal::extra_frame`]), kept with
+    /// the state's own offsets so every move reads one work offset.
+    pub extra: Pos,
 }
 
 /// The tool in the turret position and the offset in force.
@@ -139,12 +148,15 @@ pub struct SingleMemory {
 pub struct HoleMemory {
     /// Hole bottom along the drilling axis (work, absolute); `None` until given.
     pub bottom: Option<i64>,
-    /// Signed distance initial level → R level (radius value).
+    /// Signed distance initial level → R level (radius value); on a machining
+    /// centre the R level itself (programmed coordinates).
     pub r: i64,
-    /// Peck depth Q (0 = no pecking).
+    /// Peck depth Q (0 = no pecking); a machining centre's G76/G87 shift.
     pub q: i64,
     /// Dwell at the bottom, ms.
     pub dwell_ms: u32,
+    /// A machining centre's R has been given in the mode (a hole needs it).
+    pub r_set: bool,
 }
 
 /// Rigid tapping mode (2.22.1).
@@ -259,8 +271,13 @@ pub struct StrokeArea {
 }
 
 /// Everything that persists from one block to the next.
+///
+/// In declaration order (`repr(C)`): the fields every block reads first, the large
+/// ones last, so the hot ones stay within the Cortex-M4's short load offsets
+/// (LDRD reaches 1,020 bytes) whatever the large ones grow to.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[repr(C)]
 pub struct State {
     /// Modal groups.
     pub modal: Modal,
@@ -288,6 +305,9 @@ pub struct State {
     pub stroke: Option<StrokeArea>,
     /// The contour look-ahead: a move held back until the next one is known.
     pub contour: Contour,
+    /// A machining centre's modal data (tool length, H/D, G28 point, hole-cycle
+    /// initial level, transformations); unused on a lathe.
+    pub mill: Mill,
 }
 
 impl State {
@@ -299,13 +319,14 @@ impl State {
         State {
             modal: Modal {
                 motion: if p.flag(Param::InitialLinear) { GCode::Linear } else { GCode::Rapid },
-                plane: Plane::Zx,
+                plane: if cfg.kind == MachineKind::Mill { Plane::Xy } else { Plane::Zx },
                 units: if p.flag(Param::InchAtPowerOn) { Units::Inch } else { Units::Metric },
                 incremental: false,
                 feed_mode: if p.flag(Param::InitialPerRev) { FeedMode::PerRev } else { FeedMode::PerMin },
                 css: false,
                 nose_comp: GCode::NoseCompOff,
                 work_frame: 0,
+                extra_frame: 0,
                 exact_stop_mode: false,
                 drilling: GCode::DrillCancel,
                 return_to_r: false,
@@ -323,24 +344,38 @@ impl State {
             polar: None,
             stroke: None,
             contour: Contour::default(),
+            mill: Mill::default(),
         }
     }
 
     /// Sums [`State::own_offsets`] again; called wherever the G50 shift, the G52
-    /// frame or the tool offset change.
+    /// frame, the G54.1 frame or the tool offset change.
     pub fn sum_own_offsets(&mut self) {
-        self.own_offsets = self.frames.shift + self.frames.local + self.tool.offset;
+        self.own_offsets = self.frames.shift + self.frames.local + self.frames.extra + self.tool.offset;
+    }
+
+    /// [`Frames::extra`] of the G54.1 frame in force from `cfg` (after the frame or
+    /// the offsets changed: G54.1, G10, a rewind).
+    pub fn refresh_extra_frame(&mut self, cfg: &MachineConfig) {
+        let extra = match self.modal.extra_frame {
+            0 => Pos::ZERO,
+            p => cfg.extra_offsets.get(p).unwrap_or(Pos::ZERO) - cfg.work_offsets[0],
+        };
+        if extra != self.frames.extra {
+            self.frames.extra = extra;
+            self.sum_own_offsets();
+        }
     }
 
     /// What is added to a work position to get the machine position of the axes:
     /// work offset of G54–G59 + external offset + G50 shift + G52 local origin +
-    /// tool offset.
+    /// (G54.1's offset − G54's) + tool offset.
     #[inline]
     pub fn work_to_machine(&self, cfg: &MachineConfig) -> Pos {
         // Tests (debug builds) check the kept sum at every use.
         debug_assert_eq!(
             self.own_offsets,
-            self.frames.shift + self.frames.local + self.tool.offset,
+            self.frames.shift + self.frames.local + self.frames.extra + self.tool.offset,
             "own offsets not summed again after a change"
         );
         cfg.work_offsets[usize::from(self.modal.work_frame)] + cfg.external_offset + self.own_offsets

@@ -4,6 +4,7 @@
 //! the contour look-ahead and the cycles, which use them, and `exec`, which
 //! dispatches to all three.
 
+pub mod frame;
 pub(crate) mod motion;
 pub mod polar;
 pub(crate) mod spindle;

@@ -182,7 +182,10 @@ fn arc(
     exact_stop: bool,
 ) -> Result<(), AlarmKind> {
     let plane = st.modal.plane;
-    reject_axes_outside(cmd, plane)?;
+    // A machining centre's arc may move the axis normal to its plane: helical
+    // interpolation (FANUC); a lathe's may not (2.3 note 7).
+    let helical = crate::is_mill(cfg);
+    reject_axes_outside(cmd, plane, helical)?;
     let cw = st.modal.motion == GCode::ArcCw;
     let (pa, pb) = plane.axes();
     let start: P2 = (at.here[pa], at.here[pb]);
@@ -224,11 +227,12 @@ fn arc(
     Ok(())
 }
 
-/// 2.3 note 7 / 2.13 note 5: an arc block may move only the plane's axes.
-fn reject_axes_outside(cmd: &Command, plane: Plane) -> Result<(), AlarmKind> {
+/// 2.3 note 7 / 2.13 note 5: an arc block may move only the plane's axes (and,
+/// `helical`, the normal one).
+fn reject_axes_outside(cmd: &Command, plane: Plane, helical: bool) -> Result<(), AlarmKind> {
     for a in Axis::ALL {
         if !plane.contains(a) {
-            if cmd.axes[a.index()].is_some() {
+            if cmd.axes[a.index()].is_some() && !(helical && a == plane.normal()) {
                 return Err(AlarmKind::ArcAxisOutsidePlane { letter: a.letter() });
             }
             if let (Some(l), Some(_)) = (a.center_letter(), cmd.center[a.index()]) {

@@ -8,7 +8,8 @@ use crate::axis::Pos;
 use crate::canon::{Action, Canon};
 use crate::config::Param;
 use crate::modal::{
-    Contour, CycleMemory, FeedMemory, Frames, Marks, Modal, Polar, RigidTap, SpindleState, State, StrokeArea, ToolState,
+    Contour, CycleMemory, FeedMemory, Frames, Marks, Mill, Modal, Polar, RigidTap, SpindleState, State, StrokeArea,
+    ToolState,
 };
 
 /// Most actions one block produces.
@@ -32,8 +33,9 @@ pub struct Staged<'a> {
     /// Index in `actions` where the cycle's moves belong: actions staged after it
     /// (M05, M30 …) are delivered after the cycle.
     pub split: Option<usize>,
-    /// Parameters the block sets (G71 U(Δd) → 5147 …), written only if it succeeds.
-    pub params: heapless::Vec<(Param, i64), 8>,
+    /// Settings the block writes into the machine configuration (G71 U(Δd) →
+    /// parameter 5147, a mill's G10 offsets …), written only if it succeeds.
+    pub writes: heapless::Vec<(Setting, i64), 8>,
     /// Where the program goes on after the block if not with the next block: after
     /// the nf block of G71–G73 (the shape's blocks are not executed).
     pub resume: Option<crate::program::Cursor>,
@@ -51,7 +53,7 @@ impl<'a> Staged<'a> {
             actions: outbox,
             program: crate::lang::ProgramText::NONE,
             split: None,
-            params: heapless::Vec::new(),
+            writes: heapless::Vec::new(),
             resume: None,
             faulty_move: None,
         }
@@ -60,6 +62,59 @@ impl<'a> Staged<'a> {
     /// Stages one action.
     pub fn emit(&mut self, action: Action) -> Result<(), AlarmKind> {
         self.actions.push_back(Canon { line: self.line, action }).map_err(|_| AlarmKind::Overflow)
+    }
+}
+
+/// A value of the machine configuration a block writes ([`Staged::writes`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Setting {
+    /// A numbered parameter (internal units).
+    Param(Param),
+    /// One axis of a work offset (machine coordinates): frames 0–5 are G54–G59,
+    /// 6–53 G54.1 P1–P48, [`Setting::EXTERNAL`] the external offset.
+    WorkOffset {
+        /// The frame.
+        frame: u8,
+        /// The axis.
+        axis: crate::axis::Axis,
+    },
+    /// One column of a mill's offset pages (G10 L10–L13).
+    Offset {
+        /// The row (H/D number).
+        row: u16,
+        /// The column.
+        page: crate::config::MillPage,
+    },
+}
+
+impl Setting {
+    /// [`Setting::WorkOffset`]'s frame number of the external work offset (G10 L2 P0).
+    pub const EXTERNAL: u8 = u8::MAX;
+
+    /// Writes `v` into `cfg`.
+    pub fn apply(self, cfg: &mut crate::config::MachineConfig, v: i64) {
+        match self {
+            Setting::Param(p) => cfg.params.set(p, v),
+            // The offsets are written only by a machining centre's G10.
+            _ if !crate::MILL => {}
+            Setting::WorkOffset { frame: Setting::EXTERNAL, axis } => cfg.external_offset[axis] = v,
+            Setting::WorkOffset { frame, axis } => match cfg.work_offsets.get_mut(usize::from(frame)) {
+                Some(p) => p[axis] = v,
+                None => {
+                    let p = frame.saturating_sub(5);
+                    if let Some(mut pos) = cfg.extra_offsets.get(p) {
+                        pos[axis] = v;
+                        cfg.extra_offsets.set(p, pos);
+                    }
+                }
+            },
+            Setting::Offset { row, page } => {
+                if let Some(r) = cfg.tools.get_mut(row) {
+                    r.set_mill(page, v);
+                }
+            }
+        }
     }
 }
 
@@ -137,26 +192,43 @@ struct Rare {
     tool: ToolState,
     polar: Option<Polar>,
     stroke: Option<StrokeArea>,
+    mill: Mill,
 }
 
 impl State {
     /// What [`State::restore`] needs to undo block `cmd` executed in place:
     /// everything but the contour look-ahead's buffers, which the caller copies
     /// only while a move is held ([`Contour::is_holding`]),
-    /// and the frames, tool, polar and stroke-check state, which only a block
-    /// with G50/G52, T, G22/G23 or G12.1/G13.1 (or any block in polar mode) changes.
+    /// and the frames, tool, polar, stroke-check and machining-centre state, which
+    /// only a block with G50/G52, T, G22/G23 or G12.1/G13.1 (or any block in polar
+    /// mode) or one the mill's checker marks ([`crate::command::GSet::mill`]) changes.
     ///
     /// The canned-cycle memory (96 bytes) is saved only when the block can change
     /// it: see [`plain_for_cycles`].
     pub fn save(&self, cmd: &crate::command::Command) -> Saved {
         use crate::codes::GCode::{LocalFrame, SetCoordinates};
         // Destructured so that a new field cannot be forgotten here.
-        let State { modal, pos, frames, tool, own_offsets: _, feed, spindle, moved, cycle, polar, stroke, contour } =
-            self;
+        let State {
+            modal,
+            pos,
+            frames,
+            tool,
+            own_offsets: _,
+            feed,
+            spindle,
+            moved,
+            cycle,
+            polar,
+            stroke,
+            contour,
+            mill,
+        } = self;
+        // A machining centre's checker marks every block that may change its data.
         let rare = matches!(cmd.g.one_shot, Some(SetCoordinates | LocalFrame))
             || cmd.tool.is_some()
             || cmd.g.stroke.is_some()
             || cmd.g.polar.is_some()
+            || cmd.g.mill
             || polar.is_some();
         let mut saved = Saved {
             modal: *modal,
@@ -172,7 +244,7 @@ impl State {
             saved.cycle = Some(*cycle);
         }
         if rare {
-            saved.rare = Some(Rare { frames: *frames, tool: *tool, polar: *polar, stroke: *stroke });
+            saved.rare = Some(Rare { frames: *frames, tool: *tool, polar: *polar, stroke: *stroke, mill: *mill });
         }
         saved
     }
@@ -180,8 +252,21 @@ impl State {
     /// [`State::save`] of everything (a SINUMERIK cycle call, which may change
     /// what only few blocks change, such as its tool edge).
     pub fn save_all(&self) -> Saved {
-        let State { modal, pos, frames, tool, own_offsets: _, feed, spindle, moved, cycle, polar, stroke, contour } =
-            self;
+        let State {
+            modal,
+            pos,
+            frames,
+            tool,
+            own_offsets: _,
+            feed,
+            spindle,
+            moved,
+            cycle,
+            polar,
+            stroke,
+            contour,
+            mill,
+        } = self;
         Saved {
             modal: *modal,
             pos: *pos,
@@ -189,7 +274,7 @@ impl State {
             spindle: *spindle,
             moved: *moved,
             cycle: Some(*cycle),
-            rare: Some(Rare { frames: *frames, tool: *tool, polar: *polar, stroke: *stroke }),
+            rare: Some(Rare { frames: *frames, tool: *tool, polar: *polar, stroke: *stroke, mill: *mill }),
             contour: contour.marks(),
         }
     }
@@ -210,6 +295,7 @@ impl State {
             self.tool = r.tool;
             self.polar = r.polar;
             self.stroke = r.stroke;
+            self.mill = r.mill;
             self.sum_own_offsets();
         }
         self.contour.restore(&saved.contour, held);

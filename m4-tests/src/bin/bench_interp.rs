@@ -2,8 +2,9 @@
 //! a G01 block, a G02 block with R, and a G01 block under G96 (surface speed), each
 //! read, checked and executed into a sink; then the same steps into the motion
 //! planner (text to planned block: the step with its action queued, prepared and
-//! look-ahead planned). Then the same for SINUMERIK `G1 X.. Z..` blocks (the
-//! machine's language SINUMERIK, issue 19). Run through `bench.sh bench_interp`.
+//! look-ahead planned); then a machining centre's 3-axis G01 blocks the same two
+//! ways; then the same for SINUMERIK `G1 X.. Z..` blocks (the machine's language
+//! SINUMERIK, issue 19). Run through `bench.sh bench_interp`.
 #![no_std]
 #![no_main]
 
@@ -35,6 +36,14 @@ const SIEMENS_LABELS: [&str; 6] = [
     "SINUMERIK G1",
     "SINUMERIK G1",
 ];
+
+/// A machining centre's stretch (`MachineConfig::mill`): setup, then 3-axis G01s.
+const MILL_PROGRAM: &[u8] = b"G00 X-100. Y-100. Z-10.\nM3 S1200\nG01 Z-20. F300\n\
+N100 G01 X-99.588 Y-99.712 Z-20.05\nN101 G01 X-99.176 Y-99.424 Z-20.1\nN102 G01 X-98.766 Y-99.137 Z-20.15\nM30\n";
+
+/// What the steps of [`MILL_PROGRAM`] read, in order.
+const MILL_LABELS: [&str; 6] =
+    ["mill setup G00", "mill setup M3 S", "mill setup G01 F", "mill G01 XYZ", "mill G01 XYZ", "mill G01 XYZ"];
 
 /// Keeps the last action so the work can't be optimised away.
 struct Last(Option<Canon>);
@@ -78,12 +87,13 @@ struct Bench<S> {
 
 /// Runs one step.
 fn step<S: CanonSink>(b: &mut Bench<S>) -> bool {
-    matches!(b.interp.step(&SingleProgram(b.program), &Panel::default(), &mut b.sink), Ok(Progress::Executed { .. }))
+    let program = SingleProgram(b.program);
+    matches!(b.interp.step(&program, &Panel::default(), &mut b.sink), Ok(Progress::Executed { .. }))
 }
 
 /// Runs the program's steps, measuring each (`only`: just the one at that index)
 /// with the label `what: label`.
-fn run<S: CanonSink>(b: &mut Bench<S>, labels: &[&str], what: &str, only: Option<usize>) {
+fn run<S: CanonSink>(b: &mut Bench<S>, what: &str, only: Option<usize>, labels: &[&str]) {
     for (k, &label) in labels.iter().enumerate() {
         if only.is_some_and(|o| o != k) {
             if !step(b) {
@@ -120,28 +130,43 @@ fn main() -> ! {
     // it; `BENCH_ONLY=pK` only the K-th step into the planner.
     let only = option_env!("BENCH_ONLY");
     let pick = |prefix: &str| only.and_then(|k| k.strip_prefix(prefix)?.parse::<usize>().ok());
+    // `BENCH_ONLY=mK` / `mpK`: the K-th step of the mill's program.
     let (steps, planned) = match only {
+        Some(k) if k.starts_with('m') => (Some(usize::MAX), Some(usize::MAX)),
         Some(k) if k.starts_with('p') => (Some(usize::MAX), pick("p")),
         Some(_) => (pick(""), Some(usize::MAX)),
         None => (None, None),
     };
+    let (mill_steps, mill_planned) = match only {
+        Some(k) if k.starts_with("mp") => (Some(usize::MAX), pick("mp")),
+        Some(k) if k.starts_with('m') => (pick("m"), Some(usize::MAX)),
+        Some(_) => (Some(usize::MAX), Some(usize::MAX)),
+        None => (None, None),
+    };
     let cfg = MachineConfig::default();
     let mut b = Bench { interp: Interpreter::new(cfg.clone()), sink: Last(None), program: PROGRAM };
-    run(&mut b, &LABELS, "step", steps);
+    run(&mut b, "step", steps, &LABELS);
     hprintln!("size of Interpreter: {} bytes", core::mem::size_of::<Interpreter>());
     let Ok(params) = MotionParams::new(&cfg) else { exit(false) };
     let plan = Plan { planner: Planner::new(Pos::ZERO), params };
-    let mut b = Bench { interp: Interpreter::new(cfg.clone()), sink: plan, program: PROGRAM };
-    run(&mut b, &LABELS, "text to planned block", planned);
+    let mut b = Bench { interp: Interpreter::new(cfg), sink: plan, program: PROGRAM };
+    run(&mut b, "text to planned block", planned, &LABELS);
+    let cfg = MachineConfig::mill();
+    let mut b = Bench { interp: Interpreter::new(cfg.clone()), sink: Last(None), program: MILL_PROGRAM };
+    run(&mut b, "step", mill_steps, &MILL_LABELS);
+    let Ok(params) = MotionParams::new(&cfg) else { exit(false) };
+    let plan = Plan { planner: Planner::new(Pos::ZERO), params };
+    let mut b = Bench { interp: Interpreter::new(cfg), sink: plan, program: MILL_PROGRAM };
+    run(&mut b, "text to planned block", mill_planned, &MILL_LABELS);
     // SINUMERIK (not with BENCH_ONLY: its indexes are the FANUC program's).
     if only.is_none() {
-        let cfg = MachineConfig { language: interp_core::config::Language::Siemens, ..cfg };
+        let cfg = MachineConfig { language: interp_core::config::Language::Siemens, ..MachineConfig::default() };
         let mut b = Bench { interp: Interpreter::new(cfg.clone()), sink: Last(None), program: SIEMENS_PROGRAM };
-        run(&mut b, &SIEMENS_LABELS, "step", None);
+        run(&mut b, "step", None, &SIEMENS_LABELS);
         let Ok(params) = MotionParams::new(&cfg) else { exit(false) };
         let plan = Plan { planner: Planner::new(Pos::ZERO), params };
         let mut b = Bench { interp: Interpreter::new(cfg), sink: plan, program: SIEMENS_PROGRAM };
-        run(&mut b, &SIEMENS_LABELS, "text to planned block", None);
+        run(&mut b, "text to planned block", None, &SIEMENS_LABELS);
     }
     exit(true)
 }

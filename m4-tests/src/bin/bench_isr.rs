@@ -10,7 +10,8 @@
 //! - encoder-count interrupt (`Engine::encoder`, then `Engine::window` for the
 //!   compares) at the counts where a step of a G32 falls due, 4096 counts per
 //!   revolution: single interrupts, the sum per spindle revolution at 500, 2000 and
-//!   3000 rpm, and the largest part before the step is queued (the step latency).
+//!   3000 rpm, and the largest part before the step is queued (the step latency);
+//!   `sync_cpu.py` turns the sums into CPU shares per revolution.
 //!
 //! The register reads and writes around these bodies (about 10 loads and stores)
 //! and the interrupt entry and exit (12 + 12 cycles on the M4) come on top. Run
@@ -276,6 +277,9 @@ enum Sums {
     Latency,
     /// Only its second part (for profiling).
     Window,
+    /// The whole count interrupt, summed over the ramps' interrupts only (for
+    /// profiling what a ramp's step costs more than a locked one's).
+    Ramps,
     /// A few single interrupts and periods of the locked pass, each printed.
     Singles,
 }
@@ -314,6 +318,13 @@ fn thread_at(rings: &'static [EdgeRing<RING>; 3], rpm: u32, lead_um: i64, x_end:
             m4_tests::measure_sum(count_isr_window, rig)
         },
         Sums::Singles => count_isr,
+        Sums::Ramps => |rig: &mut Rig| {
+            if rig.core.gear().is_some_and(|g| matches!(g.phase(), Phase::RampUp { .. } | Phase::RampDown { .. })) {
+                m4_tests::measure_sum(count_isr, rig)
+            } else {
+                count_isr(rig)
+            }
+        },
     };
     for _ in 0..40_000_000u32 {
         if f64::from(next_period) <= next_count {
@@ -412,20 +423,22 @@ fn threads() {
 
 /// `BENCH_ONLY=sync` (at build time) measures only the count interrupt of one
 /// 2000 rpm pass, summed per revolution (for `profile.sh bench_isr`); `singles` its
-/// single interrupts; `latency` only their part up to the step queued.
+/// single interrupts; `latency` only their part up to the step queued; `ramps`
+/// the interrupts of a 3000 rpm pass's ramps.
 const ONLY: Option<&str> = option_env!("BENCH_ONLY");
 
 #[entry]
 fn main() -> ! {
-    if let Some(only @ ("sync" | "singles" | "latency" | "window")) = ONLY {
+    if let Some(only @ ("sync" | "singles" | "latency" | "window" | "ramps")) = ONLY {
         static T: [EdgeRing<RING>; 3] = [EdgeRing::new(), EdgeRing::new(), EdgeRing::new()];
         let sums = match only {
             "sync" => Sums::Revolutions,
             "singles" => Sums::Singles,
             "window" => Sums::Window,
+            "ramps" => Sums::Ramps,
             _ => Sums::Latency,
         };
-        thread_at(&T, 2_000, 1_500, 20, sums);
+        thread_at(&T, if sums == Sums::Ramps { 3_000 } else { 2_000 }, 1_500, 20, sums);
         exit(true)
     }
     periods();

@@ -268,6 +268,23 @@ fn main() -> ! {
     for c in 20_000..20_008 {
         measure(count, (&mut gear, c));
     }
+    // The ramp zone (the last v·R + 4 = 2,816 steps): its first count finds once the
+    // count where the deceleration starts; the counts after it are plain locked ones.
+    let mut c = 20_007;
+    while gear.remaining() > 2_816 {
+        c += 1;
+        gear.on_count(c);
+    }
+    hprintln!("bench encoder count, thread entering the ramp zone (the deceleration's first count found)");
+    c += 1;
+    measure(count, (&mut gear, c));
+    hprintln!("bench encoder count, thread in the ramp zone");
+    for c in c + 1..c + 9 {
+        measure(count, (&mut gear, c));
+    }
+    if gear.phase() != Phase::Locked {
+        exit(false);
+    }
 
     // A locked G34 thread: lead 2 mm growing by 0.1 mm per revolution, same axis.
     let Ok(g34) = Gearing::new(2_000_000, 100_000, 1, 3_125, 4_096) else { exit(false) };

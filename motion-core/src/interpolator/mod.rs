@@ -93,6 +93,9 @@ struct ArcPath {
     /// Start angle and signed sweep, turns × 2^32.
     theta0: i64,
     sweep: i64,
+    /// An axis outside the plane moves too (a machining centre's helical
+    /// interpolation): it moves linearly with the progress along the arc.
+    helical: bool,
 }
 
 /// Per-axis profiles of an independent rapid.
@@ -164,7 +167,12 @@ impl Segment {
             FeedSpec::PerRev(_) => Rate::PerRev(b.exec.rate_q8),
         };
         let path = match b.kind {
-            BlockKind::Arc(g) => Path::Arc(arc_path(&g, p)),
+            BlockKind::Arc(g) => {
+                let mut a = arc_path(&g, p);
+                // Only a machining centre's arcs move a third axis.
+                a.helical = canon::MILL && (0..AXIS_COUNT).any(|i| i != a.ia && i != a.ib && delta[i] != 0);
+                Path::Arc(a)
+            }
             BlockKind::Independent(inv) => Path::Independent(independent(from, &end_steps, &inv, p)),
             _ => Path::Line,
         };
@@ -224,6 +232,14 @@ impl Segment {
                 let (c, sn) = cos_sin(th as u32);
                 out[a.ia] = a.scale[0].q16(a.center[0] + mul_shr(r, i64::from(c), TRIG_FRAC));
                 out[a.ib] = a.scale[1].q16(a.center[1] + mul_shr(r, i64::from(sn), TRIG_FRAC));
+                if canon::MILL && a.helical {
+                    let moving = out.iter_mut().zip(&self.start).zip(&self.delta).enumerate();
+                    for (i, ((o, st), d)) in moving {
+                        if i != a.ia && i != a.ib && *d != 0 {
+                            *o = st + mul_q32(*d, f);
+                        }
+                    }
+                }
             }
             Path::Independent(_) => {}
         }
@@ -241,6 +257,7 @@ fn arc_path(g: &ArcGeom, p: &MotionParams) -> ArcPath {
         dr: g.r1 - g.r0,
         theta0: g.theta0,
         sweep: g.sweep,
+        helical: false,
     }
 }
 

@@ -177,13 +177,14 @@ impl<const N: usize> MotionCore<N> {
     /// gearbox and taken from the queue as it reaches them; the end lets go.
     #[inline(never)]
     pub(super) fn run_locked(&mut self) -> bool {
-        let Some(g) = self.gear else {
+        // (The gearbox is read in place: a copy of it costs more than the rest.)
+        let Some(legs_done) = self.gear.as_ref().map(Gear::legs_done) else {
             self.state = State::Idle;
             return true;
         };
         // Legs the gearbox has moved on to since the last period leave the queue
         // first: what is left at its front is what may follow.
-        while self.legs_taken < g.legs_done() {
+        while self.legs_taken < legs_done {
             self.legs_taken += 1;
             if let Some(Item::Motion(b)) = self.planner.pop() {
                 self.line = b.line;
@@ -192,20 +193,21 @@ impl<const N: usize> MotionCore<N> {
             }
         }
         self.announce_next_leg();
-        let Some(g) = self.gear else { return true };
+        let Some(g) = self.gear.as_ref() else { return true };
         if !g.finished() {
             return false;
         }
-        if !g.is_tap() {
+        let (tap, way_out) = (g.is_tap(), g.is_way_out());
+        if !tap {
             let mut pos = *self.interp.start_steps();
             g.positions(&mut pos);
             self.interp.set_steps(pos);
             self.gear = None;
             self.locked = None;
-        } else if g.is_way_out() {
+        } else if way_out {
             self.release_tap();
         }
-        self.state = if self.single_block && !g.is_tap() { State::Stopped } else { State::Idle };
+        self.state = if self.single_block && !tap { State::Stopped } else { State::Idle };
         true
     }
 
@@ -214,7 +216,7 @@ impl<const N: usize> MotionCore<N> {
     /// it. Alarm 4502 if its lead is larger than the one the running pass's ramps
     /// were sized for (it arrived after the pass started).
     fn announce_next_leg(&mut self) {
-        let Some(g) = self.gear else { return };
+        let Some(g) = self.gear.as_ref() else { return };
         if g.is_tap() || g.has_next() {
             return;
         }
@@ -286,7 +288,7 @@ impl<const N: usize> MotionCore<N> {
     /// the thread's lead is lost without a sign — so it raises 4501 and the axes
     /// brake along the thread.
     pub(super) fn watch_thread_speed(&mut self) {
-        let Some(g) = self.gear else { return };
+        let Some(g) = self.gear.as_ref() else { return };
         if g.is_tap() || self.state != State::Locked || self.alarm.is_some() {
             return;
         }
@@ -331,7 +333,7 @@ impl<const N: usize> MotionCore<N> {
     /// acceleration; at the end it is commanded to stop.
     #[inline(never)]
     pub(super) fn tap_spindle_control(&mut self) {
-        let (Some(g), Some(b)) = (self.gear, self.locked) else { return };
+        let (Some(g), Some(b)) = (self.gear.as_ref(), self.locked.as_ref()) else { return };
         let BlockKind::Tap(t) = b.kind else { return };
         if !g.is_tap() {
             return;

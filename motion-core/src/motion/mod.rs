@@ -76,6 +76,10 @@ pub enum EventKind {
         /// M01.
         optional: bool,
     },
+    /// A machining centre's M06 reached (the motion before it has finished). A
+    /// change by hand (`manual`) waits for cycle start as M00 does; the tool
+    /// changer's goes on.
+    ToolChange(crate::canon::ToolChange),
     /// M02/M30 reached.
     End {
         /// M30.
@@ -196,6 +200,9 @@ pub struct MotionCore<const N: usize> {
     /// The encoder count last seen to change, and when (the encoder watch).
     watch_count: i64,
     watch_since: u64,
+    /// The spindle a tool change by hand stopped: restarted at cycle start (the
+    /// next cut waits for it to be at speed).
+    resume_spindle: Option<(SpindleDir, u32)>,
 }
 
 /// Periods between two G96 speed updates.
@@ -238,6 +245,7 @@ impl<const N: usize> MotionCore<N> {
             css_phase: 0,
             watch_count: 0,
             watch_since: 0,
+            resume_spindle: None,
         })
     }
 
@@ -283,6 +291,7 @@ impl<const N: usize> MotionCore<N> {
             css_phase,
             watch_count,
             watch_since,
+            resume_spindle,
         } = self;
         *params = p;
         *mc = cfg.motion;
@@ -297,7 +306,7 @@ impl<const N: usize> MotionCore<N> {
         (*hold, *single_block, *streaming, *starved) = (false, false, false, false);
         events.clear();
         (*stats, *now, *line, *offset_memory) = (Stats::default(), 0, 0, Pos::ZERO);
-        (*css_phase, *watch_count, *watch_since) = (0, 0, 0);
+        (*css_phase, *watch_count, *watch_since, *resume_spindle) = (0, 0, 0, None);
         Ok(())
     }
 
@@ -432,6 +441,10 @@ impl<const N: usize> MotionCore<N> {
         self.hold = false;
         if self.state == State::Stopped {
             self.state = State::Idle;
+            if let Some((dir, rpm)) = self.resume_spindle.take() {
+                self.set_spindle(dir, rpm);
+                self.emit(self.line, EventKind::Spindle { dir, rpm: self.spindle.rpm });
+            }
         }
     }
 
@@ -459,6 +472,7 @@ impl<const N: usize> MotionCore<N> {
     /// Reset: clears the alarm, brakes the axes, stops the spindle, drops the queue.
     pub fn reset(&mut self) {
         self.alarm = None;
+        self.resume_spindle = None;
         self.begin_stop();
         if self.interp.segment().is_none() && self.gear.is_none() {
             // Nothing to brake: at rest the reset is done at once (a status report
@@ -708,6 +722,21 @@ impl<const N: usize> MotionCore<N> {
                 self.state = State::Stopped;
             }
             Command::Polygon(sync) => self.polygon_command(sync),
+            // Made only by a machining centre's M06.
+            Command::ToolChange(t) if canon::MILL => {
+                self.emit(line, EventKind::ToolChange(t));
+                if t.manual {
+                    // The operator's hands go to the spindle: it stops, and starts
+                    // again as it was at cycle start.
+                    if self.spindle.dir != SpindleDir::Stop {
+                        self.resume_spindle = Some((self.spindle.dir, self.spindle.rpm));
+                        self.set_spindle(SpindleDir::Stop, 0);
+                        self.emit(line, EventKind::Spindle { dir: SpindleDir::Stop, rpm: 0 });
+                    }
+                    self.state = State::Stopped;
+                }
+            }
+            Command::ToolChange(_) => {}
             Command::End { rewind } => {
                 self.set_spindle(SpindleDir::Stop, 0);
                 self.emit(line, EventKind::End { rewind });

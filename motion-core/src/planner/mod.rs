@@ -56,6 +56,8 @@ pub enum Command {
     },
     /// G51.2/G50.2: the C axis locked to the spindle at Q/P, or released.
     Polygon(Option<crate::canon::PolygonSync>),
+    /// A machining centre's M06 (after the motion before it has finished).
+    ToolChange(crate::canon::ToolChange),
 }
 
 /// One entry of the queue. Entries live inline in the fixed-capacity queue (no
@@ -301,6 +303,7 @@ impl<const N: usize> Planner<N> {
             Action::Stop { optional } => Command::Stop { optional },
             Action::End { rewind } => Command::End { rewind },
             Action::Polygon(p) => Command::Polygon(p),
+            Action::ToolChange(t) if canon::MILL => Command::ToolChange(t),
             _ => return Ok(()),
         };
         self.queue.push_back(Item::Command { line, cmd }).map_err(|_| PushError::Full)?;

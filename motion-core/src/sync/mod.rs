@@ -46,7 +46,10 @@
 //! count before the spindle reaches it is safe because such a count changes no
 //! output and a thread's position depends only on the furthest count reached;
 //! an announced next leg ([`Gear::set_next`]) cannot change what those counts did
-//! (it only adds room before the end). A tap and the polygon gearbox
+//! (it only adds room before the end). At a constant lead the count that starts
+//! the deceleration is found once, on entering the ramp zone (`Gear::find_decel`:
+//! a binary search over products, no division), so the counts before it glide as
+//! anywhere else instead of each testing the distance. A tap and the polygon gearbox
 //! ([`crate::motion::polygon`]) follow the spindle both ways, so they apply
 //! nothing ahead and name a count either side.
 
@@ -349,7 +352,8 @@ pub struct Gear {
     phase: Phase,
     /// The running leg's gearing.
     gearing: Gearing,
-    /// Ramp length in counts (even; 1 for taps) and twice it.
+    /// Ramp length in counts (even and positive, so `ramp >> 1` is its half; 1 for
+    /// taps) and twice it.
     ramp: i64,
     two_r: i64,
     /// Accumulator unit: one long-axis step is `unit` = `2R·den` (`2·den` for taps).
@@ -370,6 +374,17 @@ pub struct Gear {
     /// `2R·w + dw·R²` a count (the second number); `None` until the exact test first
     /// runs (or when the numbers do not fit: then the exact test runs every count).
     to_start: Option<(i64, i64)>,
+    /// The long-axis step count `p` from which the ramp zone begins in this leg
+    /// (`decel_left() ≤ ramp_zone` exactly when `p ≥ zone_p`; `i64::MAX` when the
+    /// pass does not decelerate in this leg): one comparison a step instead of the
+    /// distance to the end worked out twice.
+    zone_p: i64,
+    /// Locked at a constant lead, the deceleration's first count, found once on
+    /// entering the ramp zone ([`Gear::find_decel`]; `i64::MAX` until then): the
+    /// forward count that starts it and the increment that count adds. Up to it
+    /// the counts glide as anywhere else: no test a count.
+    dec_at: i64,
+    dec_jump: i64,
     /// The counts from one step to the next the last glide found (the next is the
     /// same, one more or one fewer, nearly always): where the next glide looks first.
     spacing: u32,
@@ -545,6 +560,9 @@ impl Gear {
             w: gearing.n1,
             dw: 2 * gearing.n1,
             to_start: None,
+            zone_p: i64::MAX,
+            dec_at: i64::MAX,
+            dec_jump: 0,
             spacing: 0,
             end_speed,
             p: 0,
@@ -603,6 +621,18 @@ impl Gear {
             let ds = leg.end[i] - leg.start[i];
             (i, ds.signum(), Follower::new(ds.abs(), self.delta))
         });
+        self.update_zone();
+    }
+
+    /// After a change of the leg, of the announced next one or of the ramp zone:
+    /// where the ramp zone begins, and the deceleration start to be found again.
+    fn update_zone(&mut self) {
+        self.to_start = None;
+        self.dec_at = i64::MAX;
+        self.zone_p = match self.decel_left() {
+            Some(left) => (self.p + left).saturating_sub(self.ramp_zone),
+            None => i64::MAX,
+        };
     }
 
     /// Announces the thread leg that continues this one without re-synchronising
@@ -663,7 +693,7 @@ impl Gear {
         }
         self.next = Some(Next { leg, gearing: next, scale, keep_lead, same_motion, len, ramp_zone: zone, end_speed });
         self.next_last = last;
-        self.to_start = None;
+        self.update_zone();
         Ok(())
     }
 
@@ -736,7 +766,7 @@ impl Gear {
     /// at its start (or at the bottom, before its way out is known).
     pub fn finished(&self) -> bool {
         match self.mode {
-            Mode::Thread => self.phase == Phase::Done,
+            Mode::Thread => matches!(self.phase, Phase::Done),
             Mode::Tap if self.way_out => self.p <= 0,
             Mode::Tap => self.p >= self.delta,
         }
@@ -835,33 +865,33 @@ impl Gear {
     /// [`Gear::glide`] in a ramp (up or down), kept small: the counts to the step
     /// as many as the last time, one more or one fewer, checked on the sums
     /// `S(n) = n·a + d·n(n − 1)/2` of the ramp's increments. `None` otherwise.
-    #[inline(never)]
+    #[inline(always)]
     fn glide_ramp(&mut self) -> Option<Due> {
-        if self.mode != Mode::Thread {
-            return None;
-        }
-        // Count j from now adds a + j·d; `most` counts before the next special one.
-        let (a, d, most) = match self.phase {
+        // Count j from now adds a + j·d; `most` counts before the next special one
+        // (only a thread ramps: no check of the mode).
+        let (a, d, most, at, down) = match self.phase {
             Phase::RampUp { k } => {
-                let stop = if k < self.ramp / 2 { self.ramp / 2 } else { self.ramp };
-                (self.w, self.dw, stop - 1 - k)
+                let stop = if k < self.ramp >> 1 { self.ramp >> 1 } else { self.ramp };
+                (self.w, self.dw, stop - 1 - k, k, false)
             }
-            Phase::RampDown { u } => (self.w * (2 * u - 1), -2 * self.w, u - 1),
+            Phase::RampDown { u } => (self.w * (2 * u - 1), -2 * self.w, u - 1, u, true),
             _ => return None,
         };
-        let h = i64::from(self.spacing) - 1;
-        if h < 1
-            || h + 1 >= most.min(i64::from(GLIDE_MAX))
-            || !(0..1 << 50).contains(&a)
-            || !(-(1 << 40)..1 << 40).contains(&d)
+        // 1 ≤ h, h + 1 below `most` and GLIDE_MAX, 0 ≤ a < 2^50, |d| ≤ 2^40: the
+        // products below stay far inside i64 (h < 2^10).
+        let h = self.spacing.wrapping_sub(1);
+        if h.wrapping_sub(1) >= GLIDE_MAX - 2
+            || i64::from(h) + 1 >= most
+            || a as u64 >= 1 << 50
+            || d.wrapping_add(1 << 40) as u64 > 1 << 41
         {
             return None;
         }
         let room = self.unit - self.acc;
         // Exactly n glide: S(n) < room ≤ S(n + 1), with every increment to the
         // (n+1)-th at least zero. S(h) once, its neighbours by one increment.
-        let inc = a + d * h;
-        let s = h * a + d * (h * (h - 1) / 2);
+        let inc = a + d * i64::from(h);
+        let s = i64::from(h) * a + d * i64::from(h * (h - 1) / 2);
         let (n, glided) = if s < room && s + inc >= room && inc >= 0 {
             (h, s)
         } else if s + inc < room && s + 2 * inc + d >= room && inc + d >= 0 {
@@ -871,17 +901,16 @@ impl Gear {
         } else {
             return None;
         };
+        self.remember(n);
+        let n = i64::from(n);
         self.acc += glided;
-        self.phase = match self.phase {
-            Phase::RampUp { k } => {
-                self.w += n * self.dw;
-                Phase::RampUp { k: k + n }
-            }
-            Phase::RampDown { u } => Phase::RampDown { u: u - n },
-            p => p,
-        };
-        self.remember(n as u32);
         self.m_max += n;
+        self.phase = if down {
+            Phase::RampDown { u: at - n }
+        } else {
+            self.w += n * self.dw;
+            Phase::RampUp { k: at + n }
+        };
         Some(self.due())
     }
 
@@ -890,18 +919,14 @@ impl Gear {
     /// `None` otherwise.
     #[inline(always)]
     fn glide_constant(&mut self) -> Option<Due> {
-        if self.mode != Mode::Thread || self.phase != Phase::Locked || self.dw != 0 {
+        if self.mode != Mode::Thread || !matches!(self.phase, Phase::Locked) || self.dw != 0 {
             return None;
         }
-        // Near the end the distance to the deceleration start, falling by the
-        // increment each count, must stay positive.
-        let end = match self.decel_left() {
-            Some(left) if left <= self.ramp_zone => match self.to_start {
-                Some((x, 0)) => Some(x),
-                _ => return None,
-            },
-            _ => None,
-        };
+        // In the ramp zone the deceleration's first count must be known (found
+        // once by `glide_any`); no count from it on glides.
+        if self.dec_at == i64::MAX && self.p >= self.zone_p {
+            return None;
+        }
         let (inc, room, k) = (self.two_r * self.w, self.unit - self.acc, self.spacing);
         if !(2..GLIDE_MAX).contains(&k) || !(1..1 << 52).contains(&inc) {
             return None;
@@ -915,13 +940,11 @@ impl Gear {
             _ => return None,
         };
         let n = i64::from(k - 1);
-        let glided = n * inc;
-        if let Some(x) = end {
-            if x - glided <= 0 {
-                return None;
-            }
-            self.to_start = Some((x - glided, 0));
+        if self.m_max + n >= self.dec_at {
+            // The deceleration starts before the step: the slow way, to it.
+            return None;
         }
+        let glided = n * inc;
         self.remember(k - 1);
         self.acc += glided;
         self.m_max += n;
@@ -940,7 +963,7 @@ impl Gear {
             Phase::RampUp { k } => {
                 // Up to the synchronised count (R/2) and the lock (R), which change
                 // the increments; count k + 1 adds w, each next one dw more.
-                let stop = if k < self.ramp / 2 { self.ramp / 2 } else { self.ramp };
+                let stop = if k < self.ramp >> 1 { self.ramp >> 1 } else { self.ramp };
                 let most = (stop - 1 - k).clamp(0, i64::from(GLIDE_MAX)) as u32;
                 let (n, sum) = self.glide_by(Run { room, a: self.w, d: self.dw, most, end: None });
                 let n = i64::from(n);
@@ -948,19 +971,28 @@ impl Gear {
                 n
             }
             Phase::Locked => {
-                // Near the end each count also takes `inc + dw·R²` off the distance to
-                // the deceleration start (as `near_end`), which must stay positive.
+                // Near the end, at a constant lead, the counts glide up to the
+                // deceleration's first count, found once; at a varying lead each
+                // count also takes `inc + dw·R²` off the distance to the
+                // deceleration start (as `near_end`), which must stay positive.
+                let mut most = GLIDE_MAX;
                 let end = match self.decel_left() {
                     Some(left) if left <= self.ramp_zone => {
-                        if self.to_start.is_none() {
+                        if self.dec_at == i64::MAX && !self.find_decel(left, self.m_max + 1) && self.to_start.is_none()
+                        {
                             self.to_start = self.exact_to_start(left);
                         }
-                        let Some(end) = self.to_start else { return self.due() };
-                        Some(end)
+                        if self.dec_at != i64::MAX {
+                            most = (self.dec_at - self.m_max - 1).clamp(0, i64::from(GLIDE_MAX)) as u32;
+                            None
+                        } else {
+                            let Some(end) = self.to_start else { return self.due() };
+                            Some(end)
+                        }
                     }
                     _ => None,
                 };
-                let run = Run { room, a: self.two_r * self.w, d: self.two_r * self.dw, most: GLIDE_MAX, end };
+                let run = Run { room, a: self.two_r * self.w, d: self.two_r * self.dw, most, end };
                 let (n, sum) = self.glide_by(run);
                 let n = i64::from(n);
                 if let Some((x, step)) = end {
@@ -986,7 +1018,7 @@ impl Gear {
 
     /// The raw count of a thread's next count to take (none once done).
     fn due(&self) -> Due {
-        let ahead = (self.phase != Phase::Done).then_some(self.m_max + 1);
+        let ahead = (!matches!(self.phase, Phase::Done)).then_some(self.m_max + 1);
         Due::forward(self.sigma, self.origin, ahead, None)
     }
 
@@ -1035,9 +1067,17 @@ impl Gear {
             Phase::Waiting | Phase::RampUp { .. } => self.ramp_up_count(),
             Phase::Locked => {
                 let inc = self.two_r * self.w;
-                match self.ramp_down_jump(inc) {
+                let jump = if self.m_max == self.dec_at {
+                    Some(self.dec_jump)
+                } else if self.p >= self.zone_p && self.dec_at == i64::MAX {
+                    self.ramp_down_jump(inc)
+                } else {
+                    None
+                };
+                match jump {
                     Some(jump) => {
                         self.phase = Phase::RampDown { u: self.ramp };
+                        self.dec_at = i64::MAX;
                         self.add(jump)
                     }
                     None => {
@@ -1081,7 +1121,7 @@ impl Gear {
         } else {
             self.phase = Phase::RampUp { k: m };
             self.w += self.dw;
-            if m == self.ramp / 2 {
+            if m == self.ramp >> 1 {
                 self.start_quadratic();
             }
         }
@@ -1109,13 +1149,54 @@ impl Gear {
     /// deceleration from this count's speed must start (`unit·left − now − w·R²` in
     /// accumulator units), on the count where going on at `inc` would leave less
     /// than the next count's speed needs to stop: `rem − inc ≤ (w + dw)·R²`.
+    /// Out of line: the locked count's fast path stays small.
+    #[inline(never)]
     fn ramp_down_jump(&mut self, inc: i64) -> Option<i64> {
         let left = self.decel_left()?;
         // Far from the end the products below could overflow; the ramp is short.
         if left > self.ramp_zone {
             return None;
         }
+        // The count being taken is `m_max`.
+        if self.dw == 0 && self.find_decel(left, self.m_max) {
+            return (self.m_max == self.dec_at).then_some(self.dec_jump);
+        }
         self.near_end(left, inc)
+    }
+
+    /// Locked at a constant lead in the ramp zone, `left` steps from the end with
+    /// forward count `first` next to take: finds once the count that starts the
+    /// deceleration ([`Gear::dec_at`]) and the increment it adds, what
+    /// [`Gear::near_end`] would find a count at a time. Each count takes the same
+    /// `inc = 2R·w` off the distance `x` to the deceleration start, and count `j`
+    /// (from 1) starts it when `x − j·inc ≤ 0`, adding `x − (j − 1)·inc`: the
+    /// smallest such `j` by a binary search over its bits (products checked
+    /// against 64 bits by their lengths; no division). False (nothing found) for a
+    /// varying lead or numbers that do not fit: then the test runs every count.
+    #[inline(never)]
+    fn find_decel(&mut self, left: i64, first: i64) -> bool {
+        let inc = self.two_r * self.w;
+        if self.dw != 0 || inc <= 0 || !matches!(self.phase, Phase::Locked) {
+            return false;
+        }
+        let Some((x, 0)) = self.exact_to_start(left) else { return false };
+        // q: the most counts with q·inc < x (none if x ≤ 0); the (q + 1)-th starts.
+        let mut q = 0u64;
+        if x > 0 {
+            let (x, inc) = (x as u64, inc as u64);
+            let top = (inc.leading_zeros() + 1).saturating_sub(x.leading_zeros());
+            for b in (0..top).rev() {
+                // c < 2^top ≤ 2^(65 − len(inc) − lz(x)): c·inc < 2^64, no overflow.
+                let c = q | 1 << b;
+                if c * inc < x {
+                    q = c;
+                }
+            }
+        }
+        let q = q as i64;
+        self.dec_at = first + q;
+        self.dec_jump = (x - q * inc).max(0);
+        true
     }
 
     /// Long-axis steps to where the pass must be at rest, when it decelerates in
@@ -1172,7 +1253,9 @@ impl Gear {
         (rem - i128::from(inc) <= (w + i128::from(self.dw)) * r2).then(|| (rem - w * r2).max(0) as i64)
     }
 
-    /// Adds `inc` units to the long axis's exact position; moves whole steps.
+    /// Adds `inc` units to the long axis's exact position; moves whole steps. Out
+    /// of line: its step and leg change would be copied into every caller.
+    #[inline(never)]
     fn add(&mut self, inc: i64) -> bool {
         self.acc += inc;
         let mut moved = false;
@@ -1205,17 +1288,17 @@ impl Gear {
     /// (multiplications only) and, while locked, the speed goes on from the lead
     /// reached (`keep_lead`: the running leg's next increment less its own half
     /// change plus the new one's) or starts at the new leg's own lead.
+    #[inline(never)]
     fn take_next(&mut self) {
         let Some(n) = self.next.take() else { return };
         self.legs_done += 1;
-        self.to_start = None;
         let s = n.scale;
         if s != 1 {
             self.acc *= s;
             self.unit *= s;
             self.w *= s;
         }
-        if self.phase == Phase::Locked {
+        if matches!(self.phase, Phase::Locked) {
             let g = &n.gearing;
             self.w = if n.keep_lead { self.w - self.gearing.n2 * s + g.n2 } else { g.n1 + g.n2 };
             self.dw = 2 * g.n2;
@@ -1331,6 +1414,51 @@ mod tests {
                 assert_eq!(b.glide(), Due::NONE, "{name}: nothing more falls due");
             }
         }
+    }
+
+    #[test]
+    fn the_deceleration_found_once_starts_where_the_test_at_every_count_would() {
+        // Before each count of a constant lead's ramp zone, the 128-bit test from
+        // scratch (what ran at every count before the start was found once) says
+        // whether this count starts the deceleration and with which increment.
+        let coarse = Gearing::new(6_000_000, 0, 1, 3_125, CPR).unwrap();
+        let fine = Gearing::new(50_000, 0, 1, 3_125, CPR).unwrap();
+        let lead_1_5 = Gearing::new(1_500_000, 0, 1, 3_125, CPR).unwrap();
+        let mut starts = 0;
+        for (gearing, ramp, len) in [
+            (Gearing::from(Ratio { n: 5, d: 32 }), 2_000, 20_000),
+            (lead_1_5, 35_066, 14_400),
+            (lead_1_5, 2, 300),
+            (coarse, 30_000, 20_000),
+            (fine, 20_000, 400),
+        ] {
+            for start in [0, 5_000, 77] {
+                let mut g = Gear::thread(leg(len, 0), gearing, ramp, 1, start).unwrap();
+                let mut c = start;
+                while g.phase() != Phase::Done {
+                    c += 1;
+                    let before = g;
+                    let expect = match (before.phase, before.decel_left()) {
+                        (Phase::Locked, Some(left)) if left <= before.ramp_zone => {
+                            before.exact_jump(left, before.two_r * before.w)
+                        }
+                        _ => None,
+                    };
+                    g.on_count(c);
+                    if let Some(jump) = expect {
+                        let mut old = before;
+                        old.m_max += 1;
+                        old.phase = Phase::RampDown { u: old.ramp };
+                        old.add(jump);
+                        assert_eq!((g.phase, g.acc, g.p), (old.phase, old.acc, old.p), "ramp {ramp}, count {c}");
+                        starts += 1;
+                    } else if before.phase == Phase::Locked {
+                        assert_eq!(g.phase, Phase::Locked, "ramp {ramp}, count {c}: started early");
+                    }
+                }
+            }
+        }
+        assert_eq!(starts, 15);
     }
 
     #[test]

@@ -53,12 +53,15 @@ pub fn read(code: GCode, block: &Block, fmt: &NumberFormat, diameter_x: bool) ->
             first: r.increment(b'Q')?,
             lead: r.lead()?,
         },
-        FaceDrill | FaceTap | FaceBore | SideDrill | SideTap | SideBore => CycleArgs::Hole {
-            r: r.length(b'R')?,
-            dwell_ms: r.count(b'P')?,
-            q: r.unsigned(b'Q', "peck depth")?,
-            repeat: r.count(b'K')?,
-        },
+        FaceDrill | FaceTap | FaceBore | SideDrill | SideTap | SideBore | HighSpeedPeck | LeftTap | FineBore
+        | Drill | DrillDwell | PeckDrill | Tap | Bore | BoreSpindleStop | BackBore | BoreManual | BoreDwell => {
+            CycleArgs::Hole {
+                r: r.length(b'R')?,
+                dwell_ms: r.count(b'P')?,
+                q: r.unsigned(b'Q', "peck depth")?,
+                repeat: r.count(b'K')?,
+            }
+        }
         _ => CycleArgs::None,
     })
 }

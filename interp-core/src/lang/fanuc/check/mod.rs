@@ -4,6 +4,7 @@
 
 pub mod cycle_args;
 mod gset;
+mod mill;
 mod words;
 
 use crate::alarm::AlarmKind;
@@ -47,8 +48,14 @@ pub fn check_into(block: &Block, state: &State, cfg: &MachineConfig, cmd: &mut C
     cmd.cycle = crate::command::cycle::CycleArgs::None;
     let flow_m = cmd.m.iter().map(|&(_, f)| f).find(|f| f.is_flow());
     let user = cmd.axis_user(state);
-    words::check_letters(block, user, flow_m, cfg)?;
-    words::convert(block, user, state, cfg, &fmt, cmd)?;
+    if crate::is_mill(cfg) {
+        // A machining centre's G51, G51.1 and G68 take the axis words too.
+        let user = cmd.g.frame.unwrap_or(user);
+        mill::check(block, user, flow_m, state, cfg, &fmt, cmd)?;
+    } else {
+        words::check_letters(block, user, flow_m, cfg)?;
+        words::convert(block, user, state, cfg, &fmt, cmd)?;
+    }
     cmd.flow = flow_m.map(|f| flow_word(block, f)).transpose()?;
     Ok(())
 }

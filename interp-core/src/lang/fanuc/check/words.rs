@@ -12,10 +12,10 @@ use crate::units::{InputMode, Number, NumberFormat, Units};
 
 /// A set of address letters, one bit per letter A–Z.
 #[derive(Clone, Copy)]
-struct Letters(u32);
+pub(super) struct Letters(pub(super) u32);
 
 impl Letters {
-    const fn of(letters: &[u8]) -> Letters {
+    pub(super) const fn of(letters: &[u8]) -> Letters {
         let mut bits = 0;
         let mut i = 0;
         while i < letters.len() {
@@ -25,11 +25,11 @@ impl Letters {
         Letters(bits)
     }
 
-    const fn with(self, o: Letters) -> Letters {
+    pub(super) const fn with(self, o: Letters) -> Letters {
         Letters(self.0 | o.0)
     }
 
-    const fn contains(self, l: u8) -> bool {
+    pub(super) const fn contains(self, l: u8) -> bool {
         self.0 & (1 << (l - b'A')) != 0
     }
 }
@@ -38,7 +38,7 @@ impl Letters {
 const AXES: Letters = Letters::of(b"XYZCUVWH");
 /// Words every block may hold (and a subprogram call by an M or T code, which is
 /// not a word).
-const ALWAYS: Letters = Letters::of(b"FST").with(Letters(crate::lang::fanuc::parse::SUB_CALL));
+pub(super) const ALWAYS: Letters = Letters::of(b"FST").with(Letters(crate::lang::fanuc::parse::SUB_CALL));
 /// Letters no function of this controller uses.
 const UNUSED: Letters = Letters::of(b"D");
 
@@ -245,7 +245,7 @@ fn axis_word(
 
 /// One axis value in internal units.
 #[inline(always)]
-fn axis_value(axis: Axis, n: &Number, cfg: &MachineConfig, fmt: &NumberFormat) -> Result<i64, AlarmKind> {
+pub(super) fn axis_value(axis: Axis, n: &Number, cfg: &MachineConfig, fmt: &NumberFormat) -> Result<i64, AlarmKind> {
     let v = if axis.is_rotary() { fmt.angle_udeg(n) } else { length_nm(fmt, n) };
     let v = v.ok_or(AlarmKind::Overflow)?;
     Ok(if axis == Axis::X && cfg.diameter_x { v / 2 } else { v })
@@ -255,7 +255,7 @@ fn axis_value(axis: Axis, n: &Number, cfg: &MachineConfig, fmt: &NumberFormat) -
 /// more fraction digits than the least increment: nothing to round) as one
 /// multiply.
 #[inline(always)]
-fn length_nm(fmt: &NumberFormat, n: &Number) -> Option<i64> {
+pub(super) fn length_nm(fmt: &NumberFormat, n: &Number) -> Option<i64> {
     /// `10^(6 - f)`: millimetres with `f` fraction digits to nanometres.
     const NM_PER_DIGIT: [i32; 4] = [1_000_000, 100_000, 10_000, 1_000];
     if fmt.units == Units::Metric
@@ -270,7 +270,7 @@ fn length_nm(fmt: &NumberFormat, n: &Number) -> Option<i64> {
 }
 
 /// I/J/K (radius values) and R of an arc.
-fn convert_arc_words(block: &Block, fmt: &NumberFormat, cmd: &mut Command) -> Result<(), AlarmKind> {
+pub(super) fn convert_arc_words(block: &Block, fmt: &NumberFormat, cmd: &mut Command) -> Result<(), AlarmKind> {
     // Written out per axis (constant letters), in axis order: X, Y, Z (C has none).
     let mut center = |axis: Axis, letter: u8| -> Result<(), AlarmKind> {
         if let Some(n) = block.get(letter) {
@@ -292,7 +292,7 @@ fn convert_arc_words(block: &Block, fmt: &NumberFormat, cmd: &mut Command) -> Re
 }
 
 /// G04: P in ms without decimal point, or X/U in seconds; none = exact stop.
-fn dwell_ms(block: &Block, fmt: &NumberFormat) -> Result<u32, AlarmKind> {
+pub(super) fn dwell_ms(block: &Block, fmt: &NumberFormat) -> Result<u32, AlarmKind> {
     let secs = match (block.get(b'X'), block.get(b'U')) {
         (Some(_), Some(_)) => return Err(AlarmKind::AxisTwice { absolute: b'X', incremental: b'U' }),
         (x, u) => x.map(|n| (b'X', n)).or(u.map(|n| (b'U', n))),
@@ -312,7 +312,8 @@ fn dwell_ms(block: &Block, fmt: &NumberFormat) -> Result<u32, AlarmKind> {
 }
 
 /// Words a code cannot do without.
-fn required_words(user: GCode, cmd: &Command) -> Result<(), AlarmKind> {
+#[inline]
+pub(super) fn required_words(user: GCode, cmd: &Command) -> Result<(), AlarmKind> {
     use GCode::*;
     let (context, needs_axis) = match user {
         ReferenceReturn => ("G28", true),
@@ -345,7 +346,7 @@ fn tool_word(t: &Number, cfg: &MachineConfig) -> Result<(u16, u16), AlarmKind> {
 }
 
 /// `,C` / `,R` (2.23): a length, never negative; zero asks for nothing.
-fn corner_word(block: &Block, fmt: &NumberFormat) -> Result<Option<crate::command::Corner>, AlarmKind> {
+pub(super) fn corner_word(block: &Block, fmt: &NumberFormat) -> Result<Option<crate::command::Corner>, AlarmKind> {
     use crate::command::Corner;
     let (n, letter, make): (_, u8, fn(i64) -> Corner) = match (&block.chamfer, &block.corner) {
         (_, Some(r)) if block.corner_last => (r, b'R', Corner::Round),

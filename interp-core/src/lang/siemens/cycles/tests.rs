@@ -94,7 +94,7 @@ pub(super) fn call_with(
     if let Some(exp) = slot {
         let mut dry = exp.clone();
         while !dry.dry_run(cfg, program, &panel)? {}
-        dry.settle(&mut state);
+        dry.settle(&mut state, cfg);
         let mut exp = exp;
         loop {
             let mut q: heapless::Deque<Canon, 16> = heapless::Deque::new();
