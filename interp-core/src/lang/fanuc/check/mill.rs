@@ -72,11 +72,15 @@ pub(super) fn check(
 }
 
 /// G50/G51, G50.1/G51.1 and G68/G69 take the block's axis words: no motion, no
-/// group 00 code, no hole cycle and no second one of them in the block.
+/// group 00 code, no hole cycle and no second one of them in the block. G51.1
+/// names the axes it mirrors: without X, Y or Z it would mirror nothing (4006).
 fn alone(block: &Block, cmd: &Command) -> Result<(), AlarmKind> {
     use crate::alarm::GNum;
     if cmd.g.frame.is_none() {
         return Ok(());
+    }
+    if cmd.g.frame == Some(GCode::MirrorOn) && block.present() & Letters::of(b"XYZ").0 == 0 {
+        return Err(AlarmKind::MissingWord { letter: b'X', context: "G51.1" });
     }
     let frames = block.g.iter().filter(|t| matches!(**t, 500 | 501 | 510 | 511 | 680 | 690)).count();
     if frames > 1 || cmd.g.motion.is_some() || cmd.g.one_shot.is_some() || cmd.g.drilling.is_some() {
@@ -173,6 +177,11 @@ fn convert(
             };
         }
         DataSetting => cmd.cycle = data(block, fmt)?,
+        // G52's words are the local origin's position in the work frame (seed 004
+        // @2362): under G91 there is none to give (4015, as G53).
+        LocalFrame if cmd.axes.iter().flatten().any(|w| w.incremental) => {
+            return Err(AlarmKind::LocalFrameIncremental);
+        }
         ScalingOn => cmd.cycle = scale(block)?,
         RotationOn => {
             let r = block.get(b'R').map(|r| fmt.angle_udeg(&r).ok_or(AlarmKind::Overflow)).transpose()?;
@@ -214,7 +223,8 @@ fn other_words(block: &Block, cfg: &MachineConfig, fmt: &NumberFormat, cmd: &mut
     if let Some(t) = block.get(b'T') {
         let t = whole(b'T', &t, 99_999_999)?;
         if t > u32::from(cfg.tool_count) {
-            return Err(AlarmKind::IllegalToolNumber { number: t.min(u32::from(u16::MAX)) as u16 });
+            let number = t.min(u32::from(u16::MAX)) as u16;
+            return Err(AlarmKind::MillToolNumber { number, max: cfg.tool_count });
         }
         cmd.tool = Some((t as u16, 0));
     }
