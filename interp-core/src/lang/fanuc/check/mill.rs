@@ -72,15 +72,11 @@ pub(super) fn check(
 }
 
 /// G50/G51, G50.1/G51.1 and G68/G69 take the block's axis words: no motion, no
-/// group 00 code, no hole cycle and no second one of them in the block. G51.1
-/// names the axes it mirrors: without X, Y or Z it would mirror nothing (4006).
+/// group 00 code, no hole cycle and no second one of them in the block.
 fn alone(block: &Block, cmd: &Command) -> Result<(), AlarmKind> {
     use crate::alarm::GNum;
     if cmd.g.frame.is_none() {
         return Ok(());
-    }
-    if cmd.g.frame == Some(GCode::MirrorOn) && block.present() & Letters::of(b"XYZ").0 == 0 {
-        return Err(AlarmKind::MissingWord { letter: b'X', context: "G51.1" });
     }
     let frames = block.g.iter().filter(|t| matches!(**t, 500 | 501 | 510 | 511 | 680 | 690)).count();
     if frames > 1 || cmd.g.motion.is_some() || cmd.g.one_shot.is_some() || cmd.g.drilling.is_some() {
