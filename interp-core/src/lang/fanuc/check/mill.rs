@@ -173,11 +173,6 @@ fn convert(
             };
         }
         DataSetting => cmd.cycle = data(block, fmt)?,
-        // G52's words are the local origin's position in the work frame (seed 004
-        // @2362): under G91 there is none to give (4015, as G53).
-        LocalFrame if cmd.axes.iter().flatten().any(|w| w.incremental) => {
-            return Err(AlarmKind::LocalFrameIncremental);
-        }
         ScalingOn => cmd.cycle = scale(block)?,
         RotationOn => {
             let r = block.get(b'R').map(|r| fmt.angle_udeg(&r).ok_or(AlarmKind::Overflow)).transpose()?;
