@@ -239,6 +239,7 @@ fn run_store<P: ProgramStore + ?Sized>(
 ) -> Result<Run, Runaway> {
     let start = cfg.reference[0];
     let mut interp = Interpreter::new(cfg.clone());
+    interp.plug(&interp_siemens::SINUMERIK);
     interp.set_machine_position(start);
     interp.select_main(main);
     *interp.variables_mut() = variables.clone();

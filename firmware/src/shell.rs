@@ -59,7 +59,12 @@ pub type Ctl = controller::Controller<WINDOW, TEXT, PROGRAMS, SEQUENCES>;
 /// copying it (the stack has no room for a second copy).
 #[inline(never)]
 pub fn build(slot: &'static mut MaybeUninit<Ctl>, cfg: MachineConfig, pos: Pos) -> &'static mut Ctl {
-    Ctl::new_in(slot, cfg, pos)
+    let ctl = Ctl::new_in(slot, cfg, pos);
+    // SINUMERIK mode: its front end plugged in (without the feature G290 and
+    // `$310=1` raise alarm 4007 and none of interp-siemens is linked).
+    #[cfg(feature = "siemens")]
+    ctl.interpreter_mut().plug(&interp_siemens::SINUMERIK);
+    ctl
 }
 
 /// The motion core behind the board's handle: every call is one critical section

@@ -21,10 +21,10 @@
 //! block execution (`run_cmd`: staging, undo, cycle delivery and validation, the
 //! outbox) and share one call stack, whose frames record the caller's language.
 
-// Without the `siemens` feature the front end's driver is compiled (its frames and
-// state are part of the interpreter) but never entered: no SINUMERIK code in flash.
-#[cfg_attr(not(feature = "siemens"), allow(dead_code))]
-mod siemens;
+// The SINUMERIK front end's state and frames (its driver is the interp-siemens
+// crate, which reaches them here).
+#[doc(hidden)]
+pub mod siemens;
 
 use crate::alarm::{Alarm, AlarmKind};
 use crate::axis::Pos;
@@ -98,7 +98,8 @@ pub enum Progress {
 /// Where the run is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-enum Phase {
+#[doc(hidden)]
+pub enum Phase {
     Running,
     Paused,
     Ended,
@@ -106,7 +107,8 @@ enum Phase {
 
 /// An open DO range.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-struct Loop {
+#[doc(hidden)]
+pub struct Loop {
     /// Loop number 1–3.
     label: u8,
     /// The WHILE/DO block (END comes back here).
@@ -116,12 +118,14 @@ struct Loop {
 }
 
 /// The open loops of one program level.
-type Loops = heapless::Vec<Loop, MAX_LOOP_DEPTH>;
+#[doc(hidden)]
+pub type Loops = heapless::Vec<Loop, MAX_LOOP_DEPTH>;
 
 /// How a program level was entered: what its return gives back. (Two bytes: a
 /// [`Next`] that carries one stays as small as before.)
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Entry {
+#[doc(hidden)]
+pub enum Entry {
     /// M98 (`Caller::Program`), or a subprogram call by an M or T code
     /// (`Caller::Subprogram`): the caller's local variables go on.
     Subprogram(Caller),
@@ -134,23 +138,24 @@ enum Entry {
 
 /// A subprogram call in progress.
 #[derive(Clone, Debug)]
-struct Frame {
+#[doc(hidden)]
+pub struct Frame {
     /// The block after the M98 in the caller.
-    ret: Cursor,
+    pub ret: Cursor,
     /// The caller's open loops.
-    loops: Loops,
+    pub loops: Loops,
     /// Runs of the subprogram still to come after the current one (M98 L/packed P).
-    repeats_left: u16,
+    pub repeats_left: u16,
     /// The caller's language, in force again after the return.
-    language: Language,
+    pub language: Language,
     /// What kind of level the frame opened (a FANUC M98, a SINUMERIK PROC call or
     /// REPEAT section).
-    kind: siemens::Level,
+    pub kind: siemens::Level,
     /// How the program was entered.
-    entry: Entry,
+    pub entry: Entry,
     /// The code calls the caller's level had switched off (FANUC: see
     /// [`Caller::switches_off`]).
-    off: u8,
+    pub off: u8,
 }
 
 /// What a cycle block hands the interpreter besides its expansion (see
@@ -165,7 +170,8 @@ struct BlockCycle {
 /// A cycle block executed but not yet committed: its dry run goes on a chunk per
 /// step ([`Expansion::dry_run`]); the block commits when it ends without an alarm.
 #[derive(Clone, Debug)]
-struct Validating {
+#[doc(hidden)]
+pub struct Validating {
     /// The block's state, to be settled by the dry run's end.
     state: State,
     /// What else the block hands over.
@@ -175,14 +181,15 @@ struct Validating {
     /// The dry-run copy of the expansion.
     dry: Expansion,
     /// Program and line of the cycle block, for alarms.
-    at: Cursor,
+    pub at: Cursor,
     line: u32,
 }
 
 /// Where the program goes after a block, decided (and checked) before the block
 /// is committed, so a failed call or jump leaves everything as it was.
 #[derive(Clone, Copy, Debug)]
-enum Next {
+#[doc(hidden)]
+pub enum Next {
     Go,
     Pause,
     End,
@@ -219,48 +226,65 @@ enum Next {
 /// than with the compiler's own order.
 #[derive(Debug)]
 pub struct Interpreter {
-    phase: Phase,
+    #[doc(hidden)]
+    pub phase: Phase,
     /// The language blocks are read in now (the machine's at power-on and reset;
     /// `G290`/`G291` switch it).
-    language: Language,
+    #[doc(hidden)]
+    pub language: Language,
     /// A block other than `%`/`O` has been executed in the current program level
     /// (a later `%` or `O` ends the record).
-    started: bool,
+    #[doc(hidden)]
+    pub started: bool,
     /// Whether `cursor` has been set to the main program's start.
     positioned: bool,
-    budget: u16,
+    #[doc(hidden)]
+    pub budget: u16,
     /// The program a run starts with.
     main: ProgramId,
-    cursor: Cursor,
+    #[doc(hidden)]
+    pub cursor: Cursor,
     /// Where the block the last step read (or failed to read) begins.
-    last_block: Cursor,
+    #[doc(hidden)]
+    pub last_block: Cursor,
     /// A held move that nose compensation found faulty while the failed block ran
     /// (its line), for [`Interpreter::alarm_stop`].
     fault_line: Option<u32>,
     /// The code calls the level in force switches off ([`Caller::switches_off`]).
-    codes_off: u8,
+    #[doc(hidden)]
+    pub codes_off: u8,
     /// The block being read, reused from block to block.
     block: Block,
     /// The block checked, reused from block to block.
-    cmd: Command,
-    state: State,
+    #[doc(hidden)]
+    pub cmd: Command,
+    #[doc(hidden)]
+    pub state: State,
     /// Actions waiting for the sink; also where a block stages its actions.
-    outbox: Outbox,
-    cfg: MachineConfig,
-    loops: Loops,
-    calls: heapless::Vec<Frame, MAX_CALL_DEPTH>,
+    #[doc(hidden)]
+    pub outbox: Outbox,
+    #[doc(hidden)]
+    pub cfg: MachineConfig,
+    #[doc(hidden)]
+    pub loops: Loops,
+    #[doc(hidden)]
+    pub calls: heapless::Vec<Frame, MAX_CALL_DEPTH>,
     /// The canned cycle being delivered (see [`crate::cycles`]).
-    cycle: Option<Expansion>,
+    #[doc(hidden)]
+    pub cycle: Option<Expansion>,
     /// A cycle block whose dry run is still going on.
-    validating: Option<Validating>,
+    #[doc(hidden)]
+    pub validating: Option<Validating>,
     /// The codes that call programs at the level in force, and the macro call
     /// block just read with its arguments (`#1–#33` of the level it starts).
     macro_calls: Calls,
     /// The G66 modal calls in force.
     modal: ModalCalls,
-    vars: Variables,
+    #[doc(hidden)]
+    pub vars: Variables,
     /// The SINUMERIK front end's state: variables, the block's words, MCALL.
-    siemens: siemens::Front,
+    #[doc(hidden)]
+    pub siemens: siemens::Front,
 }
 
 /// The machine configuration of an [`Interpreter`], borrowed to be changed (see
@@ -324,6 +348,39 @@ impl Interpreter {
             modal: ModalCalls::default(),
             codes_off: 0,
         }
+    }
+
+    /// A step of the plugged front end ([`Interpreter::plug`]). Out of line, on
+    /// trait objects: the FANUC step that calls it stays as it was (no FANUC
+    /// block gets slower, `m4-tests/budget.py`).
+    #[inline(never)]
+    fn front_step(
+        &mut self,
+        programs: &dyn ProgramStore,
+        env: &dyn Environment,
+        sink: &mut dyn CanonSink,
+    ) -> Result<Progress, Alarm> {
+        // (interp-siemens turns interp-core's `siemens` feature on: without it no
+        // front end can be plugged in and the call is left out.)
+        #[cfg(feature = "siemens")]
+        if let Some(front) = self.siemens.front {
+            return front.step(self, programs, env, sink);
+        }
+        let _ = (programs, env, sink);
+        // No front end (a board built without SINUMERIK mode, the F446, whose
+        // language setting — $310=1, machine file `language = "siemens"` — asks
+        // for it): alarm 4007 on the program's first SINUMERIK block, nothing runs.
+        self.phase = Phase::Ended;
+        let kind = AlarmKind::NotInThisBuild { what: crate::exec::SINUMERIK };
+        Err(Alarm::in_program(self.cursor.program, self.cursor.line, kind))
+    }
+
+    /// Plugs in the front end of the language beside FANUC (SINUMERIK:
+    /// `interp_siemens::SINUMERIK`): the interpreter hands it every step while
+    /// that language is in force. Without one, G290 or a SINUMERIK power-on
+    /// language raise alarm 4007 ("SINUMERIK mode not in this build").
+    pub fn plug(&mut self, front: &'static dyn crate::lang::Front) {
+        self.siemens.front = Some(front);
     }
 
     /// The machine configuration.
@@ -575,18 +632,9 @@ impl Interpreter {
         }
         if self.language == Language::Siemens {
             // The blocks after a G290 (or on a SINUMERIK machine) are SINUMERIK
-            // blocks. Only an NC block (G290/G291) switches, and it ends a step.
-            #[cfg(feature = "siemens")]
-            return self.siemens_step(&programs, env, &mut &mut *sink);
-            // A board built without SINUMERIK mode (the F446) whose language
-            // setting ($310=1, machine file `language = "siemens"`) asks for it:
-            // alarm 4007 on the program's first block, nothing runs.
-            #[cfg(not(feature = "siemens"))]
-            {
-                self.phase = Phase::Ended;
-                let kind = AlarmKind::NotInThisBuild { what: crate::exec::SINUMERIK };
-                return Err(Alarm::in_program(self.cursor.program, self.cursor.line, kind));
-            }
+            // blocks, read by the front end plugged in (interp-siemens). Only an
+            // NC block (G290/G291) switches, and it ends a step.
+            return self.front_step(&programs, env, &mut &mut *sink);
         }
         let mut budget = self.budget;
         loop {
@@ -788,7 +836,8 @@ impl Interpreter {
     /// SINUMERIK cycle a cycle-call block starts, `edit` what the block sets on the
     /// state besides the command (SINUMERIK DIAMON, LIMS), undone with the block.
     #[inline(always)]
-    fn run_cmd<E, R, F>(
+    #[doc(hidden)]
+    pub fn run_cmd<E, R, F>(
         &mut self,
         env: &E,
         program: Option<ProgramText<'_>>,
@@ -908,7 +957,14 @@ impl Interpreter {
     /// has let go of its held moves ([`Interpreter::stop_lookahead`]) and they have
     /// been offered to `sink`: the alarm names the faulty held move's line if
     /// compensation found one.
-    fn alarm_stop<S: CanonSink + ?Sized>(&mut self, sink: &mut S, program: u32, line: u32, kind: AlarmKind) -> Alarm {
+    #[doc(hidden)]
+    pub fn alarm_stop<S: CanonSink + ?Sized>(
+        &mut self,
+        sink: &mut S,
+        program: u32,
+        line: u32,
+        kind: AlarmKind,
+    ) -> Alarm {
         let faulty = self.fault_line.take();
         let line = self.stop_lookahead(line, faulty, &kind).unwrap_or(line);
         self.deliver(sink);
@@ -1016,7 +1072,8 @@ impl Interpreter {
 
     /// Moves the run on as `next` says.
     #[inline]
-    fn go(&mut self, next: Next) {
+    #[doc(hidden)]
+    pub fn go(&mut self, next: Next) {
         if !matches!(next, Next::Go) {
             self.go_elsewhere(next);
         }
@@ -1149,7 +1206,8 @@ impl Interpreter {
     }
 
     /// Offers waiting actions to the sink; true when the outbox is empty.
-    fn deliver<S: CanonSink + ?Sized>(&mut self, sink: &mut S) -> bool {
+    #[doc(hidden)]
+    pub fn deliver<S: CanonSink + ?Sized>(&mut self, sink: &mut S) -> bool {
         while let Some(c) = self.outbox.front() {
             if sink.push_ref(c).is_err() {
                 return false;
@@ -1159,7 +1217,8 @@ impl Interpreter {
         true
     }
 
-    fn end_of_record(&mut self, at: Cursor) -> Alarm {
+    #[doc(hidden)]
+    pub fn end_of_record(&mut self, at: Cursor) -> Alarm {
         self.phase = Phase::Ended;
         Alarm::in_program(at.program, at.line, AlarmKind::EndOfRecord)
     }
@@ -1226,5 +1285,39 @@ mod without_siemens {
         let (alarm, actions) = run(cfg, "G0 X10 Z10\nM30\n");
         assert_eq!(alarm.map(|a| a.code()), Some(4007));
         assert_eq!(actions, 0);
+    }
+}
+
+/// An interpreter with SINUMERIK mode built in but no front end plugged in
+/// ([`Interpreter::plug`]): the first SINUMERIK block raises alarm 4007 and
+/// nothing after it runs (a host tool that forgot to plug interp-siemens in
+/// gets an alarm, not a wrong cut).
+#[cfg(all(test, feature = "siemens"))]
+mod no_front {
+    use super::*;
+    use crate::canon::RecordingSink;
+    use crate::env::Panel;
+    use crate::program::SingleProgram;
+
+    #[test]
+    fn a_sinumerik_block_without_a_front_end_raises_4007() {
+        let text = "G00 X10 Z10\nG290\nG1 X20 Z5 F0.2\nM30\n";
+        let mut interp = Interpreter::new(MachineConfig::default());
+        let mut sink = RecordingSink::<64>::new();
+        let mut alarm = None;
+        for _ in 0..20 {
+            match interp.step(&SingleProgram(text.as_bytes()), &Panel::default(), &mut sink) {
+                Ok(Progress::Ended) => break,
+                Ok(_) => {}
+                Err(a) => {
+                    alarm = Some(a);
+                    break;
+                }
+            }
+        }
+        let alarm = alarm.expect("the SINUMERIK block must be refused");
+        assert_eq!((alarm.code(), alarm.line), (4007, 3));
+        let moved = sink.actions.iter().filter(|c| c.action.endpoint().is_some()).count();
+        assert_eq!(moved, 1, "only the FANUC G00 moved: {:?}", sink.actions);
     }
 }

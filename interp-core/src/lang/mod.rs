@@ -9,7 +9,16 @@
 //! - [`fanuc`]: the FANUC-style dialect of the ELESY-E3TA manual (G-code systems
 //!   A/B/C on a lathe, the M series on a mill), with custom macro B.
 //! - [`siemens`]: SINUMERIK 840D (R parameters, DEF variables, labels, PROC
-//!   subprograms, MCALL and the standard cycles of seed 001).
+//!   subprograms, MCALL and the standard cycles of seed 001): the parts the
+//!   engine shares here (the reader and checker the cycles' contour reading
+//!   uses, the variables, the cycle calls' parameter mapping); the language's
+//!   flow is the `interp-siemens` crate, plugged in as a [`Front`].
+//!
+//! How a language plugs in: the FANUC front end is the interpreter's own; any
+//! other is a [`Front`] given to the interpreter with
+//! [`crate::Interpreter::plug`], which hands it every step while its language
+//! is in force (`G290`/`G291` switch). Both hand their blocks to the same
+//! execution (`Interpreter::run_cmd`) and share one call stack.
 
 pub mod fanuc;
 pub mod siemens;
@@ -19,6 +28,22 @@ use crate::program::Cursor;
 use crate::units::NumberFormat;
 
 pub use crate::config::Language;
+
+/// A language front end beside FANUC's: it reads, checks and runs the blocks of
+/// its language on the interpreter's engine, one step at a time. The FANUC step
+/// stays as it is: the interpreter calls a front end only while its language is
+/// in force (one test of the language per step, one call through this trait).
+pub trait Front: Sync + core::fmt::Debug {
+    /// One step in this language: statements up to the step budget, at most one
+    /// NC block, as [`crate::Interpreter::step`] describes.
+    fn step(
+        &self,
+        it: &mut crate::Interpreter,
+        programs: &dyn crate::program::ProgramStore,
+        env: &dyn crate::env::Environment,
+        sink: &mut dyn crate::canon::CanonSink,
+    ) -> Result<crate::Progress, crate::Alarm>;
+}
 
 /// A program as the blocks of a canned cycle's shape (G70–G73 ns–nf) are read from
 /// it: the text, where the program begins, the language it is written in, and what

@@ -162,10 +162,12 @@ fn main() -> ! {
     if only.is_none() {
         let cfg = MachineConfig { language: interp_core::config::Language::Siemens, ..MachineConfig::default() };
         let mut b = Bench { interp: Interpreter::new(cfg.clone()), sink: Last(None), program: SIEMENS_PROGRAM };
+        b.interp.plug(&interp_siemens::SINUMERIK);
         run(&mut b, "step", None, &SIEMENS_LABELS);
         let Ok(params) = MotionParams::new(&cfg) else { exit(false) };
         let plan = Plan { planner: Planner::new(Pos::ZERO), params };
         let mut b = Bench { interp: Interpreter::new(cfg), sink: plan, program: SIEMENS_PROGRAM };
+        b.interp.plug(&interp_siemens::SINUMERIK);
         run(&mut b, "text to planned block", None, &SIEMENS_LABELS);
     }
     exit(true)

@@ -12,9 +12,7 @@
 pub mod call;
 pub mod check;
 pub mod cycles;
-pub mod def;
 pub mod expr;
-pub mod labels;
 pub mod lex;
 pub mod read;
 pub mod vars;

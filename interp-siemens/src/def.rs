@@ -6,14 +6,14 @@
 //! names are defined. `PROC ZYKL1 (REAL PAR1)` (line 1416) gives a subprogram's
 //! parameters, defined in the called level with the caller's arguments.
 
-use super::call::{Arg, CallArgs, MAX_ARGS, Ty};
-use super::expr::eval;
-use super::lex::{Src, is, syntax};
-use super::read::Scope;
-use super::vars::{MAX_STRING, Value, VarTy, Vars, convert_to};
-use crate::alarm::{AlarmKind, SiemensAlarm as S};
-use crate::config::MachineConfig;
-use crate::modal::State;
+use interp_core::alarm::{AlarmKind, SiemensAlarm as S};
+use interp_core::config::MachineConfig;
+use interp_core::lang::siemens::call::{Arg, CallArgs, MAX_ARGS, Ty};
+use interp_core::lang::siemens::expr::eval;
+use interp_core::lang::siemens::lex::{Src, is, syntax};
+use interp_core::lang::siemens::read::Scope;
+use interp_core::lang::siemens::vars::{MAX_STRING, Value, VarTy, Vars, convert_to};
+use interp_core::modal::State;
 
 /// Most names one DEF may define (the CYCLE83 example defines 14).
 pub const MAX_DEF_NAMES: usize = 24;
@@ -67,7 +67,7 @@ pub fn define(body: &[u8], vars: &mut Vars, state: &State, cfg: &MachineConfig) 
             return Err(syntax("variable name expected"));
         }
         let name = src.name();
-        if name.first() == Some(&b'$') || super::expr::r_number(name).is_some() || name.len() < 2 {
+        if name.first() == Some(&b'$') || interp_core::lang::siemens::expr::r_number(name).is_some() || name.len() < 2 {
             return Err(syntax("not a name for a variable"));
         }
         if src.peek() == Some(b'[') {
@@ -146,7 +146,7 @@ pub struct Proc<'t> {
 /// Reads a PROC statement's text after `PROC`: `NAME [(TYPE NAME, …)] [SAVE]
 /// [DISPLOF]`. VAR parameters (call by reference) are not supported.
 pub fn proc_params(body: &[u8]) -> Result<Proc<'_>, AlarmKind> {
-    let mut src = Src::new(super::lex::strip_comment(body));
+    let mut src = Src::new(interp_core::lang::siemens::lex::strip_comment(body));
     src.name();
     let mut p = Proc { params: heapless::Vec::new(), save: false };
     if src.eat(b'(') && !src.eat(b')') {
@@ -226,7 +226,7 @@ mod tests {
 
     fn def(vars: &mut Vars, body: &str) -> Result<(), AlarmKind> {
         let cfg = MachineConfig::default();
-        let st = State::power_on(&cfg, crate::axis::Pos::ZERO);
+        let st = State::power_on(&cfg, interp_core::axis::Pos::ZERO);
         define(body.as_bytes(), vars, &st, &cfg)
     }
 
