@@ -125,6 +125,23 @@ impl ExtraOffsets {
         self.rows[i] = row;
         true
     }
+
+    /// Row `p` (1–48) as held: X, Y, Z in nanometres; `None` outside 1–48 (what
+    /// the board's flash stores).
+    pub fn row(&self, p: u8) -> Option<[i32; 3]> {
+        self.rows.get(usize::from(p).checked_sub(1)?).copied()
+    }
+
+    /// Sets row `p` (1–48) as held (X, Y, Z nm; restored from flash); false outside 1–48.
+    pub fn set_row(&mut self, p: u8, row: [i32; 3]) -> bool {
+        match usize::from(p).checked_sub(1).and_then(|i| self.rows.get_mut(i)) {
+            Some(slot) => {
+                *slot = row;
+                true
+            }
+            None => false,
+        }
+    }
 }
 
 /// Limits and rates of one axis.
