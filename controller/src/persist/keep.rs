@@ -37,7 +37,7 @@ pub fn load_config<F: NorFlash + MultiwriteNorFlash>(
     cfg: &mut MachineConfig,
     s: &mut Settings,
 ) -> Result<heapless::Vec<u16, 32>, Error> {
-    let mut grbl: heapless::Vec<(u16, f64), 32> = heapless::Vec::new();
+    let mut grbl: heapless::Vec<(u16, f64), 40> = heapless::Vec::new();
     store.load_params(|n, v| match n.checked_sub(SETTING_KEY) {
         Some(k) => {
             let value = f64::from_bits(v as u64);
