@@ -1272,8 +1272,9 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
         let name = match mode {
             Mode::Idle => "Idle",
             Mode::Run => "Run",
-            Mode::Hold { held: false } => "Hold:0",
-            Mode::Hold { held: true } => "Hold:1",
+            // grbl 1.1: Hold:0 = hold complete, ready to resume; Hold:1 = stopping.
+            Mode::Hold { held: false } => "Hold:1",
+            Mode::Hold { held: true } => "Hold:0",
             Mode::Alarm => "Alarm",
             Mode::Check => "Check",
             Mode::Jog => "Jog",

@@ -72,7 +72,7 @@ fn m06_by_hand_stops_with_a_message_and_cycle_start_goes_on() {
     let answers = r.stream(text, 5_000);
     assert!(answers.iter().any(|l| l == "[MSG:Load T02]"), "{answers:?}");
     assert!(!answers.iter().any(|l| l == "[MSG:Pgm End]"), "ran past the tool change: {answers:?}");
-    assert!(r.status().starts_with("<Hold:1|MPos:-10.000,-10.000,0.000|"), "{}", r.status());
+    assert!(r.status().starts_with("<Hold:0|MPos:-10.000,-10.000,0.000|"), "{}", r.status());
     // The spindle stopped for the operator's hands.
     assert_eq!(r.port.core.spindle_output().0, SpindleDir::Stop);
     r.run_ms(500);
@@ -213,7 +213,7 @@ fn feed_hold_during_the_tool_change_holds_after_done_until_cycle_start() {
     r.inputs.tool_change_done = true;
     r.run_ms(1_000);
     assert_eq!(r.io.requests, [Some(2), None]);
-    assert!(r.status().starts_with("<Hold:1|"), "{}", r.status());
+    assert!(r.status().starts_with("<Hold:0|"), "{}", r.status());
     assert_eq!(mpos(&mut r), [-10.0, -10.0, 0.0], "held: nothing moves after done");
     assert_eq!(r.port.core.spindle_output().0, SpindleDir::Stop);
     r.send(b"~");

@@ -285,7 +285,7 @@ fn hold_resume_overrides_reset_and_errors_on_the_wire() {
     raw.send(b"!");
     std::thread::sleep(Duration::from_millis(400));
     let held = raw.status();
-    assert!(held.starts_with("<Hold:1|"), "{held}");
+    assert!(held.starts_with("<Hold:0|"), "{held}");
     std::thread::sleep(Duration::from_millis(200));
     assert_eq!(raw.status().split('|').nth(1), held.split('|').nth(1), "no motion while held");
     raw.send(&[b'~', 0x91, 0x91]);
