@@ -120,7 +120,7 @@ fn setting_axis(n: u16) -> Axis {
 /// Whether setting `n` belongs to an axis the machine does not have (Y on a
 /// lathe), or is a mill's tool changer's (`$312`, `$313`) on a lathe (a build
 /// without the mill profile has neither: unknown settings).
-fn missing_axis(n: u16, cfg: &MachineConfig) -> bool {
+pub(crate) fn missing_axis(n: u16, cfg: &MachineConfig) -> bool {
     let mill_only = interp_core::MILL && matches!(n, 312 | 313) && cfg.kind != MachineKind::Mill;
     mill_only || ((100..=132).contains(&n) && !cfg.axis(setting_axis(n)).present)
 }

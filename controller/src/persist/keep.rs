@@ -32,6 +32,10 @@ fn setting_numbers() -> impl Iterator<Item = u16> {
 
 /// Reads the stored parameters, grbl settings and offsets into `cfg` and `s`; the
 /// numbers of settings the stored value was refused for are skipped (returned).
+/// A stored setting of an axis or device the stored machine kind does not have
+/// (a mill's `$101`–`$131` and `$312`/`$313` after `$RST=$` made it a lathe) is
+/// left unused, not refused: [`save`] writes only the settings a machine has, so
+/// such a record is a former mill's, and a mill again overwrites it.
 pub fn load_config<F: NorFlash + MultiwriteNorFlash>(
     store: &mut Persist<F>,
     cfg: &mut MachineConfig,
@@ -57,6 +61,7 @@ pub fn load_config<F: NorFlash + MultiwriteNorFlash>(
     let mut refused = heapless::Vec::new();
     for n in setting_numbers() {
         if let Some(&(_, v)) = grbl.iter().find(|(m, _)| *m == n)
+            && !settings::missing_axis(n, cfg)
             && settings::set(n, v, cfg, s).is_err()
         {
             let _ = refused.push(n);
