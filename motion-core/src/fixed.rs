@@ -114,6 +114,18 @@ impl Divisor {
             return n;
         }
         let a = n.unsigned_abs();
+        // A position's steps (|n| and the divisor below 2^32): all in 32 bits, the
+        // estimate `⌊a·⌊2^32/d⌋ / 2^32⌋` low by at most two, its remainder below 2^32.
+        if let (Ok(a), Ok(d)) = (u32::try_from(a), u32::try_from(self.d)) {
+            let mut q = ((u64::from(a) * (self.m >> 32)) >> 32) as u32;
+            let mut r = a.wrapping_sub(q.wrapping_mul(d));
+            while r >= d {
+                q += 1;
+                r -= d;
+            }
+            let q = i64::from(q);
+            return if n >= 0 { q } else { -q - i64::from(r != 0) };
+        }
         let mut q = match u32::try_from(a) {
             // ⌊a·m / 2^64⌋ from two 32 × 32-bit products (a position's steps,
             // |n| < 2^32): ⌊(a·m_hi + ⌊a·m_lo / 2^32⌋) / 2^32⌋, no 128-bit multiply;

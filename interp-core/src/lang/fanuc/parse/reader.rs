@@ -137,11 +137,11 @@ impl<'a, 'v, 'c> Reader<'a, 'v, 'c> {
         }
         self.skip_blanks_and_comments()?;
         if matches!(self.peek(), Some(b'N' | b'n')) {
-            self.pos += 1;
-            if starts_number(self.text, self.pos) {
-                let n = self.number(b'N')?;
+            if let Some((n, end)) = plain_number(self.text, self.pos + 1) {
+                self.pos = end;
                 self.store(b'N', n, block)?;
             } else {
+                self.pos += 1;
                 self.word(b'N', block)?;
             }
             self.skip_blanks_and_comments()?;
@@ -590,17 +590,6 @@ fn plain_number(text: &[u8], mut i: usize) -> Option<(Number, usize)> {
 
 /// `10^n` for the fraction digits of a word (0–9).
 const POW10_U32: [u32; 10] = [1, 10, 100, 1_000, 10_000, 100_000, 1_000_000, 10_000_000, 100_000_000, 1_000_000_000];
-
-/// Whether a plain number (no macro value, no blanks) starts at `text[i]`: a digit
-/// or a point, after an optional sign.
-#[inline(always)]
-fn starts_number(text: &[u8], i: usize) -> bool {
-    let plain = |c: Option<&u8>| c.is_some_and(|&c| c.is_ascii_digit() || c == b'.');
-    match text.get(i) {
-        Some(b'-' | b'+') => plain(text.get(i + 1)),
-        c => plain(c),
-    }
-}
 
 /// A blank between and inside words: space, tab, CR (one compare for most bytes).
 #[inline(always)]
