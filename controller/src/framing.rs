@@ -84,7 +84,12 @@ impl LinkSeq {
             // makes them (a flipped ENQ is a CR, a dropped `!` leaves the LF of
             // `!` LF, a partial line of a CR goes stale), and inside a job it would
             // count as a line of the stream and shift every line number after it.
-            Frame::Plain if self.active && raw.first() != Some(&b'$') => return Checked::Resend,
+            // A `$` command is taken unframed (a checksum sender sends `$LN=1`,
+            // `$PR=` unframed between jobs), but not inside a streamed job: there the
+            // sender sends only framed lines, and a `$` line is a framed line whose
+            // `N` noise turned into `$` and whose `*hhhh` tail it cut off (answered
+            // as a command, its `ok` would be taken for the answer to a line).
+            Frame::Plain if self.active && (in_job || raw.first() != Some(&b'$')) => return Checked::Resend,
             Frame::Plain => return Checked::Text(raw, None),
         };
         // Line 1 restarts the numbering for a new job, but never inside a streamed

@@ -322,3 +322,32 @@ fn under_checksums_an_empty_line_made_by_noise_is_refused_not_numbered() {
     }));
     assert!(lines.iter().any(|l| l == "2") && !lines.iter().any(|l| l == "3"), "{lines:?}");
 }
+
+/// Under checksums inside a streamed job every line is framed: a `$` line there is
+/// a framed line whose `N` noise turned into `$` (0x4E → 0x24 is two flipped bits)
+/// and whose tail noise cut off, refused with the resend request and never run as a
+/// command: `$G`'s `ok` would be taken for the answer to the sender's next line, `$X`
+/// would unlock. (A `$` line that kept a `*hhhh` tail was refused already as a framed
+/// line with a bad CRC.) Between jobs the sender's unframed
+/// `$` commands (`$LN=1`, `$PR=`) are taken as before.
+#[test]
+fn under_checksums_a_dollar_line_inside_a_job_is_noise_and_refused() {
+    let mut r = framed_rig();
+    // A slow move keeps the job open while the damaged lines arrive.
+    r.send(format!("{}\n", frame_line(2, "G01 W-5 F100")).as_bytes());
+    r.run_ms(3);
+    assert_eq!(r.take_raw_lines(), vec![with_crc("N2 ok")]);
+    r.send(b"$G\n");
+    r.run_ms(3);
+    assert_eq!(r.take_lines(), vec!["[MSG:Resend:3]", "error:88"]);
+    r.send(b"$X\n");
+    r.run_ms(3);
+    assert_eq!(r.take_lines(), vec!["[MSG:Resend:3]", "error:88"]);
+    r.send(format!("{}\n", frame_line(3, "M30")).as_bytes());
+    r.run_ms(3);
+    assert_eq!(r.take_raw_lines(), vec![with_crc("N3 ok")]);
+    assert!(r.run_until(10_000, |r| r.status().starts_with("<Idle")));
+    r.take_lines();
+    // The job has ended: an unframed `$` command is a command again.
+    assert_eq!(r.command("$LN=1"), vec!["[LN:1]", "ok"]);
+}
