@@ -585,7 +585,8 @@ fn plain_number(text: &[u8], mut i: usize) -> Option<(Number, usize)> {
         return None;
     }
     let mantissa = mantissa as i64;
-    Some((Number { mantissa: if negative { -mantissa } else { mantissa }, frac_digits: frac_digits as u8, has_point }, i))
+    let mantissa = if negative { -mantissa } else { mantissa };
+    Some((Number { mantissa, frac_digits: frac_digits as u8, has_point }, i))
 }
 
 /// `10^n` for the fraction digits of a word (0–9).
