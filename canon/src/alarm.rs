@@ -103,6 +103,9 @@ pub enum AlarmKind {
     IllegalOffsetNumber { number: u16 },
     /// 0030: tool number not on the turret.
     IllegalToolNumber { number: u16 },
+    /// 0030: a mill's T above its tool count (`max`): the same alarm in the words
+    /// of a machining centre, which has no turret.
+    MillToolNumber { number: u16, max: u16 },
     /// 0032: a G10 offset value (or a work offset of G10 L20) outside the range
     /// the table holds (FANUC 0i-M PS0032).
     OffsetValueOutOfRange,
@@ -202,6 +205,9 @@ pub enum AlarmKind {
     CommentNotClosed,
     /// 4015: G53 takes absolute X/Z only.
     MachineCoordinatesIncremental,
+    /// 4015: G52 under G91 on a mill: its words are the local origin's position in
+    /// the work frame (seed 004 @2362), never a distance.
+    LocalFrameIncremental,
     /// 4016: a G code that must be alone in its block shares it (G04 with motion …).
     CodeMustBeAlone { code: GNum },
     /// 4017: a value or position that does not fit the controller's number range.
@@ -350,7 +356,7 @@ impl AlarmKind {
             ArcAxisOutsidePlane { .. } => 21,
             ArcCenterMissing => 22,
             ArcRadiusZero => 23,
-            IllegalOffsetNumber { .. } | IllegalToolNumber { .. } => 30,
+            IllegalOffsetNumber { .. } | IllegalToolNumber { .. } | MillToolNumber { .. } => 30,
             IllegalReferenceNumber => 46,
             ProgramNotFound { .. } | SubprogramNumberMissing => 76,
             CallNestingTooDeep | MacroNestingTooDeep => 77,
@@ -389,7 +395,7 @@ impl AlarmKind {
             CoordinateSettingDisabled => 4012,
             FeedPerRevSpindleStopped => 4013,
             CommentNotClosed => 4014,
-            MachineCoordinatesIncremental => 4015,
+            MachineCoordinatesIncremental | LocalFrameIncremental => 4015,
             CodeMustBeAlone { .. } => 4016,
             Overflow => 4017,
             MisplacedBlockSkip => 4018,
@@ -483,6 +489,10 @@ impl AlarmKind {
                 write!(f, "G51.1 before G51 before G68, cancelled the other way round (G69, then G50, then G50.1)")
             }
             OffsetValueOutOfRange => write!(f, "G10 offset value out of range"),
+            LocalFrameIncremental => {
+                write!(f, "G52 takes absolute coordinates only (G90): the local origin in the work frame")
+            }
+            MillToolNumber { number, max } => write!(f, "tool number T{number} is not on this machine (T1-T{max})"),
             ReferenceInCycle => write!(f, "G28/G29/G30 while a hole cycle is in force (G80 first)"),
             PeckDepthMissing => write!(f, "G73/G83 need a peck depth Q greater than zero"),
             IllegalScale { letter } => {
@@ -515,7 +525,7 @@ impl fmt::Display for AlarmKind {
             FeedZero => write!(f, "cutting feed F is zero or was never given"),
             ArcRadiusTolerance { excess_nm } => write!(
                 f,
-                "arc end point is {}.{:03} mm off the circle (R too small or I/K inconsistent)",
+                "arc end point is {}.{:03} mm off the circle (R too small or I/J/K inconsistent)",
                 excess_nm / 1_000_000,
                 (excess_nm % 1_000_000) / 1_000
             ),
@@ -576,7 +586,7 @@ impl fmt::Display for AlarmKind {
             TooManyMCodes => write!(f, "more than 3 M codes in one block"),
             ValueOutOfRange { letter } => write!(f, "value of {} out of range", Ch(letter)),
             CoordinateSettingDisabled => write!(f, "G50 coordinate setting is disabled (parameter 5152)"),
-            FeedPerRevSpindleStopped => write!(f, "feed per revolution (G99) with the spindle stopped"),
+            FeedPerRevSpindleStopped => write!(f, "feed per revolution or tapping with the spindle stopped"),
             CommentNotClosed => write!(f, "comment '(' is not closed"),
             MachineCoordinatesIncremental => write!(f, "G53 takes absolute coordinates only"),
             CodeMustBeAlone { code } => write!(f, "{code} must not share its block with other G codes or moves"),
@@ -657,6 +667,8 @@ impl fmt::Display for AlarmKind {
             | OffsetValueOutOfRange
             | ReferenceInCycle
             | PeckDepthMissing
+            | MillToolNumber { .. }
+            | LocalFrameIncremental
             | IllegalScale { .. } => self.mill_text(f),
             ContourBufferFull => write!(f, "too many actions between a held move and the next move"),
             PolarCodeNotAllowed { code } => write!(f, "{code} is not allowed in polar interpolation (G12.1)"),
@@ -666,12 +678,12 @@ impl fmt::Display for AlarmKind {
             }
             PolygonAxisCommanded => write!(f, "the tool spindle (C) cannot be moved in polygon turning (G51.2)"),
             PolygonModeConflict { what } => write!(f, "{what} in polygon turning (G51.2)"),
-            NoseCompArc => write!(f, "nose compensation cannot start up or cancel in an arc block"),
-            NoseCompPlaneChange => write!(f, "plane selection while nose compensation is active"),
-            NoseCompReversed => write!(f, "G41/G42 reversed while nose compensation is active"),
+            NoseCompArc => write!(f, "radius compensation cannot start up or cancel in an arc block"),
+            NoseCompPlaneChange => write!(f, "plane selection while radius compensation is active"),
+            NoseCompReversed => write!(f, "G41/G42 reversed while radius compensation is active"),
             ToolChangeInNoseComp => write!(f, "tool change (lathe T, mill M06) while radius compensation is active"),
             NoseCompGouge => write!(f, "radius compensation would gouge the part"),
-            NoseCompCornerAngle => write!(f, "nose compensation corner angle below 0.1 degrees"),
+            NoseCompCornerAngle => write!(f, "radius compensation corner angle below 0.1 degrees"),
         }
     }
 }
@@ -725,7 +737,7 @@ pub const CATALOG: &[CatalogEntry] = &[
     CatalogEntry {
         code: 20,
         title: "arc radius out of tolerance",
-        when: "R shorter than half the chord, or I/K end point off the circle by more than parameter 3410; an ellipse (G02.1/G03.1) or parabola (G02.2/G03.2) whose end point no curve of the given A/B or P reaches (2.4, 2.5)",
+        when: "R shorter than half the chord, or I/K (mill: I/J/K) end point off the circle by more than parameter 3410; an ellipse (G02.1/G03.1) or parabola (G02.2/G03.2) whose end point no curve of the given A/B or P reaches (2.4, 2.5)",
     },
     CatalogEntry {
         code: 21,
@@ -741,7 +753,7 @@ pub const CATALOG: &[CatalogEntry] = &[
     CatalogEntry {
         code: 30,
         title: "illegal offset or tool number",
-        when: "T word selects a tool or offset outside the tool table",
+        when: "T word selects a tool or offset outside the tool table; on a mill T above tool_count, H or D beyond the offset rows",
     },
     CatalogEntry {
         code: 32,
@@ -751,7 +763,7 @@ pub const CATALOG: &[CatalogEntry] = &[
     CatalogEntry {
         code: 34,
         title: "arc in compensation start-up or cancel",
-        when: "the first move after G41/G42 or the G40 move is an arc (2.18.3)",
+        when: "the first move after G41/G42 or the G40 move is an arc (2.18.3; nose radius on a lathe, cutter radius on a mill)",
     },
     CatalogEntry { code: 37, title: "plane change in compensation", when: "G17/G18/G19 while G41/G42 is in force" },
     CatalogEntry {
@@ -931,7 +943,7 @@ pub const CATALOG: &[CatalogEntry] = &[
     CatalogEntry { code: 503, title: "- overtravel (stroke check 2)", when: "as 0502, moving in - or below the box" },
     CatalogEntry {
         code: 3576,
-        title: "nose compensation reversed",
+        title: "radius compensation reversed",
         when: "G41 to G42 or back directly while compensating (2.18.4)",
     },
     CatalogEntry {
@@ -971,7 +983,7 @@ pub const CATALOG: &[CatalogEntry] = &[
     CatalogEntry {
         code: 4006,
         title: "word missing",
-        when: "a word the block's code requires (G04 time, G52 axes ...)",
+        when: "a word the block's code requires (G04 time, G52 axes, the axis of a mill's G51.1 ...)",
     },
     CatalogEntry {
         code: 4007,
@@ -998,10 +1010,14 @@ pub const CATALOG: &[CatalogEntry] = &[
     CatalogEntry {
         code: 4013,
         title: "feed per rev without spindle",
-        when: "G99 cutting move while the spindle is stopped",
+        when: "feed per revolution (lathe G99, mill G95) cutting move, or a mill's floating tap G84/G74, while the spindle is stopped",
     },
     CatalogEntry { code: 4014, title: "comment not closed", when: "'(' without ')' in the block" },
-    CatalogEntry { code: 4015, title: "G53 incremental", when: "G53 with U/W instead of X/Z" },
+    CatalogEntry {
+        code: 4015,
+        title: "G53 or G52 incremental",
+        when: "G53 with U/W instead of X/Z (mill: G53 under G91); on a mill also G52 under G91 (its words are the local origin, seed 004 @2362)",
+    },
     CatalogEntry {
         code: 4016,
         title: "code must be alone",
@@ -1202,6 +1218,8 @@ mod tests {
             ArcRadiusZero,
             IllegalOffsetNumber { number: 99 },
             IllegalToolNumber { number: 99 },
+            MillToolNumber { number: 99, max: 24 },
+            LocalFrameIncremental,
             IllegalReferenceNumber,
             ProgramNotFound { program: 12 },
             SubprogramNumberMissing,

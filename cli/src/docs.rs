@@ -376,6 +376,9 @@ pub const PROOFS: &[Proof] = &[
     on(MILL, "mill_g51_in_cutter_comp", 4049, "G00 X-10 Y-10 Z10\nG41 D1 G01 X0 Y0 F300\nG51 X0 Y0 P2000\nM30\n", 3),
     on(MILL, "mill_g51_1_after_g51", 4051, "G51 X0 Y0 P2000\nG51.1 X0\nM30\n", 2),
     on(MILL, "mill_hole_cycle_without_r", 4006, "G00 X0 Y0 Z50\nG81 X10 Z-5 F100\nM30\n", 2),
+    on(MILL, "mill_g51_1_without_axis", 4006, "G00 X-10 Y-10\nG51.1\nG01 X-20 F100\nM30\n", 2),
+    on(MILL, "mill_g52_under_g91", 4015, "G00 X-10 Y-10\nG91 G52 X10\nG90 G00 X0 Y0\nM30\n", 2),
+    on(MILL, "mill_t_above_tool_count", 30, "G00 X-10 Y-10\nT30 M06\nM30\n", 2),
     on(MILL, "mill_u_address", 9, "G00 X1\nG00 U10\nM30\n", 2),
     on(MILL, "mill_m06_in_cutter_comp", 3577, "G00 X-10 Y-10 Z10\nG41 D1 G01 X0 Y0 F300\nT2 M06\nM30\n", 3),
     on(

@@ -3,9 +3,11 @@
 //! Every object starts with `line` (1-based source line), then `program` for an
 //! action of a subprogram (its O number; `line` is then a line of the file it came
 //! from; absent for the main program), and `kind`; positions are
-//! work coordinates in mm with X as a diameter on a lathe (as it is on a mill; `mx`/`mz`: machine coordinates),
-//! feeds in mm/min or mm/rev, surface speeds in m/min, angles in degrees. Key
-//! order is the field order of the record types below and never changes.
+//! work coordinates in mm with X as a diameter on a lathe (a plain coordinate on
+//! a mill), `y` and `c` only on machines with those axes; `mx`, `my` (machines
+//! with a Y axis) and `mz` are the machine coordinates of a move's end; feeds in
+//! mm/min or mm/rev, surface speeds in m/min, angles in degrees. Key order is the
+//! field order of the record types below and never changes.
 
 use std::io::{self, Write};
 
@@ -100,7 +102,8 @@ pub enum Body {
     },
 }
 
-/// Where a move ends: work X (diameter), Y, Z, C, and machine X (diameter), Z.
+/// Where a move ends: work X (diameter on a lathe), Y, Z, C (the machine
+/// coordinates `mx`, `my`, `mz` follow in each move record).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Point {
     /// Work X, diameter mm.
@@ -136,6 +139,9 @@ pub struct MoveRecord {
     pub independent: Option<bool>,
     /// Machine X, diameter mm.
     pub mx: f64,
+    /// Machine Y, mm (machines with a Y axis).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub my: Option<f64>,
     /// Machine Z, mm.
     pub mz: f64,
 }
@@ -171,6 +177,9 @@ pub struct ArcRecord {
     pub plane: &'static str,
     /// Machine X, diameter mm.
     pub mx: f64,
+    /// Machine Y, mm (machines with a Y axis).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub my: Option<f64>,
     /// Machine Z, mm.
     pub mz: f64,
 }
@@ -193,6 +202,9 @@ pub struct ThreadRecord {
     pub rpm: Option<u32>,
     /// Machine X, diameter mm.
     pub mx: f64,
+    /// Machine Y, mm (machines with a Y axis).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub my: Option<f64>,
     /// Machine Z, mm.
     pub mz: f64,
 }
@@ -211,6 +223,9 @@ pub struct TapRecord {
     pub rpm: Option<u32>,
     /// Machine X, diameter mm.
     pub mx: f64,
+    /// Machine Y, mm (machines with a Y axis).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub my: Option<f64>,
     /// Machine Z, mm.
     pub mz: f64,
 }
@@ -263,6 +278,11 @@ fn point(ep: &Endpoint, cfg: &MachineConfig) -> Point {
     }
 }
 
+/// Machine Y of `ep` for output, on machines that have a Y axis.
+fn machine_y(ep: &Endpoint, cfg: &MachineConfig) -> Option<f64> {
+    cfg.axis(Axis::Y).present.then(|| mm(ep.machine[Axis::Y]))
+}
+
 fn move_record(m: &Move, cfg: &MachineConfig, rapid: bool) -> MoveRecord {
     MoveRecord {
         to: point(&m.to, cfg),
@@ -273,6 +293,7 @@ fn move_record(m: &Move, cfg: &MachineConfig, rapid: bool) -> MoveRecord {
         exact_stop: m.exact_stop,
         independent: rapid.then_some(m.independent),
         mx: x_of(m.to.machine[Axis::X], cfg),
+        my: machine_y(&m.to, cfg),
         mz: mm(m.to.machine[Axis::Z]),
     }
 }
@@ -298,6 +319,7 @@ fn arc_record(a: &ArcMove, cfg: &MachineConfig) -> ArcRecord {
             Plane::Yz => "yz",
         },
         mx: x_of(a.to.machine[Axis::X], cfg),
+        my: machine_y(&a.to, cfg),
         mz: mm(a.to.machine[Axis::Z]),
     }
 }
@@ -314,6 +336,7 @@ fn thread_record(t: &ThreadMove, cfg: &MachineConfig) -> ThreadRecord {
         lead_delta: mm(t.lead_delta),
         rpm: t.spindle.rpm,
         mx: x_of(t.to.machine[Axis::X], cfg),
+        my: machine_y(&t.to, cfg),
         mz: mm(t.to.machine[Axis::Z]),
     }
 }
@@ -325,6 +348,7 @@ fn tap_record(t: &TapMove, cfg: &MachineConfig) -> TapRecord {
         dir: spindle_dir(t.dir),
         rpm: t.spindle.rpm,
         mx: x_of(t.to.machine[Axis::X], cfg),
+        my: machine_y(&t.to, cfg),
         mz: mm(t.to.machine[Axis::Z]),
     }
 }
@@ -370,7 +394,7 @@ mod tests {
         write(&r, &cfg, &mut out).unwrap();
         let first = String::from_utf8(out).unwrap().lines().next().unwrap().to_string();
         assert!(first.contains("\"x\":40.0,\"y\":-25.5,\"z\":10.0"), "{first}");
-        // G54 is X-300 Y-200 Z-250 in mill.toml: machine X -260.
-        assert!(first.contains("\"mx\":-260.0,\"mz\":-240.0"), "{first}");
+        // G54 is X-300 Y-200 Z-250 in mill.toml: machine X -260, Y -225.5.
+        assert!(first.contains("\"mx\":-260.0,\"my\":-225.5,\"mz\":-240.0"), "{first}");
     }
 }

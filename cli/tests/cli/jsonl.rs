@@ -98,3 +98,40 @@ fn thread_and_tap_records_carry_lead_and_synchronisation() {
         r#"{"line":7,"kind":"tap","x":0.0,"z":-20.0,"lead":1.25,"dir":"cw","rpm":500,"mx":0.0,"mz":-20.0}"#
     );
 }
+
+/// On a mill every move record carries work `y` and machine `my` (G54 of
+/// examples/machines/mill.toml is X-300 Y-200 Z-250): rapids, lines, arcs and
+/// the rigid tap of a hole cycle alike.
+#[test]
+fn a_mill_move_carries_machine_y() {
+    let program = "O0001\nG90 G54 G17 G00 X10. Y-20. Z5.\nG01 Y-30. F200\nG02 X20. Y-40. R10.\n\
+                   M29 S500\nG99 G84 X30. Y-50. Z-10. R2. F500\nG80\nM30\n";
+    let o = lathe(&[
+        "sim",
+        &scratch("jsonl_mill.nc", program),
+        "--format",
+        "jsonl",
+        "--machine",
+        concat!(env!("CARGO_MANIFEST_DIR"), "/../examples/machines/mill.toml"),
+    ]);
+    assert_eq!(status(&o), 0, "{}", stdout(&o));
+    let out = stdout(&o);
+    let moves: Vec<Value> = out
+        .lines()
+        .map(|l| serde_json::from_str::<Value>(l).unwrap())
+        .filter(|v| ["rapid", "linear", "arc", "tap"].contains(&v["kind"].as_str().unwrap()))
+        .collect();
+    for kind in ["rapid", "linear", "arc", "tap"] {
+        assert!(moves.iter().any(|v| v["kind"] == kind), "no {kind} in {out}");
+    }
+    for v in &moves {
+        let (y, my) = (v["y"].as_f64().unwrap(), v["my"].as_f64().unwrap());
+        assert!((my - (y - 200.0)).abs() < 1e-9, "my is not y + G54's Y: {v}");
+        assert!((v["mx"].as_f64().unwrap() - (v["x"].as_f64().unwrap() - 300.0)).abs() < 1e-9, "{v}");
+    }
+    // Key order: the machine coordinates end the record, Y between X and Z.
+    let first = out.lines().find(|l| l.contains("\"rapid\"")).unwrap();
+    assert!(first.ends_with(r#""mx":-290.0,"my":-220.0,"mz":-245.0}"#), "{first}");
+    let arc = out.lines().find(|l| l.contains("\"arc\"")).unwrap();
+    assert!(arc.contains(r#""mx":-280.0,"my":-240.0,"mz":-245.0"#), "{arc}");
+}

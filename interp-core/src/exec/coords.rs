@@ -41,13 +41,20 @@ pub(super) fn set_coordinates(cmd: &Command, st: &mut State, cfg: &MachineConfig
 
 /// G52: the local frame's origin in work coordinates. U/W mean the same as X/Z
 /// here (the manual cancels with either `G52 X0 Z0` or `G52 U0 W0`).
-pub(super) fn local_frame(cmd: &Command, st: &mut State) {
+/// On a mill G52 takes absolute words only: they are the local origin's position
+/// in the work frame (seed 004 @2362), and under G91 there is none to give (4015,
+/// as G53).
+pub(super) fn local_frame(cmd: &Command, st: &mut State, cfg: &MachineConfig) -> Result<(), AlarmKind> {
+    if crate::is_mill(cfg) && cmd.axes.iter().flatten().any(|w| w.incremental) {
+        return Err(AlarmKind::LocalFrameIncremental);
+    }
     for a in Axis::ALL {
         if let Some(w) = cmd.axes[a.index()] {
             st.frames.local[a] = w.value;
         }
     }
     st.sum_own_offsets();
+    Ok(())
 }
 
 /// G53: rapid to machine coordinates, tool offset not applied, one block only.

@@ -101,7 +101,7 @@ fn full(
     match cmd.g.one_shot {
         Some(GCode::Dwell) => out.emit(Action::Dwell { ms: cmd.dwell_ms.unwrap_or(0) })?,
         Some(GCode::SetCoordinates) => coords::set_coordinates(cmd, st, cfg)?,
-        Some(GCode::LocalFrame) => coords::local_frame(cmd, st),
+        Some(GCode::LocalFrame) => coords::local_frame(cmd, st, cfg)?,
         Some(GCode::MachineCoordinates) => coords::machine_move(cmd, st, cfg, out)?,
         Some(GCode::ReferenceReturn | GCode::ReferenceReturnN) => coords::reference_return(cmd, st, cfg, env, out)?,
         Some(GCode::ReturnFromReference) if crate::MILL => coords::return_from_reference(cmd, st, cfg, env, out)?,

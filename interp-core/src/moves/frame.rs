@@ -154,6 +154,11 @@ pub fn switch(cmd: &Command, st: &mut State, cfg: &crate::config::MachineConfig)
             if later(on::SCALE | on::ROTATE) {
                 return Err(AlarmKind::FrameOrder);
             }
+            // G51.1 names the axes it mirrors: without X, Y or Z it would mirror
+            // nothing where the programmer expects a mirror.
+            if FRAME_AXES.iter().all(|a| cmd.axes[a.index()].is_none()) {
+                return Err(AlarmKind::MissingWord { letter: b'X', context: "G51.1" });
+            }
             for (i, a) in FRAME_AXES.into_iter().enumerate() {
                 if let Some(w) = cmd.axes[a.index()] {
                     f.mirror |= 1 << i;

@@ -273,7 +273,8 @@ fn other_words(block: &Block, cfg: &MachineConfig, fmt: &NumberFormat, cmd: &mut
     if let Some(t) = block.get(b'T') {
         let t = whole(b'T', &t, 99_999_999)?;
         if t > u32::from(cfg.tool_count) {
-            return Err(AlarmKind::IllegalToolNumber { number: t.min(u32::from(u16::MAX)) as u16 });
+            let number = t.min(u32::from(u16::MAX)) as u16;
+            return Err(AlarmKind::MillToolNumber { number, max: cfg.tool_count });
         }
         cmd.tool = Some((t as u16, 0));
     }
