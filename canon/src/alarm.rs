@@ -293,6 +293,9 @@ pub enum AlarmKind {
     /// 4510: a G34 lead change K × spindle speed² (the constant acceleration of a
     /// variable-lead thread) takes more than half the long axis's acceleration.
     ThreadLeadChangeTooFast { letter: Letter },
+    /// 4511: a machining centre's automatic tool changer did not answer "done"
+    /// within `seconds` (`$313`) of the board's request for tool `tool` (M06).
+    ToolChangeTimeout { tool: u16, seconds: u16 },
     /// 4601: a streamed job starved: open, its text and motion run out, and no byte
     /// came over the link for `seconds` (the link was lost mid-stream).
     StreamStarved { seconds: u32 },
@@ -457,6 +460,7 @@ impl AlarmKind {
             MotionConfigInvalid { .. } => 4508,
             EmergencyStop => 4509,
             ThreadLeadChangeTooFast { .. } => 4510,
+            ToolChangeTimeout { .. } => 4511,
             StreamStarved { .. } => 4601,
             ChamferInThread => 50,
             ChamferNoMove { .. } => 51,
@@ -522,6 +526,11 @@ impl AlarmKind {
             IllegalScale { letter } => {
                 write!(f, "scale factor {} out of range (P 0.001-999.999, I/J/K +-0.001-9.999)", Ch(letter))
             }
+            ToolChangeTimeout { tool, seconds } => write!(
+                f,
+                "tool changer did not report done within {seconds} s of the request for T{tool:02} \
+                 ($313; ATC done input)"
+            ),
             _ => Ok(()),
         }
     }
@@ -694,7 +703,8 @@ impl fmt::Display for AlarmKind {
             | PeckDepthMissing
             | MillToolNumber { .. }
             | LocalFrameIncremental
-            | IllegalScale { .. } => self.mill_text(f),
+            | IllegalScale { .. }
+            | ToolChangeTimeout { .. } => self.mill_text(f),
             ContourBufferFull => write!(f, "too many actions between a held move and the next move"),
             PolarCodeNotAllowed { code } => write!(f, "{code} is not allowed in polar interpolation (G12.1)"),
             PolarArcNeedsR => write!(f, "arcs in polar interpolation take R, not I/J/K"),
@@ -1483,6 +1493,13 @@ pub const CATALOG: &[CatalogEntry] = &[
                variable-lead thread, above half the long axis's acceleration; raised before the pass moves (2.17.2)",
     },
     CatalogEntry {
+        code: 4511,
+        title: "tool change timeout",
+        when: "a mill's M06 with the automatic tool changer ($312=1, machine file tool_changer = \"automatic\"): \
+               the changer's done input did not come within $313 seconds (default 30) of the board's \
+               request; the job stops, the spindle stays stopped, the request outputs drop",
+    },
+    CatalogEntry {
         code: 4601,
         title: "stream starved (link lost)",
         when: "a streamed job is open (it ran a block and did not reach M02/M30, nor its tape's closing %), \
@@ -1815,6 +1832,7 @@ mod tests {
             MotionConfigInvalid { what: "x" },
             EmergencyStop,
             ThreadLeadChangeTooFast { letter: b'Z' },
+            ToolChangeTimeout { tool: 2, seconds: 30 },
             StreamStarved { seconds: 10 },
             ChamferInThread,
             ChamferNoMove { what: "x" },

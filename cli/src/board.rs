@@ -53,6 +53,14 @@ pub struct BoardArgs {
     /// (after --corrupt/--corrupt-out), non-printing bytes as `\xNN`.
     #[arg(long, value_name = "FILE")]
     pub trace: Option<PathBuf>,
+    /// A mill's simulated automatic tool changer (`tool_changer = "automatic"`,
+    /// `$312=1`): seconds of machine time from the board's request to its done.
+    #[arg(long, default_value_t = 2.0, value_name = "SECONDS")]
+    pub atc_time: f64,
+    /// The simulated tool changer never reports done (a jammed changer): the board
+    /// raises alarm 4511 after `$313` seconds.
+    #[arg(long)]
+    pub atc_never: bool,
 }
 
 /// The link's traffic in a file (`--trace`).
@@ -130,6 +138,10 @@ pub fn run(args: &BoardArgs, out: &mut dyn Write) -> Result<u8, Error> {
         let message = format!("--speed must be a positive number, not {}", args.speed);
         return Err(Error::Write { target: "the virtual board".into(), source: std::io::Error::other(message) });
     }
+    if !(args.atc_time.is_finite() && (0.0..=3600.0).contains(&args.atc_time)) {
+        let message = format!("--atc-time must be 0 to 3600 seconds, not {}", args.atc_time);
+        return Err(Error::Write { target: "the virtual board".into(), source: std::io::Error::other(message) });
+    }
     let cfg = machine::load_or_default(args.machine.as_deref())?;
     let machine_error = |message: String| Error::Machine {
         path: args.machine.clone().unwrap_or_else(|| "built-in machine".into()),
@@ -141,6 +153,7 @@ pub fn run(args: &BoardArgs, out: &mut dyn Write) -> Result<u8, Error> {
             .map_err(|e| Error::Library { path: path.display().to_string(), message: format!("flash image: {e}") })?,
         None => (VirtualBoard::new(cfg).map_err(|k| machine_error(format!("the motion core refuses it: {k}")))?, None),
     };
+    board.outputs.changer.done_after = (!args.atc_never).then(|| (args.atc_time * 1e9).round() as u64);
     let (mut master, slave) = TTYPort::pair().map_err(|e| link_error("pseudo-terminal", e))?;
     let name = slave.name().unwrap_or_default();
     if let Some(link) = &args.pty {

@@ -415,6 +415,11 @@ pub const PROVEN_ELSEWHERE: &[(u16, &str)] = &[
     (4508, "alarms.rs motion_alarms_are_raised_with_their_line (machine configuration)"),
     (4509, "alarms.rs motion_alarms_are_raised_with_their_line (emergency stop input)"),
     (4510, "alarms.rs motion_alarms_are_raised_with_their_line (simulated drive)"),
+    (
+        4511,
+        "controller mill.rs no_done_within_313_seconds_is_alarm_4511_and_nothing_moves (a tool changer that never \
+         answers; the time the controller is given) and cli board.rs (lathe board --atc-never)",
+    ),
     (4601, "controller starve.rs (a stream cut mid-job; the time the controller is given) and sim faults.rs"),
     (
         12080,

@@ -20,6 +20,7 @@ use crate::rx::Receiver;
 use crate::settings::Settings;
 use crate::starve::{Attendance, StarveWatch, Starved};
 use crate::tape::{self, Block, Tape};
+use crate::toolchange::{ToolChangeSlot, ToolChangeStep, ToolChangeWait};
 use crate::window::{Store, Window};
 
 /// Receive buffer, bytes (the LF included): what a character-counting sender may
@@ -194,6 +195,8 @@ pub struct Controller<const W: usize, const T: usize, const P: usize, const S: u
     pub(crate) mist: bool,
     /// Startup block to run next (`$N0`, `$N1`), 2 = none.
     pub(crate) startup_next: u8,
+    /// A mill's automatic tool change waiting for the changer's done.
+    pub(crate) tool_change: ToolChangeSlot,
     pub(crate) counters: Counters,
     pub(crate) dirty: Dirty,
 }
@@ -288,6 +291,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             flood: false,
             mist: false,
             startup_next: 0,
+            tool_change: ToolChangeSlot::new(),
             counters: Counters::default(),
             dirty: Dirty::default(),
         }
@@ -416,6 +420,9 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
         self.read_inputs(port, inputs);
         self.apply_realtime(port, io);
         self.motion_events(port, io);
+        if interp_core::MILL {
+            self.watch_tool_change(port, io, inputs);
+        }
         self.sync(port);
         self.handle_lines(port);
         self.run_startup(port);
@@ -446,7 +453,8 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
         } else if self.jog {
             Mode::Jog
         } else if self.hold {
-            Mode::Hold { held: st.idle || st.state == State::Held }
+            // (Stopped: a mill's tool change the operator held meanwhile.)
+            Mode::Hold { held: st.idle || st.state == State::Held || (interp_core::MILL && st.state == State::Stopped) }
         } else if self.paused && st.state == State::Stopped {
             Mode::Hold { held: true }
         } else if self.check {
@@ -751,7 +759,8 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             && !self.paused
             && !self.door
             && !self.sleep
-            && self.lookahead.is_none();
+            && self.lookahead.is_none()
+            && !self.tool_change.waiting();
         open && waiting && !self.interp.has_pending() && self.stream_drained() && port.status().idle
     }
 
@@ -836,6 +845,9 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
         self.paused = false;
         self.jog = false;
         self.homing = None;
+        // An automatic tool change in progress is aborted: its request drops at
+        // the next look (`watch_tool_change`).
+        self.tool_change.abort();
         self.need_sync = true;
     }
 
@@ -971,8 +983,11 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
         if self.hold || self.paused {
             self.hold = false;
             self.paused = false;
-            port.cycle_start();
-            self.interp.cycle_start();
+            // During an automatic tool change only its done goes on.
+            if !self.tool_change.waiting() {
+                port.cycle_start();
+                self.interp.cycle_start();
+            }
         }
     }
 
@@ -1005,7 +1020,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
                     self.paused = true;
                     self.msg(format_args!("Load T{:02}", t.tool));
                 }
-                EventKind::ToolChange(t) => io.tool(t.tool, 0),
+                EventKind::ToolChange(t) => self.begin_tool_change(t.tool, e.line, io),
                 EventKind::End { .. } => {
                     self.motion_end = true;
                     self.try_finish();
@@ -1016,6 +1031,47 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
                         self.program_alarm(a, false, port);
                     }
                 }
+            }
+        }
+    }
+
+    /// A mill's M06 by the tool changer: the motion core has stopped (and the
+    /// spindle); the request goes out and [`Self::watch_tool_change`] waits.
+    fn begin_tool_change<I: MachineIo + ?Sized>(&mut self, tool: u16, line: u32, io: &mut I) {
+        self.msg(format_args!("Tool change T{tool:02} (tool changer)"));
+        io.tool_change_request(Some(tool));
+        self.tool_change.start(ToolChangeWait::new(tool, line, self.now, self.prev_inputs.tool_change_done));
+    }
+
+    /// Once per poll on a mill build: the tool changer's done ends the wait (the
+    /// motion core goes on unless the operator held it meanwhile: then cycle start
+    /// does), its absence for `$313` s is alarm 4511; a change aborted (reset,
+    /// alarm) drops the request.
+    fn watch_tool_change<M, I>(&mut self, port: &mut M, io: &mut I, inputs: Inputs)
+    where
+        M: MotionPort + ?Sized,
+        I: MachineIo + ?Sized,
+    {
+        let Some(mut wait) = self.tool_change.take() else {
+            if self.tool_change.take_request() {
+                io.tool_change_request(None);
+            }
+            return;
+        };
+        match wait.step(self.now, inputs.tool_change_done, self.interp.config().tool_change_timeout.seconds()) {
+            ToolChangeStep::Waiting => self.tool_change.put_back(wait),
+            ToolChangeStep::Done => {
+                self.tool_change.take_request();
+                io.tool_change_request(None);
+                if !self.hold {
+                    port.cycle_start();
+                }
+            }
+            ToolChangeStep::TimedOut { seconds } => {
+                self.tool_change.take_request();
+                io.tool_change_request(None);
+                let kind = AlarmKind::ToolChangeTimeout { tool: wait.tool, seconds };
+                self.program_alarm(Alarm::new(wait.line, kind), false, port);
             }
         }
     }
@@ -1210,8 +1266,9 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
         let name = match mode {
             Mode::Idle => "Idle",
             Mode::Run => "Run",
-            Mode::Hold { held: false } => "Hold:0",
-            Mode::Hold { held: true } => "Hold:1",
+            // grbl 1.1: Hold:0 = hold complete, ready to resume; Hold:1 = stopping.
+            Mode::Hold { held: false } => "Hold:1",
+            Mode::Hold { held: true } => "Hold:0",
             Mode::Alarm => "Alarm",
             Mode::Check => "Check",
             Mode::Jog => "Jog",

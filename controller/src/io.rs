@@ -27,6 +27,8 @@ pub struct Inputs {
     pub cycle_start: bool,
     /// Safety door open.
     pub door: bool,
+    /// The automatic tool changer's "done" line (a mill's ATC).
+    pub tool_change_done: bool,
     /// External inputs 0–31 that M91/M92 test (bit n).
     pub user: u32,
 }
@@ -44,6 +46,13 @@ pub trait MachineIo {
     /// Index the turret to `tool`, offset number `offset`.
     fn tool(&mut self, tool: u16, offset: u16) {
         let _ = (tool, offset);
+    }
+    /// The automatic tool changer's request (a mill's M06 with `$312=1`):
+    /// `Some(tool)` puts the tool number and the request on its outputs
+    /// ([`hal::ToolChangeRequest::request_tool`]), `None` drops them
+    /// ([`hal::ToolChangeRequest::clear_request`]).
+    fn tool_change_request(&mut self, tool: Option<u16>) {
+        let _ = tool;
     }
     /// Spindle direction and commanded speed changed (the drive itself follows the
     /// motion core's spindle output every period).

@@ -59,6 +59,7 @@ mod rx;
 pub mod settings;
 mod starve;
 mod tape;
+mod toolchange;
 pub mod window;
 
 pub use controller::{Controller, Counters, Dirty, LINES_PER_POLL, Mode, OUT, RX, STEPS_PER_POLL, WELCOME};

@@ -5,11 +5,12 @@
 //! Axis values of X are per millimetre of **slide travel** (radius), as the
 //! drive sees them; positions on the wire are diameters on a lathe. The axis
 //! settings of Y (`$101`, `$111`, `$121`, `$131`) exist on a mill only; `$311`
-//! selects the machine kind (docs/MILL-BOARD.md).
+//! selects the machine kind, `$312` and `$313` a mill's tool changer and how long
+//! its "done" may take (docs/MILL-BOARD.md).
 
 use interp_core::MachineConfig;
 use interp_core::axis::Axis;
-use interp_core::config::{AxisConfig, Language, MachineKind, Param, ParamUnit};
+use interp_core::config::{AxisConfig, Language, MachineKind, Param, ParamUnit, ToolChanger};
 
 /// The controller's own settings (the rest live in the machine description).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -83,7 +84,7 @@ impl Default for Settings {
 /// The grbl-numbered settings, in `$$` order.
 pub const NUMBERS: &[u16] = &[
     11, 12, 20, 21, 22, 23, 24, 25, 27, 30, 100, 101, 102, 110, 111, 112, 120, 121, 122, 130, 131, 132, 300, 301, 302,
-    303, 304, 305, 306, 310, 311,
+    303, 304, 305, 306, 310, 311, 312, 313,
 ];
 
 /// Why a setting write was refused.
@@ -116,9 +117,12 @@ fn setting_axis(n: u16) -> Axis {
     }
 }
 
-/// Whether setting `n` belongs to an axis the machine does not have (Y on a lathe).
-fn missing_axis(n: u16, cfg: &MachineConfig) -> bool {
-    (100..=132).contains(&n) && !cfg.axis(setting_axis(n)).present
+/// Whether setting `n` belongs to an axis the machine does not have (Y on a
+/// lathe), or is a mill's tool changer's (`$312`, `$313`) on a lathe (a build
+/// without the mill profile has neither: unknown settings).
+pub(crate) fn missing_axis(n: u16, cfg: &MachineConfig) -> bool {
+    let mill_only = interp_core::MILL && matches!(n, 312 | 313) && cfg.kind != MachineKind::Mill;
+    mill_only || ((100..=132).contains(&n) && !cfg.axis(setting_axis(n)).present)
 }
 
 /// The Y axis `$311=1` gives a machine that had none: the built-in machining
@@ -170,6 +174,9 @@ pub fn get(n: u16, cfg: &MachineConfig, s: &Settings) -> Option<f64> {
     if missing_axis(n, cfg) {
         return None;
     }
+    if interp_core::MILL && matches!(n, 312 | 313) {
+        return Some(tool_changer_setting(n, cfg));
+    }
     let a = cfg.axis(setting_axis(n));
     Some(match n {
         11 => cfg.motion.junction_deviation as f64 / NM,
@@ -216,7 +223,14 @@ pub fn set(n: u16, v: f64, cfg: &mut MachineConfig, s: &mut Settings) -> Result<
     let whole = |v: f64| if libm::trunc(v) == v { Ok(v as u32) } else { Err(bad("must be a whole number")) };
     let positive = |v: f64| if v > 0.0 { Ok(libm::round(v * NM) as i64) } else { Err(bad("must be above 0")) };
     if missing_axis(n, cfg) {
-        return Err(bad("no Y axis on a lathe ($311=1 makes a mill)"));
+        return Err(if interp_core::MILL && n > 132 {
+            bad("a mill's tool changer setting ($311=1 makes a mill)")
+        } else {
+            bad("no Y axis on a lathe ($311=1 makes a mill)")
+        });
+    }
+    if interp_core::MILL && matches!(n, 312 | 313) {
+        return set_tool_changer(n, v, cfg);
     }
     let ax = setting_axis(n);
     match n {
@@ -280,6 +294,30 @@ pub fn set(n: u16, v: f64, cfg: &mut MachineConfig, s: &mut Settings) -> Result<
             _ => return Err(bad("is 0 (lathe) or 1 (mill)")),
         },
         _ => return Err(SettingError::Unknown),
+    }
+    Ok(())
+}
+
+/// `$312` (0 manual, 1 automatic) and `$313` (s) of a mill: its tool changer.
+/// Apart from [`get`], so that a build without the mill profile has none of it.
+fn tool_changer_setting(n: u16, cfg: &MachineConfig) -> f64 {
+    if n == 312 {
+        f64::from(u8::from(cfg.tool_changer == ToolChanger::Automatic))
+    } else {
+        f64::from(cfg.tool_change_timeout.seconds())
+    }
+}
+
+/// Writes `$312` or `$313` (see [`tool_changer_setting`]).
+fn set_tool_changer(n: u16, v: f64, cfg: &mut MachineConfig) -> Result<(), SettingError> {
+    if n == 312 {
+        cfg.tool_changer = match v {
+            0.0 => ToolChanger::Manual,
+            1.0 => ToolChanger::Automatic,
+            _ => return Err(SettingError::BadValue("is 0 (manual) or 1 (automatic)")),
+        };
+    } else if libm::trunc(v) != v || !cfg.tool_change_timeout.set(v.min(65_535.0) as u16) {
+        return Err(SettingError::BadValue("is 1 to 3600 s"));
     }
     Ok(())
 }

@@ -72,7 +72,7 @@ fn m06_by_hand_stops_with_a_message_and_cycle_start_goes_on() {
     let answers = r.stream(text, 5_000);
     assert!(answers.iter().any(|l| l == "[MSG:Load T02]"), "{answers:?}");
     assert!(!answers.iter().any(|l| l == "[MSG:Pgm End]"), "ran past the tool change: {answers:?}");
-    assert!(r.status().starts_with("<Hold:1|MPos:-10.000,-10.000,0.000|"), "{}", r.status());
+    assert!(r.status().starts_with("<Hold:0|MPos:-10.000,-10.000,0.000|"), "{}", r.status());
     // The spindle stopped for the operator's hands.
     assert_eq!(r.port.core.spindle_output().0, SpindleDir::Stop);
     r.run_ms(500);
@@ -129,4 +129,136 @@ fn the_y_limit_switch_alarms() {
     let got = r.take_lines();
     assert!(got.contains(&"[MSG:Hard limit Y]".to_string()) && got.contains(&"ALARM:1".to_string()), "{got:?}");
     assert!(r.status().contains("|Pn:Y"));
+}
+
+/// A mill with the automatic tool changer (`$312=1`), the program stopped at its
+/// `T02 M06` with the request out.
+fn at_automatic_m06() -> Rig {
+    let mut r = idle(Rig::with(MachineConfig::mill()));
+    assert_eq!(r.command("$312=1"), vec!["ok"]);
+    let text = "S1000 M03\nG00 X-10. Y-10.\nT02 M06\nG00 X-20. Y-30.\nM30\n";
+    let answers = r.stream(text, 2_000);
+    assert!(answers.iter().any(|l| l == "[MSG:Tool change T02 (tool changer)]"), "{answers:?}");
+    assert!(!answers.iter().any(|l| l == "[MSG:Pgm End]"), "ran past the tool change: {answers:?}");
+    assert_eq!(r.io.requests, [Some(2)], "the tool number and the request go out once");
+    assert_eq!(mpos(&mut r), [-10.0, -10.0, 0.0]);
+    r
+}
+
+#[test]
+fn automatic_m06_requests_the_tool_waits_for_done_and_goes_on() {
+    let mut r = at_automatic_m06();
+    // Waiting: the spindle stopped, nothing after the M06 moves, the board is busy.
+    assert_eq!(r.port.core.spindle_output().0, SpindleDir::Stop);
+    assert!(r.status().starts_with("<Run|"), "{}", r.status());
+    r.send(b"~");
+    r.run_ms(3_000);
+    assert_eq!(mpos(&mut r), [-10.0, -10.0, 0.0], "cycle start does not skip the tool changer");
+    assert_eq!(r.io.requests, [Some(2)]);
+    // Done: the request drops, the spindle starts again as it was, the program goes on.
+    r.inputs.tool_change_done = true;
+    let ok = r.run_until(20_000, |r| r.lines().iter().any(|l| l == "[MSG:Pgm End]") && r.port.core.is_idle());
+    assert!(ok, "{:?}", r.lines());
+    assert_eq!(r.io.requests, [Some(2), None]);
+    assert_eq!(mpos(&mut r), [-20.0, -30.0, 0.0]);
+    assert_eq!(r.io.spindle[..3], [(SpindleDir::Cw, 1000), (SpindleDir::Stop, 0), (SpindleDir::Cw, 1000)]);
+    assert!(!r.lines().iter().any(|l| l.starts_with("ALARM")), "{:?}", r.lines());
+}
+
+#[test]
+fn no_done_within_313_seconds_is_alarm_4511_and_nothing_moves() {
+    let mut r = idle(Rig::with(MachineConfig::mill()));
+    assert_eq!(r.command("$313=5"), vec!["ok"]);
+    assert_eq!(r.command("$312=1"), vec!["ok"]);
+    r.send(b"S1000 M03\nG00 X-10. Y-10.\nT02 M06\nG00 X-20. Y-30.\nM30\n");
+    assert!(r.run_until(5_000, |r| !r.io.requests.is_empty()), "{:?}", r.lines());
+    let start = r.now;
+    let alarm = "[MSG:ALARM 4511 line 3: tool changer did not report done within 5 s of the request for T02 \
+                 ($313; ATC done input)]";
+    assert!(r.run_until(10_000, |r| r.lines().iter().any(|l| l == alarm)), "{:?}", r.lines());
+    let waited = (r.now - start) as f64 / 1e9;
+    assert!((4.999..=5.002).contains(&waited), "alarm {waited} s after the request");
+    assert!(r.lines().iter().any(|l| l == "ALARM:20"), "{:?}", r.lines());
+    assert_eq!(r.io.requests, [Some(2), None], "the request drops with the alarm");
+    // The job is over: no motion, the spindle stays stopped, even if done comes late.
+    r.inputs.tool_change_done = true;
+    r.run_ms(2_000);
+    assert_eq!(mpos(&mut r), [-10.0, -10.0, 0.0]);
+    assert_eq!(r.port.core.spindle_output().0, SpindleDir::Stop);
+    assert!(r.status().starts_with("<Alarm|"), "{}", r.status());
+    assert!(!r.lines().iter().any(|l| l == "[MSG:Pgm End]"));
+}
+
+#[test]
+fn reset_during_the_tool_change_aborts_it_and_drops_the_request() {
+    let mut r = at_automatic_m06();
+    r.send(b"\x18");
+    r.run_ms(10);
+    assert_eq!(r.io.requests, [Some(2), None]);
+    assert!(r.status().starts_with("<Idle|"), "{}", r.status());
+    // A done after the reset moves nothing, and no alarm comes later either.
+    r.inputs.tool_change_done = true;
+    r.run_ms(40_000);
+    assert_eq!(mpos(&mut r), [-10.0, -10.0, 0.0]);
+    assert!(!r.lines().iter().any(|l| l.starts_with("ALARM")), "{:?}", r.lines());
+    assert_eq!(r.io.requests, [Some(2), None]);
+}
+
+#[test]
+fn feed_hold_during_the_tool_change_holds_after_done_until_cycle_start() {
+    let mut r = at_automatic_m06();
+    r.send(b"!");
+    r.run_ms(100);
+    // The change itself finishes (the changer is not stopped half-way).
+    r.inputs.tool_change_done = true;
+    r.run_ms(1_000);
+    assert_eq!(r.io.requests, [Some(2), None]);
+    assert!(r.status().starts_with("<Hold:0|"), "{}", r.status());
+    assert_eq!(mpos(&mut r), [-10.0, -10.0, 0.0], "held: nothing moves after done");
+    assert_eq!(r.port.core.spindle_output().0, SpindleDir::Stop);
+    r.send(b"~");
+    let ok = r.run_until(20_000, |r| r.lines().iter().any(|l| l == "[MSG:Pgm End]") && r.port.core.is_idle());
+    assert!(ok, "{:?}", r.lines());
+    assert_eq!(mpos(&mut r), [-20.0, -30.0, 0.0]);
+}
+
+#[test]
+fn a_done_left_on_from_before_does_not_end_the_next_change() {
+    let mut r = idle(Rig::with(MachineConfig::mill()));
+    assert_eq!(r.command("$312=1"), vec!["ok"]);
+    r.inputs.tool_change_done = true;
+    r.stream("G00 X-10. Y-10.\nT05 M06\nG00 X-20.\nM30\n", 1_000);
+    r.run_ms(1_000);
+    assert_eq!(mpos(&mut r), [-10.0, -10.0, 0.0], "a stuck done is not this change's");
+    r.inputs.tool_change_done = false;
+    r.run_ms(5);
+    r.inputs.tool_change_done = true;
+    let ok = r.run_until(20_000, |r| r.lines().iter().any(|l| l == "[MSG:Pgm End]") && r.port.core.is_idle());
+    assert!(ok, "{:?}", r.lines());
+    assert_eq!(r.io.requests, [Some(5), None]);
+}
+
+#[test]
+fn settings_312_and_313_are_a_mills() {
+    let mut r = idle(Rig::new());
+    let all = r.command("$$");
+    assert!(!all.iter().any(|l| l.starts_with("$312=") || l.starts_with("$313=")), "{all:?}");
+    assert_eq!(r.command("$312=1").last().unwrap(), "error:2");
+    assert_eq!(r.command("$311=1").last().unwrap(), "ok");
+    let all = r.command("$$");
+    for want in ["$312=0", "$313=30"] {
+        assert!(all.contains(&want.to_string()), "{want} missing from {all:?}");
+    }
+    assert_eq!(r.command("$313=0").last().unwrap(), "error:2");
+    assert_eq!(r.command("$313=3601").last().unwrap(), "error:2");
+    assert_eq!(r.command("$313=2.5").last().unwrap(), "error:2");
+    assert_eq!(r.command("$312=2").last().unwrap(), "error:2");
+    assert_eq!(r.command("$312=1"), vec!["ok"]);
+    assert_eq!(r.command("$313=45"), vec!["ok"]);
+    assert!(r.ctl.take_dirty().settings, "stored");
+    let all = r.command("$$");
+    assert!(all.contains(&"$312=1".to_string()) && all.contains(&"$313=45".to_string()), "{all:?}");
+    let cfg = r.ctl.interpreter().config();
+    assert_eq!(cfg.tool_changer, interp_core::config::ToolChanger::Automatic);
+    assert_eq!(cfg.tool_change_timeout.seconds(), 45);
 }

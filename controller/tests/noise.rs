@@ -106,7 +106,7 @@ fn with_checksums_a_real_time_command_is_the_byte_and_a_lf() {
     r.run_ms(300);
     r.send(b"!\n");
     r.run_ms(400);
-    assert!(r.status().starts_with("<Hold:1|"), "{}", r.status());
+    assert!(r.status().starts_with("<Hold:0|"), "{}", r.status());
     assert_eq!(r.ctl.counters().holds, 1);
     r.send(b"~\n");
     r.run_ms(50);

@@ -160,3 +160,81 @@ fn the_machine_kind_and_y_settings_survive_a_restart() {
     assert_eq!(controller::settings::get(101, &cfg, &settings), Some(800.0));
     assert_eq!(controller::settings::get(131, &cfg, &settings), Some(250.0));
 }
+
+/// Feeds `line` to a running controller and polls it to its answer.
+fn send(ctl: &mut Ctl, core: &mut MotionCore<64>, line: &str) -> String {
+    thread_local!(static NOW: std::cell::Cell<u64> = const { std::cell::Cell::new(1_000_000_000) });
+    let mut now = NOW.get();
+    assert_eq!(ctl.receive(&mut line.as_bytes().to_vec(), now), line.len());
+    for _ in 0..5 {
+        now += 1_000_000;
+        ctl.poll(now, core, &mut (), Inputs::default());
+    }
+    NOW.set(now);
+    let mut out = [0u8; 2048];
+    let n = ctl.transmit(&mut out);
+    String::from_utf8_lossy(&out[..n]).to_string()
+}
+
+/// Saves `ctl` to `flash`, restarts from it: the configuration a board boots with.
+fn save_and_boot(flash: &mut Flash, ctl: &mut Ctl) -> MachineConfig {
+    {
+        let mut store = Persist::new(&mut *flash, 0..8 * 2048).unwrap();
+        keep::save(&mut store, ctl).unwrap();
+    }
+    let mut store = Persist::new(&mut *flash, 0..8 * 2048).unwrap();
+    let (mut cfg, mut settings) = (MachineConfig::default(), Settings::default());
+    // (After `$RST=$` on a mill the stored Y settings are the former mill's: unused, not refused.)
+    let refused = keep::load_config(&mut store, &mut cfg, &mut settings).unwrap();
+    assert!(refused.is_empty(), "{refused:?}");
+    cfg
+}
+
+/// G54.1 P1–P48 (set by G10 L20 on a mill) survive a restart as G54–G59 do;
+/// `$RST=$` keeps them, `$RST=#` clears them (issue 20).
+#[test]
+fn g54_1_offsets_survive_a_restart_and_rst_rules() {
+    let mut flash = Flash::new();
+    let (mut ctl, mut core) = controller_after(&["$311=1\n"]);
+    for line in ["G90 G10 L20 P2 X-123.456 Y78.9 Z-0.001\n", "G10 L20 P48 X1. Y2. Z3.\n", "G10 L2 P1 X-5. Y-6. Z-7.\n"]
+    {
+        let text = send(&mut ctl, &mut core, line);
+        assert!(text.contains("ok") && !text.contains("error"), "{line}: {text}");
+    }
+    let mm = |v: f64| (v * 1e6).round() as i64;
+    let pos = |x, y, z| interp_core::Pos([mm(x), mm(y), mm(z), 0]);
+    assert_eq!(ctl.interpreter().config().extra_offsets.get(2), Some(pos(-123.456, 78.9, -0.001)));
+    let before = keep::fingerprint(&ctl);
+    let cfg = save_and_boot(&mut flash, &mut ctl);
+    assert_eq!(cfg.extra_offsets.get(2), Some(pos(-123.456, 78.9, -0.001)));
+    assert_eq!(cfg.extra_offsets.get(48), Some(pos(1.0, 2.0, 3.0)));
+    assert_eq!(cfg.extra_offsets.get(1), Some(interp_core::Pos::ZERO));
+    assert_eq!(cfg.work_offsets[0], pos(-5.0, -6.0, -7.0));
+    let again = Ctl::new(cfg.clone(), cfg.reference[0]);
+    assert_eq!(keep::fingerprint(&again), before, "what is stored is what the board held");
+
+    // Nothing changed: nothing is written.
+    let stored = flash.contents().to_vec();
+    save_and_boot(&mut flash, &mut ctl);
+    assert!(flash.contents() == &stored[..], "a save without changes wrote to flash");
+    // One row changed: the board's fingerprint changes, the restart has the new value.
+    let text = send(&mut ctl, &mut core, "G10 L20 P2 X0 Y0 Z0\n");
+    assert!(!text.contains("error"), "{text}");
+    assert_ne!(keep::fingerprint(&ctl), before);
+    assert_eq!(save_and_boot(&mut flash, &mut ctl).extra_offsets.get(2), Some(interp_core::Pos::ZERO));
+    send(&mut ctl, &mut core, "G10 L20 P2 X7. Y8. Z9.\n");
+
+    // $RST=$ keeps them; $RST=# clears them, on flash too.
+    let text = send(&mut ctl, &mut core, "$RST=$\n");
+    assert!(!text.contains("error"), "{text}");
+    let cfg = save_and_boot(&mut flash, &mut ctl);
+    assert_eq!(cfg.extra_offsets.get(2), Some(pos(7.0, 8.0, 9.0)));
+    assert_eq!(cfg.extra_offsets.get(48), Some(pos(1.0, 2.0, 3.0)));
+    send(&mut ctl, &mut core, "$311=1\n");
+    let text = send(&mut ctl, &mut core, "$RST=#\n");
+    assert!(!text.contains("error"), "{text}");
+    let cfg = save_and_boot(&mut flash, &mut ctl);
+    assert_eq!(cfg.extra_offsets.get(2), Some(interp_core::Pos::ZERO));
+    assert_eq!(cfg.extra_offsets.get(48), Some(interp_core::Pos::ZERO));
+    assert_eq!(cfg.work_offsets[0], interp_core::Pos::ZERO);
+}

@@ -1,4 +1,4 @@
-//! Issue 12: power cuts. A sequence of updates (parameters, commons, offsets,
+//! Issue 12: power cuts. A sequence of updates (parameters, commons, offsets, G54.1's,
 //! programs with overwrites and a delete) runs on simulated flash with the power
 //! cut at the k-th flash operation (each programmed word, each sector erase), for
 //! k = 1, 2, … until the sequence completes. After each cut the board "restarts"
@@ -12,7 +12,7 @@ use controller::persist::sim::SimFlash;
 use controller::persist::{Error, Offsets, Persist};
 use embedded_storage::nor_flash::NorFlashErrorKind;
 use interp_core::Pos;
-use interp_core::config::{MAX_OFFSETS, ToolOffset};
+use interp_core::config::{EXTRA_FRAMES, ExtraOffsets, MAX_OFFSETS, ToolOffset};
 use interp_core::lang::fanuc::macros::CommonStore;
 
 /// 5 sectors of 2 KB, 4-byte words: small, so the sequence wraps around the
@@ -26,6 +26,8 @@ enum Update {
     Param(u16, i64),
     Commons(Vec<(u16, Option<f64>)>),
     Offsets(Box<Offsets>),
+    /// A mill's G54.1 P1–P48.
+    Extra(Box<ExtraOffsets>),
     Save(u32, Vec<u8>),
     Delete(u32),
 }
@@ -36,6 +38,7 @@ struct State {
     params: BTreeMap<u16, i64>,
     commons: BTreeMap<u16, f64>,
     offsets: Offsets,
+    extra: ExtraOffsets,
     programs: BTreeMap<u32, Vec<u8>>,
 }
 
@@ -68,18 +71,31 @@ fn offsets(seed: i64) -> Box<Offsets> {
     Box::new(o)
 }
 
+/// G54.1 offsets: a few rows set from `seed`, the rest zero (0 clears them all).
+fn extra(seed: i32) -> Box<ExtraOffsets> {
+    let mut e = ExtraOffsets::default();
+    if seed != 0 {
+        for p in [1, 2 + (seed as u8 % 40), 48] {
+            e.set_row(p, [seed * 1000 + i32::from(p), -seed, i32::MIN + seed]);
+        }
+    }
+    Box::new(e)
+}
+
 fn sequence() -> Vec<Update> {
     use Update::*;
     vec![
         Param(1, 100),
         Commons(vec![(401, Some(1.5)), (402, Some(-2.0)), (600, Some(1e6))]),
         Offsets(offsets(1)),
+        Extra(extra(1)),
         Save(1, text(1, 600, 0)),
         Save(2, text(2, 1200, 0)),
         Param(1, 200),
         Param(2, 7),
         Save(1, text(1, 900, 1)),
         Offsets(offsets(2)),
+        Extra(extra(2)),
         Delete(2),
         Commons(vec![(401, Some(3.0)), (402, None), (403, Some(0.125))]),
         Save(3, text(3, 400, 0)),
@@ -88,6 +104,7 @@ fn sequence() -> Vec<Update> {
         Save(2, text(2, 800, 3)),
         Param(3, -1),
         Offsets(offsets(3)),
+        Extra(extra(0)),
         Save(1, text(1, 700, 4)),
         Delete(3),
         Commons(vec![(600, None), (401, Some(-0.5))]),
@@ -102,6 +119,7 @@ fn apply(p: &mut Persist<&mut Flash>, u: &Update) -> Result<(), Error> {
         Update::Param(n, v) => p.save_param(*n, *v),
         Update::Commons(list) => list.iter().try_for_each(|(n, v)| p.store(*n, *v)),
         Update::Offsets(o) => p.save_offsets(o),
+        Update::Extra(e) => p.save_extra_offsets(e),
         Update::Save(o, t) => p.save_program(*o, t),
         Update::Delete(o) => p.delete_program(*o).map(|_| ()),
     }
@@ -121,6 +139,7 @@ fn apply_model(s: &mut State, u: &Update) {
             }
         }
         Update::Offsets(o) => s.offsets = **o,
+        Update::Extra(e) => s.extra = **e,
         Update::Save(o, t) => {
             s.programs.insert(*o, t.clone());
         }
@@ -143,6 +162,7 @@ fn read_state(p: &mut Persist<&mut Flash>) -> State {
         }
     }
     p.load_offsets(&mut s.offsets).unwrap();
+    p.load_extra_offsets(&mut s.extra).unwrap();
     let mut buf = vec![0; 4096];
     for info in p.programs::<16>().unwrap() {
         let n = p.load_program(info.number, &mut buf).unwrap();
@@ -183,6 +203,10 @@ fn assert_old_or_new(got: &State, old: &State, new: &State, k: u64) {
     for n in 1..=MAX_OFFSETS as u16 {
         let g = got.offsets.tools.get(n);
         assert!(g == old.offsets.tools.get(n) || g == new.offsets.tools.get(n), "cut {k}: tool offset {n} is {g:?}");
+    }
+    for p in 1..=EXTRA_FRAMES as u8 {
+        let g = got.extra.row(p);
+        assert!(g == old.extra.row(p) || g == new.extra.row(p), "cut {k}: G54.1 P{p} is {g:?}");
     }
 }
 

@@ -109,7 +109,7 @@ fn feed_hold_and_resume_mid_program() {
     assert!(s.starts_with("<Hold:0") || s.starts_with("<Hold:1"), "{s}");
     r.run_ms(1_000);
     let held = r.status();
-    assert!(held.starts_with("<Hold:1"), "{held}");
+    assert!(held.starts_with("<Hold:0"), "{held}");
     r.run_ms(500);
     assert_eq!(field(&r.status(), "MPos:"), field(&held, "MPos:"));
     r.send(b"~");
@@ -254,9 +254,9 @@ fn m00_waits_for_cycle_start() {
     let mut r = Rig::new();
     r.send(text.as_bytes());
     r.run_ms(1_000);
-    assert!(r.status().starts_with("<Hold:1|MPos:20.000,0.000,0.000"));
+    assert!(r.status().starts_with("<Hold:0|MPos:20.000,0.000,0.000"));
     r.run_ms(500);
-    assert!(r.status().starts_with("<Hold:1|MPos:20.000,0.000,0.000"));
+    assert!(r.status().starts_with("<Hold:0|MPos:20.000,0.000,0.000"));
     r.send(b"~");
     assert!(r.run_until(5_000, |r| r.lines().iter().any(|l| l == "[MSG:Pgm End]") && r.port.core.is_idle()));
     assert!(r.status().starts_with("<Idle|MPos:20.000,0.000,-10.000"));

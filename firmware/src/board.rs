@@ -34,6 +34,13 @@
 //! | PB15 | Z HOME         |                                                           |
 //! | PC2  | Y LIMIT        | a mill's; both ends in series, NC, high = tripped (no PB11 on the F446RE) |
 //! | PA8  | Y HOME         | a mill's; high = on the switch                            |
+//! | PC4  | ATC T1         | a mill's tool changer (feature `mill`): tool number bit 0  |
+//! | PC5  | ATC T2         | tool number bit 1                                         |
+//! | PA4  | ATC T4         | tool number bit 2                                         |
+//! | PA5  | ATC T8         | tool number bit 3                                         |
+//! | PA15 | ATC T16        | tool number bit 4 (JTDI pull-up until configured: no harm, the request is low) |
+//! | PA7  | ATC REQUEST    | high = change to the tool on T1–T16 (set before it rises)  |
+//! | PB4  | ATC DONE       | changer's done: contact/open collector to GND, low = done |
 //! | PA2  | DNC TX         | USART2_TX (AF7)                                           |
 //! | PA3  | DNC RX         | USART2_RX (AF7)                                           |
 //! | PA11 | USB D−         | OTG_FS_DM (AF10): the fast link, CDC-ACM (feature `usb`)  |
@@ -48,9 +55,15 @@
 //!
 //! Kept free on purpose: PA13/PA14 (SWD), PB3 (SWO), PH0/PH1 (8 MHz HSE crystal),
 //! PC14/PC15 (LSE), PB2 (BOOT1), PA9/PA10 (USART1: ROM bootloader, service console).
-//! Spare: PA4/PA5 (DAC outputs, an
-//! alternative to PWM for the 0–10 V speed signal), PA7, PA15, PB4,
-//! PC4, PC5 (ADC, e.g. override potentiometers), PC13.
+//! Spare: PC13; on a build without the mill profile also the ATC pins PA4/PA5
+//! (DAC outputs, an alternative to PWM for the 0–10 V speed signal), PA7, PA15,
+//! PB4, PC4, PC5 (ADC, e.g. override potentiometers).
+//!
+//! The automatic tool changer (docs/MILL-BOARD.md): at a mill's M06 with `$312=1`
+//! the board sets the tool number on ATC T1–T16 (binary, tools 1–31), raises ATC
+//! REQUEST and waits for ATC DONE; done drops the request and the program goes on,
+//! no done within `$313` s is alarm 4511 (request dropped). A tool above 31 is
+//! never requested (the board cannot say it): the wait ends in alarm 4511.
 //!
 //! The third step channel drives the machine kind's third axis (`$311`,
 //! docs/MILL-BOARD.md): the C axis of a lathe or the Y axis of a mill — a mill's Y
@@ -234,6 +247,19 @@ pub struct Aux {
     pub tailstock: Output<'static>,
     /// Way-lube pump (M32/M33).
     pub lube: Output<'static>,
+    /// A mill's automatic tool changer outputs.
+    #[cfg(feature = "mill")]
+    pub tool_changer: ToolChangerOutputs,
+}
+
+/// The request outputs of a mill's automatic tool changer (its done line is a
+/// switch, [`Switches::tool_change_done`]).
+#[cfg(feature = "mill")]
+pub struct ToolChangerOutputs {
+    /// Tool number, binary: bit 0 (T1) first.
+    pub tool_bits: [Output<'static>; 5],
+    /// Change request (strobe), high = change.
+    pub request: Output<'static>,
 }
 
 /// Operator and machine switch inputs (pull-ups; sampled and debounced by the control task).
@@ -256,6 +282,9 @@ pub struct Switches {
     pub z_home: Input<'static>,
     /// Y home switch of a mill (high = on the switch).
     pub y_home: Input<'static>,
+    /// A mill's tool changer reports done (low = done).
+    #[cfg(feature = "mill")]
+    pub tool_change_done: Input<'static>,
 }
 
 /// The timers of the motion interrupts, clocked and reset; `motion::start` programs them.
@@ -326,6 +355,17 @@ impl Board {
                 chuck_clamp: relay_output(p.PB8),
                 tailstock: relay_output(p.PB9),
                 lube: relay_output(p.PB10),
+                #[cfg(feature = "mill")]
+                tool_changer: ToolChangerOutputs {
+                    tool_bits: [
+                        relay_output(p.PC4),
+                        relay_output(p.PC5),
+                        relay_output(p.PA4),
+                        relay_output(p.PA5),
+                        relay_output(p.PA15),
+                    ],
+                    request: relay_output(p.PA7),
+                },
             },
             switches: Switches {
                 estop: Input::new(p.PC0, Pull::Up),
@@ -337,6 +377,8 @@ impl Board {
                 z_home: Input::new(p.PB15, Pull::Up),
                 y_limit: Input::new(p.PC2, Pull::Up),
                 y_home: Input::new(p.PA8, Pull::Up),
+                #[cfg(feature = "mill")]
+                tool_change_done: Input::new(p.PB4, Pull::Up),
             },
             dnc: {
                 let mut config = usart::Config::default();

@@ -79,7 +79,8 @@ impl Outputs {
 }
 
 /// What the controller switches as the program reaches it: M codes to the outputs
-/// ([`aux_switches`]), tool changes logged (the board has no turret output). The
+/// ([`aux_switches`]), a mill's tool changer request ([`hal::ToolChangeRequest`]),
+/// lathe turret indexes logged (the board has no turret output). The
 /// spindle drive follows the motion core's output instead
 /// (`shell::SpindleFollower`), so G96 speed changes along a cut reach it too.
 impl controller::MachineIo for Outputs {
@@ -89,6 +90,39 @@ impl controller::MachineIo for Outputs {
 
     fn tool(&mut self, tool: u16, offset: u16) {
         defmt::info!("tool {} offset {}", tool, offset);
+    }
+
+    #[cfg(feature = "mill")]
+    fn tool_change_request(&mut self, tool: Option<u16>) {
+        use hal::ToolChangeRequest;
+        match tool {
+            Some(t) => self.request_tool(t),
+            None => self.clear_request(),
+        }
+    }
+}
+
+/// A mill's tool changer: the tool number on ATC T1–T16, then ATC REQUEST.
+#[cfg(feature = "mill")]
+impl hal::ToolChangeRequest for Outputs {
+    /// A tool the five bits cannot carry (above 31) is not requested: the
+    /// controller's wait ends in alarm 4511, never in the wrong tool.
+    fn request_tool(&mut self, tool: u16) {
+        let tc = &mut self.aux.tool_changer;
+        if usize::from(tool) >= 1 << tc.tool_bits.len() {
+            defmt::warn!("tool {} is beyond the tool changer outputs (T1-T31)", tool);
+            return;
+        }
+        for (bit, pin) in tc.tool_bits.iter_mut().enumerate() {
+            pin.set_level((tool >> bit & 1 != 0).into());
+        }
+        tc.request.set_high();
+    }
+
+    fn clear_request(&mut self) {
+        let tc = &mut self.aux.tool_changer;
+        tc.request.set_low();
+        tc.tool_bits.iter_mut().for_each(Output::set_low);
     }
 }
 
@@ -154,6 +188,8 @@ fn raw_levels(s: &Switches) -> u16 {
         (Switch::ZHome, s.z_home.is_high()),
         (Switch::YLimit, s.y_limit.is_high()),
         (Switch::YHome, s.y_home.is_high()),
+        #[cfg(feature = "mill")]
+        (Switch::ToolChangeDone, s.tool_change_done.is_low()),
     ];
     pins.iter().filter(|(_, on)| *on).fold(0, |acc, (sw, _)| acc | sw.bit())
 }
@@ -178,7 +214,7 @@ impl InputLevels {
 
 impl DigitalInputs for InputLevels {
     /// Input `n` of [`Switch::ALL`] (0 e-stop, 1 feed hold, 2 cycle start, 3 X limit,
-    /// 4 Z limit, 5 X home, 6 Z home, 7 Y limit, 8 Y home).
+    /// 4 Z limit, 5 X home, 6 Z home, 7 Y limit, 8 Y home, 9 tool changer done).
     fn input(&self, n: u16) -> bool {
         Switch::ALL.get(usize::from(n)).is_some_and(|s| self.active(*s))
     }

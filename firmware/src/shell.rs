@@ -169,6 +169,7 @@ pub fn inputs(levels: InputLevels) -> controller::Inputs {
         feed_hold: levels.active(Switch::FeedHold),
         cycle_start: levels.active(Switch::CycleStart),
         door: false,
+        tool_change_done: cfg!(feature = "mill") && levels.active(Switch::ToolChangeDone),
         user: 0,
     }
 }

@@ -59,3 +59,17 @@ pub trait MonotonicClock {
     /// Nanoseconds since an arbitrary start; never goes back.
     fn now_ns(&self) -> u64;
 }
+
+/// The request side of an automatic tool changer's handshake (a machining
+/// centre's M06): the board puts the tool number on binary-coded outputs and
+/// raises a request (strobe) line, as a retrofit ATC controller or the machine's
+/// PLC expects of a T function; the changer answers on its "done" line, a switch
+/// input read like the others ([`DigitalInputs`]), and the board drops the
+/// request when done has come (or the change is aborted).
+pub trait ToolChangeRequest {
+    /// Sets the tool-number outputs to `tool` (binary, as many bits as the board
+    /// has), then raises the request line.
+    fn request_tool(&mut self, tool: u16);
+    /// Drops the request line and the tool-number outputs.
+    fn clear_request(&mut self);
+}

@@ -88,6 +88,57 @@ impl MotionPort for Recorder<'_> {
     }
 }
 
+/// How long the simulated tool changer takes to change a tool by default, ns.
+pub const TOOL_CHANGE_NS: u64 = 2_000_000_000;
+
+/// The simulated automatic tool changer of a mill (behind the board's request
+/// outputs, `hal::ToolChangeRequest`): it reports done `done_after` ns after a
+/// request — or never (`None`: a jammed changer, to see alarm 4511) — and drops
+/// done as soon as the request drops.
+#[derive(Clone, Debug)]
+pub struct ToolChangerModel {
+    /// Time from a request to done, ns; `None`: never done.
+    pub done_after: Option<u64>,
+    /// (time ns, tool) of every request, (time ns, 0) of every clear.
+    pub log: Vec<(u64, u16)>,
+    /// The request on the outputs: tool, since when (ns).
+    request: Option<(u16, u64)>,
+    now: u64,
+}
+
+impl Default for ToolChangerModel {
+    fn default() -> Self {
+        ToolChangerModel { done_after: Some(TOOL_CHANGE_NS), log: Vec::new(), request: None, now: 0 }
+    }
+}
+
+impl ToolChangerModel {
+    /// The tool requested on the outputs now, if any.
+    pub fn requested(&self) -> Option<u16> {
+        self.request.map(|(t, _)| t)
+    }
+
+    /// The done line at `now` (ns).
+    pub fn done(&self, now: u64) -> bool {
+        match (self.request, self.done_after) {
+            (Some((_, since)), Some(after)) => now >= since.saturating_add(after),
+            _ => false,
+        }
+    }
+}
+
+impl hal::ToolChangeRequest for ToolChangerModel {
+    fn request_tool(&mut self, tool: u16) {
+        self.request = Some((tool, self.now));
+        self.log.push((self.now, tool));
+    }
+
+    fn clear_request(&mut self) {
+        self.request = None;
+        self.log.push((self.now, 0));
+    }
+}
+
 /// The outputs the controller switches: logged with their simulated time.
 #[derive(Clone, Debug, Default)]
 pub struct OutputLog {
@@ -95,6 +146,8 @@ pub struct OutputLog {
     pub m_codes: Vec<(u64, u16, u32)>,
     /// (time ns, tool, offset).
     pub tools: Vec<(u64, u16, u16)>,
+    /// A mill's automatic tool changer.
+    pub changer: ToolChangerModel,
     now: u64,
 }
 
@@ -104,6 +157,14 @@ impl MachineIo for OutputLog {
     }
     fn tool(&mut self, tool: u16, offset: u16) {
         self.tools.push((self.now, tool, offset));
+    }
+    fn tool_change_request(&mut self, tool: Option<u16>) {
+        use hal::ToolChangeRequest;
+        self.changer.now = self.now;
+        match tool {
+            Some(t) => self.changer.request_tool(t),
+            None => self.changer.clear_request(),
+        }
     }
     fn spindle(&mut self, _dir: SpindleDir, _rpm: u32) {}
 }
@@ -335,6 +396,7 @@ impl VirtualBoard {
             feed_hold: s.feed_hold,
             cycle_start: s.cycle_start,
             door: s.door,
+            tool_change_done: self.outputs.changer.done(self.sim.clock.0),
             user: s.user,
         }
     }

@@ -79,6 +79,50 @@ pub enum ToolChanger {
     Automatic,
 }
 
+/// The automatic tool changer's default time to answer a request, s: a
+/// carousel or arm changer of a small machining centre takes 5–15 s.
+pub const DEFAULT_TOOL_CHANGE_TIMEOUT_S: u16 = 30;
+
+/// Longest wait for the automatic tool changer that can be set, s.
+pub const MAX_TOOL_CHANGE_TIMEOUT_S: u16 = 3_600;
+
+/// How long a machining centre's automatic tool changer may take to report done
+/// after the board's request, 1–3600 s. Held only with the mill profile: without
+/// it (the F446 build) it takes no byte of the machine description (whose layout,
+/// and so the code that reaches into it, stays as it was) and reads as the default.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ToolChangeTimeout {
+    #[cfg(feature = "mill")]
+    seconds: u16,
+}
+
+impl ToolChangeTimeout {
+    /// [`DEFAULT_TOOL_CHANGE_TIMEOUT_S`].
+    pub const DEFAULT: Self = ToolChangeTimeout {
+        #[cfg(feature = "mill")]
+        seconds: DEFAULT_TOOL_CHANGE_TIMEOUT_S,
+    };
+
+    /// The time, s.
+    pub const fn seconds(self) -> u16 {
+        #[cfg(feature = "mill")]
+        return self.seconds;
+        #[cfg(not(feature = "mill"))]
+        DEFAULT_TOOL_CHANGE_TIMEOUT_S
+    }
+
+    /// Sets the time; false (unchanged) outside 1–3600 s or without the mill profile.
+    pub fn set(&mut self, seconds: u16) -> bool {
+        #[cfg(feature = "mill")]
+        if (1..=MAX_TOOL_CHANGE_TIMEOUT_S).contains(&seconds) {
+            self.seconds = seconds;
+            return true;
+        }
+        let _ = seconds;
+        false
+    }
+}
+
 /// Number of additional work coordinate systems (G54.1 P1–P48, seed 004 @2112).
 pub const EXTRA_FRAMES: usize = 48;
 
@@ -124,6 +168,23 @@ impl ExtraOffsets {
         }
         self.rows[i] = row;
         true
+    }
+
+    /// Row `p` (1–48) as held: X, Y, Z in nanometres; `None` outside 1–48 (what
+    /// the board's flash stores).
+    pub fn row(&self, p: u8) -> Option<[i32; 3]> {
+        self.rows.get(usize::from(p).checked_sub(1)?).copied()
+    }
+
+    /// Sets row `p` (1–48) as held (X, Y, Z nm; restored from flash); false outside 1–48.
+    pub fn set_row(&mut self, p: u8, row: [i32; 3]) -> bool {
+        match usize::from(p).checked_sub(1).and_then(|i| self.rows.get_mut(i)) {
+            Some(slot) => {
+                *slot = row;
+                true
+            }
+            None => false,
+        }
     }
 }
 
@@ -243,6 +304,9 @@ pub struct MachineConfig {
     pub extra_offsets: ExtraOffsets,
     /// How M06 changes tools on a machining centre.
     pub tool_changer: ToolChanger,
+    /// How long the board waits for the automatic tool changer's "done" after
+    /// its request (alarm 4511 when it does not come).
+    pub tool_change_timeout: ToolChangeTimeout,
     /// Highest tool (turret station) number.
     pub tool_count: u16,
     /// Tool offsets: geometry, wear, nose radius, tip direction.
@@ -279,6 +343,7 @@ impl Default for MachineConfig {
             external_offset: Pos::ZERO,
             extra_offsets: ExtraOffsets::default(),
             tool_changer: ToolChanger::Manual,
+            tool_change_timeout: ToolChangeTimeout::DEFAULT,
             tool_count: 12,
             tools: ToolTable::default(),
             spindle: SpindleConfig {

@@ -621,7 +621,7 @@ impl<'a> Session<'a> {
             let wait = Instant::now() + self.timing.poll;
             while let Ok(r) = self.link.line_until(wait, "a status report") {
                 if let Response::Status(s) = r
-                    && matches!(s.state.as_str(), "Hold:1" | "Idle" | "Alarm")
+                    && matches!(s.state.as_str(), "Hold:0" | "Idle" | "Alarm")
                 {
                     self.reset()?;
                     return Ok(verdict);

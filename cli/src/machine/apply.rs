@@ -64,6 +64,11 @@ pub(super) fn apply(file: &MachineFile, cfg: &mut MachineConfig) -> Result<(), S
         apply_motion(m, &mut cfg.motion)?;
     }
     apply_input(file, &mut cfg.params)?;
+    if let Some(t) = file.tool_change_timeout
+        && !cfg.tool_change_timeout.set(t)
+    {
+        return Err(format!("tool_change_timeout = {t} is out of range (1 to 3600 s)"));
+    }
     cfg.validate()
         .and_then(|()| motion_core::planner::machine::check_config(cfg))
         .and_then(|()| interp_core::codes::check_user_m_codes(cfg))

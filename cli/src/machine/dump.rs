@@ -48,6 +48,7 @@ pub(super) fn file_of(cfg: &MachineConfig) -> MachineFile {
             ToolChanger::Manual => ToolChangerName::Manual,
             ToolChanger::Automatic => ToolChangerName::Automatic,
         }),
+        tool_change_timeout: (cfg.kind == MachineKind::Mill).then_some(cfg.tool_change_timeout.seconds()),
         reference: Some(cfg.reference.iter().map(|p| point(cfg, *p)).collect()),
         axes: Some(axes(cfg)),
         work_offsets: Some(work_offsets(cfg)),

@@ -32,6 +32,9 @@ pub struct MachineFile {
     /// A mill's tool change at M06: `manual` (a stop: the operator loads the tool)
     /// or `automatic` (the tool changer).
     pub tool_changer: Option<ToolChangerName>,
+    /// A mill's automatic tool changer: seconds it may take to report done after
+    /// the board's request (1–3600, default 30; `$313`; alarm 4511 beyond).
+    pub tool_change_timeout: Option<u16>,
     /// Reference positions 1–4, machine coordinates; fewer than 4: the rest equal the first.
     pub reference: Option<Vec<Point>>,
     /// Travel and rates per axis.

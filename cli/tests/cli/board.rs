@@ -285,7 +285,7 @@ fn hold_resume_overrides_reset_and_errors_on_the_wire() {
     raw.send(b"!");
     std::thread::sleep(Duration::from_millis(400));
     let held = raw.status();
-    assert!(held.starts_with("<Hold:1|"), "{held}");
+    assert!(held.starts_with("<Hold:0|"), "{held}");
     std::thread::sleep(Duration::from_millis(200));
     assert_eq!(raw.status().split('|').nth(1), held.split('|').nth(1), "no motion while held");
     raw.send(&[b'~', 0x91, 0x91]);
@@ -354,4 +354,51 @@ fn streamed_programs_call_macros_in_the_boards_memory() {
         assert_eq!(without_lines(&got), without_lines(&want), "{name}");
         assert!(want.contains("\"program\":9110") || want.contains("\"program\":9010"), "{name} calls a macro");
     }
+}
+
+/// A mill with the automatic tool changer (machine file `tool_changer =
+/// "automatic"`, `tool_change_timeout`) on `lathe board` over the link: the board
+/// stops at M06 until the simulated changer reports done (`--atc-time`) and goes
+/// on; a changer that never answers (`--atc-never`) ends the job in alarm 4511.
+#[test]
+fn automatic_tool_changer_on_the_board_done_and_timeout() {
+    let machine = scratch(
+        "atc-mill.toml",
+        "kind = \"mill\"\ndiameter_programming = false\ntool_changer = \"automatic\"\ntool_change_timeout = 2\n",
+    );
+    let shown = stdout(&lathe(&["machine", "--machine", &machine]));
+    assert!(shown.contains("tool_changer = \"automatic\"") && shown.contains("tool_change_timeout = 2"), "{shown}");
+    let program = b"G90 G00 X-10. Y-10.\nT02 M06\nG00 X-20.\nM30\n";
+
+    let board = Board::start("atc-done", &["--machine", &machine, "--atc-time", "0.5"]);
+    let mut raw = Raw::open(&board.link);
+    raw.send(b"\x18");
+    raw.until("Grbl 1.1h ['$' for help]\r\n");
+    raw.send(b"$$\n");
+    let settings = raw.until("ok\r\n");
+    assert!(settings.contains("$312=1\r\n") && settings.contains("$313=2\r\n"), "{settings}");
+    raw.send(program);
+    raw.until("[MSG:Tool change T02 (tool changer)]");
+    let s = raw.status();
+    assert!(s.starts_with("<Run|MPos:-10.000,-10.000,"), "waiting for the changer: {s}");
+    let rest = raw.until("[MSG:Pgm End]");
+    assert!(!rest.contains("ALARM"), "{rest}");
+    std::thread::sleep(Duration::from_millis(100));
+    let s = raw.status();
+    assert!(s.starts_with("<Idle|MPos:-20.000,-10.000,"), "{s}");
+    drop(board);
+
+    let board = Board::start("atc-never", &["--machine", &machine, "--atc-never"]);
+    let mut raw = Raw::open(&board.link);
+    raw.send(b"\x18");
+    raw.until("Grbl 1.1h ['$' for help]\r\n");
+    raw.send(program);
+    raw.until("[MSG:Tool change T02 (tool changer)]");
+    let alarm = raw.until("ALARM:20\r\n");
+    assert!(
+        alarm.contains("[MSG:ALARM 4511 line 2: tool changer did not report done within 2 s of the request for T02"),
+        "{alarm}"
+    );
+    let s = raw.status();
+    assert!(s.starts_with("<Alarm|MPos:-10.000,-10.000,"), "no motion after the alarm: {s}");
 }

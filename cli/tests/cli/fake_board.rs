@@ -326,7 +326,7 @@ impl State {
     fn report(&mut self) {
         let state = match (self.machine, self.held) {
             (Machine::Alarm, _) => "Alarm",
-            (_, true) => "Hold:1",
+            (_, true) => "Hold:0",
             _ if Instant::now() < self.busy_until || self.rx.contains(&b'\n') => "Run",
             _ => "Idle",
         };

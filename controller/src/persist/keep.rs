@@ -1,7 +1,8 @@
 //! What a board keeps on flash, independent of the flash driver: reading the
-//! stored parameters, grbl settings, offsets, common variables and programs into a
-//! controller, writing back what changed, the fingerprint that tells when
-//! something did, and the [`Saver`] that writes while the machine is at rest. The
+//! stored parameters, grbl settings, offsets (a mill build's G54.1 P1–P48 too),
+//! common variables and programs into a controller, writing back what changed,
+//! the fingerprint that tells when something did, and the [`Saver`] that writes
+//! while the machine is at rest. The
 //! firmware runs it on the STM32's flash (`firmware/src/saved.rs`), `lathe board
 //! --flash` on a file (`sim::board`); `tests/persist_keep.rs` tests it.
 //!
@@ -14,7 +15,7 @@ use crate::{Controller, Settings};
 use embedded_storage::nor_flash::{MultiwriteNorFlash, NorFlash};
 use interp_core::MachineConfig;
 use interp_core::ProgramStore;
-use interp_core::config::{MAX_OFFSETS, PARAMS, Param};
+use interp_core::config::{EXTRA_FRAMES, MAX_OFFSETS, PARAMS, Param};
 
 /// Parameter record number of grbl setting `$n`: `SETTING_KEY + n` (parameter
 /// numbers of the interpreter are below 10000).
@@ -31,12 +32,16 @@ fn setting_numbers() -> impl Iterator<Item = u16> {
 
 /// Reads the stored parameters, grbl settings and offsets into `cfg` and `s`; the
 /// numbers of settings the stored value was refused for are skipped (returned).
+/// A stored setting of an axis or device the stored machine kind does not have
+/// (a mill's `$101`–`$131` and `$312`/`$313` after `$RST=$` made it a lathe) is
+/// left unused, not refused: [`save`] writes only the settings a machine has, so
+/// such a record is a former mill's, and a mill again overwrites it.
 pub fn load_config<F: NorFlash + MultiwriteNorFlash>(
     store: &mut Persist<F>,
     cfg: &mut MachineConfig,
     s: &mut Settings,
 ) -> Result<heapless::Vec<u16, 32>, Error> {
-    let mut grbl: heapless::Vec<(u16, f64), 32> = heapless::Vec::new();
+    let mut grbl: heapless::Vec<(u16, f64), 40> = heapless::Vec::new();
     store.load_params(|n, v| match n.checked_sub(SETTING_KEY) {
         Some(k) => {
             let value = f64::from_bits(v as u64);
@@ -56,6 +61,7 @@ pub fn load_config<F: NorFlash + MultiwriteNorFlash>(
     let mut refused = heapless::Vec::new();
     for n in setting_numbers() {
         if let Some(&(_, v)) = grbl.iter().find(|(m, _)| *m == n)
+            && !settings::missing_axis(n, cfg)
             && settings::set(n, v, cfg, s).is_err()
         {
             let _ = refused.push(n);
@@ -66,6 +72,7 @@ pub fn load_config<F: NorFlash + MultiwriteNorFlash>(
     cfg.work_offsets = o.work;
     cfg.external_offset = o.external;
     cfg.tools = o.tools;
+    store.load_extra_offsets(&mut cfg.extra_offsets)?;
     Ok(refused)
 }
 
@@ -102,6 +109,7 @@ where
         }
     }
     store.save_offsets(&Offsets { work: cfg.work_offsets, external: cfg.external_offset, tools: cfg.tools })?;
+    store.save_extra_offsets(&cfg.extra_offsets)?;
     let memory = ctl.memory();
     for n in memory.numbers() {
         if let Some(text) = memory.text(n) {
@@ -142,6 +150,11 @@ pub fn fingerprint<const W: usize, const T: usize, const P: usize, const S: usiz
     for n in 1..=MAX_OFFSETS as u16 {
         if let Some(t) = cfg.tools.get(n) {
             [t.x, t.z, t.x_wear, t.z_wear, t.radius, i64::from(t.tip)].iter().for_each(|v| h.i64(*v));
+        }
+    }
+    if interp_core::MILL {
+        for p in 1..=EXTRA_FRAMES as u8 {
+            cfg.extra_offsets.row(p).unwrap_or_default().iter().for_each(|v| h.i64(i64::from(*v)));
         }
     }
     let memory = ctl.memory();

@@ -9,6 +9,7 @@
 //! | 5    | program header, O number                   | [`super::programs`] header     |
 //! | 6    | program chunk: O (14 bits), generation (6), chunk index (8) | text bytes    |
 //! | 7    | the program journal (one key)              | empty = idle, or an intent     |
+//! | 8    | G54.1 work offset P, 1–48 (a mill's)       | 3 × `i32` LE X, Y, Z (12 bytes)|
 
 /// The kind of a key.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -20,6 +21,7 @@ pub(crate) enum Kind {
     ProgramHeader,
     ProgramChunk,
     Journal,
+    ExtraOffset,
 }
 
 const KIND_SHIFT: u32 = 28;
@@ -38,6 +40,7 @@ pub(crate) const fn kind(key: u32) -> Option<Kind> {
         5 => Kind::ProgramHeader,
         6 => Kind::ProgramChunk,
         7 => Kind::Journal,
+        8 => Kind::ExtraOffset,
         _ => return None,
     })
 }
@@ -74,6 +77,11 @@ pub(crate) const GENERATIONS: u8 = 64;
 /// Chunk `index` of generation `generation` of program `o` (O < 16384).
 pub(crate) const fn program_chunk(o: u16, generation: u8, index: u8) -> u32 {
     tagged(6, ((o as u32 & 0x3FFF) << 14) | ((generation as u32 % GENERATIONS as u32) << 8) | index as u32)
+}
+
+/// G54.1 P`p` (1–48), a machining centre's additional work offset.
+pub(crate) const fn extra_offset(p: u8) -> u32 {
+    tagged(8, p as u32)
 }
 
 pub(crate) const JOURNAL: u32 = tagged(7, 0);

@@ -22,7 +22,7 @@
 //! one page erased for moving live items, so what is stored must fit into the
 //! other pages (each item costs 8 bytes of header and a 4-byte key, padded to the
 //! flash word), and replacing a program needs room for its old and new text at
-//! once. Records: a parameter or common ~24 B, a work offset ~48 B, a tool row
+//! once. Records: a parameter or common ~24 B, a work offset ~48 B, a G54.1 offset ~24 B, a tool row
 //! ~56 B (39 offset records ~2 KB), a program its length plus ~16 B per chunk.
 //!
 //! On the STM32F405 use **sectors 10–11** (`0x080C_0000..0x0810_0000`, 2 × 128 KB):

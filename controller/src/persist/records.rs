@@ -4,7 +4,7 @@
 use embedded_storage::nor_flash::{MultiwriteNorFlash, NorFlash};
 use interp_core::Pos;
 use interp_core::axis::AXIS_COUNT;
-use interp_core::config::{MAX_OFFSETS, ToolOffset, ToolTable};
+use interp_core::config::{EXTRA_FRAMES, ExtraOffsets, MAX_OFFSETS, ToolOffset, ToolTable};
 use interp_core::lang::fanuc::macros::{COMMON_COUNT, CommonStore, FIRST_COMMON, LAST_COMMON, Value};
 
 use super::keys::{self, Kind};
@@ -20,6 +20,8 @@ const POS_LEN: usize = 8 * AXIS_COUNT;
 const TOOL_LEN: usize = 8 * 5 + 4 + 1;
 /// A tool record written before the clearance angle was stored (read as 0°).
 const TOOL_LEN_OLD: usize = 8 * 5 + 1;
+/// Bytes of a stored G54.1 offset: X, Y, Z as `i32` nm, as the interpreter holds them.
+const EXTRA_LEN: usize = 4 * 3;
 
 /// The offsets that survive power-off: G54–G59, the external work offset, the
 /// tool offset table (all in nanometres, X as radius).
@@ -49,6 +51,24 @@ fn decode_i64s<const N: usize>(bytes: &[u8]) -> [i64; N] {
         *v = i64::from_le_bytes(b);
     }
     out
+}
+
+fn encode_extra(row: [i32; 3]) -> [u8; EXTRA_LEN] {
+    let mut out = [0; EXTRA_LEN];
+    for (dst, v) in out.chunks_exact_mut(4).zip(row) {
+        dst.copy_from_slice(&v.to_le_bytes());
+    }
+    out
+}
+
+fn decode_extra(bytes: &[u8]) -> [i32; 3] {
+    let mut row = [0; 3];
+    for (v, src) in row.iter_mut().zip(bytes.chunks_exact(4)) {
+        let mut b = [0; 4];
+        b.copy_from_slice(src);
+        *v = i32::from_le_bytes(b);
+    }
+    row
 }
 
 fn encode_tool(t: &ToolOffset) -> [u8; TOOL_LEN] {
@@ -128,6 +148,42 @@ impl<F: NorFlash + MultiwriteNorFlash> Persist<F> {
         }
         self.ready()?;
         self.put_if_changed(keys::tool_offset(n), &encode_tool(t))
+    }
+
+    /// Stores the G54.1 P1–P48 offsets that differ from the stored ones (one
+    /// record each, updated atomically); a row never stored that is still zero is
+    /// not written (absent reads as zero). Nothing in a build without the mill
+    /// profile (`interp_core::MILL`).
+    pub fn save_extra_offsets(&mut self, extra: &ExtraOffsets) -> Result<(), Error> {
+        if !interp_core::MILL {
+            return Ok(());
+        }
+        self.ready()?;
+        for p in 1..=EXTRA_FRAMES as u8 {
+            let Some(row) = extra.row(p) else { continue };
+            let bytes = encode_extra(row);
+            match self.with_value(keys::extra_offset(p), |old| old == bytes)? {
+                Some(true) => {}
+                None if row == [0; 3] => {}
+                _ => self.put(keys::extra_offset(p), &bytes)?,
+            }
+        }
+        Ok(())
+    }
+
+    /// Reads the stored G54.1 offsets into `extra` (rows never stored keep their
+    /// value). One pass over the flash; nothing without the mill profile.
+    pub fn load_extra_offsets(&mut self, extra: &mut ExtraOffsets) -> Result<(), Error> {
+        if !interp_core::MILL {
+            return Ok(());
+        }
+        self.ready()?;
+        self.for_each_item(|key, value| {
+            if keys::kind(key) == Some(Kind::ExtraOffset) && value.len() == EXTRA_LEN {
+                // A key outside P1–P48 (none is ever written) is skipped.
+                let _ = u8::try_from(keys::number(key)).map(|p| extra.set_row(p, decode_extra(value)));
+            }
+        })
     }
 
     /// Reads the stored offsets into `offsets` (records never stored leave their

@@ -68,6 +68,8 @@ pub struct Io {
     pub m: Vec<u16>,
     pub tools: Vec<(u16, u16)>,
     pub spindle: Vec<(SpindleDir, u32)>,
+    /// The tool changer's request outputs, in order (`None`: dropped).
+    pub requests: Vec<Option<u16>>,
 }
 
 impl MachineIo for Io {
@@ -79,6 +81,9 @@ impl MachineIo for Io {
     }
     fn spindle(&mut self, dir: SpindleDir, rpm: u32) {
         self.spindle.push((dir, rpm));
+    }
+    fn tool_change_request(&mut self, tool: Option<u16>) {
+        self.requests.push(tool);
     }
 }
 

@@ -71,13 +71,15 @@ pub enum Switch {
     YLimit,
     /// Y home switch (a mill's).
     YHome,
+    /// A mill's automatic tool changer reports done.
+    ToolChangeDone,
 }
 
 impl Switch {
     /// Every switch, in the order of their bits in a [`Debounce`] sample and their
-    /// `hal::DigitalInputs` numbers (0–8; Y's after the lathe's so that their
-    /// numbers stay).
-    pub const ALL: [Switch; 9] = [
+    /// `hal::DigitalInputs` numbers (0–9; Y's and the tool changer's after the
+    /// lathe's so that their numbers stay).
+    pub const ALL: [Switch; 10] = [
         Switch::EStop,
         Switch::FeedHold,
         Switch::CycleStart,
@@ -87,6 +89,7 @@ impl Switch {
         Switch::ZHome,
         Switch::YLimit,
         Switch::YHome,
+        Switch::ToolChangeDone,
     ];
 
     /// The switch's bit in a sample.

@@ -76,9 +76,10 @@ pub enum EventKind {
         /// M01.
         optional: bool,
     },
-    /// A machining centre's M06 reached (the motion before it has finished). A
-    /// change by hand (`manual`) waits for cycle start as M00 does; the tool
-    /// changer's goes on.
+    /// A machining centre's M06 reached (the motion before it has finished): the
+    /// spindle is stopped and the core waits for cycle start as at M00 — the
+    /// operator's after a change by hand (`manual`), the controller's when the
+    /// tool changer reports done.
     ToolChange(crate::canon::ToolChange),
     /// M02/M30 reached.
     End {
@@ -722,19 +723,18 @@ impl<const N: usize> MotionCore<N> {
                 self.state = State::Stopped;
             }
             Command::Polygon(sync) => self.polygon_command(sync),
-            // Made only by a machining centre's M06.
+            // Made only by a machining centre's M06. By hand or by the tool
+            // changer, the tool leaves the spindle: the spindle stops, nothing after
+            // the M06 moves, and both start again as they were at cycle start (the
+            // controller gives it when the changer reports done).
             Command::ToolChange(t) if canon::MILL => {
                 self.emit(line, EventKind::ToolChange(t));
-                if t.manual {
-                    // The operator's hands go to the spindle: it stops, and starts
-                    // again as it was at cycle start.
-                    if self.spindle.dir != SpindleDir::Stop {
-                        self.resume_spindle = Some((self.spindle.dir, self.spindle.rpm));
-                        self.set_spindle(SpindleDir::Stop, 0);
-                        self.emit(line, EventKind::Spindle { dir: SpindleDir::Stop, rpm: 0 });
-                    }
-                    self.state = State::Stopped;
+                if self.spindle.dir != SpindleDir::Stop {
+                    self.resume_spindle = Some((self.spindle.dir, self.spindle.rpm));
+                    self.set_spindle(SpindleDir::Stop, 0);
+                    self.emit(line, EventKind::Spindle { dir: SpindleDir::Stop, rpm: 0 });
                 }
+                self.state = State::Stopped;
             }
             Command::ToolChange(_) => {}
             Command::End { rewind } => {

@@ -57,14 +57,26 @@ pub fn junction_speed(a: &Dir, b: &Dir, short: f32, p: &MotionParams) -> f32 {
     let mut v = f32::MAX;
     if cos_phi < 0.999_999 {
         let cos_half = sqrtf((1.0 + cos_phi) / 2.0);
-        let sin_half = sqrtf((1.0 - cos_phi) / 2.0);
+        // sin²(φ/2): both limits are compared and taken as squares (every term is
+        // positive), and one root gives the smaller of them.
+        let sin_half_sq = (1.0 - cos_phi) / 2.0;
         let one_minus = 1.0 - cos_half;
         let half_short = 0.5 * short;
-        if p.junction_deviation * sin_half <= half_short * one_minus {
-            v = sqrtf(p.accel_min * p.junction_deviation * cos_half / one_minus);
+        let (jd, tol) = (p.junction_deviation, p.chord_tolerance);
+        let mut v_sq = f32::MAX;
+        // Where the deviation's arc fits the shorter block's half
+        // (jd·sin(φ/2) ≤ short/2·(1 − cos(φ/2))): √(a·jd·cos(φ/2) / (1 − cos(φ/2))).
+        let fits = half_short * one_minus;
+        if jd * jd * sin_half_sq <= fits * fits {
+            v_sq = p.accel_min * jd * cos_half / one_minus;
         }
-        if half_short * sin_half > 0.25 * p.chord_tolerance {
-            v = minf(v, 2.0 * p.chord_tolerance / sin_half);
+        // Where the corner would cut more than the chord tolerance
+        // (short/2·sin(φ/2) > tol/4): 2·tol / sin(φ/2).
+        if half_short * half_short * sin_half_sq > 0.0625 * tol * tol {
+            v_sq = minf(v_sq, 4.0 * tol * tol / sin_half_sq);
+        }
+        if v_sq < f32::MAX {
+            v = sqrtf(v_sq);
         }
     }
     for ((x, y), lim) in a.iter().zip(b).zip(&p.limits) {

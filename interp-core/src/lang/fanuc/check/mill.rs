@@ -53,7 +53,7 @@ fn words_of(code: GCode) -> (Letters, &'static str) {
 /// line and cold: the lathe's way through the checker keeps its registers.
 #[cold]
 #[inline(never)]
-pub(super) fn check(
+pub(super) fn check<const GENERAL: bool>(
     block: &Block,
     user: GCode,
     flow: Option<MFunction>,
@@ -62,12 +62,71 @@ pub(super) fn check(
     fmt: &NumberFormat,
     cmd: &mut Command,
 ) -> Result<(), AlarmKind> {
+    // `GENERAL` (tests only): every block the general way, to compare.
+    if !GENERAL && plain_move(block, user, flow, state, cfg, cmd) {
+        return plain(block, state, fmt, cmd);
+    }
     alone(block, cmd)?;
     check_letters(block, user, flow, cmd, cfg)?;
     cmd.h = None;
     cmd.d = None;
     convert(block, user, state, cfg, fmt, cmd)?;
     cmd.g.mill = needs_mill_paths(cmd, state, user);
+    Ok(())
+}
+
+/// The words of a plain move (and of [`ALWAYS`] but T and a call).
+const PLAIN: Letters = Letters::of(b"XYZFS");
+
+/// Whether the block is a plain G00/G01 (X, Y, Z, F, S at most, on configured
+/// axes; no frame, offset, polar, length, one-shot code, M98/M99 family, chamfer
+/// or corner; no transformation in force): [`plain`] checks it as the general
+/// way would, without its per-code tests (most blocks of a mill program).
+#[inline(always)]
+fn plain_move(
+    block: &Block,
+    user: GCode,
+    flow: Option<MFunction>,
+    state: &State,
+    cfg: &MachineConfig,
+    cmd: &Command,
+) -> bool {
+    let present = block.present();
+    let absent = |a: Axis| if cfg.axis(a).present { 0 } else { 1u32 << (a.letter() - b'A') };
+    matches!(user, GCode::Linear | GCode::Rapid)
+        && present & !PLAIN.0 == 0
+        && present & (absent(Axis::X) | absent(Axis::Y) | absent(Axis::Z)) == 0
+        && flow.is_none()
+        && state.mill.frame.active == 0
+        && cmd.g.frame.is_none()
+        && cmd.g.one_shot.is_none()
+        && cmd.g.length.is_none()
+        && cmd.g.work_frame.is_none()
+        && cmd.g.polar_coord.is_none()
+        && block.chamfer.is_none()
+        && block.corner.is_none()
+}
+
+/// A [`plain_move`] block's words into `cmd`: what [`check_letters`], [`convert`]
+/// and [`needs_mill_paths`] do with it, in the same order (the same alarm first).
+#[inline(always)]
+fn plain(block: &Block, state: &State, fmt: &NumberFormat, cmd: &mut Command) -> Result<(), AlarmKind> {
+    let incremental = cmd.g.incremental.unwrap_or(state.modal.incremental);
+    linear_word(Axis::X, block, incremental, fmt, cmd)?;
+    linear_word(Axis::Y, block, incremental, fmt, cmd)?;
+    linear_word(Axis::Z, block, incremental, fmt, cmd)?;
+    if let Some(f) = block.get(b'F') {
+        if f.is_negative() {
+            return Err(AlarmKind::IllegalMinusSign { letter: b'F' });
+        }
+        cmd.feed = Some(fmt.feed_nm(&f).ok_or(AlarmKind::Overflow)?);
+    }
+    if let Some(s) = block.get(b'S') {
+        cmd.speed = Some(whole(b'S', &s, 99_999)?);
+    }
+    cmd.h = None;
+    cmd.d = None;
+    cmd.g.mill = cmd.m.iter().any(|&(_, f)| f == MFunction::ToolChange);
     Ok(())
 }
 

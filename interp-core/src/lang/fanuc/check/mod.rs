@@ -26,6 +26,18 @@ pub fn check(block: &Block, state: &State, cfg: &MachineConfig) -> Result<Comman
 /// [`check`] into a command reused from block to block (nothing ~300 bytes large
 /// is returned and copied per block). On an alarm `cmd` holds a partial result.
 pub fn check_into(block: &Block, state: &State, cfg: &MachineConfig, cmd: &mut Command) -> Result<(), AlarmKind> {
+    check_into_as::<false>(block, state, cfg, cmd)
+}
+
+/// [`check_into`]; `GENERAL` (tests only) checks a machining centre's plain moves
+/// the general way too.
+#[inline(always)]
+fn check_into_as<const GENERAL: bool>(
+    block: &Block,
+    state: &State,
+    cfg: &MachineConfig,
+    cmd: &mut Command,
+) -> Result<(), AlarmKind> {
     cmd.g.resolve_into(block, state, cfg)?;
     let fmt = NumberFormat {
         units: cmd.g.units.unwrap_or(state.modal.units),
@@ -51,7 +63,7 @@ pub fn check_into(block: &Block, state: &State, cfg: &MachineConfig, cmd: &mut C
     if crate::is_mill(cfg) {
         // A machining centre's G51, G51.1 and G68 take the axis words too.
         let user = cmd.g.frame.unwrap_or(user);
-        mill::check(block, user, flow_m, state, cfg, &fmt, cmd)?;
+        mill::check::<GENERAL>(block, user, flow_m, state, cfg, &fmt, cmd)?;
     } else {
         words::check_letters(block, user, flow_m, cfg)?;
         words::convert(block, user, state, cfg, &fmt, cmd)?;
@@ -147,4 +159,73 @@ pub(crate) fn axis_of(letter: u8) -> Option<(Axis, bool)> {
             None
         }
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::lang::fanuc::parse::read_block;
+
+    /// A machining centre's plain G00/G01 (the short way through the M-series
+    /// checker) gives the command, or the alarm, the general way gives.
+    #[test]
+    fn mill_plain_moves_check_as_the_general_way() {
+        let mut cfg = MachineConfig::mill();
+        let blocks: &[&[u8]] = &[
+            b"N101 G01 X-99.176 Y-99.424 Z-20.1",
+            b"G01 X1. Y2. Z3. F300 S1200",
+            b"G00 X10 Y-5",
+            b"X5. Y6.",
+            b"Z-1. F-3.",
+            b"G01 X1. F0",
+            b"G91 G01 X1. Y-1.",
+            b"G01 X1. M06",
+            b"G01 X1. M03 S500",
+            b"G01 X1. S123456",
+            b"G01 X1. T2",
+            b"G01 X1. H2",
+            b"G01 X1. D3",
+            b"G41 G01 X1. Y1.",
+            b"G43 G01 Z1. H1",
+            b"G01 X1. C10.",
+            b"G01 X1. U2.",
+            b"G01 X1. Y2. ,C1.",
+            b"G01 X1. Y2. ,R1.",
+            b"G01 X999999999. Y1.",
+            b"G01 X1. M98 P100",
+            b"G53 G00 Z0",
+            b"G16 G01 X10. Y30.",
+            b"G01 X1. I2.",
+            b"G02 X1. Y1. R5.",
+            b"G01 X1. Y1. Z1. F1000.",
+        ];
+        let states = {
+            let plain = State::power_on(&cfg, crate::axis::Pos::ZERO);
+            let mut g91 = plain;
+            g91.modal.incremental = true;
+            let mut polar = plain;
+            polar.mill.frame.active = crate::modal::mill::on::POLAR;
+            [plain, g91, polar]
+        };
+        for pass in 0..2 {
+            if pass == 1 {
+                // A mill without Y: its words raise the alarm either way.
+                cfg.axes[Axis::Y.index()].present = false;
+            }
+            for text in blocks {
+                let Ok(block) = read_block(text, 1) else { continue };
+                for state in &states {
+                    let mut short = Command::EMPTY;
+                    let mut general = Command::EMPTY;
+                    let a = check_into_as::<false>(&block, state, &cfg, &mut short);
+                    let b = check_into_as::<true>(&block, state, &cfg, &mut general);
+                    let what = core::str::from_utf8(text).unwrap_or("?");
+                    assert_eq!(a, b, "{what}");
+                    if a.is_ok() {
+                        assert_eq!(short, general, "{what}");
+                    }
+                }
+            }
+        }
+    }
 }

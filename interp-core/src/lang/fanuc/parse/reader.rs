@@ -137,11 +137,11 @@ impl<'a, 'v, 'c> Reader<'a, 'v, 'c> {
         }
         self.skip_blanks_and_comments()?;
         if matches!(self.peek(), Some(b'N' | b'n')) {
-            self.pos += 1;
-            if starts_number(self.text, self.pos) {
-                let n = self.number(b'N')?;
+            if let Some((n, end)) = plain_number(self.text, self.pos + 1) {
+                self.pos = end;
                 self.store(b'N', n, block)?;
             } else {
+                self.pos += 1;
                 self.word(b'N', block)?;
             }
             self.skip_blanks_and_comments()?;
@@ -184,17 +184,9 @@ impl<'a, 'v, 'c> Reader<'a, 'v, 'c> {
     /// The words of an NC block.
     fn words(&mut self, block: &mut Block) -> Result<(), AlarmKind> {
         loop {
+            self.plain_words(block)?;
             self.skip_blanks_and_comments()?;
             let Some(c) = self.peek() else { return Ok(()) };
-            // The common word: a letter right before its plain number (`X40.8`,
-            // `Z-0.1`): no keyword, no macro value, no blanks to skip.
-            let letter = c & !0x20;
-            if letter.wrapping_sub(b'A') < 26 && starts_number(self.text, self.pos + 1) {
-                self.pos += 1;
-                let n = self.number(letter)?;
-                self.store(letter, n, block)?;
-                continue;
-            }
             // Keywords start with two letters (checked here first: it is cheap).
             let two_letters =
                 c.is_ascii_alphabetic() && self.text.get(self.pos + 1).is_some_and(u8::is_ascii_alphabetic);
@@ -213,6 +205,34 @@ impl<'a, 'v, 'c> Reader<'a, 'v, 'c> {
                 other => return Err(AlarmKind::IllegalCharacter { found: other }),
             }
         }
+    }
+
+    /// The common words, one after the other: a letter right before its plain
+    /// number (`X40.8`, `Z-0.1`), blanks between them. Reads with the position in
+    /// a register and each number in one pass; stops (without an alarm) at the
+    /// first thing that is not such a word — a comment, a keyword, a macro value,
+    /// a blank inside a word, a number [`plain_number`] leaves to
+    /// [`Reader::number`] — which the caller's general path reads.
+    #[inline(always)]
+    fn plain_words(&mut self, block: &mut Block) -> Result<(), AlarmKind> {
+        let text = self.text;
+        let mut i = self.pos;
+        loop {
+            while text.get(i).is_some_and(|&c| is_blank(c)) {
+                i += 1;
+            }
+            let Some(&c) = text.get(i) else { break };
+            let letter = c & !0x20;
+            if letter.wrapping_sub(b'A') >= 26 {
+                break;
+            }
+            let Some((n, end)) = plain_number(text, i + 1) else { break };
+            i = end;
+            self.pos = i;
+            self.store(letter, n, block)?;
+        }
+        self.pos = i;
+        Ok(())
     }
 
     fn peek(&self) -> Option<u8> {
@@ -525,19 +545,52 @@ impl<'a, 'v, 'c> Reader<'a, 'v, 'c> {
     }
 }
 
+/// The plain number at `text[i]` (an optional sign, then digits with a point or
+/// without; at most 9 digits before the point, leading zeros included, and 9
+/// after it) and the index after it. `None` for anything else — no digits, a
+/// second point, more digits, a macro value —, which [`Reader::number`] reads
+/// (or refuses with its alarm): the same value where both read one.
+#[inline(always)]
+fn plain_number(text: &[u8], mut i: usize) -> Option<(Number, usize)> {
+    let negative = match text.get(i) {
+        Some(b'-') => {
+            i += 1;
+            true
+        }
+        Some(b'+') => {
+            i += 1;
+            false
+        }
+        _ => false,
+    };
+    let first = i;
+    let int = digits(text, &mut i);
+    let int_digits = i - first;
+    let has_point = text.get(i) == Some(&b'.');
+    let mut mantissa = u64::from(int);
+    let mut frac_digits = 0;
+    if has_point {
+        i += 1;
+        let start = i;
+        let frac = digits(text, &mut i);
+        frac_digits = i - start;
+        if frac_digits > usize::from(MAX_FRAC_DIGITS) || text.get(i) == Some(&b'.') {
+            return None;
+        }
+        mantissa = mantissa * POW10_U32[frac_digits] as u64 + u64::from(frac);
+    } else if int_digits == 0 {
+        return None;
+    }
+    if int_digits > usize::from(MAX_INT_DIGITS) {
+        return None;
+    }
+    let mantissa = mantissa as i64;
+    let mantissa = if negative { -mantissa } else { mantissa };
+    Some((Number { mantissa, frac_digits: frac_digits as u8, has_point }, i))
+}
+
 /// `10^n` for the fraction digits of a word (0–9).
 const POW10_U32: [u32; 10] = [1, 10, 100, 1_000, 10_000, 100_000, 1_000_000, 10_000_000, 100_000_000, 1_000_000_000];
-
-/// Whether a plain number (no macro value, no blanks) starts at `text[i]`: a digit
-/// or a point, after an optional sign.
-#[inline(always)]
-fn starts_number(text: &[u8], i: usize) -> bool {
-    let plain = |c: Option<&u8>| c.is_some_and(|&c| c.is_ascii_digit() || c == b'.');
-    match text.get(i) {
-        Some(b'-' | b'+') => plain(text.get(i + 1)),
-        c => plain(c),
-    }
-}
 
 /// A blank between and inside words: space, tab, CR (one compare for most bytes).
 #[inline(always)]
