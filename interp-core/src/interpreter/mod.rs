@@ -364,6 +364,10 @@ impl Interpreter {
         // front end can be plugged in and the call is left out.)
         #[cfg(feature = "siemens")]
         if let Some(front) = self.siemens.front {
+            // A line of plain words and numbers: the short way (siemens.rs).
+            if let Some(done) = self.siemens_plain(programs, env, sink) {
+                return done;
+            }
             return front.step(self, programs, env, sink);
         }
         let _ = (programs, env, sink);

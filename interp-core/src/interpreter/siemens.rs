@@ -19,14 +19,34 @@
 //!   stream reads as "wait for more text".
 
 use super::{Interpreter, Phase};
+#[cfg(feature = "siemens")]
+use super::{Next, Progress};
+#[cfg(feature = "siemens")]
+use crate::alarm::{Alarm, AlarmKind};
+#[cfg(feature = "siemens")]
+use crate::canon::CanonSink;
 use crate::canon::{Action, Canon};
 use crate::config::Language;
+#[cfg(feature = "siemens")]
+use crate::env::Environment;
 use crate::lang::ProgramText;
+#[cfg(feature = "siemens")]
+use crate::lang::fanuc::check::sinumerik_plain;
+#[cfg(feature = "siemens")]
+use crate::lang::fanuc::parse::read_plain_line;
 use crate::lang::siemens::call::{CallArgs, ContourSource, CycleCall, Signature};
 use crate::lang::siemens::check::Extras;
 use crate::lang::siemens::vars::Vars;
 use crate::modal::{Modal, State};
+#[cfg(feature = "siemens")]
+use crate::program::ProgramStore;
+#[cfg(feature = "siemens")]
+use crate::program::lines::next_line;
 use crate::program::{Cursor, ProgramId};
+#[cfg(feature = "siemens")]
+use crate::stage::Flow;
+#[cfg(feature = "siemens")]
+use crate::units::{InputMode, NumberFormat};
 
 /// What a call-stack frame opened.
 #[derive(Clone, Copy, Debug)]
@@ -115,6 +135,9 @@ pub struct Front {
     /// The front end plugged in ([`Interpreter::plug`]): kept with the language's
     /// cold state, so the FANUC step's fields stay where they were.
     pub front: Option<&'static dyn crate::lang::Front>,
+    /// Every line the front end's general way, the short way for plain lines
+    /// ([`Interpreter::siemens_plain`]) off: tests compare the two.
+    pub general: bool,
 }
 
 impl Default for Front {
@@ -125,7 +148,7 @@ impl Default for Front {
 
 impl Front {
     pub const fn new() -> Self {
-        Front { vars: Vars::new(), mcall: None, mcall_due: None, saved: None, front: None }
+        Front { vars: Vars::new(), mcall: None, mcall_due: None, saved: None, front: None, general: false }
     }
 
     /// A new run: no DEF variables, no modal call (R parameters stay).
@@ -191,6 +214,85 @@ pub fn apply(extras: Extras, st: &mut State) {
 }
 
 impl Interpreter {
+    /// The short way of a SINUMERIK step (issue 19): a line of plain words and
+    /// numbers (`N.. G1 X40.412 Z-0.05 F.2`: no name, `=`, bracket, label,
+    /// expression or string, only words the short way reads as SINUMERIK does) is
+    /// read by the shared plain reader ([`read_plain_line`]), checked with
+    /// SINUMERIK's meanings ([`sinumerik_plain`]) and run as the front end runs an
+    /// NC block, without its statement reader and checker (`interp-siemens`, built
+    /// for size). `None`: the front end's step reads the line — everything else,
+    /// every alarm of reading and checking included, and every line while a modal
+    /// call (MCALL) or a REPEAT section's end may be due.
+    #[cfg(feature = "siemens")]
+    #[inline(always)]
+    pub(super) fn siemens_plain(
+        &mut self,
+        programs: &dyn ProgramStore,
+        env: &dyn Environment,
+        sink: &mut dyn CanonSink,
+    ) -> Option<Result<Progress, Alarm>> {
+        let repeat = |f: &super::Frame| matches!(f.kind, Level::Repeat { .. });
+        if self.siemens.general
+            || self.siemens.mcall.is_some()
+            || self.siemens.mcall_due.is_some()
+            || self.calls.last().is_some_and(repeat)
+        {
+            return None;
+        }
+        let at = self.cursor;
+        let text = programs.text(at.program).unwrap_or(&[]);
+        let mut next = at;
+        let raw = next_line(text, &mut next)?;
+        let line = raw.line;
+        if !read_plain_line(raw.text, line, &mut self.block) {
+            return None;
+        }
+        if !self.block.is_empty() && !sinumerik_plain(&self.block, &self.state, &self.cfg, &mut self.cmd) {
+            return None;
+        }
+        self.last_block = at;
+        self.cursor = next;
+        if self.block.is_empty() {
+            // Blanks, a comment, a block number alone.
+            return Some(Ok(Progress::Skipped { line }));
+        }
+        let program = ProgramText {
+            language: Language::Siemens,
+            text,
+            start: programs.start(at.program).unwrap_or(Cursor::start(at.program)),
+            vars: None,
+            fmt: Some(NumberFormat {
+                units: self.state.modal.units,
+                input: InputMode::Calculator,
+                increments: self.cfg.increments,
+            }),
+        };
+        let r = self.run_cmd(&env, Some(program), |_, flow| route(flow), None, |_| {});
+        self.started = true;
+        Some(match r {
+            Err(k) => Err(self.alarm_stop(sink, at.program, line, k)),
+            Ok(Some(next)) => {
+                self.go(next);
+                self.deliver(sink);
+                Ok(Progress::Executed { line })
+            }
+            Ok(None) => {
+                if let Some(v) = self.validating.as_mut() {
+                    v.at = at;
+                }
+                Ok(Progress::Yielded { line })
+            }
+        })
+    }
+
+    /// Every SINUMERIK line the front end's general way (`true`), or plain lines
+    /// the short way ([`Interpreter::siemens_plain`], the default): tests run
+    /// lines both ways and compare.
+    #[doc(hidden)]
+    pub fn set_siemens_general(&mut self, general: bool) {
+        self.siemens.general = general;
+    }
+
     /// The SINUMERIK variables.
     pub fn siemens_vars(&self) -> &Vars {
         self.siemens.vars()
@@ -251,6 +353,22 @@ impl Interpreter {
             }
         }
     }
+}
+
+/// Where a SINUMERIK block's program flow leads (as the front end routes it): M17
+/// returns; M98/M91/M92 are no SINUMERIK functions.
+#[cfg(feature = "siemens")]
+fn route(flow: Flow) -> Result<Next, AlarmKind> {
+    Ok(match flow {
+        Flow::Continue => Next::Go,
+        Flow::Stop => Next::Pause,
+        Flow::End => Next::End,
+        Flow::Return { .. } => Next::SiemensReturn,
+        Flow::Language(l) => Next::Language(l),
+        Flow::Call { .. } | Flow::Jump { .. } => {
+            return Err(AlarmKind::NotSupportedYet { what: "M98/M91/M92 in SINUMERIK mode" });
+        }
+    })
 }
 
 /// PROC … SAVE at the return: the modal G functions as they were at the call
