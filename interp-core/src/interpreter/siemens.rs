@@ -7,7 +7,9 @@
 //!
 //! - An NC block is read ([`read`]), checked ([`check_into`]) and run by
 //!   `run_cmd`, like a FANUC block; its assignments are written when it has
-//!   succeeded.
+//!   succeeded. A line of plain words and numbers takes a short way here
+//!   instead ([`Interpreter::siemens_plain`]: the shared plain reader and a
+//!   check with SINUMERIK's meanings), before the front end is asked.
 //! - DEF defines variables of the current level (before its first NC block only,
 //!   alarm 14500); IF…GOTOx and GOTOF/GOTOB/GOTO/GOTOC jump to labels or block
 //!   numbers of the level; REPEAT pushes a section frame; a call by name pushes a
