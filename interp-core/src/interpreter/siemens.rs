@@ -224,9 +224,10 @@ impl Interpreter {
     /// NC block, without its statement reader and checker (`interp-siemens`, built
     /// for size). `None`: the front end's step reads the line — everything else,
     /// every alarm of reading and checking included, and every line while a modal
-    /// call (MCALL) or a REPEAT section's end may be due.
+    /// call (MCALL) or a REPEAT section's end may be due. Out of line: its frame
+    /// (the block's saved state) is not under the front end's general way.
     #[cfg(feature = "siemens")]
-    #[inline(always)]
+    #[inline(never)]
     pub(super) fn siemens_plain(
         &mut self,
         programs: &dyn ProgramStore,
