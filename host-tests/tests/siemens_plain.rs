@@ -13,6 +13,7 @@ use interp_core::config::Language;
 use interp_core::lang::fanuc::check::sinumerik_plain;
 use interp_core::lang::fanuc::parse::{Block, read_plain_line};
 use interp_core::{Alarm, Interpreter, MachineConfig, Panel, Progress, SingleProgram};
+use proptest::prelude::*;
 
 fn cfg() -> MachineConfig {
     MachineConfig { language: Language::Siemens, ..MachineConfig::default() }
@@ -191,5 +192,83 @@ fn the_short_way_takes_plain_lines_only() {
         let taken = read_plain_line(line.as_bytes(), 1, &mut block)
             && (block.is_empty() || sinumerik_plain(&block, interp.state(), interp.config(), &mut cmd));
         assert_eq!(taken, *short, "{line}");
+    }
+}
+
+/// What random lines are made of: the short way's words and numbers, and what
+/// lies just beside them (other letters, signs, points, `=`, names, comments).
+const PIECES: &[&str] = &[
+    "G",
+    "G",
+    "G",
+    "M",
+    "X",
+    "X",
+    "Z",
+    "Z",
+    "Y",
+    "F",
+    "S",
+    "N",
+    "T",
+    "D",
+    "R",
+    "E",
+    "I",
+    "K",
+    "C",
+    "1",
+    "1",
+    "0",
+    "01",
+    "2",
+    "3",
+    "17",
+    "18",
+    "40",
+    "54",
+    "70",
+    "71",
+    "90",
+    "91",
+    "94",
+    "95",
+    "96",
+    "97",
+    "5",
+    "8",
+    "30",
+    "12.5",
+    ".5",
+    "10.",
+    "0.000001",
+    "999999999",
+    "1234567890",
+    "-",
+    "-",
+    "+",
+    ".",
+    " ",
+    " ",
+    " ",
+    "\t",
+    ";",
+    "=",
+    "DIAMOF",
+    "(",
+];
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(300))]
+
+    /// Random lines near the short way's, after a random state, run both ways:
+    /// the same, step by step.
+    #[test]
+    fn random_lines_run_as_the_general_way(
+        state in prop::sample::select(STATES),
+        lines in prop::collection::vec(prop::collection::vec(prop::sample::select(PIECES), 0..12), 1..8),
+    ) {
+        let body: Vec<String> = lines.iter().map(|l| l.concat()).collect();
+        same(&format!("G0 X60 Z10\n{state}\nG1 X50 Z5 F0.2\n{}\nM30\n", body.join("\n")));
     }
 }
