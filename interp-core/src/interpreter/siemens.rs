@@ -23,9 +23,8 @@ use crate::canon::{Action, Canon};
 use crate::config::Language;
 use crate::lang::ProgramText;
 use crate::lang::siemens::call::{CallArgs, ContourSource, CycleCall, Signature};
-use crate::lang::siemens::check::Extras;
 use crate::lang::siemens::vars::Vars;
-use crate::modal::{Modal, State};
+use crate::modal::Modal;
 use crate::program::{Cursor, ProgramId};
 
 /// What a call-stack frame opened.
@@ -168,6 +167,8 @@ pub struct ContourAt<'c> {
 #[derive(Clone, Copy, Debug)]
 pub struct CallSpec<'c> {
     pub sig: &'static Signature,
+    /// The front end whose cycle it is: it starts the cycle and reads its contour.
+    pub front: &'static dyn crate::lang::Front,
     pub args: &'c CallArgs,
     pub contour: Option<ContourAt<'c>>,
 }
@@ -175,18 +176,10 @@ pub struct CallSpec<'c> {
 impl<'c> CallSpec<'c> {
     /// The call as the engine gets it, the contour reading `vars`.
     pub fn bind(&self, vars: &'c Vars) -> CycleCall<'c> {
-        let contour = self.contour.map(|c| ContourSource { program: c.program, start: c.start, end: c.end, vars });
-        CycleCall { sig: self.sig, args: self.args, contour }
-    }
-}
-
-/// DIAMON/DIAMOF and LIMS= on the state, before the block runs (undone with it).
-pub fn apply(extras: Extras, st: &mut State) {
-    if let Some(d) = extras.diam {
-        st.modal.diameter = d;
-    }
-    if let Some(l) = extras.lims {
-        st.spindle.clamp = Some(l);
+        let front = self.front;
+        let contour =
+            self.contour.map(|c| ContourSource { program: c.program, start: c.start, end: c.end, vars, front });
+        CycleCall { sig: self.sig, args: self.args, contour, front }
     }
 }
 
