@@ -24,15 +24,18 @@ use crate::config::Language;
 use crate::lang::ProgramText;
 use crate::lang::siemens::call::{CallArgs, ContourSource, CycleCall, Signature};
 use crate::lang::siemens::vars::Vars;
+#[cfg(feature = "siemens")]
 use crate::modal::Modal;
 use crate::program::{Cursor, ProgramId};
 
-/// What a call-stack frame opened.
+/// What a call-stack frame opened. Without the `siemens` feature only a FANUC
+/// call (the type takes no room in the frames).
 #[derive(Clone, Copy, Debug)]
 pub enum Level {
     /// A FANUC M98/G65 call.
     Fanuc,
     /// A SINUMERIK subprogram call.
+    #[cfg(feature = "siemens")]
     Proc {
         /// The level's first line (its PROC line): labels are searched from here.
         start: Cursor,
@@ -45,6 +48,7 @@ pub enum Level {
         modal_call: bool,
     },
     /// A REPEAT section: from `start` to the offset `end` (after its last line).
+    #[cfg(feature = "siemens")]
     Repeat {
         /// The section's first line.
         start: Cursor,
@@ -58,20 +62,26 @@ impl Level {
     pub fn kept(&self) -> Option<Cursor> {
         match *self {
             Level::Fanuc => None,
+            #[cfg(feature = "siemens")]
             Level::Proc { start, .. } | Level::Repeat { start, .. } => Some(start),
         }
     }
 
     /// Program `program`'s text lost its first `bytes` bytes.
     pub fn shift(&mut self, program: ProgramId, bytes: usize) {
+        #[cfg(feature = "siemens")]
         let sh = |c: &mut Cursor| {
             if c.program == program {
                 c.offset = c.offset.saturating_sub(bytes);
             }
         };
+        #[cfg(not(feature = "siemens"))]
+        let _ = (program, bytes);
         match self {
             Level::Fanuc => {}
+            #[cfg(feature = "siemens")]
             Level::Proc { start, .. } => sh(start),
+            #[cfg(feature = "siemens")]
             Level::Repeat { start, end } => {
                 if start.program == program {
                     *end = end.saturating_sub(bytes);
@@ -99,17 +109,23 @@ pub struct ModalCall {
     pub list: bool,
 }
 
-/// The SINUMERIK front end's state in the interpreter.
+/// The SINUMERIK front end's state in the interpreter: without the `siemens`
+/// feature (a board without SINUMERIK mode, the F446) only the empty plug, so
+/// the language's variables and modal call take no RAM there.
 #[derive(Debug)]
 pub struct Front {
     /// R parameters and DEF variables.
+    #[cfg(feature = "siemens")]
     pub vars: Vars,
     /// MCALL in force.
+    #[cfg(feature = "siemens")]
     pub mcall: Option<ModalCall>,
     /// A block that moved an axis ran under MCALL (its line): the modal call is
     /// due before the next line is read.
+    #[cfg(feature = "siemens")]
     pub mcall_due: Option<core::num::NonZeroU32>,
     /// The modal state at the call of the PROC … SAVE running (one at a time).
+    #[cfg(feature = "siemens")]
     pub saved: Option<Modal>,
     /// The front end plugged in ([`Interpreter::plug`]): kept with the language's
     /// cold state, so the FANUC step's fields stay where they were.
@@ -124,32 +140,50 @@ impl Default for Front {
 
 impl Front {
     pub const fn new() -> Self {
-        Front { vars: Vars::new(), mcall: None, mcall_due: None, saved: None, front: None }
+        Front {
+            #[cfg(feature = "siemens")]
+            vars: Vars::new(),
+            #[cfg(feature = "siemens")]
+            mcall: None,
+            #[cfg(feature = "siemens")]
+            mcall_due: None,
+            #[cfg(feature = "siemens")]
+            saved: None,
+            front: None,
+        }
     }
 
     /// A new run: no DEF variables, no modal call (R parameters stay).
     pub fn rewind(&mut self) {
-        self.vars.clear_locals();
-        self.mcall = None;
-        self.mcall_due = None;
-        self.saved = None;
+        #[cfg(feature = "siemens")]
+        {
+            self.vars.clear_locals();
+            self.mcall = None;
+            self.mcall_due = None;
+            self.saved = None;
+        }
     }
 
     /// Program `program`'s text lost its first `bytes` bytes.
     pub fn shift(&mut self, program: ProgramId, bytes: usize) {
+        #[cfg(feature = "siemens")]
         if let Some(ModalCall { callee: Callee::Proc(c), .. }) = &mut self.mcall
             && c.program == program
         {
             c.offset = c.offset.saturating_sub(bytes);
         }
+        #[cfg(not(feature = "siemens"))]
+        let _ = (program, bytes);
     }
 
     /// The variables.
+    #[cfg(feature = "siemens")]
     pub fn vars(&self) -> &Vars {
         &self.vars
     }
 
     /// The variables, to set from outside (tests, the panel).
+    #[cfg(feature = "siemens")]
     pub fn vars_mut(&mut self) -> &mut Vars {
         &mut self.vars
     }
@@ -185,11 +219,13 @@ impl<'c> CallSpec<'c> {
 
 impl Interpreter {
     /// The SINUMERIK variables.
+    #[cfg(feature = "siemens")]
     pub fn siemens_vars(&self) -> &Vars {
         self.siemens.vars()
     }
 
     /// The SINUMERIK variables, to set R parameters from the panel or a test.
+    #[cfg(feature = "siemens")]
     pub fn siemens_vars_mut(&mut self) -> &mut Vars {
         self.siemens.vars_mut()
     }
@@ -203,6 +239,7 @@ impl Interpreter {
     /// of the level end with it); in the main program the end. In the shared call
     /// stack's code: a block's [`Flow::Return`](crate::stage::Flow) gets here too.
     #[doc(hidden)]
+    #[cfg_attr(not(feature = "siemens"), allow(clippy::never_loop))]
     pub fn siemens_return(&mut self) {
         loop {
             let Some(f) = self.calls.last_mut() else {
@@ -212,9 +249,11 @@ impl Interpreter {
                 return;
             };
             match f.kind {
+                #[cfg(feature = "siemens")]
                 Level::Repeat { .. } => {
                     self.calls.pop();
                 }
+                #[cfg(feature = "siemens")]
                 Level::Proc { start, skip, .. } if f.repeats_left > 0 => {
                     f.repeats_left -= 1;
                     self.siemens.vars.leave();
@@ -229,6 +268,7 @@ impl Interpreter {
                 }
                 _ => {
                     let Some(f) = self.calls.pop() else { return };
+                    #[cfg(feature = "siemens")]
                     if let Level::Proc { save, .. } = f.kind {
                         self.siemens.vars.leave();
                         if let Some(m) = self.siemens.saved.take().filter(|_| save) {
@@ -248,6 +288,7 @@ impl Interpreter {
 
 /// PROC … SAVE at the return: the modal G functions as they were at the call
 /// (compensation, cycles and polygon turning stay as the subprogram left them).
+#[cfg(feature = "siemens")]
 fn restore_modal(m: &mut Modal, saved: &Modal) {
     m.motion = saved.motion;
     m.plane = saved.plane;
