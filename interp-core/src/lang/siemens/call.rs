@@ -13,8 +13,8 @@
 //! whose group-00 code is [`GCode::CycleCall`](crate::codes::GCode::CycleCall):
 //! the driver hands the bound call ([`CycleCall`]) to the block's stage
 //! (`cycles::CycleStage::call`), `cycles::execute` sends the block to
-//! `Executor::cycle_call` (implemented by `exec`), which calls
-//! [`crate::lang::siemens::cycles::start`] with the arguments as [`Arg`]s. The
+//! `Executor::cycle_call` (implemented by `exec`), which calls the plugged front
+//! end's [`Front::cycle_start`] with the arguments as [`Arg`]s. The
 //! block is then validated (dry run), committed or undone like any cycle block.
 
 use crate::alarm::{AlarmKind, SiemensAlarm as S};
