@@ -6,9 +6,9 @@ left out: everything from `#[cfg(test)]` on in a file, and files named tests.rs)
 prints every circle: strongly connected groups of top-level modules (the layers), and
 of files. Exit status 1 when a crate has a circle between its top-level modules.
 
-A few nested modules are layers of their own (SUBLAYERS): a language's standard
-cycles (interp-core's lang::siemens::cycles) build the engine's cycle specifications,
-so they sit in the execution row although their files live with their language.
+A few nested modules may be layers of their own (SUBLAYERS). (A language's standard
+cycles, which build the engine's cycle specifications, were one while they lived in
+interp-core's lang::siemens; they are interp-siemens's `cycles` now.)
 
 Usage: tools/module-cycles.py [--edges] [CRATE_DIR ...]   (default: canon interp-core motion-core)
 """
@@ -19,7 +19,7 @@ import sys
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 PATH = re.compile(r"\b(crate|super)((?:::[A-Za-z_][A-Za-z0-9_]*)+)")
 # Nested modules that are layers of their own, per crate.
-SUBLAYERS = {"interp-core": [("lang", "siemens", "cycles")]}
+SUBLAYERS = {}
 USE_GROUP = re.compile(r"\buse\s+(crate|super)((?:::[A-Za-z_][A-Za-z0-9_]*)*)::\{([^;]*)\}", re.S)
 
 

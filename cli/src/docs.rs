@@ -491,107 +491,107 @@ pub const PROVEN_ELSEWHERE: &[(u16, &str)] = &[
     ),
     (
         61000,
-        "interp-core lang::siemens::cycles::tests::undercut.rs undercut_alarms_move_nothing, groove.rs cycle93_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+        "interp-siemens cycles::tests::undercut.rs undercut_alarms_move_nothing, groove.rs cycle93_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
     ),
     (
         61001,
-        "interp-core lang::siemens::cycles::tests::threads.rs thread_alarms_move_nothing, undercut.rs undercut_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+        "interp-siemens cycles::tests::threads.rs thread_alarms_move_nothing, undercut.rs undercut_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
     ),
     (
         61002,
-        "interp-core lang::siemens::cycles::tests::threads.rs thread_alarms_move_nothing, stock.rs cycle95_alarms_move_nothing, groove.rs cycle93_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+        "interp-siemens cycles::tests::threads.rs thread_alarms_move_nothing, stock.rs cycle95_alarms_move_nothing, groove.rs cycle93_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
     ),
     (
         61005,
-        "interp-core lang::siemens::cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+        "interp-siemens cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
     ),
     (
         61019,
-        "interp-core lang::siemens::cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+        "interp-siemens cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
     ),
     (
         61101,
-        "interp-core lang::siemens::cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+        "interp-siemens cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
     ),
     (
         61102,
-        "interp-core lang::siemens::cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+        "interp-siemens cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
     ),
     (
         61107,
-        "interp-core lang::siemens::cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+        "interp-siemens cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
     ),
     (
         61125,
-        "interp-core lang::siemens::cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+        "interp-siemens cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
     ),
     (
         61601,
-        "interp-core lang::siemens::cycles::tests::undercut.rs undercut_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+        "interp-siemens cycles::tests::undercut.rs undercut_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
     ),
     (
         61602,
-        "interp-core lang::siemens::cycles::tests::groove.rs cycle93_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+        "interp-siemens cycles::tests::groove.rs cycle93_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
     ),
     (
         61603,
-        "interp-core lang::siemens::cycles::tests::groove.rs cycle93_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+        "interp-siemens cycles::tests::groove.rs cycle93_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
     ),
     (
         61604,
-        "interp-core lang::siemens::cycles::tests::stock.rs cycle95_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+        "interp-siemens cycles::tests::stock.rs cycle95_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
     ),
     (
         61605,
-        "interp-core lang::siemens::cycles::tests::stock.rs cycle95_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+        "interp-siemens cycles::tests::stock.rs cycle95_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
     ),
     (
         61606,
-        "interp-core lang::siemens::cycles::tests::stock.rs cycle95_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+        "interp-siemens cycles::tests::stock.rs cycle95_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
     ),
     (
         61607,
-        "interp-core lang::siemens::cycles::tests::stock.rs cycle95_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+        "interp-siemens cycles::tests::stock.rs cycle95_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
     ),
     (
         61608,
-        "interp-core lang::siemens::cycles::tests::undercut.rs undercut_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+        "interp-siemens cycles::tests::undercut.rs undercut_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
     ),
     (
         61609,
-        "interp-core lang::siemens::cycles::tests::undercut.rs undercut_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+        "interp-siemens cycles::tests::undercut.rs undercut_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
     ),
     (
         61612,
-        "interp-core lang::siemens::cycles::tests::threads.rs cycle97_recut_start_angle (the cycle called directly until SINUMERIK programs run)",
+        "interp-siemens cycles::tests::threads.rs cycle97_recut_start_angle (the cycle called directly until SINUMERIK programs run)",
     ),
     (
         61613,
-        "interp-core lang::siemens::cycles::tests::undercut.rs undercut_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+        "interp-siemens cycles::tests::undercut.rs undercut_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
     ),
     (
         61701,
-        "interp-core lang::siemens::cycles::tests::stock.rs cycle950_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+        "interp-siemens cycles::tests::stock.rs cycle950_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
     ),
     (
         61702,
-        "interp-core lang::siemens::cycles::tests::stock.rs cycle950_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+        "interp-siemens cycles::tests::stock.rs cycle950_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
     ),
     (
         61720,
-        "interp-core lang::siemens::cycles::tests::stock.rs cycle950_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+        "interp-siemens cycles::tests::stock.rs cycle950_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
     ),
     (
         61721,
-        "interp-core lang::siemens::cycles::tests::stock.rs cycle950_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+        "interp-siemens cycles::tests::stock.rs cycle950_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
     ),
     (
         61803,
-        "interp-core lang::siemens::cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+        "interp-siemens cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
     ),
     (
         61807,
-        "interp-core lang::siemens::cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+        "interp-siemens cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
     ),
 ];
 

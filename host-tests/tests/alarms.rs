@@ -253,7 +253,7 @@ fn every_catalog_code_has_a_triggering_program() {
     // siemens_language.rs (SINUMERIK mode: the front end's alarms with the 840D's numbers)
     covered.extend([12080, 12150, 12160, 12170, 12330, 12340, 12460, 12470, 12550, 14011, 14012, 14080, 14500]);
     covered.extend([14510, 16420, 17020, 17180, 4052]);
-    // interp-core lang::siemens::cycles tests (the SINUMERIK cycles called directly)
+    // interp-siemens cycles tests (the SINUMERIK cycles called directly)
     covered.extend([61000, 61001, 61002, 61601, 61602, 61603, 61604, 61605, 61606, 61607, 61608, 61609, 61612, 61613]);
     covered.extend([61701, 61702, 61720, 61721]);
     covered.extend([61005, 61019, 61101, 61102, 61107, 61125, 61803, 61807]);

@@ -53,8 +53,9 @@ pub use ::canon;
 /// every G code: the M-series table is not in the image).
 pub const MILL: bool = ::canon::MILL;
 
-/// Whether this build carries SINUMERIK mode (cargo feature `siemens`,
-/// `lang::siemens`). Without it G290 and a power-on language of SINUMERIK raise
+/// Whether this build carries SINUMERIK mode (cargo feature `siemens`, turned on
+/// by the `interp-siemens` crate: the interpreter's SINUMERIK state in
+/// `lang::siemens` and `interpreter::siemens`). Without it G290 and a power-on language of SINUMERIK raise
 /// alarm 4007.
 pub const SIEMENS: bool = cfg!(feature = "siemens");
 

@@ -6,12 +6,12 @@
 //! names are defined. `PROC ZYKL1 (REAL PAR1)` (line 1416) gives a subprogram's
 //! parameters, defined in the called level with the caller's arguments.
 
+use crate::expr::eval;
+use crate::lex::{Src, is, syntax};
+use crate::read::Scope;
 use interp_core::alarm::{AlarmKind, SiemensAlarm as S};
 use interp_core::config::MachineConfig;
 use interp_core::lang::siemens::call::{Arg, CallArgs, MAX_ARGS, Ty};
-use interp_core::lang::siemens::expr::eval;
-use interp_core::lang::siemens::lex::{Src, is, syntax};
-use interp_core::lang::siemens::read::Scope;
 use interp_core::lang::siemens::vars::{MAX_STRING, Value, VarTy, Vars, convert_to};
 use interp_core::modal::State;
 
@@ -67,7 +67,7 @@ pub fn define(body: &[u8], vars: &mut Vars, state: &State, cfg: &MachineConfig) 
             return Err(syntax("variable name expected"));
         }
         let name = src.name();
-        if name.first() == Some(&b'$') || interp_core::lang::siemens::expr::r_number(name).is_some() || name.len() < 2 {
+        if name.first() == Some(&b'$') || crate::expr::r_number(name).is_some() || name.len() < 2 {
             return Err(syntax("not a name for a variable"));
         }
         if src.peek() == Some(b'[') {
@@ -146,7 +146,7 @@ pub struct Proc<'t> {
 /// Reads a PROC statement's text after `PROC`: `NAME [(TYPE NAME, …)] [SAVE]
 /// [DISPLOF]`. VAR parameters (call by reference) are not supported.
 pub fn proc_params(body: &[u8]) -> Result<Proc<'_>, AlarmKind> {
-    let mut src = Src::new(interp_core::lang::siemens::lex::strip_comment(body));
+    let mut src = Src::new(crate::lex::strip_comment(body));
     src.name();
     let mut p = Proc { params: heapless::Vec::new(), save: false };
     if src.eat(b'(') && !src.eat(b')') {

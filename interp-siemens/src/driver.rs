@@ -14,21 +14,21 @@
 //!   the end of the main program's text without M02/M30 is alarm 5010, which a
 //!   stream reads as "wait for more text".
 
+use crate::check::{apply, check_into, number_format};
 use crate::def::{self, proc_params};
 use crate::labels::{self, Level as Section};
+use crate::read::{Dir, Jump, Pending, Scope, Stmt, Target, Words, read};
 use interp_core::alarm::{Alarm, AlarmKind, SiemensAlarm as S};
 use interp_core::canon::CanonSink;
 use interp_core::codes::GCode;
 use interp_core::command::Command;
 use interp_core::config::Language;
 use interp_core::env::Environment;
-use interp_core::interpreter::siemens::{CallSpec, Callee, ContourAt, Level, ModalCall, apply};
+use interp_core::interpreter::siemens::{CallSpec, Callee, ContourAt, Level, ModalCall};
 use interp_core::interpreter::{Entry, Frame, Interpreter, Next, Progress};
 use interp_core::lang::ProgramText;
 use interp_core::lang::fanuc::calls::Caller;
 use interp_core::lang::siemens::call::{Arg, CallArgs, Signature};
-use interp_core::lang::siemens::check::{check_into, number_format};
-use interp_core::lang::siemens::read::{Dir, Jump, Pending, Scope, Stmt, Target, Words, read};
 use interp_core::lang::siemens::vars::Value;
 use interp_core::program::lines::{self, next_line};
 use interp_core::program::{Cursor, ProgramId, ProgramStore};
@@ -53,6 +53,28 @@ impl interp_core::lang::Front for Sinumerik {
         sink: &mut dyn CanonSink,
     ) -> Result<Progress, Alarm> {
         it.siemens_step(programs, env, sink)
+    }
+
+    fn cycle_start(
+        &self,
+        sig: &'static Signature,
+        args: &[Arg<'_>],
+        cmd: &interp_core::command::Command,
+        st: &mut interp_core::modal::State,
+        engine: &mut dyn interp_core::lang::Engine,
+        contour: Option<interp_core::lang::siemens::call::ContourSource<'_>>,
+    ) -> Result<(), AlarmKind> {
+        crate::cycles::start(sig, args, cmd, st, engine, contour)
+    }
+
+    fn contour_command(
+        &self,
+        raw: &interp_core::program::RawBlock<'_>,
+        vars: &interp_core::lang::siemens::vars::Vars,
+        st: &interp_core::modal::State,
+        cfg: &interp_core::MachineConfig,
+    ) -> Result<Option<interp_core::command::Command>, AlarmKind> {
+        crate::check::contour_command(raw, vars, st, cfg)
     }
 }
 
@@ -617,7 +639,7 @@ impl Driver for Interpreter {
         let line = at.line;
         let r = if let Some(entry) = programs.find_named(name) {
             self.enter_proc(entry, args, list, passes, false, programs)
-        } else if let Some(sig) = interp_core::lang::siemens::cycles::signature(name) {
+        } else if let Some(sig) = crate::cycles::signature(name) {
             if passes != 1 {
                 Err(S::SyntaxError { what: "P (passes) with a cycle" }.into())
             } else {
@@ -733,7 +755,7 @@ impl Driver for Interpreter {
                 None => {}
             }
             Callee::Proc(entry)
-        } else if let Some(sig) = interp_core::lang::siemens::cycles::signature(name) {
+        } else if let Some(sig) = crate::cycles::signature(name) {
             args.bind(sig.params.iter().map(|p| p.1))?;
             Callee::Cycle(sig)
         } else {
@@ -787,7 +809,7 @@ impl Driver for Interpreter {
             Ok(c) => c,
             Err(k) => return Err(self.alarm_stop(sink, at.program, line, k)),
         };
-        let spec = CallSpec { sig, args, contour };
+        let spec = CallSpec { sig, front: &SINUMERIK, args, contour };
         let program = self.program_text(at.program, programs);
         let r = self.run_cmd(env, Some(program), |me, flow| me.siemens_route(flow), Some(spec), |_| {});
         self.started = true;

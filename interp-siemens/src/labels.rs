@@ -5,13 +5,13 @@
 //! the text). GOTOF searches forward from the line after the jump, GOTOB backward
 //! from the jump's line, GOTO/GOTOC forward first, then backward.
 
-use interp_core::lang::siemens::read::Dir;
+use crate::read::Dir;
 use interp_core::program::Cursor;
 use interp_core::program::lines::{after_block_number, line_number, name_byte, next_line, proc_name};
 
 /// The label a line carries, if any.
 pub fn label_of(t: &[u8]) -> Option<&[u8]> {
-    let t = interp_core::lang::siemens::lex::strip_comment(t);
+    let t = crate::lex::strip_comment(t);
     let i = after_block_number(t);
     let n = t[i..].iter().take_while(|&&c| name_byte(c)).count();
     (n > 0 && t.get(i + n) == Some(&b':') && !t[i].is_ascii_digit()).then(|| &t[i..i + n])

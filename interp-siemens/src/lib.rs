@@ -17,15 +17,30 @@
 //! G290 or a SINUMERIK power-on language, and a firmware built without the
 //! `siemens` feature links none of this crate. The firmware builds it for size
 //! (opt-level "z", docs/FIRMWARE-SIZES.md): it runs once per SINUMERIK
-//! statement, not per FANUC block. Still in `interp_core::lang::siemens` (moving
-//! here next): the reader, checker and expression evaluator, which the cycle
-//! engine's contour reading shares, the variables, and the cycles' parameter
-//! mapping.
+//! statement, not per FANUC block. What interp-core keeps of the language is
+//! the seam: the state the interpreter holds for it (`interp_core::lang::siemens`:
+//! the variables, a call's bound arguments) and the traits the engine calls
+//! through ([`interp_core::lang::Front`] for a cycle's start and its contour's
+//! blocks, [`interp_core::lang::Engine`] for the shared generators).
+//!
+//! - [`lex`], [`read`], [`expr`], [`check`]: a line read into words and
+//!   statements, its expressions evaluated, its NC words checked into the
+//!   engine's command;
+//! - [`cycles`]: the standard cycles' parameter lists, checks and 61xxx alarms,
+//!   mapped onto the engine's shared generators.
 #![no_std]
 #![warn(missing_docs)]
 
+#[cfg(test)]
+extern crate std;
+
+pub mod check;
+pub mod cycles;
 mod def;
 mod driver;
+pub mod expr;
 mod labels;
+pub mod lex;
+pub mod read;
 
 pub use driver::{SINUMERIK, Sinumerik};

@@ -1,5 +1,5 @@
 //! The engine's side of a language's cycle calls: a SINUMERIK cycle
-//! ([`crate::lang::siemens::cycles`]) checks its parameters and maps them onto the
+//! (`interp_siemens::cycles`, through [`crate::lang::Front::cycle_start`]) checks its parameters and maps them onto the
 //! specification of one of the shared generators; [`CallEngine`] starts that
 //! generator as the block's expansion, exactly as the FANUC cycle that shares it.
 
@@ -15,7 +15,8 @@ use crate::command::Command;
 use crate::command::cycle::check_lead;
 use crate::command::job::{MultiThreadSpec, StockSpec};
 use crate::config::MachineConfig;
-use crate::lang::siemens::cycles::{ContourSource, Engine};
+use crate::lang::Engine;
+use crate::lang::siemens::call::ContourSource;
 use crate::modal::State;
 
 /// The engine for the cycle calls of a block: its stage and machine ([`Ctx`]) and

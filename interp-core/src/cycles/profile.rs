@@ -298,21 +298,7 @@ fn contour_command(
             }
             check(&block, st, cfg).map(Some)
         }
-        crate::config::Language::Siemens => {
-            use crate::lang::siemens::{call::CallArgs, check::check_into, read};
-            let scope = read::Scope { vars: src.vars, state: st, cfg };
-            let (mut words, mut pending, mut args) = (read::Words::EMPTY, read::Pending::new(), CallArgs::new());
-            match read::read(raw.text, raw.line, &scope, &mut words, &mut pending, &mut args)? {
-                read::Stmt::Nc { jump: None } if pending.is_empty() => {}
-                _ => return Err(prep(10930)),
-            }
-            if words.is_empty() {
-                return Ok(None);
-            }
-            let mut cmd = crate::command::Command::EMPTY;
-            check_into(&words, st, cfg, &mut cmd)?;
-            Ok(Some(cmd))
-        }
+        crate::config::Language::Siemens => src.front.contour_command(raw, src.vars, st, cfg),
     }
 }
 

@@ -1,6 +1,6 @@
 //! The roughing engine: G71 (stock removal in turning) and G72 (in facing), types
 //! I and II (seed 000 2.16.1–2), and SINUMERIK's CYCLE95 / CYCLE950 (seed 001 4.5,
-//! 4.10), which describe their parameters in [`crate::lang::siemens::cycles`] and
+//! 4.10), which describe their parameters in `interp_siemens::cycles` and
 //! run here with the options they need ([`Sections`]).
 //!
 //! One algorithm: it works in a normalised frame where `u` is the infeed ("level")

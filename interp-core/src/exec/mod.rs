@@ -205,14 +205,7 @@ impl cycles::Executor for Blocks {
         let call = *ctx.out.call.ok_or(AlarmKind::NotSupportedYet { what: "a cycle call without its arguments" })?;
         let mut buf = [Arg::Empty; MAX_ARGS];
         let args = call.args.args(&mut buf);
-        crate::lang::siemens::cycles::start(
-            call.sig,
-            args,
-            cmd,
-            st,
-            &mut cycles::CallEngine::<Blocks>::new(ctx),
-            call.contour,
-        )
+        call.front.cycle_start(call.sig, args, cmd, st, &mut cycles::CallEngine::<Blocks>::new(ctx), call.contour)
     }
 }
 
@@ -368,8 +361,47 @@ fn program_flow(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::lang::siemens::call::{Arg, CallArgs, CycleCall, Signature, Ty};
+    use crate::lang::siemens::call::{Arg, CallArgs, ContourSource, CycleCall, Signature, Ty};
     use crate::stage::Outbox;
+
+    /// A front end whose cycles all refuse to start (the language's own are
+    /// interp-siemens's, tested there).
+    #[derive(Debug)]
+    struct Refuses;
+
+    impl crate::lang::Front for Refuses {
+        fn step(
+            &self,
+            _: &mut crate::Interpreter,
+            _: &dyn crate::program::ProgramStore,
+            _: &dyn Environment,
+            _: &mut dyn crate::canon::CanonSink,
+        ) -> Result<crate::Progress, crate::Alarm> {
+            unreachable!("not stepped")
+        }
+
+        fn cycle_start(
+            &self,
+            _: &'static Signature,
+            _: &[Arg<'_>],
+            _: &Command,
+            _: &mut State,
+            _: &mut dyn crate::lang::Engine,
+            _: Option<ContourSource<'_>>,
+        ) -> Result<(), AlarmKind> {
+            Err(AlarmKind::NotSupportedYet { what: "this SINUMERIK cycle" })
+        }
+
+        fn contour_command(
+            &self,
+            _: &crate::program::RawBlock<'_>,
+            _: &crate::lang::siemens::vars::Vars,
+            _: &State,
+            _: &MachineConfig,
+        ) -> Result<Option<Command>, AlarmKind> {
+            Ok(None)
+        }
+    }
 
     /// A cycle-call block reaches the language's cycle start through
     /// `cycles::execute` with its bound call; without one it is refused. Either way
@@ -384,7 +416,7 @@ mod tests {
         let mut args = CallArgs::new();
         args.push(Arg::Real(5.0)).unwrap();
         args.bind(NOT_A_CYCLE.params.iter().map(|p| p.1)).unwrap();
-        let call = CycleCall { sig: &NOT_A_CYCLE, args: &args, contour: None };
+        let call = CycleCall { sig: &NOT_A_CYCLE, args: &args, contour: None, front: &Refuses };
         for call in [None, Some(&call)] {
             let mut outbox = Outbox::new();
             let mut slot = None;

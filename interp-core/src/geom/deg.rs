@@ -34,7 +34,7 @@ fn sin_cos_reduced(r: f64) -> (f64, f64) {
 }
 
 /// sin of `x` degrees.
-pub(crate) fn sin_deg(x: f64) -> f64 {
+pub fn sin_deg(x: f64) -> f64 {
     let (r, q) = reduce(x);
     let (s, c) = sin_cos_reduced(r);
     positive_zero(match q {
@@ -46,7 +46,7 @@ pub(crate) fn sin_deg(x: f64) -> f64 {
 }
 
 /// cos of `x` degrees.
-pub(crate) fn cos_deg(x: f64) -> f64 {
+pub fn cos_deg(x: f64) -> f64 {
     let (r, q) = reduce(x);
     let (s, c) = sin_cos_reduced(r);
     positive_zero(match q {
@@ -58,7 +58,7 @@ pub(crate) fn cos_deg(x: f64) -> f64 {
 }
 
 /// tan of `x` degrees; alarm 0112 at odd multiples of 90° (2.24.2 (6): "TAN[90]").
-pub(crate) fn tan_deg(x: f64) -> Result<f64, AlarmKind> {
+pub fn tan_deg(x: f64) -> Result<f64, AlarmKind> {
     let (r, q) = reduce(x);
     if r.abs() == 45.0 {
         // tan ±45° = ±1, negated in the odd quadrants (tan(r + 90) = -1/tan r).
@@ -77,14 +77,14 @@ pub(crate) fn tan_deg(x: f64) -> Result<f64, AlarmKind> {
 
 /// Radians to degrees, snapped to a whole degree when within a few ulps of it, so
 /// ASIN[1], ACOS[0.5] and ATAN[1] give 90, 60 and 45 exactly.
-pub(crate) fn degrees(rad: f64) -> f64 {
+pub fn degrees(rad: f64) -> f64 {
     let d = rad * R2D;
     let whole = libm::round(d);
     if (d - whole).abs() <= d.abs() * 1e-15 { positive_zero(whole) } else { d }
 }
 
 /// ASIN in degrees, -90..90; alarm 0119 outside -1..1 (2.24.2 (4)).
-pub(crate) fn asin_deg(x: f64) -> Result<f64, AlarmKind> {
+pub fn asin_deg(x: f64) -> Result<f64, AlarmKind> {
     if !(-1.0..=1.0).contains(&x) {
         return Err(AlarmKind::ArgumentOutOfRange { function: "ASIN" });
     }
@@ -92,7 +92,7 @@ pub(crate) fn asin_deg(x: f64) -> Result<f64, AlarmKind> {
 }
 
 /// ACOS in degrees, 0..180; alarm 0119 outside -1..1 (2.24.2 (5)).
-pub(crate) fn acos_deg(x: f64) -> Result<f64, AlarmKind> {
+pub fn acos_deg(x: f64) -> Result<f64, AlarmKind> {
     if !(-1.0..=1.0).contains(&x) {
         return Err(AlarmKind::ArgumentOutOfRange { function: "ACOS" });
     }
@@ -100,12 +100,12 @@ pub(crate) fn acos_deg(x: f64) -> Result<f64, AlarmKind> {
 }
 
 /// One-argument ATAN in degrees, -90..90.
-pub(crate) fn atan_deg(x: f64) -> f64 {
+pub fn atan_deg(x: f64) -> f64 {
     degrees(libm::atan(x))
 }
 
 /// SQRT; alarm 0119 below zero.
-pub(crate) fn sqrt(x: f64) -> Result<f64, AlarmKind> {
+pub fn sqrt(x: f64) -> Result<f64, AlarmKind> {
     if x < 0.0 {
         return Err(AlarmKind::ArgumentOutOfRange { function: "SQRT" });
     }
@@ -113,7 +113,7 @@ pub(crate) fn sqrt(x: f64) -> Result<f64, AlarmKind> {
 }
 
 /// EXP; alarm 0119 beyond ±80 (the manual's range).
-pub(crate) fn exp(x: f64) -> Result<f64, AlarmKind> {
+pub fn exp(x: f64) -> Result<f64, AlarmKind> {
     if !(-80.0..=80.0).contains(&x) {
         return Err(AlarmKind::ArgumentOutOfRange { function: "EXP" });
     }
@@ -121,12 +121,12 @@ pub(crate) fn exp(x: f64) -> Result<f64, AlarmKind> {
 }
 
 /// FIX: drops the fraction (toward zero): FIX[1.2] = 1, FIX[-1.2] = -1.
-pub(crate) fn fix(x: f64) -> f64 {
+pub fn fix(x: f64) -> f64 {
     positive_zero(libm::trunc(x))
 }
 
 /// `j MOD k`: the remainder of j / k with the sign of j; alarm 0112 for k = 0.
-pub(crate) fn modulo(j: f64, k: f64) -> Result<f64, AlarmKind> {
+pub fn modulo(j: f64, k: f64) -> Result<f64, AlarmKind> {
     if k == 0.0 {
         return Err(AlarmKind::DivideByZero);
     }
@@ -134,7 +134,7 @@ pub(crate) fn modulo(j: f64, k: f64) -> Result<f64, AlarmKind> {
 }
 
 /// -0.0 becomes 0.0, so results never print as "-0".
-pub(crate) fn positive_zero(x: f64) -> f64 {
+pub fn positive_zero(x: f64) -> f64 {
     x + 0.0
 }
 

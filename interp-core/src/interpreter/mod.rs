@@ -875,6 +875,7 @@ impl Interpreter {
         edit(&mut self.state);
         let mut cycle = BlockCycle::default();
         let program = program.map(|p| ProgramText { vars: Some(&self.vars), ..p });
+        #[cfg(feature = "siemens")]
         let cycle_call;
         // A cycle the block starts goes straight into `self.cycle` (empty here: a
         // cycle is delivered completely before the next block is read), so the
@@ -883,10 +884,14 @@ impl Interpreter {
             Some(p) => CycleStage::in_program(cmd.line, &mut self.outbox, p, &mut self.cycle),
             None => CycleStage::new(cmd.line, &mut self.outbox),
         };
+        // (Only the SINUMERIK driver passes a call: none without its feature.)
+        #[cfg(feature = "siemens")]
         if let Some(c) = call {
             cycle_call = c.bind(&self.siemens.vars);
             staged.call = Some(&cycle_call);
         }
+        #[cfg(not(feature = "siemens"))]
+        let _ = call;
         let done = execute(cmd, &mut self.state, &self.cfg, env, &mut staged);
         let faulty = staged.faulty_move;
         if done.is_ok() {

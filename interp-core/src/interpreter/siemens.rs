@@ -37,9 +37,9 @@ use crate::lang::fanuc::check::sinumerik_plain;
 #[cfg(feature = "siemens")]
 use crate::lang::fanuc::parse::read_plain_line;
 use crate::lang::siemens::call::{CallArgs, ContourSource, CycleCall, Signature};
-use crate::lang::siemens::check::Extras;
 use crate::lang::siemens::vars::Vars;
-use crate::modal::{Modal, State};
+#[cfg(feature = "siemens")]
+use crate::modal::Modal;
 #[cfg(feature = "siemens")]
 use crate::program::ProgramStore;
 #[cfg(feature = "siemens")]
@@ -50,12 +50,14 @@ use crate::stage::Flow;
 #[cfg(feature = "siemens")]
 use crate::units::{InputMode, NumberFormat};
 
-/// What a call-stack frame opened.
+/// What a call-stack frame opened. Without the `siemens` feature only a FANUC
+/// call (the type takes no room in the frames).
 #[derive(Clone, Copy, Debug)]
 pub enum Level {
     /// A FANUC M98/G65 call.
     Fanuc,
     /// A SINUMERIK subprogram call.
+    #[cfg(feature = "siemens")]
     Proc {
         /// The level's first line (its PROC line): labels are searched from here.
         start: Cursor,
@@ -68,6 +70,7 @@ pub enum Level {
         modal_call: bool,
     },
     /// A REPEAT section: from `start` to the offset `end` (after its last line).
+    #[cfg(feature = "siemens")]
     Repeat {
         /// The section's first line.
         start: Cursor,
@@ -81,20 +84,26 @@ impl Level {
     pub fn kept(&self) -> Option<Cursor> {
         match *self {
             Level::Fanuc => None,
+            #[cfg(feature = "siemens")]
             Level::Proc { start, .. } | Level::Repeat { start, .. } => Some(start),
         }
     }
 
     /// Program `program`'s text lost its first `bytes` bytes.
     pub fn shift(&mut self, program: ProgramId, bytes: usize) {
+        #[cfg(feature = "siemens")]
         let sh = |c: &mut Cursor| {
             if c.program == program {
                 c.offset = c.offset.saturating_sub(bytes);
             }
         };
+        #[cfg(not(feature = "siemens"))]
+        let _ = (program, bytes);
         match self {
             Level::Fanuc => {}
+            #[cfg(feature = "siemens")]
             Level::Proc { start, .. } => sh(start),
+            #[cfg(feature = "siemens")]
             Level::Repeat { start, end } => {
                 if start.program == program {
                     *end = end.saturating_sub(bytes);
@@ -122,17 +131,23 @@ pub struct ModalCall {
     pub list: bool,
 }
 
-/// The SINUMERIK front end's state in the interpreter.
+/// The SINUMERIK front end's state in the interpreter: without the `siemens`
+/// feature (a board without SINUMERIK mode, the F446) only the empty plug, so
+/// the language's variables and modal call take no RAM there.
 #[derive(Debug)]
 pub struct Front {
     /// R parameters and DEF variables.
+    #[cfg(feature = "siemens")]
     pub vars: Vars,
     /// MCALL in force.
+    #[cfg(feature = "siemens")]
     pub mcall: Option<ModalCall>,
     /// A block that moved an axis ran under MCALL (its line): the modal call is
     /// due before the next line is read.
+    #[cfg(feature = "siemens")]
     pub mcall_due: Option<core::num::NonZeroU32>,
     /// The modal state at the call of the PROC … SAVE running (one at a time).
+    #[cfg(feature = "siemens")]
     pub saved: Option<Modal>,
     /// The front end plugged in ([`Interpreter::plug`]): kept with the language's
     /// cold state, so the FANUC step's fields stay where they were.
@@ -150,32 +165,51 @@ impl Default for Front {
 
 impl Front {
     pub const fn new() -> Self {
-        Front { vars: Vars::new(), mcall: None, mcall_due: None, saved: None, front: None, general: false }
+        Front {
+            #[cfg(feature = "siemens")]
+            vars: Vars::new(),
+            #[cfg(feature = "siemens")]
+            mcall: None,
+            #[cfg(feature = "siemens")]
+            mcall_due: None,
+            #[cfg(feature = "siemens")]
+            saved: None,
+            front: None,
+            general: false,
+        }
     }
 
     /// A new run: no DEF variables, no modal call (R parameters stay).
     pub fn rewind(&mut self) {
-        self.vars.clear_locals();
-        self.mcall = None;
-        self.mcall_due = None;
-        self.saved = None;
+        #[cfg(feature = "siemens")]
+        {
+            self.vars.clear_locals();
+            self.mcall = None;
+            self.mcall_due = None;
+            self.saved = None;
+        }
     }
 
     /// Program `program`'s text lost its first `bytes` bytes.
     pub fn shift(&mut self, program: ProgramId, bytes: usize) {
+        #[cfg(feature = "siemens")]
         if let Some(ModalCall { callee: Callee::Proc(c), .. }) = &mut self.mcall
             && c.program == program
         {
             c.offset = c.offset.saturating_sub(bytes);
         }
+        #[cfg(not(feature = "siemens"))]
+        let _ = (program, bytes);
     }
 
     /// The variables.
+    #[cfg(feature = "siemens")]
     pub fn vars(&self) -> &Vars {
         &self.vars
     }
 
     /// The variables, to set from outside (tests, the panel).
+    #[cfg(feature = "siemens")]
     pub fn vars_mut(&mut self) -> &mut Vars {
         &mut self.vars
     }
@@ -193,6 +227,8 @@ pub struct ContourAt<'c> {
 #[derive(Clone, Copy, Debug)]
 pub struct CallSpec<'c> {
     pub sig: &'static Signature,
+    /// The front end whose cycle it is: it starts the cycle and reads its contour.
+    pub front: &'static dyn crate::lang::Front,
     pub args: &'c CallArgs,
     pub contour: Option<ContourAt<'c>>,
 }
@@ -200,18 +236,10 @@ pub struct CallSpec<'c> {
 impl<'c> CallSpec<'c> {
     /// The call as the engine gets it, the contour reading `vars`.
     pub fn bind(&self, vars: &'c Vars) -> CycleCall<'c> {
-        let contour = self.contour.map(|c| ContourSource { program: c.program, start: c.start, end: c.end, vars });
-        CycleCall { sig: self.sig, args: self.args, contour }
-    }
-}
-
-/// DIAMON/DIAMOF and LIMS= on the state, before the block runs (undone with it).
-pub fn apply(extras: Extras, st: &mut State) {
-    if let Some(d) = extras.diam {
-        st.modal.diameter = d;
-    }
-    if let Some(l) = extras.lims {
-        st.spindle.clamp = Some(l);
+        let front = self.front;
+        let contour =
+            self.contour.map(|c| ContourSource { program: c.program, start: c.start, end: c.end, vars, front });
+        CycleCall { sig: self.sig, args: self.args, contour, front }
     }
 }
 
@@ -297,11 +325,13 @@ impl Interpreter {
     }
 
     /// The SINUMERIK variables.
+    #[cfg(feature = "siemens")]
     pub fn siemens_vars(&self) -> &Vars {
         self.siemens.vars()
     }
 
     /// The SINUMERIK variables, to set R parameters from the panel or a test.
+    #[cfg(feature = "siemens")]
     pub fn siemens_vars_mut(&mut self) -> &mut Vars {
         self.siemens.vars_mut()
     }
@@ -315,6 +345,7 @@ impl Interpreter {
     /// of the level end with it); in the main program the end. In the shared call
     /// stack's code: a block's [`Flow::Return`](crate::stage::Flow) gets here too.
     #[doc(hidden)]
+    #[cfg_attr(not(feature = "siemens"), allow(clippy::never_loop))]
     pub fn siemens_return(&mut self) {
         loop {
             let Some(f) = self.calls.last_mut() else {
@@ -324,9 +355,11 @@ impl Interpreter {
                 return;
             };
             match f.kind {
+                #[cfg(feature = "siemens")]
                 Level::Repeat { .. } => {
                     self.calls.pop();
                 }
+                #[cfg(feature = "siemens")]
                 Level::Proc { start, skip, .. } if f.repeats_left > 0 => {
                     f.repeats_left -= 1;
                     self.siemens.vars.leave();
@@ -341,6 +374,7 @@ impl Interpreter {
                 }
                 _ => {
                     let Some(f) = self.calls.pop() else { return };
+                    #[cfg(feature = "siemens")]
                     if let Level::Proc { save, .. } = f.kind {
                         self.siemens.vars.leave();
                         if let Some(m) = self.siemens.saved.take().filter(|_| save) {
@@ -376,6 +410,7 @@ fn route(flow: Flow) -> Result<Next, AlarmKind> {
 
 /// PROC … SAVE at the return: the modal G functions as they were at the call
 /// (compensation, cycles and polygon turning stay as the subprogram left them).
+#[cfg(feature = "siemens")]
 fn restore_modal(m: &mut Modal, saved: &Modal) {
     m.motion = saved.motion;
     m.plane = saved.plane;

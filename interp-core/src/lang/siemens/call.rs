@@ -13,13 +13,13 @@
 //! whose group-00 code is [`GCode::CycleCall`](crate::codes::GCode::CycleCall):
 //! the driver hands the bound call ([`CycleCall`]) to the block's stage
 //! (`cycles::CycleStage::call`), `cycles::execute` sends the block to
-//! `Executor::cycle_call` (implemented by `exec`), which calls
-//! [`crate::lang::siemens::cycles::start`] with the arguments as [`Arg`]s. The
+//! `Executor::cycle_call` (implemented by `exec`), which calls the plugged front
+//! end's [`Front::cycle_start`] with the arguments as [`Arg`]s. The
 //! block is then validated (dry run), committed or undone like any cycle block.
 
 use crate::alarm::{AlarmKind, SiemensAlarm as S};
-use crate::lang::ProgramText;
 use crate::lang::siemens::vars::Vars;
+use crate::lang::{Front, ProgramText};
 use crate::program::Cursor;
 
 /// Most arguments a call may pass: the longest parameter list of the document
@@ -269,8 +269,8 @@ impl CallArgs {
 /// subprogram by name (`"KONTUR_1"`: its blocks after the `PROC` line up to `M17`/
 /// `RET` or its end) or a range of the calling program between two labels
 /// (`"ANFANG:ENDE"`, also after `M02`) or block numbers, resolved by the driver
-/// before the cycle starts. The cycle reads the blocks with
-/// [`crate::lang::siemens::contour`], in the SINUMERIK language.
+/// before the cycle starts. The engine reads the blocks through `front`
+/// ([`Front::contour_command`]), in the language of the program.
 #[derive(Clone, Copy, Debug)]
 pub struct ContourSource<'a> {
     /// The program the contour is in (its text; the cursors index into it).
@@ -282,6 +282,8 @@ pub struct ContourSource<'a> {
     pub end: Option<Cursor>,
     /// The variables the contour's words may use.
     pub vars: &'a Vars,
+    /// The front end that reads the contour's blocks.
+    pub front: &'a dyn Front,
 }
 
 /// A standard cycle call as the engine receives it: the cycle, its bound
@@ -294,6 +296,8 @@ pub struct CycleCall<'a> {
     pub args: &'a CallArgs,
     /// The contour, if the cycle has a contour parameter and it names one.
     pub contour: Option<ContourSource<'a>>,
+    /// The front end whose cycle it is ([`Front::cycle_start`]).
+    pub front: &'a dyn Front,
 }
 
 #[cfg(test)]

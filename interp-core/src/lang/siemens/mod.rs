@@ -1,18 +1,13 @@
-//! The SINUMERIK 840D language (seed 001, the cycles manual, and the 840D's
-//! programming rules the cycles rely on): blocks of one line, `;` comments, R
-//! parameters and DEF variables, labels and GOTOF/GOTOB, IF, REPEAT, PROC
-//! subprograms called by name with parameters, MCALL, and the standard cycles.
+//! What the engine keeps of the SINUMERIK 840D language (seed 001): the state
+//! the interpreter holds for it between steps and the plain data a cycle call
+//! hands the engine. The language itself — reader, checker, expressions, the
+//! standard cycles' parameter lists and alarms, the statements' flow — is the
+//! `interp-siemens` crate, plugged in as a [`crate::lang::Front`].
 //!
 //! - [`call`]: argument lists of cycle and subprogram calls ([`call::Arg`],
-//!   [`call::Ty`], [`call::Signature`]) and how they bind (12330/12340);
-//! - [`vars`]: R parameters, DEF variables, the cycle setting data `_ZSD`;
-//! - [`cycles`]: the standard cycles' parameter lists and their start on the
-//!   engine's generators.
+//!   [`call::Ty`], [`call::Signature`]) and how they bind (12330/12340), the
+//!   bound call and its contour as the engine gets them;
+//! - [`vars`]: R parameters, DEF variables, the cycle setting data `_ZSD`.
 
 pub mod call;
-pub mod check;
-pub mod cycles;
-pub mod expr;
-pub mod lex;
-pub mod read;
 pub mod vars;

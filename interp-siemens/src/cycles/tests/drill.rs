@@ -4,8 +4,8 @@
 //! document's formulas, and every alarm of the sections.
 
 use super::*;
-use crate::alarm::CycleAlarm;
-use crate::canon::Plane;
+use interp_core::alarm::CycleAlarm;
+use interp_core::canon::Plane;
 
 /// The lathe at X0 (centre line), Z `z` mm, G17, feed `f` mm/min (G94), spindle
 /// M3 at 500 rev/min.

@@ -3,13 +3,13 @@
 //! expected geometry is computed here from the document's formulas.
 
 use super::*;
-use crate::axis::{Axis, Pos};
-use crate::canon::{Action, Canon, FeedMode, SpindleDir, ThreadSync};
-use crate::cycles::{CallEngine, Ctx, CycleStage, Expansion};
-use crate::exec::Blocks;
-use crate::lang::ProgramText;
-use crate::stage::Outbox;
-use crate::{MachineConfig, Panel};
+use interp_core::axis::{Axis, Pos};
+use interp_core::canon::{Action, Canon, FeedMode, SpindleDir, ThreadSync};
+use interp_core::cycles::{CallEngine, Ctx, CycleStage, Expansion};
+use interp_core::exec::Blocks;
+use interp_core::lang::ProgramText;
+use interp_core::stage::Outbox;
+use interp_core::{MachineConfig, Panel};
 use std::vec;
 use std::vec::Vec;
 
@@ -22,8 +22,8 @@ mod undercut;
 /// A lathe with room for the document's examples (X ±200 mm radius, Z ±600 mm).
 pub(super) fn machine() -> MachineConfig {
     let mut cfg = MachineConfig::default();
-    cfg.axes[0] = crate::config::AxisConfig::linear(-200, 200, 6_000);
-    cfg.axes[2] = crate::config::AxisConfig::linear(-600, 600, 8_000);
+    cfg.axes[0] = interp_core::config::AxisConfig::linear(-200, 200, 6_000);
+    cfg.axes[2] = interp_core::config::AxisConfig::linear(-600, 600, 8_000);
     cfg
 }
 

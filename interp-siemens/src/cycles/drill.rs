@@ -21,12 +21,12 @@
 //!   spindle speed S in force (rev × 60000 / S ms).
 
 use super::{Engine, MM, Params};
-use crate::alarm::{AlarmKind, CycleAlarm};
-use crate::axis::{Axis, Pos};
-use crate::canon::{FeedMode, Plane, SpindleDir};
-use crate::command::Command;
-use crate::command::hole::{DeepDrill, Degression, HoleSpec, HoleWork};
-use crate::modal::State;
+use interp_core::alarm::{AlarmKind, CycleAlarm};
+use interp_core::axis::{Axis, Pos};
+use interp_core::canon::{FeedMode, Plane, SpindleDir};
+use interp_core::command::Command;
+use interp_core::command::hole::{DeepDrill, Degression, HoleSpec, HoleWork};
+use interp_core::modal::State;
 
 use CycleAlarm::{
     AxisNotPresent, FirstDepthWrong, MachiningTypeWrong, NoSpindleDirection, NoThirdAxis, ParameterWrong,

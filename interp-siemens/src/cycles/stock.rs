@@ -1,5 +1,5 @@
 //! CYCLE95 stock removal with undercuts (seed 001 4.5, lines 10596–10954), mapped
-//! onto G71/G72's roughing engine (`crate::cycles`, `rough::RoughGen` with the
+//! onto G71/G72's roughing engine (`interp_core::cycles`, `rough::RoughGen` with the
 //! options a [`StockSpec`] asks for): the contour `NPP` (a subprogram or a label section, read by
 //! the engine in its program's language), the twelve machining types of VARI
 //! (roughing / finishing / complete × longitudinal / face × outside / inside) with
@@ -20,11 +20,11 @@
 //! - VARI outside 1–12 / 101–112 / 201–212 raises 61002.
 
 use super::{ContourSource, Engine, Params, need_zx};
-use crate::alarm::{AlarmKind, CycleAlarm};
-use crate::command::Command;
-use crate::command::job::{Blank, Pull, StockSpec};
-use crate::geom::Pt;
-use crate::modal::State;
+use interp_core::alarm::{AlarmKind, CycleAlarm};
+use interp_core::command::Command;
+use interp_core::command::job::{Blank, Pull, StockSpec};
+use interp_core::geom::Pt;
+use interp_core::modal::State;
 
 /// CYCLE95 (NPP, MID, FALZ, FALX, FAL, FF1, FF2, FF3, VARI, DT, DAM, _VRT).
 pub(super) fn cycle95(

@@ -2,7 +2,7 @@
 //! parameter list, the checks and alarms (61xxx) its section names, and the mapping
 //! of its parameters onto the engine's shared generators — CYCLE97/CYCLE98 onto the
 //! thread infeed engine of G76, CYCLE95 onto the roughing generator of G71/G72 …
-//! ([`Engine`], implemented by the engine in `crate::cycles`).
+//! ([`Engine`], implemented by the engine in `interp_core::cycles`).
 //!
 //! General rules (seed lines 514–701, 10099–10184): parameters are positional, an
 //! empty or missing one is zero; the plane is G18 (Z the longitudinal axis, X the
@@ -21,20 +21,16 @@ mod thread;
 mod undercut;
 
 #[cfg(test)]
-#[cfg(feature = "siemens")]
 mod tests;
 
-pub use super::call::{Arg, ContourSource, Signature, Ty};
+pub use interp_core::lang::Engine;
+pub use interp_core::lang::siemens::call::{Arg, ContourSource, Signature, Ty};
 
-use crate::alarm::AlarmKind;
-use crate::canon::{Plane, SpindleDir};
-use crate::command::Command;
-use crate::command::hole::HoleSpec;
-use crate::command::job::{GrooveSpec, MultiThreadSpec, StockSpec};
-use crate::config::MachineConfig;
-use crate::geom::{Pt, Seg};
-use crate::modal::State;
-use crate::units::Units;
+use interp_core::alarm::AlarmKind;
+use interp_core::canon::Plane;
+use interp_core::command::Command;
+use interp_core::modal::State;
+use interp_core::units::Units;
 
 use Ty::{Char as C, Int as I, Real as R, Str as S};
 
@@ -273,45 +269,6 @@ pub static SIGNATURES: &[Signature] = &[
 /// The cycle called `name` (case-insensitive), if this module implements it.
 pub fn signature(name: &[u8]) -> Option<&'static Signature> {
     SIGNATURES.iter().find(|s| s.name.as_bytes().eq_ignore_ascii_case(name))
-}
-
-/// The engine's side of a cycle call: the shared generators a cycle's parameters
-/// are mapped onto. Implemented by `crate::cycles` (which sits above the
-/// languages), handed down as a trait object.
-pub trait Engine {
-    /// The machine.
-    fn cfg(&self) -> &MachineConfig;
-    /// Starts the thread infeed engine (G76's) with `spec` for the cycle block `cmd`.
-    fn thread(&mut self, spec: &MultiThreadSpec, cmd: &Command, st: &mut State) -> Result<(), AlarmKind>;
-    /// One pass along `path` (work, X radius) with the nose compensated, the tool
-    /// left (or right) of it, from and back to `start` with G0, at the feed in force.
-    fn contour_pass(
-        &mut self,
-        path: &[Seg],
-        tool_left: bool,
-        start: Pt,
-        cmd: &Command,
-        st: &mut State,
-    ) -> Result<(), AlarmKind>;
-    /// Starts the grooving generator (G74/G75's columns) with `spec` on `segs`.
-    fn grooving(&mut self, spec: &GrooveSpec, segs: &[Seg], cmd: &Command, st: &mut State) -> Result<(), AlarmKind>;
-    /// Starts the one hole generator (G83–G89's, the mill's G73–G89) with `spec`,
-    /// the spindle turned on `spindle` at the R level first when given.
-    fn hole(
-        &mut self,
-        spec: &HoleSpec,
-        spindle: Option<SpindleDir>,
-        cmd: &Command,
-        st: &mut State,
-    ) -> Result<(), AlarmKind>;
-    /// Reads `contour` and starts the stock-removal generator (G71's geometry) on it.
-    fn stock(
-        &mut self,
-        spec: &StockSpec,
-        contour: ContourSource<'_>,
-        cmd: &Command,
-        st: &mut State,
-    ) -> Result<(), AlarmKind>;
 }
 
 /// Starts the cycle `sig` with `args` (already type-checked and padded with

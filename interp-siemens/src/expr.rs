@@ -10,9 +10,9 @@
 //! function outside its domain 0119, as in the FANUC language.
 
 use super::lex::{Src, is, syntax};
-use super::vars::Value;
-use crate::alarm::{AlarmKind, SiemensAlarm as S};
-use crate::geom::deg;
+use interp_core::alarm::{AlarmKind, SiemensAlarm as S};
+use interp_core::geom::deg;
+use interp_core::lang::siemens::vars::Value;
 
 /// Most brackets and nested calls in one expression (the board's stack is small).
 const MAX_DEPTH: u8 = 16;
@@ -431,7 +431,7 @@ pub fn r_number(name: &[u8]) -> Option<i64> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::lang::siemens::vars::{VarTy, Vars};
+    use interp_core::lang::siemens::vars::{VarTy, Vars};
 
     struct T(Vars);
 

@@ -1,16 +1,16 @@
 //! CYCLE93 against the document's example (lines 10377–10451) and its alarms.
 
 use super::*;
-use crate::alarm::CycleAlarm;
-use crate::canon::Action;
+use interp_core::alarm::CycleAlarm;
+use interp_core::canon::Action;
 
 /// A grooving tool 4 mm wide, T1: edge D1 the left corner (position 3, row 1), D2
 /// the right one (position 4, row 1 + tool count) 4 mm towards -Z in its offset
 /// (+Z on the part), nose `r`.
 fn grooving_tool(cfg: &mut MachineConfig, r: f64) -> State {
-    *cfg.tools.get_mut(1).unwrap() = crate::config::ToolOffset { tip: 3, radius: mm(r), ..Default::default() };
+    *cfg.tools.get_mut(1).unwrap() = interp_core::config::ToolOffset { tip: 3, radius: mm(r), ..Default::default() };
     *cfg.tools.get_mut(d2(cfg)).unwrap() =
-        crate::config::ToolOffset { z: mm(-4.0), tip: 4, radius: mm(r), ..Default::default() };
+        interp_core::config::ToolOffset { z: mm(-4.0), tip: 4, radius: mm(r), ..Default::default() };
     let mut st = at(cfg, 50.0, 65.0);
     st.tool.offset_number = 1;
     st.tool.tip = 3;

@@ -14,14 +14,14 @@
 //! `CHR=`, `ANG=`, `LIMS=`, `SPOS=`; `DIAMON`/`DIAMOF`/`DIAM90`. A single letter
 //! is always an address (SINUMERIK names begin with two letters or `_`).
 
-use super::call::CallArgs;
 use super::expr::{self, Env, MAX_INDICES, eval, r_number, whole};
 use super::lex::{Src, is, strip_comment, syntax};
-use super::vars::{MAX_STRING, Value, VarTy, Vars, convert_to};
-use crate::alarm::{AlarmKind, SiemensAlarm as S};
-use crate::config::MachineConfig;
-use crate::modal::State;
-use crate::units::Number;
+use interp_core::alarm::{AlarmKind, SiemensAlarm as S};
+use interp_core::config::MachineConfig;
+use interp_core::lang::siemens::call::CallArgs;
+use interp_core::lang::siemens::vars::{MAX_STRING, Value, VarTy, Vars, convert_to};
+use interp_core::modal::State;
+use interp_core::units::Number;
 
 /// Most G functions in one block.
 pub const MAX_G: usize = 10;
@@ -499,7 +499,7 @@ pub fn tool_row(cfg: &MachineConfig, t: i64, d: i64) -> Option<u16> {
         return None;
     }
     let row = t.checked_add((d - 1).checked_mul(count)?)?;
-    (row <= crate::config::MAX_OFFSETS as i64).then_some(row as u16)
+    (row <= interp_core::config::MAX_OFFSETS as i64).then_some(row as u16)
 }
 
 /// `$TC_DPn` of offset row `row`, in program units (mm): 2 edge position (tip
@@ -719,23 +719,23 @@ impl<'t> Reader<'_, 't, '_> {
         }
         loop {
             let arg = match self.src.peek() {
-                Some(b',' | b')') => super::call::Arg::Empty,
+                Some(b',' | b')') => interp_core::lang::siemens::call::Arg::Empty,
                 _ => {
                     let view = View { scope: self.scope, pending: self.pending };
                     match eval(&mut self.src, &view)? {
-                        Value::Real(v) => super::call::Arg::Real(v),
-                        Value::Int(v) => super::call::Arg::Int(v),
-                        Value::Bool(b) => super::call::Arg::Int(i64::from(b)),
+                        Value::Real(v) => interp_core::lang::siemens::call::Arg::Real(v),
+                        Value::Int(v) => interp_core::lang::siemens::call::Arg::Int(v),
+                        Value::Bool(b) => interp_core::lang::siemens::call::Arg::Int(i64::from(b)),
                         Value::Char(c) => {
                             let one = [c];
-                            args.push(super::call::Arg::Str(&one))?;
+                            args.push(interp_core::lang::siemens::call::Arg::Str(&one))?;
                             if !self.list_next()? {
                                 return Ok(true);
                             }
                             continue;
                         }
                         Value::Str(s) => {
-                            args.push(super::call::Arg::Str(s))?;
+                            args.push(interp_core::lang::siemens::call::Arg::Str(s))?;
                             if !self.list_next()? {
                                 return Ok(true);
                             }
@@ -1032,7 +1032,7 @@ fn unsupported(kw: &[u8]) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::lang::siemens::call::Arg;
+    use interp_core::lang::siemens::call::Arg;
 
     struct Fixture {
         vars: Vars,
@@ -1043,7 +1043,7 @@ mod tests {
     impl Fixture {
         fn new() -> Self {
             let cfg = MachineConfig::default();
-            let state = State::power_on(&cfg, crate::axis::Pos::ZERO);
+            let state = State::power_on(&cfg, interp_core::axis::Pos::ZERO);
             let mut vars = Vars::new();
             vars.define(b"FFR", VarTy::Real).unwrap();
             vars.define(b"RFF", VarTy::Real).unwrap();

@@ -1,7 +1,7 @@
 //! CYCLE94 undercut form E/F to DIN 509 (seed 001 4.4, lines 10453–10594) and
 //! CYCLE96 thread undercut form A–D to DIN 76 (4.6, lines 10956–11061): the
 //! undercut's contour from the standard's dimensions, cut in one pass with the
-//! nose compensated (the engine's contour pass, `crate::cycles`).
+//! nose compensated (the engine's contour pass, `interp_core::cycles`).
 //!
 //! The figures with the standards' tables are missing from the seed; the
 //! dimensions are the standards' own:
@@ -32,10 +32,10 @@
 
 use super::thread::coarse_pitch;
 use super::{Engine, Params, need_zx};
-use crate::alarm::{AlarmKind, CycleAlarm};
-use crate::command::Command;
-use crate::geom::{Pt, Seg, SegKind};
-use crate::modal::State;
+use interp_core::alarm::{AlarmKind, CycleAlarm};
+use interp_core::command::Command;
+use interp_core::geom::{Pt, Seg, SegKind};
+use interp_core::modal::State;
 
 /// A DIN 509 row: finished diameter up to (mm), radius r, depth t1, width f, face
 /// depth t2 (form F).

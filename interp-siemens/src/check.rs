@@ -10,14 +10,14 @@
 //! (the G96 speed limit) and DIAMON/DIAMOF.
 
 use super::read::{Addr, Words, mask};
-use crate::alarm::{AlarmKind, GNum, SiemensAlarm as S};
-use crate::axis::Axis;
-use crate::canon::{FeedMode, Plane};
-use crate::codes::{GCode, MFunction, m_codes_conflict, m_function};
-use crate::command::{AxisWord, Command, CycleArgs, FlowWord};
-use crate::config::MachineConfig;
-use crate::modal::{Corner, State};
-use crate::units::{InputMode, Number, NumberFormat, Units};
+use interp_core::alarm::{AlarmKind, GNum, SiemensAlarm as S};
+use interp_core::axis::Axis;
+use interp_core::canon::{FeedMode, Plane};
+use interp_core::codes::{GCode, MFunction, m_codes_conflict, m_function};
+use interp_core::command::{AxisWord, Command, CycleArgs, FlowWord};
+use interp_core::config::MachineConfig;
+use interp_core::modal::{Corner, State};
+use interp_core::units::{InputMode, Number, NumberFormat, Units};
 
 /// What the block sets on the state that the [`Command`] does not carry.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -26,6 +26,16 @@ pub struct Extras {
     pub lims: Option<u32>,
     /// DIAMON (true) / DIAMOF (false).
     pub diam: Option<bool>,
+}
+
+/// DIAMON/DIAMOF and LIMS= on the state, before the block runs (undone with it).
+pub fn apply(extras: Extras, st: &mut State) {
+    if let Some(d) = extras.diam {
+        st.modal.diameter = d;
+    }
+    if let Some(l) = extras.lims {
+        st.spindle.clamp = Some(l);
+    }
 }
 
 /// What a SINUMERIK G function means to the engine.
@@ -77,8 +87,8 @@ fn g_function(n: u16) -> Option<(Meaning, u8)> {
         95 => (Meaning::Feed(true), 15),
         96 => (Meaning::CssOn, 15),
         97 => (Meaning::CssOff, 15),
-        290 => (Code(GCode::Language(crate::config::Language::Siemens)), 47),
-        291 => (Code(GCode::Language(crate::config::Language::Fanuc)), 47),
+        290 => (Code(GCode::Language(interp_core::config::Language::Siemens)), 47),
+        291 => (Code(GCode::Language(interp_core::config::Language::Fanuc)), 47),
         450 | 451 => (Meaning::Nothing, 18),
         _ => return None,
     })
@@ -259,7 +269,7 @@ fn angle_line(ang: Number, st: &State, cfg: &MachineConfig, cmd: &mut Command) -
     let end =
         |a: Axis, cmd: &Command| cmd.axes[a.index()].map(|w| if w.incremental { here[a] + w.value } else { w.value });
     let deg = ang.to_f64();
-    let (s, c) = (crate::geom::deg::sin_deg(deg), crate::geom::deg::cos_deg(deg));
+    let (s, c) = (interp_core::geom::deg::sin_deg(deg), interp_core::geom::deg::cos_deg(deg));
     let (d_ab, d_or) = match (end(ab, cmd), end(or, cmd)) {
         (Some(_), Some(_)) => return Err(syntax_err("ANG= with both coordinates of the plane")),
         (None, None) => {
@@ -317,7 +327,7 @@ fn arc_words(
             (Some(k), None) | (None, Some(k)) => fmt.length_nm(&k).ok_or(AlarmKind::Overflow)?.abs(),
             _ => return Err(AlarmKind::MissingWord { letter: b'K', context: "G33 (one lead, K or I)" }),
         };
-        crate::command::cycle::check_lead(lead, fmt.units)?;
+        interp_core::command::cycle::check_lead(lead, fmt.units)?;
         cmd.cycle = CycleArgs::Thread { lead: Some(lead), start_udeg: None, delta: 0 };
         return Ok(());
     }
@@ -364,7 +374,7 @@ fn dwell_ms(w: &Words, st: &State, fmt: &NumberFormat) -> Result<u32, AlarmKind>
                 return Err(AlarmKind::IllegalMinusSign { letter: b'S' });
             }
             let rpm = st.spindle.rpm;
-            if rpm == 0 || st.spindle.dir == crate::canon::SpindleDir::Stop {
+            if rpm == 0 || st.spindle.dir == interp_core::canon::SpindleDir::Stop {
                 return Err(AlarmKind::SpindleNotTurning);
             }
             libm::round(s.to_f64() * 60_000.0 / f64::from(rpm)) as i64
@@ -422,10 +432,40 @@ fn corner(w: &Words, fmt: &NumberFormat) -> Result<Option<Corner>, AlarmKind> {
     Ok(out.flatten())
 }
 
+/// One block of a cycle's contour (CYCLE95 `NPP` …) read and checked: its words
+/// may use the calling level's variables `vars`; its blocks are NC blocks only (a
+/// label, a comment, DIAMON/DIAMOF are fine; DEF, a jump, a call or an assignment
+/// is alarm 61606 with the NCK cause 10930). `None` for a block without words.
+/// Not inlined: the reader's scratch (words, pending assignments, call
+/// arguments: ~1.5 KB) stays out of the frame that runs the contour's blocks.
+#[inline(never)]
+pub fn contour_command(
+    raw: &interp_core::program::RawBlock<'_>,
+    vars: &interp_core::lang::siemens::vars::Vars,
+    st: &State,
+    cfg: &MachineConfig,
+) -> Result<Option<Command>, AlarmKind> {
+    use crate::read::{Pending, Scope, Stmt, Words, read};
+    use interp_core::alarm::CycleAlarm;
+    use interp_core::lang::siemens::call::CallArgs;
+    let scope = Scope { vars, state: st, cfg };
+    let (mut words, mut pending, mut args) = (Words::EMPTY, Pending::new(), CallArgs::new());
+    match read(raw.text, raw.line, &scope, &mut words, &mut pending, &mut args)? {
+        Stmt::Nc { jump: None } if pending.is_empty() => {}
+        _ => return Err(AlarmKind::SiemensCycle(CycleAlarm::ContourPreparation { cause: 10930 })),
+    }
+    if words.is_empty() {
+        return Ok(None);
+    }
+    let mut cmd = Command::EMPTY;
+    check_into(&words, st, cfg, &mut cmd)?;
+    Ok(Some(cmd))
+}
+
 /// Every axis the command moves, for tests.
 #[cfg(test)]
-fn moved(cmd: &Command) -> [Option<i64>; crate::axis::AXIS_COUNT] {
-    let mut o = [None; crate::axis::AXIS_COUNT];
+fn moved(cmd: &Command) -> [Option<i64>; interp_core::axis::AXIS_COUNT] {
+    let mut o = [None; interp_core::axis::AXIS_COUNT];
     for (i, w) in cmd.axes.iter().enumerate() {
         o[i] = w.map(|w| w.value);
     }
@@ -435,10 +475,10 @@ fn moved(cmd: &Command) -> [Option<i64>; crate::axis::AXIS_COUNT] {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::axis::Pos;
-    use crate::lang::siemens::call::CallArgs;
-    use crate::lang::siemens::read::{Pending, Scope, read};
-    use crate::lang::siemens::vars::Vars;
+    use crate::read::{Pending, Scope, read};
+    use interp_core::axis::Pos;
+    use interp_core::lang::siemens::call::CallArgs;
+    use interp_core::lang::siemens::vars::Vars;
 
     const MM: i64 = 1_000_000;
 
@@ -524,7 +564,7 @@ mod tests {
         assert_eq!(check("G4 F2", &st).unwrap().0.dwell_ms, Some(2000));
         assert_eq!(check("G4 S10", &st).unwrap_err(), AlarmKind::SpindleNotTurning);
         st.spindle.rpm = 300;
-        st.spindle.dir = crate::canon::SpindleDir::Cw;
+        st.spindle.dir = interp_core::canon::SpindleDir::Cw;
         assert_eq!(check("G4 S10", &st).unwrap().0.dwell_ms, Some(2000), "10 rev at 300 rev/min");
         let (c, _) = check("M17", &st).unwrap();
         assert_eq!(c.flow, Some(FlowWord::Return { seq: None }));

@@ -1,11 +1,11 @@
 //! CYCLE94 and CYCLE96 against DIN 509 / DIN 76 and the document's examples.
 
 use super::*;
-use crate::alarm::CycleAlarm;
+use interp_core::alarm::CycleAlarm;
 
 /// The state of the examples: tool offset 3 with cutting edge position `tip`.
 fn with_tool(cfg: &mut MachineConfig, tip: u8, radius: f64, x: f64, z: f64) -> State {
-    *cfg.tools.get_mut(3).unwrap() = crate::config::ToolOffset { tip, radius: mm(radius), ..Default::default() };
+    *cfg.tools.get_mut(3).unwrap() = interp_core::config::ToolOffset { tip, radius: mm(radius), ..Default::default() };
     let mut st = at(cfg, x, z);
     st.tool.offset_number = 3;
     st.tool.tip = tip;
@@ -44,7 +44,7 @@ fn cycle94_form_e_example() {
     );
     // At the feed in force (F0.3).
     assert!(c.actions.iter().all(|a| match a.action {
-        crate::canon::Action::Linear(m) => m.feed.value == mm(0.3),
+        interp_core::canon::Action::Linear(m) => m.feed.value == mm(0.3),
         _ => true,
     }));
 }

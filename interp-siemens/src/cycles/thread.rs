@@ -1,6 +1,6 @@
 //! CYCLE97 thread cutting (seed 001 4.7, lines 11065–11251) and CYCLE98 chained
 //! threads (4.8, lines 11253–11437), mapped onto the thread infeed engine that
-//! cuts FANUC's G76 (`crate::cycles::thread`).
+//! cuts FANUC's G76 (`interp_core::cycles::thread`).
 //!
 //! What the cycles ask of the engine, from the document:
 //! - the cycle's start point is the run-in APP before the thread start, 1 mm above
@@ -34,11 +34,11 @@
 //!   the size's pitch raise 61001 "thread pitch defined incorrectly".
 
 use super::{Engine, MM, Params, need_zx};
-use crate::alarm::{AlarmKind, CycleAlarm};
-use crate::command::Command;
-use crate::command::job::{CHAIN_POINTS, Depths, Flank, MultiThreadSpec, Pullout};
-use crate::geom::Pt;
-use crate::modal::State;
+use interp_core::alarm::{AlarmKind, CycleAlarm};
+use interp_core::command::Command;
+use interp_core::command::job::{CHAIN_POINTS, Depths, Flank, MultiThreadSpec, Pullout};
+use interp_core::geom::Pt;
+use interp_core::modal::State;
 
 /// ISO metric coarse threads (DIN 13-1): nominal diameter and pitch, mm.
 pub(super) const COARSE: &[(f64, f64)] = &[
@@ -209,8 +209,11 @@ fn spec(c: &Common, pts: &[Pt], leads: &[i64], st: &State) -> Result<MultiThread
     }
     // Lines 11224–11228: a taper of at most 45° is a longitudinal thread.
     let face = (last.x - first.x).abs() > (last.z - first.z).abs();
-    let (long, feed) =
-        if face { (crate::axis::Axis::X, crate::axis::Axis::Z) } else { (crate::axis::Axis::Z, crate::axis::Axis::X) };
+    let (long, feed) = if face {
+        (interp_core::axis::Axis::X, interp_core::axis::Axis::Z)
+    } else {
+        (interp_core::axis::Axis::Z, interp_core::axis::Axis::X)
+    };
     // Outside threads are cut going in the negative direction, inside ones positive.
     let internal = c.vari == 2 || c.vari == 4;
     let inward = if internal { 1 } else { -1 };
@@ -262,7 +265,7 @@ fn spec(c: &Common, pts: &[Pt], leads: &[i64], st: &State) -> Result<MultiThread
 /// there less the turns the spindle makes while the tool goes from the pass start
 /// to its Z. 61612 when the point is not on the thread (a face thread too: only
 /// its Z is known).
-fn recut_start(r: crate::modal::ThreadRecut, points: &[Pt], leads: &[i64]) -> Result<i64, AlarmKind> {
+fn recut_start(r: interp_core::modal::ThreadRecut, points: &[Pt], leads: &[i64]) -> Result<i64, AlarmKind> {
     let mut turns = 0.0;
     for (w, &lead) in points.windows(2).zip(leads) {
         let (a, b) = (w[0].z, w[1].z);
@@ -279,7 +282,7 @@ fn recut_start(r: crate::modal::ThreadRecut, points: &[Pt], leads: &[i64]) -> Re
 
 /// `to` moved on by `by` along the long axis, away from `from`, on the line
 /// `from` → `to`.
-fn extend(from: Pt, to: Pt, by: i64, long: crate::axis::Axis) -> Pt {
+fn extend(from: Pt, to: Pt, by: i64, long: interp_core::axis::Axis) -> Pt {
     let d = to.get(long) - from.get(long);
     if by == 0 || d == 0 {
         return to;

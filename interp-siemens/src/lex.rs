@@ -4,9 +4,9 @@
 //! letters (the document's label `孔圆弧1:`). Keywords and names are compared
 //! without regard to case.
 
-use crate::alarm::{AlarmKind, SiemensAlarm as S};
-use crate::program::lines::name_byte;
-use crate::units::Number;
+use interp_core::alarm::{AlarmKind, SiemensAlarm as S};
+use interp_core::program::lines::name_byte;
+use interp_core::units::Number;
 
 /// Most digits a number may have before and after its point.
 const MAX_DIGITS: u8 = 18;

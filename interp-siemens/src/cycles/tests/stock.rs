@@ -5,10 +5,10 @@
 //! dialect (the same geometry: `,R5` is RND=5), read by the same engine.
 
 use super::*;
-use crate::alarm::CycleAlarm;
-use crate::canon::Action;
-use crate::config::Language;
-use crate::program::Cursor;
+use interp_core::alarm::CycleAlarm;
+use interp_core::canon::Action;
+use interp_core::config::Language;
+use interp_core::program::Cursor;
 
 /// KONTUR_1 (lines 10908–10921) in the FANUC dialect (X diameter): RND=5 of N130
 /// rounds the corner at its end point.
@@ -24,8 +24,8 @@ fn contour(text: &str) -> ContourSource<'_> {
         vars: None,
         fmt: None,
     };
-    static NO_VARS: crate::lang::siemens::vars::Vars = crate::lang::siemens::vars::Vars::new();
-    ContourSource { program, start: Cursor::start(0), end: None, vars: &NO_VARS }
+    static NO_VARS: interp_core::lang::siemens::vars::Vars = interp_core::lang::siemens::vars::Vars::new();
+    ContourSource { program, start: Cursor::start(0), end: None, vars: &NO_VARS, front: &crate::SINUMERIK }
 }
 
 /// CYCLE95 arguments: MID, FALZ, FALX, FAL, FF1, FF2, FF3 (REAL), VARI, DT, DAM, _VRT.
@@ -297,7 +297,7 @@ fn cycle95_alarms_move_nothing() {
     assert_eq!(prep(10933).code(), 61606);
     // G41/G42 in force at the call: 15800.
     let mut g42 = st;
-    g42.modal.nose_comp = crate::codes::GCode::NoseCompRight;
+    g42.modal.nose_comp = interp_core::codes::GCode::NoseCompRight;
     assert_eq!(call_with("CYCLE95", &a, &g42, &cfg, k1()).unwrap_err(), prep(15800));
     // A contour turning back along Z (an overhang): 61605.
     let back = "G01 Z120 X37\nZ100\nZ105 X50\nZ90\nX76\nM30\n";
@@ -356,7 +356,7 @@ fn cycle95_example_1_complete() {
 #[test]
 fn cycle95_nose_compensation() {
     let mut cfg = machine();
-    *cfg.tools.get_mut(1).unwrap() = crate::config::ToolOffset { radius: mm(0.8), tip: 3, ..Default::default() };
+    *cfg.tools.get_mut(1).unwrap() = interp_core::config::ToolOffset { radius: mm(0.8), tip: 3, ..Default::default() };
     let mut st = at(&cfg, 50.0, 5.0);
     st.tool.offset_number = 1;
     st.tool.nose_radius = mm(0.8);

@@ -3,7 +3,7 @@
 //! alarms.
 
 use super::*;
-use crate::alarm::CycleAlarm;
+use interp_core::alarm::CycleAlarm;
 
 /// CYCLE97 arguments: PIT, MPIT, SPL, FPL, DM1, DM2, APP, ROP, TDEP, FAL, IANG, NSP
 /// as REAL, NRC, NID, VARI, NUMT as INT, _VRT.
@@ -207,7 +207,7 @@ fn thread_alarms_move_nothing() {
     assert_eq!(call("CYCLE98", &a, &st, &cfg).unwrap_err(), AlarmKind::SiemensCycle(CycleAlarm::MachiningTypeWrong));
     // Outside the ZX plane.
     let mut g17 = st;
-    g17.modal.plane = crate::canon::Plane::Xy;
+    g17.modal.plane = interp_core::canon::Plane::Xy;
     assert_eq!(call("CYCLE97", &example(3), &g17, &cfg).unwrap_err(), AlarmKind::CycleNotInZxPlane);
 }
 
@@ -220,12 +220,12 @@ fn cycle97_recut_start_angle() {
     let mut st = at(&cfg, 60.0, 100.0);
     let mut a = example(3);
     a[10] = Arg::Real(0.0);
-    st.cycle.recut = Some(crate::modal::ThreadRecut { z: mm(-10.5), angle_udeg: 90_000_000 });
+    st.cycle.recut = Some(interp_core::modal::ThreadRecut { z: mm(-10.5), angle_udeg: 90_000_000 });
     let c = call("CYCLE97", &a, &st, &cfg).unwrap();
     let frac = 20.5 / 4.5 - libm::floor(20.5 / 4.5);
     let want = r3((90.0 - frac * 360.0).rem_euclid(360.0));
     assert!(threads(&c).iter().all(|t| r3(t.3) == want), "{:?}", threads(&c)[0]);
-    st.cycle.recut = Some(crate::modal::ThreadRecut { z: mm(-50.0), angle_udeg: 0 });
+    st.cycle.recut = Some(interp_core::modal::ThreadRecut { z: mm(-50.0), angle_udeg: 0 });
     assert_eq!(call("CYCLE97", &a, &st, &cfg).unwrap_err(), AlarmKind::SiemensCycle(CycleAlarm::RecutImpossible));
     assert_eq!(AlarmKind::SiemensCycle(CycleAlarm::RecutImpossible).code(), 61612);
 }

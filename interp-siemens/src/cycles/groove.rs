@@ -2,7 +2,7 @@
 //! its parameters — on a surface at STA1 to the longitudinal axis, width WIDG and
 //! depth DIAG from the start point SPD/SPL, flanks at ANG1/ANG2, radii (> 0) or
 //! chamfers (< 0) at the outer (RCO) and bottom (RCI) corners, the chamfer as CHF
-//! (VARI 1–8) or CHR (11–18) — handed to the grooving generator (`crate::cycles`,
+//! (VARI 1–8) or CHR (11–18) — handed to the grooving generator (`interp_core::cycles`,
 //! G74/G75's pecking columns): plunges with IDEP pecks and _VRT chip breaking, DTB
 //! at the bottom, the flanks along their slope, then each side finished along the
 //! contour with its own cutting edge (D and D + 1, line 10342).
@@ -21,13 +21,13 @@
 
 use super::stock::seconds_ms;
 use super::{Engine, Params, need_zx};
-use crate::alarm::{AlarmKind, CycleAlarm};
-use crate::axis::Axis;
-use crate::command::Command;
-use crate::command::job::GrooveSpec;
-use crate::geom::path::V2;
-use crate::geom::{Pt, Seg, SegKind};
-use crate::modal::State;
+use interp_core::alarm::{AlarmKind, CycleAlarm};
+use interp_core::axis::Axis;
+use interp_core::command::Command;
+use interp_core::command::job::GrooveSpec;
+use interp_core::geom::path::V2;
+use interp_core::geom::{Pt, Seg, SegKind};
+use interp_core::modal::State;
 
 /// A corner of the groove: a radius (> 0), a chamfer (< 0) or none.
 #[derive(Clone, Copy, Debug)]
