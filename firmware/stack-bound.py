@@ -11,7 +11,14 @@ How the bound is found:
 - Indirect calls (`blx rN`, `bx rN`): a call through a slot of a Rust vtable
   (`ldr rN, [rM, #off]` just before it, off >= 12) may reach the function in that
   slot of *any* vtable in .rodata/.data (class-hierarchy analysis by slot offset: an
-  over-approximation, never an under-one). The executor's poll of a task through its
+  over-approximation, never an under-one). With `--methods` (an analysis aid, not
+  the gate: a line table that names the wrong line would make it an under-
+  approximation) the slot is narrowed by the method's name where the debug line
+  tables name it: the call's source line (`addr2line -i`, the innermost
+  inlined frame) is read, and of the slot's functions only those whose name ends in
+  a method called on that line (`.name(` or `::name(`) are kept. A line that cannot
+  be read, or names no function of the slot (a closure called through `dyn Fn`),
+  keeps the whole slot. The executor's poll of a task through its
   function pointer is split off: each task's `TaskStorage::poll` is a root of its own,
   and the thread-mode bound is the executor's own depth plus the deepest task.
   Any other indirect call (a plain function pointer) is listed as unresolved: the
@@ -22,7 +29,7 @@ How the bound is found:
   state, aligned: 108 bytes) to its handler's depth. Interrupts nest by priority, so
   the whole stack needs the thread bound plus one handler per priority level in use.
 
-Usage: firmware/stack-bound.py ELF [--task-limit BYTES] [--isr-limit BYTES]
+Usage: firmware/stack-bound.py ELF [--task-limit BYTES] [--isr-limit BYTES] [--methods]
 Exits non-zero when the control task's bound is over --task-limit, an interrupt's
 over --isr-limit, or the whole (thread + deepest task + one handler per priority
 level) over the ELF's stack region (`_stack_start - _stack_end`, memory.x).
@@ -165,7 +172,7 @@ def vtables(data, starts):
 
 
 class Graph:
-    def __init__(self, elf):
+    def __init__(self, elf, methods=False):
         lines = disassemble(elf)
         self.names, self.frame, self.calls, self.indirect, self.unknown_sub, consts = analyse(lines)
         # Function pointers each function builds; the spawner of each task (it builds
@@ -180,8 +187,22 @@ class Graph:
         for ps in self.pointers.values():
             taken |= ps
         self.tasks = sorted(a for a in starts if "TaskStorage" in self.names[a] and self.names[a].endswith("::poll"))
+        sites = [site for a in self.indirect for site, slot in self.indirect[a] if slot]
+        self.methods = called_methods(elf, sites) if methods else {}
         self.taken = taken - set(self.tasks)
         self.cdepth = {}
+
+    def narrowed(self, site, fns):
+        """Of the functions in a vtable slot, those a call at `site` can reach: the
+        ones named as a method called on its source line, or all of them."""
+        names = self.methods.get(site)
+        if not names:
+            return fns
+        kept = {f for f in fns if method_name(self.names[f]) in names}
+        if CLOSURE in names:
+            # A closure or fn called through `dyn Fn*` on that line: keep them all.
+            kept |= {f for f in fns if method_name(self.names[f]) in (None, "call", "call_mut", "call_once")}
+        return kept or fns
 
     def edges(self, a):
         """Direct and vtable-resolved callees of `a`, and its unresolved indirect calls."""
@@ -189,7 +210,7 @@ class Graph:
         unresolved = []
         for site, slot in self.indirect[a]:
             if slot is not None and slot >= 12 and slot in self.slots:
-                out |= self.slots[slot]
+                out |= self.narrowed(site, self.slots[slot])
             elif "embassy_executor" in self.names[a] and "TaskStorage" not in self.names[a]:
                 pass  # the executor polls a task: the tasks are roots of their own
             elif self.pointers[a] - set(self.tasks):
@@ -277,6 +298,7 @@ def main():
     ap.add_argument("elf")
     ap.add_argument("--task-limit", type=int, default=None)
     ap.add_argument("--isr-limit", type=int, default=None)
+    ap.add_argument("--methods", action="store_true", help="narrow vtable calls by the method named on the call's source line")
     args = ap.parse_args()
     # The stack region (memory.x): from the end of the statics down from the SRAM's top.
     nm = subprocess.run(["arm-none-eabi-nm", args.elf], check=True, stdout=subprocess.PIPE, text=True).stdout
@@ -291,7 +313,7 @@ def main():
            if len(p) == 4 and p[3] in ("firmware::CTL", "firmware::CTL_SLOT")]
     ctl_size = max(ctl, default=0)
     sys.setrecursionlimit(100000)
-    g = Graph(args.elf)
+    g = Graph(args.elf, args.methods)
     failed = []
 
     def show(label, a, extra=0):
@@ -354,6 +376,68 @@ def main():
     for f in failed:
         print(f"stack-bound: FAIL: {f}")
     return 1 if failed else 0
+
+
+def method_name(demangled):
+    """`<T as a::Trait>::step` -> `step` (generic arguments and closures left off)."""
+    depth, cut = 0, len(demangled)
+    for i in range(len(demangled) - 1, -1, -1):
+        ch = demangled[i]
+        if ch in ">)":
+            depth += 1
+        elif ch in "<(":
+            depth -= 1
+        elif ch == ":" and depth == 0 and i > 0 and demangled[i - 1] == ":":
+            name = demangled[i + 1:cut]
+            return None if "{{" in name else name.split("<")[0]
+    return demangled.split("<")[0]
+
+
+CALLED = re.compile(r"(?:\.|::)\s*([A-Za-z_][A-Za-z0-9_]*)\s*(?:::<[^()]*>)?\s*\(")
+
+
+PLAIN_CALL = re.compile(r"(?<![\w.:])([a-z_][a-z0-9_]*)\s*\(")
+KEYWORDS = {"if", "match", "while", "for", "return", "in", "as", "move", "loop", "let", "fn", "where", "unsafe"}
+CLOSURE = "(a closure)"
+
+
+def called_methods(elf, sites):
+    """{site: set of method names called on the source line of the call at site}
+    from the ELF's line tables (the innermost inlined frame); sites whose line
+    cannot be read are left out."""
+    if not sites:
+        return {}
+    out = subprocess.run(["arm-none-eabi-addr2line", "-e", elf, "-i", "-a"],
+                         input="\n".join(f"{s:#x}" for s in sites), check=True,
+                         stdout=subprocess.PIPE, text=True).stdout
+    found, site, cache = {}, None, {}
+    for line in out.splitlines():
+        if line.startswith("0x"):
+            site = int(line, 16)
+            continue
+        if site is None or site in found:
+            continue
+        path, _, num = line.rpartition(":")
+        num = num.split()[0] if num else ""
+        if not num.isdigit() or not path:
+            site = None
+            continue
+        if path not in cache:
+            try:
+                with open(path, encoding="utf-8", errors="replace") as f:
+                    cache[path] = f.read().splitlines()
+            except OSError:
+                cache[path] = None
+        text = cache[path]
+        if text and 0 < int(num) <= len(text):
+            src = text[int(num) - 1]
+            names = set(CALLED.findall(src))
+            if set(PLAIN_CALL.findall(src)) - KEYWORDS or "|" in src or ")(" in src:
+                names.add(CLOSURE)
+            if names:
+                found[site] = names
+        site = None
+    return found
 
 
 def reach(g, a):
