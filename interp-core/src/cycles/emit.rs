@@ -166,6 +166,7 @@ impl Emitter {
     }
 
     /// The current work position in the ZX plane.
+    #[inline(never)]
     pub fn here(&self, cfg: &MachineConfig) -> Pt {
         let w = self.st.work_pos(cfg);
         Pt::new(w[Axis::X], w[Axis::Z])

@@ -10,6 +10,7 @@
 
 use super::StepQueue;
 use super::emit::{Pt, Step};
+use super::push;
 use crate::alarm::{AlarmKind, CycleAlarm};
 use crate::axis::Axis;
 
@@ -156,10 +157,6 @@ impl GrooveGen {
     }
 }
 
-fn push(out: &mut StepQueue, s: Step) -> Result<(), AlarmKind> {
-    out.push_back(s).map_err(|_| AlarmKind::Overflow)
-}
-
 use super::offset::Offsets;
 use super::pass::PassGen;
 pub use crate::command::job::GrooveSpec;
@@ -264,7 +261,8 @@ impl GroovingGen {
             e0.get(plunge) + libm::round(t * (e1.get(plunge) - e0.get(plunge)) as f64) as i64
         };
         let out = -s.inward;
-        let top = if out > 0 { level(c0).max(level(c1)) } else { level(c0).min(level(c1)) };
+        let (l0, l1) = (level(c0), level(c1));
+        let top = if out > 0 { l0.max(l1) } else { l0.min(l1) };
         Pt::default().with(plunge, top + out * s.safety)
     }
 

@@ -19,6 +19,7 @@
 
 use super::StepQueue;
 use super::emit::Step;
+use super::push;
 use crate::alarm::AlarmKind;
 use crate::axis::{Axis, Pos};
 use crate::canon::SpindleDir;
@@ -355,11 +356,6 @@ pub fn reverse(d: SpindleDir) -> SpindleDir {
         SpindleDir::Ccw => SpindleDir::Cw,
         SpindleDir::Stop => SpindleDir::Stop,
     }
-}
-
-#[inline(never)]
-fn push(out: &mut StepQueue, s: Step) -> Result<(), AlarmKind> {
-    out.push_back(s).map_err(|_| AlarmKind::Overflow)
 }
 
 #[cfg(test)]

@@ -10,6 +10,7 @@
 
 use super::StepQueue;
 use super::emit::{Pt, Step};
+use super::push;
 use crate::alarm::AlarmKind;
 use crate::axis::Axis;
 use crate::canon::ThreadSync;
@@ -313,10 +314,6 @@ pub fn check_variable_lead(lead: i64, delta: i64, length: i64, max: i64) -> Resu
         return Err(AlarmKind::IllegalLead);
     }
     Ok(())
-}
-
-fn push(out: &mut StepQueue, s: Step) -> Result<(), AlarmKind> {
-    out.push_back(s).map_err(|_| AlarmKind::Overflow)
 }
 
 #[cfg(test)]
