@@ -286,14 +286,12 @@ impl GroovingGen {
             }
         };
         for seg in range(segs, s.rough) {
-            for k in 0..=16 {
-                see(seg.point_at(f64::from(k) / 16.0));
-            }
-            // Where the segment crosses the span's sides.
-            for c in [c0, c1] {
-                for t in seg.crossings(step_axis, c as f64) {
-                    see(seg.point_at(t));
-                }
+            // 17 points along the segment, then where it crosses the span's sides
+            // (one loop: `see` and the point's evaluation are inlined once).
+            let along = (0..=16).map(|k| f64::from(k) / 16.0);
+            let sides = [c0, c1].into_iter().flat_map(|c| seg.crossings(step_axis, c as f64));
+            for t in along.chain(sides) {
+                see(seg.point_at(t));
             }
         }
         let _ = plunge;
@@ -487,6 +485,7 @@ fn range(segs: &[Seg], (from, to): (u16, u16)) -> &[Seg] {
 }
 
 /// The point at `t` between `a` and `b`.
+#[inline(never)]
 fn lerp(a: Pt, b: Pt, t: f64) -> Pt {
     let l = |p: i64, q: i64| p + libm::round((q - p) as f64 * t) as i64;
     Pt::new(l(a.x, b.x), l(a.z, b.z))
