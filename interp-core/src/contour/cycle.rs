@@ -71,6 +71,7 @@ pub fn single(a: Xz, b: Xz, c: Xz, d: Xz, turning: bool, nose: Nose) -> Result<[
 
 /// Where the line through `l.0` along `l.1` crosses the one through `m.0` along
 /// `m.1` (alarm 3605 for parallel lines: no corner to run to).
+#[inline(never)]
 fn cross(l: (V2, V2), m: (V2, V2)) -> Result<V2, AlarmKind> {
     let den = l.1.cross(m.1);
     if libm::fabs(den) < 1e-9 * l.1.len() * m.1.len() {

@@ -274,6 +274,7 @@ impl Emitter {
     }
 
     /// The end point of a move to `p`, soft limits checked; `None` if already there.
+    #[inline(never)]
     fn target(&self, p: Pt, cfg: &MachineConfig) -> Result<Option<crate::canon::Endpoint>, AlarmKind> {
         let mut w: Pos = self.st.work_pos(cfg);
         w[Axis::X] = p.x;

@@ -662,6 +662,7 @@ fn target(cmd: &Command, st: &State, cfg: &MachineConfig) -> Result<Pt, AlarmKin
 }
 
 /// Stages a parameter write (applied only if the block succeeds).
+#[inline(never)]
 fn write(ctx: &mut Ctx<'_, '_>, id: Param, v: Option<i64>) -> Result<(), AlarmKind> {
     if let Some(v) = v {
         ctx.out.writes.push((crate::stage::Setting::Param(id), v)).map_err(|_| AlarmKind::Overflow)?;
