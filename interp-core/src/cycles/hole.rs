@@ -155,7 +155,10 @@ impl HoleGen {
                     {
                         push(out, Step::Spindle(dir))?;
                     }
-                    if let Some(dir) = self.spindle.take() {
+                    // SINUMERIK's SDIR (only its cycles set it: without them, left out).
+                    if crate::SIEMENS
+                        && let Some(dir) = self.spindle.take()
+                    {
                         push(out, Step::Spindle(dir))?;
                     }
                 }
@@ -185,7 +188,11 @@ impl HoleGen {
 
     /// One peck (or the whole depth), into the hole and back as the cycle says.
     fn peck(&mut self, out: &mut StepQueue) -> Result<(), AlarmKind> {
-        if let HoleWork::DeepDrill(deep) = self.work {
+        // CYCLE83's deep drilling: only the SINUMERIK cycles ask for it (without
+        // them its code is left out, as the boring works' without BORING).
+        if crate::SIEMENS
+            && let HoleWork::DeepDrill(deep) = self.work
+        {
             return self.stroke(&deep, out);
         }
         let dir = (self.bottom - self.r_level).signum();
@@ -212,7 +219,7 @@ impl HoleGen {
                     push(out, Step::Spindle(SpindleDir::Stop))?;
                 }
             }
-            HoleWork::BoreFeeds { feed_in, .. } => {
+            HoleWork::BoreFeeds { feed_in, .. } if crate::SIEMENS => {
                 push(out, Step::Feedrate(feed_in))?;
                 push(out, Step::FeedTo(self.at(next)))?;
             }
@@ -293,9 +300,12 @@ impl HoleGen {
         match self.work {
             HoleWork::Drill { .. } | HoleWork::DeepDrill(_) => push(out, Step::RapidTo(r))?,
             HoleWork::Bore => push(out, Step::FeedTo(r))?,
+            // CYCLE85's feeds: only the SINUMERIK cycles ask for them.
             HoleWork::BoreFeeds { feed_out, .. } => {
-                push(out, Step::Feedrate(feed_out))?;
-                push(out, Step::FeedTo(r))?;
+                if crate::SIEMENS {
+                    push(out, Step::Feedrate(feed_out))?;
+                    push(out, Step::FeedTo(r))?;
+                }
             }
             // The boring works below come only from a machining centre's table
             // and the SINUMERIK cycles.
