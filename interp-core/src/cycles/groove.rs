@@ -235,6 +235,7 @@ impl GroovingGen {
     }
 
     /// The low and high side of plunge `i` along the step axis.
+    #[inline(never)]
     fn span_of(&self, i: u32) -> (i64, i64) {
         let (step_axis, _) = axes(&self.spec);
         let width = self.spec.span.get(step_axis).abs();
@@ -254,14 +255,8 @@ impl GroovingGen {
     fn column_start(&self, c0: i64, c1: i64) -> Pt {
         let s = &self.spec;
         let (step_axis, plunge) = axes(s);
-        let level = |c: i64| {
-            let (e0, e1) = (s.edges[0], s.edges[1]);
-            let d = e1.get(step_axis) - e0.get(step_axis);
-            let t = if d == 0 { 0.0 } else { (c - e0.get(step_axis)) as f64 / d as f64 };
-            e0.get(plunge) + libm::round(t * (e1.get(plunge) - e0.get(plunge)) as f64) as i64
-        };
         let out = -s.inward;
-        let (l0, l1) = (level(c0), level(c1));
+        let (l0, l1) = (surface_level(s, step_axis, plunge, c0), surface_level(s, step_axis, plunge, c1));
         let top = if out > 0 { l0.max(l1) } else { l0.min(l1) };
         Pt::default().with(plunge, top + out * s.safety)
     }
@@ -477,6 +472,16 @@ impl GroovingGen {
 /// The step and plunge axes.
 fn axes(s: &GrooveSpec) -> (Axis, Axis) {
     if s.face { (Axis::X, Axis::Z) } else { (Axis::Z, Axis::X) }
+}
+
+/// The plunge-axis level of the groove's surface (the line through its edges) at
+/// `c` on the step axis. Out of line: one copy for both ends of a column.
+#[inline(never)]
+fn surface_level(s: &GrooveSpec, step_axis: Axis, plunge: Axis, c: i64) -> i64 {
+    let (e0, e1) = (s.edges[0], s.edges[1]);
+    let d = e1.get(step_axis) - e0.get(step_axis);
+    let t = if d == 0 { 0.0 } else { (c - e0.get(step_axis)) as f64 / d as f64 };
+    e0.get(plunge) + libm::round(t * (e1.get(plunge) - e0.get(plunge)) as f64) as i64
 }
 
 /// The segments of a range.
