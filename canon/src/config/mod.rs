@@ -83,6 +83,10 @@ pub enum ToolChanger {
 /// carousel or arm changer of a small machining centre takes 5–15 s.
 pub const DEFAULT_TOOL_CHANGE_TIMEOUT_S: u16 = 30;
 
+/// The highest tool the automatic tool changer can be asked for: the board puts the
+/// number out on five bits (ATC T1–T16, docs/MILL-BOARD.md).
+pub const MAX_CHANGER_TOOL: u16 = 31;
+
 /// Longest wait for the automatic tool changer that can be set, s.
 pub const MAX_TOOL_CHANGE_TIMEOUT_S: u16 = 3_600;
 
@@ -438,6 +442,12 @@ impl MachineConfig {
         if self.spindle.max_rpm == 0 {
             return Err(ConfigError::SpindleMaxZero);
         }
+        if self.kind == MachineKind::Mill
+            && self.tool_changer == ToolChanger::Automatic
+            && self.tool_count > MAX_CHANGER_TOOL
+        {
+            return Err(ConfigError::ToolsBeyondChanger { count: self.tool_count });
+        }
         Ok(())
     }
 }
@@ -472,6 +482,12 @@ pub enum ConfigError {
         /// The M number.
         m: u16,
     },
+    /// More tools than the automatic tool changer's five number outputs can name
+    /// (T1–T31): a T above 31 would never be changed.
+    ToolsBeyondChanger {
+        /// The tool count given.
+        count: u16,
+    },
     /// A motion setting the motion core cannot work with (step ratio, driver
     /// timing, encoder, interpolation period).
     Motion {
@@ -492,6 +508,10 @@ impl core::fmt::Display for ConfigError {
             ConfigError::SpindleMaxZero => write!(f, "spindle.max_rpm must be positive"),
             ConfigError::UserMStandard { m } => write!(f, "user_m_codes: M{m:02} is a standard M code"),
             ConfigError::UserMTwice { m } => write!(f, "user_m_codes: M{m:02} given twice"),
+            ConfigError::ToolsBeyondChanger { count } => write!(
+                f,
+                "tool_count = {count}: the automatic tool changer's outputs name tools 1 to {MAX_CHANGER_TOOL}"
+            ),
             ConfigError::Motion { what } => write!(f, "motion: {what}"),
         }
     }
@@ -513,5 +533,13 @@ mod tests {
         let mut c = MachineConfig::default();
         c.axes[Axis::Z.index()] = AxisConfig::ABSENT;
         assert_eq!(c.validate(), Err(ConfigError::AxisMissing { axis: Axis::Z }));
+        let mut c = MachineConfig::mill();
+        c.tool_changer = ToolChanger::Automatic;
+        c.tool_count = MAX_CHANGER_TOOL;
+        assert_eq!(c.validate(), Ok(()));
+        c.tool_count = MAX_CHANGER_TOOL + 1;
+        assert_eq!(c.validate(), Err(ConfigError::ToolsBeyondChanger { count: 32 }));
+        c.tool_changer = ToolChanger::Manual;
+        assert_eq!(c.validate(), Ok(()), "a manual change names the tool on the screen, any number");
     }
 }

@@ -182,6 +182,12 @@ fn mistakes_are_named() {
     assert_eq!(error("[[offsets]]\nnumber = 2\ntip = 10\n"), "offsets number 2: tip must be 0 to 9");
     assert_eq!(error("[[offsets]]\nnumber = 2\n[[offsets]]\nnumber = 2\n"), "offsets number 2: given twice");
     assert_eq!(error("user_m_codes = [{ m = 8, timing = \"before\" }]\n"), "user_m_codes: M08 is a standard M code");
+    let mill = "kind = \"mill\"\ndiameter_programming = false\ntool_changer = \"automatic\"\n";
+    assert_eq!(
+        error(&format!("{mill}tool_count = 40\n")),
+        "tool_count = 40: the automatic tool changer's outputs name tools 1 to 31"
+    );
+    assert!(parse(&format!("{mill}tool_count = 31\n")).is_ok());
 }
 
 #[test]

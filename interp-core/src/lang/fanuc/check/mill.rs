@@ -115,15 +115,7 @@ fn plain(block: &Block, state: &State, fmt: &NumberFormat, cmd: &mut Command) ->
     linear_word(Axis::X, block, incremental, fmt, cmd)?;
     linear_word(Axis::Y, block, incremental, fmt, cmd)?;
     linear_word(Axis::Z, block, incremental, fmt, cmd)?;
-    if let Some(f) = block.get(b'F') {
-        if f.is_negative() {
-            return Err(AlarmKind::IllegalMinusSign { letter: b'F' });
-        }
-        cmd.feed = Some(fmt.feed_nm(&f).ok_or(AlarmKind::Overflow)?);
-    }
-    if let Some(s) = block.get(b'S') {
-        cmd.speed = Some(whole(b'S', &s, 99_999)?);
-    }
+    feed_and_speed(block, fmt, cmd)?;
     cmd.h = None;
     cmd.d = None;
     cmd.g.mill = cmd.m.iter().any(|&(_, f)| f == MFunction::ToolChange);
@@ -259,8 +251,10 @@ fn convert(
     required_words(user, cmd)
 }
 
-/// F, S, T, H, D.
-fn other_words(block: &Block, cfg: &MachineConfig, fmt: &NumberFormat, cmd: &mut Command) -> Result<(), AlarmKind> {
+/// F (never negative) and S (a whole number up to 99999) into `cmd`: the plain
+/// move's short way and [`other_words`] alike.
+#[inline(always)]
+fn feed_and_speed(block: &Block, fmt: &NumberFormat, cmd: &mut Command) -> Result<(), AlarmKind> {
     if let Some(f) = block.get(b'F') {
         if f.is_negative() {
             return Err(AlarmKind::IllegalMinusSign { letter: b'F' });
@@ -270,6 +264,12 @@ fn other_words(block: &Block, cfg: &MachineConfig, fmt: &NumberFormat, cmd: &mut
     if let Some(s) = block.get(b'S') {
         cmd.speed = Some(whole(b'S', &s, 99_999)?);
     }
+    Ok(())
+}
+
+/// F, S, T, H, D.
+fn other_words(block: &Block, cfg: &MachineConfig, fmt: &NumberFormat, cmd: &mut Command) -> Result<(), AlarmKind> {
+    feed_and_speed(block, fmt, cmd)?;
     if let Some(t) = block.get(b'T') {
         let t = whole(b'T', &t, 99_999_999)?;
         if t > u32::from(cfg.tool_count) {
