@@ -177,7 +177,7 @@ impl<'t, 'v> Eval<'t, 'v> {
     /// (any case; the last of equally long ones). Not generic: one copy in flash for
     /// every table [`find`](Self::find) searches.
     #[inline(never)]
-    fn longest<'w>(&self, words: &mut dyn Iterator<Item = &'w [u8]>) -> Option<(usize, usize)> {
+    fn longest(&self, words: &mut dyn Iterator<Item = &[u8]>) -> Option<(usize, usize)> {
         let rest = self.text.get(self.pos..).unwrap_or(&[]);
         let mut best: Option<(usize, usize)> = None;
         for (i, w) in words.enumerate() {
