@@ -157,10 +157,7 @@ impl<'t, 'v> Eval<'t, 'v> {
         self.text.get(self.pos).copied()
     }
 
-    /// Skips blanks (not comments: they end an expression). Out of line: called
-    /// before nearly every token, it was inlined ~30 times; a plain NC block's
-    /// words never get here.
-    #[inline(never)]
+    /// Skips blanks (not comments: they end an expression).
     pub(crate) fn skip_blanks(&mut self) {
         while matches!(self.peek(), Some(b' ' | b'\t' | b'\r')) {
             self.pos += 1;
