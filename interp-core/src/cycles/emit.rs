@@ -166,6 +166,7 @@ impl Emitter {
     }
 
     /// The current work position in the ZX plane.
+    #[inline(never)]
     pub fn here(&self, cfg: &MachineConfig) -> Pt {
         let w = self.st.work_pos(cfg);
         Pt::new(w[Axis::X], w[Axis::Z])
@@ -273,6 +274,7 @@ impl Emitter {
     }
 
     /// The end point of a move to `p`, soft limits checked; `None` if already there.
+    #[inline(never)]
     fn target(&self, p: Pt, cfg: &MachineConfig) -> Result<Option<crate::canon::Endpoint>, AlarmKind> {
         let mut w: Pos = self.st.work_pos(cfg);
         w[Axis::X] = p.x;

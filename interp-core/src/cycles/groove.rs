@@ -10,6 +10,7 @@
 
 use super::StepQueue;
 use super::emit::{Pt, Step};
+use super::push;
 use crate::alarm::{AlarmKind, CycleAlarm};
 use crate::axis::Axis;
 
@@ -156,10 +157,6 @@ impl GrooveGen {
     }
 }
 
-fn push(out: &mut StepQueue, s: Step) -> Result<(), AlarmKind> {
-    out.push_back(s).map_err(|_| AlarmKind::Overflow)
-}
-
 use super::offset::Offsets;
 use super::pass::PassGen;
 pub use crate::command::job::GrooveSpec;
@@ -238,6 +235,7 @@ impl GroovingGen {
     }
 
     /// The low and high side of plunge `i` along the step axis.
+    #[inline(never)]
     fn span_of(&self, i: u32) -> (i64, i64) {
         let (step_axis, _) = axes(&self.spec);
         let width = self.spec.span.get(step_axis).abs();
@@ -257,14 +255,9 @@ impl GroovingGen {
     fn column_start(&self, c0: i64, c1: i64) -> Pt {
         let s = &self.spec;
         let (step_axis, plunge) = axes(s);
-        let level = |c: i64| {
-            let (e0, e1) = (s.edges[0], s.edges[1]);
-            let d = e1.get(step_axis) - e0.get(step_axis);
-            let t = if d == 0 { 0.0 } else { (c - e0.get(step_axis)) as f64 / d as f64 };
-            e0.get(plunge) + libm::round(t * (e1.get(plunge) - e0.get(plunge)) as f64) as i64
-        };
         let out = -s.inward;
-        let top = if out > 0 { level(c0).max(level(c1)) } else { level(c0).min(level(c1)) };
+        let (l0, l1) = (surface_level(s, step_axis, plunge, c0), surface_level(s, step_axis, plunge, c1));
+        let top = if out > 0 { l0.max(l1) } else { l0.min(l1) };
         Pt::default().with(plunge, top + out * s.safety)
     }
 
@@ -288,14 +281,12 @@ impl GroovingGen {
             }
         };
         for seg in range(segs, s.rough) {
-            for k in 0..=16 {
-                see(seg.point_at(f64::from(k) / 16.0));
-            }
-            // Where the segment crosses the span's sides.
-            for c in [c0, c1] {
-                for t in seg.crossings(step_axis, c as f64) {
-                    see(seg.point_at(t));
-                }
+            // 17 points along the segment, then where it crosses the span's sides
+            // (one loop: `see` and the point's evaluation are inlined once).
+            let along = (0..=16).map(|k| f64::from(k) / 16.0);
+            let sides = [c0, c1].into_iter().flat_map(|c| seg.crossings(step_axis, c as f64));
+            for t in along.chain(sides) {
+                see(seg.point_at(t));
             }
         }
         let _ = plunge;
@@ -483,12 +474,23 @@ fn axes(s: &GrooveSpec) -> (Axis, Axis) {
     if s.face { (Axis::X, Axis::Z) } else { (Axis::Z, Axis::X) }
 }
 
+/// The plunge-axis level of the groove's surface (the line through its edges) at
+/// `c` on the step axis. Out of line: one copy for both ends of a column.
+#[inline(never)]
+fn surface_level(s: &GrooveSpec, step_axis: Axis, plunge: Axis, c: i64) -> i64 {
+    let (e0, e1) = (s.edges[0], s.edges[1]);
+    let d = e1.get(step_axis) - e0.get(step_axis);
+    let t = if d == 0 { 0.0 } else { (c - e0.get(step_axis)) as f64 / d as f64 };
+    e0.get(plunge) + libm::round(t * (e1.get(plunge) - e0.get(plunge)) as f64) as i64
+}
+
 /// The segments of a range.
 fn range(segs: &[Seg], (from, to): (u16, u16)) -> &[Seg] {
     segs.get(usize::from(from)..usize::from(to)).unwrap_or(&[])
 }
 
 /// The point at `t` between `a` and `b`.
+#[inline(never)]
 fn lerp(a: Pt, b: Pt, t: f64) -> Pt {
     let l = |p: i64, q: i64| p + libm::round((q - p) as f64 * t) as i64;
     Pt::new(l(a.x, b.x), l(a.z, b.z))

@@ -19,6 +19,7 @@
 
 use super::StepQueue;
 use super::emit::Step;
+use super::push;
 use crate::alarm::AlarmKind;
 use crate::axis::{Axis, Pos};
 use crate::canon::SpindleDir;
@@ -154,7 +155,10 @@ impl HoleGen {
                     {
                         push(out, Step::Spindle(dir))?;
                     }
-                    if let Some(dir) = self.spindle.take() {
+                    // SINUMERIK's SDIR (only its cycles set it: without them, left out).
+                    if crate::SIEMENS
+                        && let Some(dir) = self.spindle.take()
+                    {
                         push(out, Step::Spindle(dir))?;
                     }
                 }
@@ -184,7 +188,11 @@ impl HoleGen {
 
     /// One peck (or the whole depth), into the hole and back as the cycle says.
     fn peck(&mut self, out: &mut StepQueue) -> Result<(), AlarmKind> {
-        if let HoleWork::DeepDrill(deep) = self.work {
+        // CYCLE83's deep drilling: only the SINUMERIK cycles ask for it (without
+        // them its code is left out, as the boring works' without BORING).
+        if crate::SIEMENS
+            && let HoleWork::DeepDrill(deep) = self.work
+        {
             return self.stroke(&deep, out);
         }
         let dir = (self.bottom - self.r_level).signum();
@@ -211,7 +219,7 @@ impl HoleGen {
                     push(out, Step::Spindle(SpindleDir::Stop))?;
                 }
             }
-            HoleWork::BoreFeeds { feed_in, .. } => {
+            HoleWork::BoreFeeds { feed_in, .. } if crate::SIEMENS => {
                 push(out, Step::Feedrate(feed_in))?;
                 push(out, Step::FeedTo(self.at(next)))?;
             }
@@ -292,9 +300,12 @@ impl HoleGen {
         match self.work {
             HoleWork::Drill { .. } | HoleWork::DeepDrill(_) => push(out, Step::RapidTo(r))?,
             HoleWork::Bore => push(out, Step::FeedTo(r))?,
+            // CYCLE85's feeds: only the SINUMERIK cycles ask for them.
             HoleWork::BoreFeeds { feed_out, .. } => {
-                push(out, Step::Feedrate(feed_out))?;
-                push(out, Step::FeedTo(r))?;
+                if crate::SIEMENS {
+                    push(out, Step::Feedrate(feed_out))?;
+                    push(out, Step::FeedTo(r))?;
+                }
             }
             // The boring works below come only from a machining centre's table
             // and the SINUMERIK cycles.
@@ -355,11 +366,6 @@ pub fn reverse(d: SpindleDir) -> SpindleDir {
         SpindleDir::Ccw => SpindleDir::Cw,
         SpindleDir::Stop => SpindleDir::Stop,
     }
-}
-
-#[inline(never)]
-fn push(out: &mut StepQueue, s: Step) -> Result<(), AlarmKind> {
-    out.push_back(s).map_err(|_| AlarmKind::Overflow)
 }
 
 #[cfg(test)]

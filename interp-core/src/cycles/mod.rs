@@ -71,6 +71,14 @@ use thread::{MultiThreadGen, ThreadCycleGen};
 /// Steps planned and not yet emitted.
 pub type StepQueue = heapless::Deque<Step, 8>;
 
+/// Queues a planned step (an error if the queue is full: a generator's bug, as it
+/// checks for room first). One out-of-line copy for every generator: inlined, each
+/// of its ~100 call sites carried its own copy of the queue's index arithmetic.
+#[inline(never)]
+fn push(out: &mut StepQueue, s: Step) -> Result<(), AlarmKind> {
+    out.push_back(s).map_err(|_| AlarmKind::Overflow)
+}
+
 /// Actions of the cycle block that follow its motion (M05, M09, M30 …).
 const TAIL: usize = 6;
 
@@ -654,6 +662,7 @@ fn target(cmd: &Command, st: &State, cfg: &MachineConfig) -> Result<Pt, AlarmKin
 }
 
 /// Stages a parameter write (applied only if the block succeeds).
+#[inline(never)]
 fn write(ctx: &mut Ctx<'_, '_>, id: Param, v: Option<i64>) -> Result<(), AlarmKind> {
     if let Some(v) = v {
         ctx.out.writes.push((crate::stage::Setting::Param(id), v)).map_err(|_| AlarmKind::Overflow)?;

@@ -7,6 +7,7 @@
 use super::StepQueue;
 use super::emit::Step;
 use super::offset::{Offsets, walk};
+use super::push;
 use crate::alarm::AlarmKind;
 use crate::geom::{Pt, Seg, SegKind};
 
@@ -143,8 +144,4 @@ pub fn along(s: &Seg) -> Step {
         SegKind::Arc { center, cw } if s.a != s.b => Step::Arc { to: s.b, center, cw },
         _ => Step::Feed(s.b),
     }
-}
-
-fn push(out: &mut StepQueue, s: Step) -> Result<(), AlarmKind> {
-    out.push_back(s).map_err(|_| AlarmKind::Overflow)
 }

@@ -11,6 +11,7 @@
 use super::StepQueue;
 use super::emit::{Pt, Step};
 use super::profile::Profile;
+use super::push;
 use super::rough::contour_step;
 use crate::alarm::AlarmKind;
 
@@ -82,8 +83,4 @@ impl PatternGen {
         }
         Ok(true)
     }
-}
-
-fn push(out: &mut StepQueue, s: Step) -> Result<(), AlarmKind> {
-    out.push_back(s).map_err(|_| AlarmKind::Overflow)
 }

@@ -67,6 +67,8 @@ pub struct ShapeBlock {
 /// Reads the next block of the shape at `cur` (skipping blank and skipped blocks),
 /// with the checks of 2.16.7 notes 2–3 that need only the words. `first` is the
 /// ns block. `None` past the text (alarm 0063 for nf then).
+/// Out of line: G70's finishing pass and the profile reader share one copy.
+#[inline(never)]
 pub fn next_shape_block<E: Environment + ?Sized>(
     src: &ShapeSource<'_>,
     cur: &mut Cursor,
@@ -135,6 +137,8 @@ pub fn check_shape_command(cmd: &crate::command::Command, first: bool) -> Result
 }
 
 /// Runs one shape block on `st` through check and `execute` (exec) into `staged`.
+/// Out of line: G70's finishing pass and the profile reader share one copy.
+#[inline(never)]
 pub fn run_shape_block<E: Environment + ?Sized>(
     sb: &ShapeBlock,
     first: bool,

@@ -56,6 +56,7 @@
 
 use super::emit::{Pt, Step};
 use super::profile::{Profile, Seg, SegKind};
+use super::push;
 use crate::alarm::AlarmKind;
 use crate::axis::Axis;
 #[cfg(feature = "siemens")]
@@ -78,7 +79,8 @@ pub struct Frame {
 }
 
 impl Frame {
-    /// (u, w) of a work point.
+    /// (u, w) of a work point (out of line: ~30 call sites).
+    #[inline(never)]
     pub fn norm(&self, p: Pt) -> (i64, i64) {
         (self.out * p.get(self.level), self.dir * p.get(self.cut))
     }
@@ -590,10 +592,6 @@ pub fn contour_step(s: &Seg) -> Step {
         SegKind::Line => Step::Feed(s.b),
         SegKind::Arc { center, cw } => Step::Arc { to: s.b, center, cw },
     }
-}
-
-fn push(out: &mut super::StepQueue, s: Step) -> Result<(), AlarmKind> {
-    out.push_back(s).map_err(|_| AlarmKind::Overflow)
 }
 
 /// CYCLE95 / CYCLE950's options of the engine (the SINUMERIK side fills them).
@@ -1368,7 +1366,9 @@ mod sections {
         }
     }
 
-    /// The point at parameter `t` of a segment, rounded.
+    /// The point at parameter `t` of a segment, rounded (out of line: inlined, its
+    /// f64 evaluation of a line or an arc was copied a dozen times).
+    #[inline(never)]
     fn point_at(s: &Seg, t: f64) -> Pt {
         if t <= 0.0 {
             return s.a;

@@ -46,6 +46,7 @@ fn end_and_taper(
 }
 
 /// |R| ≤ |U/2| (|W| for G94) when R and U (W) have opposite signs (figures 2.24, 2.28).
+#[inline(never)]
 fn check_taper(r: i64, travel: i64) -> Result<(), AlarmKind> {
     if r != 0 && travel != 0 && r.signum() != travel.signum() && r.abs() > travel.abs() {
         return Err(AlarmKind::CycleTaperTooLarge);
@@ -253,6 +254,7 @@ fn hole_axis(code: GCode, plane: Plane) -> Axis {
 
 /// The lead of tapping at `rpm`: F/S under feed per minute (seed 004 @8614: "螺距
 /// T=F/S"), F under feed per revolution; alarms for F0 and a stopped spindle.
+#[inline(never)]
 pub(super) fn tap_lead(st: &State, rpm: u32) -> Result<i64, AlarmKind> {
     let mode = st.modal.feed_mode;
     let f = st.feed.get(mode);

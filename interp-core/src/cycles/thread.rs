@@ -10,6 +10,7 @@
 
 use super::StepQueue;
 use super::emit::{Pt, Step};
+use super::push;
 use crate::alarm::AlarmKind;
 use crate::axis::Axis;
 use crate::canon::ThreadSync;
@@ -190,6 +191,9 @@ impl MultiThreadGen {
                 let root = libm::round(libm::sqrt(f64::from(n)) * first as f64) as i64;
                 if n == 1 { first } else { root.max(prev + min_depth) }
             }
+            // CYCLE97's spacings: only its front end makes them (without SINUMERIK
+            // their code is left out; the same for the other `crate::SIEMENS` below).
+            Depths::Split { .. } if !crate::SIEMENS => limit,
             Depths::Split { passes, constant_section } => {
                 let passes = passes.max(1);
                 let share = f64::from(n) / f64::from(passes);
@@ -202,7 +206,7 @@ impl MultiThreadGen {
 
     /// The long and the infeed axis.
     fn axes(&self) -> (Axis, Axis) {
-        if self.spec.face { (Axis::X, Axis::Z) } else { (Axis::Z, Axis::X) }
+        if crate::SIEMENS && self.spec.face { (Axis::X, Axis::Z) } else { (Axis::Z, Axis::X) }
     }
 
     /// The points of pass number `k` (0-based) at `depth`: the nominal line moved
@@ -211,7 +215,8 @@ impl MultiThreadGen {
         let s = &self.spec;
         let (long, feed) = self.axes();
         let mut pts = s.points;
-        let n = s.count;
+        // G76 has two points (A's and D's); a chain of more is CYCLE98's.
+        let n = if crate::SIEMENS { s.count } else { 2 };
         for p in pts[..n].iter_mut() {
             *p = p.with(feed, p.get(feed) + s.inward * depth);
         }
@@ -228,6 +233,7 @@ impl MultiThreadGen {
                 pts[0] = bn;
                 pts[n - 1] = e.with(feed, fe);
             }
+            Flank::ToFinal { .. } if !crate::SIEMENS => {}
             Flank::ToFinal { angle_udeg, alternate } => {
                 let side = if alternate && k % 2 == 1 { -1 } else { 1 };
                 let shift = libm::round((s.height - depth) as f64 * tan_udeg(angle_udeg)) as i64;
@@ -251,7 +257,7 @@ impl MultiThreadGen {
         } else if self.finished < s.finish {
             self.finished += 1;
             s.height
-        } else if self.start_no + 1 < s.starts {
+        } else if crate::SIEMENS && self.start_no + 1 < s.starts {
             // The next start: the whole sequence again (CYCLE97 NUMT).
             self.start_no += 1;
             (self.n, self.depth, self.rough_done, self.finished) = (0, 0, false, 0);
@@ -264,7 +270,7 @@ impl MultiThreadGen {
             push(out, Step::Rapid(s.start))?;
         }
         let k = self.n + self.finished - 1;
-        let turn = i64::from(self.start_no) * TURN_UDEG / i64::from(s.starts);
+        let turn = if crate::SIEMENS { i64::from(self.start_no) * TURN_UDEG / i64::from(s.starts) } else { 0 };
         let angle = ((i64::from(s.start_udeg) + turn) % TURN_UDEG) as u32;
         let (pts, n) = self.line(depth, k);
         let (long, feed) = self.axes();
@@ -313,10 +319,6 @@ pub fn check_variable_lead(lead: i64, delta: i64, length: i64, max: i64) -> Resu
         return Err(AlarmKind::IllegalLead);
     }
     Ok(())
-}
-
-fn push(out: &mut StepQueue, s: Step) -> Result<(), AlarmKind> {
-    out.push_back(s).map_err(|_| AlarmKind::Overflow)
 }
 
 #[cfg(test)]

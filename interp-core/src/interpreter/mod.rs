@@ -1131,7 +1131,12 @@ impl Interpreter {
             }
             Next::Jump { to } => self.jump(to),
             Next::Language(l) => self.language = l,
-            Next::SiemensReturn => self.siemens_return(),
+            // Only the SINUMERIK driver returns it: without it, left out.
+            Next::SiemensReturn => {
+                if crate::SIEMENS {
+                    self.siemens_return();
+                }
+            }
         }
     }
 
