@@ -266,6 +266,13 @@ pub(super) fn length_nm(fmt: &NumberFormat, n: &Number) -> Option<i64> {
         // times at most 10^6 fits an i64.
         return Some(i64::from(m) * i64::from(scale));
     }
+    length_nm_general(fmt, n)
+}
+
+/// [`NumberFormat::length_nm`] out of line: the checkers convert axis words at
+/// a dozen sites, each would inline its own copy (two 64-bit divisions).
+#[inline(never)]
+pub(super) fn length_nm_general(fmt: &NumberFormat, n: &Number) -> Option<i64> {
     fmt.length_nm(n)
 }
 
@@ -357,7 +364,7 @@ pub(super) fn corner_word(block: &Block, fmt: &NumberFormat) -> Result<Option<cr
     if n.is_negative() {
         return Err(AlarmKind::IllegalMinusSign { letter });
     }
-    let v = fmt.length_nm(n).ok_or(AlarmKind::Overflow)?;
+    let v = length_nm_general(fmt, n).ok_or(AlarmKind::Overflow)?;
     Ok((v > 0).then(|| make(v)))
 }
 
