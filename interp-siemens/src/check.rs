@@ -377,7 +377,7 @@ fn dwell_ms(w: &Words, st: &State, fmt: &NumberFormat) -> Result<u32, AlarmKind>
             if rpm == 0 || st.spindle.dir == interp_core::canon::SpindleDir::Stop {
                 return Err(AlarmKind::SpindleNotTurning);
             }
-            libm::round(s.to_f64() * 60_000.0 / f64::from(rpm)) as i64
+            interp_core::geom::round_i64(s.to_f64() * 60_000.0 / f64::from(rpm))
         }
         (None, None) => {
             return Err(AlarmKind::MissingWord { letter: b'F', context: "G4 (F seconds or S revolutions)" });

@@ -123,7 +123,7 @@ impl CurveGen {
                 self.end
             } else {
                 let (z, x) = self.point(f64::from(self.next) / f64::from(self.steps));
-                Pt::new(libm::round(x) as i64, libm::round(z) as i64)
+                Pt::new(crate::geom::round_i64(x), crate::geom::round_i64(z))
             };
             queue.push_back(Step::Feed(p)).map_err(|_| AlarmKind::Overflow)?;
             self.next += 1;

@@ -239,7 +239,7 @@ impl GroovingGen {
     fn span_of(&self, i: u32) -> (i64, i64) {
         let (step_axis, _) = axes(&self.spec);
         let width = self.spec.span.get(step_axis).abs();
-        let lo = self.first + libm::round(self.step * f64::from(i)) as i64;
+        let lo = self.first + crate::geom::round_i64(self.step * f64::from(i));
         (lo, lo + width)
     }
 
@@ -271,7 +271,7 @@ impl GroovingGen {
             let (x, z) = p;
             let (c, v) = if step_axis == Axis::Z { (z, x) } else { (x, z) };
             if c >= c0 as f64 - 0.5 && c <= c1 as f64 + 0.5 {
-                let v = libm::round(v) as i64;
+                let v = crate::geom::round_i64(v);
                 // Outermost along the plunge axis: the least deep.
                 best = Some(match best {
                     Some(b) if s.inward > 0 => b.min(v),
@@ -383,7 +383,7 @@ impl GroovingGen {
         // Towards the groove's middle by the passes still to come.
         let toward = (self.spec.edges[1].get(step_axis) - self.spec.edges[0].get(step_axis)).signum();
         let toward = if side == 0 { toward } else { -toward };
-        let shift = libm::round(across as f64 * f64::from(passes - 1 - j) / f64::from(passes)) as i64 * toward;
+        let shift = crate::geom::round_i64(across as f64 * f64::from(passes - 1 - j) / f64::from(passes)) * toward;
         let (a, b) = (
             line.a.with(step_axis, line.a.get(step_axis) + shift),
             line.b.with(step_axis, line.b.get(step_axis) + shift),
@@ -481,7 +481,7 @@ fn surface_level(s: &GrooveSpec, step_axis: Axis, plunge: Axis, c: i64) -> i64 {
     let (e0, e1) = (s.edges[0], s.edges[1]);
     let d = e1.get(step_axis) - e0.get(step_axis);
     let t = if d == 0 { 0.0 } else { (c - e0.get(step_axis)) as f64 / d as f64 };
-    e0.get(plunge) + libm::round(t * (e1.get(plunge) - e0.get(plunge)) as f64) as i64
+    e0.get(plunge) + crate::geom::round_i64(t * (e1.get(plunge) - e0.get(plunge)) as f64)
 }
 
 /// The segments of a range.
@@ -492,6 +492,6 @@ fn range(segs: &[Seg], (from, to): (u16, u16)) -> &[Seg] {
 /// The point at `t` between `a` and `b`.
 #[inline(never)]
 fn lerp(a: Pt, b: Pt, t: f64) -> Pt {
-    let l = |p: i64, q: i64| p + libm::round((q - p) as f64 * t) as i64;
+    let l = |p: i64, q: i64| p + crate::geom::round_i64((q - p) as f64 * t);
     Pt::new(l(a.x, b.x), l(a.z, b.z))
 }

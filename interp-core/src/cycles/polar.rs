@@ -52,7 +52,8 @@ impl PolarGen {
     pub fn new(acts: &[Canon], start: Pos, tol: i64) -> Result<Self, AlarmKind> {
         let (r, c) = (start[Axis::X] as f64, start[Axis::C] as f64);
         let th = (c / 1e6).to_radians();
-        let from = (libm::round(r * libm::cos(th)) as i64, libm::round(r * libm::sin(th)) as i64, start[Axis::Z]);
+        let from =
+            (crate::geom::round_i64(r * libm::cos(th)), crate::geom::round_i64(r * libm::sin(th)), start[Axis::Z]);
         let mut moves = heapless::Vec::new();
         for a in acts {
             let Some(to) = a.action.endpoint() else { continue };
@@ -136,7 +137,7 @@ impl PolarGen {
             return None;
         }
         let feed = libm::round(m.feed as f64 * planner / cart).max(1.0) as i64;
-        let round = |v: f64| libm::round(v) as i64;
+        let round = |v: f64| crate::geom::round_i64(v);
         Some(Step::PolarFeed { x: round(r), c: round(c), z: round(z), feed, line: m.line })
     }
 }

@@ -127,8 +127,8 @@ impl Spacing {
         let depth = top - bottom;
         match self {
             Spacing::Step => top - i64::from(k) * mid,
-            Spacing::Equal => top - libm::round(depth as f64 * f64::from(k) / f64::from(n)) as i64,
-            Spacing::Halves if n < 2 => top - libm::round(depth as f64 * f64::from(k) / f64::from(n)) as i64,
+            Spacing::Equal => top - crate::geom::round_i64(depth as f64 * f64::from(k) / f64::from(n)),
+            Spacing::Halves if n < 2 => top - crate::geom::round_i64(depth as f64 * f64::from(k) / f64::from(n)),
             Spacing::Halves => {
                 let full = i64::from(n - 2);
                 if i64::from(k) <= full {
@@ -790,7 +790,7 @@ mod sections {
                 a: (0, 0),
                 depth: spec.depth,
                 retract: spec.retract,
-                leave: (libm::round(r_vrt * tu) as i64, libm::round(r_vrt * tw) as i64),
+                leave: (crate::geom::round_i64(r_vrt * tu), crate::geom::round_i64(r_vrt * tw)),
                 bottom: 0,
                 return_u: 0,
                 type2: false,
@@ -1377,7 +1377,7 @@ mod sections {
             return s.b;
         }
         let (x, z) = s.point_at(t);
-        Pt::new(libm::round(x) as i64, libm::round(z) as i64)
+        Pt::new(crate::geom::round_i64(x), crate::geom::round_i64(z))
     }
 
     /// The piece of `s` from parameter `t0` to `t1`.

@@ -47,7 +47,7 @@ impl Pullout {
         let p = Pt::new(lerp(b.x, c.x, t), lerp(b.z, c.z, t))
             .with(long, c.get(long) - (c.get(long) - b.get(long)).signum() * len);
         let deg = if self.angle_deg == 0 { 45.0 } else { self.angle_deg as f64 };
-        let pull = libm::round(len as f64 * libm::tan(deg.to_radians())) as i64;
+        let pull = crate::geom::round_i64(len as f64 * libm::tan(deg.to_radians()));
         let room = (retract_to - c.get(short)).abs();
         let pull = pull.min(room);
         let e = c.with(short, c.get(short) + (retract_to - c.get(short)).signum() * pull);
@@ -57,7 +57,7 @@ impl Pullout {
 
 #[inline(never)]
 fn lerp(a: i64, b: i64, t: f64) -> i64 {
-    a + libm::round((b - a) as f64 * t) as i64
+    a + crate::geom::round_i64((b - a) as f64 * t)
 }
 
 /// The thread pass from `b` to `c` with its pull-out, as steps.
@@ -188,7 +188,7 @@ impl MultiThreadGen {
         let limit = spec.height - spec.allowance;
         let d = match spec.depths {
             Depths::Root { first, min_depth } => {
-                let root = libm::round(libm::sqrt(f64::from(n)) * first as f64) as i64;
+                let root = crate::geom::round_i64(libm::sqrt(f64::from(n)) * first as f64);
                 if n == 1 { first } else { root.max(prev + min_depth) }
             }
             // CYCLE97's spacings: only its front end makes them (without SINUMERIK
@@ -198,7 +198,7 @@ impl MultiThreadGen {
                 let passes = passes.max(1);
                 let share = f64::from(n) / f64::from(passes);
                 let share = if constant_section { libm::sqrt(share) } else { share };
-                if n >= passes { limit } else { libm::round(limit as f64 * share) as i64 }
+                if n >= passes { limit } else { crate::geom::round_i64(limit as f64 * share) }
             }
         };
         if d >= limit { (limit, true) } else { (d, false) }
@@ -226,17 +226,17 @@ impl MultiThreadGen {
                 // G76: the start moves towards the end, the pass ends at the end's long
                 // coordinate on the line parallel to the thread.
                 let (a, e) = (pts[0], pts[n - 1]);
-                let shift = libm::round(depth as f64 * tan_udeg(angle_udeg)) as i64;
+                let shift = crate::geom::round_i64(depth as f64 * tan_udeg(angle_udeg));
                 let bn = a.with(long, a.get(long) + dir * shift);
                 let slope = (e.get(feed) - a.get(feed)) as f64 / (e.get(long) - a.get(long)) as f64;
-                let fe = bn.get(feed) + libm::round(slope * (e.get(long) - bn.get(long)) as f64) as i64;
+                let fe = bn.get(feed) + crate::geom::round_i64(slope * (e.get(long) - bn.get(long)) as f64);
                 pts[0] = bn;
                 pts[n - 1] = e.with(feed, fe);
             }
             Flank::ToFinal { .. } if !crate::SIEMENS => {}
             Flank::ToFinal { angle_udeg, alternate } => {
                 let side = if alternate && k % 2 == 1 { -1 } else { 1 };
-                let shift = libm::round((s.height - depth) as f64 * tan_udeg(angle_udeg)) as i64;
+                let shift = crate::geom::round_i64((s.height - depth) as f64 * tan_udeg(angle_udeg));
                 for p in pts[..n].iter_mut() {
                     *p = p.with(long, p.get(long) + side * dir * shift);
                 }

@@ -229,7 +229,7 @@ pub(super) fn cycle83(
             0 => MM,
             m => m,
         };
-        Degression::Factor { ppm: libm::round(-dam * 1e6) as i64, min }
+        Degression::Factor { ppm: interp_core::geom::round_i64(-dam * 1e6), min }
     } else {
         Degression::None
     };
@@ -249,7 +249,7 @@ pub(super) fn cycle83(
         anticipation: p.unsigned(16)?,
         dwell_depth_ms: dtb,
         dwell_start_ms: if chip_removal { dwell(p, 9, st, true)? } else { 0 },
-        first_feed: libm::round(feed as f64 * frf) as i64,
+        first_feed: interp_core::geom::round_i64(feed as f64 * frf),
         feed,
     };
     let dtd = match dwell(p, 15, st, true)? {

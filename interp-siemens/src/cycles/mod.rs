@@ -374,7 +374,7 @@ impl<'s, 'a> Params<'s, 'a> {
         if !nm.is_finite() || libm::fabs(nm) > MAX_LENGTH_NM {
             return Err(AlarmKind::Overflow);
         }
-        Ok(libm::round(nm) as i64)
+        Ok(interp_core::geom::round_i64(nm))
     }
 
     /// Length parameter `i`, nm, signed.

@@ -178,7 +178,7 @@ pub(super) fn cycle950(
         parallel: kind == 3,
         blank,
         direction,
-        retract_angle_udeg: libm::round(angb * 1e6) as i64,
+        retract_angle_udeg: interp_core::geom::round_i64(angb * 1e6),
         arc_feed: p.unsigned(11)?,
         interrupt: 0,
         dwell_ms: 0,

@@ -115,7 +115,7 @@ pub(super) fn cycle97(
             if pit > 0.0 && libm::fabs(pit * p.per_unit - coarse * 1e6) > 1.0 {
                 return Err(AlarmKind::SiemensCycle(CycleAlarm::ThreadPitchWrong));
             }
-            libm::round(coarse * 1e6) as i64
+            interp_core::geom::round_i64(coarse * 1e6)
         }
         (true, false) => p.nm(pit)?,
         (false, false) => return Err(AlarmKind::SiemensCycle(CycleAlarm::ThreadPitchWrong)),
@@ -231,9 +231,9 @@ fn spec(c: &Common, pts: &[Pt], leads: &[i64], st: &State) -> Result<MultiThread
     let start = points[0].with(feed, points[0].get(feed) - inward * MM);
     let outer = points[..n].iter().map(|q| -inward * q.get(feed)).max().unwrap_or(0);
     let retract = -inward * (outer + c.vrt);
-    let angle_udeg = libm::round(libm::fabs(c.iang) * 1e6) as i64;
+    let angle_udeg = interp_core::geom::round_i64(libm::fabs(c.iang) * 1e6);
     let cylindrical = pts.iter().all(|q| q.get(feed) == first.get(feed));
-    let nsp = libm::round(c.nsp * 1e6) as i64;
+    let nsp = interp_core::geom::round_i64(c.nsp * 1e6);
     let start_udeg = match st.cycle.recut {
         Some(r) if !face => recut_start(r, &points[..n], leads)?,
         Some(_) => return Err(AlarmKind::SiemensCycle(CycleAlarm::RecutImpossible)),
@@ -273,7 +273,7 @@ fn recut_start(r: interp_core::modal::ThreadRecut, points: &[Pt], leads: &[i64])
         let to = r.z.clamp(lo, hi);
         turns += (to - a).abs() as f64 / lead as f64;
         if to == r.z {
-            let advance = libm::round(libm::fmod(turns, 1.0) * TURN_UDEG as f64) as i64;
+            let advance = interp_core::geom::round_i64(libm::fmod(turns, 1.0) * TURN_UDEG as f64);
             return Ok(r.angle_udeg - advance);
         }
     }
@@ -288,6 +288,6 @@ fn extend(from: Pt, to: Pt, by: i64, long: interp_core::axis::Axis) -> Pt {
         return to;
     }
     let t = by as f64 / d.abs() as f64;
-    let mv = |a: i64, b: i64| b + libm::round((b - a) as f64 * t) as i64;
+    let mv = |a: i64, b: i64| b + interp_core::geom::round_i64((b - a) as f64 * t);
     Pt::new(mv(from.x, to.x), mv(from.z, to.z))
 }

@@ -204,7 +204,9 @@ fn start_undercut(
     let run = s.t / libm::tan(flank.to_radians());
     let extra = run - s.t / libm::tan(s.flank.to_radians());
     let (x, z) = (pos.x as f64, pos.z as f64);
-    let pt = |xr: f64, zd: f64| Pt::new(libm::round(xr * 1e6) as i64, spl + libm::round(zd * 1e6) as i64);
+    let pt = |xr: f64, zd: f64| {
+        Pt::new(interp_core::geom::round_i64(xr * 1e6), spl + interp_core::geom::round_i64(zd * 1e6))
+    };
     // In (radius, distance from the face along the diameter) mm.
     let f = s.f + extra;
     let bottom = s.rf - x * s.t;
