@@ -28,7 +28,7 @@ impl Frame {
     pub fn forward(&self, p: [i64; 3]) -> [i64; 3] {
         let mut v = p.map(|c| c as f64);
         self.forward_f(&mut v, true);
-        v.map(|c| libm::round(c) as i64)
+        v.map(crate::geom::round_i64)
     }
 
     /// A programmed vector (I/J/K, a K-repeat step) in work coordinates: the
@@ -36,7 +36,7 @@ impl Frame {
     pub fn vector(&self, d: [i64; 3]) -> [i64; 3] {
         let mut v = d.map(|c| c as f64);
         self.forward_f(&mut v, false);
-        v.map(|c| libm::round(c) as i64)
+        v.map(crate::geom::round_i64)
     }
 
     fn forward_f(&self, v: &mut [f64; 3], point: bool) {
@@ -88,7 +88,7 @@ impl Frame {
                 }
             }
         }
-        v.map(|c| libm::round(c) as i64)
+        v.map(crate::geom::round_i64)
     }
 
     /// Whether mirror, scaling or rotation (not only G16) is in force.
@@ -142,8 +142,8 @@ pub fn switch(cmd: &Command, st: &mut State, cfg: &crate::config::MachineConfig)
             // Radius and angle of where the tool is, for words left out.
             let (a, b) = plane_index(st.modal.plane);
             let (x, y) = (f64::from(f.prog[a]), f64::from(f.prog[b]));
-            f.polar_r = narrow(libm::round(libm::hypot(x, y)) as i64)?;
-            f.polar_udeg = turn(libm::round(libm::atan2(y, x) * UDEG_PER_RAD) as i64);
+            f.polar_r = narrow(crate::geom::round_i64(libm::hypot(x, y)))?;
+            f.polar_udeg = turn(crate::geom::round_i64(libm::atan2(y, x) * UDEG_PER_RAD));
         }
         Some(false) => f.active &= !on::POLAR,
         _ => {}
@@ -275,8 +275,8 @@ pub fn programmed_target(cmd: &Command, st: &mut State) -> Result<[i64; 3], Alar
             None => i64::from(f.polar_udeg),
         };
         let (s, c) = libm::sincos(angle as f64 / UDEG_PER_RAD);
-        t[ia] = pole.0 + libm::round(r as f64 * c) as i64;
-        t[ib] = pole.1 + libm::round(r as f64 * s) as i64;
+        t[ia] = pole.0 + crate::geom::round_i64(r as f64 * c);
+        t[ib] = pole.1 + crate::geom::round_i64(r as f64 * s);
         f.polar_r = narrow(r)?;
         f.polar_udeg = turn(angle);
     }
@@ -323,7 +323,7 @@ pub fn adapt(cmd: &Command, st: &mut State, arc: bool, adapted: &mut Command) ->
             }
         }
         if let Some(r) = cmd.radius {
-            adapted.radius = Some(libm::round(r as f64 * f.radius_scale(plane)) as i64);
+            adapted.radius = Some(crate::geom::round_i64(r as f64 * f.radius_scale(plane)));
         }
     }
     Ok(target)

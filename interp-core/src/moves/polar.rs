@@ -38,8 +38,8 @@ pub(crate) fn mode_change(cmd: &Command, st: &mut State, cfg: &MachineConfig) ->
             let (r, th) = (w[Axis::X] as f64, (w[Axis::C] as f64 / 1e6).to_radians());
             st.polar = Some(Polar {
                 plane: st.modal.plane,
-                x: libm::round(r * libm::cos(th)) as i64,
-                c: libm::round(r * libm::sin(th)) as i64,
+                x: crate::geom::round_i64(r * libm::cos(th)),
+                c: crate::geom::round_i64(r * libm::sin(th)),
                 z: w[Axis::Z],
             });
             st.modal.plane = Plane::Xy;

@@ -124,6 +124,7 @@ fn plain(block: &Block, state: &State, fmt: &NumberFormat, cmd: &mut Command) ->
 
 /// G50/G51, G50.1/G51.1 and G68/G69 take the block's axis words: no motion, no
 /// group 00 code, no hole cycle and no second one of them in the block.
+#[inline(never)]
 fn alone(block: &Block, cmd: &Command) -> Result<(), AlarmKind> {
     use crate::alarm::GNum;
     if cmd.g.frame.is_none() {
@@ -140,6 +141,7 @@ fn alone(block: &Block, cmd: &Command) -> Result<(), AlarmKind> {
 /// Every letter must belong to the block's code (or its M98/M99/M91/M92, G54.1's
 /// P, G43/G44's H, G41/G42's D); U, V, W are no addresses of this machine (0009);
 /// an axis word must name an axis the machine has.
+#[inline(never)]
 fn check_letters(
     block: &Block,
     user: GCode,
@@ -284,6 +286,7 @@ fn other_words(block: &Block, cfg: &MachineConfig, fmt: &NumberFormat, cmd: &mut
 }
 
 /// H or D: an offset row number, 0 (none) to the table's last.
+#[inline(never)]
 fn offset_number(block: &Block, letter: u8) -> Result<Option<u16>, AlarmKind> {
     let Some(n) = block.get(letter) else { return Ok(None) };
     let v = whole(letter, &n, 99_999_999)?;
@@ -314,17 +317,7 @@ fn convert_axes(
     let absolute = matches!(user, GCode::ScalingOn | GCode::MirrorOn | GCode::MirrorOff | GCode::RotationOn);
     let incremental = g91 && !absolute;
     if state.mill.frame.active & on::POLAR != 0 || cmd.g.polar_coord.is_some() {
-        let angle_axis = polar(user, state, cmd).then(|| cmd.g.plane.unwrap_or(state.modal.plane).axes().1);
-        for axis in Axis::ALL {
-            let Some(n) = block.get(axis.letter()) else { continue };
-            let value = if Some(axis) == angle_axis {
-                fmt.angle_udeg(&n).ok_or(AlarmKind::Overflow)?
-            } else {
-                axis_value(axis, &n, cfg, fmt)?
-            };
-            cmd.axes[axis.index()] = Some(AxisWord { value, incremental });
-        }
-        return Ok(());
+        return polar_axes(block, user, incremental, state, cfg, fmt, cmd);
     }
     // One call per axis with constant letters (as the lathe's checker reads them).
     linear_word(Axis::X, block, incremental, fmt, cmd)?;
@@ -332,6 +325,31 @@ fn convert_axes(
     linear_word(Axis::Z, block, incremental, fmt, cmd)?;
     if let Some(n) = block.get(b'C') {
         cmd.axes[Axis::C.index()] = Some(AxisWord { value: axis_value(Axis::C, &n, cfg, fmt)?, incremental });
+    }
+    Ok(())
+}
+
+/// [`convert_axes`] under G15/G16 in force or in the block: the plane's second
+/// axis word an angle when G16 reads radius and angle. Out of line: rare.
+#[inline(never)]
+fn polar_axes(
+    block: &Block,
+    user: GCode,
+    incremental: bool,
+    state: &State,
+    cfg: &MachineConfig,
+    fmt: &NumberFormat,
+    cmd: &mut Command,
+) -> Result<(), AlarmKind> {
+    let angle_axis = polar(user, state, cmd).then(|| cmd.g.plane.unwrap_or(state.modal.plane).axes().1);
+    for axis in Axis::ALL {
+        let Some(n) = block.get(axis.letter()) else { continue };
+        let value = if Some(axis) == angle_axis {
+            fmt.angle_udeg(&n).ok_or(AlarmKind::Overflow)?
+        } else {
+            axis_value(axis, &n, cfg, fmt)?
+        };
+        cmd.axes[axis.index()] = Some(AxisWord { value, incremental });
     }
     Ok(())
 }
@@ -355,6 +373,7 @@ fn linear_word(
 
 /// G10 L P R: L2 (work offsets, P0 the external one, P1–P6 = G54–G59), L20
 /// (G54.1 P1–P48), L10–L13 (offset pages, P the row, R the value).
+#[inline(never)]
 fn data(block: &Block, fmt: &NumberFormat) -> Result<CycleArgs, AlarmKind> {
     let l = block.get(b'L').ok_or(AlarmKind::MissingWord { letter: b'L', context: "G10" })?;
     let l = whole(b'L', &l, 99)? as u8;
@@ -376,6 +395,7 @@ fn data(block: &Block, fmt: &NumberFormat) -> Result<CycleArgs, AlarmKind> {
 /// (P1500 and I1500 are 1.5), P also in units with one (P1.5); P 0.001–999.999,
 /// I/J/K ±0.001–±9.999 and without a decimal point ("比例系数I、J、K不用小数点").
 /// An axis I/J/K leaves out keeps the factor 1.
+#[inline(never)]
 fn scale(block: &Block) -> Result<CycleArgs, AlarmKind> {
     let thousandths = |letter: u8, n: &Number, max: i64| -> Result<i32, AlarmKind> {
         let v = if n.has_point { n.scaled(3) } else { n.as_integer() }.ok_or(AlarmKind::IllegalScale { letter })?;
