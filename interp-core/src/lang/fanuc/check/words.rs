@@ -266,6 +266,13 @@ pub(super) fn length_nm(fmt: &NumberFormat, n: &Number) -> Option<i64> {
         // times at most 10^6 fits an i64.
         return Some(i64::from(m) * i64::from(scale));
     }
+    length_nm_general(fmt, n)
+}
+
+/// [`NumberFormat::length_nm`] out of line: the checkers convert axis words at
+/// a dozen sites, each would inline its own copy (two 64-bit divisions).
+#[inline(never)]
+fn length_nm_general(fmt: &NumberFormat, n: &Number) -> Option<i64> {
     fmt.length_nm(n)
 }
 
