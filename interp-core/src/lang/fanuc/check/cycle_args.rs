@@ -76,7 +76,7 @@ struct Reader<'a> {
 impl Reader<'_> {
     /// A length word (R, U, W …) in nm, radius value as written.
     fn length(&self, l: u8) -> Result<Option<i64>, AlarmKind> {
-        self.block.get(l).map(|n| self.fmt.length_nm(&n).ok_or(AlarmKind::Overflow)).transpose()
+        self.block.get(l).map(|n| super::words::length_nm_general(self.fmt, &n).ok_or(AlarmKind::Overflow)).transpose()
     }
 
     /// A length that the manual declares unsigned.
@@ -118,7 +118,7 @@ impl Reader<'_> {
             return Err(AlarmKind::IllegalMinusSign { letter: l });
         }
         let fmt = NumberFormat { input: InputMode::LeastIncrement, ..*self.fmt };
-        fmt.length_nm(&n).map(Some).ok_or(AlarmKind::Overflow)
+        super::words::length_nm_general(&fmt, &n).map(Some).ok_or(AlarmKind::Overflow)
     }
 
     /// Whether the block names an end point (second block of G74–G76).

@@ -272,7 +272,7 @@ pub(super) fn length_nm(fmt: &NumberFormat, n: &Number) -> Option<i64> {
 /// [`NumberFormat::length_nm`] out of line: the checkers convert axis words at
 /// a dozen sites, each would inline its own copy (two 64-bit divisions).
 #[inline(never)]
-fn length_nm_general(fmt: &NumberFormat, n: &Number) -> Option<i64> {
+pub(super) fn length_nm_general(fmt: &NumberFormat, n: &Number) -> Option<i64> {
     fmt.length_nm(n)
 }
 
@@ -364,7 +364,7 @@ pub(super) fn corner_word(block: &Block, fmt: &NumberFormat) -> Result<Option<cr
     if n.is_negative() {
         return Err(AlarmKind::IllegalMinusSign { letter });
     }
-    let v = fmt.length_nm(n).ok_or(AlarmKind::Overflow)?;
+    let v = length_nm_general(fmt, n).ok_or(AlarmKind::Overflow)?;
     Ok((v > 0).then(|| make(v)))
 }
 
