@@ -83,13 +83,13 @@ fn hole(p: &Params<'_, '_>, st: &State, ctx: &dyn Engine, axn: i64) -> Result<Ho
         Axis::Y => Plane::Zx,
         _ => Plane::Yz,
     };
-    let level = |i: usize| -> Result<i64, AlarmKind> {
-        let v = p.len(i)?;
-        Ok(if axis == Axis::X && p.diameter { v / 2 } else { v })
+    let level = |i: usize| {
+        let v = p.len(i);
+        if axis == Axis::X && p.diameter { v / 2 } else { v }
     };
-    let (rtp, rfp, dp) = (level(0)?, level(1)?, level(3)?);
-    let sdis = p.unsigned(2)?;
-    let dpr = p.unsigned(4)?;
+    let (rtp, rfp, dp) = (level(0), level(1), level(3));
+    let sdis = p.unsigned(2);
+    let dpr = p.unsigned(4);
     let dpr = if axis == Axis::X && p.diameter { dpr / 2 } else { dpr };
     // The direction into the material: away from the retract plane, or towards
     // DP when the retract plane is the reference plane (lines 1559-1591).
@@ -143,7 +143,9 @@ fn sdir(p: &Params<'_, '_>, i: usize) -> Result<SpindleDir, AlarmKind> {
 }
 
 /// Starts the hole `h` with `work` and a dwell at the bottom.
+#[allow(clippy::too_many_arguments)]
 fn drill(
+    p: &Params<'_, '_>,
     h: &Hole,
     work: HoleWork,
     dwell_ms: u32,
@@ -167,6 +169,7 @@ fn drill(
         repeat: 1,
     };
     let spindle = spindle.filter(|&d| d != st.spindle.dir);
+    p.ok()?;
     ctx.hole(&spec, spindle, cmd, st)
 }
 
@@ -180,7 +183,7 @@ pub(super) fn cycle81(
     ctx: &mut dyn Engine,
 ) -> Result<(), AlarmKind> {
     let h = hole(p, st, ctx, 0)?;
-    drill(&h, PLAIN, 0, None, cmd, st, ctx)
+    drill(p, &h, PLAIN, 0, None, cmd, st, ctx)
 }
 
 /// CYCLE82 (RTP, RFP, SDIS, DP, DPR, DTB): CYCLE81 with a dwell at the depth.
@@ -192,7 +195,7 @@ pub(super) fn cycle82(
 ) -> Result<(), AlarmKind> {
     let h = hole(p, st, ctx, 0)?;
     let dtb = dwell(p, 5, st, false)?;
-    drill(&h, PLAIN, dtb, None, cmd, st, ctx)
+    drill(p, &h, PLAIN, dtb, None, cmd, st, ctx)
 }
 
 /// CYCLE83 (RTP, RFP, SDIS, DP, DPR, FDEP, FDPR, DAM, DTB, DTS, FRF, VARI, _AXN,
@@ -211,21 +214,21 @@ pub(super) fn cycle83(
     };
     // The first depth: FDPR relative to RFP, else FDEP absolute; deeper than the
     // hole, or not into it, is 61107 (lines 1803, 1823).
-    let fdpr = p.unsigned(6)?;
-    let first = if fdpr != 0 { fdpr } else { (p.len(5)? - h.rfp) * h.dir };
+    let fdpr = p.unsigned(6);
+    let first = if fdpr != 0 { fdpr } else { (p.len(5) - h.rfp) * h.dir };
     let total = (h.bottom - h.rfp) * h.dir;
     if first <= 0 || first > total {
         return Err(alarm(FirstDepthWrong));
     }
     let dam = p.real(7);
     let degression = if dam > 0.0 {
-        Degression::Amount(p.nm(dam)?)
+        Degression::Amount(p.nm(dam))
     } else if dam < 0.0 {
         if dam < -1.0 {
             return Err(alarm(ParameterWrong));
         }
         // Without _MDEP the strokes shrink to 1 mm at least.
-        let min = match p.unsigned(13)? {
+        let min = match p.unsigned(13) {
             0 => MM,
             m => m,
         };
@@ -245,8 +248,8 @@ pub(super) fn cycle83(
         approach: (h.rfp - h.r_level) * h.dir,
         degression,
         chip_removal,
-        retract: p.or_1mm(14)?,
-        anticipation: p.unsigned(16)?,
+        retract: p.or_1mm(14),
+        anticipation: p.unsigned(16),
         dwell_depth_ms: dtb,
         dwell_start_ms: if chip_removal { dwell(p, 9, st, true)? } else { 0 },
         first_feed: interp_core::geom::round_i64(feed as f64 * frf),
@@ -256,7 +259,7 @@ pub(super) fn cycle83(
         0 => dtb,
         d => d,
     };
-    drill(&h, HoleWork::DeepDrill(deep), dtd, None, cmd, st, ctx)
+    drill(p, &h, HoleWork::DeepDrill(deep), dtd, None, cmd, st, ctx)
 }
 
 /// The lead of a tapping cycle from MPIT (M3–M48, sign = direction) and PIT (sign =
@@ -320,13 +323,13 @@ pub(super) fn cycle84(
     };
     let (q, deep) = match p.int(15) {
         0 => (0, false),
-        1 => (p.unsigned(16)?, false),
-        2 => (p.unsigned(16)?, true),
+        1 => (p.unsigned(16), false),
+        2 => (p.unsigned(16), true),
         _ => return Err(alarm(MachiningTypeWrong)),
     };
-    let work = HoleWork::RigidTap { lead, q, deep, d: p.or_1mm(17)?, dir, dwell_r_ms: 0, restore };
+    let work = HoleWork::RigidTap { lead, q, deep, d: p.or_1mm(17), dir, dwell_r_ms: 0, restore };
     let dtb = dwell(p, 5, st, false)?;
-    drill(&h, work, dtb, None, cmd, st, ctx)
+    drill(p, &h, work, dtb, None, cmd, st, ctx)
 }
 
 /// CYCLE840 (RTP, RFP, SDIS, DP, DPR, DTB, SDR, SDAC, ENC, MPIT, PIT, _AXN, _PTAB,
@@ -386,12 +389,12 @@ pub(super) fn cycle840(
     // DTB: with ENC = 20 and without an encoder (the example of line 2458 dwells
     // with ENC = 1); not with ENC = 0.
     let dtb = if enc == 0 { 0 } else { dwell(p, 5, st, false)? };
-    drill(&h, work, dtb, None, cmd, st, ctx)
+    drill(p, &h, work, dtb, None, cmd, st, ctx)
 }
 
 /// A feed parameter (FFR, RFF) in the feed mode in force; 0 = the feed in force.
 fn feed(p: &Params<'_, '_>, i: usize, st: &State) -> Result<i64, AlarmKind> {
-    match p.unsigned(i)? {
+    match p.unsigned(i) {
         0 => Ok(st.feed.get(st.modal.feed_mode)),
         f => Ok(f),
     }
@@ -408,7 +411,7 @@ pub(super) fn cycle85(
     let h = hole(p, st, ctx, 0)?;
     let work = HoleWork::BoreFeeds { feed_in: feed(p, 6, st)?, feed_out: feed(p, 7, st)? };
     let dtb = dwell(p, 5, st, false)?;
-    drill(&h, work, dtb, None, cmd, st, ctx)
+    drill(p, &h, work, dtb, None, cmd, st, ctx)
 }
 
 /// CYCLE86 (RTP, RFP, SDIS, DP, DPR, DTB, SDIR, RPA, RPO, RPAP, POSS): in with the
@@ -426,12 +429,12 @@ pub(super) fn cycle86(
     for (axis, i) in [(h.abscissa, 7), (h.ordinate, 8)] {
         // A retract on an axis the machine lacks is ignored (line 2721).
         if ctx.cfg().axes[axis.index()].present {
-            let v = p.len(i)?;
+            let v = p.len(i);
             shift[axis] = if axis == Axis::X && p.diameter { v / 2 } else { v };
         }
     }
     let dtb = dwell(p, 5, st, false)?;
-    drill(&h, HoleWork::FineBore { shift, restart: dir }, dtb, Some(dir), cmd, st, ctx)
+    drill(p, &h, HoleWork::FineBore { shift, restart: dir }, dtb, Some(dir), cmd, st, ctx)
 }
 
 /// CYCLE87 (RTP, RFP, SDIS, DP, DPR, SDIR): in with the spindle turning SDIR, M5,
@@ -444,7 +447,7 @@ pub(super) fn cycle87(
 ) -> Result<(), AlarmKind> {
     let h = hole(p, st, ctx, 0)?;
     let dir = sdir(p, 5)?;
-    drill(&h, HoleWork::BoreManual { restart: dir }, 0, Some(dir), cmd, st, ctx)
+    drill(p, &h, HoleWork::BoreManual { restart: dir }, 0, Some(dir), cmd, st, ctx)
 }
 
 /// CYCLE88 (RTP, RFP, SDIS, DP, DPR, DTB, SDIR): CYCLE87 with a dwell; M5 only
@@ -460,7 +463,7 @@ pub(super) fn cycle88(
     let work =
         if st.cycle.zsd[5] == 1 { HoleWork::BoreStop { restart: dir } } else { HoleWork::BoreManual { restart: dir } };
     let dtb = dwell(p, 5, st, false)?;
-    drill(&h, work, dtb, Some(dir), cmd, st, ctx)
+    drill(p, &h, work, dtb, Some(dir), cmd, st, ctx)
 }
 
 /// CYCLE89 (RTP, RFP, SDIS, DP, DPR, DTB): in, dwell, out at the same feed to
@@ -473,5 +476,5 @@ pub(super) fn cycle89(
 ) -> Result<(), AlarmKind> {
     let h = hole(p, st, ctx, 0)?;
     let dtb = dwell(p, 5, st, false)?;
-    drill(&h, HoleWork::Bore, dtb, None, cmd, st, ctx)
+    drill(p, &h, HoleWork::Bore, dtb, None, cmd, st, ctx)
 }

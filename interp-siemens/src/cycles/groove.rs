@@ -74,16 +74,16 @@ pub(super) fn cycle93(
     // face: to -X from a start point above it (6, 2).
     let towards_plus = matches!(units, 1 | 3 | 8 | 4);
     let half = |v: i64| if p.diameter { v / 2 } else { v };
-    let width = p.unsigned(2)?;
-    let depth = p.unsigned(3)?;
+    let width = p.unsigned(2);
+    let depth = p.unsigned(3);
     let (width, depth, peck) =
-        if face { (half(width), depth, p.unsigned(13)?) } else { (width, half(depth), half(p.unsigned(13)?)) };
+        if face { (half(width), depth, p.unsigned(13)) } else { (width, half(depth), half(p.unsigned(13))) };
     let sta = p.real(4).to_radians();
     let (a1, a2) = (p.real(5).to_radians(), p.real(6).to_radians());
     let corner = |i: usize| CornerSpec { value: p.real(i), chr: tens == 1 };
     let (rco1, rco2, rci1, rci2) = (corner(7), corner(8), corner(9), corner(10));
-    let (fal1, fal2) = (p.unsigned(11)? as f64, p.unsigned(12)? as f64);
-    let safety = p.or_1mm(16)?;
+    let (fal1, fal2) = (p.unsigned(11) as f64, p.unsigned(12) as f64);
+    let safety = p.or_1mm(16);
     if peck <= 0 {
         return Err(AlarmKind::CycleValueIllegal { what: "CYCLE93 needs the infeed depth IDEP" });
     }
@@ -105,7 +105,7 @@ pub(super) fn cycle93(
         return Err(AlarmKind::SiemensCycle(CycleAlarm::GrooveFormWrong));
     }
     let qdir = if comp(left) * want > 0.0 { left } else { left.scale(-1.0) };
-    let origin = V2::new(p.len(1)? as f64, p.x(0)?.abs() as f64);
+    let origin = V2::new(p.len(1) as f64, p.x(0).abs() as f64);
     let fr = Frame { origin, p: pdir, q: qdir };
     let (w, dp) = (width as f64, depth as f64);
     // The final contour and the rough one (the flanks FAL2 and the bottom FAL1 in).
@@ -155,6 +155,7 @@ pub(super) fn cycle93(
         halves: [h1, h2],
         half1_left: left.dot(qdir.scale(-1.0)) > 0.0,
     };
+    p.ok()?;
     ctx.grooving(&spec, &segs, cmd, st)
 }
 

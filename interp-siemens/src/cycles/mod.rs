@@ -284,7 +284,7 @@ pub fn start(
     contour: Option<ContourSource<'_>>,
 ) -> Result<(), AlarmKind> {
     let p = Params::new(args, st);
-    match sig.name {
+    let r = match sig.name {
         "CYCLE81" => drill::cycle81(&p, cmd, st, ctx),
         "CYCLE82" => drill::cycle82(&p, cmd, st, ctx),
         "CYCLE83" => drill::cycle83(&p, cmd, st, ctx),
@@ -303,7 +303,11 @@ pub fn start(
         "CYCLE97" => thread::cycle97(&p, cmd, st, ctx),
         "CYCLE98" => thread::cycle98(&p, cmd, st, ctx),
         _ => Err(AlarmKind::NotSupportedYet { what: "this SINUMERIK cycle" }),
-    }
+    };
+    // A length read out of range stopped the call where it was read: whatever the
+    // cycle did after it (with 0 for the value) is void, its alarm is 61xxx's
+    // Overflow (see [`Params::nm`]).
+    if p.overflow.get() { Err(AlarmKind::Overflow) } else { r }
 }
 
 /// The turning cycles work in the ZX plane (G18, line 10113).
@@ -321,6 +325,11 @@ struct Params<'s, 'a> {
     per_unit: f64,
     /// Plane-axis values are diameters (DIAMON).
     diameter: bool,
+    /// A length was out of range ([`Params::nm`]): the call's alarm is
+    /// [`AlarmKind::Overflow`], whatever the cycle found after it. The lengths
+    /// are read without a `?` each — one check per call instead of one per
+    /// parameter; [`Params::ok`] before the cycle hands anything to the engine.
+    overflow: core::cell::Cell<bool>,
 }
 
 /// 1 mm, the manual's default for retracts and clearances.
@@ -335,7 +344,7 @@ impl<'s, 'a> Params<'s, 'a> {
             Units::Metric => 1e6,
             Units::Inch => 25.4e6,
         };
-        Params { args, per_unit, diameter: st.modal.diameter }
+        Params { args, per_unit, diameter: st.modal.diameter, overflow: core::cell::Cell::new(false) }
     }
 
     fn arg(&self, i: usize) -> Arg<'a> {
@@ -368,34 +377,44 @@ impl<'s, 'a> Params<'s, 'a> {
         }
     }
 
-    /// A length in nm from a value in program units.
-    fn nm(&self, v: f64) -> Result<i64, AlarmKind> {
+    /// A length in nm from a value in program units. Beyond [`MAX_LENGTH_NM`] (or
+    /// not finite) the call stops with [`AlarmKind::Overflow`]: the value reads as
+    /// 0 and the call's result is the overflow ([`start`], [`Params::ok`]), as if
+    /// the alarm had been returned here.
+    fn nm(&self, v: f64) -> i64 {
         let nm = v * self.per_unit;
         if !nm.is_finite() || libm::fabs(nm) > MAX_LENGTH_NM {
-            return Err(AlarmKind::Overflow);
+            self.overflow.set(true);
+            return 0;
         }
-        Ok(interp_core::geom::round_i64(nm))
+        interp_core::geom::round_i64(nm)
+    }
+
+    /// Overflow if a length read so far was out of range: called before a cycle
+    /// hands its specification to the engine (nothing moves on an alarm).
+    fn ok(&self) -> Result<(), AlarmKind> {
+        if self.overflow.get() { Err(AlarmKind::Overflow) } else { Ok(()) }
     }
 
     /// Length parameter `i`, nm, signed.
-    fn len(&self, i: usize) -> Result<i64, AlarmKind> {
+    fn len(&self, i: usize) -> i64 {
         self.nm(self.real(i))
     }
 
     /// Length parameter `i` the manual gives without sign (不输入符号), nm.
-    fn unsigned(&self, i: usize) -> Result<i64, AlarmKind> {
-        Ok(self.len(i)?.abs())
+    fn unsigned(&self, i: usize) -> i64 {
+        self.len(i).abs()
     }
 
     /// A plane-axis (X) position, as a radius: halved under DIAMON.
-    fn x(&self, i: usize) -> Result<i64, AlarmKind> {
-        let v = self.len(i)?;
-        Ok(if self.diameter { v / 2 } else { v })
+    fn x(&self, i: usize) -> i64 {
+        let v = self.len(i);
+        if self.diameter { v / 2 } else { v }
     }
 
     /// A retract or clearance the manual defaults to 1 mm when zero (_VRT).
-    fn or_1mm(&self, i: usize) -> Result<i64, AlarmKind> {
-        let v = self.unsigned(i)?;
-        Ok(if v == 0 { MM } else { v })
+    fn or_1mm(&self, i: usize) -> i64 {
+        let v = self.unsigned(i);
+        if v == 0 { MM } else { v }
     }
 }

@@ -42,7 +42,7 @@ pub(super) fn cycle95(
     }
     let (stage, kind) = ((units - 1) / 4, (units - 1) % 4);
     let facing = kind % 2 == 1;
-    let mid = p.unsigned(1)?;
+    let mid = p.unsigned(1);
     // _ZSD[0]: 0 by DIAMON/DIAMOF, 1 radius, 2 diameter (lines 10139–10145).
     let mid_diameter = match st.cycle.zsd[0] {
         1 => false,
@@ -50,7 +50,7 @@ pub(super) fn cycle95(
         _ => p.diameter,
     };
     let depth = if !facing && mid_diameter { mid / 2 } else { mid };
-    let falx = p.unsigned(3)?;
+    let falx = p.unsigned(3);
     let spec = StockSpec {
         facing,
         internal: kind >= 2,
@@ -58,9 +58,9 @@ pub(super) fn cycle95(
         finish: stage != 0,
         depth,
         allow_x: if p.diameter { falx / 2 } else { falx },
-        allow_z: p.unsigned(2)?,
-        allow: p.unsigned(4)?,
-        feeds: [p.unsigned(5)?, p.unsigned(6)?, p.unsigned(7)?],
+        allow_z: p.unsigned(2),
+        allow: p.unsigned(4),
+        feeds: [p.unsigned(5), p.unsigned(6), p.unsigned(7)],
         pull: if hundreds == 0 { Pull::Overlap } else { Pull::Previous },
         equal: true,
         undercuts: true,
@@ -70,11 +70,12 @@ pub(super) fn cycle95(
         retract_angle_udeg: 45_000_000,
         arc_feed: 0,
         approach: 0,
-        interrupt: p.unsigned(10)?,
+        interrupt: p.unsigned(10),
         dwell_ms: seconds_ms(p.real(9)),
-        retract: p.or_1mm(11)?,
+        retract: p.or_1mm(11),
     };
     let contour = contour.ok_or(AlarmKind::SiemensCycle(CycleAlarm::ContourPreparation { cause: 10933 }))?;
+    p.ok()?;
     ctx.stock(&spec, contour, cmd, st)
 }
 
@@ -131,19 +132,19 @@ pub(super) fn cycle950(
     }
     let facing = !infeed_x;
     let internal = infeed == 2 || infeed == 4;
-    let mid = p.unsigned(5)?;
+    let mid = p.unsigned(5);
     let mid_diameter = match st.cycle.zsd[0] {
         1 => false,
         2 => true,
         _ => p.diameter,
     };
     let depth = if kind != 3 && !facing && mid_diameter { mid / 2 } else { mid };
-    let falx = p.unsigned(7)?;
+    let falx = p.unsigned(7);
     let half = |v: i64| if p.diameter { v / 2 } else { v };
     let feeds = if facing {
-        [p.unsigned(9)?, p.unsigned(8)?, p.unsigned(10)?]
+        [p.unsigned(9), p.unsigned(8), p.unsigned(10)]
     } else {
-        [p.unsigned(8)?, p.unsigned(9)?, p.unsigned(10)?]
+        [p.unsigned(8), p.unsigned(9), p.unsigned(10)]
     };
     let angb = if p.real(13) == 0.0 { 45.0 } else { libm::fabs(p.real(13)) };
     if angb >= 90.0 {
@@ -156,8 +157,8 @@ pub(super) fn cycle950(
     let (apza, apxa) = (p.int(20), p.int(22));
     let blank = match (apza, apxa) {
         (0, 0) => Blank::Contour,
-        (91, 91) | (0, 91) | (91, 0) => Blank::Allowance(Pt::new(half(p.unsigned(21)?), p.unsigned(19)?)),
-        (90, 90) | (0, 90) | (90, 0) => Blank::At(Pt::new(half(p.len(21)?.abs()), p.len(19)?)),
+        (91, 91) | (0, 91) | (91, 0) => Blank::Allowance(Pt::new(half(p.unsigned(21)), p.unsigned(19))),
+        (90, 90) | (0, 90) | (90, 0) => Blank::At(Pt::new(half(p.len(21).abs()), p.len(19))),
         _ => return Err(AlarmKind::SiemensCycle(CycleAlarm::BlankContourWrong)),
     };
     // Along the cutting axis: X− (1) / X+ (2) for face machining, Z− (3) / Z+ (4).
@@ -169,7 +170,7 @@ pub(super) fn cycle950(
         finish: stage != 1,
         depth,
         allow_x: half(falx),
-        allow_z: p.unsigned(6)?,
+        allow_z: p.unsigned(6),
         allow: 0,
         feeds,
         pull: if pull == 1 { Pull::Previous } else { Pull::None },
@@ -179,12 +180,13 @@ pub(super) fn cycle950(
         blank,
         direction,
         retract_angle_udeg: interp_core::geom::round_i64(angb * 1e6),
-        arc_feed: p.unsigned(11)?,
+        arc_feed: p.unsigned(11),
         interrupt: 0,
         dwell_ms: 0,
-        retract: p.or_1mm(12)?,
-        approach: p.or_1mm(23)?,
+        retract: p.or_1mm(12),
+        approach: p.or_1mm(23),
     };
     let contour = contour.ok_or(AlarmKind::SiemensCycle(CycleAlarm::FinishedContourWrong))?;
+    p.ok()?;
     ctx.stock(&spec, contour, cmd, st)
 }

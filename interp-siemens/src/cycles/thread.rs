@@ -117,12 +117,13 @@ pub(super) fn cycle97(
             }
             interp_core::geom::round_i64(coarse * 1e6)
         }
-        (true, false) => p.nm(pit)?,
+        (true, false) => p.nm(pit),
         (false, false) => return Err(AlarmKind::SiemensCycle(CycleAlarm::ThreadPitchWrong)),
     };
     let c = common(p, 6)?;
-    let a = Pt::new(p.x(4)?, p.len(2)?);
-    let b = Pt::new(p.x(5)?, p.len(3)?);
+    let a = Pt::new(p.x(4), p.len(2));
+    let b = Pt::new(p.x(5), p.len(3));
+    p.ok()?;
     let spec = spec(&c, &[a, b], &[lead], st)?;
     ctx.thread(&spec, cmd, st)
 }
@@ -138,15 +139,15 @@ pub(super) fn cycle98(
     need_zx(st)?;
     // Common parameters from APP (8) to NID (15); PP1–PP3 at 16–18, VARI 19, NUMT 20, _VRT 21.
     let mut c = common(p, 8)?;
-    (c.vari, c.numt, c.vrt) = (p.int(19), p.int(20), p.or_1mm(21)?);
+    (c.vari, c.numt, c.vrt) = (p.int(19), p.int(20), p.or_1mm(21));
     check_vari(c.vari)?;
     let mut points = [Pt::default(); CHAIN_POINTS];
     for (i, pt) in points.iter_mut().enumerate() {
-        *pt = Pt::new(p.x(2 * i + 1)?, p.len(2 * i)?);
+        *pt = Pt::new(p.x(2 * i + 1), p.len(2 * i));
     }
     let mut leads = [0; CHAIN_POINTS - 1];
     for (i, l) in leads.iter_mut().enumerate() {
-        *l = p.unsigned(16 + i)?;
+        *l = p.unsigned(16 + i);
     }
     // A segment of no length (a point programmed twice) is left out.
     let mut pts: heapless::Vec<Pt, CHAIN_POINTS> = heapless::Vec::new();
@@ -161,6 +162,7 @@ pub(super) fn cycle98(
     if lds.contains(&0) {
         return Err(AlarmKind::SiemensCycle(CycleAlarm::ThreadPitchWrong));
     }
+    p.ok()?;
     let spec = spec(&c, &pts, &lds, st)?;
     ctx.thread(&spec, cmd, st)
 }
@@ -169,10 +171,10 @@ pub(super) fn cycle98(
 /// (`at` = 6), VARI, NUMT, _VRT after them.
 fn common(p: &Params<'_, '_>, at: usize) -> Result<Common, AlarmKind> {
     let mut c = Common {
-        app: p.unsigned(at)?,
-        rop: p.unsigned(at + 1)?,
-        depth: p.unsigned(at + 2)?,
-        allowance: p.unsigned(at + 3)?,
+        app: p.unsigned(at),
+        rop: p.unsigned(at + 1),
+        depth: p.unsigned(at + 2),
+        allowance: p.unsigned(at + 3),
         iang: p.real(at + 4),
         nsp: p.real(at + 5),
         nrc: p.int(at + 6),
@@ -182,7 +184,7 @@ fn common(p: &Params<'_, '_>, at: usize) -> Result<Common, AlarmKind> {
         vrt: 0,
     };
     if at == 6 {
-        (c.vari, c.numt, c.vrt) = (p.int(14), p.int(15), p.or_1mm(16)?);
+        (c.vari, c.numt, c.vrt) = (p.int(14), p.int(15), p.or_1mm(16));
         check_vari(c.vari)?;
     }
     Ok(c)

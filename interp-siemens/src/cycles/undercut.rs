@@ -125,7 +125,7 @@ pub(super) fn cycle94(
     if st.tool.offset_number == 0 {
         return Err(AlarmKind::SiemensCycle(CycleAlarm::NoToolOffset));
     }
-    let rf = p.x(0)?.abs();
+    let rf = p.x(0).abs();
     let form = p.text(2);
     let f_form = match form {
         [b'E' | b'e'] => false,
@@ -139,7 +139,9 @@ pub(super) fn cycle94(
     let pos = position(p.int(3), st)?;
     let &(_, r, t1, f, t2) = DIN_509.iter().find(|row| d <= row.0).unwrap_or(&DIN_509[3]);
     let shape = Shape { rf: rf as f64 / 1e6, t: t1, f, flank: 15.0, r, t2: if f_form { t2 } else { 0.0 }, relief: 8.0 };
-    start_undercut(&shape, p.len(1)?, pos, cmd, st, ctx)
+    let spl = p.len(1);
+    p.ok()?;
+    start_undercut(&shape, spl, pos, cmd, st, ctx)
 }
 
 /// CYCLE96 (DIATH, SPL, FORM, _VARI).
@@ -184,7 +186,9 @@ pub(super) fn cycle96(
         });
     }
     let shape = Shape { rf: d / 2.0, t: libm::fabs(d - dg) / 2.0, f: g2, flank: 30.0, r: row.7, t2: 0.0, relief: 0.0 };
-    start_undercut(&shape, p.len(1)?, pos, cmd, st, ctx)
+    let spl = p.len(1);
+    p.ok()?;
+    start_undercut(&shape, spl, pos, cmd, st, ctx)
 }
 
 /// The undercut `s` in the corner of the face at `spl` (nm) and the finished

@@ -424,3 +424,31 @@ fn drilling_alarms_move_nothing() {
     assert_eq!(sc(CycleAlarm::FirstDepthWrong).code(), 61107);
     assert_eq!(sc(CycleAlarm::WrongSpindleDirection).code(), 61807);
 }
+
+/// A length beyond 10 m stops the call where it is read: its alarm wins over the
+/// checks after it, not over those before it; nothing moves.
+#[test]
+fn an_overflowing_length_is_the_alarm_where_it_is_read() {
+    let (cfg, st) = centre(110.0, 100.0);
+    let err = |name: &str, args: &[Arg<'_>], st: &State| call(name, args, st, &cfg).unwrap_err();
+    // RTP out of range: before the levels' 61101.
+    assert_eq!(
+        err("CYCLE81", &reals(&[Some(1e20), Some(100.0), Some(2.0), None, Some(10.0)]), &st),
+        AlarmKind::Overflow
+    );
+    assert_eq!(
+        err("CYCLE81", &reals(&[Some(110.0), Some(100.0), Some(2.0), Some(f64::MAX)]), &st),
+        AlarmKind::Overflow
+    );
+    // FDEP out of range: after VARI's 61002, before the first depth's 61107.
+    let mut vari = reals(&[Some(110.0), Some(100.0), None, Some(50.0), None, Some(1e20), None, None, None, None, None]);
+    vari.push(Arg::Int(2));
+    assert_eq!(err("CYCLE83", &vari, &st), AlarmKind::SiemensCycle(CycleAlarm::MachiningTypeWrong));
+    vari[11] = Arg::Int(0);
+    assert_eq!(err("CYCLE83", &vari, &st), AlarmKind::Overflow);
+    // _VRT out of range with a good hole: the overflow, nothing drilled.
+    let mut vrt = reals(&[Some(110.0), Some(100.0), None, Some(50.0), None, Some(90.0)]);
+    vrt.resize(14, Arg::Empty);
+    vrt.push(Arg::Real(-1e20));
+    assert_eq!(err("CYCLE83", &vrt, &st), AlarmKind::Overflow);
+}
