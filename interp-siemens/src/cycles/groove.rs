@@ -201,47 +201,32 @@ fn contour(
         return Err(AlarmKind::SiemensCycle(CycleAlarm::GrooveFormWrong));
     }
     let bottom_mid = cuts[1].1.plus(cuts[2].0.minus(cuts[1].1).scale(0.5));
-    match half {
-        None => {
-            push(segs, line(v[0], cuts[0].0))?;
-            for i in 0..4 {
-                if let Some(c) = cuts[i].2 {
-                    push(segs, c)?;
-                }
-                let next = if i < 3 { cuts[i + 1].0 } else { v[5] };
-                push(segs, line(cuts[i].1, next))?;
-            }
-        }
-        Some(0) => {
-            push(segs, line(v[0], cuts[0].0))?;
-            for i in 0..2 {
-                if let Some(c) = cuts[i].2 {
-                    push(segs, c)?;
-                }
-                let next = if i == 0 { cuts[1].0 } else { bottom_mid };
-                push(segs, line(cuts[i].1, next))?;
-            }
-        }
-        Some(_) => {
-            push(segs, line(v[5], cuts[3].1))?;
-            for i in [3, 2] {
-                if let Some(c) = cuts[i].2 {
-                    push(segs, reversed(c))?;
-                }
-                let next = if i == 3 { cuts[2].1 } else { bottom_mid };
-                push(segs, line(cuts[i].0, next))?;
-            }
+    // The walk along the outline: the lead-in, each corner's start and end, the
+    // lead-out, with the corners' pieces between; from the far side for half 1,
+    // to the middle of the bottom for a half.
+    let mut pts =
+        [v[0], cuts[0].0, cuts[0].1, cuts[1].0, cuts[1].1, cuts[2].0, cuts[2].1, cuts[3].0, cuts[3].1, v[5]];
+    let mut pieces = [cuts[0].2, cuts[1].2, cuts[2].2, cuts[3].2];
+    if half.is_some_and(|h| h != 0) {
+        pts.reverse();
+        pieces.reverse();
+        for c in pieces.iter_mut().flatten() {
+            *c = reversed(*c);
         }
     }
-    // Drop pieces of no length (a flank of no depth, a corner of 0).
-    let mut k = usize::from(from);
-    while k < segs.len() {
-        if segs[k].a == segs[k].b {
-            segs.remove(k);
-        } else {
-            k += 1;
+    let n = if half.is_some() { 2 } else { 4 };
+    if half.is_some() {
+        pts[2 * n + 1] = bottom_mid;
+    }
+    // Pieces of no length (a flank of no depth, a corner of 0) are left out.
+    let mut keep = |s: Seg| if s.a == s.b { Ok(()) } else { push(segs, s) };
+    for i in 0..n {
+        keep(line(pts[2 * i], pts[2 * i + 1]))?;
+        if let Some(c) = pieces[i] {
+            keep(c)?;
         }
     }
+    keep(line(pts[2 * n], pts[2 * n + 1]))?;
     Ok((from, segs.len() as u16))
 }
 
