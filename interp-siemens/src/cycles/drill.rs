@@ -142,18 +142,63 @@ fn sdir(p: &Params<'_, '_>, i: usize) -> Result<SpindleDir, AlarmKind> {
     }
 }
 
-/// Starts the hole `h` with `work` and a dwell at the bottom.
-#[allow(clippy::too_many_arguments)]
-fn drill(
+/// The drilling cycles of this module (their numbers, CYCLE81 … CYCLE840).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Drill {
+    /// CYCLE81 (RTP, RFP, SDIS, DP, DPR): G0 to RFP+SDIS, G1 to the depth, G0 to RTP.
+    C81,
+    /// CYCLE82 (RTP, RFP, SDIS, DP, DPR, DTB): CYCLE81 with a dwell at the depth.
+    C82,
+    /// CYCLE83, deep-hole drilling ([`cycle83`]).
+    C83,
+    /// CYCLE84, rigid tapping ([`cycle84`]).
+    C84,
+    /// CYCLE840, tapping with a compensating chuck ([`cycle840`]).
+    C840,
+    /// CYCLE85, boring in and out at feeds ([`cycle85`]).
+    C85,
+    /// CYCLE86, boring with an oriented stop ([`cycle86`]).
+    C86,
+    /// CYCLE87, boring with a stop ([`cycle87`]).
+    C87,
+    /// CYCLE88, boring with a dwell and a stop ([`cycle88`]).
+    C88,
+    /// CYCLE89 (RTP, RFP, SDIS, DP, DPR, DTB): in, dwell, out at the same feed to
+    /// RFP+SDIS, G0 to RTP (lines 2920-2995).
+    C89,
+}
+
+/// What a drilling cycle does at the hole: its work, the dwell at the bottom
+/// (ms) and the spindle direction it sets on the way in.
+type Work = (HoleWork, u32, Option<SpindleDir>);
+
+/// Drilling cycle `which`: the hole's axis and levels (the checks every cycle
+/// makes first), the cycle's own parameters, then the hole started.
+pub(super) fn cycle(
+    which: Drill,
     p: &Params<'_, '_>,
-    h: &Hole,
-    work: HoleWork,
-    dwell_ms: u32,
-    spindle: Option<SpindleDir>,
     cmd: &Command,
     st: &mut State,
     ctx: &mut dyn Engine,
 ) -> Result<(), AlarmKind> {
+    let axn = match which {
+        Drill::C83 | Drill::C84 => p.int(12),
+        Drill::C840 => p.int(11),
+        _ => 0,
+    };
+    let h = hole(p, st, ctx, axn)?;
+    let (work, dwell_ms, spindle) = match which {
+        Drill::C81 => (PLAIN, 0, None),
+        Drill::C82 => (PLAIN, dwell(p, 5, st, false)?, None),
+        Drill::C83 => cycle83(p, &h, st)?,
+        Drill::C84 => cycle84(p, st)?,
+        Drill::C840 => cycle840(p, st)?,
+        Drill::C85 => cycle85(p, st)?,
+        Drill::C86 => cycle86(p, &h, st, ctx)?,
+        Drill::C87 => cycle87(p)?,
+        Drill::C88 => cycle88(p, st)?,
+        Drill::C89 => (HoleWork::Bore, dwell(p, 5, st, false)?, None),
+    };
     let position = st.work_pos(ctx.cfg());
     let spec = HoleSpec {
         work,
@@ -175,38 +220,9 @@ fn drill(
 
 const PLAIN: HoleWork = HoleWork::Drill { q: 0, deep: false, d: 0 };
 
-/// CYCLE81 (RTP, RFP, SDIS, DP, DPR): G0 to RFP+SDIS, G1 to the depth, G0 to RTP.
-pub(super) fn cycle81(
-    p: &Params<'_, '_>,
-    cmd: &Command,
-    st: &mut State,
-    ctx: &mut dyn Engine,
-) -> Result<(), AlarmKind> {
-    let h = hole(p, st, ctx, 0)?;
-    drill(p, &h, PLAIN, 0, None, cmd, st, ctx)
-}
-
-/// CYCLE82 (RTP, RFP, SDIS, DP, DPR, DTB): CYCLE81 with a dwell at the depth.
-pub(super) fn cycle82(
-    p: &Params<'_, '_>,
-    cmd: &Command,
-    st: &mut State,
-    ctx: &mut dyn Engine,
-) -> Result<(), AlarmKind> {
-    let h = hole(p, st, ctx, 0)?;
-    let dtb = dwell(p, 5, st, false)?;
-    drill(p, &h, PLAIN, dtb, None, cmd, st, ctx)
-}
-
 /// CYCLE83 (RTP, RFP, SDIS, DP, DPR, FDEP, FDPR, DAM, DTB, DTS, FRF, VARI, _AXN,
 /// _MDEP, _VRT, _DTD, _DIS1), lines 1703-1956.
-pub(super) fn cycle83(
-    p: &Params<'_, '_>,
-    cmd: &Command,
-    st: &mut State,
-    ctx: &mut dyn Engine,
-) -> Result<(), AlarmKind> {
-    let h = hole(p, st, ctx, p.int(12))?;
+fn cycle83(p: &Params<'_, '_>, h: &Hole, st: &State) -> Result<Work, AlarmKind> {
     let chip_removal = match p.int(11) {
         0 => false,
         1 => true,
@@ -259,7 +275,7 @@ pub(super) fn cycle83(
         0 => dtb,
         d => d,
     };
-    drill(p, &h, HoleWork::DeepDrill(deep), dtd, None, cmd, st, ctx)
+    Ok((HoleWork::DeepDrill(deep), dtd, None))
 }
 
 /// The lead of a tapping cycle from MPIT (M3–M48, sign = direction) and PIT (sign =
@@ -308,13 +324,7 @@ fn techno(p: &Params<'_, '_>, i: usize, hundreds: i64) -> Result<(), AlarmKind> 
 /// _PTAB, _TECHNO, _VARI, _DAM, _VRT), lines 1958-2204: rigid tapping, the axis
 /// locked to the spindle (G331/G332), in pecks when _VARI is 1 (chip breaking:
 /// back by _VRT) or 2 (chip removal: back to R).
-pub(super) fn cycle84(
-    p: &Params<'_, '_>,
-    cmd: &Command,
-    st: &mut State,
-    ctx: &mut dyn Engine,
-) -> Result<(), AlarmKind> {
-    let h = hole(p, st, ctx, p.int(12))?;
+fn cycle84(p: &Params<'_, '_>, st: &State) -> Result<Work, AlarmKind> {
     let (lead, dir) = tap_lead(p, 7, 8, 13)?;
     techno(p, 14, 3)?;
     let restore = match p.int(6) {
@@ -329,19 +339,13 @@ pub(super) fn cycle84(
     };
     let work = HoleWork::RigidTap { lead, q, deep, d: p.or_1mm(17), dir, dwell_r_ms: 0, restore };
     let dtb = dwell(p, 5, st, false)?;
-    drill(p, &h, work, dtb, None, cmd, st, ctx)
+    Ok((work, dtb, None))
 }
 
 /// CYCLE840 (RTP, RFP, SDIS, DP, DPR, DTB, SDR, SDAC, ENC, MPIT, PIT, _AXN, _PTAB,
 /// _TECHNO), lines 2206-2504: tapping with a compensating chuck, the feed following
 /// the spindle (G33 with an encoder, G63 without).
-pub(super) fn cycle840(
-    p: &Params<'_, '_>,
-    cmd: &Command,
-    st: &mut State,
-    ctx: &mut dyn Engine,
-) -> Result<(), AlarmKind> {
-    let h = hole(p, st, ctx, p.int(11))?;
+fn cycle840(p: &Params<'_, '_>, st: &State) -> Result<Work, AlarmKind> {
     techno(p, 13, 1)?;
     let enc = p.int(8);
     let with_encoder = match enc {
@@ -389,41 +393,29 @@ pub(super) fn cycle840(
     // DTB: with ENC = 20 and without an encoder (the example of line 2458 dwells
     // with ENC = 1); not with ENC = 0.
     let dtb = if enc == 0 { 0 } else { dwell(p, 5, st, false)? };
-    drill(p, &h, work, dtb, None, cmd, st, ctx)
+    Ok((work, dtb, None))
 }
 
 /// A feed parameter (FFR, RFF) in the feed mode in force; 0 = the feed in force.
-fn feed(p: &Params<'_, '_>, i: usize, st: &State) -> Result<i64, AlarmKind> {
+fn feed(p: &Params<'_, '_>, i: usize, st: &State) -> i64 {
     match p.unsigned(i) {
-        0 => Ok(st.feed.get(st.modal.feed_mode)),
-        f => Ok(f),
+        0 => st.feed.get(st.modal.feed_mode),
+        f => f,
     }
 }
 
 /// CYCLE85 (RTP, RFP, SDIS, DP, DPR, DTB, FFR, RFF): in at FFR, dwell, out to
 /// RFP+SDIS at RFF, G0 to RTP (lines 2506-2625).
-pub(super) fn cycle85(
-    p: &Params<'_, '_>,
-    cmd: &Command,
-    st: &mut State,
-    ctx: &mut dyn Engine,
-) -> Result<(), AlarmKind> {
-    let h = hole(p, st, ctx, 0)?;
-    let work = HoleWork::BoreFeeds { feed_in: feed(p, 6, st)?, feed_out: feed(p, 7, st)? };
+fn cycle85(p: &Params<'_, '_>, st: &State) -> Result<Work, AlarmKind> {
+    let work = HoleWork::BoreFeeds { feed_in: feed(p, 6, st), feed_out: feed(p, 7, st) };
     let dtb = dwell(p, 5, st, false)?;
-    drill(p, &h, work, dtb, None, cmd, st, ctx)
+    Ok((work, dtb, None))
 }
 
 /// CYCLE86 (RTP, RFP, SDIS, DP, DPR, DTB, SDIR, RPA, RPO, RPAP, POSS): in with the
 /// spindle turning SDIR, dwell, oriented stop, G0 off the wall by RPA/RPO in the
 /// plane, G0 out, back to the hole position, spindle on (lines 2627-2751).
-pub(super) fn cycle86(
-    p: &Params<'_, '_>,
-    cmd: &Command,
-    st: &mut State,
-    ctx: &mut dyn Engine,
-) -> Result<(), AlarmKind> {
-    let h = hole(p, st, ctx, 0)?;
+fn cycle86(p: &Params<'_, '_>, h: &Hole, st: &State, ctx: &dyn Engine) -> Result<Work, AlarmKind> {
     let dir = sdir(p, 6)?;
     let mut shift = Pos::ZERO;
     for (axis, i) in [(h.abscissa, 7), (h.ordinate, 8)] {
@@ -434,47 +426,22 @@ pub(super) fn cycle86(
         }
     }
     let dtb = dwell(p, 5, st, false)?;
-    drill(p, &h, HoleWork::FineBore { shift, restart: dir }, dtb, Some(dir), cmd, st, ctx)
+    Ok((HoleWork::FineBore { shift, restart: dir }, dtb, Some(dir)))
 }
 
 /// CYCLE87 (RTP, RFP, SDIS, DP, DPR, SDIR): in with the spindle turning SDIR, M5,
 /// M0, G0 out after NC start (lines 2753-2835).
-pub(super) fn cycle87(
-    p: &Params<'_, '_>,
-    cmd: &Command,
-    st: &mut State,
-    ctx: &mut dyn Engine,
-) -> Result<(), AlarmKind> {
-    let h = hole(p, st, ctx, 0)?;
+fn cycle87(p: &Params<'_, '_>) -> Result<Work, AlarmKind> {
     let dir = sdir(p, 5)?;
-    drill(p, &h, HoleWork::BoreManual { restart: dir }, 0, Some(dir), cmd, st, ctx)
+    Ok((HoleWork::BoreManual { restart: dir }, 0, Some(dir)))
 }
 
 /// CYCLE88 (RTP, RFP, SDIS, DP, DPR, DTB, SDIR): CYCLE87 with a dwell; M5 only
 /// (no M0) when `_ZSD[5]` = 1 (lines 2837-2918).
-pub(super) fn cycle88(
-    p: &Params<'_, '_>,
-    cmd: &Command,
-    st: &mut State,
-    ctx: &mut dyn Engine,
-) -> Result<(), AlarmKind> {
-    let h = hole(p, st, ctx, 0)?;
+fn cycle88(p: &Params<'_, '_>, st: &State) -> Result<Work, AlarmKind> {
     let dir = sdir(p, 6)?;
     let work =
         if st.cycle.zsd[5] == 1 { HoleWork::BoreStop { restart: dir } } else { HoleWork::BoreManual { restart: dir } };
     let dtb = dwell(p, 5, st, false)?;
-    drill(p, &h, work, dtb, Some(dir), cmd, st, ctx)
-}
-
-/// CYCLE89 (RTP, RFP, SDIS, DP, DPR, DTB): in, dwell, out at the same feed to
-/// RFP+SDIS, G0 to RTP (lines 2920-2995).
-pub(super) fn cycle89(
-    p: &Params<'_, '_>,
-    cmd: &Command,
-    st: &mut State,
-    ctx: &mut dyn Engine,
-) -> Result<(), AlarmKind> {
-    let h = hole(p, st, ctx, 0)?;
-    let dtb = dwell(p, 5, st, false)?;
-    drill(p, &h, HoleWork::Bore, dtb, None, cmd, st, ctx)
+    Ok((work, dtb, Some(dir)))
 }

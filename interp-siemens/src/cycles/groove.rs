@@ -204,8 +204,7 @@ fn contour(
     // The walk along the outline: the lead-in, each corner's start and end, the
     // lead-out, with the corners' pieces between; from the far side for half 1,
     // to the middle of the bottom for a half.
-    let mut pts =
-        [v[0], cuts[0].0, cuts[0].1, cuts[1].0, cuts[1].1, cuts[2].0, cuts[2].1, cuts[3].0, cuts[3].1, v[5]];
+    let mut pts = [v[0], cuts[0].0, cuts[0].1, cuts[1].0, cuts[1].1, cuts[2].0, cuts[2].1, cuts[3].0, cuts[3].1, v[5]];
     let mut pieces = [cuts[0].2, cuts[1].2, cuts[2].2, cuts[3].2];
     if half.is_some_and(|h| h != 0) {
         pts.reverse();
