@@ -29,6 +29,11 @@ use interp_core::geom::path::V2;
 use interp_core::geom::{Pt, Seg, SegKind};
 use interp_core::modal::State;
 
+/// Most pieces a groove's contours take: the rough outline (lead-in, four corners
+/// and the lines after them: 9), the two flank lines, each finishing half (lead-in,
+/// two corners, two lines: 5 each) — 21.
+const SEGS: usize = 24;
+
 /// A corner of the groove: a radius (> 0), a chamfer (< 0) or none.
 #[derive(Clone, Copy, Debug)]
 struct CornerSpec {
@@ -113,7 +118,7 @@ pub(super) fn cycle93(
     let fin = outline(&fr, w, dp, a1, a2, 0.0, 0.0, lead);
     let rough = outline(&fr, w, dp, a1, a2, fal2, fal1, lead);
     let corners = [rco1, rci1, rci2, rco2];
-    let mut segs: heapless::Vec<Seg, 32> = heapless::Vec::new();
+    let mut segs: heapless::Vec<Seg, SEGS> = heapless::Vec::new();
     // The rough contour without its lead-in and lead-out on the surface.
     let (r0, r1) = contour(&rough, &corners, None, &mut segs)?;
     let rough_range = (r0 + 1, r1 - 1);
@@ -184,7 +189,7 @@ fn contour(
     v: &[V2; 6],
     corners: &[CornerSpec; 4],
     half: Option<u8>,
-    segs: &mut heapless::Vec<Seg, 32>,
+    segs: &mut heapless::Vec<Seg, SEGS>,
 ) -> Result<(u16, u16), AlarmKind> {
     let from = segs.len() as u16;
     // Each corner: where it starts and ends on its two lines, and its piece.
@@ -278,6 +283,6 @@ fn reversed(s: Seg) -> Seg {
     Seg { kind, a: s.b, b: s.a }
 }
 
-fn push(segs: &mut heapless::Vec<Seg, 32>, s: Seg) -> Result<(), AlarmKind> {
+fn push(segs: &mut heapless::Vec<Seg, SEGS>, s: Seg) -> Result<(), AlarmKind> {
     segs.push(s).map_err(|_| AlarmKind::ProfileTooLong)
 }
