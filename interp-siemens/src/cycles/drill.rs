@@ -63,7 +63,7 @@ fn alarm(k: CycleAlarm) -> AlarmKind {
 
 /// The drilling axis, levels and plane of a call; `axn` is the `_AXN` argument of
 /// CYCLE83/84/840 (0 for the others: the applicate).
-fn hole(p: &Params<'_, '_>, st: &State, ctx: &dyn Engine, axn: i64) -> Result<Hole, AlarmKind> {
+fn hole(p: &Params<'_, '_>, st: &State, ctx: &dyn Engine, axn: i64) -> Result<Hole, CycleAlarm> {
     let [a, o, n] = plane_axes(st.modal.plane);
     let axis = match axn {
         1 => a,
@@ -71,7 +71,7 @@ fn hole(p: &Params<'_, '_>, st: &State, ctx: &dyn Engine, axn: i64) -> Result<Ho
         _ => n,
     };
     if !ctx.cfg().axes[axis.index()].present {
-        return Err(alarm(if axn != 0 { AxisNotPresent } else { NoThirdAxis }));
+        return Err(if axn != 0 { AxisNotPresent } else { NoThirdAxis });
     }
     let (abscissa, ordinate) = match axis {
         Axis::Z => (Axis::X, Axis::Y),
@@ -96,13 +96,13 @@ fn hole(p: &Params<'_, '_>, st: &State, ctx: &dyn Engine, axn: i64) -> Result<Ho
     let dir = if rtp != rfp {
         (rfp - rtp).signum()
     } else if dpr != 0 {
-        return Err(alarm(ReferencePlaneWrong));
+        return Err(ReferencePlaneWrong);
     } else {
         (dp - rfp).signum()
     };
     let bottom = if dpr != 0 { rfp + dir * dpr } else { dp };
     if dir == 0 || (bottom - rfp) * dir < 0 {
-        return Err(alarm(ReferencePlaneWrong));
+        return Err(ReferencePlaneWrong);
     }
     Ok(Hole { axis, plane, rtp, rfp, r_level: rfp - dir * sdis, bottom, dir, abscissa, ordinate })
 }
@@ -135,9 +135,9 @@ fn direction(m: i64) -> Option<SpindleDir> {
 }
 
 /// SDIR of CYCLE86-88: M3 or M4, else 61102 (lines 2689, 2814, 2896).
-fn sdir(p: &Params<'_, '_>, i: usize) -> Result<SpindleDir, AlarmKind> {
+fn sdir(p: &Params<'_, '_>, i: usize) -> Result<SpindleDir, CycleAlarm> {
     match direction(p.int(i)) {
-        Some(SpindleDir::Stop) | None => Err(alarm(NoSpindleDirection)),
+        Some(SpindleDir::Stop) | None => Err(NoSpindleDirection),
         Some(d) => Ok(d),
     }
 }
@@ -281,7 +281,7 @@ fn cycle83(p: &Params<'_, '_>, h: &Hole, st: &State) -> Result<Work, AlarmKind> 
 /// The lead of a tapping cycle from MPIT (M3–M48, sign = direction) and PIT (sign =
 /// direction, unit by _PTAB): nm/rev and the direction into the hole. Both zero, a
 /// size not in the ISO coarse series, or values that contradict: 61001.
-fn tap_lead(p: &Params<'_, '_>, mpit: usize, pit: usize, ptab: usize) -> Result<(i64, SpindleDir), AlarmKind> {
+fn tap_lead(p: &Params<'_, '_>, mpit: usize, pit: usize, ptab: usize) -> Result<(i64, SpindleDir), CycleAlarm> {
     let (m, v) = (p.real(mpit), p.real(pit));
     let pitch_mm = match p.int(ptab) {
         0 => v * p.per_unit / 1e6,
@@ -289,23 +289,23 @@ fn tap_lead(p: &Params<'_, '_>, mpit: usize, pit: usize, ptab: usize) -> Result<
         2 if v != 0.0 => 25.4 / v,
         2 => 0.0,
         3 => v * 25.4,
-        _ => return Err(alarm(ThreadPitchWrong)),
+        _ => return Err(ThreadPitchWrong),
     };
     let mm = if m != 0.0 {
-        let coarse = super::thread::coarse_pitch(libm::fabs(m), 48.0).ok_or(alarm(ThreadPitchWrong))?;
+        let coarse = super::thread::coarse_pitch(libm::fabs(m), 48.0).ok_or(ThreadPitchWrong)?;
         let coarse = if m < 0.0 { -coarse } else { coarse };
         if pitch_mm != 0.0 && libm::fabs(pitch_mm - coarse) > 1e-6 {
-            return Err(alarm(ThreadPitchWrong));
+            return Err(ThreadPitchWrong);
         }
         coarse
     } else if pitch_mm != 0.0 {
         pitch_mm
     } else {
-        return Err(alarm(ThreadPitchWrong));
+        return Err(ThreadPitchWrong);
     };
     let nm = libm::round(libm::fabs(mm) * 1e6);
     if !(1.0..=2e9).contains(&nm) {
-        return Err(alarm(ThreadPitchWrong));
+        return Err(ThreadPitchWrong);
     }
     Ok((nm as i64, if mm < 0.0 { SpindleDir::Ccw } else { SpindleDir::Cw }))
 }
@@ -314,10 +314,10 @@ fn tap_lead(p: &Params<'_, '_>, mpit: usize, pit: usize, ptab: usize) -> Result<
 /// `hundreds` (SOFT/BRISK/DRIVE or the braking point), thousands 0-1; else 61125.
 /// Accepted and otherwise without effect: our axes always stop exactly at the
 /// tapping reversal and the planner has one acceleration profile.
-fn techno(p: &Params<'_, '_>, i: usize, hundreds: i64) -> Result<(), AlarmKind> {
+fn techno(p: &Params<'_, '_>, i: usize, hundreds: i64) -> Result<(), CycleAlarm> {
     let t = p.int(i);
     let ok = (0..=1999).contains(&t) && t % 10 <= 3 && t / 10 % 10 <= 2 && t / 100 % 10 <= hundreds;
-    if ok { Ok(()) } else { Err(alarm(TechnologyWrong)) }
+    if ok { Ok(()) } else { Err(TechnologyWrong) }
 }
 
 /// CYCLE84 (RTP, RFP, SDIS, DP, DPR, DTB, SDAC, MPIT, PIT, POSS, SST, SST1, _AXN,

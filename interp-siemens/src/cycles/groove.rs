@@ -236,7 +236,7 @@ fn contour(
 
 /// The corner at `b` between the lines `a`→`b` and `b`→`c`: where it starts on the
 /// first, ends on the second, and its piece (arc or chamfer line).
-fn corner(a: V2, b: V2, c: V2, spec: CornerSpec) -> Result<(V2, V2, Option<Seg>), AlarmKind> {
+fn corner(a: V2, b: V2, c: V2, spec: CornerSpec) -> Result<(V2, V2, Option<Seg>), CycleAlarm> {
     let (t1, t2) = (b.minus(a).unit(), c.minus(b).unit());
     let turn = libm::atan2(t1.cross(t2), t1.dot(t2));
     let v = spec.value * 1e6;
@@ -252,7 +252,7 @@ fn corner(a: V2, b: V2, c: V2, spec: CornerSpec) -> Result<(V2, V2, Option<Seg>)
         -v / (2.0 * libm::cos(half))
     };
     if leg > b.minus(a).len() + 1.0 || leg > c.minus(b).len() + 1.0 {
-        return Err(AlarmKind::SiemensCycle(CycleAlarm::GrooveFormWrong));
+        return Err(CycleAlarm::GrooveFormWrong);
     }
     let (s, e) = (b.minus(t1.scale(leg)), b.plus(t2.scale(leg)));
     let piece = if v > 0.0 {

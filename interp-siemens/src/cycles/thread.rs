@@ -169,7 +169,7 @@ pub(super) fn cycle98(
 
 /// APP, ROP, TDEP, FAL, IANG, NSP, NRC, NID (from parameter `at`) and, for CYCLE97
 /// (`at` = 6), VARI, NUMT, _VRT after them.
-fn common(p: &Params<'_, '_>, at: usize) -> Result<Common, AlarmKind> {
+fn common(p: &Params<'_, '_>, at: usize) -> Result<Common, CycleAlarm> {
     let mut c = Common {
         app: p.unsigned(at),
         rop: p.unsigned(at + 1),
@@ -191,9 +191,9 @@ fn common(p: &Params<'_, '_>, at: usize) -> Result<Common, AlarmKind> {
 }
 
 /// VARI 1–4, else 61002 (see the module notes on 61102).
-fn check_vari(vari: i64) -> Result<(), AlarmKind> {
+fn check_vari(vari: i64) -> Result<(), CycleAlarm> {
     if !(1..=4).contains(&vari) {
-        return Err(AlarmKind::SiemensCycle(CycleAlarm::MachiningTypeWrong));
+        return Err(CycleAlarm::MachiningTypeWrong);
     }
     Ok(())
 }

@@ -81,14 +81,14 @@ struct Position {
 }
 
 /// The undercut's position from _VARI (1–4) or the active cutting edge position.
-fn position(vari: i64, st: &State) -> Result<Position, AlarmKind> {
+fn position(vari: i64, st: &State) -> Result<Position, CycleAlarm> {
     let sl = match vari {
         0 => match st.tool.tip {
             t @ 1..=4 => t,
-            _ => return Err(AlarmKind::SiemensCycle(CycleAlarm::WrongEdgePosition)),
+            _ => return Err(CycleAlarm::WrongEdgePosition),
         },
         1..=4 => vari as u8,
-        _ => return Err(AlarmKind::SiemensCycle(CycleAlarm::UndercutPositionWrong)),
+        _ => return Err(CycleAlarm::UndercutPositionWrong),
     };
     // The tip points into the corner: position 3 (−X −Z) cuts an outside corner
     // whose diameter runs towards +Z.
