@@ -64,7 +64,8 @@ pub(super) fn cycle93(
     ctx: &mut dyn Engine,
 ) -> Result<(), AlarmKind> {
     need_zx(st)?;
-    let vari = p.int(15);
+    // A negative VARI (or one beyond u32) reads as 0, whose units are wrong.
+    let vari = u32::try_from(p.int(15)).unwrap_or(0);
     let (units, tens) = (vari % 10, vari / 10);
     if !(1..=8).contains(&units) || !(0..=1).contains(&tens) {
         return Err(AlarmKind::SiemensCycle(CycleAlarm::MachiningTypeWrong));

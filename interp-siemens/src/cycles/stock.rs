@@ -35,7 +35,8 @@ pub(super) fn cycle95(
     contour: Option<ContourSource<'_>>,
 ) -> Result<(), AlarmKind> {
     need_zx(st)?;
-    let vari = p.int(8);
+    // A negative VARI (or one beyond u32) reads as 0, whose units are wrong.
+    let vari = u32::try_from(p.int(8)).unwrap_or(0);
     let (units, hundreds) = (vari % 100, vari / 100);
     if !(1..=12).contains(&units) || !(hundreds == 0 || hundreds == 2) {
         return Err(AlarmKind::SiemensCycle(CycleAlarm::MachiningTypeWrong));
@@ -115,16 +116,16 @@ pub(super) fn cycle950(
     contour: Option<ContourSource<'_>>,
 ) -> Result<(), AlarmKind> {
     need_zx(st)?;
-    let vari = p.int(4);
-    let digit = |k: u32| (vari / 10_i64.pow(k)) % 10;
+    // Six digits; a negative or longer VARI reads as 0, whose units digit is wrong.
+    let vari = u32::try_from(p.int(4)).ok().filter(|&v| v < 1_000_000).unwrap_or(0);
+    let digit = |k: u32| (vari / 10_u32.pow(k)) % 10;
     let (kind, infeed, stage, pull, under, dir) = (digit(0), digit(1), digit(2), digit(3), digit(4), digit(5));
     let bad = !(1..=3).contains(&kind)
         || !(1..=4).contains(&infeed)
         || !(1..=3).contains(&stage)
         || !(1..=2).contains(&pull)
         || !(1..=2).contains(&under)
-        || !(1..=4).contains(&dir)
-        || vari >= 1_000_000;
+        || !(1..=4).contains(&dir);
     // Longitudinal infeeds along X, face along Z; the machining direction along the other.
     let infeed_x = infeed <= 2;
     if bad || (kind == 1 && !infeed_x) || (kind == 2 && infeed_x) || ((dir <= 2) == infeed_x) {
