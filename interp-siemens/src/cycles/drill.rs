@@ -57,8 +57,40 @@ fn plane_axes(plane: Plane) -> [Axis; 3] {
     }
 }
 
-fn alarm(k: CycleAlarm) -> AlarmKind {
-    AlarmKind::SiemensCycle(k)
+/// An alarm of a drilling cycle's own parameters: a cycle alarm or one of the
+/// three others they raise. Four bytes where the [`AlarmKind`] it stands for
+/// takes 44: the cycles pass it on with `?`, and [`cycle`] turns it into the
+/// alarm once.
+#[derive(Clone, Copy, Debug)]
+enum Fault {
+    Cycle(CycleAlarm),
+    /// [`AlarmKind::FeedPerRevSpindleStopped`].
+    SpindleStopped,
+    /// [`AlarmKind::Overflow`].
+    Overflow,
+    /// [`AlarmKind::FeedZero`].
+    FeedZero,
+}
+
+impl From<CycleAlarm> for Fault {
+    fn from(k: CycleAlarm) -> Self {
+        Fault::Cycle(k)
+    }
+}
+
+impl From<Fault> for AlarmKind {
+    fn from(f: Fault) -> Self {
+        match f {
+            Fault::Cycle(k) => AlarmKind::SiemensCycle(k),
+            Fault::SpindleStopped => AlarmKind::FeedPerRevSpindleStopped,
+            Fault::Overflow => AlarmKind::Overflow,
+            Fault::FeedZero => AlarmKind::FeedZero,
+        }
+    }
+}
+
+fn alarm(k: CycleAlarm) -> Fault {
+    Fault::Cycle(k)
 }
 
 /// The drilling axis, levels and plane of a call; `axn` is the `_AXN` argument of
@@ -108,18 +140,18 @@ fn hole(p: &Params<'_, '_>, st: &State, ctx: &dyn Engine, axn: i64) -> Result<Ho
 }
 
 /// A dwell parameter in ms: seconds, or (`revs_allowed`, < 0) spindle revolutions.
-fn dwell(p: &Params<'_, '_>, i: usize, st: &State, revs_allowed: bool) -> Result<u32, AlarmKind> {
+fn dwell(p: &Params<'_, '_>, i: usize, st: &State, revs_allowed: bool) -> Result<u32, Fault> {
     let v = p.real(i);
     let ms = if v < 0.0 && revs_allowed {
         if st.spindle.rpm == 0 {
-            return Err(AlarmKind::FeedPerRevSpindleStopped);
+            return Err(Fault::SpindleStopped);
         }
         -v * 60_000.0 / f64::from(st.spindle.rpm)
     } else {
         libm::fabs(v) * 1000.0
     };
     if !ms.is_finite() || ms > f64::from(u32::MAX) {
-        return Err(AlarmKind::Overflow);
+        return Err(Fault::Overflow);
     }
     Ok(libm::round(ms) as u32)
 }
@@ -187,18 +219,22 @@ pub(super) fn cycle(
         _ => 0,
     };
     let h = hole(p, st, ctx, axn)?;
-    let (work, dwell_ms, spindle) = match which {
-        Drill::C81 => (PLAIN, 0, None),
-        Drill::C82 => (PLAIN, dwell(p, 5, st, false)?, None),
-        Drill::C83 => cycle83(p, &h, st)?,
-        Drill::C84 => cycle84(p, st)?,
-        Drill::C840 => cycle840(p, st)?,
-        Drill::C85 => cycle85(p, st)?,
-        Drill::C86 => cycle86(p, &h, st, ctx)?,
-        Drill::C87 => cycle87(p)?,
-        Drill::C88 => cycle88(p, st)?,
-        Drill::C89 => (HoleWork::Bore, dwell(p, 5, st, false)?, None),
+    // The cycle's own parameters, their alarm converted once.
+    let work = || -> Result<Work, Fault> {
+        Ok(match which {
+            Drill::C81 => (PLAIN, 0, None),
+            Drill::C82 => (PLAIN, dwell(p, 5, st, false)?, None),
+            Drill::C83 => cycle83(p, &h, st)?,
+            Drill::C84 => cycle84(p, st)?,
+            Drill::C840 => cycle840(p, st)?,
+            Drill::C85 => cycle85(p, st)?,
+            Drill::C86 => cycle86(p, &h, st, ctx)?,
+            Drill::C87 => cycle87(p)?,
+            Drill::C88 => cycle88(p, st)?,
+            Drill::C89 => (HoleWork::Bore, dwell(p, 5, st, false)?, None),
+        })
     };
+    let (work, dwell_ms, spindle) = work()?;
     let position = st.work_pos(ctx.cfg());
     let spec = HoleSpec {
         work,
@@ -222,7 +258,7 @@ const PLAIN: HoleWork = HoleWork::Drill { q: 0, deep: false, d: 0 };
 
 /// CYCLE83 (RTP, RFP, SDIS, DP, DPR, FDEP, FDPR, DAM, DTB, DTS, FRF, VARI, _AXN,
 /// _MDEP, _VRT, _DTD, _DIS1), lines 1703-1956.
-fn cycle83(p: &Params<'_, '_>, h: &Hole, st: &State) -> Result<Work, AlarmKind> {
+fn cycle83(p: &Params<'_, '_>, h: &Hole, st: &State) -> Result<Work, Fault> {
     let chip_removal = match p.int(11) {
         0 => false,
         1 => true,
@@ -314,9 +350,10 @@ fn tap_lead(p: &Params<'_, '_>, mpit: usize, pit: usize, ptab: usize) -> Result<
 /// `hundreds` (SOFT/BRISK/DRIVE or the braking point), thousands 0-1; else 61125.
 /// Accepted and otherwise without effect: our axes always stop exactly at the
 /// tapping reversal and the planner has one acceleration profile.
-fn techno(p: &Params<'_, '_>, i: usize, hundreds: i64) -> Result<(), CycleAlarm> {
-    let t = p.int(i);
-    let ok = (0..=1999).contains(&t) && t % 10 <= 3 && t / 10 % 10 <= 2 && t / 100 % 10 <= hundreds;
+fn techno(p: &Params<'_, '_>, i: usize, hundreds: u32) -> Result<(), CycleAlarm> {
+    // In 32 bits (64-bit / and % are calls): a negative value fails the conversion.
+    let ok =
+        u32::try_from(p.int(i)).is_ok_and(|t| t <= 1999 && t % 10 <= 3 && t / 10 % 10 <= 2 && t / 100 % 10 <= hundreds);
     if ok { Ok(()) } else { Err(TechnologyWrong) }
 }
 
@@ -324,7 +361,7 @@ fn techno(p: &Params<'_, '_>, i: usize, hundreds: i64) -> Result<(), CycleAlarm>
 /// _PTAB, _TECHNO, _VARI, _DAM, _VRT), lines 1958-2204: rigid tapping, the axis
 /// locked to the spindle (G331/G332), in pecks when _VARI is 1 (chip breaking:
 /// back by _VRT) or 2 (chip removal: back to R).
-fn cycle84(p: &Params<'_, '_>, st: &State) -> Result<Work, AlarmKind> {
+fn cycle84(p: &Params<'_, '_>, st: &State) -> Result<Work, Fault> {
     let (lead, dir) = tap_lead(p, 7, 8, 13)?;
     techno(p, 14, 3)?;
     let restore = match p.int(6) {
@@ -345,7 +382,7 @@ fn cycle84(p: &Params<'_, '_>, st: &State) -> Result<Work, AlarmKind> {
 /// CYCLE840 (RTP, RFP, SDIS, DP, DPR, DTB, SDR, SDAC, ENC, MPIT, PIT, _AXN, _PTAB,
 /// _TECHNO), lines 2206-2504: tapping with a compensating chuck, the feed following
 /// the spindle (G33 with an encoder, G63 without).
-fn cycle840(p: &Params<'_, '_>, st: &State) -> Result<Work, AlarmKind> {
+fn cycle840(p: &Params<'_, '_>, st: &State) -> Result<Work, Fault> {
     techno(p, 13, 1)?;
     let enc = p.int(8);
     let with_encoder = match enc {
@@ -381,13 +418,13 @@ fn cycle840(p: &Params<'_, '_>, st: &State) -> Result<Work, AlarmKind> {
         match st.modal.feed_mode {
             FeedMode::PerRev => f,
             FeedMode::PerMin if st.spindle.rpm > 0 => f / i64::from(st.spindle.rpm),
-            FeedMode::PerMin => return Err(AlarmKind::FeedPerRevSpindleStopped),
+            FeedMode::PerMin => return Err(Fault::SpindleStopped),
         }
     } else {
         tap_lead(p, 9, 10, 12)?.0
     };
     if lead <= 0 {
-        return Err(AlarmKind::FeedZero);
+        return Err(Fault::FeedZero);
     }
     let work = HoleWork::FloatTap { lead, dir, turning: true, after, stop_at_bottom: false };
     // DTB: with ENC = 20 and without an encoder (the example of line 2458 dwells
@@ -406,7 +443,7 @@ fn feed(p: &Params<'_, '_>, i: usize, st: &State) -> i64 {
 
 /// CYCLE85 (RTP, RFP, SDIS, DP, DPR, DTB, FFR, RFF): in at FFR, dwell, out to
 /// RFP+SDIS at RFF, G0 to RTP (lines 2506-2625).
-fn cycle85(p: &Params<'_, '_>, st: &State) -> Result<Work, AlarmKind> {
+fn cycle85(p: &Params<'_, '_>, st: &State) -> Result<Work, Fault> {
     let work = HoleWork::BoreFeeds { feed_in: feed(p, 6, st), feed_out: feed(p, 7, st) };
     let dtb = dwell(p, 5, st, false)?;
     Ok((work, dtb, None))
@@ -415,7 +452,7 @@ fn cycle85(p: &Params<'_, '_>, st: &State) -> Result<Work, AlarmKind> {
 /// CYCLE86 (RTP, RFP, SDIS, DP, DPR, DTB, SDIR, RPA, RPO, RPAP, POSS): in with the
 /// spindle turning SDIR, dwell, oriented stop, G0 off the wall by RPA/RPO in the
 /// plane, G0 out, back to the hole position, spindle on (lines 2627-2751).
-fn cycle86(p: &Params<'_, '_>, h: &Hole, st: &State, ctx: &dyn Engine) -> Result<Work, AlarmKind> {
+fn cycle86(p: &Params<'_, '_>, h: &Hole, st: &State, ctx: &dyn Engine) -> Result<Work, Fault> {
     let dir = sdir(p, 6)?;
     let mut shift = Pos::ZERO;
     for (axis, i) in [(h.abscissa, 7), (h.ordinate, 8)] {
@@ -431,14 +468,14 @@ fn cycle86(p: &Params<'_, '_>, h: &Hole, st: &State, ctx: &dyn Engine) -> Result
 
 /// CYCLE87 (RTP, RFP, SDIS, DP, DPR, SDIR): in with the spindle turning SDIR, M5,
 /// M0, G0 out after NC start (lines 2753-2835).
-fn cycle87(p: &Params<'_, '_>) -> Result<Work, AlarmKind> {
+fn cycle87(p: &Params<'_, '_>) -> Result<Work, Fault> {
     let dir = sdir(p, 5)?;
     Ok((HoleWork::BoreManual { restart: dir }, 0, Some(dir)))
 }
 
 /// CYCLE88 (RTP, RFP, SDIS, DP, DPR, DTB, SDIR): CYCLE87 with a dwell; M5 only
 /// (no M0) when `_ZSD[5]` = 1 (lines 2837-2918).
-fn cycle88(p: &Params<'_, '_>, st: &State) -> Result<Work, AlarmKind> {
+fn cycle88(p: &Params<'_, '_>, st: &State) -> Result<Work, Fault> {
     let dir = sdir(p, 6)?;
     let work =
         if st.cycle.zsd[5] == 1 { HoleWork::BoreStop { restart: dir } } else { HoleWork::BoreManual { restart: dir } };
