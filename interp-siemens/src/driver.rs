@@ -14,7 +14,7 @@
 //!   the end of the main program's text without M02/M30 is alarm 5010, which a
 //!   stream reads as "wait for more text".
 
-use crate::check::{apply, check_into, number_format};
+use crate::check::{Extras, apply, check_into, number_format};
 use crate::def::{self, proc_params};
 use crate::labels::{self, Level as Section};
 use crate::read::{Dir, Jump, Pending, Scope, Stmt, Target, Words, read};
@@ -78,6 +78,15 @@ impl interp_core::lang::Front for Sinumerik {
     }
 }
 
+/// What a block that ran does next: write its assignments, jump (the block's
+/// GOTO, when it goes on), arm MCALL if it moved an axis.
+#[derive(Clone, Copy)]
+struct After<'p, 't> {
+    pending: Option<&'p Pending<'t>>,
+    to: Option<Cursor>,
+    moves: bool,
+}
+
 /// The SINUMERIK driver's steps, on the interpreter they drive (an extension
 /// trait: the interpreter is interp-core's type, the steps are this crate's).
 #[allow(clippy::too_many_arguments)]
@@ -106,6 +115,22 @@ trait Driver {
         words: &Words,
         pending: &Pending<'_>,
         jump: Option<Jump<'_>>,
+        programs: &P,
+        env: &E,
+        sink: &mut K,
+    ) -> Result<Progress, Alarm>
+    where
+        P: ProgramStore + ?Sized,
+        E: Environment,
+        K: CanonSink + ?Sized;
+
+    fn run_block<P, E, K>(
+        &mut self,
+        at: Cursor,
+        line: u32,
+        spec: Option<CallSpec<'_>>,
+        extras: Extras,
+        then: After<'_, '_>,
         programs: &P,
         env: &E,
         sink: &mut K,
@@ -429,19 +454,47 @@ impl Driver for Interpreter {
                 GCode::Rapid | GCode::Linear | GCode::ArcCw | GCode::ArcCcw
             )
             && self.cmd.g.one_shot.is_none();
+        let then = After { pending: Some(pending), to, moves };
+        self.run_block(at, line, None, extras, then, programs, env, sink)
+    }
+
+    /// Runs the command in `self.cmd` (an NC block, or the cycle call `spec`)
+    /// as every block runs, and on success writes its assignments, follows its
+    /// jump, arms MCALL after a move and delivers it. One copy of the engine's
+    /// `run_cmd` for NC blocks and cycle calls alike.
+    #[inline(never)]
+    #[allow(clippy::too_many_arguments)]
+    fn run_block<P, E, K>(
+        &mut self,
+        at: Cursor,
+        line: u32,
+        spec: Option<CallSpec<'_>>,
+        extras: Extras,
+        then: After<'_, '_>,
+        programs: &P,
+        env: &E,
+        sink: &mut K,
+    ) -> Result<Progress, Alarm>
+    where
+        P: ProgramStore + ?Sized,
+        E: Environment,
+        K: CanonSink + ?Sized,
+    {
         let program = self.program_text(at.program, programs);
-        let r = self.run_cmd(env, Some(program), |me, flow| me.siemens_route(flow), None, |st| apply(extras, st));
+        let r = self.run_cmd(env, Some(program), |me, flow| me.siemens_route(flow), spec, move |st| apply(extras, st));
         self.started = true;
         match r {
             Err(k) => Err(self.alarm_stop(sink, at.program, line, k)),
             Ok(next) => {
-                self.commit(pending);
-                if moves && self.siemens.mcall.is_some() && !self.in_modal_call() {
+                if let Some(pending) = then.pending {
+                    self.commit(pending);
+                }
+                if then.moves && self.siemens.mcall.is_some() && !self.in_modal_call() {
                     self.siemens.mcall_due = core::num::NonZeroU32::new(line.max(1));
                 }
                 match next {
                     Some(next) => {
-                        if let (Next::Go, Some(to)) = (next, to) {
+                        if let (Next::Go, Some(to)) = (next, then.to) {
                             self.cursor = to;
                         }
                         self.go(next);
@@ -810,23 +863,8 @@ impl Driver for Interpreter {
             Err(k) => return Err(self.alarm_stop(sink, at.program, line, k)),
         };
         let spec = CallSpec { sig, front: &SINUMERIK, args, contour };
-        let program = self.program_text(at.program, programs);
-        let r = self.run_cmd(env, Some(program), |me, flow| me.siemens_route(flow), Some(spec), |_| {});
-        self.started = true;
-        match r {
-            Err(k) => Err(self.alarm_stop(sink, at.program, line, k)),
-            Ok(Some(next)) => {
-                self.go(next);
-                self.deliver(sink);
-                Ok(Progress::Executed { line })
-            }
-            Ok(None) => {
-                if let Some(v) = self.validating.as_mut() {
-                    v.at = at;
-                }
-                Ok(Progress::Yielded { line })
-            }
-        }
+        let then = After { pending: None, to: None, moves: false };
+        self.run_block(at, line, Some(spec), Extras::default(), then, programs, env, sink)
     }
 
     /// The contour a cycle's contour parameter names: `"NAME"` (a subprogram: its

@@ -231,7 +231,14 @@ impl CallArgs {
     /// REAL to INT rounded to the nearest whole number (an R parameter may pass a
     /// cycle's INT parameter, line 641); a one-character string to CHAR. A number
     /// never becomes a string or a character, nor a string a number.
-    pub fn bind(&mut self, params: impl ExactSizeIterator<Item = Ty>) -> Result<(), AlarmKind> {
+    pub fn bind(&mut self, mut params: impl ExactSizeIterator<Item = Ty>) -> Result<(), AlarmKind> {
+        self.bind_dyn(&mut params)
+    }
+
+    /// [`CallArgs::bind`] on a trait object: one copy of the binding in flash
+    /// for every kind of parameter list (a cycle's signature, a PROC's).
+    #[inline(never)]
+    fn bind_dyn(&mut self, params: &mut dyn ExactSizeIterator<Item = Ty>) -> Result<(), AlarmKind> {
         let n = params.len();
         if self.len() > n || n > MAX_ARGS {
             return Err(S::TooManyParameters.into());
