@@ -24,6 +24,7 @@ use interp_core::codes::GCode;
 use interp_core::command::Command;
 use interp_core::config::Language;
 use interp_core::env::Environment;
+use interp_core::geom::round_i64;
 use interp_core::interpreter::siemens::{CallSpec, Callee, ContourAt, Level, ModalCall};
 use interp_core::interpreter::{Entry, Frame, Interpreter, Next, Progress};
 use interp_core::lang::ProgramText;
@@ -548,7 +549,7 @@ impl Driver for Interpreter {
                     let _ = self.siemens.vars.set(name, v);
                 }
                 Target::Zsd(i) => {
-                    let x = libm::round(v.num().unwrap_or(0.0)).clamp(-32_768.0, 32_767.0);
+                    let x = round_i64(v.num().unwrap_or(0.0)).clamp(-32_768, 32_767);
                     if let Some(z) = self.state.cycle.zsd.get_mut(i) {
                         *z = x as i16;
                     }
@@ -563,9 +564,9 @@ impl Driver for Interpreter {
     fn write_tool(&mut self, row: u16, param: u8, v: Value<'_>) {
         let Some(o) = self.cfg.tools.get_mut(row) else { return };
         let x = v.num().unwrap_or(0.0);
-        let nm = libm::round(x * 1e6).clamp(-1e15, 1e15) as i64;
+        let nm = round_i64(x * 1e6).clamp(-1_000_000_000_000_000, 1_000_000_000_000_000);
         match param {
-            2 => o.tip = libm::round(x).clamp(0.0, 9.0) as u8,
+            2 => o.tip = round_i64(x).clamp(0, 9) as u8,
             3 => o.x = nm,
             4 => o.z = nm,
             6 => o.radius = nm.abs(),
