@@ -154,7 +154,8 @@ impl CallArgs {
 
     /// Appends an argument as written: alarm 12340 beyond [`MAX_ARGS`]; arguments
     /// that do not fit [`ARG_BYTES`] are alarm 12160.
-    pub fn push(&mut self, arg: Arg<'_>) -> Result<(), AlarmKind> {
+    pub fn push<'b, A: Into<Arg<'b>>>(&mut self, arg: A) -> Result<(), AlarmKind> {
+        let arg = arg.into();
         if self.len() >= MAX_ARGS {
             return Err(S::TooManyParameters.into());
         }
@@ -232,13 +233,15 @@ impl CallArgs {
     /// cycle's INT parameter, line 641); a one-character string to CHAR. A number
     /// never becomes a string or a character, nor a string a number.
     pub fn bind(&mut self, mut params: impl ExactSizeIterator<Item = Ty>) -> Result<(), AlarmKind> {
-        self.bind_dyn(&mut params)
+        self.bind_dyn::<dyn ExactSizeIterator<Item = Ty>>(&mut params)
     }
 
     /// [`CallArgs::bind`] on a trait object: one copy of the binding in flash
-    /// for every kind of parameter list (a cycle's signature, a PROC's).
+    /// for every kind of parameter list (a cycle's signature, a PROC's). Generic
+    /// (over `dyn ExactSizeIterator` only) so that it is compiled with the front
+    /// end that calls it, built for size on the board, like `push`.
     #[inline(never)]
-    fn bind_dyn(&mut self, params: &mut dyn ExactSizeIterator<Item = Ty>) -> Result<(), AlarmKind> {
+    fn bind_dyn<I: ExactSizeIterator<Item = Ty> + ?Sized>(&mut self, params: &mut I) -> Result<(), AlarmKind> {
         let n = params.len();
         if self.len() > n || n > MAX_ARGS {
             return Err(S::TooManyParameters.into());
