@@ -7,7 +7,7 @@
 //! parameters, defined in the called level with the caller's arguments.
 
 use crate::expr::eval;
-use crate::lex::{Src, is, syntax};
+use crate::lex::{Src, syntax, which};
 use crate::read::Scope;
 use interp_core::alarm::{AlarmKind, SiemensAlarm as S};
 use interp_core::config::MachineConfig;
@@ -21,12 +21,12 @@ pub const MAX_DEF_NAMES: usize = 24;
 /// Reads a type: `REAL`, `INT`, `BOOL`, `CHAR`, `STRING[n]`.
 fn var_type(src: &mut Src<'_>) -> Result<VarTy, AlarmKind> {
     let t = src.name();
-    Ok(match () {
-        _ if is(t, b"REAL") => VarTy::Real,
-        _ if is(t, b"INT") => VarTy::Int,
-        _ if is(t, b"BOOL") => VarTy::Bool,
-        _ if is(t, b"CHAR") => VarTy::Char,
-        _ if is(t, b"STRING") => {
+    Ok(match which(t, &[b"REAL", b"INT", b"BOOL", b"CHAR", b"STRING", b"AXIS", b"FRAME"]) {
+        Some(0) => VarTy::Real,
+        Some(1) => VarTy::Int,
+        Some(2) => VarTy::Bool,
+        Some(3) => VarTy::Char,
+        Some(4) => {
             src.expect(b'[', "STRING needs its length: STRING[n]")?;
             let n = src.number()?;
             src.expect(b']', "']' missing")?;
@@ -34,11 +34,9 @@ fn var_type(src: &mut Src<'_>) -> Result<VarTy, AlarmKind> {
                 n.as_integer().filter(|c| (1..=MAX_STRING as i64).contains(c)).ok_or(AlarmKind::from(S::ValueRange))?;
             VarTy::Str { cap: cap as u8 }
         }
-        _ if is(t, b"AXIS") || is(t, b"FRAME") => {
-            return Err(AlarmKind::NotSupportedYet { what: "AXIS and FRAME variables" });
-        }
-        _ if t.is_empty() => return Err(syntax("type expected (REAL, INT, BOOL, CHAR, STRING[n])")),
-        _ => return Err(syntax("unknown type (REAL, INT, BOOL, CHAR, STRING[n])")),
+        Some(_) => return Err(AlarmKind::NotSupportedYet { what: "AXIS and FRAME variables" }),
+        None if t.is_empty() => return Err(syntax("type expected (REAL, INT, BOOL, CHAR, STRING[n])")),
+        None => return Err(syntax("unknown type (REAL, INT, BOOL, CHAR, STRING[n])")),
     })
 }
 
@@ -96,7 +94,6 @@ pub fn define(body: &[u8], vars: &mut Vars, state: &State, cfg: &MachineConfig) 
     if !src.done() {
         return Err(syntax("',' or the end of the DEF expected"));
     }
-    let names = names.clone();
     let mark = vars.mark();
     for &(name, init) in &names {
         let r = define_one(vars, name, ty, init, &text);

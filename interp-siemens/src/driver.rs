@@ -14,7 +14,7 @@
 //!   the end of the main program's text without M02/M30 is alarm 5010, which a
 //!   stream reads as "wait for more text".
 
-use crate::check::{apply, check_into, number_format};
+use crate::check::{Extras, apply, check_into, number_format};
 use crate::def::{self, proc_params};
 use crate::labels::{self, Level as Section};
 use crate::read::{Dir, Jump, Pending, Scope, Stmt, Target, Words, read};
@@ -24,6 +24,7 @@ use interp_core::codes::GCode;
 use interp_core::command::Command;
 use interp_core::config::Language;
 use interp_core::env::Environment;
+use interp_core::geom::round_i64;
 use interp_core::interpreter::siemens::{CallSpec, Callee, ContourAt, Level, ModalCall};
 use interp_core::interpreter::{Entry, Frame, Interpreter, Next, Progress};
 use interp_core::lang::ProgramText;
@@ -78,6 +79,15 @@ impl interp_core::lang::Front for Sinumerik {
     }
 }
 
+/// What a block that ran does next: write its assignments, jump (the block's
+/// GOTO, when it goes on), arm MCALL if it moved an axis.
+#[derive(Clone, Copy)]
+struct After<'p, 't> {
+    pending: Option<&'p Pending<'t>>,
+    to: Option<Cursor>,
+    moves: bool,
+}
+
 /// The SINUMERIK driver's steps, on the interpreter they drive (an extension
 /// trait: the interpreter is interp-core's type, the steps are this crate's).
 #[allow(clippy::too_many_arguments)]
@@ -106,6 +116,22 @@ trait Driver {
         words: &Words,
         pending: &Pending<'_>,
         jump: Option<Jump<'_>>,
+        programs: &P,
+        env: &E,
+        sink: &mut K,
+    ) -> Result<Progress, Alarm>
+    where
+        P: ProgramStore + ?Sized,
+        E: Environment,
+        K: CanonSink + ?Sized;
+
+    fn run_block<P, E, K>(
+        &mut self,
+        at: Cursor,
+        line: u32,
+        spec: Option<CallSpec<'_>>,
+        extras: Extras,
+        then: After<'_, '_>,
         programs: &P,
         env: &E,
         sink: &mut K,
@@ -429,19 +455,47 @@ impl Driver for Interpreter {
                 GCode::Rapid | GCode::Linear | GCode::ArcCw | GCode::ArcCcw
             )
             && self.cmd.g.one_shot.is_none();
+        let then = After { pending: Some(pending), to, moves };
+        self.run_block(at, line, None, extras, then, programs, env, sink)
+    }
+
+    /// Runs the command in `self.cmd` (an NC block, or the cycle call `spec`)
+    /// as every block runs, and on success writes its assignments, follows its
+    /// jump, arms MCALL after a move and delivers it. One copy of the engine's
+    /// `run_cmd` for NC blocks and cycle calls alike.
+    #[inline(never)]
+    #[allow(clippy::too_many_arguments)]
+    fn run_block<P, E, K>(
+        &mut self,
+        at: Cursor,
+        line: u32,
+        spec: Option<CallSpec<'_>>,
+        extras: Extras,
+        then: After<'_, '_>,
+        programs: &P,
+        env: &E,
+        sink: &mut K,
+    ) -> Result<Progress, Alarm>
+    where
+        P: ProgramStore + ?Sized,
+        E: Environment,
+        K: CanonSink + ?Sized,
+    {
         let program = self.program_text(at.program, programs);
-        let r = self.run_cmd(env, Some(program), |me, flow| me.siemens_route(flow), None, |st| apply(extras, st));
+        let r = self.run_cmd(env, Some(program), |me, flow| me.siemens_route(flow), spec, move |st| apply(extras, st));
         self.started = true;
         match r {
             Err(k) => Err(self.alarm_stop(sink, at.program, line, k)),
             Ok(next) => {
-                self.commit(pending);
-                if moves && self.siemens.mcall.is_some() && !self.in_modal_call() {
+                if let Some(pending) = then.pending {
+                    self.commit(pending);
+                }
+                if then.moves && self.siemens.mcall.is_some() && !self.in_modal_call() {
                     self.siemens.mcall_due = core::num::NonZeroU32::new(line.max(1));
                 }
                 match next {
                     Some(next) => {
-                        if let (Next::Go, Some(to)) = (next, to) {
+                        if let (Next::Go, Some(to)) = (next, then.to) {
                             self.cursor = to;
                         }
                         self.go(next);
@@ -495,7 +549,7 @@ impl Driver for Interpreter {
                     let _ = self.siemens.vars.set(name, v);
                 }
                 Target::Zsd(i) => {
-                    let x = libm::round(v.num().unwrap_or(0.0)).clamp(-32_768.0, 32_767.0);
+                    let x = round_i64(v.num().unwrap_or(0.0)).clamp(-32_768, 32_767);
                     if let Some(z) = self.state.cycle.zsd.get_mut(i) {
                         *z = x as i16;
                     }
@@ -510,9 +564,9 @@ impl Driver for Interpreter {
     fn write_tool(&mut self, row: u16, param: u8, v: Value<'_>) {
         let Some(o) = self.cfg.tools.get_mut(row) else { return };
         let x = v.num().unwrap_or(0.0);
-        let nm = libm::round(x * 1e6).clamp(-1e15, 1e15) as i64;
+        let nm = round_i64(x * 1e6).clamp(-1_000_000_000_000_000, 1_000_000_000_000_000);
         match param {
-            2 => o.tip = libm::round(x).clamp(0.0, 9.0) as u8,
+            2 => o.tip = round_i64(x).clamp(0, 9) as u8,
             3 => o.x = nm,
             4 => o.z = nm,
             6 => o.radius = nm.abs(),
@@ -810,23 +864,8 @@ impl Driver for Interpreter {
             Err(k) => return Err(self.alarm_stop(sink, at.program, line, k)),
         };
         let spec = CallSpec { sig, front: &SINUMERIK, args, contour };
-        let program = self.program_text(at.program, programs);
-        let r = self.run_cmd(env, Some(program), |me, flow| me.siemens_route(flow), Some(spec), |_| {});
-        self.started = true;
-        match r {
-            Err(k) => Err(self.alarm_stop(sink, at.program, line, k)),
-            Ok(Some(next)) => {
-                self.go(next);
-                self.deliver(sink);
-                Ok(Progress::Executed { line })
-            }
-            Ok(None) => {
-                if let Some(v) = self.validating.as_mut() {
-                    v.at = at;
-                }
-                Ok(Progress::Yielded { line })
-            }
-        }
+        let then = After { pending: None, to: None, moves: false };
+        self.run_block(at, line, Some(spec), Extras::default(), then, programs, env, sink)
     }
 
     /// The contour a cycle's contour parameter names: `"NAME"` (a subprogram: its

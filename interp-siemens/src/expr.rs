@@ -348,14 +348,15 @@ impl<'t: 'x, 'x> Eval<'_, 't, 'x> {
     }
 
     fn function(&mut self, name: &'t [u8]) -> Result<Value<'x>, AlarmKind> {
-        let mut a = [0.0f64; 3];
-        let want = match () {
-            _ if is(name, b"ATAN2") || is(name, b"MINVAL") || is(name, b"MAXVAL") => 2,
-            _ if is(name, b"BOUND") => 3,
+        use Func::*;
+        let f = FUNCTIONS.iter().find(|(n, _)| is(name, n)).map(|&(_, f)| f);
+        let want = match f {
+            Some(Atan2 | MinVal | MaxVal) => 2,
+            Some(Bound) => 3,
             _ => 1,
         };
         self.src.expect(b'(', "'(' expected")?;
-        if is(name, b"STRLEN") {
+        if f == Some(StrLen) {
             let v = self.expr()?;
             self.src.expect(b')', "')' missing")?;
             return match v {
@@ -363,6 +364,7 @@ impl<'t: 'x, 'x> Eval<'_, 't, 'x> {
                 _ => Err(S::TypeMismatch.into()),
             };
         }
+        let mut a = [0.0f64; 3];
         for (k, slot) in a.iter_mut().enumerate().take(want) {
             if k > 0 {
                 self.src.expect(b',', "',' expected between the function's arguments")?;
@@ -371,39 +373,85 @@ impl<'t: 'x, 'x> Eval<'_, 't, 'x> {
         }
         self.src.expect(b')', "')' missing")?;
         let x = a[0];
-        let r = match () {
-            _ if is(name, b"SIN") => deg::sin_deg(x),
-            _ if is(name, b"COS") => deg::cos_deg(x),
-            _ if is(name, b"TAN") => deg::tan_deg(x)?,
-            _ if is(name, b"ASIN") => deg::asin_deg(x)?,
-            _ if is(name, b"ACOS") => deg::acos_deg(x)?,
-            _ if is(name, b"ATAN2") => atan2_deg(x, a[1])?,
-            _ if is(name, b"SQRT") => deg::sqrt(x)?,
-            _ if is(name, b"ABS") => libm::fabs(x),
-            _ if is(name, b"POT") => x * x,
-            _ if is(name, b"TRUNC") => deg::fix(x),
-            _ if is(name, b"ROUND") => libm::round(x) + 0.0,
-            _ if is(name, b"ROUNDUP") => libm::ceil(x) + 0.0,
-            _ if is(name, b"LN") => {
+        let Some(f) = f else { return Err(S::NameNotDefined.into()) };
+        let r = match f {
+            Sin => deg::sin_deg(x),
+            Cos => deg::cos_deg(x),
+            Tan => deg::tan_deg(x)?,
+            Asin => deg::asin_deg(x)?,
+            Acos => deg::acos_deg(x)?,
+            Atan2 => atan2_deg(x, a[1])?,
+            Sqrt => deg::sqrt(x)?,
+            Abs => libm::fabs(x),
+            Pot => x * x,
+            Trunc => deg::fix(x),
+            Round => libm::round(x) + 0.0,
+            RoundUp => libm::ceil(x) + 0.0,
+            Ln => {
                 if x <= 0.0 {
                     return Err(AlarmKind::ArgumentOutOfRange { function: "LN" });
                 }
                 libm::log(x)
             }
-            _ if is(name, b"EXP") => deg::exp(x)?,
-            _ if is(name, b"MINVAL") => x.min(a[1]),
-            _ if is(name, b"MAXVAL") => x.max(a[1]),
-            _ if is(name, b"BOUND") => {
+            Exp => deg::exp(x)?,
+            MinVal => x.min(a[1]),
+            MaxVal => x.max(a[1]),
+            Bound => {
                 if x > a[1] {
                     return Err(AlarmKind::ArgumentOutOfRange { function: "BOUND" });
                 }
                 a[2].clamp(x, a[1])
             }
-            _ => return Err(S::NameNotDefined.into()),
+            StrLen => return Err(S::TypeMismatch.into()),
         };
         finite(r)
     }
 }
+
+/// The arithmetic functions of expressions.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Func {
+    Sin,
+    Cos,
+    Tan,
+    Asin,
+    Acos,
+    Atan2,
+    Sqrt,
+    Abs,
+    Pot,
+    Trunc,
+    Round,
+    RoundUp,
+    Ln,
+    Exp,
+    MinVal,
+    MaxVal,
+    Bound,
+    StrLen,
+}
+
+/// The functions by name: one lookup instead of a comparison per name in code.
+const FUNCTIONS: [(&[u8], Func); 18] = [
+    (b"SIN", Func::Sin),
+    (b"COS", Func::Cos),
+    (b"TAN", Func::Tan),
+    (b"ASIN", Func::Asin),
+    (b"ACOS", Func::Acos),
+    (b"ATAN2", Func::Atan2),
+    (b"SQRT", Func::Sqrt),
+    (b"ABS", Func::Abs),
+    (b"POT", Func::Pot),
+    (b"TRUNC", Func::Trunc),
+    (b"ROUND", Func::Round),
+    (b"ROUNDUP", Func::RoundUp),
+    (b"LN", Func::Ln),
+    (b"EXP", Func::Exp),
+    (b"MINVAL", Func::MinVal),
+    (b"MAXVAL", Func::MaxVal),
+    (b"BOUND", Func::Bound),
+    (b"STRLEN", Func::StrLen),
+];
 
 fn eval_num_in<'t: 'x, 'x>(e: &mut Eval<'_, 't, 'x>) -> Result<f64, AlarmKind> {
     let v = e.expr()?;

@@ -15,7 +15,7 @@
 //! is always an address (SINUMERIK names begin with two letters or `_`).
 
 use super::expr::{self, Env, MAX_INDICES, eval, r_number, whole};
-use super::lex::{Src, is, strip_comment, syntax};
+use super::lex::{Src, is, strip_comment, syntax, which};
 use interp_core::alarm::{AlarmKind, SiemensAlarm as S};
 use interp_core::config::MachineConfig;
 use interp_core::lang::siemens::call::CallArgs;
@@ -107,16 +107,8 @@ impl Addr {
 
     /// A named address `NAME=`.
     fn of_name(n: &[u8]) -> Option<Addr> {
-        Some(match () {
-            _ if is(n, b"CR") => Addr::Cr,
-            _ if is(n, b"RND") => Addr::Rnd,
-            _ if is(n, b"CHF") => Addr::Chf,
-            _ if is(n, b"CHR") => Addr::Chr,
-            _ if is(n, b"ANG") => Addr::Ang,
-            _ if is(n, b"LIMS") => Addr::Lims,
-            _ if is(n, b"SPOS") => Addr::Spos,
-            _ => return None,
-        })
+        const NAMED: [Addr; 7] = [Addr::Cr, Addr::Rnd, Addr::Chf, Addr::Chr, Addr::Ang, Addr::Lims, Addr::Spos];
+        which(n, &[b"CR", b"RND", b"CHF", b"CHR", b"ANG", b"LIMS", b"SPOS"]).map(|k| NAMED[k])
     }
 
     /// The letter or name, for messages.
@@ -572,20 +564,20 @@ impl<'t> Reader<'_, 't, '_> {
             let save = self.src.i;
             let name = self.src.name();
             // Statements that take the whole line.
-            let stmt = match () {
-                _ if is(name, b"DEF") => Some(Stmt::Def(self.src.rest())),
-                _ if is(name, b"PROC") => Some(Stmt::Proc(self.src.rest())),
-                _ if is(name, b"IF") => Some(self.if_goto()?),
-                _ if is(name, b"RET") => Some(Stmt::Ret),
-                _ if is(name, b"REPEAT") => Some(self.repeat(false)?),
-                _ if is(name, b"REPEATB") => Some(self.repeat(true)?),
-                _ if is(name, b"MCALL") => Some(self.mcall(args)?),
-                _ if is(name, b"MSG") => {
-                    // A message for the operator: nothing to do on this board.
+            // DEF, PROC, IF, RET, REPEAT, REPEATB, MCALL, MSG.
+            let stmt = match which(name, &STATEMENTS) {
+                Some(0) => Some(Stmt::Def(self.src.rest())),
+                Some(1) => Some(Stmt::Proc(self.src.rest())),
+                Some(2) => Some(self.if_goto()?),
+                Some(3) => Some(Stmt::Ret),
+                Some(k @ (4 | 5)) => Some(self.repeat(k == 5)?),
+                Some(6) => Some(self.mcall(args)?),
+                Some(_) => {
+                    // MSG: a message for the operator: nothing to do on this board.
                     self.skip_parenthesised()?;
                     Some(Stmt::Nc { jump: None })
                 }
-                _ => {
+                None => {
                     if let Some(dir) = goto_dir(name) {
                         Some(Stmt::Goto(self.jump_target(dir)?))
                     } else if unsupported(name) {
@@ -999,14 +991,12 @@ fn integer(n: &Number, letter: u8) -> Result<u16, AlarmKind> {
 
 /// The jump keyword `kw`.
 fn goto_dir(kw: &[u8]) -> Option<Dir> {
-    Some(match () {
-        _ if is(kw, b"GOTOF") => Dir::Forward,
-        _ if is(kw, b"GOTOB") => Dir::Backward,
-        _ if is(kw, b"GOTO") => Dir::Both,
-        _ if is(kw, b"GOTOC") => Dir::BothQuiet,
-        _ => return None,
-    })
+    const DIRS: [Dir; 4] = [Dir::Forward, Dir::Backward, Dir::Both, Dir::BothQuiet];
+    which(kw, &[b"GOTOF", b"GOTOB", b"GOTO", b"GOTOC"]).map(|k| DIRS[k])
 }
+
+/// The statements that take the whole line, in the order `Reader::statement` matches them.
+const STATEMENTS: [&[u8]; 8] = [b"DEF", b"PROC", b"IF", b"RET", b"REPEAT", b"REPEATB", b"MCALL", b"MSG"];
 
 /// The 840D's structured control statements this controller does not run.
 fn unsupported(kw: &[u8]) -> bool {
@@ -1026,7 +1016,7 @@ fn unsupported(kw: &[u8]) -> bool {
         b"EXTCALL",
         b"SETAL",
     ];
-    WORDS.iter().any(|w| is(kw, w))
+    which(kw, &WORDS).is_some()
 }
 
 #[cfg(test)]

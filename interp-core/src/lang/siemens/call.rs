@@ -154,7 +154,8 @@ impl CallArgs {
 
     /// Appends an argument as written: alarm 12340 beyond [`MAX_ARGS`]; arguments
     /// that do not fit [`ARG_BYTES`] are alarm 12160.
-    pub fn push(&mut self, arg: Arg<'_>) -> Result<(), AlarmKind> {
+    pub fn push<'b, A: Into<Arg<'b>>>(&mut self, arg: A) -> Result<(), AlarmKind> {
+        let arg = arg.into();
         if self.len() >= MAX_ARGS {
             return Err(S::TooManyParameters.into());
         }
@@ -231,7 +232,16 @@ impl CallArgs {
     /// REAL to INT rounded to the nearest whole number (an R parameter may pass a
     /// cycle's INT parameter, line 641); a one-character string to CHAR. A number
     /// never becomes a string or a character, nor a string a number.
-    pub fn bind(&mut self, params: impl ExactSizeIterator<Item = Ty>) -> Result<(), AlarmKind> {
+    pub fn bind(&mut self, mut params: impl ExactSizeIterator<Item = Ty>) -> Result<(), AlarmKind> {
+        self.bind_dyn::<dyn ExactSizeIterator<Item = Ty>>(&mut params)
+    }
+
+    /// [`CallArgs::bind`] on a trait object: one copy of the binding in flash
+    /// for every kind of parameter list (a cycle's signature, a PROC's). Generic
+    /// (over `dyn ExactSizeIterator` only) so that it is compiled with the front
+    /// end that calls it, built for size on the board, like `push`.
+    #[inline(never)]
+    fn bind_dyn<I: ExactSizeIterator<Item = Ty> + ?Sized>(&mut self, params: &mut I) -> Result<(), AlarmKind> {
         let n = params.len();
         if self.len() > n || n > MAX_ARGS {
             return Err(S::TooManyParameters.into());

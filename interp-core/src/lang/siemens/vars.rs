@@ -127,6 +127,10 @@ fn same(a: &[u8], b: &[u8]) -> bool {
     a.eq_ignore_ascii_case(b)
 }
 
+/// The methods the front end calls per statement (`get`, `set`, `define`,
+/// `type_of`, `convert_to`) are generic over the name's type: they are compiled
+/// with the front end that instantiates them (`interp-siemens`, built for size on
+/// the board), not at this crate's opt-level 2 for the FANUC per-block budget.
 impl Vars {
     /// All R parameters zero, nothing defined, level 0.
     pub const fn new() -> Self {
@@ -235,13 +239,14 @@ impl Vars {
     }
 
     /// The type of `name` in the current level.
-    pub fn type_of(&self, name: &[u8]) -> Option<VarTy> {
-        self.find(name).map(|i| self.locals[i].ty)
+    pub fn type_of<N: AsRef<[u8]> + ?Sized>(&self, name: &N) -> Option<VarTy> {
+        self.find(name.as_ref()).map(|i| self.locals[i].ty)
     }
 
     /// Defines `name` of type `ty` in the current level, zero (empty) at first:
     /// alarm 12170 if the level has it already, 12460 when the storage is full.
-    pub fn define(&mut self, name: &[u8], ty: VarTy) -> Result<(), AlarmKind> {
+    pub fn define<N: AsRef<[u8]> + ?Sized>(&mut self, name: &N, ty: VarTy) -> Result<(), AlarmKind> {
+        let name = name.as_ref();
         if name.is_empty() || name.len() > MAX_NAME {
             return Err(S::SyntaxError { what: "variable name longer than 32 characters" }.into());
         }
@@ -269,8 +274,8 @@ impl Vars {
     }
 
     /// The value of `name` in the current level.
-    pub fn get(&self, name: &[u8]) -> Option<Value<'_>> {
-        let l = &self.locals[self.find(name)?];
+    pub fn get<N: AsRef<[u8]> + ?Sized>(&self, name: &N) -> Option<Value<'_>> {
+        let l = &self.locals[self.find(name.as_ref())?];
         Some(match l.ty {
             VarTy::Real => Value::Real(l.value),
             VarTy::Int => Value::Int(l.value as i64),
@@ -287,8 +292,8 @@ impl Vars {
     /// (REAL→INT rounded, a number to BOOL ≠ 0, a one-character string to CHAR):
     /// alarm 12550 if `name` is not defined, 12150 if the value does not convert,
     /// 12160 if a STRING would exceed its length.
-    pub fn set(&mut self, name: &[u8], value: Value<'_>) -> Result<(), AlarmKind> {
-        let i = self.find(name).ok_or(AlarmKind::from(S::NameNotDefined))?;
+    pub fn set<N: AsRef<[u8]> + ?Sized>(&mut self, name: &N, value: Value<'_>) -> Result<(), AlarmKind> {
+        let i = self.find(name.as_ref()).ok_or(AlarmKind::from(S::NameNotDefined))?;
         let l = self.locals[i];
         let (v, len) = match (l.ty, value) {
             (VarTy::Str { cap }, Value::Str(s)) => {
@@ -314,8 +319,8 @@ impl Vars {
 /// `v` converted to type `ty` as an assignment converts it: alarm 12150 if it does
 /// not convert, 12160 if it is out of the type's range (a STRING longer than its
 /// length).
-pub fn convert_to(ty: VarTy, v: Value<'_>) -> Result<Value<'_>, AlarmKind> {
-    Ok(match (ty, v) {
+pub fn convert_to<'a, V: Into<Value<'a>>>(ty: VarTy, v: V) -> Result<Value<'a>, AlarmKind> {
+    Ok(match (ty, v.into()) {
         (VarTy::Str { cap }, Value::Str(s)) => {
             if s.len() > usize::from(cap) {
                 return Err(S::StringTooLong.into());
@@ -338,7 +343,8 @@ pub fn convert_to(ty: VarTy, v: Value<'_>) -> Result<Value<'_>, AlarmKind> {
 
 /// A scalar value as a variable of type `ty` stores it (alarm 12150 if it does
 /// not convert).
-fn convert(ty: VarTy, v: Value<'_>) -> Result<f64, AlarmKind> {
+fn convert<'a, V: Into<Value<'a>>>(ty: VarTy, v: V) -> Result<f64, AlarmKind> {
+    let v = v.into();
     let bad = Err(AlarmKind::from(S::TypeMismatch));
     match (ty, v) {
         (_, Value::Str(s)) if ty == VarTy::Char && s.len() == 1 => Ok(f64::from(s[0])),
