@@ -49,7 +49,10 @@ How the bound is found:
   these keep the slot and the plain pointers. Functions whose name may not be the
   method they serve (one body merged for several methods: seen at two slot
   offsets, or in a vtable of another Self type; a trait's default method named
-  `Trait::m`) and every symbol name at a function's address are kept by name. One
+  `Trait::m`) are kept at every narrowed call, and a function is matched by every
+  symbol name at its address. Assumed, not checked: a method call written over two
+  lines (`x\n    .m(`) is located on the line of `.m(` (rustc's span of the call's
+  method and arguments). One
   fact about the toolchain's own core::fmt, whose source is not at hand: it calls
   the `Write` methods of its `dyn Write`, `fmt` of `dyn Debug` entries and its
   `Argument` formatters (`<T as Display>::fmt` …, a closure for the no-op Debug),
@@ -263,8 +266,8 @@ class Graph:
         # body serving several methods (LLVM merges identical functions, keeping
         # one name), seen at more than one slot offset or in a vtable of another
         # Self type than its name's (`<X as T>::m` in a vtable of Y's methods),
-        # or a trait's default method (named `T::m`, no Self type). Narrowing by
-        # name keeps these always.
+        # or a trait's default method (named `T::m`, no Self type). A call
+        # narrowed by name keeps these always.
         offsets = {}
         for o, fs in self.slots.items():
             for f in fs:
@@ -294,11 +297,11 @@ class Graph:
             # `dyn Debug` entries and `Argument` formatters (fn pointers, or a
             # closure for the no-op Debug): nothing else (see `called_methods`).
             return {f for f in everything if self.method_names[f] & (CORE_FMT_METHODS | {None})}
-        kept = {f for f in fns if self.method_names[f] & names or f in self.unnamed}
+        kept = {f for f in fns if self.method_names[f] & names}
         if CLOSURE in names:
             # A closure or fn called through `dyn Fn*` or a `fn` pointer on that line.
             kept |= self.plain | {f for f in fns if self.method_names[f] & {None, "call", "call_mut", "call_once"}}
-        return kept or everything
+        return kept | (fns & self.unnamed) if kept else everything
 
     def passed(self, f, arg):
         """The functions a pointer passed to `f` in its stack argument at `arg`
