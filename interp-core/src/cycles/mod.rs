@@ -11,7 +11,9 @@
 //! 8-step queue and emit them until the outbox is full: bounded work per step.
 //!
 //! All-or-nothing still holds: when the cycle block executes, a copy of the
-//! expansion is run to the end against a sink that only counts (the *dry run*).
+//! expansion's moving parts ([`DryRun`]: emitter, generator, queue; the shape is
+//! read from the expansion) is run to the end against a sink that only counts
+//! (the *dry run*).
 //! Every alarm the cycle can raise — the notes' value checks, the shape's codes and
 //! monotony, soft limits of every pass, feeds — is raised then, before the first
 //! action is delivered, and the state the dry run ends in (position back at the
@@ -118,24 +120,131 @@ pub struct Expansion {
     profile: Profile,
     queue: StepQueue,
     gen_done: bool,
-    tail: heapless::Vec<Canon, TAIL>,
-    tail_at: usize,
+    /// The block's actions after the cycle's place, delivered after its last
+    /// move (at most [`TAIL`], [`Expansion::take_tail`]). Until the block
+    /// commits it is empty, and G71–G73's shape reader stages the shape's blocks
+    /// in it ([`profile::read_profile`]): an outbox in the expansion and not on
+    /// the stack under the shape's blocks as they run.
+    tail: Outbox,
     /// Steps planned so far.
     steps: u32,
 }
 
+/// What a run of an expansion moves on (the real run's or its dry run's copy):
+/// its emitter, generator, step queue and counts.
+struct Walk<'w> {
+    em: &'w mut Emitter,
+    generator: &'w mut Gen,
+    queue: &'w mut StepQueue,
+    gen_done: &'w mut bool,
+    steps: &'w mut u32,
+}
+
+impl Walk<'_> {
+    /// Emits the generator's steps into `out` while it has room, along `profile`
+    /// (the expansion's shape). True when the generator has ended and its queue is
+    /// empty (the tail, if any, is the caller's).
+    fn advance<E: Environment + ?Sized>(
+        &mut self,
+        profile: &Profile,
+        cfg: &MachineConfig,
+        program: crate::lang::ProgramText<'_>,
+        env: &E,
+        out: &mut dyn Out,
+    ) -> Result<bool, AlarmKind> {
+        loop {
+            if out.room() == 0 {
+                return Ok(false);
+            }
+            if let Some(step) = self.queue.pop_front() {
+                *self.steps += 1;
+                if *self.steps > MAX_CYCLE_STEPS {
+                    return Err(AlarmKind::CycleTooLong);
+                }
+                self.em.emit(step, cfg, out)?;
+                continue;
+            }
+            if *self.gen_done {
+                return Ok(true);
+            }
+            let here = self.em.here(cfg);
+            let queue = &mut *self.queue;
+            let more = match &mut *self.generator {
+                Gen::Plan(steps) => {
+                    for s in steps.iter() {
+                        queue.push_back(*s).map_err(|_| AlarmKind::Overflow)?;
+                    }
+                    false
+                }
+                Gen::Finish(f) => {
+                    if out.room() < crate::stage::STAGE {
+                        return Ok(false);
+                    }
+                    f.step(self.em, cfg, program, env, out, queue)?
+                }
+                Gen::ThreadCycle(g) => g.fill(queue)?,
+                Gen::Rough(g) => g.fill(profile, here, queue)?,
+                Gen::Pattern(g) => g.fill(profile, queue)?,
+                Gen::Groove(g) => g.fill(queue)?,
+                Gen::MultiThread(g) => g.fill(queue)?,
+                Gen::Hole(g) => g.fill(queue)?,
+                Gen::Curve(g) => g.fill(queue)?,
+                Gen::Polar(g) => g.fill(queue)?,
+                #[cfg(feature = "siemens")]
+                Gen::Pass(g) => g.fill(&profile.segs, queue)?,
+                #[cfg(feature = "siemens")]
+                Gen::Grooving(g) => g.fill(&profile.segs, here, queue)?,
+            };
+            *self.gen_done = !more;
+        }
+    }
+}
+
+/// The dry run of a cycle block set aside (`Interpreter`'s `Validating`): the
+/// parts of its [`Expansion`] a run moves on, copied
+/// ([`Expansion::dry_copy`]); the shape stays the expansion's. About 2.3 KB where
+/// a whole copy of the expansion was 6 KB (static RAM: the interpreter holds
+/// both the expansion and this).
+#[derive(Clone, Debug, PartialEq)]
+pub struct DryRun {
+    em: Emitter,
+    generator: Gen,
+    queue: StepQueue,
+    gen_done: bool,
+    steps: u32,
+}
+
+impl DryRun {
+    /// Runs a chunk of at most [`DRY_RUN_CHUNK`] actions of the cycle `exp` (the
+    /// expansion this was copied from, unchanged since), raising any alarm the
+    /// cycle would raise; true when it has run to the end.
+    pub fn run<E: Environment + ?Sized>(
+        &mut self,
+        exp: &Expansion,
+        cfg: &MachineConfig,
+        program: crate::lang::ProgramText<'_>,
+        env: &E,
+    ) -> Result<bool, AlarmKind> {
+        let mut walk = Walk {
+            em: &mut self.em,
+            generator: &mut self.generator,
+            queue: &mut self.queue,
+            gen_done: &mut self.gen_done,
+            steps: &mut self.steps,
+        };
+        walk.advance(&exp.profile, cfg, program, env, &mut Dry(DRY_RUN_CHUNK))
+    }
+
+    /// Once the dry run has ended: the state the cycle block commits
+    /// ([`Expansion::settle`]).
+    pub fn settle(&self, st: &mut State, cfg: &MachineConfig) {
+        settle(&self.em.st, &self.generator, st, cfg);
+    }
+}
+
 impl Expansion {
     fn new(em: Emitter, generator: Gen, profile: Profile) -> Self {
-        Expansion {
-            em,
-            generator,
-            profile,
-            queue: StepQueue::new(),
-            gen_done: false,
-            tail: heapless::Vec::new(),
-            tail_at: 0,
-            steps: 0,
-        }
+        Expansion { em, generator, profile, queue: StepQueue::new(), gen_done: false, tail: Outbox::new(), steps: 0 }
     }
 
     /// Line of the cycle block.
@@ -153,9 +262,10 @@ impl Expansion {
                 let _ = tail.push(c);
             }
         }
-        tail.reverse();
-        self.tail = tail;
-        self.tail_at = 0;
+        self.tail.clear();
+        for c in tail.into_iter().rev() {
+            let _ = self.tail.push_back(c);
+        }
     }
 
     /// Emits actions into `out` while it has room. `program` is the program the
@@ -167,55 +277,40 @@ impl Expansion {
         env: &E,
         out: &mut dyn Out,
     ) -> Result<bool, AlarmKind> {
+        let mut walk = Walk {
+            em: &mut self.em,
+            generator: &mut self.generator,
+            queue: &mut self.queue,
+            gen_done: &mut self.gen_done,
+            steps: &mut self.steps,
+        };
+        if !walk.advance(&self.profile, cfg, program, env, out)? {
+            return Ok(false);
+        }
         loop {
             if out.room() == 0 {
                 return Ok(false);
             }
-            if let Some(step) = self.queue.pop_front() {
-                self.steps += 1;
-                if self.steps > MAX_CYCLE_STEPS {
-                    return Err(AlarmKind::CycleTooLong);
-                }
-                self.em.emit(step, cfg, out)?;
-                continue;
-            }
-            if !self.gen_done {
-                let here = self.em.here(cfg);
-                let more = match &mut self.generator {
-                    Gen::Plan(steps) => {
-                        for s in steps.iter() {
-                            self.queue.push_back(*s).map_err(|_| AlarmKind::Overflow)?;
-                        }
-                        false
-                    }
-                    Gen::Finish(f) => {
-                        if out.room() < crate::stage::STAGE {
-                            return Ok(false);
-                        }
-                        f.step(&mut self.em, cfg, program, env, out, &mut self.queue)?
-                    }
-                    Gen::ThreadCycle(g) => g.fill(&mut self.queue)?,
-                    Gen::Rough(g) => g.fill(&self.profile, here, &mut self.queue)?,
-                    Gen::Pattern(g) => g.fill(&self.profile, &mut self.queue)?,
-                    Gen::Groove(g) => g.fill(&mut self.queue)?,
-                    Gen::MultiThread(g) => g.fill(&mut self.queue)?,
-                    Gen::Hole(g) => g.fill(&mut self.queue)?,
-                    Gen::Curve(g) => g.fill(&mut self.queue)?,
-                    Gen::Polar(g) => g.fill(&mut self.queue)?,
-                    #[cfg(feature = "siemens")]
-                    Gen::Pass(g) => g.fill(&self.profile.segs, &mut self.queue)?,
-                    #[cfg(feature = "siemens")]
-                    Gen::Grooving(g) => g.fill(&self.profile.segs, here, &mut self.queue)?,
-                };
-                self.gen_done = !more;
-                continue;
-            }
-            if let Some(c) = self.tail.get(self.tail_at) {
-                out.put(*c)?;
-                self.tail_at += 1;
+            if let Some(c) = self.tail.pop_front() {
+                out.put(c)?;
                 continue;
             }
             return Ok(true);
+        }
+    }
+
+    /// The dry-run copy of this expansion as its block sets it aside: what a run
+    /// moves on (emitter, generator, queue), without the shape, which the dry run
+    /// reads from this expansion ([`DryRun::run`]: nothing changes it once the
+    /// cycle has started), and without the tail, which is empty until the block
+    /// commits.
+    pub fn dry_copy(&self) -> DryRun {
+        DryRun {
+            em: self.em,
+            generator: self.generator.clone(),
+            queue: self.queue.clone(),
+            gen_done: self.gen_done,
+            steps: self.steps,
         }
     }
 
@@ -525,7 +620,7 @@ fn multiple<X: Executor>(code: GCode, cmd: &Command, st: &mut State, ctx: &mut C
             // The shape is read straight into the expansion (its generator follows).
             let exp = start_cycle(em, Gen::Plan(heapless::Vec::new()), ctx.out)?;
             let shape = &mut exp.profile;
-            profile::read_profile(&src, st, cfg, env, X::execute, shape)?;
+            profile::read_profile(&src, st, cfg, env, X::execute, shape, &mut exp.tail)?;
             let allowance = Pt::new(du, dw);
             exp.generator = if code == GCode::PatternCycle {
                 let count = u32::try_from(p(Param::PatternDivisions)).unwrap_or(0);
@@ -700,20 +795,25 @@ impl Expansion {
     /// spindle as the cycle leaves it (floating tapping stops it, 2.22.3 note 2;
     /// rigid tapping restores it) and, after G70, the modal changes of its blocks.
     pub fn settle(&self, st: &mut State, cfg: &MachineConfig) {
-        let end = self.final_state();
-        st.pos = end.pos;
-        st.moved |= end.moved;
-        if matches!(self.generator, Gen::Finish(_)) {
-            let cycle = st.cycle;
-            *st = end;
-            st.cycle.single = cycle.single;
-        }
-        st.spindle.dir = end.spindle.dir;
-        if crate::MILL && st.mill.frame.active != 0 {
-            // A machining centre's transformation: the programmed position is where
-            // the cycle left the tool.
-            crate::moves::frame::resync(st, cfg);
-        }
+        settle(&self.final_state(), &self.generator, st, cfg);
+    }
+}
+
+/// The state a cycle block commits after its dry run ended in `end` with the
+/// generator `generator`, from the block's state `st` ([`Expansion::settle`]).
+fn settle(end: &State, generator: &Gen, st: &mut State, cfg: &MachineConfig) {
+    st.pos = end.pos;
+    st.moved |= end.moved;
+    if matches!(generator, Gen::Finish(_)) {
+        let cycle = st.cycle;
+        *st = *end;
+        st.cycle.single = cycle.single;
+    }
+    st.spindle.dir = end.spindle.dir;
+    if crate::MILL && st.mill.frame.active != 0 {
+        // A machining centre's transformation: the programmed position is where
+        // the cycle left the tool.
+        crate::moves::frame::resync(st, cfg);
     }
 }
 
@@ -726,11 +826,13 @@ mod tests {
     fn expansion_size_is_bounded() {
         let exp = core::mem::size_of::<Expansion>();
         let interp = core::mem::size_of::<crate::Interpreter>();
-        assert!(exp < 6 * 1024, "Expansion is {exp} bytes");
+        // (Its tail is an outbox, 1.7 KB more: the G71–G73 shape reader's
+        // staging, which was on the stack under the shape's blocks.)
+        assert!(exp < 8 * 1024, "Expansion is {exp} bytes");
         // The macro variables (2.24.1: the levels' #1–#33, the commons, a pool of
         // the others; 4,240 bytes, was 8,024 as a dense #1–#999), the 12-level
-        // call stack and a second expansion (the dry-run copy of a cycle block
-        // being validated) live in the interpreter too: 28,264 bytes on a 64-bit
+        // call stack and the dry-run copy of a cycle block being validated (was a
+        // second expansion, now `DryRun`: 2.3 KB, the shape stays shared) live in the interpreter too: 28,264 bytes on a 64-bit
         // host (was 30,608), 27,592 on the M4 (was 29,888). So does the checked command reused
         // from block to block (336 bytes here, 304 on the M4): returning it by
         // value cost ~330 instructions a block. And the FANUC macro calls' state:

@@ -136,8 +136,10 @@ pub fn check_shape_command(cmd: &crate::command::Command, first: bool) -> Result
     Ok(())
 }
 
-/// Runs one shape block on `st` through check and `execute` (exec) into `staged`.
-/// Out of line: G70's finishing pass and the profile reader share one copy.
+/// Runs one shape block on `st` through check and `execute` (exec) into `staged`;
+/// after an alarm `st` is left as the block's execution left it (every caller
+/// drops it then). Out of line: G70's finishing pass and the profile reader
+/// share one copy.
 #[inline(never)]
 pub fn run_shape_block<E: Environment + ?Sized>(
     sb: &ShapeBlock,
@@ -154,12 +156,13 @@ pub fn run_shape_block<E: Environment + ?Sized>(
     }
     let cmd = check(&sb.block, st, cfg)?;
     check_shape_command(&cmd, first)?;
-    let mut next = *st;
-    let flow = execute(&cmd, &mut next, cfg, &EnvRef(env), staged)?;
+    // Executed on `st` in place (no copy of the state on the stack under the
+    // block's execution): after an alarm `st` is thrown away with the cycle
+    // (the profile reader's scratch state, G70's expansion or its dry run).
+    let flow = execute(&cmd, st, cfg, &EnvRef(env), staged)?;
     if flow != Flow::Continue {
         return Err(AlarmKind::ProfileForbiddenCode { what: "M00/M01/M02/M30" });
     }
-    *st = next;
     Ok(cmd)
 }
 
@@ -182,7 +185,8 @@ impl<E: Environment + ?Sized> Environment for EnvRef<'_, E> {
 }
 
 /// Reads the shape ns–nf starting at the state `st` (the cycle's start point A)
-/// into `profile` (in the expansion itself: a profile is ~3 KB). Roughing ignores
+/// into `profile` (in the expansion itself: a profile is ~3 KB), each block's
+/// actions staged in `outbox` (the expansion's, left empty). Roughing ignores
 /// the shape's F, S and T, so the scratch state gets a feed and a turning spindle:
 /// geometry must not fail on a feed that roughing never uses.
 pub fn read_profile<E: Environment + ?Sized>(
@@ -192,6 +196,7 @@ pub fn read_profile<E: Environment + ?Sized>(
     env: &E,
     execute: Execute,
     profile: &mut Profile,
+    outbox: &mut crate::stage::Outbox,
 ) -> Result<(), AlarmKind> {
     let mut scratch = scratch(st);
     let mut cur = start_of(src)?;
@@ -199,8 +204,8 @@ pub fn read_profile<E: Environment + ?Sized>(
     let mut first = true;
     loop {
         let Some(sb) = next_shape_block(src, &mut cur, env)? else { break };
-        let mut outbox = crate::stage::Outbox::new();
-        let mut staged = CycleStage::new(sb.block.line, &mut outbox);
+        outbox.clear();
+        let mut staged = CycleStage::new(sb.block.line, outbox);
         let here = scratch.work_pos(cfg);
         // A move held back for a corner (2.23) comes out with this block: it
         // starts where the last segment ended.
@@ -226,6 +231,7 @@ pub fn read_profile<E: Environment + ?Sized>(
         first = false;
         if sb.last {
             profile.resume = cur;
+            outbox.clear();
             return Ok(());
         }
     }

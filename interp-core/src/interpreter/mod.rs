@@ -31,7 +31,7 @@ use crate::axis::Pos;
 use crate::canon::CanonSink;
 use crate::command::Command;
 use crate::config::{MachineConfig, Param};
-use crate::cycles::{CycleStage, Expansion};
+use crate::cycles::{CycleStage, DryRun, Expansion};
 use crate::env::Environment;
 use crate::exec::execute;
 use crate::lang::fanuc::calls::{CallCodes, CallRead, Caller, Calls, ModalCalls};
@@ -168,7 +168,8 @@ struct BlockCycle {
 }
 
 /// A cycle block executed but not yet committed: its dry run goes on a chunk per
-/// step ([`Expansion::dry_run`]); the block commits when it ends without an alarm.
+/// step ([`DryRun::run`] along the expansion in `Interpreter::cycle`); the block
+/// commits when it ends without an alarm.
 #[derive(Clone, Debug)]
 #[doc(hidden)]
 pub struct Validating {
@@ -178,8 +179,9 @@ pub struct Validating {
     block: BlockCycle,
     /// Where the program goes after the block.
     next: Next,
-    /// The dry-run copy of the expansion.
-    dry: Expansion,
+    /// The dry run's copy of what the expansion (`Interpreter::cycle`, which
+    /// stays as it is until the block commits) moves on.
+    dry: DryRun,
     /// Program and line of the cycle block, for alarms.
     pub at: Cursor,
     line: u32,
@@ -790,9 +792,13 @@ impl Interpreter {
         S: CanonSink + ?Sized,
     {
         let program = program_text(programs, self.cursor.program, self.language, &self.vars, self.number_format());
-        let Some(v) = self.validating.as_mut() else { return Ok(Progress::Blocked) };
+        let (Some(v), Some(exp)) = (self.validating.as_mut(), self.cycle.as_ref()) else {
+            // (A block is set aside only with its expansion, and both go together.)
+            self.validating = None;
+            return Ok(Progress::Blocked);
+        };
         let (at, line) = (v.at, v.line);
-        match v.dry.dry_run(&self.cfg, program, env) {
+        match v.dry.run(exp, &self.cfg, program, env) {
             Ok(false) => Ok(Progress::Yielded { line }),
             Ok(true) => {
                 if let Some(mut v) = self.validating.take() {
@@ -926,8 +932,8 @@ impl Interpreter {
     }
 
     /// Sets the cycle block just executed aside for its dry run (`validating`, with
-    /// a copy of its expansion); the state stays as it was (`before`, `held`) until
-    /// the dry run has ended. Never inlined: the copy (~6 KB with the state) stays
+    /// a copy of what its expansion moves on); the state stays as it was (`before`,
+    /// `held`) until the dry run has ended. Never inlined: the copy (~3.8 KB with the state) stays
     /// out of the frame of [`Interpreter::nc_block`], which is on the stack under
     /// every block's execution.
     #[inline(never)]
@@ -940,7 +946,7 @@ impl Interpreter {
     ) {
         let Some(exp) = &self.cycle else { return };
         let (at, line) = (self.cursor, self.cmd.line);
-        let dry = exp.clone();
+        let dry = exp.dry_copy();
         let state = self.state;
         self.state.restore(before, held);
         self.validating = Some(Validating { state, block, next, dry, at, line });
