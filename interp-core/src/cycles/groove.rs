@@ -251,7 +251,8 @@ impl GroovingGen {
     }
 
     /// The plunge axis's start level over [c0, c1]: the surface's outermost, plus
-    /// the safety distance.
+    /// the safety distance (out of line: the set-up and each plunge).
+    #[inline(never)]
     fn column_start(&self, c0: i64, c1: i64) -> Pt {
         let s = &self.spec;
         let (step_axis, plunge) = axes(s);
@@ -405,18 +406,19 @@ impl GroovingGen {
             // 2 µm: the edge is on the flank's own line, which the floor sees too.
             self.floor(segs, c0, c1).is_none_or(|f| depth(p) <= f * self.spec.inward + 2_000)
         };
-        let (mut lo, mut hi) = (0.0, 1.0);
-        if !ok(1.0) {
-            for _ in 0..30 {
-                let mid = (lo + hi) / 2.0;
-                if ok(mid) {
-                    lo = mid;
-                } else {
-                    hi = mid;
+        // The whole line if it is clear, else 30 halvings of [0, 1] (one call site
+        // of `ok`: the floor search is inlined once).
+        let (mut lo, mut hi, mut t) = (0.0, 1.0, 1.0);
+        for i in 0..=30 {
+            if ok(t) {
+                lo = t;
+                if i == 0 {
+                    break;
                 }
+            } else {
+                hi = t;
             }
-        } else {
-            lo = 1.0;
+            t = (lo + hi) / 2.0;
         }
         let end = lerp(a, b, lo);
         let add = |p: Pt| Pt::new(p.x + edge_shift.x, p.z + edge_shift.z);
