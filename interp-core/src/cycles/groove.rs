@@ -9,8 +9,8 @@
 //! (⑥); after the last column rapid back to the start along the step axis (⑦).
 
 use super::StepQueue;
+use super::emit::push;
 use super::emit::{Pt, Step};
-use super::push;
 use crate::alarm::{AlarmKind, CycleAlarm};
 use crate::axis::Axis;
 

@@ -19,7 +19,7 @@
 
 use super::StepQueue;
 use super::emit::Step;
-use super::push;
+use super::emit::push;
 use crate::alarm::AlarmKind;
 use crate::axis::{Axis, Pos};
 use crate::canon::SpindleDir;
@@ -183,7 +183,7 @@ impl HoleGen {
         push(out, Step::RapidTo(self.at(level) + shift))?;
         push(out, Step::RapidTo(self.at(self.r_level) + shift))?;
         push(out, Step::RapidTo(self.at(self.r_level)))?;
-        push(out, Step::Spindle(restart))
+        Ok(push(out, Step::Spindle(restart))?)
     }
 
     /// One peck (or the whole depth), into the hole and back as the cycle says.
@@ -320,21 +320,21 @@ impl HoleGen {
                     push(out, Step::Stop)?;
                 }
                 push(out, Step::RapidTo(self.at(leave)))?;
-                return push(out, Step::Spindle(restart));
+                return Ok(push(out, Step::Spindle(restart))?);
             }
             HoleWork::FineBore { shift, restart } => {
                 push(out, Step::Aux(ORIENT))?;
                 push(out, Step::RapidTo(self.at(self.bottom) + shift))?;
                 push(out, Step::RapidTo(self.at(leave) + shift))?;
                 push(out, Step::RapidTo(self.at(leave)))?;
-                return push(out, Step::Spindle(restart));
+                return Ok(push(out, Step::Spindle(restart))?);
             }
             HoleWork::BackBore { shift, restart } => {
                 push(out, Step::Aux(ORIENT))?;
                 push(out, Step::RapidTo(self.at(self.bottom) + shift))?;
                 push(out, Step::RapidTo(self.at(self.initial) + shift))?;
                 push(out, Step::RapidTo(self.at(self.initial)))?;
-                return push(out, Step::Spindle(restart));
+                return Ok(push(out, Step::Spindle(restart))?);
             }
             HoleWork::RigidTap { dir, dwell_r_ms, restore, .. } => {
                 push(out, Step::Tap { to: r, dir: reverse(dir) })?;

@@ -6,8 +6,8 @@
 
 use super::StepQueue;
 use super::emit::Step;
+use super::emit::push;
 use super::offset::{Offsets, nth};
-use super::push;
 use crate::alarm::AlarmKind;
 use crate::geom::{Pt, Seg, SegKind};
 

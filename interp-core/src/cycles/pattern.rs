@@ -9,9 +9,9 @@
 //! shape at the cycle's feed, then X back to the start's X and Z to its Z.
 
 use super::StepQueue;
+use super::emit::push;
 use super::emit::{Pt, Step};
 use super::profile::Profile;
-use super::push;
 use super::rough::contour_step;
 use crate::alarm::AlarmKind;
 

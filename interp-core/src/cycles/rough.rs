@@ -54,9 +54,9 @@
 //! first. The start point (lines 10878–10886): allowance + _VRT off the contour's
 //! highest point on the infeed axis, allowance + _VRT before its start on the other.
 
+use super::emit::push;
 use super::emit::{Pt, Step};
 use super::profile::{Profile, Seg, SegKind};
-use super::push;
 use crate::alarm::AlarmKind;
 use crate::axis::Axis;
 #[cfg(feature = "siemens")]
@@ -437,7 +437,7 @@ impl RoughGen {
         }
         // G71/G72 cut without chip breaking: one piece.
         push(out, Step::Feed(f.work(u, Self::cut_piece(w0, w1, 0))))?;
-        push(out, self.leave(u, w1, w1 - w0))
+        Ok(push(out, self.leave(u, w1, w1 - w0))?)
     }
 
     /// Up to the start level, along to B', down to B' with the ns block's mode.
@@ -452,7 +452,7 @@ impl RoughGen {
         push(out, Step::Rapid(f.work(top, hw)))?;
         push(out, Step::Rapid(f.work(top, bw)))?;
         let p = f.work(bu, bw);
-        push(out, if self.rapid_infeed { Step::Rapid(p) } else { Step::Feed(p) })
+        Ok(push(out, if self.rapid_infeed { Step::Rapid(p) } else { Step::Feed(p) })?)
     }
 
     /// The runs of material at level `u`, in cutting order.
