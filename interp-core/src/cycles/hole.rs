@@ -71,7 +71,9 @@ enum Phase {
 }
 
 impl HoleGen {
-    /// A hole cycle.
+    /// A hole cycle (out of line: the FANUC lathe's, the mill's and SINUMERIK's
+    /// set-ups).
+    #[inline(never)]
     pub fn new(spec: HoleSpec) -> HoleGen {
         debug_assert!(!spec.plane.contains(spec.axis), "the drilling axis is the plane's normal");
         let back_bore = matches!(spec.work, HoleWork::BackBore { .. });
@@ -117,6 +119,12 @@ impl HoleGen {
         let mut p = self.here_pos();
         p[self.axis] = v;
         p
+    }
+
+    /// [`HoleGen::at`] moved by a boring work's `shift` (out of line: six sites).
+    #[inline(never)]
+    fn at_shifted(&self, v: i64, shift: Pos) -> Pos {
+        self.at(v) + shift
     }
 
     fn here_pos(&self) -> Pos {
@@ -180,8 +188,8 @@ impl HoleGen {
     fn back_bore_in(&self, shift: Pos, restart: SpindleDir, out: &mut StepQueue) -> Result<(), AlarmKind> {
         let level = self.positioning_level();
         push(out, Step::Aux(ORIENT))?;
-        push(out, Step::RapidTo(self.at(level) + shift))?;
-        push(out, Step::RapidTo(self.at(self.r_level) + shift))?;
+        push(out, Step::RapidTo(self.at_shifted(level, shift)))?;
+        push(out, Step::RapidTo(self.at_shifted(self.r_level, shift)))?;
         push(out, Step::RapidTo(self.at(self.r_level)))?;
         Ok(push(out, Step::Spindle(restart))?)
     }
@@ -324,15 +332,15 @@ impl HoleGen {
             }
             HoleWork::FineBore { shift, restart } => {
                 push(out, Step::Aux(ORIENT))?;
-                push(out, Step::RapidTo(self.at(self.bottom) + shift))?;
-                push(out, Step::RapidTo(self.at(leave) + shift))?;
+                push(out, Step::RapidTo(self.at_shifted(self.bottom, shift)))?;
+                push(out, Step::RapidTo(self.at_shifted(leave, shift)))?;
                 push(out, Step::RapidTo(self.at(leave)))?;
                 return Ok(push(out, Step::Spindle(restart))?);
             }
             HoleWork::BackBore { shift, restart } => {
                 push(out, Step::Aux(ORIENT))?;
-                push(out, Step::RapidTo(self.at(self.bottom) + shift))?;
-                push(out, Step::RapidTo(self.at(self.initial) + shift))?;
+                push(out, Step::RapidTo(self.at_shifted(self.bottom, shift)))?;
+                push(out, Step::RapidTo(self.at_shifted(self.initial, shift)))?;
                 push(out, Step::RapidTo(self.at(self.initial)))?;
                 return Ok(push(out, Step::Spindle(restart))?);
             }

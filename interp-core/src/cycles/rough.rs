@@ -109,6 +109,7 @@ impl Spacing {
     /// How many levels a section `depth` deep has with infeed `mid` (G71/G72: the
     /// levels strictly above the bottom).
     #[cfg_attr(not(feature = "siemens"), allow(dead_code))]
+    #[inline(never)]
     fn count(self, depth: i64, mid: i64) -> u32 {
         if depth <= 0 || mid <= 0 {
             return 0;
@@ -565,7 +566,9 @@ fn check_monotone(f: &Frame, shape: &[Seg], type2: bool) -> Result<(), AlarmKind
     Ok(())
 }
 
-/// Whether an extent stays between a segment's end values (1 nm slack).
+/// Whether an extent stays between a segment's end values (1 nm slack; out of
+/// line: three callers).
+#[inline(never)]
 fn within(ext: (i64, i64), a: i64, b: i64) -> bool {
     ext.0 >= a.min(b) - 1 && ext.1 <= a.max(b) + 1
 }
@@ -585,7 +588,9 @@ fn sign(v: i64) -> i64 {
     v.signum()
 }
 
-/// The contour pass move of a shape segment (the shape's G00 stays a rapid).
+/// The contour pass move of a shape segment (the shape's G00 stays a rapid; out
+/// of line: G71/G72's and G73's contour passes).
+#[inline(never)]
 pub fn contour_step(s: &Seg) -> Step {
     match s.kind {
         SegKind::Rapid => Step::Rapid(s.b),
@@ -1262,7 +1267,8 @@ mod sections {
         v(f.cut, f.dir).left().dot(v(f.level, f.out)) > 0.0
     }
 
-    /// Highest u of a segment.
+    /// Highest u of a segment (out of line: four callers).
+    #[inline(never)]
     fn high(f: &Frame, s: &Seg) -> i64 {
         let (lo, hi) = s.extent(f.level);
         if f.out > 0 { hi } else { -lo }
@@ -1366,7 +1372,8 @@ mod sections {
         Pt::new(crate::geom::round_i64(x), crate::geom::round_i64(z))
     }
 
-    /// The piece of `s` from parameter `t0` to `t1`.
+    /// The piece of `s` from parameter `t0` to `t1` (out of line: three callers).
+    #[inline(never)]
     fn part_of(s: &Seg, t0: f64, t1: f64) -> Seg {
         Seg { kind: s.kind, a: point_at(s, t0), b: point_at(s, t1) }
     }
