@@ -573,7 +573,8 @@ fn within(ext: (i64, i64), a: i64, b: i64) -> bool {
     ext.0 >= a.min(b) - 1 && ext.1 <= a.max(b) + 1
 }
 
-/// The lowest u of a segment.
+/// The lowest u of a segment (out of line: three callers).
+#[inline(never)]
 fn lowest(f: &Frame, s: &Seg) -> i64 {
     let (lo, hi) = s.extent(f.level);
     if f.out > 0 { lo } else { -hi }

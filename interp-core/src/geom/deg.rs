@@ -142,7 +142,9 @@ pub fn exp(x: f64) -> Result<f64, AlarmKind> {
     Ok(libm::exp(x))
 }
 
-/// FIX: drops the fraction (toward zero): FIX[1.2] = 1, FIX[-1.2] = -1.
+/// FIX: drops the fraction (toward zero): FIX[1.2] = 1, FIX[-1.2] = -1 (out of
+/// line: both languages' expressions).
+#[inline(never)]
 pub fn fix(x: f64) -> f64 {
     positive_zero(libm::trunc(x))
 }
