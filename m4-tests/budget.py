@@ -47,7 +47,7 @@ def main():
             continue
         seen.add(label)
         print(f"budget: {label:14} {count:6,} of {budget:,} ({budget - count:+,})")
-        if count > budget:
+        if count > budget and label not in over:
             over.append(label)
     missing = sorted(set(BUDGETS) - seen)
     if missing:

@@ -252,12 +252,21 @@ pub struct Aux {
     pub tool_changer: ToolChangerOutputs,
 }
 
+/// The tool changer's tool-number outputs (ATC T1, T2, T4, T8, T16: binary).
+#[cfg(feature = "mill")]
+pub const TOOL_BITS: usize = 5;
+
+// The machine file refuses a `tool_count` above what these outputs carry (canon's
+// `MAX_CHANGER_TOOL`): the two limits are one.
+#[cfg(feature = "mill")]
+const _: () = assert!((1 << TOOL_BITS) - 1 == interp_core::config::MAX_CHANGER_TOOL as usize);
+
 /// The request outputs of a mill's automatic tool changer (its done line is a
 /// switch, [`Switches::tool_change_done`]).
 #[cfg(feature = "mill")]
 pub struct ToolChangerOutputs {
     /// Tool number, binary: bit 0 (T1) first.
-    pub tool_bits: [Output<'static>; 5],
+    pub tool_bits: [Output<'static>; TOOL_BITS],
     /// Change request (strobe), high = change.
     pub request: Output<'static>,
 }
