@@ -56,7 +56,7 @@ impl<X: Executor> Engine for CallEngine<'_, '_, '_, X> {
         cmd: &Command,
         st: &mut State,
     ) -> Result<(), AlarmKind> {
-        let em = Emitter::new(*st, cmd.line);
+        let em = Emitter::for_block(st, cmd.line);
         let feed = em.feed.value;
         let zero = crate::geom::path::V2::new(0.0, 0.0);
         let offsets = Offsets {
@@ -85,7 +85,7 @@ impl<X: Executor> Engine for CallEngine<'_, '_, '_, X> {
         cmd: &Command,
         st: &mut State,
     ) -> Result<(), AlarmKind> {
-        let em = Emitter::new(*st, cmd.line);
+        let em = Emitter::for_block(st, cmd.line);
         self.expansion(em, &mut |exp, _, _| {
             for s in segs {
                 exp.profile.segs.push(*s).map_err(|_| AlarmKind::ProfileTooLong)?;
@@ -106,7 +106,7 @@ impl<X: Executor> Engine for CallEngine<'_, '_, '_, X> {
         if let Some(dir) = spindle {
             generator = generator.starting(dir);
         }
-        let em = Emitter { lead: generator.lead(), ..Emitter::new(*st, cmd.line) };
+        let em = Emitter { lead: generator.lead(), ..Emitter::for_block(st, cmd.line) };
         start_cycle(em, Gen::Hole(generator), self.ctx.out).map(|_| ())
     }
 
@@ -115,7 +115,7 @@ impl<X: Executor> Engine for CallEngine<'_, '_, '_, X> {
             check_lead(lead, st.modal.units)?;
         }
         let generator = MultiThreadGen::new(*spec)?;
-        start_cycle(Emitter::new(*st, cmd.line), Gen::MultiThread(generator), self.ctx.out).map(|_| ())
+        start_cycle(Emitter::for_block(st, cmd.line), Gen::MultiThread(generator), self.ctx.out).map(|_| ())
     }
 }
 
@@ -149,7 +149,7 @@ impl<X: Executor> CallEngine<'_, '_, '_, X> {
         cmd: &Command,
         st: &State,
     ) -> Result<(), AlarmKind> {
-        let em = Emitter::new(*st, cmd.line);
+        let em = Emitter::for_block(st, cmd.line);
         let here = em.here(self.ctx.cfg);
         let feed = em.feed.value;
         let nose = Nose {

@@ -178,12 +178,18 @@ pub struct Emitter {
 }
 
 impl Emitter {
-    /// An emitter for the cycle block on `line`, cutting at the feed in force (out
-    /// of line: a dozen cycle set-ups).
-    #[inline(never)]
+    /// An emitter for the cycle block on `line`, cutting at the feed in force.
     pub fn new(st: State, line: u32) -> Self {
         let feed = Feed { mode: st.modal.feed_mode, value: st.feed.get(st.modal.feed_mode) };
         Emitter { st, line, feed, lead: 0 }
+    }
+
+    /// [`Emitter::new`] out of line, for the language calls' and the single cycles'
+    /// set-ups (one copy for seven sites; the block executor's callers keep theirs
+    /// inlined: out of line there it cost the plain G01 an instruction).
+    #[inline(never)]
+    pub fn for_block(st: &State, line: u32) -> Self {
+        Emitter::new(*st, line)
     }
 
     /// The current work position in the ZX plane.
