@@ -184,9 +184,9 @@ impl Emitter {
         Emitter { st, line, feed, lead: 0 }
     }
 
-    /// [`Emitter::new`] out of line, for the language calls' and the single cycles'
-    /// set-ups (one copy for seven sites; the block executor's callers keep theirs
-    /// inlined: out of line there it cost the plain G01 an instruction).
+    /// [`Emitter::new`] out of line, for the cycles' and the language calls'
+    /// set-ups (one copy for eleven sites; `curve_block`, which a plain G01 passes
+    /// through, keeps its inlined: out of line there it cost the G01 an instruction).
     #[inline(never)]
     pub fn for_block(st: &State, line: u32) -> Self {
         Emitter::new(*st, line)
