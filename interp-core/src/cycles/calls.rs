@@ -56,7 +56,7 @@ impl<X: Executor> Engine for CallEngine<'_, '_, '_, X> {
         cmd: &Command,
         st: &mut State,
     ) -> Result<(), AlarmKind> {
-        let em = Emitter::new(*st, cmd.line);
+        let em = Emitter::for_block(st, cmd.line);
         let feed = em.feed.value;
         let zero = crate::geom::path::V2::new(0.0, 0.0);
         let offsets = Offsets {
@@ -67,7 +67,7 @@ impl<X: Executor> Engine for CallEngine<'_, '_, '_, X> {
             along: zero,
             tip: crate::contour::comp::tip_vector(st.tool.tip, st.tool.nose_radius),
         };
-        self.expansion(em, |exp, _, _| {
+        self.expansion(em, &mut |exp, _, _| {
             for s in path {
                 exp.profile.segs.push(*s).map_err(|_| AlarmKind::ProfileTooLong)?;
             }
@@ -85,8 +85,8 @@ impl<X: Executor> Engine for CallEngine<'_, '_, '_, X> {
         cmd: &Command,
         st: &mut State,
     ) -> Result<(), AlarmKind> {
-        let em = Emitter::new(*st, cmd.line);
-        self.expansion(em, |exp, _, _| {
+        let em = Emitter::for_block(st, cmd.line);
+        self.expansion(em, &mut |exp, _, _| {
             for s in segs {
                 exp.profile.segs.push(*s).map_err(|_| AlarmKind::ProfileTooLong)?;
             }
@@ -106,7 +106,7 @@ impl<X: Executor> Engine for CallEngine<'_, '_, '_, X> {
         if let Some(dir) = spindle {
             generator = generator.starting(dir);
         }
-        let em = Emitter { lead: generator.lead(), ..Emitter::new(*st, cmd.line) };
+        let em = Emitter { lead: generator.lead(), ..Emitter::for_block(st, cmd.line) };
         start_cycle(em, Gen::Hole(generator), self.ctx.out).map(|_| ())
     }
 
@@ -115,23 +115,26 @@ impl<X: Executor> Engine for CallEngine<'_, '_, '_, X> {
             check_lead(lead, st.modal.units)?;
         }
         let generator = MultiThreadGen::new(*spec)?;
-        start_cycle(Emitter::new(*st, cmd.line), Gen::MultiThread(generator), self.ctx.out).map(|_| ())
+        start_cycle(Emitter::for_block(st, cmd.line), Gen::MultiThread(generator), self.ctx.out).map(|_| ())
     }
 }
 
+/// What builds a cycle's expansion: its generator (and profile) from the machine
+/// and the environment.
+type Build<'f> =
+    dyn FnMut(&mut super::Expansion, &MachineConfig, &dyn crate::env::Environment) -> Result<(), AlarmKind> + 'f;
+
 impl<X: Executor> CallEngine<'_, '_, '_, X> {
     /// Runs `build` on a new expansion in the block's slot; on an alarm the slot
-    /// is emptied again (the block moves nothing).
-    fn expansion(
-        &mut self,
-        em: Emitter,
-        build: impl FnOnce(&mut super::Expansion, &MachineConfig, &dyn crate::env::Environment) -> Result<(), AlarmKind>,
-    ) -> Result<(), AlarmKind> {
+    /// is emptied again (the block moves nothing). The builder is behind a
+    /// reference: one copy of the set-up for the three cycles that use it.
+    #[inline(never)]
+    fn expansion(&mut self, em: Emitter, build: &mut Build<'_>) -> Result<(), AlarmKind> {
         let (cfg, env) = (self.ctx.cfg, self.ctx.env);
         let exp = start_cycle(em, Gen::Plan(heapless::Vec::new()), self.ctx.out)?;
         let built = build(exp, cfg, env);
         if built.is_err() {
-            self.ctx.out.cycle_slot()?.take();
+            *self.ctx.out.cycle_slot()? = None;
         }
         built
     }
@@ -146,7 +149,7 @@ impl<X: Executor> CallEngine<'_, '_, '_, X> {
         cmd: &Command,
         st: &State,
     ) -> Result<(), AlarmKind> {
-        let em = Emitter::new(*st, cmd.line);
+        let em = Emitter::for_block(st, cmd.line);
         let here = em.here(self.ctx.cfg);
         let feed = em.feed.value;
         let nose = Nose {
@@ -154,7 +157,7 @@ impl<X: Executor> CallEngine<'_, '_, '_, X> {
             tip: st.tool.tip,
             clearance_udeg: self.ctx.cfg.tools.get(st.tool.offset_number).map_or(0, |r| r.clearance_udeg),
         };
-        self.expansion(em, |exp, cfg, env| {
+        self.expansion(em, &mut |exp, cfg, env| {
             profile::read_contour(&contour, st, cfg, env, X::execute, &mut exp.profile)?;
             exp.generator = Gen::Rough(RoughGen::sections(spec, &mut exp.profile.segs, here, nose, feed)?);
             Ok(())

@@ -141,7 +141,8 @@ fn count(n: f64) -> Result<u32, AlarmKind> {
     Ok((libm::ceil(n) as u32).max(1))
 }
 
-/// cos and sin of Q (µdeg).
+/// cos and sin of Q (µdeg; out of line: the parabola and the ellipse).
+#[inline(never)]
 fn rotation(q_udeg: i64) -> (f64, f64) {
     let q = (q_udeg as f64 / 1e6).to_radians();
     (libm::cos(q), libm::sin(q))

@@ -14,6 +14,25 @@ use crate::moves::motion;
 
 pub use crate::geom::Pt;
 
+/// The step queue was full (a generator's bug: each checks for room first). At a
+/// `?` it becomes alarm [`AlarmKind::Overflow`], as the engine's own push says.
+#[derive(Debug)]
+pub struct Full;
+
+impl From<Full> for AlarmKind {
+    fn from(_: Full) -> Self {
+        AlarmKind::Overflow
+    }
+}
+
+/// Queues a planned step for the generators. Its error carries nothing, so each
+/// of the generators' ~130 `push(..)?` sites tests one register and shares one
+/// exit instead of copying an alarm out (~1 KB of flash).
+#[inline(never)]
+pub fn push(out: &mut super::StepQueue, s: Step) -> Result<(), Full> {
+    super::push(out, s).map_err(|_| Full)
+}
+
 /// The plain blocks' soft-limit check, out of line for the cycles' many moves (inlined
 /// at each of them it cost flash; a plain block keeps its inlined copy).
 #[inline(never)]
@@ -163,6 +182,14 @@ impl Emitter {
     pub fn new(st: State, line: u32) -> Self {
         let feed = Feed { mode: st.modal.feed_mode, value: st.feed.get(st.modal.feed_mode) };
         Emitter { st, line, feed, lead: 0 }
+    }
+
+    /// [`Emitter::new`] out of line, for the cycles' and the language calls'
+    /// set-ups (one copy for eleven sites; `curve_block`, which a plain G01 passes
+    /// through, keeps its inlined: out of line there it cost the G01 an instruction).
+    #[inline(never)]
+    pub fn for_block(st: &State, line: u32) -> Self {
+        Emitter::new(*st, line)
     }
 
     /// The current work position in the ZX plane.

@@ -9,8 +9,8 @@
 //! (⑥); after the last column rapid back to the start along the step axis (⑦).
 
 use super::StepQueue;
+use super::emit::push;
 use super::emit::{Pt, Step};
-use super::push;
 use crate::alarm::{AlarmKind, CycleAlarm};
 use crate::axis::Axis;
 
@@ -103,6 +103,13 @@ impl GrooveGen {
         }
     }
 
+    /// The point at `p` on the peck axis and `s` on the step axis (out of line: six
+    /// moves).
+    #[inline(never)]
+    fn pt(&self, p: i64, s: i64) -> Pt {
+        Pt::default().with(self.peck, p).with(self.step, s)
+    }
+
     /// The next group of steps; `false` when finished.
     pub fn fill(&mut self, out: &mut StepQueue) -> Result<bool, AlarmKind> {
         if self.done {
@@ -110,16 +117,15 @@ impl GrooveGen {
         }
         let (a0, b0) = (self.start.get(self.peck), self.end.get(self.peck));
         let dir = (b0 - a0).signum();
-        let pt = |p: i64, s: i64, g: &Self| Pt::default().with(g.peck, p).with(g.step, s);
         let reached = self.depth.unwrap_or(a0);
         if reached != b0 {
             // ①–③: feed to the next depth (or the bottom), then back e unless at the bottom.
             let next = if self.peck_depth == 0 { b0 } else { reached + dir * self.peck_depth };
             let next = if (b0 - next) * dir <= 0 { b0 } else { next };
-            push(out, Step::Feed(pt(next, self.at, self)))?;
+            push(out, Step::Feed(self.pt(next, self.at)))?;
             self.depth = Some(next);
             if next != b0 {
-                push(out, Step::Rapid(pt(next - dir * self.retract, self.at, self)))?;
+                push(out, Step::Rapid(self.pt(next - dir * self.retract, self.at)))?;
             }
             return Ok(true);
         }
@@ -132,15 +138,15 @@ impl GrooveGen {
         let relieved = if self.relief_feed {
             // CYCLE93: the relief is signed and cut.
             let r = self.at + self.relief;
-            push(out, Step::Feed(pt(b0, r, self)))?;
+            push(out, Step::Feed(self.pt(b0, r)))?;
             r
         } else {
             let relief_dir = if sdir == 0 { -1 } else { -sdir };
             let r = self.at + relief_dir * self.relief;
-            push(out, Step::Rapid(pt(b0, r, self)))?;
+            push(out, Step::Rapid(self.pt(b0, r)))?;
             r
         };
-        let up = pt(a0, relieved, self);
+        let up = self.pt(a0, relieved);
         push(out, if self.retract_feed { Step::Feed(up) } else { Step::Rapid(up) })?;
         if self.at == s1 {
             // ⑦ back to the start.
@@ -151,7 +157,7 @@ impl GrooveGen {
         // ⑥ next column (Δd + Δk from the relieved point), the last at the end's value.
         let next = self.at + sdir * self.column;
         self.at = if (s1 - next) * sdir <= 0 { s1 } else { next };
-        push(out, Step::Rapid(pt(a0, self.at, self)))?;
+        push(out, Step::Rapid(self.pt(a0, self.at)))?;
         self.depth = None;
         Ok(true)
     }
@@ -251,7 +257,8 @@ impl GroovingGen {
     }
 
     /// The plunge axis's start level over [c0, c1]: the surface's outermost, plus
-    /// the safety distance.
+    /// the safety distance (out of line: the set-up and each plunge).
+    #[inline(never)]
     fn column_start(&self, c0: i64, c1: i64) -> Pt {
         let s = &self.spec;
         let (step_axis, plunge) = axes(s);
@@ -405,18 +412,19 @@ impl GroovingGen {
             // 2 µm: the edge is on the flank's own line, which the floor sees too.
             self.floor(segs, c0, c1).is_none_or(|f| depth(p) <= f * self.spec.inward + 2_000)
         };
-        let (mut lo, mut hi) = (0.0, 1.0);
-        if !ok(1.0) {
-            for _ in 0..30 {
-                let mid = (lo + hi) / 2.0;
-                if ok(mid) {
-                    lo = mid;
-                } else {
-                    hi = mid;
+        // The whole line if it is clear, else 30 halvings of [0, 1] (one call site
+        // of `ok`: the floor search is inlined once).
+        let (mut lo, mut hi, mut t) = (0.0, 1.0, 1.0);
+        for i in 0..=30 {
+            if ok(t) {
+                lo = t;
+                if i == 0 {
+                    break;
                 }
+            } else {
+                hi = t;
             }
-        } else {
-            lo = 1.0;
+            t = (lo + hi) / 2.0;
         }
         let end = lerp(a, b, lo);
         let add = |p: Pt| Pt::new(p.x + edge_shift.x, p.z + edge_shift.z);

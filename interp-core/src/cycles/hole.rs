@@ -19,7 +19,7 @@
 
 use super::StepQueue;
 use super::emit::Step;
-use super::push;
+use super::emit::push;
 use crate::alarm::AlarmKind;
 use crate::axis::{Axis, Pos};
 use crate::canon::SpindleDir;
@@ -71,7 +71,9 @@ enum Phase {
 }
 
 impl HoleGen {
-    /// A hole cycle.
+    /// A hole cycle (out of line: the FANUC lathe's, the mill's and SINUMERIK's
+    /// set-ups).
+    #[inline(never)]
     pub fn new(spec: HoleSpec) -> HoleGen {
         debug_assert!(!spec.plane.contains(spec.axis), "the drilling axis is the plane's normal");
         let back_bore = matches!(spec.work, HoleWork::BackBore { .. });
@@ -117,6 +119,12 @@ impl HoleGen {
         let mut p = self.here_pos();
         p[self.axis] = v;
         p
+    }
+
+    /// [`HoleGen::at`] moved by a boring work's `shift` (out of line: six sites).
+    #[inline(never)]
+    fn at_shifted(&self, v: i64, shift: Pos) -> Pos {
+        self.at(v) + shift
     }
 
     fn here_pos(&self) -> Pos {
@@ -180,10 +188,10 @@ impl HoleGen {
     fn back_bore_in(&self, shift: Pos, restart: SpindleDir, out: &mut StepQueue) -> Result<(), AlarmKind> {
         let level = self.positioning_level();
         push(out, Step::Aux(ORIENT))?;
-        push(out, Step::RapidTo(self.at(level) + shift))?;
-        push(out, Step::RapidTo(self.at(self.r_level) + shift))?;
+        push(out, Step::RapidTo(self.at_shifted(level, shift)))?;
+        push(out, Step::RapidTo(self.at_shifted(self.r_level, shift)))?;
         push(out, Step::RapidTo(self.at(self.r_level)))?;
-        push(out, Step::Spindle(restart))
+        Ok(push(out, Step::Spindle(restart))?)
     }
 
     /// One peck (or the whole depth), into the hole and back as the cycle says.
@@ -320,21 +328,21 @@ impl HoleGen {
                     push(out, Step::Stop)?;
                 }
                 push(out, Step::RapidTo(self.at(leave)))?;
-                return push(out, Step::Spindle(restart));
+                return Ok(push(out, Step::Spindle(restart))?);
             }
             HoleWork::FineBore { shift, restart } => {
                 push(out, Step::Aux(ORIENT))?;
-                push(out, Step::RapidTo(self.at(self.bottom) + shift))?;
-                push(out, Step::RapidTo(self.at(leave) + shift))?;
+                push(out, Step::RapidTo(self.at_shifted(self.bottom, shift)))?;
+                push(out, Step::RapidTo(self.at_shifted(leave, shift)))?;
                 push(out, Step::RapidTo(self.at(leave)))?;
-                return push(out, Step::Spindle(restart));
+                return Ok(push(out, Step::Spindle(restart))?);
             }
             HoleWork::BackBore { shift, restart } => {
                 push(out, Step::Aux(ORIENT))?;
-                push(out, Step::RapidTo(self.at(self.bottom) + shift))?;
-                push(out, Step::RapidTo(self.at(self.initial) + shift))?;
+                push(out, Step::RapidTo(self.at_shifted(self.bottom, shift)))?;
+                push(out, Step::RapidTo(self.at_shifted(self.initial, shift)))?;
                 push(out, Step::RapidTo(self.at(self.initial)))?;
-                return push(out, Step::Spindle(restart));
+                return Ok(push(out, Step::Spindle(restart))?);
             }
             HoleWork::RigidTap { dir, dwell_r_ms, restore, .. } => {
                 push(out, Step::Tap { to: r, dir: reverse(dir) })?;

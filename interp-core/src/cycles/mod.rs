@@ -562,7 +562,7 @@ fn cycle_block<X: Executor>(
 fn hole_cycle(code: GCode, cmd: &Command, st: &mut State, ctx: &mut Ctx<'_, '_>) -> Result<(), AlarmKind> {
     let block = if crate::MILL && args::is_mill_hole(code) { drilling::hole_block } else { single::hole_block };
     if let Some(generator) = block(code, cmd, st, ctx.cfg)? {
-        let em = Emitter { lead: generator.lead(), ..Emitter::new(*st, cmd.line) };
+        let em = Emitter { lead: generator.lead(), ..Emitter::for_block(st, cmd.line) };
         start_cycle(em, Gen::Hole(generator), ctx.out)?;
     }
     Ok(())
@@ -572,7 +572,7 @@ fn hole_cycle(code: GCode, cmd: &Command, st: &mut State, ctx: &mut Ctx<'_, '_>)
 #[inline(never)]
 fn single_cycle(code: GCode, cmd: &Command, st: &mut State, ctx: &mut Ctx<'_, '_>) -> Result<(), AlarmKind> {
     if let Some(generator) = single::single_block(code, cmd, st, ctx.cfg)? {
-        start_cycle(Emitter::new(*st, cmd.line), generator, ctx.out)?;
+        start_cycle(Emitter::for_block(st, cmd.line), generator, ctx.out)?;
     }
     Ok(())
 }
@@ -583,7 +583,7 @@ fn multiple<X: Executor>(code: GCode, cmd: &Command, st: &mut State, ctx: &mut C
     use CycleArgs::{Finish, Groove, GrooveSetup, MultiThread, PatternSetup, RoughSetup, Shape, ThreadSetup};
     let cfg = ctx.cfg;
     let p = |id| cfg.params.get(id);
-    let em = Emitter::new(*st, cmd.line);
+    let em = Emitter::for_block(st, cmd.line);
     let here = em.here(cfg);
     let generator = match cmd.cycle {
         RoughSetup { depth, retract } => {
@@ -745,7 +745,7 @@ pub fn polar_block(st: &mut State, cfg: &MachineConfig, out: &mut CycleStage<'_>
     }
     let line = moves.first().map_or(0, |c| c.line);
     let generator = polar::PolarGen::new(&moves, st.work_pos(cfg), cfg.motion.chord_tolerance)?;
-    start_cycle(Emitter::new(*st, line), Gen::Polar(generator), out)?;
+    start_cycle(Emitter::for_block(st, line), Gen::Polar(generator), out)?;
     out.staged.split = Some(before);
     Ok(())
 }

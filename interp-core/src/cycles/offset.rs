@@ -120,6 +120,23 @@ fn walk_dyn(raw: &[Seg], o: &Offsets, f: &mut dyn FnMut(Seg) -> Result<bool, Ala
     Ok(())
 }
 
+/// Element `k` of the path `o` makes of `raw` (the passes and the roughing's
+/// sections look elements up by number: one copy of the search).
+#[inline(never)]
+pub fn nth(raw: &[Seg], o: &Offsets, k: u16) -> Result<Option<Seg>, AlarmKind> {
+    let mut i = 0u16;
+    let mut found = None;
+    walk_dyn(raw, o, &mut |s| {
+        if i == k {
+            found = Some(s);
+            return Ok(false);
+        }
+        i += 1;
+        Ok(true)
+    })?;
+    Ok(found)
+}
+
 /// `e` from `start` to `end` (points on its line or circle).
 fn with_ends(e: Elem, start: V2, end: V2) -> Elem {
     match e {

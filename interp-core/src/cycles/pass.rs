@@ -6,8 +6,8 @@
 
 use super::StepQueue;
 use super::emit::Step;
-use super::offset::{Offsets, walk};
-use super::push;
+use super::emit::push;
+use super::offset::{Offsets, nth};
 use crate::alarm::AlarmKind;
 use crate::geom::{Pt, Seg, SegKind};
 
@@ -66,17 +66,7 @@ impl PassGen {
     /// Element `k` of the pass's path (shifted), if it has one.
     pub fn element(&self, raw: &[Seg], k: u16) -> Result<Option<Seg>, AlarmKind> {
         let part = raw.get(usize::from(self.from)..usize::from(self.to)).unwrap_or(&[]);
-        let mut i = 0u16;
-        let mut found = None;
-        walk(part, &self.offsets, |s| {
-            if i == k {
-                found = Some(s);
-                return Ok(false);
-            }
-            i += 1;
-            Ok(true)
-        })?;
-        Ok(found.map(|s| shifted(&s, self.shift)))
+        Ok(nth(part, &self.offsets, k)?.map(|s| shifted(&s, self.shift)))
     }
 
     /// The next steps; false when the pass is done.
@@ -137,7 +127,9 @@ fn shifted(s: &Seg, d: Pt) -> Seg {
     s.shifted(d)
 }
 
-/// The move along a segment (a contour's rapids too at the pass's feed).
+/// The move along a segment (a contour's rapids too at the pass's feed). Out of
+/// line: five callers in the passes and the roughing's sections.
+#[inline(never)]
 pub fn along(s: &Seg) -> Step {
     match s.kind {
         // A piece of an arc rounded to nothing is no move (not a full circle).

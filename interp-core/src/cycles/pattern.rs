@@ -9,9 +9,9 @@
 //! shape at the cycle's feed, then X back to the start's X and Z to its Z.
 
 use super::StepQueue;
+use super::emit::push;
 use super::emit::{Pt, Step};
 use super::profile::Profile;
-use super::push;
 use super::rough::contour_step;
 use crate::alarm::AlarmKind;
 
@@ -43,8 +43,7 @@ impl PatternGen {
     pub fn offset(&self, n: u32) -> Pt {
         let left = i64::from(self.count.saturating_sub(n));
         let div = i64::from(self.count.max(2) - 1);
-        // |v| < 1e15 nm (nine digits of mm) and left < 10⁴: the product fits.
-        let part = |v: i64| if self.count == 1 { 0 } else { crate::units::div_round(v.saturating_mul(left), div) };
+        let part = |v: i64| if self.count == 1 { 0 } else { share(v, left, div) };
         Pt::new(part(self.relief.x) + self.allowance.x, part(self.relief.z) + self.allowance.z)
     }
 
@@ -83,4 +82,11 @@ impl PatternGen {
         }
         Ok(true)
     }
+}
+
+/// `v · left / div` rounded, for one axis of a pass's offset (out of line: X and Z
+/// share it). |v| < 1e15 nm (nine digits of mm) and left < 10⁴: the product fits.
+#[inline(never)]
+fn share(v: i64, left: i64, div: i64) -> i64 {
+    crate::units::div_round(v.saturating_mul(left), div)
 }

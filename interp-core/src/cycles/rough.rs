@@ -54,9 +54,9 @@
 //! first. The start point (lines 10878–10886): allowance + _VRT off the contour's
 //! highest point on the infeed axis, allowance + _VRT before its start on the other.
 
+use super::emit::push;
 use super::emit::{Pt, Step};
 use super::profile::{Profile, Seg, SegKind};
-use super::push;
 use crate::alarm::AlarmKind;
 use crate::axis::Axis;
 #[cfg(feature = "siemens")]
@@ -109,6 +109,7 @@ impl Spacing {
     /// How many levels a section `depth` deep has with infeed `mid` (G71/G72: the
     /// levels strictly above the bottom).
     #[cfg_attr(not(feature = "siemens"), allow(dead_code))]
+    #[inline(never)]
     fn count(self, depth: i64, mid: i64) -> u32 {
         if depth <= 0 || mid <= 0 {
             return 0;
@@ -437,7 +438,7 @@ impl RoughGen {
         }
         // G71/G72 cut without chip breaking: one piece.
         push(out, Step::Feed(f.work(u, Self::cut_piece(w0, w1, 0))))?;
-        push(out, self.leave(u, w1, w1 - w0))
+        Ok(push(out, self.leave(u, w1, w1 - w0))?)
     }
 
     /// Up to the start level, along to B', down to B' with the ns block's mode.
@@ -452,7 +453,7 @@ impl RoughGen {
         push(out, Step::Rapid(f.work(top, hw)))?;
         push(out, Step::Rapid(f.work(top, bw)))?;
         let p = f.work(bu, bw);
-        push(out, if self.rapid_infeed { Step::Rapid(p) } else { Step::Feed(p) })
+        Ok(push(out, if self.rapid_infeed { Step::Rapid(p) } else { Step::Feed(p) })?)
     }
 
     /// The runs of material at level `u`, in cutting order.
@@ -565,12 +566,15 @@ fn check_monotone(f: &Frame, shape: &[Seg], type2: bool) -> Result<(), AlarmKind
     Ok(())
 }
 
-/// Whether an extent stays between a segment's end values (1 nm slack).
+/// Whether an extent stays between a segment's end values (1 nm slack; out of
+/// line: three callers).
+#[inline(never)]
 fn within(ext: (i64, i64), a: i64, b: i64) -> bool {
     ext.0 >= a.min(b) - 1 && ext.1 <= a.max(b) + 1
 }
 
-/// The lowest u of a segment.
+/// The lowest u of a segment (out of line: three callers).
+#[inline(never)]
 fn lowest(f: &Frame, s: &Seg) -> i64 {
     let (lo, hi) = s.extent(f.level);
     if f.out > 0 { lo } else { -hi }
@@ -585,7 +589,9 @@ fn sign(v: i64) -> i64 {
     v.signum()
 }
 
-/// The contour pass move of a shape segment (the shape's G00 stays a rapid).
+/// The contour pass move of a shape segment (the shape's G00 stays a rapid; out
+/// of line: G71/G72's and G73's contour passes).
+#[inline(never)]
 pub fn contour_step(s: &Seg) -> Step {
     match s.kind {
         SegKind::Rapid => Step::Rapid(s.b),
@@ -609,7 +615,7 @@ mod sections {
     use crate::alarm::CycleAlarm;
     use crate::command::job::{Blank, Pull, StockSpec};
     use crate::cycles::StepQueue;
-    use crate::cycles::offset::{Offsets, walk};
+    use crate::cycles::offset::{Offsets, nth, walk};
     use crate::cycles::pass::{PassGen, along};
     use crate::geom::path::V2;
 
@@ -868,9 +874,8 @@ mod sections {
                     .map_err(|_| AlarmKind::SiemensCycle(CycleAlarm::ContourPreparation { cause: 10934 }))?;
                 path = (1, n + 1);
             }
-            let feed = g.feed(2)?;
             if let Some(o) = g.sections.as_mut() {
-                o.finish = PassGen::new(finish, path, Pt::default(), before, feed, after).arcs_at(spec.arc_feed);
+                o.finish = PassGen::new(finish, path, Pt::default(), before, o.feeds[2], after).arcs_at(spec.arc_feed);
             }
             Ok(g)
         }
@@ -888,7 +893,7 @@ mod sections {
             self.phase = if !o.roughs {
                 Phase::Finish
             } else if o.parallel {
-                push(out, Step::Feedrate(self.feed(0)?))?;
+                push(out, Step::Feedrate(o.feeds[0]))?;
                 Phase::Pattern(self.pattern()?)
             } else {
                 Phase::Level { s: 0, k: 1, part: Part::Begin }
@@ -920,11 +925,6 @@ mod sections {
         /// The start point (work).
         fn s_point(&self) -> Pt {
             self.frame.work(self.a.0, self.a.1)
-        }
-
-        /// Feed `i` (FF1–FF3) or the one in force.
-        fn feed(&self, i: usize) -> Result<i64, AlarmKind> {
-            Ok(self.opts()?.feeds[i])
         }
 
         /// One part of a roughing pass; the phase that follows.
@@ -961,7 +961,7 @@ mod sections {
                     match sec.descent {
                         None => {
                             push(out, Step::Rapid(f.work(u_k, self.a.1)))?;
-                            push(out, Step::Feedrate(self.feed(0)?))?;
+                            push(out, Step::Feedrate(spec.feeds[0]))?;
                             set(Part::Cut { w: self.a.1, end: to })
                         }
                         Some((d0, _)) => {
@@ -975,7 +975,7 @@ mod sections {
                                 push(out, Step::Rapid(f.work(self.a.0.max(hu), above.1)))?;
                                 push(out, Step::Rapid(f.work(above.0, above.1)))?;
                             }
-                            push(out, Step::Feedrate(self.feed(1)?))?;
+                            push(out, Step::Feedrate(spec.feeds[1]))?;
                             push(out, Step::Feed(f.work(tu, tw)))?;
                             set(Part::Follow { at: Mark { elem: d0, t: 0.0 }, to: from, end: to })
                         }
@@ -984,13 +984,11 @@ mod sections {
                 Part::Follow { at, to, end } => {
                     let mut at = at;
                     for _ in 0..4 {
-                        let seg = self
-                            .shape_seg(raw, &self.opts()?.rough, at.elem)?
-                            .ok_or(AlarmKind::SiemensCycle(CycleAlarm::ContourPreparation { cause: 10931 }))?;
+                        let seg = self.rough_seg(raw, at.elem)?;
                         if at.elem == to.elem {
                             let piece = part_of(&seg, at.t, to.t);
                             push(out, along(&piece))?;
-                            push(out, Step::Feedrate(self.feed(0)?))?;
+                            push(out, Step::Feedrate(spec.feeds[0]))?;
                             return set(Part::Cut { w: f.norm(piece.b).1, end });
                         }
                         push(out, along(&part_of(&seg, at.t, 1.0)))?;
@@ -999,9 +997,7 @@ mod sections {
                     set(Part::Follow { at, to, end })
                 }
                 Part::Cut { w, end } => {
-                    let seg = self
-                        .shape_seg(raw, &self.opts()?.rough, end.elem)?
-                        .ok_or(AlarmKind::SiemensCycle(CycleAlarm::ContourPreparation { cause: 10931 }))?;
+                    let seg = self.rough_seg(raw, end.elem)?;
                     let w_end = f.norm(point_at(&seg, end.t)).1;
                     let mut w = w;
                     for _ in 0..3 {
@@ -1052,7 +1048,7 @@ mod sections {
             let f = self.frame;
             let mut at = at;
             for _ in 0..4 {
-                let Some(seg) = self.shape_seg(raw, &self.opts()?.rough, at.elem)? else { return Ok(None) };
+                let Some(seg) = self.shape_seg(raw, at.elem)? else { return Ok(None) };
                 let here = point_at(&seg, at.t);
                 let (hu, _) = f.norm(here);
                 if hu >= target {
@@ -1232,27 +1228,21 @@ mod sections {
             Ok(done)
         }
 
-        /// Element `k` of the path `o` makes of `raw`.
-        fn shape_seg(&self, raw: &[Seg], o: &Offsets, k: u16) -> Result<Option<Seg>, AlarmKind> {
-            let mut i = 0u16;
-            let mut found = None;
-            walk(raw, o, |s| {
-                if i == k {
-                    found = Some(s);
-                    return Ok(false);
-                }
-                i += 1;
-                Ok(true)
-            })?;
-            Ok(found)
+        /// Element `k` of the rough shape (out of line: four callers).
+        #[inline(never)]
+        fn shape_seg(&self, raw: &[Seg], k: u16) -> Result<Option<Seg>, AlarmKind> {
+            nth(raw, &self.opts()?.rough, k)
+        }
+
+        /// Element `k` of the rough shape, which must be there.
+        #[inline(never)]
+        fn rough_seg(&self, raw: &[Seg], k: u16) -> Result<Seg, AlarmKind> {
+            self.shape_seg(raw, k)?.ok_or(AlarmKind::SiemensCycle(CycleAlarm::ContourPreparation { cause: 10931 }))
         }
 
         /// The point at mark `m` of the rough shape.
         fn point(&self, raw: &[Seg], m: Mark) -> Result<Pt, AlarmKind> {
-            let s = self
-                .shape_seg(raw, &self.opts()?.rough, m.elem)?
-                .ok_or(AlarmKind::SiemensCycle(CycleAlarm::ContourPreparation { cause: 10931 }))?;
-            Ok(point_at(&s, m.t))
+            Ok(point_at(&self.rough_seg(raw, m.elem)?, m.t))
         }
     }
 
@@ -1261,7 +1251,9 @@ mod sections {
         raw.first().map_or(Pt::default(), |s| s.a)
     }
 
-    /// Whether the run starting at `start` is section `sec`'s.
+    /// Whether the run starting at `start` is section `sec`'s (out of line: three
+    /// call sites in the run's walk).
+    #[inline(never)]
     fn wanted(sec: &Section, start: Mark) -> bool {
         match sec.descent {
             None => start.elem == 0 && start.t <= 1e-9,
@@ -1276,7 +1268,8 @@ mod sections {
         v(f.cut, f.dir).left().dot(v(f.level, f.out)) > 0.0
     }
 
-    /// Highest u of a segment.
+    /// Highest u of a segment (out of line: four callers).
+    #[inline(never)]
     fn high(f: &Frame, s: &Seg) -> i64 {
         let (lo, hi) = s.extent(f.level);
         if f.out > 0 { hi } else { -lo }
@@ -1380,7 +1373,8 @@ mod sections {
         Pt::new(crate::geom::round_i64(x), crate::geom::round_i64(z))
     }
 
-    /// The piece of `s` from parameter `t0` to `t1`.
+    /// The piece of `s` from parameter `t0` to `t1` (out of line: three callers).
+    #[inline(never)]
     fn part_of(s: &Seg, t0: f64, t1: f64) -> Seg {
         Seg { kind: s.kind, a: point_at(s, t0), b: point_at(s, t1) }
     }

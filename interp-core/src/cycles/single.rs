@@ -68,7 +68,7 @@ fn cycle_nose(st: &State) -> Option<Nose> {
 
 /// G90, G94, G92 blocks.
 pub fn single_block(code: GCode, cmd: &Command, st: &mut State, cfg: &MachineConfig) -> Result<Option<Gen>, AlarmKind> {
-    let here = Emitter::new(*st, cmd.line).here(cfg);
+    let here = Emitter::for_block(st, cmd.line).here(cfg);
     let (taper, lead, starts) = match cmd.cycle {
         CycleArgs::Single { taper } => (taper, None, 1),
         CycleArgs::ThreadCycle { taper, lead, starts } => (taper, lead, starts),
@@ -133,7 +133,7 @@ pub fn thread_block(cmd: &Command, st: &mut State, ctx: &mut Ctx<'_, '_>, chaine
     }
     let lead = st.cycle.lead;
     args::check_lead(lead, st.modal.units)?;
-    let mut em = Emitter::new(*st, cmd.line);
+    let mut em = Emitter::for_block(st, cmd.line);
     let from = em.here(ctx.cfg);
     let w = motion::target(cmd, st, ctx.cfg)?;
     let to = Pt::new(w[Axis::X], w[Axis::Z]);

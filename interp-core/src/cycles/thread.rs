@@ -9,8 +9,8 @@
 //! short axis pulls out.
 
 use super::StepQueue;
+use super::emit::push;
 use super::emit::{Pt, Step};
-use super::push;
 use crate::alarm::AlarmKind;
 use crate::axis::Axis;
 use crate::canon::ThreadSync;
@@ -75,10 +75,11 @@ fn pass(
     match pull.points(b, c, pitch, retract_to)? {
         Some((p, e)) => {
             push(out, Step::Thread { to: p, lead, delta: 0, start_udeg, sync: ThreadSync::Index })?;
-            push(out, Step::Thread { to: e, lead, delta: 0, start_udeg, sync: ThreadSync::Continue })
+            push(out, Step::Thread { to: e, lead, delta: 0, start_udeg, sync: ThreadSync::Continue })?;
         }
-        None => push(out, Step::Thread { to: c, lead, delta: 0, start_udeg, sync: ThreadSync::Index }),
+        None => push(out, Step::Thread { to: c, lead, delta: 0, start_udeg, sync: ThreadSync::Index })?,
     }
+    Ok(())
 }
 
 /// G92: for each start, X to the thread start B, thread to C with pull-out,

@@ -8,11 +8,19 @@ use crate::alarm::AlarmKind;
 /// π/180 split into a double-double: `D2R_HI + D2R_LO` is π/180 to ~1e-34.
 const D2R_HI: f64 = 0.017_453_292_519_943_295;
 const D2R_LO: f64 = 2.948_652_270_870_168_7e-19;
+/// `D2R_HI` split into its upper 26 bits of mantissa and the rest (both exact).
+const D2R_HI_1: f64 = {
+    let c = 134_217_729.0 * D2R_HI;
+    c - (c - D2R_HI)
+};
+const D2R_HI_2: f64 = D2R_HI - D2R_HI_1;
 /// 180/π.
 const R2D: f64 = 57.295_779_513_082_32;
 
 /// `x` in degrees reduced exactly to `r` in [-45, 45] and a quadrant `q` (0–3), with
 /// `x = r + 90·q (mod 360)`. `fmod` and the subtraction are exact in binary.
+/// Out of line: SIN, COS and TAN share one copy.
+#[inline(never)]
 fn reduce(x: f64) -> (f64, u8) {
     let y = libm::fmod(x, 360.0);
     let q = libm::round(y / 90.0);
@@ -28,33 +36,45 @@ fn sin_cos_reduced(r: f64) -> (f64, f64) {
         return (core::f64::consts::FRAC_1_SQRT_2.copysign(r), core::f64::consts::FRAC_1_SQRT_2);
     }
     let hi = r * D2R_HI;
-    let lo = libm::fma(r, D2R_HI, -hi) + r * D2R_LO;
+    let lo = product_error(r, hi) + r * D2R_LO;
     let (s, c) = (libm::sin(hi), libm::cos(hi));
     (s + c * lo, c - s * lo)
 }
 
-/// sin of `x` degrees.
-pub fn sin_deg(x: f64) -> f64 {
+/// `r·D2R_HI − hi` exactly, `hi` being the rounded product: Dekker's two-product
+/// with `D2R_HI` split into 26-bit halves (`D2R_HI_1 + D2R_HI_2`). The same bits as
+/// `libm::fma(r, D2R_HI, -hi)` for |r| ≤ 45 (no overflow, no underflow above ~1e-290),
+/// without the software fma's 1.4 KB (the Cortex-M4's FPU is single precision).
+fn product_error(r: f64, hi: f64) -> f64 {
+    // Veltkamp's split of r: 2^27 + 1.
+    let c = 134_217_729.0 * r;
+    let r1 = c - (c - r);
+    let r2 = r - r1;
+    ((r1 * D2R_HI_1 - hi) + r1 * D2R_HI_2 + r2 * D2R_HI_1) + r2 * D2R_HI_2
+}
+
+/// sin and cos of `x` degrees (one copy of the quadrant's signs for both).
+#[inline(never)]
+fn sin_cos_deg(x: f64) -> (f64, f64) {
     let (r, q) = reduce(x);
     let (s, c) = sin_cos_reduced(r);
-    positive_zero(match q {
-        0 => s,
-        1 => c,
-        2 => -s,
-        _ => -c,
-    })
+    let (s, c) = match q {
+        0 => (s, c),
+        1 => (c, -s),
+        2 => (-s, -c),
+        _ => (-c, s),
+    };
+    (positive_zero(s), positive_zero(c))
+}
+
+/// sin of `x` degrees.
+pub fn sin_deg(x: f64) -> f64 {
+    sin_cos_deg(x).0
 }
 
 /// cos of `x` degrees.
 pub fn cos_deg(x: f64) -> f64 {
-    let (r, q) = reduce(x);
-    let (s, c) = sin_cos_reduced(r);
-    positive_zero(match q {
-        0 => c,
-        1 => -s,
-        2 => -c,
-        _ => s,
-    })
+    sin_cos_deg(x).1
 }
 
 /// tan of `x` degrees; alarm 0112 at odd multiples of 90° (2.24.2 (6): "TAN[90]").
@@ -76,7 +96,9 @@ pub fn tan_deg(x: f64) -> Result<f64, AlarmKind> {
 }
 
 /// Radians to degrees, snapped to a whole degree when within a few ulps of it, so
-/// ASIN[1], ACOS[0.5] and ATAN[1] give 90, 60 and 45 exactly.
+/// ASIN[1], ACOS[0.5] and ATAN[1] give 90, 60 and 45 exactly (out of line: the
+/// three inverse functions share it).
+#[inline(never)]
 pub fn degrees(rad: f64) -> f64 {
     let d = rad * R2D;
     let whole = libm::round(d);
@@ -120,7 +142,9 @@ pub fn exp(x: f64) -> Result<f64, AlarmKind> {
     Ok(libm::exp(x))
 }
 
-/// FIX: drops the fraction (toward zero): FIX[1.2] = 1, FIX[-1.2] = -1.
+/// FIX: drops the fraction (toward zero): FIX[1.2] = 1, FIX[-1.2] = -1 (out of
+/// line: both languages' expressions).
+#[inline(never)]
 pub fn fix(x: f64) -> f64 {
     positive_zero(libm::trunc(x))
 }
@@ -172,6 +196,22 @@ mod tests {
         assert!(close(sin_deg(60.0), 0.866_025_403_784_438_6));
         assert!(close(sin_deg(12.3456), libm::sin(12.3456_f64.to_radians())));
         assert!(close(cos_deg(1e6 + 60.0), cos_deg(280.0 + 60.0)), "1e6 = 2777 turns + 280");
+    }
+
+    #[test]
+    fn the_two_product_is_the_fma() {
+        // Every reduced argument's error term as libm's fma gives it: a sweep of
+        // [-45, 45] in odd steps, the quadrant edges and tiny arguments.
+        let mut r = -45.0;
+        while r <= 45.0 {
+            let hi = r * D2R_HI;
+            assert_eq!(product_error(r, hi).to_bits(), libm::fma(r, D2R_HI, -hi).to_bits(), "r = {r}");
+            r += 0.000_123_456_789_1;
+        }
+        for r in [0.0, -0.0, 1e-200, -3e-120, 1e-10, 44.999_999_999, 12.3456, 30.0, 60.0 - 45.0] {
+            let hi = r * D2R_HI;
+            assert_eq!(product_error(r, hi).to_bits(), libm::fma(r, D2R_HI, -hi).to_bits(), "r = {r}");
+        }
     }
 
     #[test]

@@ -182,6 +182,8 @@ fn radius(c: Pt, p: Pt) -> f64 {
     libm::hypot((p.x - c.x) as f64, (p.z - c.z) as f64)
 }
 
+/// `x` wrapped into [0, 2π) (out of line: the sweep and the crossings).
+#[inline(never)]
 fn wrap(x: f64) -> f64 {
     let tau = core::f64::consts::TAU;
     let r = libm::fmod(x, tau);
