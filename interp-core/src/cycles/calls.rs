@@ -67,7 +67,7 @@ impl<X: Executor> Engine for CallEngine<'_, '_, '_, X> {
             along: zero,
             tip: crate::contour::comp::tip_vector(st.tool.tip, st.tool.nose_radius),
         };
-        self.expansion(em, &mut |exp, _, _| {
+        self.expansion(em, |exp, _, _| {
             for s in path {
                 exp.profile.segs.push(*s).map_err(|_| AlarmKind::ProfileTooLong)?;
             }
@@ -86,7 +86,7 @@ impl<X: Executor> Engine for CallEngine<'_, '_, '_, X> {
         st: &mut State,
     ) -> Result<(), AlarmKind> {
         let em = Emitter::for_block(st, cmd.line);
-        self.expansion(em, &mut |exp, _, _| {
+        self.expansion(em, |exp, _, _| {
             for s in segs {
                 exp.profile.segs.push(*s).map_err(|_| AlarmKind::ProfileTooLong)?;
             }
@@ -119,22 +119,19 @@ impl<X: Executor> Engine for CallEngine<'_, '_, '_, X> {
     }
 }
 
-/// What builds a cycle's expansion: its generator (and profile) from the machine
-/// and the environment.
-type Build<'f> =
-    dyn FnMut(&mut super::Expansion, &MachineConfig, &dyn crate::env::Environment) -> Result<(), AlarmKind> + 'f;
-
 impl<X: Executor> CallEngine<'_, '_, '_, X> {
     /// Runs `build` on a new expansion in the block's slot; on an alarm the slot
-    /// is emptied again (the block moves nothing). The builder is behind a
-    /// reference: one copy of the set-up for the three cycles that use it.
-    #[inline(never)]
-    fn expansion(&mut self, em: Emitter, build: &mut Build<'_>) -> Result<(), AlarmKind> {
+    /// is emptied again (the block moves nothing).
+    fn expansion(
+        &mut self,
+        em: Emitter,
+        build: impl FnOnce(&mut super::Expansion, &MachineConfig, &dyn crate::env::Environment) -> Result<(), AlarmKind>,
+    ) -> Result<(), AlarmKind> {
         let (cfg, env) = (self.ctx.cfg, self.ctx.env);
         let exp = start_cycle(em, Gen::Plan(heapless::Vec::new()), self.ctx.out)?;
         let built = build(exp, cfg, env);
         if built.is_err() {
-            *self.ctx.out.cycle_slot()? = None;
+            self.ctx.out.cycle_slot()?.take();
         }
         built
     }
@@ -157,7 +154,7 @@ impl<X: Executor> CallEngine<'_, '_, '_, X> {
             tip: st.tool.tip,
             clearance_udeg: self.ctx.cfg.tools.get(st.tool.offset_number).map_or(0, |r| r.clearance_udeg),
         };
-        self.expansion(em, &mut |exp, cfg, env| {
+        self.expansion(em, |exp, cfg, env| {
             profile::read_contour(&contour, st, cfg, env, X::execute, &mut exp.profile)?;
             exp.generator = Gen::Rough(RoughGen::sections(spec, &mut exp.profile.segs, here, nose, feed)?);
             Ok(())
