@@ -8,7 +8,8 @@ How the bound is found:
   `sub sp`, `str rX, [sp, #-N]!`), added up. Branches that restore sp are not
   subtracted, so the frame is an upper bound of what the function holds at once.
 - Calls: `bl`/`blx` to a label and tail branches (`b`/`b.w`) into another function.
-- Indirect calls (`blx rN`, `bx rN`): a call through a slot of a Rust vtable
+- Indirect calls (`blx rN`, `bx rN`; objdump names r9-r11 `sb`, `sl`, `fp`: they are
+  indirect calls too, and were missed until 28 November 2026): a call through a slot of a Rust vtable
   (`ldr rN, [rM, #off]` just before it, off >= 12) may reach the function in that
   slot of *any* vtable in .rodata/.data (class-hierarchy analysis by slot offset: an
   over-approximation, never an under-one). The executor's poll of a task through its
@@ -129,16 +130,18 @@ def analyse(lines):
         m = re.match(r"([0-9a-f]+) <", args)
         if op in ("bl", "blx", "b", "b.w", "b.n") and m:
             calls[cur].add(int(m.group(1), 16))
-        elif op in ("blx", "bx") and re.match(r"(r\d+|ip)$", args):
+        elif op in ("blx", "bx") and re.match(r"(r\d+|ip|sb|sl|fp)$", args):
             reg = args
             slot = None
             for p in reversed(prev[-6:]):
-                mm = re.match(r"ldr(?:\.w)?\s+%s, \[(r\d+|ip|sp), #(\d+)\]" % reg, p)
+                mm = re.match(r"ldr(?:\.w)?\s+%s, \[(r\d+|ip|sp|sb|sl|fp), #(\d+)\]" % reg, p)
                 if mm:
                     if mm.group(1) != "sp":
                         slot = int(mm.group(2))
                     break
-                if re.match(r"\S+\s+%s," % reg, p):
+                # Another write of the register ends the search; a store, compare
+                # or test names the register first without writing it.
+                if re.match(r"\S+\s+%s," % reg, p) and not re.match(r"(str|stm|push|cmp|cmn|tst|teq|vstr|vcmp)", p):
                     break
             indirect[cur].append((addr, slot))
         prev.append(f"{op} {args}")
