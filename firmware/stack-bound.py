@@ -8,8 +8,10 @@ How the bound is found:
   `sub sp`, `str rX, [sp, #-N]!`), added up. Branches that restore sp are not
   subtracted, so the frame is an upper bound of what the function holds at once.
 - Calls: `bl`/`blx` to a label and tail branches (`b`/`b.w`) into another function.
-- Indirect calls (`blx rN`, `bx rN`), by where rN was loaded from (the last write
-  of rN in the 6 instructions before the call):
+- Indirect calls (`blx rN`, `bx rN`, rN any register: objdump names r9-r11 `sb`, `sl`,
+  `fp`, calls through them were missed until 28 November 2026), by where rN was loaded
+  from (the last write of rN in the 6 instructions before the call; a store or compare
+  naming rN does not write it):
   * `ldr rN, [rM, #off]`, rM a register other than sp and the frame pointer, off
     >= 12: a vtable's method slot — or a `fn` field of a struct. It may reach the
     function in slot `off` of *any* vtable in .rodata/.data (class-hierarchy
@@ -182,11 +184,11 @@ def analyse(lines):
         m = re.match(r"([0-9a-f]+) <", args)
         if op in ("bl", "blx", "b", "b.w", "b.n") and m:
             calls[cur].add(int(m.group(1), 16))
-        elif op in ("blx", "bx") and re.match(r"(r\d+|ip)$", args):
+        elif op in ("blx", "bx") and re.match(r"(r\d+|ip|sb|sl|fp)$", args):
             reg = args
             slot = arg = None
             for p in reversed(prev[-6:]):
-                mm = re.match(r"ldr(?:\.w)?\s+%s, \[(r\d+|ip|sp), #(\d+)\]" % reg, p)
+                mm = re.match(r"ldr(?:\.w)?\s+%s, \[(r\d+|ip|sp|sb|sl|fp), #(\d+)\]" % reg, p)
                 if mm:
                     base, off = mm.group(1), int(mm.group(2))
                     if base == "r7" and cur in fp:
@@ -197,7 +199,9 @@ def analyse(lines):
                     elif base != "sp":
                         slot = off
                     break
-                if re.match(r"\S+\s+%s," % reg, p):
+                # Another write of the register ends the search; a store, compare
+                # or test names the register first without writing it.
+                if re.match(r"\S+\s+%s," % reg, p) and not re.match(r"(str|stm|push|cmp|cmn|tst|teq|vstr|vcmp)", p):
                     break
             indirect[cur].append((addr, slot, arg))
         prev.append(f"{op} {args}")
