@@ -200,8 +200,11 @@ def analyse(lines):
                         slot = off
                     break
                 # Another write of the register ends the search; a store, compare
-                # or test names the register first without writing it.
+                # or test names the register first without writing it, a pair or
+                # multiple load (ldrd, ldm, pop) may write it in any position.
                 if re.match(r"\S+\s+%s," % reg, p) and not re.match(r"(str|stm|push|cmp|cmn|tst|teq|vstr|vcmp)", p):
+                    break
+                if re.match(r"(ldrd|ldm|pop)", p) and re.search(r"\b%s\b" % reg, p.split("[")[0]):
                     break
             indirect[cur].append((addr, slot, arg))
         prev.append(f"{op} {args}")
