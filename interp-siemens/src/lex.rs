@@ -6,7 +6,7 @@
 
 use interp_core::alarm::{AlarmKind, SiemensAlarm as S};
 use interp_core::program::lines::name_byte;
-use interp_core::units::Number;
+use interp_core::units::{Number, times_pow10};
 
 /// Most digits a number may have before and after its point.
 const MAX_DIGITS: u8 = 18;
@@ -173,7 +173,8 @@ impl<'a> Src<'a> {
                 e = (e * 10 + i32::from(d - b'0')).min(99);
                 self.i += 1;
             }
-            let v = n.to_f64() * libm::pow(10.0, f64::from(if neg { -e } else { e }));
+            // One rounding: the mantissa times 10^(exponent − fraction digits).
+            let v = times_pow10(n.mantissa as f64, if neg { -e } else { e } - i32::from(n.frac_digits));
             n = Number::from_f64(v).ok_or(AlarmKind::from(S::ValueRange))?;
         }
         Ok(n)

@@ -47,7 +47,7 @@ pub(super) fn shape(corner: Corner, plane: Plane, start: Pos, first: Canon, next
         Corner::ChamferLength(h) => {
             // The chord between two points c from the corner, where the path turns
             // by `turn`, is 2·c·cos(turn/2).
-            let c = h as f64 / (2.0 * libm::cos(turn / 2.0));
+            let c = h as f64 / (2.0 * crate::geom::sin_cos(turn / 2.0).1);
             if !c.is_finite() {
                 return Err(AlarmKind::ChamferTooLarge);
             }

@@ -105,7 +105,8 @@ impl CurveGen {
         let (s, t) = match self.kind {
             Kind::Ellipse { c, a, from, sweep, k } => {
                 let th = from + f * sweep;
-                (c.0 + a * libm::cos(th), (c.1 + a * libm::sin(th)) * k)
+                let (s, co) = crate::geom::sin_cos(th);
+                (c.0 + a * co, (c.1 + a * s) * k)
             }
             Kind::Parabola { s0, t0, sigma, p, t1, t2 } => {
                 let t = t1 + f * (t2 - t1);
@@ -145,7 +146,8 @@ fn count(n: f64) -> Result<u32, AlarmKind> {
 #[inline(never)]
 fn rotation(q_udeg: i64) -> (f64, f64) {
     let q = (q_udeg as f64 / 1e6).to_radians();
-    (libm::cos(q), libm::sin(q))
+    let (s, c) = crate::geom::sin_cos(q);
+    (c, s)
 }
 
 /// A work point (X radius) in the frame whose first axis is +Z turned clockwise by

@@ -37,7 +37,7 @@ fn sin_cos_reduced(r: f64) -> (f64, f64) {
     }
     let hi = r * D2R_HI;
     let lo = product_error(r, hi) + r * D2R_LO;
-    let (s, c) = (libm::sin(hi), libm::cos(hi));
+    let (s, c) = super::sin_cos(hi);
     (s + c * lo, c - s * lo)
 }
 

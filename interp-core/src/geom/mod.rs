@@ -12,10 +12,60 @@ mod sqrt;
 pub use arc::{Extents, P2, arc_extents, center_from_offsets, center_from_radius};
 pub use seg::{Pt, Seg, SegKind};
 
+/// Sine and cosine of `x` radians. Every sine and cosine in the interpreters goes
+/// through libm's `sincos`, which gives bit for bit the values of `libm::sin` and
+/// `libm::cos` (the same argument reduction and kernels; `tests::sin_cos_is_sin_and_cos`),
+/// so the image carries one routine instead of three.
+#[inline]
+pub fn sin_cos(x: f64) -> (f64, f64) {
+    libm::sincos(x)
+}
+
 /// `libm::round(x) as i64`: half away from zero, saturating (NaN gives 0). Out
 /// of line: the saturating conversion is ~40 bytes of soft-float calls at every
 /// site, and the cold transformations (G68, G51, G16, polar) round at many.
 #[inline(never)]
 pub fn round_i64(x: f64) -> i64 {
     libm::round(x) as i64
+}
+
+#[cfg(test)]
+mod tests {
+    use super::sin_cos;
+
+    /// `sin_cos` must be bit for bit `(libm::sin, libm::cos)`: every golden and every
+    /// cycle's geometry was computed with those. Angles as the interpreters make them
+    /// (degrees and µdeg to radians, arc sweeps, reduced angles), the reduction's
+    /// boundaries (π/4 multiples), tiny and huge arguments, NaN and the infinities.
+    #[test]
+    fn sin_cos_is_sin_and_cos() {
+        let same = |x: f64| {
+            let (s, c) = sin_cos(x);
+            let (rs, rc) = (libm::sin(x), libm::cos(x));
+            assert!(s.to_bits() == rs.to_bits() || (s.is_nan() && rs.is_nan()), "sin {x:e}: {s:e} {rs:e}");
+            assert!(c.to_bits() == rc.to_bits() || (c.is_nan() && rc.is_nan()), "cos {x:e}: {c:e} {rc:e}");
+        };
+        for udeg in (-720_000_000_i64..=720_000_000).step_by(997) {
+            same((udeg as f64 / 1e6).to_radians());
+        }
+        let mut x: u64 = 0x9e37_79b9_7f4a_7c15;
+        for _ in 0..1_000_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let v = f64::from_bits(x);
+            same(v);
+            same((x >> 11) as f64 / (1u64 << 53) as f64 * 200.0 - 100.0);
+        }
+        for k in -64..=64 {
+            let b = f64::from(k) * core::f64::consts::FRAC_PI_4;
+            for d in [-2.0, -1.0, 0.0, 1.0, 2.0] {
+                same(f64::from_bits((b.to_bits() as i64 + d as i64) as u64));
+            }
+        }
+        for v in [0.0, -0.0, 1e-300, 2e-27, 1.4e-8, 1.5e-8, 1e300, f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            same(v);
+            same(-v);
+        }
+    }
 }

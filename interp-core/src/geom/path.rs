@@ -90,7 +90,7 @@ impl V2 {
     /// Rotated counter-clockwise by `t` radians.
     #[inline(never)]
     pub fn rotate(self, t: f64) -> V2 {
-        let (s, c) = (libm::sin(t), libm::cos(t));
+        let (s, c) = super::sin_cos(t);
         V2::new(self.a * c - self.b * s, self.a * s + self.b * c)
     }
 }

@@ -97,7 +97,8 @@ impl Seg {
             SegKind::Arc { center, cw } => {
                 let r = radius(center, self.a);
                 let th = angle(center, self.a) + t * self.sweep(center, cw);
-                (center.x as f64 + r * libm::sin(th), center.z as f64 + r * libm::cos(th))
+                let (s, c) = super::sin_cos(th);
+                (center.x as f64 + r * s, center.z as f64 + r * c)
             }
             _ => {
                 let (ax, az) = (self.a.x as f64, self.a.z as f64);

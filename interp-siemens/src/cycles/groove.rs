@@ -26,7 +26,7 @@ use interp_core::axis::Axis;
 use interp_core::command::Command;
 use interp_core::command::job::GrooveSpec;
 use interp_core::geom::path::V2;
-use interp_core::geom::{Pt, Seg, SegKind};
+use interp_core::geom::{Pt, Seg, SegKind, sin_cos};
 use interp_core::modal::State;
 
 /// Most pieces a groove's contours take: the rough outline (lead-in, four corners
@@ -94,7 +94,10 @@ pub(super) fn cycle93(
         return Err(AlarmKind::CycleValueIllegal { what: "CYCLE93 needs the infeed depth IDEP" });
     }
     // The groove's frame (line 10244: STA1 from the longitudinal axis).
-    let surface = V2::new(libm::cos(sta), libm::sin(sta));
+    let surface = {
+        let (s, c) = sin_cos(sta);
+        V2::new(c, s)
+    };
     let (along, deep) = if face { (surface.b, Axis::Z) } else { (surface.a, Axis::X) };
     if libm::fabs(along) < 1e-9 {
         return Err(AlarmKind::SiemensCycle(CycleAlarm::GrooveFormWrong));
@@ -169,7 +172,7 @@ pub(super) fn cycle93(
 /// lead-out), its flanks moved in by `fal2` and its bottom up by `fal1`.
 #[allow(clippy::too_many_arguments)]
 fn outline(fr: &Frame, w: f64, d: f64, a1: f64, a2: f64, fal2: f64, fal1: f64, lead: f64) -> [V2; 6] {
-    let (e1, e2) = (fal2 / libm::cos(a1), fal2 / libm::cos(a2));
+    let (e1, e2) = (fal2 / sin_cos(a1).1, fal2 / sin_cos(a2).1);
     let dd = d - fal1;
     let (t1, t2) = (libm::tan(a1), libm::tan(a2));
     [
@@ -250,7 +253,7 @@ fn corner(a: V2, b: V2, c: V2, spec: CornerSpec) -> Result<(V2, V2, Option<Seg>)
     } else if spec.chr {
         -v
     } else {
-        -v / (2.0 * libm::cos(half))
+        -v / (2.0 * sin_cos(half).1)
     };
     if leg > b.minus(a).len() + 1.0 || leg > c.minus(b).len() + 1.0 {
         return Err(CycleAlarm::GrooveFormWrong);
