@@ -67,7 +67,7 @@ impl CurveGen {
         let from = libm::atan2(s1.1 - c.1, s1.0 - c.0);
         let to = libm::atan2(s2.1 - c.1, s2.0 - c.0);
         let tau = core::f64::consts::TAU;
-        let mut sweep = libm::fmod(to - from, tau);
+        let mut sweep = crate::geom::fmod(to - from, tau);
         if cw && sweep > 0.0 {
             sweep -= tau;
         } else if !cw && sweep < 0.0 {

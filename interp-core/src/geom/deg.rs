@@ -22,7 +22,7 @@ const R2D: f64 = 57.295_779_513_082_32;
 /// Out of line: SIN, COS and TAN share one copy.
 #[inline(never)]
 fn reduce(x: f64) -> (f64, u8) {
-    let y = libm::fmod(x, 360.0);
+    let y = super::fmod(x, 360.0);
     let q = libm::round(y / 90.0);
     let r = y - 90.0 * q;
     (r, (q as i32).rem_euclid(4) as u8)
@@ -154,7 +154,7 @@ pub fn modulo(j: f64, k: f64) -> Result<f64, AlarmKind> {
     if k == 0.0 {
         return Err(AlarmKind::DivideByZero);
     }
-    Ok(positive_zero(libm::fmod(j, k)))
+    Ok(positive_zero(super::fmod(j, k)))
 }
 
 /// -0.0 becomes 0.0, so results never print as "-0".

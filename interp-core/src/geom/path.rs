@@ -122,7 +122,7 @@ pub enum Elem {
 #[inline(never)]
 pub fn wrap_tau(x: f64) -> f64 {
     let tau = core::f64::consts::TAU;
-    let r = libm::fmod(x, tau);
+    let r = super::fmod(x, tau);
     if r < 0.0 { r + tau } else { r }
 }
 

@@ -81,7 +81,7 @@ impl Seg {
     /// Signed sweep of an arc in radians, counter-clockwise positive in the (Z, X) plane.
     fn sweep(&self, center: Pt, cw: bool) -> f64 {
         let tau = core::f64::consts::TAU;
-        let d = wrap(angle(center, self.b) - angle(center, self.a));
+        let d = super::path::wrap_tau(angle(center, self.b) - angle(center, self.a));
         if cw {
             if d == 0.0 { -tau } else { d - tau }
         } else if d == 0.0 {
@@ -130,7 +130,11 @@ impl Seg {
                 let sweep = self.sweep(center, cw);
                 let start = angle(center, self.a);
                 for th in [t1, t2] {
-                    let d = if sweep >= 0.0 { wrap(th - start) } else { wrap(start - th) };
+                    let d = if sweep >= 0.0 {
+                        super::path::wrap_tau(th - start)
+                    } else {
+                        super::path::wrap_tau(start - th)
+                    };
                     let t = d / sweep.abs();
                     if t > 0.0 && t < 1.0 && !out.iter().any(|o: &f64| (o - t).abs() < 1e-12) {
                         let _ = out.push(t);
@@ -181,14 +185,6 @@ fn angle(c: Pt, p: Pt) -> f64 {
 
 fn radius(c: Pt, p: Pt) -> f64 {
     libm::hypot((p.x - c.x) as f64, (p.z - c.z) as f64)
-}
-
-/// `x` wrapped into [0, 2π) (out of line: the sweep and the crossings).
-#[inline(never)]
-fn wrap(x: f64) -> f64 {
-    let tau = core::f64::consts::TAU;
-    let r = libm::fmod(x, tau);
-    if r < 0.0 { r + tau } else { r }
 }
 
 #[cfg(test)]

@@ -275,7 +275,7 @@ fn recut_start(r: interp_core::modal::ThreadRecut, points: &[Pt], leads: &[i64])
         let to = r.z.clamp(lo, hi);
         turns += (to - a).abs() as f64 / lead as f64;
         if to == r.z {
-            let advance = interp_core::geom::round_i64(libm::fmod(turns, 1.0) * TURN_UDEG as f64);
+            let advance = interp_core::geom::round_i64(interp_core::geom::fmod(turns, 1.0) * TURN_UDEG as f64);
             return Ok(r.angle_udeg - advance);
         }
     }
