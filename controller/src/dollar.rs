@@ -37,9 +37,10 @@ fn number(s: &[u8]) -> Option<f64> {
     crate::decimal::decimal(s)
 }
 
-/// A whole number.
+/// A whole number; ASCII blanks around it are ignored (the link is ASCII: no
+/// Unicode whitespace table in the image).
 fn whole(s: &[u8]) -> Option<u32> {
-    core::str::from_utf8(s).ok()?.trim().parse().ok()
+    core::str::from_utf8(s.trim_ascii()).ok()?.parse().ok()
 }
 
 impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<W, T, P, S> {
