@@ -19,18 +19,19 @@ use crate::def::{self, proc_params};
 use crate::labels::{self, Level as Section};
 use crate::read::{Dir, Jump, Pending, Scope, Stmt, Target, Words, read};
 use interp_core::alarm::{Alarm, AlarmKind, SiemensAlarm as S};
-use interp_core::canon::CanonSink;
+use interp_core::canon::{Action, Canon, CanonSink};
 use interp_core::codes::GCode;
 use interp_core::command::Command;
 use interp_core::config::Language;
 use interp_core::env::Environment;
 use interp_core::geom::round_i64;
-use interp_core::interpreter::siemens::{CallSpec, Callee, ContourAt, Level, ModalCall};
-use interp_core::interpreter::{Entry, Frame, Interpreter, Next, Progress};
+use interp_core::interpreter::siemens::{CallSpec, Callee, ContourAt, Level, ModalCall, Plain};
+use interp_core::interpreter::{Entry, Frame, Interpreter, Next, Phase, Progress};
 use interp_core::lang::ProgramText;
 use interp_core::lang::fanuc::calls::Caller;
 use interp_core::lang::siemens::call::{Arg, CallArgs, Signature};
 use interp_core::lang::siemens::vars::Value;
+use interp_core::modal::Modal;
 use interp_core::program::lines::{self, next_line};
 use interp_core::program::{Cursor, ProgramId, ProgramStore};
 use interp_core::stage::Flow;
@@ -54,6 +55,10 @@ impl interp_core::lang::Front for Sinumerik {
         sink: &mut dyn CanonSink,
     ) -> Result<Progress, Alarm> {
         it.siemens_step(programs, env, sink)
+    }
+
+    fn ret(&self, it: &mut Interpreter) {
+        it.siemens_return();
     }
 
     fn cycle_start(
@@ -106,6 +111,8 @@ trait Driver {
     fn section<'t, P: ProgramStore + ?Sized>(&self, text: &'t [u8], programs: &P) -> Section<'t>;
 
     fn section_end(&mut self);
+
+    fn siemens_return(&mut self);
 
     fn text_end<K: CanonSink + ?Sized>(&mut self, at: Cursor, sink: &mut K) -> Result<Progress, Alarm>;
 
@@ -263,6 +270,16 @@ impl Driver for Interpreter {
         sink: &mut dyn CanonSink,
     ) -> Result<Progress, Alarm> {
         let env = &env;
+        // A line of plain words and numbers: read and checked the short way
+        // (interp-core's `siemens_plain`), run here as every NC block.
+        match self.siemens_plain(programs) {
+            Some(Plain::Skipped { line }) => return Ok(Progress::Skipped { line }),
+            Some(Plain::Block { at, line }) => {
+                let then = After { pending: None, to: None, moves: false };
+                return self.run_block(at, line, None, Extras::default(), then, programs, env, sink);
+            }
+            None => {}
+        }
         let mut budget = self.budget;
         loop {
             if let Some(line) = self.siemens.mcall_due.take().map(core::num::NonZeroU32::get) {
@@ -398,6 +415,52 @@ impl Driver for Interpreter {
             }
             if let Some(f) = self.calls.pop() {
                 self.cursor = f.ret;
+            }
+        }
+    }
+
+    /// M17, RET or the end of a subprogram: back to the caller (REPEAT sections
+    /// of the level end with it; a pass still due starts the level again); in
+    /// the main program the end. A block's M17 gets here through the
+    /// interpreter (`Front::ret`).
+    fn siemens_return(&mut self) {
+        loop {
+            let Some(f) = self.calls.last_mut() else {
+                // M17/RET in the main program ends it.
+                let _ = self.outbox.push_back(Canon { line: self.cmd.line, action: Action::End { rewind: false } });
+                self.phase = Phase::Ended;
+                return;
+            };
+            match f.kind {
+                Level::Repeat { .. } => {
+                    self.calls.pop();
+                }
+                Level::Proc { start, skip, .. } if f.repeats_left > 0 => {
+                    f.repeats_left -= 1;
+                    self.siemens.vars.leave();
+                    self.siemens.vars.enter();
+                    self.cursor = if skip == 0 {
+                        start
+                    } else {
+                        Cursor { offset: start.offset + usize::from(skip), line: start.line + 1, ..start }
+                    };
+                    self.started = false;
+                    return;
+                }
+                _ => {
+                    let Some(f) = self.calls.pop() else { return };
+                    if let Level::Proc { save, .. } = f.kind {
+                        self.siemens.vars.leave();
+                        if let Some(m) = self.siemens.saved.take().filter(|_| save) {
+                            restore_modal(&mut self.state.modal, &m);
+                        }
+                    }
+                    self.loops = f.loops;
+                    self.cursor = f.ret;
+                    self.started = true;
+                    self.language = f.language;
+                    return;
+                }
             }
         }
     }
@@ -964,4 +1027,18 @@ fn find_proc_line(text: &[u8], entry: Cursor) -> (Option<Cursor>, Cursor) {
             return (None, entry);
         }
     }
+}
+
+/// PROC … SAVE at the return: the modal G functions as they were at the call
+/// (compensation, cycles and polygon turning stay as the subprogram left them).
+fn restore_modal(m: &mut Modal, saved: &Modal) {
+    m.motion = saved.motion;
+    m.plane = saved.plane;
+    m.units = saved.units;
+    m.incremental = saved.incremental;
+    m.feed_mode = saved.feed_mode;
+    m.css = saved.css;
+    m.work_frame = saved.work_frame;
+    m.exact_stop_mode = saved.exact_stop_mode;
+    m.diameter = saved.diameter;
 }
