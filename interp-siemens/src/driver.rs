@@ -15,7 +15,7 @@
 //!   stream reads as "wait for more text".
 
 use crate::check::{Extras, apply, check_into, number_format};
-use crate::def::{self, proc_params};
+use crate::def::{self, Proc, proc_params};
 use crate::labels::{self, Level as Section};
 use crate::read::{Dir, Jump, Pending, Scope, Stmt, Target, Words, read};
 use interp_core::alarm::{Alarm, AlarmKind, SiemensAlarm as S};
@@ -786,20 +786,7 @@ impl Driver for Interpreter {
         programs: &P,
     ) -> Result<(), AlarmKind> {
         let text = programs.text(entry.program).ok_or(AlarmKind::from(S::SubprogramNotFound))?;
-        let (proc_line, body) = find_proc_line(text, entry);
-        let proc = match proc_line {
-            Some(c) => {
-                let mut cur = c;
-                let l = next_line(text, &mut cur).map(|l| l.text).unwrap_or(&[]);
-                Some(proc_params(proc_body(l))?)
-            }
-            None => None,
-        };
-        match &proc {
-            Some(p) => args.bind(p.types())?,
-            None if list && !args.is_empty() => return Err(S::ProcMissing.into()),
-            None => {}
-        }
+        let (proc_line, body, proc) = bind_proc(text, entry, args, list)?;
         if passes > 1 && proc.as_ref().is_some_and(|p| !p.params.is_empty()) {
             return Err(S::SyntaxError { what: "P (passes) with a subprogram that has parameters" }.into());
         }
@@ -862,15 +849,7 @@ impl Driver for Interpreter {
         };
         let callee = if let Some(entry) = programs.find_named(name) {
             let text = programs.text(entry.program).unwrap_or(&[]);
-            match find_proc_line(text, entry).0 {
-                Some(c) => {
-                    let mut cur = c;
-                    let l = next_line(text, &mut cur).map(|l| l.text).unwrap_or(&[]);
-                    args.bind(proc_params(proc_body(l))?.types())?;
-                }
-                None if list && !args.is_empty() => return Err(S::ProcMissing.into()),
-                None => {}
-            }
+            bind_proc(text, entry, args, list)?;
             Callee::Proc(entry)
         } else if let Some(sig) = crate::cycles::signature(name) {
             args.bind(sig.params.iter().map(|p| p.1))?;
@@ -1011,6 +990,33 @@ fn program_name(path: &[u8]) -> &[u8] {
 fn proc_body(line: &[u8]) -> &[u8] {
     let i = lines::after_block_number(line);
     line.get(i + 4..).unwrap_or(&[])
+}
+
+/// The PROC statement of the program beginning at `entry` in `text` (its line,
+/// the cursor after it, its parameters; without one `entry` twice), with `args`
+/// bound to its parameters (a call with a list needs a PROC: 14510).
+#[allow(clippy::type_complexity)]
+fn bind_proc<'t>(
+    text: &'t [u8],
+    entry: Cursor,
+    args: &mut CallArgs,
+    list: bool,
+) -> Result<(Option<Cursor>, Cursor, Option<Proc<'t>>), AlarmKind> {
+    let (proc_line, body) = find_proc_line(text, entry);
+    let proc = match proc_line {
+        Some(c) => {
+            let mut cur = c;
+            let l = next_line(text, &mut cur).map(|l| l.text).unwrap_or(&[]);
+            Some(proc_params(proc_body(l))?)
+        }
+        None => None,
+    };
+    match &proc {
+        Some(p) => args.bind(p.types())?,
+        None if list && !args.is_empty() => return Err(S::ProcMissing.into()),
+        None => {}
+    }
+    Ok((proc_line, body, proc))
 }
 
 /// The PROC line of the program beginning at `entry` (before its first
