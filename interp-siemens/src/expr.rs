@@ -294,31 +294,29 @@ impl<'t: 'x, 'x> Eval<'_, 't, 'x> {
     }
 
     fn unary(&mut self) -> Result<Value<'x>, AlarmKind> {
-        match self.src.peek() {
-            Some(b'-') => {
+        // A sign, NOT or B_NOT before the operand (0: none).
+        let prefix = match self.src.peek() {
+            Some(c @ (b'-' | b'+')) => {
                 self.src.i += 1;
-                let v = self.nested(Self::unary)?;
-                Ok(match v {
-                    Value::Int(n) => Value::Int(-n),
-                    v => finite(-num(&v)?)?,
-                })
+                c
             }
-            Some(b'+') => {
-                self.src.i += 1;
-                let v = self.nested(Self::unary)?;
+            _ if self.src.keyword(b"NOT") => b'!',
+            _ if self.src.keyword(b"B_NOT") => b'~',
+            _ => return self.primary(),
+        };
+        let v = self.nested(Self::unary)?;
+        Ok(match prefix {
+            b'-' => match v {
+                Value::Int(n) => Value::Int(-n),
+                v => finite(-num(&v)?)?,
+            },
+            b'+' => {
                 num(&v)?;
-                Ok(v)
+                v
             }
-            _ if self.src.keyword(b"NOT") => {
-                let v = self.nested(Self::unary)?;
-                Ok(Value::Bool(!truth(&v)?))
-            }
-            _ if self.src.keyword(b"B_NOT") => {
-                let v = self.nested(Self::unary)?;
-                Ok(Value::Int(!whole(&v)?))
-            }
-            _ => self.primary(),
-        }
+            b'!' => Value::Bool(!truth(&v)?),
+            _ => Value::Int(!whole(&v)?),
+        })
     }
 
     /// `f` one level deeper (signs and NOT recurse).
