@@ -54,6 +54,10 @@ enum Meaning {
     Nothing,
 }
 
+/// The group of G290/G291 (the 840D's 47), numbered below 32 here: the groups
+/// of a block are a 32-bit mask.
+const LANGUAGE_GROUP: u8 = 31;
+
 /// The SINUMERIK G functions: meaning and the 840D's group (two of one group in a
 /// block is an error).
 fn g_function(n: u16) -> Option<(Meaning, u8)> {
@@ -87,8 +91,8 @@ fn g_function(n: u16) -> Option<(Meaning, u8)> {
         95 => (Meaning::Feed(true), 15),
         96 => (Meaning::CssOn, 15),
         97 => (Meaning::CssOff, 15),
-        290 => (Code(GCode::Language(interp_core::config::Language::Siemens)), 47),
-        291 => (Code(GCode::Language(interp_core::config::Language::Fanuc)), 47),
+        290 => (Code(GCode::Language(interp_core::config::Language::Siemens)), LANGUAGE_GROUP),
+        291 => (Code(GCode::Language(interp_core::config::Language::Fanuc)), LANGUAGE_GROUP),
         450 | 451 => (Meaning::Nothing, 18),
         _ => return None,
     })
@@ -118,7 +122,7 @@ pub fn check_into(w: &Words, st: &State, cfg: &MachineConfig, cmd: &mut Command)
     cmd.line = w.line;
     cmd.seq = w.seq;
     let mut extras = Extras { lims: None, diam: w.diam };
-    let (mut groups, mut css) = (0u64, None::<bool>);
+    let (mut groups, mut css) = (0u32, None::<bool>);
     for &n in &w.g {
         let (meaning, group) = g_function(n).ok_or(AlarmKind::from(S::UnknownGFunction { code: n }))?;
         if groups & (1 << group) != 0 {

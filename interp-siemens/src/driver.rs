@@ -15,22 +15,23 @@
 //!   stream reads as "wait for more text".
 
 use crate::check::{Extras, apply, check_into, number_format};
-use crate::def::{self, proc_params};
+use crate::def::{self, Proc, proc_params};
 use crate::labels::{self, Level as Section};
 use crate::read::{Dir, Jump, Pending, Scope, Stmt, Target, Words, read};
 use interp_core::alarm::{Alarm, AlarmKind, SiemensAlarm as S};
-use interp_core::canon::CanonSink;
+use interp_core::canon::{Action, Canon, CanonSink};
 use interp_core::codes::GCode;
 use interp_core::command::Command;
 use interp_core::config::Language;
 use interp_core::env::Environment;
 use interp_core::geom::round_i64;
-use interp_core::interpreter::siemens::{CallSpec, Callee, ContourAt, Level, ModalCall};
-use interp_core::interpreter::{Entry, Frame, Interpreter, Next, Progress};
+use interp_core::interpreter::siemens::{CallSpec, Callee, ContourAt, Level, ModalCall, Plain};
+use interp_core::interpreter::{Entry, Frame, Interpreter, Next, Phase, Progress};
 use interp_core::lang::ProgramText;
 use interp_core::lang::fanuc::calls::Caller;
 use interp_core::lang::siemens::call::{Arg, CallArgs, Signature};
 use interp_core::lang::siemens::vars::Value;
+use interp_core::modal::Modal;
 use interp_core::program::lines::{self, next_line};
 use interp_core::program::{Cursor, ProgramId, ProgramStore};
 use interp_core::stage::Flow;
@@ -54,6 +55,10 @@ impl interp_core::lang::Front for Sinumerik {
         sink: &mut dyn CanonSink,
     ) -> Result<Progress, Alarm> {
         it.siemens_step(programs, env, sink)
+    }
+
+    fn ret(&self, it: &mut Interpreter) {
+        it.siemens_return();
     }
 
     fn cycle_start(
@@ -106,6 +111,8 @@ trait Driver {
     fn section<'t, P: ProgramStore + ?Sized>(&self, text: &'t [u8], programs: &P) -> Section<'t>;
 
     fn section_end(&mut self);
+
+    fn siemens_return(&mut self);
 
     fn text_end<K: CanonSink + ?Sized>(&mut self, at: Cursor, sink: &mut K) -> Result<Progress, Alarm>;
 
@@ -263,6 +270,16 @@ impl Driver for Interpreter {
         sink: &mut dyn CanonSink,
     ) -> Result<Progress, Alarm> {
         let env = &env;
+        // A line of plain words and numbers: read and checked the short way
+        // (interp-core's `siemens_plain`), run here as every NC block.
+        match self.siemens_plain(programs) {
+            Some(Plain::Skipped { line }) => return Ok(Progress::Skipped { line }),
+            Some(Plain::Block { at, line }) => {
+                let then = After { pending: None, to: None, moves: false };
+                return self.run_block(at, line, None, Extras::default(), then, programs, env, sink);
+            }
+            None => {}
+        }
         let mut budget = self.budget;
         loop {
             if let Some(line) = self.siemens.mcall_due.take().map(core::num::NonZeroU32::get) {
@@ -398,6 +415,52 @@ impl Driver for Interpreter {
             }
             if let Some(f) = self.calls.pop() {
                 self.cursor = f.ret;
+            }
+        }
+    }
+
+    /// M17, RET or the end of a subprogram: back to the caller (REPEAT sections
+    /// of the level end with it; a pass still due starts the level again); in
+    /// the main program the end. A block's M17 gets here through the
+    /// interpreter (`Front::ret`).
+    fn siemens_return(&mut self) {
+        loop {
+            let Some(f) = self.calls.last_mut() else {
+                // M17/RET in the main program ends it.
+                let _ = self.outbox.push_back(Canon { line: self.cmd.line, action: Action::End { rewind: false } });
+                self.phase = Phase::Ended;
+                return;
+            };
+            match f.kind {
+                Level::Repeat { .. } => {
+                    self.calls.pop();
+                }
+                Level::Proc { start, skip, .. } if f.repeats_left > 0 => {
+                    f.repeats_left -= 1;
+                    self.siemens.vars.leave();
+                    self.siemens.vars.enter();
+                    self.cursor = if skip == 0 {
+                        start
+                    } else {
+                        Cursor { offset: start.offset + usize::from(skip), line: start.line + 1, ..start }
+                    };
+                    self.started = false;
+                    return;
+                }
+                _ => {
+                    let Some(f) = self.calls.pop() else { return };
+                    if let Level::Proc { save, .. } = f.kind {
+                        self.siemens.vars.leave();
+                        if let Some(m) = self.siemens.saved.take().filter(|_| save) {
+                            restore_modal(&mut self.state.modal, &m);
+                        }
+                    }
+                    self.loops = f.loops;
+                    self.cursor = f.ret;
+                    self.started = true;
+                    self.language = f.language;
+                    return;
+                }
             }
         }
     }
@@ -723,20 +786,7 @@ impl Driver for Interpreter {
         programs: &P,
     ) -> Result<(), AlarmKind> {
         let text = programs.text(entry.program).ok_or(AlarmKind::from(S::SubprogramNotFound))?;
-        let (proc_line, body) = find_proc_line(text, entry);
-        let proc = match proc_line {
-            Some(c) => {
-                let mut cur = c;
-                let l = next_line(text, &mut cur).map(|l| l.text).unwrap_or(&[]);
-                Some(proc_params(proc_body(l))?)
-            }
-            None => None,
-        };
-        match &proc {
-            Some(p) => args.bind(p.types())?,
-            None if list && !args.is_empty() => return Err(S::ProcMissing.into()),
-            None => {}
-        }
+        let (proc_line, body, proc) = bind_proc(text, entry, args, list)?;
         if passes > 1 && proc.as_ref().is_some_and(|p| !p.params.is_empty()) {
             return Err(S::SyntaxError { what: "P (passes) with a subprogram that has parameters" }.into());
         }
@@ -799,15 +849,7 @@ impl Driver for Interpreter {
         };
         let callee = if let Some(entry) = programs.find_named(name) {
             let text = programs.text(entry.program).unwrap_or(&[]);
-            match find_proc_line(text, entry).0 {
-                Some(c) => {
-                    let mut cur = c;
-                    let l = next_line(text, &mut cur).map(|l| l.text).unwrap_or(&[]);
-                    args.bind(proc_params(proc_body(l))?.types())?;
-                }
-                None if list && !args.is_empty() => return Err(S::ProcMissing.into()),
-                None => {}
-            }
+            bind_proc(text, entry, args, list)?;
             Callee::Proc(entry)
         } else if let Some(sig) = crate::cycles::signature(name) {
             args.bind(sig.params.iter().map(|p| p.1))?;
@@ -950,6 +992,33 @@ fn proc_body(line: &[u8]) -> &[u8] {
     line.get(i + 4..).unwrap_or(&[])
 }
 
+/// The PROC statement of the program beginning at `entry` in `text` (its line,
+/// the cursor after it, its parameters; without one `entry` twice), with `args`
+/// bound to its parameters (a call with a list needs a PROC: 14510).
+#[allow(clippy::type_complexity)]
+fn bind_proc<'t>(
+    text: &'t [u8],
+    entry: Cursor,
+    args: &mut CallArgs,
+    list: bool,
+) -> Result<(Option<Cursor>, Cursor, Option<Proc<'t>>), AlarmKind> {
+    let (proc_line, body) = find_proc_line(text, entry);
+    let proc = match proc_line {
+        Some(c) => {
+            let mut cur = c;
+            let l = next_line(text, &mut cur).map(|l| l.text).unwrap_or(&[]);
+            Some(proc_params(proc_body(l))?)
+        }
+        None => None,
+    };
+    match &proc {
+        Some(p) => args.bind(p.types())?,
+        None if list && !args.is_empty() => return Err(S::ProcMissing.into()),
+        None => {}
+    }
+    Ok((proc_line, body, proc))
+}
+
 /// The PROC line of the program beginning at `entry` (before its first
 /// statement), and the cursor after it (or `entry` if it has none).
 fn find_proc_line(text: &[u8], entry: Cursor) -> (Option<Cursor>, Cursor) {
@@ -964,4 +1033,18 @@ fn find_proc_line(text: &[u8], entry: Cursor) -> (Option<Cursor>, Cursor) {
             return (None, entry);
         }
     }
+}
+
+/// PROC … SAVE at the return: the modal G functions as they were at the call
+/// (compensation, cycles and polygon turning stay as the subprogram left them).
+fn restore_modal(m: &mut Modal, saved: &Modal) {
+    m.motion = saved.motion;
+    m.plane = saved.plane;
+    m.units = saved.units;
+    m.incremental = saved.incremental;
+    m.feed_mode = saved.feed_mode;
+    m.css = saved.css;
+    m.work_frame = saved.work_frame;
+    m.exact_stop_mode = saved.exact_stop_mode;
+    m.diameter = saved.diameter;
 }

@@ -108,53 +108,173 @@ fn finite(r: f64) -> Result<Value<'static>, AlarmKind> {
     if r.is_finite() { Ok(Value::Real(r + 0.0)) } else { Err(AlarmKind::MacroOverflow) }
 }
 
+/// A binary operator.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Op {
+    Cmp(Cmp),
+    Or,
+    Xor,
+    And,
+    BOr,
+    BXor,
+    BAnd,
+    Add,
+    Sub,
+    Mul,
+    Div,
+    IntDiv,
+    Mod,
+}
+
+/// `a op b`: comparisons give BOOL (strings and characters compare with `==`
+/// and `<>` only), OR/XOR/AND BOOL, B_OR/B_XOR/B_AND INT, `/` REAL, DIV INT,
+/// `+ - *` and MOD INT when both sides are INT (and the result fits).
+fn apply(op: Op, a: &Value<'_>, b: &Value<'_>) -> Result<Value<'static>, AlarmKind> {
+    Ok(match op {
+        Op::Cmp(c) => Value::Bool(compare(c, a, b)?),
+        Op::Or | Op::Xor | Op::And => {
+            let (x, y) = (truth(a)?, truth(b)?);
+            Value::Bool(match op {
+                Op::Or => x || y,
+                Op::Xor => x ^ y,
+                _ => x && y,
+            })
+        }
+        Op::BOr | Op::BXor | Op::BAnd => {
+            let (x, y) = (whole(a)?, whole(b)?);
+            Value::Int(match op {
+                Op::BOr => x | y,
+                Op::BXor => x ^ y,
+                _ => x & y,
+            })
+        }
+        Op::Add => return arith(a, b, b'+'),
+        Op::Sub => return arith(a, b, b'-'),
+        Op::Mul => return arith(a, b, b'*'),
+        Op::Div | Op::IntDiv => {
+            let (x, y) = (num(a)?, num(b)?);
+            if y == 0.0 {
+                return Err(AlarmKind::DivideByZero);
+            }
+            if op == Op::Div {
+                return finite(x / y);
+            }
+            Value::Int(whole(&Value::Real(libm::trunc(x / y)))?)
+        }
+        Op::Mod => {
+            let both_int = matches!((a, b), (Value::Int(_), Value::Int(_)));
+            let r = deg::modulo(num(a)?, num(b)?)?;
+            if both_int { Value::Int(r as i64) } else { Value::Real(r) }
+        }
+    })
+}
+
+/// `a c b` for a comparison.
+fn compare(c: Cmp, a: &Value<'_>, b: &Value<'_>) -> Result<bool, AlarmKind> {
+    let one = |v: &Value<'_>| match *v {
+        Value::Char(c) => Some(c),
+        Value::Str(&[c]) => Some(c),
+        _ => None,
+    };
+    Ok(match (a, b) {
+        (Value::Char(_), Value::Str(_)) | (Value::Str(_), Value::Char(_)) => match (one(a), one(b), c) {
+            (Some(x), Some(y), Cmp::Eq) => x == y,
+            (x, y, Cmp::Ne) => x.is_none() || y.is_none() || x != y,
+            (_, _, Cmp::Eq) => false,
+            _ => return Err(S::TypeMismatch.into()),
+        },
+        (Value::Str(x), Value::Str(y)) => match c {
+            Cmp::Eq => x == y,
+            Cmp::Ne => x != y,
+            _ => return Err(S::TypeMismatch.into()),
+        },
+        _ => {
+            let (x, y) = (num(a)?, num(b)?);
+            match c {
+                Cmp::Eq => x == y,
+                Cmp::Ne => x != y,
+                Cmp::Lt => x < y,
+                Cmp::Gt => x > y,
+                Cmp::Le => x <= y,
+                Cmp::Ge => x >= y,
+            }
+        }
+    })
+}
+
 impl<'t: 'x, 'x> Eval<'_, 't, 'x> {
     fn expr(&mut self) -> Result<Value<'x>, AlarmKind> {
         self.depth += 1;
         if self.depth > MAX_DEPTH {
             return Err(syntax("expression nested too deep"));
         }
-        let v = self.comparison();
+        let v = self.binary(0);
         self.depth -= 1;
         v
     }
 
-    fn comparison(&mut self) -> Result<Value<'x>, AlarmKind> {
-        let mut a = self.concat()?;
-        while let Some(op) = self.cmp_op() {
-            let b = self.concat()?;
-            let one = |v: &Value<'x>| match *v {
-                Value::Char(c) => Some(c),
-                Value::Str(&[c]) => Some(c),
-                _ => None,
-            };
-            let r = match (&a, &b) {
-                (Value::Char(_), Value::Str(_)) | (Value::Str(_), Value::Char(_)) => match (one(&a), one(&b), op) {
-                    (Some(x), Some(y), Cmp::Eq) => x == y,
-                    (x, y, Cmp::Ne) => x.is_none() || y.is_none() || x != y,
-                    (_, _, Cmp::Eq) => false,
-                    _ => return Err(S::TypeMismatch.into()),
-                },
-                (Value::Str(x), Value::Str(y)) => match op {
-                    Cmp::Eq => x == y,
-                    Cmp::Ne => x != y,
-                    _ => return Err(S::TypeMismatch.into()),
-                },
-                _ => {
-                    let (x, y) = (num(&a)?, num(&b)?);
-                    match op {
-                        Cmp::Eq => x == y,
-                        Cmp::Ne => x != y,
-                        Cmp::Lt => x < y,
-                        Cmp::Gt => x > y,
-                        Cmp::Le => x <= y,
-                        Cmp::Ge => x >= y,
-                    }
-                }
-            };
-            a = Value::Bool(r);
+    /// The operands and operators of precedence `level` and tighter, left to
+    /// right: 0 comparisons, 1 OR, 2 XOR, 3 AND, 4 B_OR, 5 B_XOR, 6 B_AND,
+    /// 7 `+ -`, 8 `* / DIV MOD` (one loop for every level).
+    fn binary(&mut self, level: u8) -> Result<Value<'x>, AlarmKind> {
+        let mut a = self.operand(level)?;
+        while let Some(op) = self.op(level) {
+            let b = self.operand(level)?;
+            a = apply(op, &a, &b)?;
         }
         Ok(a)
+    }
+
+    /// An operand of `level`: the next tighter level (a comparison's is never a
+    /// string concatenation `<<`).
+    fn operand(&mut self, level: u8) -> Result<Value<'x>, AlarmKind> {
+        match level {
+            0 => {
+                let a = self.binary(1)?;
+                if self.src.peek() == Some(b'<') && self.src.at(1) == Some(b'<') {
+                    return Err(AlarmKind::NotSupportedYet { what: "string concatenation <<" });
+                }
+                Ok(a)
+            }
+            8 => self.unary(),
+            _ => self.binary(level + 1),
+        }
+    }
+
+    /// The operator of `level` that comes next, consumed.
+    fn op(&mut self, level: u8) -> Option<Op> {
+        const WORDS: [&[u8]; 6] = [b"OR", b"XOR", b"AND", b"B_OR", b"B_XOR", b"B_AND"];
+        const LOGIC: [Op; 6] = [Op::Or, Op::Xor, Op::And, Op::BOr, Op::BXor, Op::BAnd];
+        match level {
+            0 => self.cmp_op().map(Op::Cmp),
+            1..=6 => {
+                let k = usize::from(level - 1);
+                self.src.keyword(WORDS[k]).then_some(LOGIC[k])
+            }
+            7 => {
+                let op = match self.src.peek() {
+                    Some(b'+') => Op::Add,
+                    Some(b'-') => Op::Sub,
+                    _ => return None,
+                };
+                self.src.i += 1;
+                Some(op)
+            }
+            _ => {
+                if self.src.eat(b'*') {
+                    Some(Op::Mul)
+                } else if self.src.peek() == Some(b'/') {
+                    self.src.i += 1;
+                    Some(Op::Div)
+                } else if self.src.keyword(b"DIV") {
+                    Some(Op::IntDiv)
+                } else if self.src.keyword(b"MOD") {
+                    Some(Op::Mod)
+                } else {
+                    None
+                }
+            }
+        }
     }
 
     fn cmp_op(&mut self) -> Option<Cmp> {
@@ -173,111 +293,30 @@ impl<'t: 'x, 'x> Eval<'_, 't, 'x> {
         Some(op)
     }
 
-    fn concat(&mut self) -> Result<Value<'x>, AlarmKind> {
-        let a = self.logic(0)?;
-        if self.src.peek() == Some(b'<') && self.src.at(1) == Some(b'<') {
-            return Err(AlarmKind::NotSupportedYet { what: "string concatenation <<" });
-        }
-        Ok(a)
-    }
-
-    /// OR (0), XOR (1), AND (2), B_OR (3), B_XOR (4), B_AND (5).
-    fn logic(&mut self, level: u8) -> Result<Value<'x>, AlarmKind> {
-        const OPS: [&[u8]; 6] = [b"OR", b"XOR", b"AND", b"B_OR", b"B_XOR", b"B_AND"];
-        let next = |me: &mut Self| if level == 5 { me.sum() } else { me.logic(level + 1) };
-        let mut a = next(self)?;
-        while self.src.keyword(OPS[usize::from(level)]) {
-            let b = next(self)?;
-            a = if level < 3 {
-                let (x, y) = (truth(&a)?, truth(&b)?);
-                Value::Bool(match level {
-                    0 => x || y,
-                    1 => x ^ y,
-                    _ => x && y,
-                })
-            } else {
-                let (x, y) = (whole(&a)?, whole(&b)?);
-                Value::Int(match level {
-                    3 => x | y,
-                    4 => x ^ y,
-                    _ => x & y,
-                })
-            };
-        }
-        Ok(a)
-    }
-
-    fn sum(&mut self) -> Result<Value<'x>, AlarmKind> {
-        let mut a = self.product()?;
-        loop {
-            let op = match self.src.peek() {
-                Some(c @ (b'+' | b'-')) => c,
-                _ => return Ok(a),
-            };
-            self.src.i += 1;
-            let b = self.product()?;
-            a = arith(&a, &b, op)?;
-        }
-    }
-
-    fn product(&mut self) -> Result<Value<'x>, AlarmKind> {
-        let mut a = self.unary()?;
-        loop {
-            if self.src.eat(b'*') {
-                let b = self.unary()?;
-                a = arith(&a, &b, b'*')?;
-            } else if self.src.peek() == Some(b'/') {
-                self.src.i += 1;
-                let b = self.unary()?;
-                let (x, y) = (num(&a)?, num(&b)?);
-                if y == 0.0 {
-                    return Err(AlarmKind::DivideByZero);
-                }
-                a = finite(x / y)?;
-            } else if self.src.keyword(b"DIV") {
-                let b = self.unary()?;
-                let (x, y) = (num(&a)?, num(&b)?);
-                if y == 0.0 {
-                    return Err(AlarmKind::DivideByZero);
-                }
-                a = Value::Int(whole(&Value::Real(libm::trunc(x / y)))?);
-            } else if self.src.keyword(b"MOD") {
-                let b = self.unary()?;
-                let both_int = matches!((&a, &b), (Value::Int(_), Value::Int(_)));
-                let r = deg::modulo(num(&a)?, num(&b)?)?;
-                a = if both_int { Value::Int(r as i64) } else { Value::Real(r) };
-            } else {
-                return Ok(a);
-            }
-        }
-    }
-
     fn unary(&mut self) -> Result<Value<'x>, AlarmKind> {
-        match self.src.peek() {
-            Some(b'-') => {
+        // A sign, NOT or B_NOT before the operand (0: none).
+        let prefix = match self.src.peek() {
+            Some(c @ (b'-' | b'+')) => {
                 self.src.i += 1;
-                let v = self.nested(Self::unary)?;
-                Ok(match v {
-                    Value::Int(n) => Value::Int(-n),
-                    v => finite(-num(&v)?)?,
-                })
+                c
             }
-            Some(b'+') => {
-                self.src.i += 1;
-                let v = self.nested(Self::unary)?;
+            _ if self.src.keyword(b"NOT") => b'!',
+            _ if self.src.keyword(b"B_NOT") => b'~',
+            _ => return self.primary(),
+        };
+        let v = self.nested(Self::unary)?;
+        Ok(match prefix {
+            b'-' => match v {
+                Value::Int(n) => Value::Int(-n),
+                v => finite(-num(&v)?)?,
+            },
+            b'+' => {
                 num(&v)?;
-                Ok(v)
+                v
             }
-            _ if self.src.keyword(b"NOT") => {
-                let v = self.nested(Self::unary)?;
-                Ok(Value::Bool(!truth(&v)?))
-            }
-            _ if self.src.keyword(b"B_NOT") => {
-                let v = self.nested(Self::unary)?;
-                Ok(Value::Int(!whole(&v)?))
-            }
-            _ => self.primary(),
-        }
+            b'!' => Value::Bool(!truth(&v)?),
+            _ => Value::Int(!whole(&v)?),
+        })
     }
 
     /// `f` one level deeper (signs and NOT recurse).

@@ -18,7 +18,7 @@ use super::expr::{self, Env, MAX_INDICES, eval, r_number, whole};
 use super::lex::{Src, is, strip_comment, syntax, which};
 use interp_core::alarm::{AlarmKind, SiemensAlarm as S};
 use interp_core::config::MachineConfig;
-use interp_core::lang::siemens::call::CallArgs;
+use interp_core::lang::siemens::call::{Arg, CallArgs};
 use interp_core::lang::siemens::vars::{MAX_STRING, Value, VarTy, Vars, convert_to};
 use interp_core::modal::State;
 use interp_core::units::Number;
@@ -710,33 +710,23 @@ impl<'t> Reader<'_, 't, '_> {
             return Ok(true);
         }
         loop {
-            let arg = match self.src.peek() {
-                Some(b',' | b')') => interp_core::lang::siemens::call::Arg::Empty,
+            match self.src.peek() {
+                Some(b',' | b')') => args.push(Arg::Empty)?,
                 _ => {
                     let view = View { scope: self.scope, pending: self.pending };
-                    match eval(&mut self.src, &view)? {
-                        Value::Real(v) => interp_core::lang::siemens::call::Arg::Real(v),
-                        Value::Int(v) => interp_core::lang::siemens::call::Arg::Int(v),
-                        Value::Bool(b) => interp_core::lang::siemens::call::Arg::Int(i64::from(b)),
+                    let one;
+                    args.push(match eval(&mut self.src, &view)? {
+                        Value::Real(v) => Arg::Real(v),
+                        Value::Int(v) => Arg::Int(v),
+                        Value::Bool(b) => Arg::Int(i64::from(b)),
                         Value::Char(c) => {
-                            let one = [c];
-                            args.push(interp_core::lang::siemens::call::Arg::Str(&one))?;
-                            if !self.list_next()? {
-                                return Ok(true);
-                            }
-                            continue;
+                            one = [c];
+                            Arg::Str(&one)
                         }
-                        Value::Str(s) => {
-                            args.push(interp_core::lang::siemens::call::Arg::Str(s))?;
-                            if !self.list_next()? {
-                                return Ok(true);
-                            }
-                            continue;
-                        }
-                    }
+                        Value::Str(s) => Arg::Str(s),
+                    })?;
                 }
-            };
-            args.push(arg)?;
+            }
             if !self.list_next()? {
                 return Ok(true);
             }

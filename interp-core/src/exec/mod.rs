@@ -380,6 +380,10 @@ mod tests {
             unreachable!("not stepped")
         }
 
+        fn ret(&self, _: &mut crate::Interpreter) {
+            unreachable!("no blocks of its own")
+        }
+
         fn cycle_start(
             &self,
             _: &'static Signature,

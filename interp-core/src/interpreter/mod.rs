@@ -366,10 +366,6 @@ impl Interpreter {
         // front end can be plugged in and the call is left out.)
         #[cfg(feature = "siemens")]
         if let Some(front) = self.siemens.front {
-            // A line of plain words and numbers: the short way (siemens.rs).
-            if let Some(done) = self.siemens_plain(programs, env, sink) {
-                return done;
-            }
             return front.step(self, programs, env, sink);
         }
         let _ = (programs, env, sink);
@@ -1137,12 +1133,8 @@ impl Interpreter {
             }
             Next::Jump { to } => self.jump(to),
             Next::Language(l) => self.language = l,
-            // Only the SINUMERIK driver returns it: without it, left out.
-            Next::SiemensReturn => {
-                if crate::SIEMENS {
-                    self.siemens_return();
-                }
-            }
+            // Only the SINUMERIK driver returns it: its front end goes back.
+            Next::SiemensReturn => self.front_return(),
         }
     }
 

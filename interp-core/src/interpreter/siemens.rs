@@ -7,9 +7,11 @@
 //!
 //! - An NC block is read ([`read`]), checked ([`check_into`]) and run by
 //!   `run_cmd`, like a FANUC block; its assignments are written when it has
-//!   succeeded. A line of plain words and numbers takes a short way here
-//!   instead ([`Interpreter::siemens_plain`]: the shared plain reader and a
-//!   check with SINUMERIK's meanings), before the front end is asked.
+//!   succeeded. A line of plain words and numbers is read and checked a short
+//!   way here instead ([`Interpreter::siemens_plain`]: the shared plain reader
+//!   and a check with SINUMERIK's meanings, at the interpreter's speed); the
+//!   front end runs it as it runs its NC blocks (one copy of `run_cmd`, built
+//!   for size with the front end).
 //! - DEF defines variables of the current level (before its first NC block only,
 //!   alarm 14500); IF…GOTOx and GOTOF/GOTOB/GOTO/GOTOC jump to labels or block
 //!   numbers of the level; REPEAT pushes a section frame; a call by name pushes a
@@ -20,17 +22,8 @@
 //!   the end of the main program's text without M02/M30 is alarm 5010, which a
 //!   stream reads as "wait for more text".
 
-use super::{Interpreter, Phase};
-#[cfg(feature = "siemens")]
-use super::{Next, Progress};
-#[cfg(feature = "siemens")]
-use crate::alarm::{Alarm, AlarmKind};
-#[cfg(feature = "siemens")]
-use crate::canon::CanonSink;
-use crate::canon::{Action, Canon};
+use super::Interpreter;
 use crate::config::Language;
-#[cfg(feature = "siemens")]
-use crate::env::Environment;
 use crate::lang::ProgramText;
 #[cfg(feature = "siemens")]
 use crate::lang::fanuc::check::sinumerik_plain;
@@ -45,10 +38,6 @@ use crate::program::ProgramStore;
 #[cfg(feature = "siemens")]
 use crate::program::lines::next_line;
 use crate::program::{Cursor, ProgramId};
-#[cfg(feature = "siemens")]
-use crate::stage::Flow;
-#[cfg(feature = "siemens")]
-use crate::units::{InputMode, NumberFormat};
 
 /// What a call-stack frame opened. Without the `siemens` feature only a FANUC
 /// call (the type takes no room in the frames).
@@ -243,25 +232,35 @@ impl<'c> CallSpec<'c> {
     }
 }
 
+/// What the short way ([`Interpreter::siemens_plain`]) made of the line at the
+/// cursor (the cursor is past it).
+#[cfg(feature = "siemens")]
+#[derive(Clone, Copy, Debug)]
+#[doc(hidden)]
+pub enum Plain {
+    /// Blanks, a comment, a block number alone.
+    Skipped { line: u32 },
+    /// A block of plain words, checked into the interpreter's command: the front
+    /// end runs it.
+    Block { at: Cursor, line: u32 },
+}
+
 impl Interpreter {
     /// The short way of a SINUMERIK step (issue 19): a line of plain words and
     /// numbers (`N.. G1 X40.412 Z-0.05 F.2`: no name, `=`, bracket, label,
     /// expression or string, only words the short way reads as SINUMERIK does) is
-    /// read by the shared plain reader ([`read_plain_line`]), checked with
-    /// SINUMERIK's meanings ([`sinumerik_plain`]) and run as the front end runs an
-    /// NC block, without its statement reader and checker (`interp-siemens`, built
-    /// for size). `None`: the front end's step reads the line — everything else,
-    /// every alarm of reading and checking included, and every line while a modal
-    /// call (MCALL) or a REPEAT section's end may be due. Out of line: its frame
-    /// (the block's saved state) is not under the front end's general way.
+    /// read by the shared plain reader ([`read_plain_line`]) and checked with
+    /// SINUMERIK's meanings ([`sinumerik_plain`]) into the block's command, without
+    /// the front end's statement reader and checker (`interp-siemens`, built for
+    /// size); the front end runs it as it runs its NC blocks. `None`: the front
+    /// end's step reads the line — everything else, every alarm of reading and
+    /// checking included, and every line while a modal call (MCALL) or a REPEAT
+    /// section's end may be due. Here (opt-level 2) the per-block reading and
+    /// checking stays fast; the block's run is the front end's one copy.
     #[cfg(feature = "siemens")]
     #[inline(never)]
-    pub(super) fn siemens_plain(
-        &mut self,
-        programs: &dyn ProgramStore,
-        env: &dyn Environment,
-        sink: &mut dyn CanonSink,
-    ) -> Option<Result<Progress, Alarm>> {
+    #[doc(hidden)]
+    pub fn siemens_plain(&mut self, programs: &dyn ProgramStore) -> Option<Plain> {
         let repeat = |f: &super::Frame| matches!(f.kind, Level::Repeat { .. });
         if self.siemens.general
             || self.siemens.mcall.is_some()
@@ -283,37 +282,21 @@ impl Interpreter {
         }
         self.last_block = at;
         self.cursor = next;
-        if self.block.is_empty() {
+        Some(if self.block.is_empty() {
             // Blanks, a comment, a block number alone.
-            return Some(Ok(Progress::Skipped { line }));
-        }
-        let program = ProgramText {
-            language: Language::Siemens,
-            text,
-            start: programs.start(at.program).unwrap_or(Cursor::start(at.program)),
-            vars: None,
-            fmt: Some(NumberFormat {
-                units: self.state.modal.units,
-                input: InputMode::Calculator,
-                increments: self.cfg.increments,
-            }),
-        };
-        let r = self.run_cmd(&env, Some(program), |_, flow| route(flow), None, |_| {});
-        self.started = true;
-        Some(match r {
-            Err(k) => Err(self.alarm_stop(sink, at.program, line, k)),
-            Ok(Some(next)) => {
-                self.go(next);
-                self.deliver(sink);
-                Ok(Progress::Executed { line })
-            }
-            Ok(None) => {
-                if let Some(v) = self.validating.as_mut() {
-                    v.at = at;
-                }
-                Ok(Progress::Yielded { line })
-            }
+            Plain::Skipped { line }
+        } else {
+            Plain::Block { at, line }
         })
+    }
+
+    /// M17/RET of a block the front end routed: the front end plugged in goes
+    /// back to the caller (its `Front::ret`; built and run at its size).
+    pub(super) fn front_return(&mut self) {
+        #[cfg(feature = "siemens")]
+        if let Some(front) = self.siemens.front {
+            front.ret(self);
+        }
     }
 
     /// Every SINUMERIK line the front end's general way (`true`), or plain lines
@@ -340,85 +323,4 @@ impl Interpreter {
     pub fn language(&self) -> Language {
         self.language
     }
-
-    /// M17, RET or the end of a subprogram: back to the caller (REPEAT sections
-    /// of the level end with it); in the main program the end. In the shared call
-    /// stack's code: a block's [`Flow::Return`](crate::stage::Flow) gets here too.
-    #[doc(hidden)]
-    #[cfg_attr(not(feature = "siemens"), allow(clippy::never_loop))]
-    pub fn siemens_return(&mut self) {
-        loop {
-            let Some(f) = self.calls.last_mut() else {
-                // M17/RET in the main program ends it.
-                let _ = self.outbox.push_back(Canon { line: self.cmd.line, action: Action::End { rewind: false } });
-                self.phase = Phase::Ended;
-                return;
-            };
-            match f.kind {
-                #[cfg(feature = "siemens")]
-                Level::Repeat { .. } => {
-                    self.calls.pop();
-                }
-                #[cfg(feature = "siemens")]
-                Level::Proc { start, skip, .. } if f.repeats_left > 0 => {
-                    f.repeats_left -= 1;
-                    self.siemens.vars.leave();
-                    self.siemens.vars.enter();
-                    self.cursor = if skip == 0 {
-                        start
-                    } else {
-                        Cursor { offset: start.offset + usize::from(skip), line: start.line + 1, ..start }
-                    };
-                    self.started = false;
-                    return;
-                }
-                _ => {
-                    let Some(f) = self.calls.pop() else { return };
-                    #[cfg(feature = "siemens")]
-                    if let Level::Proc { save, .. } = f.kind {
-                        self.siemens.vars.leave();
-                        if let Some(m) = self.siemens.saved.take().filter(|_| save) {
-                            restore_modal(&mut self.state.modal, &m);
-                        }
-                    }
-                    self.loops = f.loops;
-                    self.cursor = f.ret;
-                    self.started = true;
-                    self.language = f.language;
-                    return;
-                }
-            }
-        }
-    }
-}
-
-/// Where a SINUMERIK block's program flow leads (as the front end routes it): M17
-/// returns; M98/M91/M92 are no SINUMERIK functions.
-#[cfg(feature = "siemens")]
-fn route(flow: Flow) -> Result<Next, AlarmKind> {
-    Ok(match flow {
-        Flow::Continue => Next::Go,
-        Flow::Stop => Next::Pause,
-        Flow::End => Next::End,
-        Flow::Return { .. } => Next::SiemensReturn,
-        Flow::Language(l) => Next::Language(l),
-        Flow::Call { .. } | Flow::Jump { .. } => {
-            return Err(AlarmKind::NotSupportedYet { what: "M98/M91/M92 in SINUMERIK mode" });
-        }
-    })
-}
-
-/// PROC … SAVE at the return: the modal G functions as they were at the call
-/// (compensation, cycles and polygon turning stay as the subprogram left them).
-#[cfg(feature = "siemens")]
-fn restore_modal(m: &mut Modal, saved: &Modal) {
-    m.motion = saved.motion;
-    m.plane = saved.plane;
-    m.units = saved.units;
-    m.incremental = saved.incremental;
-    m.feed_mode = saved.feed_mode;
-    m.css = saved.css;
-    m.work_frame = saved.work_frame;
-    m.exact_stop_mode = saved.exact_stop_mode;
-    m.diameter = saved.diameter;
 }

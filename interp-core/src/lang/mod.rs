@@ -53,6 +53,12 @@ pub trait Front: Sync + core::fmt::Debug {
         sink: &mut dyn crate::canon::CanonSink,
     ) -> Result<crate::Progress, crate::Alarm>;
 
+    /// M17, RET or the end of a subprogram in this language: back to the caller
+    /// (the level's sections end with it; a pass still due starts the level
+    /// again); in the main program the end. The interpreter calls it for a
+    /// block's [`Flow::Return`](crate::stage::Flow) routed by this language.
+    fn ret(&self, it: &mut crate::Interpreter);
+
     /// Starts the standard cycle `sig` of a cycle-call block `cmd` with `args`
     /// (bound to `sig`, padded with [`Arg::Empty`](siemens::call::Arg::Empty)):
     /// checks the parameters (the language's alarms), maps them onto the

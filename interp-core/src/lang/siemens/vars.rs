@@ -64,7 +64,9 @@ pub enum Value<'a> {
 }
 
 impl Value<'_> {
-    /// The value as a number, if it is one (BOOL 0/1, CHAR its code).
+    /// The value as a number, if it is one (BOOL 0/1, CHAR its code). Out of
+    /// line: one copy for the expressions' and the variables' callers.
+    #[inline(never)]
     pub fn num(&self) -> Option<f64> {
         match *self {
             Value::Real(v) => Some(v),
@@ -206,7 +208,9 @@ impl Vars {
         self.locals.len()
     }
 
-    /// Forgets the variables defined since `mark`.
+    /// Forgets the variables defined since `mark`. Out of line: one copy for
+    /// the level's end and a failed DEF.
+    #[inline(never)]
     pub fn undo_to(&mut self, mark: usize) {
         if let Some(first) = self.locals.get(mark).copied() {
             self.names.truncate(usize::from(first.name_at));
