@@ -10,7 +10,7 @@ use core::mem::MaybeUninit;
 
 use controller::{Mode, MotionStatus};
 use interp_core::axis::Pos;
-use interp_core::canon::{Canon, CanonSink, Full, SpindleDir};
+use interp_core::canon::{Canon, Full, SpindleDir};
 use interp_core::{AlarmKind, MachineConfig};
 use motion_core::motion::Event;
 use motion_driver::io::Switch;
@@ -72,11 +72,11 @@ pub fn build(slot: &'static mut MaybeUninit<Ctl>, cfg: MachineConfig, pos: Pos) 
 /// `impl MotionPort for MotionCore<N>` (controller/src/port.rs) does.
 impl controller::MotionPort for MotionPort {
     fn push(&mut self, c: Canon) -> Result<(), Full> {
-        self.lock(|m| CanonSink::push(&mut m.core, c)).unwrap_or(Err(Full))
+        self.lock(|m| motion_driver::board::push(&mut m.core, &c)).unwrap_or(Err(Full))
     }
 
     fn push_ref(&mut self, c: &Canon) -> Result<(), Full> {
-        self.lock(|m| CanonSink::push_ref(&mut m.core, c)).unwrap_or(Err(Full))
+        self.lock(|m| motion_driver::board::push(&mut m.core, c)).unwrap_or(Err(Full))
     }
 
     fn feed_hold(&mut self) {

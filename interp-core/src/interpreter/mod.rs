@@ -32,7 +32,7 @@ use crate::canon::CanonSink;
 use crate::command::Command;
 use crate::config::{MachineConfig, Param};
 use crate::cycles::{CycleStage, DryRun, Expansion};
-use crate::env::Environment;
+use crate::env::{Environment, Panel};
 use crate::exec::execute;
 use crate::lang::fanuc::calls::{CallCodes, CallRead, Caller, Calls, ModalCalls};
 use crate::lang::fanuc::check::check_into;
@@ -656,7 +656,7 @@ impl Interpreter {
             let fmt = self.number_format();
             let read = read_program_block(raw.text, line, &self.vars, &fmt, &mut self.block, &mut self.macro_calls);
             match read {
-                Ok(Read::Nc) => return self.nc_block(at, fmt, programs, env, sink),
+                Ok(Read::Nc) => return self.nc_block(at, fmt, text, programs, env, sink),
                 Ok(Read::Macro(m)) if m.statement != MacroStatement::Call => {
                     self.started = true;
                     if let Err(k) = self.macro_statement(&m, at, programs) {
@@ -683,6 +683,21 @@ impl Interpreter {
                 return Ok(Progress::Yielded { line });
             }
         }
+    }
+
+    /// [`Interpreter::step`] as one non-generic function: the program store and the
+    /// sink behind `dyn`, the switches a [`Panel`]. A generic function is compiled at
+    /// the opt-level of the crate that instantiates it; this one is compiled here, at
+    /// interp-core's (the firmware crate, which calls it from its control task, is
+    /// built for size: docs/FIRMWARE-SIZES.md). m4-tests' `bench_interp` measures it.
+    #[inline(never)]
+    pub fn step_dyn(
+        &mut self,
+        programs: &dyn ProgramStore,
+        env: &Panel,
+        sink: &mut dyn CanonSink,
+    ) -> Result<Progress, Alarm> {
+        self.step(programs, env, sink)
     }
 
     /// Executes one block typed in MDI (one block: a `;` or line break may end it,
@@ -730,11 +745,14 @@ impl Interpreter {
         Ok(Progress::Executed { line: 0 })
     }
 
-    /// The NC block just read into `self.block` by [`Interpreter::step`].
+    /// The NC block just read into `self.block` by [`Interpreter::step`] from
+    /// `text`, the text of its program (`at.program`).
+    #[allow(clippy::too_many_arguments)]
     fn nc_block<P, E, S>(
         &mut self,
         at: Cursor,
         fmt: NumberFormat,
+        text: &[u8],
         programs: &P,
         env: &E,
         sink: &mut S,
@@ -753,10 +771,11 @@ impl Interpreter {
             return Ok(Progress::Skipped { line });
         }
         self.started = true;
-        let here = self.cursor.program;
+        // (The text step read the block from: one call of the store fewer per block.)
+        let here = at.program;
         let program = ProgramText {
             language: self.language,
-            text: programs.text(here).unwrap_or(&[]),
+            text,
             start: programs.start(here).unwrap_or(Cursor::start(here)),
             vars: None,
             fmt: Some(fmt),

@@ -56,7 +56,8 @@ impl CanonSink for Last {
 }
 
 /// The motion planner as the sink: each action is prepared and queued (what the
-/// motion core's `push` does with it).
+/// motion core's `push` does with it), through the non-generic push the firmware's
+/// motion core runs (`motion_driver::board`).
 struct Plan {
     planner: Planner<QUEUE>,
     params: MotionParams,
@@ -69,7 +70,7 @@ impl CanonSink for Plan {
 
     /// As `MotionCore`'s: the action read where the interpreter keeps it.
     fn push_ref(&mut self, c: &Canon) -> Result<(), Full> {
-        match self.planner.push(c, &self.params) {
+        match motion_driver::board::plan(&mut self.planner, c, &self.params) {
             Err(PushError::Full) => Err(Full),
             // An alarm would stop the motion core; the benchmark's blocks raise none.
             Err(PushError::Alarm(_)) => exit(false),
@@ -78,17 +79,20 @@ impl CanonSink for Plan {
     }
 }
 
-/// The interpreter, its sink and its program, carried through `measure`.
+/// The interpreter, its sink, its program and its switches (held, as the board's
+/// controller holds its panel), carried through `measure`.
 struct Bench<S> {
     interp: Interpreter,
     sink: S,
     program: &'static [u8],
+    panel: Panel,
 }
 
-/// Runs one step.
+/// Runs one step, through the non-generic entry the firmware's control task calls
+/// (the program store and the sink behind `dyn`, as on the board).
 fn step<S: CanonSink>(b: &mut Bench<S>) -> bool {
     let program = SingleProgram(b.program);
-    matches!(b.interp.step(&program, &Panel::default(), &mut b.sink), Ok(Progress::Executed { .. }))
+    matches!(b.interp.step_dyn(&program, &b.panel, &mut b.sink), Ok(Progress::Executed { .. }))
 }
 
 /// Runs the program's steps, measuring each (`only`: just the one at that index)
@@ -144,29 +148,41 @@ fn main() -> ! {
         None => (None, None),
     };
     let cfg = MachineConfig::default();
-    let mut b = Bench { interp: Interpreter::new(cfg.clone()), sink: Last(None), program: PROGRAM };
+    let mut b =
+        Bench { interp: Interpreter::new(cfg.clone()), sink: Last(None), program: PROGRAM, panel: Panel::default() };
     run(&mut b, "step", steps, &LABELS);
     hprintln!("size of Interpreter: {} bytes", core::mem::size_of::<Interpreter>());
     let Ok(params) = MotionParams::new(&cfg) else { exit(false) };
     let plan = Plan { planner: Planner::new(Pos::ZERO), params };
-    let mut b = Bench { interp: Interpreter::new(cfg), sink: plan, program: PROGRAM };
+    let mut b = Bench { interp: Interpreter::new(cfg), sink: plan, program: PROGRAM, panel: Panel::default() };
     run(&mut b, "text to planned block", planned, &LABELS);
     let cfg = MachineConfig::mill();
-    let mut b = Bench { interp: Interpreter::new(cfg.clone()), sink: Last(None), program: MILL_PROGRAM };
+    let mut b = Bench {
+        interp: Interpreter::new(cfg.clone()),
+        sink: Last(None),
+        program: MILL_PROGRAM,
+        panel: Panel::default(),
+    };
     run(&mut b, "step", mill_steps, &MILL_LABELS);
     let Ok(params) = MotionParams::new(&cfg) else { exit(false) };
     let plan = Plan { planner: Planner::new(Pos::ZERO), params };
-    let mut b = Bench { interp: Interpreter::new(cfg), sink: plan, program: MILL_PROGRAM };
+    let mut b = Bench { interp: Interpreter::new(cfg), sink: plan, program: MILL_PROGRAM, panel: Panel::default() };
     run(&mut b, "text to planned block", mill_planned, &MILL_LABELS);
     // SINUMERIK (not with BENCH_ONLY: its indexes are the FANUC program's).
     if only.is_none() {
         let cfg = MachineConfig { language: interp_core::config::Language::Siemens, ..MachineConfig::default() };
-        let mut b = Bench { interp: Interpreter::new(cfg.clone()), sink: Last(None), program: SIEMENS_PROGRAM };
+        let mut b = Bench {
+            interp: Interpreter::new(cfg.clone()),
+            sink: Last(None),
+            program: SIEMENS_PROGRAM,
+            panel: Panel::default(),
+        };
         b.interp.plug(&interp_siemens::SINUMERIK);
         run(&mut b, "step", None, &SIEMENS_LABELS);
         let Ok(params) = MotionParams::new(&cfg) else { exit(false) };
         let plan = Plan { planner: Planner::new(Pos::ZERO), params };
-        let mut b = Bench { interp: Interpreter::new(cfg), sink: plan, program: SIEMENS_PROGRAM };
+        let mut b =
+            Bench { interp: Interpreter::new(cfg), sink: plan, program: SIEMENS_PROGRAM, panel: Panel::default() };
         b.interp.plug(&interp_siemens::SINUMERIK);
         run(&mut b, "text to planned block", None, &SIEMENS_LABELS);
     }
