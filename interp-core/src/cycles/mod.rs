@@ -744,7 +744,7 @@ pub fn polar_block(st: &mut State, cfg: &MachineConfig, out: &mut CycleStage<'_>
         }
     }
     let line = moves.first().map_or(0, |c| c.line);
-    let generator = polar::PolarGen::new(&moves, st.work_pos(cfg), cfg.motion.chord_tolerance)?;
+    let generator = polar::PolarGen::new(&moves, emit::work_pos(st, cfg), cfg.motion.chord_tolerance)?;
     start_cycle(Emitter::for_block(st, line), Gen::Polar(generator), out)?;
     out.staged.split = Some(before);
     Ok(())

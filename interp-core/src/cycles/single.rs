@@ -187,7 +187,7 @@ pub fn hole_block(
         Axis::X => Plane::Yz,
         _ => Plane::Zx,
     };
-    let here = st.work_pos(cfg);
+    let here = super::emit::work_pos(st, cfg);
     let mut position = here;
     let mut step = Pos::ZERO;
     for a in Axis::ALL {
