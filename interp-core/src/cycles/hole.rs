@@ -17,9 +17,9 @@
 //! words each time; each repetition positions at the level the last one left the
 //! tool on.
 
-use super::StepQueue;
 use super::emit::Step;
 use super::emit::{Full, push};
+use super::{StepQueue, sign};
 use crate::alarm::AlarmKind;
 use crate::axis::{Axis, Pos};
 use crate::canon::SpindleDir;
@@ -217,7 +217,7 @@ impl HoleGen {
         {
             return self.stroke(&deep, out);
         }
-        let dir = (self.bottom - self.r_level).signum();
+        let dir = sign(self.bottom - self.r_level);
         let (q, deep, d) = match self.work {
             HoleWork::Drill { q, deep, d } => (q, deep, d),
             HoleWork::RigidTap { q, deep, d, .. } => (q, deep, d),
@@ -271,7 +271,7 @@ impl HoleGen {
     /// G1 to the next depth (the first at its own feed), then dwell and chip
     /// breaking (G1 back by the retract) or chip removal (G0 to R, dwell).
     fn stroke(&mut self, deep: &DeepDrill, out: &mut StepQueue) -> Result<(), AlarmKind> {
-        let dir = (self.bottom - self.r_level).signum();
+        let dir = sign(self.bottom - self.r_level);
         let left = (self.bottom - self.reached) * dir;
         let s = match self.strokes {
             0 => (deep.first + deep.approach).min(left),
