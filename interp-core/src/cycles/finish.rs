@@ -62,7 +62,7 @@ impl FinishGen {
         };
         let mut outbox = crate::stage::Outbox::new();
         let mut staged = CycleStage::new(em.line, &mut outbox);
-        run_shape_block(&sb, self.first, &mut em.st, cfg, &EnvRef(env), self.execute.0, &mut staged)?;
+        run_shape_block(&sb, self.first, &mut em.st, cfg, env, self.execute.0, &mut staged)?;
         if sb.last {
             crate::contour::flush(&mut em.st, &mut staged)?;
         }

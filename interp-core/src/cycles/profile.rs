@@ -139,15 +139,18 @@ pub fn check_shape_command(cmd: &crate::command::Command, first: bool) -> Result
 
 /// Runs one shape block on `st` through check and `execute` (exec) into `staged`;
 /// after an alarm `st` is left as the block's execution left it (every caller
-/// drops it then). Out of line and not generic: G70's finishing pass and the
-/// profile reader share one copy.
+/// drops it then). Out of line: G70's finishing pass and the profile reader
+/// share one copy. (Generic over the environment on purpose: the profile
+/// reader's copy calls `exec::execute` directly, which `firmware/stack-bound.py`
+/// follows; one `&dyn Environment` copy, 500 B smaller, calls it only through
+/// the pointer, and the tool's bound then misses the shape blocks' recursion.)
 #[inline(never)]
-pub fn run_shape_block(
+pub fn run_shape_block<E: Environment + ?Sized>(
     sb: &ShapeBlock,
     first: bool,
     st: &mut State,
     cfg: &MachineConfig,
-    env: &dyn Environment,
+    env: &E,
     execute: Execute,
     staged: &mut CycleStage<'_>,
 ) -> Result<crate::command::Command, AlarmKind> {
@@ -160,7 +163,7 @@ pub fn run_shape_block(
     // Executed on `st` in place (no copy of the state on the stack under the
     // block's execution): after an alarm `st` is thrown away with the cycle
     // (the profile reader's scratch state, G70's expansion or its dry run).
-    let flow = execute(&cmd, st, cfg, env, staged)?;
+    let flow = execute(&cmd, st, cfg, &EnvRef(env), staged)?;
     if flow != Flow::Continue {
         return Err(AlarmKind::ProfileForbiddenCode { what: "M00/M01/M02/M30" });
     }
@@ -211,7 +214,7 @@ pub fn read_profile<E: Environment + ?Sized>(
         // A move held back for a corner (2.23) comes out with this block: it
         // starts where the last segment ended.
         let held = scratch.contour.is_holding();
-        let cmd = run_shape_block(&sb, first, &mut scratch, cfg, &EnvRef(env), execute, &mut staged)?;
+        let cmd = run_shape_block(&sb, first, &mut scratch, cfg, env, execute, &mut staged)?;
         if first {
             profile.ns_x = cmd.axes[Axis::X.index()].is_some();
             profile.ns_z = cmd.axes[Axis::Z.index()].is_some();
