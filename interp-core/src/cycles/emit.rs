@@ -46,6 +46,14 @@ fn spindle_speed(st: &State, cfg: &MachineConfig, x: i64) -> crate::canon::Spind
     crate::moves::spindle_speed(st, cfg, x)
 }
 
+/// The work position of `st`, out of line for the cycles (the emitter, the hole
+/// and polar set-ups, the shape reader): inlined, each of a dozen sites carried
+/// the work offsets' arithmetic (~150 B).
+#[inline(never)]
+pub fn work_pos(st: &State, cfg: &MachineConfig) -> Pos {
+    st.work_pos(cfg)
+}
+
 /// One move (or other action) a cycle plans.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -195,75 +203,14 @@ impl Emitter {
     /// The current work position in the ZX plane.
     #[inline(never)]
     pub fn here(&self, cfg: &MachineConfig) -> Pt {
-        let w = self.st.work_pos(cfg);
+        let w = work_pos(&self.st, cfg);
         Pt::new(w[Axis::X], w[Axis::Z])
     }
 
     /// Emits one step (nothing for a move that goes nowhere).
     pub fn emit(&mut self, step: Step, cfg: &MachineConfig, out: &mut dyn Out) -> Result<(), AlarmKind> {
         let action = match step {
-            Step::Rapid(p) => {
-                let Some(to) = self.target(p, cfg)? else { return Ok(()) };
-                let m = Move { to, feed: self.feed, spindle: self.speed(cfg, p), exact_stop: true, independent: false };
-                Action::Rapid(m)
-            }
-            Step::RapidTo(w) => {
-                let Some(to) = self.target_pos(w, cfg)? else { return Ok(()) };
-                let spindle = spindle_speed(&self.st, cfg, w[Axis::X]);
-                Action::Rapid(Move { to, feed: self.feed, spindle, exact_stop: true, independent: false })
-            }
-            Step::Feed(p) => {
-                let feed = self.cutting_feed(cfg)?;
-                let Some(to) = self.target(p, cfg)? else { return Ok(()) };
-                let exact_stop = self.st.modal.exact_stop_mode;
-                Action::Linear(Move { to, feed, spindle: self.speed(cfg, p), exact_stop, independent: false })
-            }
-            Step::FeedTo(w) => {
-                let feed = self.cutting_feed(cfg)?;
-                let Some(to) = self.target_pos(w, cfg)? else { return Ok(()) };
-                let exact_stop = self.st.modal.exact_stop_mode;
-                let spindle = spindle_speed(&self.st, cfg, w[Axis::X]);
-                Action::Linear(Move { to, feed, spindle, exact_stop, independent: false })
-            }
-            Step::FeedPerRev(w) => {
-                let Some(to) = self.target_pos(w, cfg)? else { return Ok(()) };
-                let feed = Feed { mode: FeedMode::PerRev, value: self.lead };
-                let spindle = spindle_speed(&self.st, cfg, w[Axis::X]);
-                Action::Linear(Move { to, feed, spindle, exact_stop: true, independent: false })
-            }
             Step::Arc { to, center, cw } => self.arc(to, center, cw, cfg)?,
-            Step::Thread { to: p, lead, delta, start_udeg, sync } => {
-                let Some(to) = self.target(p, cfg)? else { return Ok(()) };
-                let spindle = self.speed(cfg, p);
-                // A thread waits for the spindle index: with the spindle stopped it
-                // would wait for ever.
-                if spindle.rpm.is_none_or(|r| r == 0) {
-                    return Err(AlarmKind::FeedPerRevSpindleStopped);
-                }
-                Action::Thread(ThreadMove { to, lead, lead_delta: delta, start_udeg, sync, spindle })
-            }
-            Step::Tap { to: w, dir } => {
-                let lead = self.lead;
-                let Some(to) = self.target_pos(w, cfg)? else { return Ok(()) };
-                // The spindle is position-controlled in the tapping direction at the M29 speed.
-                let mut locked = self.st;
-                locked.spindle.dir = dir;
-                let spindle = spindle_speed(&locked, cfg, w[Axis::X]);
-                Action::Tap(TapMove { to, lead, dir, spindle })
-            }
-            Step::PolarFeed { x, c, z, feed, .. } => {
-                let mut work = self.st.work_pos(cfg);
-                (work[Axis::X], work[Axis::C], work[Axis::Z]) = (x, c, z);
-                let feed = Feed { value: feed, ..self.feed };
-                let to = motion::endpoint(work, &self.st, cfg)?;
-                check_limits(&to.machine, cfg)?;
-                if to.machine == self.st.pos {
-                    return Ok(());
-                }
-                let spindle = spindle_speed(&self.st, cfg, work[Axis::X]);
-                let exact_stop = self.st.modal.exact_stop_mode;
-                Action::Linear(Move { to, feed, spindle, exact_stop, independent: false })
-            }
             Step::Dwell(ms) => Action::Dwell { ms },
             Step::Feedrate(v) => {
                 self.feed.value = v;
@@ -275,11 +222,15 @@ impl Emitter {
             Step::Stop => Action::Stop { optional: false },
             Step::Spindle(dir) => {
                 self.st.spindle.dir = dir;
-                let x = self.st.work_axis(cfg, Axis::X);
+                let x = work_pos(&self.st, cfg)[Axis::X];
                 let s = spindle_speed(&self.st, cfg, x);
                 let css = if self.st.modal.css { self.st.spindle.css } else { None };
                 Action::Spindle(SpindleCommand { dir, rpm: s.rpm, css: s.css.or(css) })
             }
+            _ => match self.motion(step, cfg)? {
+                Some(action) => action,
+                None => return Ok(()),
+            },
         };
         if let Some(area) = self.st.stroke {
             crate::moves::stroke::check_move(&area, self.st.pos, &action)?;
@@ -290,6 +241,84 @@ impl Emitter {
         }
         let line = if let Step::PolarFeed { line, .. } = step { line } else { self.line };
         out.put(Canon { line, action })
+    }
+
+    /// The straight move of a step (rapid, feed, thread, tap); `None` for one that
+    /// goes nowhere. Every kind is a work position of all axes, a feed and the
+    /// spindle at the end's X: one end point and one spindle speed for all (out of
+    /// line: a copy per kind cost ~1 KB of flash).
+    #[inline(never)]
+    fn motion(&self, step: Step, cfg: &MachineConfig) -> Result<Option<Action>, AlarmKind> {
+        /// What the move is, once its end point is known.
+        enum Kind {
+            Rapid,
+            Linear,
+            Thread { lead: i64, delta: i64, start_udeg: u32, sync: ThreadSync },
+            Tap(SpindleDir),
+        }
+        let mut w = work_pos(&self.st, cfg);
+        let mode_stop = self.st.modal.exact_stop_mode;
+        let (kind, feed, exact_stop) = match step {
+            Step::Rapid(p) => {
+                (w[Axis::X], w[Axis::Z]) = (p.x, p.z);
+                (Kind::Rapid, self.feed, true)
+            }
+            Step::RapidTo(to) => {
+                w = to;
+                (Kind::Rapid, self.feed, true)
+            }
+            Step::Feed(p) => {
+                let feed = self.cutting_feed(cfg)?;
+                (w[Axis::X], w[Axis::Z]) = (p.x, p.z);
+                (Kind::Linear, feed, mode_stop)
+            }
+            Step::FeedTo(to) => {
+                let feed = self.cutting_feed(cfg)?;
+                w = to;
+                (Kind::Linear, feed, mode_stop)
+            }
+            Step::FeedPerRev(to) => {
+                w = to;
+                (Kind::Linear, Feed { mode: FeedMode::PerRev, value: self.lead }, true)
+            }
+            Step::Thread { to: p, lead, delta, start_udeg, sync } => {
+                (w[Axis::X], w[Axis::Z]) = (p.x, p.z);
+                (Kind::Thread { lead, delta, start_udeg, sync }, self.feed, true)
+            }
+            Step::Tap { to, dir } => {
+                w = to;
+                (Kind::Tap(dir), self.feed, true)
+            }
+            Step::PolarFeed { x, c, z, feed, .. } => {
+                (w[Axis::X], w[Axis::C], w[Axis::Z]) = (x, c, z);
+                (Kind::Linear, Feed { value: feed, ..self.feed }, mode_stop)
+            }
+            _ => return Ok(None),
+        };
+        let Some(to) = self.target_pos(w, cfg)? else { return Ok(None) };
+        let spindle = match kind {
+            // The spindle is position-controlled in the tapping direction at the M29 speed.
+            Kind::Tap(dir) => {
+                let mut locked = self.st;
+                locked.spindle.dir = dir;
+                spindle_speed(&locked, cfg, w[Axis::X])
+            }
+            _ => spindle_speed(&self.st, cfg, w[Axis::X]),
+        };
+        let m = Move { to, feed, spindle, exact_stop, independent: false };
+        Ok(Some(match kind {
+            Kind::Rapid => Action::Rapid(m),
+            Kind::Linear => Action::Linear(m),
+            Kind::Thread { lead, delta, start_udeg, sync } => {
+                // A thread waits for the spindle index: with the spindle stopped it
+                // would wait for ever.
+                if spindle.rpm.is_none_or(|r| r == 0) {
+                    return Err(AlarmKind::FeedPerRevSpindleStopped);
+                }
+                Action::Thread(ThreadMove { to, lead, lead_delta: delta, start_udeg, sync, spindle })
+            }
+            Kind::Tap(dir) => Action::Tap(TapMove { to, lead: self.lead, dir, spindle }),
+        }))
     }
 
     /// The end point of a move to work position `w`, soft limits checked; `None` if
@@ -303,7 +332,7 @@ impl Emitter {
     /// The end point of a move to `p`, soft limits checked; `None` if already there.
     #[inline(never)]
     fn target(&self, p: Pt, cfg: &MachineConfig) -> Result<Option<crate::canon::Endpoint>, AlarmKind> {
-        let mut w: Pos = self.st.work_pos(cfg);
+        let mut w: Pos = work_pos(&self.st, cfg);
         w[Axis::X] = p.x;
         w[Axis::Z] = p.z;
         self.target_pos(w, cfg)
@@ -320,7 +349,7 @@ impl Emitter {
             return Err(AlarmKind::FeedZero);
         }
         if self.feed.mode == FeedMode::PerRev {
-            let x = self.st.work_axis(cfg, Axis::X);
+            let x = work_pos(&self.st, cfg)[Axis::X];
             if self.st.spindle.dir == SpindleDir::Stop || spindle_speed(&self.st, cfg, x).rpm == Some(0) {
                 return Err(AlarmKind::FeedPerRevSpindleStopped);
             }
@@ -332,7 +361,7 @@ impl Emitter {
         let feed = self.cutting_feed(cfg)?;
         let here = self.here(cfg);
         let end = self.target(to, cfg)?.ok_or(AlarmKind::Overflow)?;
-        let mut cw_pos = self.st.work_pos(cfg);
+        let mut cw_pos = work_pos(&self.st, cfg);
         cw_pos[Axis::X] = center.x;
         cw_pos[Axis::Z] = center.z;
         let c = motion::endpoint(cw_pos, &self.st, cfg)?;

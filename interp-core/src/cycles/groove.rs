@@ -8,9 +8,9 @@
 //! level with the start); rapid back to the start's X (⑤); rapid to the next column
 //! (⑥); after the last column rapid back to the start along the step axis (⑦).
 
-use super::StepQueue;
 use super::emit::push;
 use super::emit::{Pt, Step};
+use super::{StepQueue, sign};
 use crate::alarm::{AlarmKind, CycleAlarm};
 use crate::axis::Axis;
 
@@ -116,7 +116,7 @@ impl GrooveGen {
             return Ok(false);
         }
         let (a0, b0) = (self.start.get(self.peck), self.end.get(self.peck));
-        let dir = (b0 - a0).signum();
+        let dir = sign(b0 - a0);
         let reached = self.depth.unwrap_or(a0);
         if reached != b0 {
             // ①–③: feed to the next depth (or the bottom), then back e unless at the bottom.
@@ -131,7 +131,7 @@ impl GrooveGen {
         }
         // ④ relief, ⑤ back to the start's peck coordinate.
         let (s0, s1) = (self.start.get(self.step), self.end.get(self.step));
-        let sdir = (s1 - s0).signum();
+        let sdir = sign(s1 - s0);
         if self.dwell_ms > 0 {
             push(out, Step::Dwell(self.dwell_ms))?;
         }
@@ -388,7 +388,7 @@ impl GroovingGen {
             return Ok(());
         }
         // Towards the groove's middle by the passes still to come.
-        let toward = (self.spec.edges[1].get(step_axis) - self.spec.edges[0].get(step_axis)).signum();
+        let toward = sign(self.spec.edges[1].get(step_axis) - self.spec.edges[0].get(step_axis));
         let toward = if side == 0 { toward } else { -toward };
         let shift = crate::geom::round_i64(across as f64 * f64::from(passes - 1 - j) / f64::from(passes)) * toward;
         let (a, b) = (
@@ -445,8 +445,8 @@ impl GroovingGen {
             return Err(AlarmKind::SiemensCycle(CycleAlarm::GrooveFormWrong));
         };
         // The edge on this side: D if D + 1 lies towards the middle.
-        let towards_far = (s.edges[1].get(step_axis) - s.edges[0].get(step_axis)).signum();
-        let d_on_start = s.span.get(step_axis).signum() == towards_far;
+        let towards_far = sign(s.edges[1].get(step_axis) - s.edges[0].get(step_axis));
+        let d_on_start = sign(s.span.get(step_axis)) == towards_far;
         let use_d = (side == 0) == d_on_start;
         let shift = if use_d { Pt::default() } else { Pt::new(-s.span.x, -s.span.z) };
         let mv = |p: Pt| Pt::new(p.x + shift.x, p.z + shift.z);
@@ -461,8 +461,8 @@ impl GroovingGen {
     fn offsets(&self, side: u8) -> Offsets {
         let s = &self.spec;
         let (step_axis, _) = axes(s);
-        let towards_far = (s.edges[1].get(step_axis) - s.edges[0].get(step_axis)).signum();
-        let d_on_start = s.span.get(step_axis).signum() == towards_far;
+        let towards_far = sign(s.edges[1].get(step_axis) - s.edges[0].get(step_axis));
+        let d_on_start = sign(s.span.get(step_axis)) == towards_far;
         let (radius, tip) = if (side == 0) == d_on_start { s.noses[0] } else { s.noses[1] };
         let zero = V2::new(0.0, 0.0);
         let left = s.half1_left == (side == 0);

@@ -17,9 +17,9 @@
 //! words each time; each repetition positions at the level the last one left the
 //! tool on.
 
-use super::StepQueue;
 use super::emit::Step;
-use super::emit::push;
+use super::emit::{Full, push};
+use super::{StepQueue, sign};
 use crate::alarm::AlarmKind;
 use crate::axis::{Axis, Pos};
 use crate::canon::SpindleDir;
@@ -121,6 +121,20 @@ impl HoleGen {
         p
     }
 
+    /// Queues a rapid to the current hole with the drilling axis at `v` (out of
+    /// line: a dozen sites, each building its step).
+    #[inline(never)]
+    fn rapid_at(&self, v: i64, out: &mut StepQueue) -> Result<(), Full> {
+        push(out, Step::RapidTo(self.at(v)))
+    }
+
+    /// Queues a cutting feed to the current hole with the drilling axis at `v` (as
+    /// [`HoleGen::rapid_at`]).
+    #[inline(never)]
+    fn feed_at(&self, v: i64, out: &mut StepQueue) -> Result<(), Full> {
+        push(out, Step::FeedTo(self.at(v)))
+    }
+
     /// [`HoleGen::at`] moved by a boring work's `shift` (out of line: six sites).
     #[inline(never)]
     fn at_shifted(&self, v: i64, shift: Pos) -> Pos {
@@ -151,13 +165,13 @@ impl HoleGen {
         match self.phase {
             Phase::Done => return Ok(false),
             Phase::Position => {
-                push(out, Step::RapidTo(self.at(self.positioning_level())))?;
+                self.rapid_at(self.positioning_level(), out)?;
                 // The boring works of a machining centre (G86/G88/G76/G87) and of the
                 // SINUMERIK CYCLE86-89: without either their code is left out.
                 if BORING && let HoleWork::BackBore { shift, restart } = self.work {
                     self.back_bore_in(shift, restart, out)?;
                 } else {
-                    push(out, Step::RapidTo(self.at(self.r_level)))?;
+                    self.rapid_at(self.r_level, out)?;
                     if let HoleWork::FloatTap { dir, turning, after, .. } = self.work
                         && (if self.hole == 0 { !turning } else { after != dir })
                     {
@@ -190,7 +204,7 @@ impl HoleGen {
         push(out, Step::Aux(ORIENT))?;
         push(out, Step::RapidTo(self.at_shifted(level, shift)))?;
         push(out, Step::RapidTo(self.at_shifted(self.r_level, shift)))?;
-        push(out, Step::RapidTo(self.at(self.r_level)))?;
+        self.rapid_at(self.r_level, out)?;
         Ok(push(out, Step::Spindle(restart))?)
     }
 
@@ -203,7 +217,7 @@ impl HoleGen {
         {
             return self.stroke(&deep, out);
         }
-        let dir = (self.bottom - self.r_level).signum();
+        let dir = sign(self.bottom - self.r_level);
         let (q, deep, d) = match self.work {
             HoleWork::Drill { q, deep, d } => (q, deep, d),
             HoleWork::RigidTap { q, deep, d, .. } => (q, deep, d),
@@ -215,8 +229,8 @@ impl HoleGen {
         match self.work {
             HoleWork::Drill { .. } if deep && self.reached != self.r_level => {
                 // ⑤ back in to d short of the last depth, ⑥ feed q + d.
-                push(out, Step::RapidTo(self.at(self.reached - dir * d)))?;
-                push(out, Step::FeedTo(self.at(next)))?;
+                self.rapid_at(self.reached - dir * d, out)?;
+                self.feed_at(next, out)?;
             }
             HoleWork::RigidTap { dir: sd, .. } => {
                 push(out, Step::Tap { to: self.at(next), dir: sd })?;
@@ -229,9 +243,9 @@ impl HoleGen {
             }
             HoleWork::BoreFeeds { feed_in, .. } if crate::SIEMENS => {
                 push(out, Step::Feedrate(feed_in))?;
-                push(out, Step::FeedTo(self.at(next)))?;
+                self.feed_at(next, out)?;
             }
-            _ => push(out, Step::FeedTo(self.at(next)))?,
+            _ => self.feed_at(next, out)?,
         }
         self.reached = next;
         if last {
@@ -247,7 +261,7 @@ impl HoleGen {
                     push(out, Step::Tap { to: self.at(next), dir: sd })?;
                 }
             }
-            _ => push(out, Step::RapidTo(self.at(back)))?,
+            _ => self.rapid_at(back, out)?,
         }
         Ok(())
     }
@@ -257,7 +271,7 @@ impl HoleGen {
     /// G1 to the next depth (the first at its own feed), then dwell and chip
     /// breaking (G1 back by the retract) or chip removal (G0 to R, dwell).
     fn stroke(&mut self, deep: &DeepDrill, out: &mut StepQueue) -> Result<(), AlarmKind> {
-        let dir = (self.bottom - self.r_level).signum();
+        let dir = sign(self.bottom - self.r_level);
         let left = (self.bottom - self.reached) * dir;
         let s = match self.strokes {
             0 => (deep.first + deep.approach).min(left),
@@ -267,14 +281,14 @@ impl HoleGen {
         let depth = (self.reached - self.r_level) * dir;
         if self.strokes == 0 {
             push(out, Step::Feedrate(deep.first_feed))?;
-            push(out, Step::FeedTo(self.at(next)))?;
+            self.feed_at(next, out)?;
             push(out, Step::Feedrate(deep.feed))?;
         } else {
             if deep.chip_removal {
                 let back = deep.anticipation_at(depth).min(depth);
-                push(out, Step::RapidTo(self.at(self.reached - dir * back)))?;
+                self.rapid_at(self.reached - dir * back, out)?;
             }
-            push(out, Step::FeedTo(self.at(next)))?;
+            self.feed_at(next, out)?;
         }
         self.last_stroke = if self.strokes == 0 { deep.first } else { s };
         self.strokes += 1;
@@ -287,13 +301,13 @@ impl HoleGen {
             push(out, Step::Dwell(deep.dwell_depth_ms))?;
         }
         if deep.chip_removal {
-            push(out, Step::RapidTo(self.at(self.r_level)))?;
+            self.rapid_at(self.r_level, out)?;
             if deep.dwell_start_ms > 0 {
                 push(out, Step::Dwell(deep.dwell_start_ms))?;
             }
         } else {
             let back = deep.retract.min((next - self.r_level) * dir);
-            push(out, Step::FeedTo(self.at(next - dir * back)))?;
+            self.feed_at(next - dir * back, out)?;
         }
         Ok(())
     }
@@ -327,21 +341,21 @@ impl HoleGen {
                 if matches!(self.work, HoleWork::BoreManual { .. }) {
                     push(out, Step::Stop)?;
                 }
-                push(out, Step::RapidTo(self.at(leave)))?;
+                self.rapid_at(leave, out)?;
                 return Ok(push(out, Step::Spindle(restart))?);
             }
             HoleWork::FineBore { shift, restart } => {
                 push(out, Step::Aux(ORIENT))?;
                 push(out, Step::RapidTo(self.at_shifted(self.bottom, shift)))?;
                 push(out, Step::RapidTo(self.at_shifted(leave, shift)))?;
-                push(out, Step::RapidTo(self.at(leave)))?;
+                self.rapid_at(leave, out)?;
                 return Ok(push(out, Step::Spindle(restart))?);
             }
             HoleWork::BackBore { shift, restart } => {
                 push(out, Step::Aux(ORIENT))?;
                 push(out, Step::RapidTo(self.at_shifted(self.bottom, shift)))?;
                 push(out, Step::RapidTo(self.at_shifted(self.initial, shift)))?;
-                push(out, Step::RapidTo(self.at(self.initial)))?;
+                self.rapid_at(self.initial, out)?;
                 return Ok(push(out, Step::Spindle(restart))?);
             }
             HoleWork::RigidTap { dir, dwell_r_ms, restore, .. } => {
@@ -361,7 +375,7 @@ impl HoleGen {
             }
         }
         if !self.stay_at_r {
-            push(out, Step::RapidTo(self.at(self.initial)))?;
+            self.rapid_at(self.initial, out)?;
         }
         Ok(())
     }

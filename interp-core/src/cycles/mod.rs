@@ -81,6 +81,13 @@ fn push(out: &mut StepQueue, s: Step) -> Result<(), AlarmKind> {
     out.push_back(s).map_err(|_| AlarmKind::Overflow)
 }
 
+/// The sign of `v` (-1, 0, 1), out of line: 64-bit `signum` is ~36 B inlined
+/// and the engines take it at a dozen and a half sites.
+#[inline(never)]
+fn sign(v: i64) -> i64 {
+    v.signum()
+}
+
 /// Actions of the cycle block that follow its motion (M05, M09, M30 …).
 const TAIL: usize = 6;
 
@@ -657,7 +664,7 @@ fn multiple<X: Executor>(code: GCode, cmd: &Command, st: &mut State, ctx: &mut C
             let height = height.unwrap_or(0);
             // The thread's line at depth 0: from B (the end's X + i, raised by k,
             // on the start's Z) to D raised by k.
-            let inward = (end.x - start.x).signum();
+            let inward = sign(end.x - start.x);
             let b = Pt::new(end.x + taper - inward * height, start.z);
             let d = Pt::new(end.x - inward * height, end.z);
             let angle_deg = p(Param::ThreadToolAngle);
@@ -744,7 +751,7 @@ pub fn polar_block(st: &mut State, cfg: &MachineConfig, out: &mut CycleStage<'_>
         }
     }
     let line = moves.first().map_or(0, |c| c.line);
-    let generator = polar::PolarGen::new(&moves, st.work_pos(cfg), cfg.motion.chord_tolerance)?;
+    let generator = polar::PolarGen::new(&moves, emit::work_pos(st, cfg), cfg.motion.chord_tolerance)?;
     start_cycle(Emitter::for_block(st, line), Gen::Polar(generator), out)?;
     out.staged.split = Some(before);
     Ok(())

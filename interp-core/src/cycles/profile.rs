@@ -67,12 +67,13 @@ pub struct ShapeBlock {
 /// Reads the next block of the shape at `cur` (skipping blank and skipped blocks),
 /// with the checks of 2.16.7 notes 2–3 that need only the words. `first` is the
 /// ns block. `None` past the text (alarm 0063 for nf then).
-/// Out of line: G70's finishing pass and the profile reader share one copy.
+/// Out of line and not generic: G70's finishing pass and the profile reader
+/// share one copy (generic over the environment, it had two).
 #[inline(never)]
-pub fn next_shape_block<E: Environment + ?Sized>(
+pub fn next_shape_block(
     src: &ShapeSource<'_>,
     cur: &mut Cursor,
-    env: &E,
+    env: &dyn Environment,
 ) -> Result<Option<ShapeBlock>, AlarmKind> {
     loop {
         let Some(raw) = next_block(src.program.text, cur) else {
@@ -139,7 +140,10 @@ pub fn check_shape_command(cmd: &crate::command::Command, first: bool) -> Result
 /// Runs one shape block on `st` through check and `execute` (exec) into `staged`;
 /// after an alarm `st` is left as the block's execution left it (every caller
 /// drops it then). Out of line: G70's finishing pass and the profile reader
-/// share one copy.
+/// share one copy. (Generic over the environment on purpose: the profile
+/// reader's copy calls `exec::execute` directly, which `firmware/stack-bound.py`
+/// follows; one `&dyn Environment` copy, 500 B smaller, calls it only through
+/// the pointer, and the tool's bound then misses the shape blocks' recursion.)
 #[inline(never)]
 pub fn run_shape_block<E: Environment + ?Sized>(
     sb: &ShapeBlock,
@@ -167,7 +171,7 @@ pub fn run_shape_block<E: Environment + ?Sized>(
 }
 
 /// Adapts `&E` (possibly unsized) to `&dyn Environment`.
-struct EnvRef<'a, E: ?Sized>(&'a E);
+pub(super) struct EnvRef<'a, E: ?Sized>(pub(super) &'a E);
 
 impl<E: Environment + ?Sized> Environment for EnvRef<'_, E> {
     fn block_skip(&self, level: u8) -> bool {
@@ -203,10 +207,10 @@ pub fn read_profile<E: Environment + ?Sized>(
     profile.segs.clear();
     let mut first = true;
     loop {
-        let Some(sb) = next_shape_block(src, &mut cur, env)? else { break };
+        let Some(sb) = next_shape_block(src, &mut cur, &EnvRef(env))? else { break };
         outbox.clear();
         let mut staged = CycleStage::new(sb.block.line, outbox);
-        let here = scratch.work_pos(cfg);
+        let here = super::emit::work_pos(&scratch, cfg);
         // A move held back for a corner (2.23) comes out with this block: it
         // starts where the last segment ended.
         let held = scratch.contour.is_holding();
@@ -411,7 +415,7 @@ pub fn read_contour<E: Environment + ?Sized>(
         check_contour_command(&cmd, first.is_none())?;
         let mut outbox = crate::stage::Outbox::new();
         let mut staged = CycleStage::new(raw.line, &mut outbox);
-        let here = scratch.work_pos(cfg);
+        let here = super::emit::work_pos(&scratch, cfg);
         let held = scratch.contour.is_holding();
         // On the scratch copy itself: an alarm or a block that leaves the contour
         // ends the reading, so nothing needs the state from before the block.
@@ -427,7 +431,7 @@ pub fn read_contour<E: Environment + ?Sized>(
                 if scratch.contour.is_holding() {
                     return Err(prep(10931));
                 }
-                let w = scratch.work_pos(cfg);
+                let w = super::emit::work_pos(&scratch, cfg);
                 if staged.actions.iter().any(|c| c.action.endpoint().is_some()) || cmd.has_axes() {
                     first = Some(Pt::new(w[Axis::X], w[Axis::Z]));
                     blocks += 1;

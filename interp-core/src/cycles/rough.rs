@@ -57,6 +57,7 @@
 use super::emit::push;
 use super::emit::{Pt, Step};
 use super::profile::{Profile, Seg, SegKind};
+use super::sign;
 use crate::alarm::AlarmKind;
 use crate::axis::Axis;
 #[cfg(feature = "siemens")]
@@ -585,10 +586,6 @@ fn inside(r: &Run, p: &Run) -> bool {
     r.w0 >= p.w0 - 0.5 && r.w1 <= p.w1 + 0.5
 }
 
-fn sign(v: i64) -> i64 {
-    v.signum()
-}
-
 /// The contour pass move of a shape segment (the shape's G00 stays a rapid; out
 /// of line: G71/G72's and G73's contour passes).
 #[inline(never)]
@@ -735,7 +732,7 @@ mod sections {
                 _ => return Err(AlarmKind::SiemensCycle(CycleAlarm::ContourPreparation { cause: 10933 })),
             };
             let (a, b) = if turned && !spec.rough { (b, a) } else { (a, b) };
-            let dir = (b.get(cut) - a.get(cut)).signum();
+            let dir = sign(b.get(cut) - a.get(cut));
             if dir == 0 {
                 return Err(AlarmKind::SiemensCycle(CycleAlarm::ContourWrong));
             }

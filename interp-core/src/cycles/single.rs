@@ -48,7 +48,7 @@ fn end_and_taper(
 /// |R| ≤ |U/2| (|W| for G94) when R and U (W) have opposite signs (figures 2.24, 2.28).
 #[inline(never)]
 fn check_taper(r: i64, travel: i64) -> Result<(), AlarmKind> {
-    if r != 0 && travel != 0 && r.signum() != travel.signum() && r.abs() > travel.abs() {
+    if r != 0 && travel != 0 && super::sign(r) != super::sign(travel) && r.abs() > travel.abs() {
         return Err(AlarmKind::CycleTaperTooLarge);
     }
     Ok(())
@@ -187,7 +187,7 @@ pub fn hole_block(
         Axis::X => Plane::Yz,
         _ => Plane::Zx,
     };
-    let here = st.work_pos(cfg);
+    let here = super::emit::work_pos(st, cfg);
     let mut position = here;
     let mut step = Pos::ZERO;
     for a in Axis::ALL {

@@ -8,9 +8,9 @@
 //! `ThreadSync::Continue` and the same lead: the long axis keeps its lead while the
 //! short axis pulls out.
 
-use super::StepQueue;
 use super::emit::push;
 use super::emit::{Pt, Step};
+use super::{StepQueue, sign};
 use crate::alarm::AlarmKind;
 use crate::axis::Axis;
 use crate::canon::ThreadSync;
@@ -45,12 +45,12 @@ impl Pullout {
         }
         let t = (run - len) as f64 / run as f64;
         let p = Pt::new(lerp(b.x, c.x, t), lerp(b.z, c.z, t))
-            .with(long, c.get(long) - (c.get(long) - b.get(long)).signum() * len);
+            .with(long, c.get(long) - sign(c.get(long) - b.get(long)) * len);
         let deg = if self.angle_deg == 0 { 45.0 } else { self.angle_deg as f64 };
         let pull = crate::geom::round_i64(len as f64 * libm::tan(deg.to_radians()));
         let room = (retract_to - c.get(short)).abs();
         let pull = pull.min(room);
-        let e = c.with(short, c.get(short) + (retract_to - c.get(short)).signum() * pull);
+        let e = c.with(short, c.get(short) + sign(retract_to - c.get(short)) * pull);
         Ok(Some((p, e)))
     }
 }
@@ -221,7 +221,7 @@ impl MultiThreadGen {
         for p in pts[..n].iter_mut() {
             *p = p.with(feed, p.get(feed) + s.inward * depth);
         }
-        let dir = (s.points[n - 1].get(long) - s.points[0].get(long)).signum();
+        let dir = sign(s.points[n - 1].get(long) - s.points[0].get(long));
         match s.flank {
             Flank::FromStart { angle_udeg } => {
                 // G76: the start moves towards the end, the pass ends at the end's long
