@@ -1916,6 +1916,58 @@ mod tests {
         }
     }
 
+    /// Kinds whose text has a branch or a number format `EVERY_KIND` does not reach.
+    const MORE_TEXTS: &[AlarmKind] = {
+        use AlarmKind::*;
+        &[
+            TooManyDigits { letter: 0x01 },
+            AddressNotFound { found: 0xC3 },
+            ImproperGCode { code: GNum(121) },
+            ArcRadiusTolerance { excess_nm: 12_345_678_901 },
+            ArcRadiusTolerance { excess_nm: -2_004_000 },
+            CurveEndOff { excess_nm: 999_999 },
+            ProgramNotFound { program: 123_456 },
+            UnknownMCode { m: 5 },
+            UnknownMCode { m: 198 },
+            ConflictingMCodes { first: 103, second: 8 },
+            VariableNumberOutOfRange { number: -7 },
+            MillToolNumber { number: 0, max: 1 },
+            ToolChangeTimeout { tool: 123, seconds: 0 },
+            FlowInMdi { m: 1 },
+            SelfCall { program: 99_999 },
+            DuplicateGroup { first: GNum(21), second: GNum(1000) },
+            Siemens(SiemensAlarm::UnknownGFunction { code: 65_535 }),
+            Siemens(SiemensAlarm::ParameterType { index: 255 }),
+            SiemensCycle(CycleAlarm::ContourPreparation { cause: 10930 }),
+            SiemensCycle(CycleAlarm::ContourPreparation { cause: 10931 }),
+            SiemensCycle(CycleAlarm::ContourPreparation { cause: 10934 }),
+            SiemensCycle(CycleAlarm::ContourPreparation { cause: 15800 }),
+            SiemensCycle(CycleAlarm::ContourPreparation { cause: 1 }),
+        ]
+    };
+
+    /// Every alarm text exactly as the board sends it (`alarm_texts.txt`, made from
+    /// the texts before they were packed: `ALARM_TEXTS_BLESS=1` writes it anew).
+    #[cfg(all(feature = "siemens", feature = "mill"))]
+    #[test]
+    fn every_text_is_the_same_byte_for_byte() {
+        use std::{format, string::String};
+        let mut all = String::new();
+        for k in EVERY_KIND.iter().chain(MORE_TEXTS) {
+            all += &format!("{:04} {}\n", k.code(), k);
+        }
+        all += &format!("{}\n", Alarm::in_program(7, 12, AlarmKind::EndOfRecord));
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/src/alarm_texts.txt");
+        if std::env::var_os("ALARM_TEXTS_BLESS").is_some() {
+            std::fs::write(path, &all).unwrap();
+        }
+        let want = std::fs::read_to_string(path).unwrap();
+        for (got, want) in all.lines().zip(want.lines()) {
+            assert_eq!(got, want);
+        }
+        assert_eq!(all, want);
+    }
+
     #[test]
     fn alarms_in_subprograms_name_the_program() {
         use core::fmt::Write;
