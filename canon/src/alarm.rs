@@ -8,6 +8,8 @@
 
 use core::fmt;
 
+use crate::text::{Text, text_table};
+
 /// A program alarm: what went wrong, where. The block that raised it changed nothing.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -491,209 +493,168 @@ impl AlarmKind {
     }
 }
 
-/// Writes a byte as a character (letters and symbols are ASCII).
-struct Ch(u8);
-
-impl fmt::Display for Ch {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        if self.0.is_ascii_graphic() { write!(f, "{}", self.0 as char) } else { write!(f, "0x{:02X}", self.0) }
+text_table! {
+    /// The texts of the alarms every build raises (`{}`: the arguments that follow).
+    AlarmKind, fn fanuc_text, static FANUC {
+        TooManyDigits { letter } => "too many digits in {} word", Ch(letter);
+        AddressNotFound { found } => "'{}' where an address letter was expected", Ch(found);
+        NoDataAfterAddress { letter } => "no value after address {}", Ch(letter);
+        IllegalMinusSign { letter } => "address {} takes no minus sign", Ch(letter);
+        IllegalDecimalPoint { letter } => "address {} takes no decimal point", Ch(letter);
+        ImproperAddress { letter } => "address {} is not used by this controller", Ch(letter);
+        AxisNotConfigured { letter } => "axis {} is not configured on this machine", Ch(letter);
+        ImproperGCode { code } => "{} is not a G code of the selected G-code system", G(code);
+        FeedZero {} => "cutting feed F is zero or was never given";
+        ArcRadiusTolerance { excess_nm } => "arc end point is {} mm off the circle (R too small or I/J/K inconsistent)", Mm(excess_nm);
+        CurveEndOff { excess_nm } => "end point is {} mm off every ellipse/parabola of the given A, B or P", Mm(excess_nm);
+        ArcAxisOutsidePlane { letter } => "axis {} is outside the arc's plane", Ch(letter);
+        ArcCenterMissing {} => "arc needs R or I/J/K";
+        ArcRadiusZero {} => "arc radius R is zero";
+        IllegalOffsetNumber { number } => "tool offset number {} is not in the offset table", Num(number);
+        IllegalToolNumber { number } => "tool number {} is not on the turret", Num(number);
+        IllegalReferenceNumber {} => "G30 P must be 1, 2, 3 or 4";
+        ProgramNotFound { program } => "program O{} not found", Z4(program);
+        SubprogramNumberMissing {} => "M98, G65 and G66 need P with the program number";
+        CallNestingTooDeep {} => "subprograms and macros nested deeper than 12 levels";
+        MacroNestingTooDeep {} => "macro calls (G65, G66, G or M code) nested deeper than 4 levels";
+        JumpTargetNotFound { seq } => "sequence number N{} not found", Num(seq);
+        MacroOverflow {} => "macro calculation out of the number range";
+        DivideByZero {} => "division by zero (/, MOD or TAN of 90 degrees)";
+        MacroFormat { what } => "macro format error: {}", Str(what);
+        VariableNumberOutOfRange { number } => "variable #{} does not exist (0-999)", Num(number);
+        WriteProtectedVariable { number } => "variable #{} cannot be assigned", Num(number);
+        TooManyBrackets {} => "brackets nested deeper than 5 levels";
+        ArgumentOutOfRange { function } => "argument of {} out of range", Str(function);
+        ModalCallsTooDeep {} => "a fourth modal call G66 while three are in force";
+        ControlInMdi {} => "GOTO, WHILE, DO and END cannot be used in MDI";
+        MissingEnd { label } => "DO{} has no matching END{}", Num(label), Num(label);
+        EndWithoutDo { label } => "END{} without DO{}", Num(label), Num(label);
+        LoopsCrossed { label } => "loop {} overlaps another DO-END range", Num(label);
+        IllegalLoopNumber { label } => "loop number {} is not 1, 2 or 3", Num(label);
+        MacroAndNcInOneBlock {} => "macro statement and NC words in one block";
+        SequenceOutOfRange {} => "jump target is not a sequence number 1-99999";
+        IllegalArgumentAddress { letter } => "address {} cannot be a macro call argument", Ch(letter);
+        ReferenceNotEstablished { letter } => "axis {} has not been referenced (home it before G28/G30)", Ch(letter);
+        OvertravelPositive { letter } => "move exceeds the + soft limit of axis {}", Ch(letter);
+        OvertravelNegative { letter } => "move exceeds the - soft limit of axis {}", Ch(letter);
+        StrokeLimit2 { letter, plus } => "move enters the forbidden area of stored stroke check 2 (G22) in {} {}", Str(if plus { "+" } else { "-" }), Ch(letter);
+        EndOfRecord {} => "program ended without M02, M30 or M99";
+        UnitsNotAlone {} => "G20/G21 must be alone in its block";
+        UnitsNotAtStart {} => "G20/G21 only at the start of the program, before any move";
+        DuplicateGroup { first, second } => "{} and {} are of the same modal group", G(first), G(second);
+        DuplicateAddress { letter } => "address {} given twice", Ch(letter);
+        WordNotAllowed { letter, context } => "address {} is not used by {}", Ch(letter), Str(context);
+        MissingWord { letter, context } => "{} needs address {}", Str(context), Ch(letter);
+        NotSupportedYet { what } => "{} is not supported yet", Str(what);
+        NotInThisBuild { what } => "{} not in this build", Str(what);
+        UnknownMCode { m } => "M{} is not a known M code", Z2(m);
+        ConflictingMCodes { first, second } => "M{} and M{} contradict each other", Z2(first), Z2(second);
+        TooManyMCodes {} => "more than 3 M codes in one block";
+        ValueOutOfRange { letter } => "value of {} out of range", Ch(letter);
+        CoordinateSettingDisabled {} => "G50 coordinate setting is disabled (parameter 5152)";
+        FeedPerRevSpindleStopped {} => "feed per revolution or tapping with the spindle stopped";
+        CommentNotClosed {} => "comment '(' is not closed";
+        MachineCoordinatesIncremental {} => "G53 takes absolute coordinates only";
+        CodeMustBeAlone { code } => "{} must not share its block with other G codes or moves", G(code);
+        Overflow {} => "value out of the controller's range";
+        MisplacedBlockSkip {} => "block skip '/' only at the start of a block";
+        IllegalCharacter { found } => "illegal character '{}'", Ch(found);
+        AxisTwice { absolute, incremental } => "{} and {} address the same axis in one block", Ch(absolute), Ch(incremental);
+        SelfCall { program } => "O{} calls itself with M98", Z4(program);
+        FlowInMdi { m } => "M{} cannot be used in MDI", Z2(m);
+        M99NotAlone {} => "M99 must be alone in its block (N and P only)";
+        InputNotAvailable { input } => "external input {} for M91/M92 does not exist", Num(input);
+        VariablesFull {} => "more than 128 of the variables #34-#400 and #601-#999 hold values";
+        IllegalLead {} => "thread lead zero, out of range or becoming negative (G34 K)";
+        CycleAddressMissing { letter } => "G70-G73 needs address {}", Ch(letter);
+        CycleValueIllegal { what } => "illegal value in cycle: {}", Str(what);
+        SequenceNotFound { n } => "sequence number N{} of the cycle not found in the program", Num(n);
+        ProfileNotMonotone {} => "finishing shape is not monotone along the cutting axis";
+        ProfileFirstBlock {} => "first block of the finishing shape must be G00/G01 moving the infeed axis";
+        ProfileForbiddenCode { what } => "{} is not allowed in the finishing shape (ns-nf)", Str(what);
+        RigidTapSpeed {} => "rigid tapping needs S in the M29 block";
+        RigidTapSequence {} => "S or a repeated M29 between M29 and G84/G88";
+        RigidTapAxisMove {} => "axis motion between M29 and G84/G88";
+        ProfileNotMonotoneInfeed {} => "type I finishing shape is not monotone along the infeed axis (use X and Z in ns for type II)";
+        CycleTaperTooLarge {} => "taper R larger than the cut depth with opposite sign";
+        CycleNotInZxPlane {} => "turning and threading cycles work in the ZX plane (G18) only";
+        CycleOtherAxis { letter } => "axis {} cannot move in a turning cycle block", Ch(letter);
+        ThreadStartAngle {} => "thread start angle Q must be 0 to 360 degrees";
+        ThreadPulloutTooLong {} => "thread pull-out is longer than the thread";
+        ProfileTooLong {} => "finishing shape has too many segments";
+        TooManyPockets {} => "finishing shape has more than 10 pockets";
+        CycleTooLong {} => "cycle would make more than a million moves (P/Q without a point are least increments)";
+        ThreadTooFast { letter } => "thread lead x spindle speed exceeds the speed limit of axis {}", Ch(letter);
+        ThreadRampTooLong {} => "thread acceleration ramp does not fit in the thread (lengthen lead-in/run-out)";
+        SpindleNotTurning {} => "spindle is not turning (thread, tap or feed per revolution)";
+        SpindleNotAtSpeed {} => "spindle did not reach the commanded speed";
+        TapTooFast { letter } => "tap lead x spindle speed or acceleration exceeds the limits of axis {}", Ch(letter);
+        SpindleIndexMissing {} => "no spindle index pulse to synchronise the thread";
+        SyncSequenceBroken {} => "spindle-locked sequence broken (continuing thread or tap without its start)";
+        MotionConfigInvalid { what } => "motion configuration invalid: {}", Str(what);
+        EmergencyStop {} => "emergency stop";
+        ThreadLeadChangeTooFast { letter } => "G34 lead change K x spindle speed squared exceeds half the acceleration of axis {}", Ch(letter);
+        StreamStarved { seconds } => "stream starved: the job is open and nothing came over the link for {} s (link lost?)", Num(seconds);
+        ChamferInThread {} => "chamfer or corner R (,C/,R) cannot be given in a thread block";
+        ChamferNoMove { what } => "no G01/G02/G03 move after chamfer/corner R: {}", Str(what);
+        ChamferTooLarge {} => "chamfer or corner R is larger than the moves it joins";
+        ChamferPlaneChange {} => "plane selection or a move out of the plane after chamfer/corner R";
+        ContourBufferFull {} => "too many actions between a held move and the next move";
+        PolarCodeNotAllowed { code } => "{} is not allowed in polar interpolation (G12.1)", G(code);
+        PolarArcNeedsR {} => "arcs in polar interpolation take R, not I/J/K";
+        PolygonNoToolSpindle {} => "polygon turning (G51.2) needs a tool spindle synchronised to the work spindle";
+        PolygonAxisCommanded {} => "the tool spindle (C) cannot be moved in polygon turning (G51.2)";
+        PolygonModeConflict { what } => "{} in polygon turning (G51.2)", Str(what);
+        NoseCompArc {} => "radius compensation cannot start up or cancel in an arc block";
+        NoseCompPlaneChange {} => "plane selection while radius compensation is active";
+        NoseCompReversed {} => "G41/G42 reversed while radius compensation is active";
+        ToolChangeInNoseComp {} => "tool change (lathe T, mill M06) while radius compensation is active";
+        NoseCompGouge {} => "radius compensation would gouge the part";
+        NoseCompCornerAngle {} => "radius compensation corner angle below 0.1 degrees";
     }
 }
+
+#[cfg(feature = "mill")]
+text_table! {
+    /// The texts of the alarms only the machining-centre profile raises.
+    AlarmKind, fn mill_text, static MILL {
+        RotationPlaneChange {} => "plane change or an arc outside the plane of G68 rotation";
+        NoIntermediatePoint { letter } => "G29 moves axis {} but no G28 gave it an intermediate point", Ch(letter);
+        FrameInCutterComp {} => "G15/G16, G50/G51, G50.1/G51.1 and G68/G69 only with cutter compensation cancelled (G40)";
+        FrameOrder {} => "G51.1 before G51 before G68, cancelled the other way round (G69, then G50, then G50.1)";
+        OffsetValueOutOfRange {} => "G10 offset value out of range";
+        LocalFrameIncremental {} => "G52 takes absolute coordinates only (G90): the local origin in the work frame";
+        MillToolNumber { number, max } => "tool number T{} is not on this machine (T1-T{})", Num(number), Num(max);
+        ReferenceInCycle {} => "G28/G29/G30 while a hole cycle is in force (G80 first)";
+        PeckDepthMissing {} => "G73/G83 need a peck depth Q greater than zero";
+        IllegalScale { letter } => "scale factor {} out of range (P 0.001-999.999, I/J/K +-0.001-9.999)", Ch(letter);
+        ToolChangeTimeout { tool, seconds } => "tool changer did not report done within {} s of the request for T{} ($313; ATC done input)", Num(seconds), Z2(tool);
+    }
+}
+
+/// The text tables of this build (the tests prove each text unpacks to its row).
+#[cfg(test)]
+pub(crate) static TABLES: &[&crate::text::Table] = &[
+    &FANUC,
+    #[cfg(feature = "mill")]
+    &MILL,
+    #[cfg(feature = "siemens")]
+    &SIEMENS,
+    #[cfg(feature = "siemens")]
+    &CYCLE,
+];
 
 impl AlarmKind {
-    /// The text of an alarm only the machining-centre profile raises.
-    #[cfg(feature = "mill")]
-    fn mill_text(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+    /// What the alarm says: its packed text and the values in it.
+    pub fn text(&self) -> Text {
+        #[allow(unused_imports)]
         use AlarmKind::*;
         match *self {
-            RotationPlaneChange => write!(f, "plane change or an arc outside the plane of G68 rotation"),
-            NoIntermediatePoint { letter } => {
-                write!(f, "G29 moves axis {} but no G28 gave it an intermediate point", Ch(letter))
-            }
-            FrameInCutterComp => {
-                write!(f, "G15/G16, G50/G51, G50.1/G51.1 and G68/G69 only with cutter compensation cancelled (G40)")
-            }
-            FrameOrder => {
-                write!(f, "G51.1 before G51 before G68, cancelled the other way round (G69, then G50, then G50.1)")
-            }
-            OffsetValueOutOfRange => write!(f, "G10 offset value out of range"),
-            LocalFrameIncremental => {
-                write!(f, "G52 takes absolute coordinates only (G90): the local origin in the work frame")
-            }
-            MillToolNumber { number, max } => write!(f, "tool number T{number} is not on this machine (T1-T{max})"),
-            ReferenceInCycle => write!(f, "G28/G29/G30 while a hole cycle is in force (G80 first)"),
-            PeckDepthMissing => write!(f, "G73/G83 need a peck depth Q greater than zero"),
-            IllegalScale { letter } => {
-                write!(f, "scale factor {} out of range (P 0.001-999.999, I/J/K +-0.001-9.999)", Ch(letter))
-            }
-            ToolChangeTimeout { tool, seconds } => write!(
-                f,
-                "tool changer did not report done within {seconds} s of the request for T{tool:02} \
-                 ($313; ATC done input)"
-            ),
-            _ => Ok(()),
-        }
-    }
-
-    /// Without the machining-centre profile (feature `mill`) nothing raises these:
-    /// their texts stay out of the image (the code still names them).
-    #[cfg(not(feature = "mill"))]
-    fn mill_text(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str("machining-centre alarm")
-    }
-}
-
-impl fmt::Display for AlarmKind {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        use AlarmKind::*;
-        match *self {
-            TooManyDigits { letter } => write!(f, "too many digits in {} word", Ch(letter)),
-            AddressNotFound { found } => write!(f, "'{}' where an address letter was expected", Ch(found)),
-            NoDataAfterAddress { letter } => write!(f, "no value after address {}", Ch(letter)),
-            IllegalMinusSign { letter } => write!(f, "address {} takes no minus sign", Ch(letter)),
-            IllegalDecimalPoint { letter } => write!(f, "address {} takes no decimal point", Ch(letter)),
-            ImproperAddress { letter } => write!(f, "address {} is not used by this controller", Ch(letter)),
-            AxisNotConfigured { letter } => write!(f, "axis {} is not configured on this machine", Ch(letter)),
-            ImproperGCode { code } => write!(f, "{code} is not a G code of the selected G-code system"),
-            FeedZero => write!(f, "cutting feed F is zero or was never given"),
-            ArcRadiusTolerance { excess_nm } => write!(
-                f,
-                "arc end point is {}.{:03} mm off the circle (R too small or I/J/K inconsistent)",
-                excess_nm / 1_000_000,
-                (excess_nm % 1_000_000) / 1_000
-            ),
-            CurveEndOff { excess_nm } => write!(
-                f,
-                "end point is {}.{:03} mm off every ellipse/parabola of the given A, B or P",
-                excess_nm / 1_000_000,
-                (excess_nm % 1_000_000) / 1_000
-            ),
-            ArcAxisOutsidePlane { letter } => write!(f, "axis {} is outside the arc's plane", Ch(letter)),
-            ArcCenterMissing => write!(f, "arc needs R or I/J/K"),
-            ArcRadiusZero => write!(f, "arc radius R is zero"),
-            IllegalOffsetNumber { number } => write!(f, "tool offset number {number} is not in the offset table"),
-            IllegalToolNumber { number } => write!(f, "tool number {number} is not on the turret"),
-            IllegalReferenceNumber => write!(f, "G30 P must be 1, 2, 3 or 4"),
-            ProgramNotFound { program } => write!(f, "program O{program:04} not found"),
-            SubprogramNumberMissing => write!(f, "M98, G65 and G66 need P with the program number"),
-            CallNestingTooDeep => write!(f, "subprograms and macros nested deeper than 12 levels"),
-            MacroNestingTooDeep => write!(f, "macro calls (G65, G66, G or M code) nested deeper than 4 levels"),
-            JumpTargetNotFound { seq } => write!(f, "sequence number N{seq} not found"),
-            MacroOverflow => write!(f, "macro calculation out of the number range"),
-            DivideByZero => write!(f, "division by zero (/, MOD or TAN of 90 degrees)"),
-            MacroFormat { what } => write!(f, "macro format error: {what}"),
-            VariableNumberOutOfRange { number } => write!(f, "variable #{number} does not exist (0-999)"),
-            WriteProtectedVariable { number } => write!(f, "variable #{number} cannot be assigned"),
-            TooManyBrackets => write!(f, "brackets nested deeper than 5 levels"),
-            ArgumentOutOfRange { function } => write!(f, "argument of {function} out of range"),
-            ModalCallsTooDeep => write!(f, "a fourth modal call G66 while three are in force"),
-            ControlInMdi => write!(f, "GOTO, WHILE, DO and END cannot be used in MDI"),
-            MissingEnd { label } => write!(f, "DO{label} has no matching END{label}"),
-            EndWithoutDo { label } => write!(f, "END{label} without DO{label}"),
-            LoopsCrossed { label } => write!(f, "loop {label} overlaps another DO-END range"),
-            IllegalLoopNumber { label } => write!(f, "loop number {label} is not 1, 2 or 3"),
-            MacroAndNcInOneBlock => write!(f, "macro statement and NC words in one block"),
-            SequenceOutOfRange => write!(f, "jump target is not a sequence number 1-99999"),
-            IllegalArgumentAddress { letter } => write!(f, "address {} cannot be a macro call argument", Ch(letter)),
-            ReferenceNotEstablished { letter } => {
-                write!(f, "axis {} has not been referenced (home it before G28/G30)", Ch(letter))
-            }
-            OvertravelPositive { letter } => write!(f, "move exceeds the + soft limit of axis {}", Ch(letter)),
-            OvertravelNegative { letter } => write!(f, "move exceeds the - soft limit of axis {}", Ch(letter)),
-            StrokeLimit2 { letter, plus } => write!(
-                f,
-                "move enters the forbidden area of stored stroke check 2 (G22) in {} {}",
-                if plus { "+" } else { "-" },
-                Ch(letter)
-            ),
-            EndOfRecord => write!(f, "program ended without M02, M30 or M99"),
-            UnitsNotAlone => write!(f, "G20/G21 must be alone in its block"),
-            UnitsNotAtStart => write!(f, "G20/G21 only at the start of the program, before any move"),
-            DuplicateGroup { first, second } => write!(f, "{first} and {second} are of the same modal group"),
-            DuplicateAddress { letter } => write!(f, "address {} given twice", Ch(letter)),
-            WordNotAllowed { letter, context } => write!(f, "address {} is not used by {context}", Ch(letter)),
-            MissingWord { letter, context } => write!(f, "{context} needs address {}", Ch(letter)),
-            NotSupportedYet { what } => write!(f, "{what} is not supported yet"),
-            NotInThisBuild { what } => write!(f, "{what} not in this build"),
-            UnknownMCode { m } => write!(f, "M{m:02} is not a known M code"),
-            ConflictingMCodes { first, second } => write!(f, "M{first:02} and M{second:02} contradict each other"),
-            TooManyMCodes => write!(f, "more than 3 M codes in one block"),
-            ValueOutOfRange { letter } => write!(f, "value of {} out of range", Ch(letter)),
-            CoordinateSettingDisabled => write!(f, "G50 coordinate setting is disabled (parameter 5152)"),
-            FeedPerRevSpindleStopped => write!(f, "feed per revolution or tapping with the spindle stopped"),
-            CommentNotClosed => write!(f, "comment '(' is not closed"),
-            MachineCoordinatesIncremental => write!(f, "G53 takes absolute coordinates only"),
-            CodeMustBeAlone { code } => write!(f, "{code} must not share its block with other G codes or moves"),
-            Overflow => write!(f, "value out of the controller's range"),
-            MisplacedBlockSkip => write!(f, "block skip '/' only at the start of a block"),
-            IllegalCharacter { found } => write!(f, "illegal character '{}'", Ch(found)),
-            AxisTwice { absolute, incremental } => {
-                write!(f, "{} and {} address the same axis in one block", Ch(absolute), Ch(incremental))
-            }
-            SelfCall { program } => write!(f, "O{program:04} calls itself with M98"),
-            FlowInMdi { m } => write!(f, "M{m:02} cannot be used in MDI"),
-            M99NotAlone => write!(f, "M99 must be alone in its block (N and P only)"),
-            InputNotAvailable { input } => write!(f, "external input {input} for M91/M92 does not exist"),
-            VariablesFull => write!(f, "more than 128 of the variables #34-#400 and #601-#999 hold values"),
-            IllegalLead => write!(f, "thread lead zero, out of range or becoming negative (G34 K)"),
-            CycleAddressMissing { letter } => write!(f, "G70-G73 needs address {}", Ch(letter)),
-            CycleValueIllegal { what } => write!(f, "illegal value in cycle: {what}"),
-            SequenceNotFound { n } => write!(f, "sequence number N{n} of the cycle not found in the program"),
-            ProfileNotMonotone => write!(f, "finishing shape is not monotone along the cutting axis"),
-            ProfileFirstBlock => {
-                write!(f, "first block of the finishing shape must be G00/G01 moving the infeed axis")
-            }
-            ProfileForbiddenCode { what } => write!(f, "{what} is not allowed in the finishing shape (ns-nf)"),
-            RigidTapSpeed => write!(f, "rigid tapping needs S in the M29 block"),
-            RigidTapSequence => write!(f, "S or a repeated M29 between M29 and G84/G88"),
-            RigidTapAxisMove => write!(f, "axis motion between M29 and G84/G88"),
-            ProfileNotMonotoneInfeed => {
-                write!(
-                    f,
-                    "type I finishing shape is not monotone along the infeed axis (use X and Z in ns for type II)"
-                )
-            }
-            CycleTaperTooLarge => write!(f, "taper R larger than the cut depth with opposite sign"),
-            CycleNotInZxPlane => write!(f, "turning and threading cycles work in the ZX plane (G18) only"),
-            CycleOtherAxis { letter } => write!(f, "axis {} cannot move in a turning cycle block", Ch(letter)),
-            ThreadStartAngle => write!(f, "thread start angle Q must be 0 to 360 degrees"),
-            ThreadPulloutTooLong => write!(f, "thread pull-out is longer than the thread"),
-            ProfileTooLong => write!(f, "finishing shape has too many segments"),
-            TooManyPockets => write!(f, "finishing shape has more than 10 pockets"),
-            CycleTooLong => {
-                write!(f, "cycle would make more than a million moves (P/Q without a point are least increments)")
-            }
-            ThreadTooFast { letter } => {
-                write!(f, "thread lead x spindle speed exceeds the speed limit of axis {}", Ch(letter))
-            }
-            ThreadRampTooLong => {
-                write!(f, "thread acceleration ramp does not fit in the thread (lengthen lead-in/run-out)")
-            }
-            SpindleNotTurning => write!(f, "spindle is not turning (thread, tap or feed per revolution)"),
-            SpindleNotAtSpeed => write!(f, "spindle did not reach the commanded speed"),
-            TapTooFast { letter } => {
-                write!(f, "tap lead x spindle speed or acceleration exceeds the limits of axis {}", Ch(letter))
-            }
-            SpindleIndexMissing => write!(f, "no spindle index pulse to synchronise the thread"),
-            SyncSequenceBroken => {
-                write!(f, "spindle-locked sequence broken (continuing thread or tap without its start)")
-            }
-            MotionConfigInvalid { what } => write!(f, "motion configuration invalid: {what}"),
-            EmergencyStop => write!(f, "emergency stop"),
-            ThreadLeadChangeTooFast { letter } => {
-                write!(
-                    f,
-                    "G34 lead change K x spindle speed squared exceeds half the acceleration of axis {}",
-                    Ch(letter)
-                )
-            }
-            StreamStarved { seconds } => {
-                write!(f, "stream starved: the job is open and nothing came over the link for {seconds} s (link lost?)")
-            }
-            ChamferInThread => write!(f, "chamfer or corner R (,C/,R) cannot be given in a thread block"),
-            ChamferNoMove { what } => write!(f, "no G01/G02/G03 move after chamfer/corner R: {what}"),
-            ChamferTooLarge => write!(f, "chamfer or corner R is larger than the moves it joins"),
-            ChamferPlaneChange => write!(f, "plane selection or a move out of the plane after chamfer/corner R"),
+            #[cfg(feature = "siemens")]
+            Siemens(k) => k.text(),
+            #[cfg(feature = "siemens")]
+            SiemensCycle(k) => k.text(),
+            #[cfg(feature = "mill")]
             RotationPlaneChange
             | NoIntermediatePoint { .. }
             | FrameInCutterComp
@@ -704,29 +665,36 @@ impl fmt::Display for AlarmKind {
             | MillToolNumber { .. }
             | LocalFrameIncremental
             | IllegalScale { .. }
-            | ToolChangeTimeout { .. } => self.mill_text(f),
-            ContourBufferFull => write!(f, "too many actions between a held move and the next move"),
-            PolarCodeNotAllowed { code } => write!(f, "{code} is not allowed in polar interpolation (G12.1)"),
-            PolarArcNeedsR => write!(f, "arcs in polar interpolation take R, not I/J/K"),
-            PolygonNoToolSpindle => {
-                write!(f, "polygon turning (G51.2) needs a tool spindle synchronised to the work spindle")
-            }
-            PolygonAxisCommanded => write!(f, "the tool spindle (C) cannot be moved in polygon turning (G51.2)"),
-            PolygonModeConflict { what } => write!(f, "{what} in polygon turning (G51.2)"),
-            NoseCompArc => write!(f, "radius compensation cannot start up or cancel in an arc block"),
-            NoseCompPlaneChange => write!(f, "plane selection while radius compensation is active"),
-            NoseCompReversed => write!(f, "G41/G42 reversed while radius compensation is active"),
-            ToolChangeInNoseComp => write!(f, "tool change (lathe T, mill M06) while radius compensation is active"),
-            NoseCompGouge => write!(f, "radius compensation would gouge the part"),
-            NoseCompCornerAngle => write!(f, "radius compensation corner angle below 0.1 degrees"),
-            #[cfg(feature = "siemens")]
-            Siemens(k) => k.fmt(f),
-            #[cfg(feature = "siemens")]
-            SiemensCycle(k) => k.fmt(f),
+            | ToolChangeTimeout { .. } => self.mill_text(),
+            _ => self.fanuc_text(),
+        }
+    }
+}
+
+impl fmt::Display for AlarmKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        #[allow(unused_imports)]
+        use AlarmKind::*;
+        match *self {
             // A build without SINUMERIK mode never raises these: their texts stay out
             // of its flash.
             #[cfg(not(feature = "siemens"))]
             Siemens(_) | SiemensCycle(_) => f.write_str("SINUMERIK alarm (SINUMERIK mode is not in this build)"),
+            // Without the machining-centre profile (feature `mill`) nothing raises
+            // these: their texts stay out of the image (the code still names them).
+            #[cfg(not(feature = "mill"))]
+            RotationPlaneChange
+            | NoIntermediatePoint { .. }
+            | FrameInCutterComp
+            | FrameOrder
+            | OffsetValueOutOfRange
+            | ReferenceInCycle
+            | PeckDepthMissing
+            | MillToolNumber { .. }
+            | LocalFrameIncremental
+            | IllegalScale { .. }
+            | ToolChangeTimeout { .. } => f.write_str("machining-centre alarm"),
+            _ => self.text().write(f),
         }
     }
 }
@@ -919,82 +887,93 @@ impl CycleAlarm {
     }
 }
 
+#[cfg(feature = "siemens")]
+text_table! {
+    /// The texts of the SINUMERIK front end's alarms.
+    SiemensAlarm, fn text, static SIEMENS {
+        SyntaxError { what } => "syntax error: {}", Str(what);
+        TypeMismatch {} => "value of the wrong data type for this operation or variable";
+        ValueRange {} => "value out of the range of its type or use";
+        StringTooLong {} => "string longer than its variable or the argument space";
+        NameDefinedTwice {} => "name defined twice in this program";
+        ParameterType { index } => "type of parameter {} incorrect", Num(index);
+        TooManyParameters {} => "too many parameters";
+        TooManySymbols {} => "too many variables defined (DEF)";
+        UnknownGFunction { code } => "G{} is not a SINUMERIK G function of this controller", Num(code);
+        NameNotDefined {} => "name not defined (not a variable, keyword, cycle or program)";
+        SubprogramNotFound {} => "subprogram not in program memory";
+        SubprogramLevels {} => "subprograms or REPEAT sections nested too deep";
+        LabelNotFound {} => "jump or section label not found";
+        DefNotAtStart {} => "DEF only before the first NC block, PROC only at the start of a program";
+        ProcMissing {} => "subprogram called with arguments has no PROC statement with parameters";
+        AxisProgrammedTwice { letter } => "axis {} programmed twice in the block", Ch(letter);
+        IndexOutOfRange {} => "array index out of range";
+        IllegalDNumber { number } => "D{} has no tool offset row", Num(number);
+        ModalCallNested {} => "MCALL inside a modally called subprogram";
+    }
+}
+
+#[cfg(feature = "siemens")]
+text_table! {
+    /// The texts of the SINUMERIK cycles' alarms (seed 001 table 5.3).
+    CycleAlarm, fn text, static CYCLE {
+        NoToolOffset {} => "no tool offset active (program D before the cycle)";
+        ThreadPitchWrong {} => "thread pitch defined incorrectly (PIT/MPIT contradict, or not a DIN 76 / ISO coarse size)";
+        MachiningTypeWrong {} => "type of machining (VARI) defined incorrectly";
+        NoThirdAxis {} => "3rd geometry axis not present (the drilling axis of the plane)";
+        ParameterWrong {} => "parameter programmed incorrectly (DAM, ENC)";
+        ReferencePlaneWrong {} => "reference plane defined incorrectly (RTP, RFP, DP/DPR)";
+        NoSpindleDirection {} => "no spindle direction programmed (SDIR/SDR 3 or 4, M3/M4 before CYCLE840)";
+        FirstDepthWrong {} => "first drilling depth defined incorrectly (FDEP/FDPR against the total depth)";
+        TechnologyWrong {} => "technology selection in parameter _TECHNO defined incorrectly";
+        FinishedDiameterTooSmall {} => "finished part diameter too small (under 3 mm)";
+        ToolWidthWrong {} => "tool width defined incorrectly (grooving tool wider than the groove, or no width)";
+        GrooveFormWrong {} => "groove form defined incorrectly";
+        ToolViolatesContour {} => "active tool violates the programmed contour (clearance angle too small for an undercut)";
+        ContourWrong {} => "contour programmed incorrectly";
+        StartPointWrong {} => "starting point programmed incorrectly (inside the rectangle of the contour)";
+        WrongEdgePosition {} => "wrong tool point direction programmed (cutting edge position 1-4 needed)";
+        FormWrong {} => "form defined incorrectly (CYCLE94: E or F, CYCLE96: A-D)";
+        RecutImpossible {} => "thread re-cutting not possible";
+        UndercutPositionWrong {} => "undercut position (_VARI) defined incorrectly";
+        FinishedContourWrong {} => "finished part contour description wrong (_NP1-_NP3)";
+        BlankContourWrong {} => "blank contour description wrong (_NP5-_NP7, _APZ/_APX)";
+        IllegalInput {} => "illegal input (a _VARI digit of CYCLE950 out of its range)";
+        ContourDirection {} => "wrong contour direction, cannot be computed";
+        AxisNotPresent {} => "programmed axis does not exist (_AXN)";
+        WrongSpindleDirection {} => "spindle direction programmed incorrectly (SDR/SDAC of CYCLE840)";
+        ContourPreparation { cause } => "error during contour preparation ({})", Str(preparation_error(cause));
+    }
+}
+
+/// What CONTPRON's error `cause` of alarm 61606 says.
+#[cfg(feature = "siemens")]
+fn preparation_error(cause: u16) -> &'static str {
+    match cause {
+        10930 => "10930: illegal interpolation type in the stock removal contour",
+        10931 => "10931: incorrect stock removal contour",
+        10933 => "10933: the contour contains too few contour blocks",
+        10934 => "10934: contour table overflow",
+        15800 => "15800: incorrect start conditions for CONTPRON",
+        _ => "the contour",
+    }
+}
+
 impl fmt::Display for SiemensAlarm {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        use SiemensAlarm::*;
-        match *self {
-            SyntaxError { what } => write!(f, "syntax error: {what}"),
-            TypeMismatch => write!(f, "value of the wrong data type for this operation or variable"),
-            ValueRange => write!(f, "value out of the range of its type or use"),
-            StringTooLong => write!(f, "string longer than its variable or the argument space"),
-            NameDefinedTwice => write!(f, "name defined twice in this program"),
-            ParameterType { index } => write!(f, "type of parameter {index} incorrect"),
-            TooManyParameters => write!(f, "too many parameters"),
-            TooManySymbols => write!(f, "too many variables defined (DEF)"),
-            UnknownGFunction { code } => write!(f, "G{code} is not a SINUMERIK G function of this controller"),
-            NameNotDefined => write!(f, "name not defined (not a variable, keyword, cycle or program)"),
-            SubprogramNotFound => write!(f, "subprogram not in program memory"),
-            SubprogramLevels => write!(f, "subprograms or REPEAT sections nested too deep"),
-            LabelNotFound => write!(f, "jump or section label not found"),
-            DefNotAtStart => write!(f, "DEF only before the first NC block, PROC only at the start of a program"),
-            ProcMissing => write!(f, "subprogram called with arguments has no PROC statement with parameters"),
-            AxisProgrammedTwice { letter } => write!(f, "axis {} programmed twice in the block", Ch(letter)),
-            IndexOutOfRange => write!(f, "array index out of range"),
-            IllegalDNumber { number } => write!(f, "D{number} has no tool offset row"),
-            ModalCallNested => write!(f, "MCALL inside a modally called subprogram"),
-        }
+        #[cfg(feature = "siemens")]
+        return self.text().write(f);
+        #[cfg(not(feature = "siemens"))]
+        f.write_str("SINUMERIK alarm (SINUMERIK mode is not in this build)")
     }
 }
 
 impl fmt::Display for CycleAlarm {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        use CycleAlarm::*;
-        match *self {
-            NoToolOffset => write!(f, "no tool offset active (program D before the cycle)"),
-            ThreadPitchWrong => {
-                write!(f, "thread pitch defined incorrectly (PIT/MPIT contradict, or not a DIN 76 / ISO coarse size)")
-            }
-            MachiningTypeWrong => write!(f, "type of machining (VARI) defined incorrectly"),
-            NoThirdAxis => write!(f, "3rd geometry axis not present (the drilling axis of the plane)"),
-            ParameterWrong => write!(f, "parameter programmed incorrectly (DAM, ENC)"),
-            ReferencePlaneWrong => write!(f, "reference plane defined incorrectly (RTP, RFP, DP/DPR)"),
-            NoSpindleDirection => write!(f, "no spindle direction programmed (SDIR/SDR 3 or 4, M3/M4 before CYCLE840)"),
-            FirstDepthWrong => {
-                write!(f, "first drilling depth defined incorrectly (FDEP/FDPR against the total depth)")
-            }
-            TechnologyWrong => write!(f, "technology selection in parameter _TECHNO defined incorrectly"),
-            FinishedDiameterTooSmall => write!(f, "finished part diameter too small (under 3 mm)"),
-            ToolWidthWrong => {
-                write!(f, "tool width defined incorrectly (grooving tool wider than the groove, or no width)")
-            }
-            GrooveFormWrong => write!(f, "groove form defined incorrectly"),
-            ToolViolatesContour => {
-                write!(f, "active tool violates the programmed contour (clearance angle too small for an undercut)")
-            }
-            ContourWrong => write!(f, "contour programmed incorrectly"),
-            ContourPreparation { cause } => {
-                let c = match cause {
-                    10930 => "10930: illegal interpolation type in the stock removal contour",
-                    10931 => "10931: incorrect stock removal contour",
-                    10933 => "10933: the contour contains too few contour blocks",
-                    10934 => "10934: contour table overflow",
-                    15800 => "15800: incorrect start conditions for CONTPRON",
-                    _ => "the contour",
-                };
-                write!(f, "error during contour preparation ({c})")
-            }
-            StartPointWrong => write!(f, "starting point programmed incorrectly (inside the rectangle of the contour)"),
-            WrongEdgePosition => write!(f, "wrong tool point direction programmed (cutting edge position 1-4 needed)"),
-            FormWrong => write!(f, "form defined incorrectly (CYCLE94: E or F, CYCLE96: A-D)"),
-            RecutImpossible => write!(f, "thread re-cutting not possible"),
-            UndercutPositionWrong => write!(f, "undercut position (_VARI) defined incorrectly"),
-            FinishedContourWrong => write!(f, "finished part contour description wrong (_NP1-_NP3)"),
-            BlankContourWrong => write!(f, "blank contour description wrong (_NP5-_NP7, _APZ/_APX)"),
-            IllegalInput => write!(f, "illegal input (a _VARI digit of CYCLE950 out of its range)"),
-            ContourDirection => write!(f, "wrong contour direction, cannot be computed"),
-            AxisNotPresent => write!(f, "programmed axis does not exist (_AXN)"),
-            WrongSpindleDirection => write!(f, "spindle direction programmed incorrectly (SDR/SDAC of CYCLE840)"),
-        }
+        #[cfg(feature = "siemens")]
+        return self.text().write(f);
+        #[cfg(not(feature = "siemens"))]
+        f.write_str("SINUMERIK alarm (SINUMERIK mode is not in this build)")
     }
 }
 
@@ -1914,6 +1893,59 @@ mod tests {
         for e in CATALOG {
             assert!(EVERY_KIND.iter().any(|k| k.code() == e.code), "CATALOG row {} has no kind", e.code);
         }
+    }
+
+    /// Kinds whose text has a branch or a number format `EVERY_KIND` does not reach.
+    #[cfg(all(feature = "siemens", feature = "mill"))]
+    const MORE_TEXTS: &[AlarmKind] = {
+        use AlarmKind::*;
+        &[
+            TooManyDigits { letter: 0x01 },
+            AddressNotFound { found: 0xC3 },
+            ImproperGCode { code: GNum(121) },
+            ArcRadiusTolerance { excess_nm: 12_345_678_901 },
+            ArcRadiusTolerance { excess_nm: -2_004_000 },
+            CurveEndOff { excess_nm: 999_999 },
+            ProgramNotFound { program: 123_456 },
+            UnknownMCode { m: 5 },
+            UnknownMCode { m: 198 },
+            ConflictingMCodes { first: 103, second: 8 },
+            VariableNumberOutOfRange { number: -7 },
+            MillToolNumber { number: 0, max: 1 },
+            ToolChangeTimeout { tool: 123, seconds: 0 },
+            FlowInMdi { m: 1 },
+            SelfCall { program: 99_999 },
+            DuplicateGroup { first: GNum(21), second: GNum(1000) },
+            Siemens(SiemensAlarm::UnknownGFunction { code: 65_535 }),
+            Siemens(SiemensAlarm::ParameterType { index: 255 }),
+            SiemensCycle(CycleAlarm::ContourPreparation { cause: 10930 }),
+            SiemensCycle(CycleAlarm::ContourPreparation { cause: 10931 }),
+            SiemensCycle(CycleAlarm::ContourPreparation { cause: 10934 }),
+            SiemensCycle(CycleAlarm::ContourPreparation { cause: 15800 }),
+            SiemensCycle(CycleAlarm::ContourPreparation { cause: 1 }),
+        ]
+    };
+
+    /// Every alarm text exactly as the board sends it (`alarm_texts.txt`, made from
+    /// the texts before they were packed: `ALARM_TEXTS_BLESS=1` writes it anew).
+    #[cfg(all(feature = "siemens", feature = "mill"))]
+    #[test]
+    fn every_text_is_the_same_byte_for_byte() {
+        use std::{format, string::String};
+        let mut all = String::new();
+        for k in EVERY_KIND.iter().chain(MORE_TEXTS) {
+            all += &format!("{:04} {}\n", k.code(), k);
+        }
+        all += &format!("{}\n", Alarm::in_program(7, 12, AlarmKind::EndOfRecord));
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/src/alarm_texts.txt");
+        if std::env::var_os("ALARM_TEXTS_BLESS").is_some() {
+            std::fs::write(path, &all).unwrap();
+        }
+        let want = std::fs::read_to_string(path).unwrap();
+        for (got, want) in all.lines().zip(want.lines()) {
+            assert_eq!(got, want);
+        }
+        assert_eq!(all, want);
     }
 
     #[test]

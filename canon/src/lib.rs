@@ -27,6 +27,7 @@ pub const MILL: bool = cfg!(feature = "mill");
 pub mod alarm;
 pub mod axis;
 pub mod config;
+pub mod text;
 pub mod units;
 pub mod xorshift;
 

@@ -119,7 +119,7 @@ pub fn params_markdown() -> String {
          | ---: | --- | ---: | --- |\n",
     );
     for p in PARAMS {
-        let _ = writeln!(s, "| {} | {} | {} | {} |", p.number, p.unit.name(), p.default, cell(p.meaning));
+        let _ = writeln!(s, "| {} | {} | {} | {} |", p.number, p.unit.name(), p.default, cell(p.meaning()));
     }
     s
 }
