@@ -435,7 +435,7 @@ mod tests {
             m ^= m >> 7;
             m ^= m << 17;
             let k = (m % 41) as i32 - 20;
-            let mant = ((m >> 8) % 1_000_000_000_000_000 >> (m % 50)) as i64;
+            let mant = (((m >> 8) % 1_000_000_000_000_000) >> (m % 50)) as i64;
             let exact = match i128::from(mant).checked_mul(10i128.pow((k + 9).max(0) as u32)) {
                 Some(x) if k >= -9 && x < 1i128 << 50 => x,
                 _ => continue,

@@ -82,6 +82,7 @@ fn moved(e: Elem, v: V2) -> Elem {
 /// contour's own elements and the pieces inserted at corners), while it returns
 /// true. Alarm 3605 when the nose does not fit inside an arc of the contour.
 #[inline]
+#[cfg_attr(not(feature = "siemens"), allow(dead_code))] // its callers are SINUMERIK's (CYCLE95)
 pub fn walk(raw: &[Seg], o: &Offsets, mut f: impl FnMut(Seg) -> Result<bool, AlarmKind>) -> Result<(), AlarmKind> {
     walk_dyn(raw, o, &mut f)
 }

@@ -30,7 +30,7 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
 pub fn fmod(x: f64, y: f64) -> f64 {
     let (mut r, ay) = (x.abs(), y.abs());
     if !r.is_finite() || y.is_nan() || ay == 0.0 {
-        return (x * y) / (x * y);
+        return f64::NAN;
     }
     if r < ay {
         return x;
