@@ -7,13 +7,22 @@ instructions from the block's text to its planned motion block).
 
 Budgets: a short G01 (also under G96) ≤ 4,000 instructions, a G02/G03 with R
 ≤ 7,000; a machining centre's 3-axis G01 ("mill G01 XYZ", issue 20) ≤ 4,000, as a
-lathe G01 (3,822–3,977; docs/PERFORMANCE.md, per-block round 5). Prints each
-measured block with its budget and margin.
+lathe G01 (3,822–3,977; docs/PERFORMANCE.md, per-block round 5); a plain
+SINUMERIK `G1 X.. Z..` ("SINUMERIK G1", issue 19: the short way for plain lines)
+≤ 4,000, as a FANUC G01 (3,622–3,762; docs/PERFORMANCE.md, "SINUMERIK mode").
+Prints each measured block with its budget and margin.
 """
 import re
 import sys
 
-BUDGETS = {"G01": 4000, "G01 under G96": 4000, "G02 R": 7000, "G03 R": 7000, "mill G01 XYZ": 4000}
+BUDGETS = {
+    "G01": 4000,
+    "G01 under G96": 4000,
+    "G02 R": 7000,
+    "G03 R": 7000,
+    "mill G01 XYZ": 4000,
+    "SINUMERIK G1": 4000,
+}
 
 
 def planned_counts(lines):

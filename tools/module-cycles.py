@@ -6,6 +6,10 @@ left out: everything from `#[cfg(test)]` on in a file, and files named tests.rs)
 prints every circle: strongly connected groups of top-level modules (the layers), and
 of files. Exit status 1 when a crate has a circle between its top-level modules.
 
+A few nested modules may be layers of their own (SUBLAYERS). (A language's standard
+cycles, which build the engine's cycle specifications, were one while they lived in
+interp-core's lang::siemens; they are interp-siemens's `cycles` now.)
+
 Usage: tools/module-cycles.py [--edges] [CRATE_DIR ...]   (default: canon interp-core motion-core)
 """
 import os
@@ -14,6 +18,8 @@ import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 PATH = re.compile(r"\b(crate|super)((?:::[A-Za-z_][A-Za-z0-9_]*)+)")
+# Nested modules that are layers of their own, per crate.
+SUBLAYERS = {}
 USE_GROUP = re.compile(r"\buse\s+(crate|super)((?:::[A-Za-z_][A-Za-z0-9_]*)*)::\{([^;]*)\}", re.S)
 
 
@@ -110,6 +116,14 @@ def main(args):
     for crate in crates:
         src = os.path.join(ROOT, crate, "src")
         mods = modules(src)
+        subs = SUBLAYERS.get(os.path.basename(os.path.normpath(crate)), [])
+
+        def layer(m):
+            for sub in subs:
+                if m[: len(sub)] == sub:
+                    return "::".join(sub)
+            return m[0]
+
         files, top = {}, {}
         for mod, path in mods.items():
             if mod and mod[-1] == "tests":
@@ -120,8 +134,8 @@ def main(args):
             if not mod:
                 continue
             for d in files[mod]:
-                if d and d[0] != mod[0]:
-                    top.setdefault(mod[0], set()).add(d[0])
+                if d and layer(d) != layer(mod):
+                    top.setdefault(layer(mod), set()).add(layer(d))
         print(f"== {crate}")
         if show_edges:
             for a in sorted(top):
@@ -129,7 +143,7 @@ def main(args):
         layer_circles = sccs(top)
         for c in layer_circles:
             print(f"  circle of modules ({len(c)}): {' <-> '.join(c)}")
-        file_circles = [c for c in sccs(files) if len({m[0] for m in c if m}) > 1]
+        file_circles = [c for c in sccs(files) if len({layer(m) for m in c if m}) > 1]
         for c in file_circles:
             print(f"  circle of files ({len(c)}): " + " ".join("::".join(m) or "lib" for m in c))
         if not layer_circles and not file_circles:

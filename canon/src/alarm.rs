@@ -8,6 +8,8 @@
 
 use core::fmt;
 
+use crate::text::{Text, text_table};
+
 /// A program alarm: what went wrong, where. The block that raised it changed nothing.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -189,6 +191,9 @@ pub enum AlarmKind {
     MissingWord { letter: Letter, context: &'static str },
     /// 4007: a code this controller recognises but does not implement yet.
     NotSupportedYet { what: &'static str },
+    /// 4007: a language or machine kind this firmware was built without (a cargo
+    /// feature of the board's build, docs/FIRMWARE-SIZES.md).
+    NotInThisBuild { what: &'static str },
     /// 4008: an M code neither in the manual's tables nor configured as a user output.
     UnknownMCode { m: u16 },
     /// 4009: two M codes of a block contradict each other (M03 with M04 …).
@@ -340,9 +345,28 @@ pub enum AlarmKind {
     NoseCompGouge,
     /// 3607: nose compensation corner angle under 0.1° (2.18.4).
     NoseCompCornerAngle,
+    /// A SINUMERIK alarm ([`SiemensAlarm`]).
+    Siemens(SiemensAlarm),
+    /// A SINUMERIK cycle alarm, 61000–61999 ([`CycleAlarm`]).
+    SiemensCycle(CycleAlarm),
 }
 
 impl AlarmKind {
+    /// Whether the alarm may only mean that program text has not arrived yet: the
+    /// end of the text, a jump target, END, shape block, label or PROC further on.
+    /// A stream waits for more text and reads the block again before it calls
+    /// it an alarm.
+    pub fn waits_for_text(&self) -> bool {
+        matches!(
+            self,
+            AlarmKind::EndOfRecord
+                | AlarmKind::JumpTargetNotFound { .. }
+                | AlarmKind::MissingEnd { .. }
+                | AlarmKind::SequenceNotFound { .. }
+                | AlarmKind::Siemens(SiemensAlarm::LabelNotFound | SiemensAlarm::SubprogramNotFound)
+        )
+    }
+
     /// The alarm number.
     pub fn code(&self) -> u16 {
         use AlarmKind::*;
@@ -390,7 +414,7 @@ impl AlarmKind {
             DuplicateAddress { .. } => 4004,
             WordNotAllowed { .. } => 4005,
             MissingWord { .. } => 4006,
-            NotSupportedYet { .. } => 4007,
+            NotSupportedYet { .. } | NotInThisBuild { .. } => 4007,
             UnknownMCode { .. } => 4008,
             ConflictingMCodes { .. } => 4009,
             TooManyMCodes => 4010,
@@ -463,212 +487,174 @@ impl AlarmKind {
             ToolChangeInNoseComp => 3577,
             NoseCompGouge => 3605,
             NoseCompCornerAngle => 3607,
+            Siemens(k) => k.code(),
+            SiemensCycle(k) => k.code(),
         }
     }
 }
 
-/// Writes a byte as a character (letters and symbols are ASCII).
-struct Ch(u8);
-
-impl fmt::Display for Ch {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        if self.0.is_ascii_graphic() { write!(f, "{}", self.0 as char) } else { write!(f, "0x{:02X}", self.0) }
+text_table! {
+    /// The texts of the alarms every build raises (`{}`: the arguments that follow).
+    AlarmKind, fn fanuc_text, static FANUC {
+        TooManyDigits { letter } => "too many digits in {} word", Ch(letter);
+        AddressNotFound { found } => "'{}' where an address letter was expected", Ch(found);
+        NoDataAfterAddress { letter } => "no value after address {}", Ch(letter);
+        IllegalMinusSign { letter } => "address {} takes no minus sign", Ch(letter);
+        IllegalDecimalPoint { letter } => "address {} takes no decimal point", Ch(letter);
+        ImproperAddress { letter } => "address {} is not used by this controller", Ch(letter);
+        AxisNotConfigured { letter } => "axis {} is not configured on this machine", Ch(letter);
+        ImproperGCode { code } => "{} is not a G code of the selected G-code system", G(code);
+        FeedZero {} => "cutting feed F is zero or was never given";
+        ArcRadiusTolerance { excess_nm } => "arc end point is {} mm off the circle (R too small or I/J/K inconsistent)", Mm(excess_nm);
+        CurveEndOff { excess_nm } => "end point is {} mm off every ellipse/parabola of the given A, B or P", Mm(excess_nm);
+        ArcAxisOutsidePlane { letter } => "axis {} is outside the arc's plane", Ch(letter);
+        ArcCenterMissing {} => "arc needs R or I/J/K";
+        ArcRadiusZero {} => "arc radius R is zero";
+        IllegalOffsetNumber { number } => "tool offset number {} is not in the offset table", Num(number);
+        IllegalToolNumber { number } => "tool number {} is not on the turret", Num(number);
+        IllegalReferenceNumber {} => "G30 P must be 1, 2, 3 or 4";
+        ProgramNotFound { program } => "program O{} not found", Z4(program);
+        SubprogramNumberMissing {} => "M98, G65 and G66 need P with the program number";
+        CallNestingTooDeep {} => "subprograms and macros nested deeper than 12 levels";
+        MacroNestingTooDeep {} => "macro calls (G65, G66, G or M code) nested deeper than 4 levels";
+        JumpTargetNotFound { seq } => "sequence number N{} not found", Num(seq);
+        MacroOverflow {} => "macro calculation out of the number range";
+        DivideByZero {} => "division by zero (/, MOD or TAN of 90 degrees)";
+        MacroFormat { what } => "macro format error: {}", Str(what);
+        VariableNumberOutOfRange { number } => "variable #{} does not exist (0-999)", Num(number);
+        WriteProtectedVariable { number } => "variable #{} cannot be assigned", Num(number);
+        TooManyBrackets {} => "brackets nested deeper than 5 levels";
+        ArgumentOutOfRange { function } => "argument of {} out of range", Str(function);
+        ModalCallsTooDeep {} => "a fourth modal call G66 while three are in force";
+        ControlInMdi {} => "GOTO, WHILE, DO and END cannot be used in MDI";
+        MissingEnd { label } => "DO{} has no matching END{}", Num(label), Num(label);
+        EndWithoutDo { label } => "END{} without DO{}", Num(label), Num(label);
+        LoopsCrossed { label } => "loop {} overlaps another DO-END range", Num(label);
+        IllegalLoopNumber { label } => "loop number {} is not 1, 2 or 3", Num(label);
+        MacroAndNcInOneBlock {} => "macro statement and NC words in one block";
+        SequenceOutOfRange {} => "jump target is not a sequence number 1-99999";
+        IllegalArgumentAddress { letter } => "address {} cannot be a macro call argument", Ch(letter);
+        ReferenceNotEstablished { letter } => "axis {} has not been referenced (home it before G28/G30)", Ch(letter);
+        OvertravelPositive { letter } => "move exceeds the + soft limit of axis {}", Ch(letter);
+        OvertravelNegative { letter } => "move exceeds the - soft limit of axis {}", Ch(letter);
+        StrokeLimit2 { letter, plus } => "move enters the forbidden area of stored stroke check 2 (G22) in {} {}", Str(if plus { "+" } else { "-" }), Ch(letter);
+        EndOfRecord {} => "program ended without M02, M30 or M99";
+        UnitsNotAlone {} => "G20/G21 must be alone in its block";
+        UnitsNotAtStart {} => "G20/G21 only at the start of the program, before any move";
+        DuplicateGroup { first, second } => "{} and {} are of the same modal group", G(first), G(second);
+        DuplicateAddress { letter } => "address {} given twice", Ch(letter);
+        WordNotAllowed { letter, context } => "address {} is not used by {}", Ch(letter), Str(context);
+        MissingWord { letter, context } => "{} needs address {}", Str(context), Ch(letter);
+        NotSupportedYet { what } => "{} is not supported yet", Str(what);
+        NotInThisBuild { what } => "{} not in this build", Str(what);
+        UnknownMCode { m } => "M{} is not a known M code", Z2(m);
+        ConflictingMCodes { first, second } => "M{} and M{} contradict each other", Z2(first), Z2(second);
+        TooManyMCodes {} => "more than 3 M codes in one block";
+        ValueOutOfRange { letter } => "value of {} out of range", Ch(letter);
+        CoordinateSettingDisabled {} => "G50 coordinate setting is disabled (parameter 5152)";
+        FeedPerRevSpindleStopped {} => "feed per revolution or tapping with the spindle stopped";
+        CommentNotClosed {} => "comment '(' is not closed";
+        MachineCoordinatesIncremental {} => "G53 takes absolute coordinates only";
+        CodeMustBeAlone { code } => "{} must not share its block with other G codes or moves", G(code);
+        Overflow {} => "value out of the controller's range";
+        MisplacedBlockSkip {} => "block skip '/' only at the start of a block";
+        IllegalCharacter { found } => "illegal character '{}'", Ch(found);
+        AxisTwice { absolute, incremental } => "{} and {} address the same axis in one block", Ch(absolute), Ch(incremental);
+        SelfCall { program } => "O{} calls itself with M98", Z4(program);
+        FlowInMdi { m } => "M{} cannot be used in MDI", Z2(m);
+        M99NotAlone {} => "M99 must be alone in its block (N and P only)";
+        InputNotAvailable { input } => "external input {} for M91/M92 does not exist", Num(input);
+        VariablesFull {} => "more than 128 of the variables #34-#400 and #601-#999 hold values";
+        IllegalLead {} => "thread lead zero, out of range or becoming negative (G34 K)";
+        CycleAddressMissing { letter } => "G70-G73 needs address {}", Ch(letter);
+        CycleValueIllegal { what } => "illegal value in cycle: {}", Str(what);
+        SequenceNotFound { n } => "sequence number N{} of the cycle not found in the program", Num(n);
+        ProfileNotMonotone {} => "finishing shape is not monotone along the cutting axis";
+        ProfileFirstBlock {} => "first block of the finishing shape must be G00/G01 moving the infeed axis";
+        ProfileForbiddenCode { what } => "{} is not allowed in the finishing shape (ns-nf)", Str(what);
+        RigidTapSpeed {} => "rigid tapping needs S in the M29 block";
+        RigidTapSequence {} => "S or a repeated M29 between M29 and G84/G88";
+        RigidTapAxisMove {} => "axis motion between M29 and G84/G88";
+        ProfileNotMonotoneInfeed {} => "type I finishing shape is not monotone along the infeed axis (use X and Z in ns for type II)";
+        CycleTaperTooLarge {} => "taper R larger than the cut depth with opposite sign";
+        CycleNotInZxPlane {} => "turning and threading cycles work in the ZX plane (G18) only";
+        CycleOtherAxis { letter } => "axis {} cannot move in a turning cycle block", Ch(letter);
+        ThreadStartAngle {} => "thread start angle Q must be 0 to 360 degrees";
+        ThreadPulloutTooLong {} => "thread pull-out is longer than the thread";
+        ProfileTooLong {} => "finishing shape has too many segments";
+        TooManyPockets {} => "finishing shape has more than 10 pockets";
+        CycleTooLong {} => "cycle would make more than a million moves (P/Q without a point are least increments)";
+        ThreadTooFast { letter } => "thread lead x spindle speed exceeds the speed limit of axis {}", Ch(letter);
+        ThreadRampTooLong {} => "thread acceleration ramp does not fit in the thread (lengthen lead-in/run-out)";
+        SpindleNotTurning {} => "spindle is not turning (thread, tap or feed per revolution)";
+        SpindleNotAtSpeed {} => "spindle did not reach the commanded speed";
+        TapTooFast { letter } => "tap lead x spindle speed or acceleration exceeds the limits of axis {}", Ch(letter);
+        SpindleIndexMissing {} => "no spindle index pulse to synchronise the thread";
+        SyncSequenceBroken {} => "spindle-locked sequence broken (continuing thread or tap without its start)";
+        MotionConfigInvalid { what } => "motion configuration invalid: {}", Str(what);
+        EmergencyStop {} => "emergency stop";
+        ThreadLeadChangeTooFast { letter } => "G34 lead change K x spindle speed squared exceeds half the acceleration of axis {}", Ch(letter);
+        StreamStarved { seconds } => "stream starved: the job is open and nothing came over the link for {} s (link lost?)", Num(seconds);
+        ChamferInThread {} => "chamfer or corner R (,C/,R) cannot be given in a thread block";
+        ChamferNoMove { what } => "no G01/G02/G03 move after chamfer/corner R: {}", Str(what);
+        ChamferTooLarge {} => "chamfer or corner R is larger than the moves it joins";
+        ChamferPlaneChange {} => "plane selection or a move out of the plane after chamfer/corner R";
+        ContourBufferFull {} => "too many actions between a held move and the next move";
+        PolarCodeNotAllowed { code } => "{} is not allowed in polar interpolation (G12.1)", G(code);
+        PolarArcNeedsR {} => "arcs in polar interpolation take R, not I/J/K";
+        PolygonNoToolSpindle {} => "polygon turning (G51.2) needs a tool spindle synchronised to the work spindle";
+        PolygonAxisCommanded {} => "the tool spindle (C) cannot be moved in polygon turning (G51.2)";
+        PolygonModeConflict { what } => "{} in polygon turning (G51.2)", Str(what);
+        NoseCompArc {} => "radius compensation cannot start up or cancel in an arc block";
+        NoseCompPlaneChange {} => "plane selection while radius compensation is active";
+        NoseCompReversed {} => "G41/G42 reversed while radius compensation is active";
+        ToolChangeInNoseComp {} => "tool change (lathe T, mill M06) while radius compensation is active";
+        NoseCompGouge {} => "radius compensation would gouge the part";
+        NoseCompCornerAngle {} => "radius compensation corner angle below 0.1 degrees";
     }
 }
+
+#[cfg(feature = "mill")]
+text_table! {
+    /// The texts of the alarms only the machining-centre profile raises.
+    AlarmKind, fn mill_text, static MILL {
+        RotationPlaneChange {} => "plane change or an arc outside the plane of G68 rotation";
+        NoIntermediatePoint { letter } => "G29 moves axis {} but no G28 gave it an intermediate point", Ch(letter);
+        FrameInCutterComp {} => "G15/G16, G50/G51, G50.1/G51.1 and G68/G69 only with cutter compensation cancelled (G40)";
+        FrameOrder {} => "G51.1 before G51 before G68, cancelled the other way round (G69, then G50, then G50.1)";
+        OffsetValueOutOfRange {} => "G10 offset value out of range";
+        LocalFrameIncremental {} => "G52 takes absolute coordinates only (G90): the local origin in the work frame";
+        MillToolNumber { number, max } => "tool number T{} is not on this machine (T1-T{})", Num(number), Num(max);
+        ReferenceInCycle {} => "G28/G29/G30 while a hole cycle is in force (G80 first)";
+        PeckDepthMissing {} => "G73/G83 need a peck depth Q greater than zero";
+        IllegalScale { letter } => "scale factor {} out of range (P 0.001-999.999, I/J/K +-0.001-9.999)", Ch(letter);
+        ToolChangeTimeout { tool, seconds } => "tool changer did not report done within {} s of the request for T{} ($313; ATC done input)", Num(seconds), Z2(tool);
+    }
+}
+
+/// The text tables of this build (the tests prove each text unpacks to its row).
+#[cfg(test)]
+pub(crate) static TABLES: &[&crate::text::Table] = &[
+    &FANUC,
+    #[cfg(feature = "mill")]
+    &MILL,
+    #[cfg(feature = "siemens")]
+    &SIEMENS,
+    #[cfg(feature = "siemens")]
+    &CYCLE,
+];
 
 impl AlarmKind {
-    /// The text of an alarm only the machining-centre profile raises.
-    #[cfg(feature = "mill")]
-    fn mill_text(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+    /// What the alarm says: its packed text and the values in it.
+    pub fn text(&self) -> Text {
+        #[allow(unused_imports)]
         use AlarmKind::*;
         match *self {
-            RotationPlaneChange => write!(f, "plane change or an arc outside the plane of G68 rotation"),
-            NoIntermediatePoint { letter } => {
-                write!(f, "G29 moves axis {} but no G28 gave it an intermediate point", Ch(letter))
-            }
-            FrameInCutterComp => {
-                write!(f, "G15/G16, G50/G51, G50.1/G51.1 and G68/G69 only with cutter compensation cancelled (G40)")
-            }
-            FrameOrder => {
-                write!(f, "G51.1 before G51 before G68, cancelled the other way round (G69, then G50, then G50.1)")
-            }
-            OffsetValueOutOfRange => write!(f, "G10 offset value out of range"),
-            LocalFrameIncremental => {
-                write!(f, "G52 takes absolute coordinates only (G90): the local origin in the work frame")
-            }
-            MillToolNumber { number, max } => write!(f, "tool number T{number} is not on this machine (T1-T{max})"),
-            ReferenceInCycle => write!(f, "G28/G29/G30 while a hole cycle is in force (G80 first)"),
-            PeckDepthMissing => write!(f, "G73/G83 need a peck depth Q greater than zero"),
-            IllegalScale { letter } => {
-                write!(f, "scale factor {} out of range (P 0.001-999.999, I/J/K +-0.001-9.999)", Ch(letter))
-            }
-            ToolChangeTimeout { tool, seconds } => write!(
-                f,
-                "tool changer did not report done within {seconds} s of the request for T{tool:02} \
-                 ($313; ATC done input)"
-            ),
-            _ => Ok(()),
-        }
-    }
-
-    /// Without the machining-centre profile (feature `mill`) nothing raises these:
-    /// their texts stay out of the image (the code still names them).
-    #[cfg(not(feature = "mill"))]
-    fn mill_text(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str("machining-centre alarm")
-    }
-}
-
-impl fmt::Display for AlarmKind {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        use AlarmKind::*;
-        match *self {
-            TooManyDigits { letter } => write!(f, "too many digits in {} word", Ch(letter)),
-            AddressNotFound { found } => write!(f, "'{}' where an address letter was expected", Ch(found)),
-            NoDataAfterAddress { letter } => write!(f, "no value after address {}", Ch(letter)),
-            IllegalMinusSign { letter } => write!(f, "address {} takes no minus sign", Ch(letter)),
-            IllegalDecimalPoint { letter } => write!(f, "address {} takes no decimal point", Ch(letter)),
-            ImproperAddress { letter } => write!(f, "address {} is not used by this controller", Ch(letter)),
-            AxisNotConfigured { letter } => write!(f, "axis {} is not configured on this machine", Ch(letter)),
-            ImproperGCode { code } => write!(f, "{code} is not a G code of the selected G-code system"),
-            FeedZero => write!(f, "cutting feed F is zero or was never given"),
-            ArcRadiusTolerance { excess_nm } => write!(
-                f,
-                "arc end point is {}.{:03} mm off the circle (R too small or I/J/K inconsistent)",
-                excess_nm / 1_000_000,
-                (excess_nm % 1_000_000) / 1_000
-            ),
-            CurveEndOff { excess_nm } => write!(
-                f,
-                "end point is {}.{:03} mm off every ellipse/parabola of the given A, B or P",
-                excess_nm / 1_000_000,
-                (excess_nm % 1_000_000) / 1_000
-            ),
-            ArcAxisOutsidePlane { letter } => write!(f, "axis {} is outside the arc's plane", Ch(letter)),
-            ArcCenterMissing => write!(f, "arc needs R or I/J/K"),
-            ArcRadiusZero => write!(f, "arc radius R is zero"),
-            IllegalOffsetNumber { number } => write!(f, "tool offset number {number} is not in the offset table"),
-            IllegalToolNumber { number } => write!(f, "tool number {number} is not on the turret"),
-            IllegalReferenceNumber => write!(f, "G30 P must be 1, 2, 3 or 4"),
-            ProgramNotFound { program } => write!(f, "program O{program:04} not found"),
-            SubprogramNumberMissing => write!(f, "M98, G65 and G66 need P with the program number"),
-            CallNestingTooDeep => write!(f, "subprograms and macros nested deeper than 12 levels"),
-            MacroNestingTooDeep => write!(f, "macro calls (G65, G66, G or M code) nested deeper than 4 levels"),
-            JumpTargetNotFound { seq } => write!(f, "sequence number N{seq} not found"),
-            MacroOverflow => write!(f, "macro calculation out of the number range"),
-            DivideByZero => write!(f, "division by zero (/, MOD or TAN of 90 degrees)"),
-            MacroFormat { what } => write!(f, "macro format error: {what}"),
-            VariableNumberOutOfRange { number } => write!(f, "variable #{number} does not exist (0-999)"),
-            WriteProtectedVariable { number } => write!(f, "variable #{number} cannot be assigned"),
-            TooManyBrackets => write!(f, "brackets nested deeper than 5 levels"),
-            ArgumentOutOfRange { function } => write!(f, "argument of {function} out of range"),
-            ModalCallsTooDeep => write!(f, "a fourth modal call G66 while three are in force"),
-            ControlInMdi => write!(f, "GOTO, WHILE, DO and END cannot be used in MDI"),
-            MissingEnd { label } => write!(f, "DO{label} has no matching END{label}"),
-            EndWithoutDo { label } => write!(f, "END{label} without DO{label}"),
-            LoopsCrossed { label } => write!(f, "loop {label} overlaps another DO-END range"),
-            IllegalLoopNumber { label } => write!(f, "loop number {label} is not 1, 2 or 3"),
-            MacroAndNcInOneBlock => write!(f, "macro statement and NC words in one block"),
-            SequenceOutOfRange => write!(f, "jump target is not a sequence number 1-99999"),
-            IllegalArgumentAddress { letter } => write!(f, "address {} cannot be a macro call argument", Ch(letter)),
-            ReferenceNotEstablished { letter } => {
-                write!(f, "axis {} has not been referenced (home it before G28/G30)", Ch(letter))
-            }
-            OvertravelPositive { letter } => write!(f, "move exceeds the + soft limit of axis {}", Ch(letter)),
-            OvertravelNegative { letter } => write!(f, "move exceeds the - soft limit of axis {}", Ch(letter)),
-            StrokeLimit2 { letter, plus } => write!(
-                f,
-                "move enters the forbidden area of stored stroke check 2 (G22) in {} {}",
-                if plus { "+" } else { "-" },
-                Ch(letter)
-            ),
-            EndOfRecord => write!(f, "program ended without M02, M30 or M99"),
-            UnitsNotAlone => write!(f, "G20/G21 must be alone in its block"),
-            UnitsNotAtStart => write!(f, "G20/G21 only at the start of the program, before any move"),
-            DuplicateGroup { first, second } => write!(f, "{first} and {second} are of the same modal group"),
-            DuplicateAddress { letter } => write!(f, "address {} given twice", Ch(letter)),
-            WordNotAllowed { letter, context } => write!(f, "address {} is not used by {context}", Ch(letter)),
-            MissingWord { letter, context } => write!(f, "{context} needs address {}", Ch(letter)),
-            NotSupportedYet { what } => write!(f, "{what} is not supported yet"),
-            UnknownMCode { m } => write!(f, "M{m:02} is not a known M code"),
-            ConflictingMCodes { first, second } => write!(f, "M{first:02} and M{second:02} contradict each other"),
-            TooManyMCodes => write!(f, "more than 3 M codes in one block"),
-            ValueOutOfRange { letter } => write!(f, "value of {} out of range", Ch(letter)),
-            CoordinateSettingDisabled => write!(f, "G50 coordinate setting is disabled (parameter 5152)"),
-            FeedPerRevSpindleStopped => write!(f, "feed per revolution or tapping with the spindle stopped"),
-            CommentNotClosed => write!(f, "comment '(' is not closed"),
-            MachineCoordinatesIncremental => write!(f, "G53 takes absolute coordinates only"),
-            CodeMustBeAlone { code } => write!(f, "{code} must not share its block with other G codes or moves"),
-            Overflow => write!(f, "value out of the controller's range"),
-            MisplacedBlockSkip => write!(f, "block skip '/' only at the start of a block"),
-            IllegalCharacter { found } => write!(f, "illegal character '{}'", Ch(found)),
-            AxisTwice { absolute, incremental } => {
-                write!(f, "{} and {} address the same axis in one block", Ch(absolute), Ch(incremental))
-            }
-            SelfCall { program } => write!(f, "O{program:04} calls itself with M98"),
-            FlowInMdi { m } => write!(f, "M{m:02} cannot be used in MDI"),
-            M99NotAlone => write!(f, "M99 must be alone in its block (N and P only)"),
-            InputNotAvailable { input } => write!(f, "external input {input} for M91/M92 does not exist"),
-            VariablesFull => write!(f, "more than 128 of the variables #34-#400 and #601-#999 hold values"),
-            IllegalLead => write!(f, "thread lead zero, out of range or becoming negative (G34 K)"),
-            CycleAddressMissing { letter } => write!(f, "G70-G73 needs address {}", Ch(letter)),
-            CycleValueIllegal { what } => write!(f, "illegal value in cycle: {what}"),
-            SequenceNotFound { n } => write!(f, "sequence number N{n} of the cycle not found in the program"),
-            ProfileNotMonotone => write!(f, "finishing shape is not monotone along the cutting axis"),
-            ProfileFirstBlock => {
-                write!(f, "first block of the finishing shape must be G00/G01 moving the infeed axis")
-            }
-            ProfileForbiddenCode { what } => write!(f, "{what} is not allowed in the finishing shape (ns-nf)"),
-            RigidTapSpeed => write!(f, "rigid tapping needs S in the M29 block"),
-            RigidTapSequence => write!(f, "S or a repeated M29 between M29 and G84/G88"),
-            RigidTapAxisMove => write!(f, "axis motion between M29 and G84/G88"),
-            ProfileNotMonotoneInfeed => {
-                write!(
-                    f,
-                    "type I finishing shape is not monotone along the infeed axis (use X and Z in ns for type II)"
-                )
-            }
-            CycleTaperTooLarge => write!(f, "taper R larger than the cut depth with opposite sign"),
-            CycleNotInZxPlane => write!(f, "turning and threading cycles work in the ZX plane (G18) only"),
-            CycleOtherAxis { letter } => write!(f, "axis {} cannot move in a turning cycle block", Ch(letter)),
-            ThreadStartAngle => write!(f, "thread start angle Q must be 0 to 360 degrees"),
-            ThreadPulloutTooLong => write!(f, "thread pull-out is longer than the thread"),
-            ProfileTooLong => write!(f, "finishing shape has too many segments"),
-            TooManyPockets => write!(f, "finishing shape has more than 10 pockets"),
-            CycleTooLong => {
-                write!(f, "cycle would make more than a million moves (P/Q without a point are least increments)")
-            }
-            ThreadTooFast { letter } => {
-                write!(f, "thread lead x spindle speed exceeds the speed limit of axis {}", Ch(letter))
-            }
-            ThreadRampTooLong => {
-                write!(f, "thread acceleration ramp does not fit in the thread (lengthen lead-in/run-out)")
-            }
-            SpindleNotTurning => write!(f, "spindle is not turning (thread, tap or feed per revolution)"),
-            SpindleNotAtSpeed => write!(f, "spindle did not reach the commanded speed"),
-            TapTooFast { letter } => {
-                write!(f, "tap lead x spindle speed or acceleration exceeds the limits of axis {}", Ch(letter))
-            }
-            SpindleIndexMissing => write!(f, "no spindle index pulse to synchronise the thread"),
-            SyncSequenceBroken => {
-                write!(f, "spindle-locked sequence broken (continuing thread or tap without its start)")
-            }
-            MotionConfigInvalid { what } => write!(f, "motion configuration invalid: {what}"),
-            EmergencyStop => write!(f, "emergency stop"),
-            ThreadLeadChangeTooFast { letter } => {
-                write!(
-                    f,
-                    "G34 lead change K x spindle speed squared exceeds half the acceleration of axis {}",
-                    Ch(letter)
-                )
-            }
-            StreamStarved { seconds } => {
-                write!(f, "stream starved: the job is open and nothing came over the link for {seconds} s (link lost?)")
-            }
-            ChamferInThread => write!(f, "chamfer or corner R (,C/,R) cannot be given in a thread block"),
-            ChamferNoMove { what } => write!(f, "no G01/G02/G03 move after chamfer/corner R: {what}"),
-            ChamferTooLarge => write!(f, "chamfer or corner R is larger than the moves it joins"),
-            ChamferPlaneChange => write!(f, "plane selection or a move out of the plane after chamfer/corner R"),
+            #[cfg(feature = "siemens")]
+            Siemens(k) => k.text(),
+            #[cfg(feature = "siemens")]
+            SiemensCycle(k) => k.text(),
+            #[cfg(feature = "mill")]
             RotationPlaneChange
             | NoIntermediatePoint { .. }
             | FrameInCutterComp
@@ -679,22 +665,315 @@ impl fmt::Display for AlarmKind {
             | MillToolNumber { .. }
             | LocalFrameIncremental
             | IllegalScale { .. }
-            | ToolChangeTimeout { .. } => self.mill_text(f),
-            ContourBufferFull => write!(f, "too many actions between a held move and the next move"),
-            PolarCodeNotAllowed { code } => write!(f, "{code} is not allowed in polar interpolation (G12.1)"),
-            PolarArcNeedsR => write!(f, "arcs in polar interpolation take R, not I/J/K"),
-            PolygonNoToolSpindle => {
-                write!(f, "polygon turning (G51.2) needs a tool spindle synchronised to the work spindle")
-            }
-            PolygonAxisCommanded => write!(f, "the tool spindle (C) cannot be moved in polygon turning (G51.2)"),
-            PolygonModeConflict { what } => write!(f, "{what} in polygon turning (G51.2)"),
-            NoseCompArc => write!(f, "radius compensation cannot start up or cancel in an arc block"),
-            NoseCompPlaneChange => write!(f, "plane selection while radius compensation is active"),
-            NoseCompReversed => write!(f, "G41/G42 reversed while radius compensation is active"),
-            ToolChangeInNoseComp => write!(f, "tool change (lathe T, mill M06) while radius compensation is active"),
-            NoseCompGouge => write!(f, "radius compensation would gouge the part"),
-            NoseCompCornerAngle => write!(f, "radius compensation corner angle below 0.1 degrees"),
+            | ToolChangeTimeout { .. } => self.mill_text(),
+            _ => self.fanuc_text(),
         }
+    }
+}
+
+impl fmt::Display for AlarmKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        #[allow(unused_imports)]
+        use AlarmKind::*;
+        match *self {
+            // A build without SINUMERIK mode never raises these: their texts stay out
+            // of its flash.
+            #[cfg(not(feature = "siemens"))]
+            Siemens(_) | SiemensCycle(_) => f.write_str("SINUMERIK alarm (SINUMERIK mode is not in this build)"),
+            // Without the machining-centre profile (feature `mill`) nothing raises
+            // these: their texts stay out of the image (the code still names them).
+            #[cfg(not(feature = "mill"))]
+            RotationPlaneChange
+            | NoIntermediatePoint { .. }
+            | FrameInCutterComp
+            | FrameOrder
+            | OffsetValueOutOfRange
+            | ReferenceInCycle
+            | PeckDepthMissing
+            | MillToolNumber { .. }
+            | LocalFrameIncremental
+            | IllegalScale { .. }
+            | ToolChangeTimeout { .. } => f.write_str("machining-centre alarm"),
+            _ => self.text().write(f),
+        }
+    }
+}
+
+/// The alarms of the SINUMERIK front end and cycles, with the 840D's numbers
+/// (12xxx–17xxx of the NC, 61xxx/62xxx of the cycles; 4xxx where the 840D has no
+/// equivalent). Nested in [`AlarmKind::Siemens`]: [`AlarmKind`] stays under 128
+/// variants — past 128 every FANUC block costs 3 more Cortex-M4 instructions
+/// (measured with `m4-tests/bench.sh bench_interp`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
+pub enum SiemensAlarm {
+    /// 12080: a SINUMERIK block that cannot be read (the 840D's "syntax error").
+    SyntaxError { what: &'static str },
+    /// 12150: an operation or assignment the value's data type does not allow
+    /// (a string in arithmetic, a number for a STRING).
+    TypeMismatch,
+    /// 12160: a value outside the range of its type or use (INT beyond 32 bits, a
+    /// CHAR beyond 255, a number of passes beyond 9999).
+    ValueRange,
+    /// 12160: a string longer than its STRING variable or the call's argument space.
+    StringTooLong,
+    /// 12170: a name defined twice in one program level.
+    NameDefinedTwice,
+    /// 12330: a cycle or subprogram argument whose type does not convert to its
+    /// parameter's (seed 001 line 649); `index` counts from 1.
+    ParameterType { index: u8 },
+    /// 12340: more arguments than the cycle or subprogram has parameters (seed 001 line 596).
+    TooManyParameters,
+    /// 12460: more DEF variables (or names) than the controller holds.
+    TooManySymbols,
+    /// 12470: a G function the SINUMERIK table does not hold.
+    UnknownGFunction { code: u16 },
+    /// 12550: a name that is neither a variable, a keyword nor a program.
+    NameNotDefined,
+    /// 14011: a subprogram or contour program that is not in program memory.
+    SubprogramNotFound,
+    /// 14012: subprograms (and REPEAT sections) nested deeper than the controller holds.
+    SubprogramLevels,
+    /// 14080: a GOTOF/GOTOB/GOTO or REPEAT label (or contour label) not in the program.
+    LabelNotFound,
+    /// 14500: DEF after the program's first NC block, or PROC not at its start.
+    DefNotAtStart,
+    /// 14510: a subprogram called with arguments has no PROC statement with parameters.
+    ProcMissing,
+    /// 16420: an axis programmed twice in one block.
+    AxisProgrammedTwice { letter: Letter },
+    /// 17020: an array index (R[n], _ZSD[n], $TC_DP…[t,d]) outside the array.
+    IndexOutOfRange,
+    /// 17180: a D number (cutting edge) with no offset row.
+    IllegalDNumber { number: u16 },
+    /// 4052: MCALL inside a modally called subprogram (seed 001 line 3027: modal
+    /// calls do not nest).
+    ModalCallNested,
+}
+
+impl From<SiemensAlarm> for AlarmKind {
+    fn from(k: SiemensAlarm) -> Self {
+        AlarmKind::Siemens(k)
+    }
+}
+
+impl SiemensAlarm {
+    /// The alarm number.
+    pub fn code(&self) -> u16 {
+        use SiemensAlarm::*;
+        match self {
+            SyntaxError { .. } => 12080,
+            TypeMismatch => 12150,
+            ValueRange | StringTooLong => 12160,
+            NameDefinedTwice => 12170,
+            ParameterType { .. } => 12330,
+            TooManyParameters => 12340,
+            TooManySymbols => 12460,
+            UnknownGFunction { .. } => 12470,
+            NameNotDefined => 12550,
+            SubprogramNotFound => 14011,
+            SubprogramLevels => 14012,
+            LabelNotFound => 14080,
+            DefNotAtStart => 14500,
+            ProcMissing => 14510,
+            AxisProgrammedTwice { .. } => 16420,
+            IndexOutOfRange => 17020,
+            IllegalDNumber { .. } => 17180,
+            ModalCallNested => 4052,
+        }
+    }
+}
+
+/// The alarms of the SINUMERIK standard cycles (seed 001 table 5.3, 61000–61999:
+/// cleared by NC reset, the block interrupted), with the document's texts.
+/// Nested in [`AlarmKind::SiemensCycle`]: [`AlarmKind`] stays under 128 variants
+/// (more cost every FANUC block Cortex-M4 instructions).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum CycleAlarm {
+    /// 61000: SINUMERIK cycle alarm (seed 001 table 5.3): no tool offset active.
+    NoToolOffset,
+    /// 61001: SINUMERIK cycle alarm (seed 001 table 5.3): thread pitch wrong.
+    ThreadPitchWrong,
+    /// 61002: SINUMERIK cycle alarm (seed 001 table 5.3): machining type wrong.
+    MachiningTypeWrong,
+    /// 61005: SINUMERIK cycle alarm (seed 001 table 5.3): 3rd geometry axis not present.
+    NoThirdAxis,
+    /// 61019: SINUMERIK cycle alarm (seed 001 table 5.3): parameter programmed incorrectly.
+    ParameterWrong,
+    /// 61101: SINUMERIK cycle alarm (seed 001 table 5.3): reference plane defined incorrectly.
+    ReferencePlaneWrong,
+    /// 61102: SINUMERIK cycle alarm (seed 001 table 5.3): no spindle direction programmed.
+    NoSpindleDirection,
+    /// 61107: SINUMERIK cycle alarm (seed 001 line 1803): first drilling depth defined incorrectly.
+    FirstDepthWrong,
+    /// 61125: SINUMERIK cycle alarm (seed 001 table 5.3): _TECHNO defined incorrectly.
+    TechnologyWrong,
+    /// 61601: SINUMERIK cycle alarm (seed 001 table 5.3): finished diameter too small.
+    FinishedDiameterTooSmall,
+    /// 61602: SINUMERIK cycle alarm (seed 001 table 5.3): tool width wrong.
+    ToolWidthWrong,
+    /// 61603: SINUMERIK cycle alarm (seed 001 table 5.3): groove form wrong.
+    GrooveFormWrong,
+    /// 61604: SINUMERIK cycle alarm (seed 001 table 5.3): tool violates contour.
+    ToolViolatesContour,
+    /// 61605: SINUMERIK cycle alarm (seed 001 table 5.3): contour wrong.
+    ContourWrong,
+    /// 61606: SINUMERIK cycle alarm (seed 001 table 5.3): contour preparation error.
+    ContourPreparation { cause: u16 },
+    /// 61607: SINUMERIK cycle alarm (seed 001 table 5.3): start point wrong.
+    StartPointWrong,
+    /// 61608: SINUMERIK cycle alarm (seed 001 table 5.3): wrong edge position.
+    WrongEdgePosition,
+    /// 61609: SINUMERIK cycle alarm (seed 001 table 5.3): form wrong.
+    FormWrong,
+    /// 61612: SINUMERIK cycle alarm (seed 001 table 5.3): re-cutting impossible.
+    RecutImpossible,
+    /// 61613: SINUMERIK cycle alarm (seed 001 table 5.3): undercut position wrong.
+    UndercutPositionWrong,
+    /// 61701: SINUMERIK cycle alarm (seed 001 table 5.3): finished contour wrong.
+    FinishedContourWrong,
+    /// 61702: SINUMERIK cycle alarm (seed 001 table 5.3): blank contour wrong.
+    BlankContourWrong,
+    /// 61720: SINUMERIK cycle alarm (seed 001 table 5.3): illegal input.
+    IllegalInput,
+    /// 61721: SINUMERIK cycle alarm (seed 001 table 5.3): contour direction.
+    ContourDirection,
+    /// 61803: SINUMERIK cycle alarm (seed 001 table 5.3): programmed axis not present.
+    AxisNotPresent,
+    /// 61807: SINUMERIK cycle alarm (seed 001 table 5.3): spindle direction programmed incorrectly.
+    WrongSpindleDirection,
+}
+
+impl From<CycleAlarm> for AlarmKind {
+    fn from(k: CycleAlarm) -> Self {
+        AlarmKind::SiemensCycle(k)
+    }
+}
+
+impl CycleAlarm {
+    /// The alarm number.
+    pub fn code(&self) -> u16 {
+        use CycleAlarm::*;
+        match self {
+            NoToolOffset => 61000,
+            ThreadPitchWrong => 61001,
+            MachiningTypeWrong => 61002,
+            NoThirdAxis => 61005,
+            ParameterWrong => 61019,
+            ReferencePlaneWrong => 61101,
+            NoSpindleDirection => 61102,
+            FirstDepthWrong => 61107,
+            TechnologyWrong => 61125,
+            FinishedDiameterTooSmall => 61601,
+            ToolWidthWrong => 61602,
+            GrooveFormWrong => 61603,
+            ToolViolatesContour => 61604,
+            ContourWrong => 61605,
+            ContourPreparation { .. } => 61606,
+            StartPointWrong => 61607,
+            WrongEdgePosition => 61608,
+            FormWrong => 61609,
+            RecutImpossible => 61612,
+            UndercutPositionWrong => 61613,
+            FinishedContourWrong => 61701,
+            BlankContourWrong => 61702,
+            IllegalInput => 61720,
+            ContourDirection => 61721,
+            AxisNotPresent => 61803,
+            WrongSpindleDirection => 61807,
+        }
+    }
+}
+
+#[cfg(feature = "siemens")]
+text_table! {
+    /// The texts of the SINUMERIK front end's alarms.
+    SiemensAlarm, fn text, static SIEMENS {
+        SyntaxError { what } => "syntax error: {}", Str(what);
+        TypeMismatch {} => "value of the wrong data type for this operation or variable";
+        ValueRange {} => "value out of the range of its type or use";
+        StringTooLong {} => "string longer than its variable or the argument space";
+        NameDefinedTwice {} => "name defined twice in this program";
+        ParameterType { index } => "type of parameter {} incorrect", Num(index);
+        TooManyParameters {} => "too many parameters";
+        TooManySymbols {} => "too many variables defined (DEF)";
+        UnknownGFunction { code } => "G{} is not a SINUMERIK G function of this controller", Num(code);
+        NameNotDefined {} => "name not defined (not a variable, keyword, cycle or program)";
+        SubprogramNotFound {} => "subprogram not in program memory";
+        SubprogramLevels {} => "subprograms or REPEAT sections nested too deep";
+        LabelNotFound {} => "jump or section label not found";
+        DefNotAtStart {} => "DEF only before the first NC block, PROC only at the start of a program";
+        ProcMissing {} => "subprogram called with arguments has no PROC statement with parameters";
+        AxisProgrammedTwice { letter } => "axis {} programmed twice in the block", Ch(letter);
+        IndexOutOfRange {} => "array index out of range";
+        IllegalDNumber { number } => "D{} has no tool offset row", Num(number);
+        ModalCallNested {} => "MCALL inside a modally called subprogram";
+    }
+}
+
+#[cfg(feature = "siemens")]
+text_table! {
+    /// The texts of the SINUMERIK cycles' alarms (seed 001 table 5.3).
+    CycleAlarm, fn text, static CYCLE {
+        NoToolOffset {} => "no tool offset active (program D before the cycle)";
+        ThreadPitchWrong {} => "thread pitch defined incorrectly (PIT/MPIT contradict, or not a DIN 76 / ISO coarse size)";
+        MachiningTypeWrong {} => "type of machining (VARI) defined incorrectly";
+        NoThirdAxis {} => "3rd geometry axis not present (the drilling axis of the plane)";
+        ParameterWrong {} => "parameter programmed incorrectly (DAM, ENC)";
+        ReferencePlaneWrong {} => "reference plane defined incorrectly (RTP, RFP, DP/DPR)";
+        NoSpindleDirection {} => "no spindle direction programmed (SDIR/SDR 3 or 4, M3/M4 before CYCLE840)";
+        FirstDepthWrong {} => "first drilling depth defined incorrectly (FDEP/FDPR against the total depth)";
+        TechnologyWrong {} => "technology selection in parameter _TECHNO defined incorrectly";
+        FinishedDiameterTooSmall {} => "finished part diameter too small (under 3 mm)";
+        ToolWidthWrong {} => "tool width defined incorrectly (grooving tool wider than the groove, or no width)";
+        GrooveFormWrong {} => "groove form defined incorrectly";
+        ToolViolatesContour {} => "active tool violates the programmed contour (clearance angle too small for an undercut)";
+        ContourWrong {} => "contour programmed incorrectly";
+        StartPointWrong {} => "starting point programmed incorrectly (inside the rectangle of the contour)";
+        WrongEdgePosition {} => "wrong tool point direction programmed (cutting edge position 1-4 needed)";
+        FormWrong {} => "form defined incorrectly (CYCLE94: E or F, CYCLE96: A-D)";
+        RecutImpossible {} => "thread re-cutting not possible";
+        UndercutPositionWrong {} => "undercut position (_VARI) defined incorrectly";
+        FinishedContourWrong {} => "finished part contour description wrong (_NP1-_NP3)";
+        BlankContourWrong {} => "blank contour description wrong (_NP5-_NP7, _APZ/_APX)";
+        IllegalInput {} => "illegal input (a _VARI digit of CYCLE950 out of its range)";
+        ContourDirection {} => "wrong contour direction, cannot be computed";
+        AxisNotPresent {} => "programmed axis does not exist (_AXN)";
+        WrongSpindleDirection {} => "spindle direction programmed incorrectly (SDR/SDAC of CYCLE840)";
+        ContourPreparation { cause } => "error during contour preparation ({})", Str(preparation_error(cause));
+    }
+}
+
+/// What CONTPRON's error `cause` of alarm 61606 says.
+#[cfg(feature = "siemens")]
+fn preparation_error(cause: u16) -> &'static str {
+    match cause {
+        10930 => "10930: illegal interpolation type in the stock removal contour",
+        10931 => "10931: incorrect stock removal contour",
+        10933 => "10933: the contour contains too few contour blocks",
+        10934 => "10934: contour table overflow",
+        15800 => "15800: incorrect start conditions for CONTPRON",
+        _ => "the contour",
+    }
+}
+
+impl fmt::Display for SiemensAlarm {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        #[cfg(feature = "siemens")]
+        return self.text().write(f);
+        #[cfg(not(feature = "siemens"))]
+        f.write_str("SINUMERIK alarm (SINUMERIK mode is not in this build)")
+    }
+}
+
+impl fmt::Display for CycleAlarm {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        #[cfg(feature = "siemens")]
+        return self.text().write(f);
+        #[cfg(not(feature = "siemens"))]
+        f.write_str("SINUMERIK alarm (SINUMERIK mode is not in this build)")
     }
 }
 
@@ -998,7 +1277,7 @@ pub const CATALOG: &[CatalogEntry] = &[
     CatalogEntry {
         code: 4007,
         title: "not supported yet",
-        when: "a code of the manual this build does not implement yet",
+        when: "a code of the manual this build does not implement yet; SINUMERIK mode (G290, $310=1) on a board built without it (the F446: SINUMERIK mode not in this build)",
     },
     CatalogEntry {
         code: 4008,
@@ -1135,6 +1414,12 @@ pub const CATALOG: &[CatalogEntry] = &[
                rotation, cancelled in the reverse order)",
     },
     CatalogEntry {
+        code: 4052,
+        title: "MCALL nested",
+        when: "SINUMERIK: MCALL in a subprogram that MCALL called (modal calls do not nest, seed 001 line 3027; \
+               4048/4049/4051 are the mill profile's)",
+    },
+    CatalogEntry {
         code: 4501,
         title: "thread too fast",
         when: "lead x spindle speed (with the ripple margin) above an axis's cutting feed or step-rate limit, \
@@ -1201,6 +1486,213 @@ pub const CATALOG: &[CatalogEntry] = &[
                for $304 seconds since before it ran out (default 10 s; $304=0 off)",
     },
     CatalogEntry { code: 5010, title: "end of record", when: "program text ends without M02, M30 or M99" },
+    CatalogEntry {
+        code: 12080,
+        title: "syntax error",
+        when: "SINUMERIK: a block that cannot be read (unknown word, unbalanced brackets or quotes, a keyword in the wrong place)",
+    },
+    CatalogEntry {
+        code: 12150,
+        title: "data type",
+        when: "SINUMERIK: a string in arithmetic or a comparison with a number, a number for a STRING variable",
+    },
+    CatalogEntry {
+        code: 12160,
+        title: "value range",
+        when: "SINUMERIK: INT beyond 32 bits, CHAR beyond 255, a string longer than its STRING[n] or a call's arguments beyond the 256 bytes they are kept in",
+    },
+    CatalogEntry { code: 12170, title: "name defined twice", when: "SINUMERIK: DEF of a name the program level has" },
+    CatalogEntry {
+        code: 12330,
+        title: "parameter type",
+        when: "SINUMERIK: an argument of a cycle or subprogram call whose type does not convert to its parameter's (a string for REAL/INT, a number for STRING/CHAR; seed 001 line 649)",
+    },
+    CatalogEntry {
+        code: 12340,
+        title: "too many parameters",
+        when: "SINUMERIK: more arguments than the cycle or subprogram has parameters (seed 001 line 596)",
+    },
+    CatalogEntry {
+        code: 12460,
+        title: "too many variables",
+        when: "SINUMERIK: more than 32 DEF variables and PROC parameters, 192 bytes of their names or 96 bytes of STRING contents in all program levels",
+    },
+    CatalogEntry {
+        code: 12470,
+        title: "unknown G function",
+        when: "SINUMERIK: a G number the SINUMERIK table of this controller does not hold",
+    },
+    CatalogEntry {
+        code: 12550,
+        title: "name not defined",
+        when: "SINUMERIK: a word that is no variable, keyword, cycle or stored program",
+    },
+    CatalogEntry {
+        code: 14011,
+        title: "program not found",
+        when: "SINUMERIK: a subprogram call or a cycle's contour names a program that is not in program memory",
+    },
+    CatalogEntry {
+        code: 14012,
+        title: "subprogram levels",
+        when: "SINUMERIK: calls and REPEAT sections nested deeper than 12 levels",
+    },
+    CatalogEntry {
+        code: 14080,
+        title: "label not found",
+        when: "SINUMERIK: the label of GOTOF/GOTOB/GOTO, REPEAT or a contour range is not in the program (GOTOF searches forward, GOTOB backward)",
+    },
+    CatalogEntry {
+        code: 14500,
+        title: "DEF or PROC misplaced",
+        when: "SINUMERIK: DEF after the program's first NC block, PROC other than at a program's start",
+    },
+    CatalogEntry {
+        code: 14510,
+        title: "PROC missing",
+        when: "SINUMERIK: a subprogram is called with arguments but has no PROC statement with parameters",
+    },
+    CatalogEntry { code: 16420, title: "axis programmed twice", when: "SINUMERIK: one axis twice in a block" },
+    CatalogEntry {
+        code: 17020,
+        title: "array index",
+        when: "SINUMERIK: R[n] beyond R99, _ZSD[n] beyond 9, $TC_DP…[t,d] beyond the tool table",
+    },
+    CatalogEntry {
+        code: 17180,
+        title: "illegal D number",
+        when: "SINUMERIK: T t D d selects offset row t + (d-1) x tool count, which the offset table does not have",
+    },
+    CatalogEntry {
+        code: 61000,
+        title: "no tool offset active",
+        when: "SINUMERIK CYCLE93-CYCLE96 called without a D offset in force (seed 001 lines 10353, 10537, 11045: 没有刀具补偿有效)",
+    },
+    CatalogEntry {
+        code: 61001,
+        title: "thread pitch wrong",
+        when: "CYCLE97 PIT and MPIT contradict or neither gives a pitch; MPIT or CYCLE96 DIATH not an ISO coarse size M3-M60/M68 (lines 11136-11142, 11009: 螺距定义错误)",
+    },
+    CatalogEntry {
+        code: 61002,
+        title: "machining type wrong",
+        when: "VARI outside the values of CYCLE93 (1-8, 11-18), CYCLE95 (1-12, hundreds 0/2), CYCLE97/CYCLE98 (1-4) (lines 10311, 10799, 11195, 11397: 加工方式错误定义)",
+    },
+    CatalogEntry {
+        code: 61005,
+        title: "3rd geometry axis not present",
+        when: "a SINUMERIK drilling cycle (CYCLE81-89, CYCLE840 without _AXN) whose drilling axis, the applicate of the plane, the machine lacks: a lathe in G18 drills along Y (line 2721: 3. 几何轴没有出现); use G17 or _AXN=1",
+    },
+    CatalogEntry {
+        code: 61019,
+        title: "parameter wrong",
+        when: "CYCLE83 DAM under -1 (line 1824), CYCLE840 ENC other than 0, 1, 11, 20 (table 12213: 参数错误编程)",
+    },
+    CatalogEntry {
+        code: 61101,
+        title: "reference plane wrong",
+        when: "a SINUMERIK drilling cycle with a relative depth DPR and RTP = RFP, a depth on the retract plane's side of RFP, or no depth (lines 1583-1589: 基准面错误定义)",
+    },
+    CatalogEntry {
+        code: 61102,
+        title: "no spindle direction",
+        when: "CYCLE86/87/88 SDIR other than 3/4, CYCLE84 SDAC other than 0/3/4/5, CYCLE840 with the spindle stopped at the call or SDR = 0 without an encoder (ENC 1/11) (lines 2689, 2814, 2896, table 12217: 没有编程主轴方向)",
+    },
+    CatalogEntry {
+        code: 61107,
+        title: "first depth wrong",
+        when: "CYCLE83 first depth FDEP/FDPR deeper than the final depth or not into the hole (lines 1803, 1823: 第一次钻深错误定义)",
+    },
+    CatalogEntry {
+        code: 61125,
+        title: "_TECHNO wrong",
+        when: "CYCLE84/CYCLE840 _TECHNO with a digit outside its values (table: 参数_TECHNO中工艺选择错误定义)",
+    },
+    CatalogEntry {
+        code: 61601,
+        title: "finished diameter too small",
+        when: "CYCLE94 SPD or CYCLE96 DIATH gives a finished diameter under 3 mm (lines 10504, 11003: 成品直径太小)",
+    },
+    CatalogEntry {
+        code: 61602,
+        title: "tool width wrong",
+        when: "CYCLE93 groove narrower than the two-edge tool (offsets D and D+1), or a tool width of zero (line 10268: 刀具宽度错误定义)",
+    },
+    CatalogEntry {
+        code: 61603,
+        title: "groove form wrong",
+        when: "CYCLE93 radii/chamfers that touch or cut each other at the bottom, or a face groove on a line parallel to the longitudinal axis (line 10313: 错误定义切槽形状)",
+    },
+    CatalogEntry {
+        code: 61604,
+        title: "tool violates contour",
+        when: "CYCLE95 undercut steeper than the tool's clearance angle (offset parameter P24, 0 = no check) allows (line 10870: 激活的刀具损坏编程的轮廓)",
+    },
+    CatalogEntry {
+        code: 61605,
+        title: "contour wrong",
+        when: "CYCLE95 contour with an element the cycle cannot machine (an undercut against the machining direction) (table 12260: 轮廓错误编程)",
+    },
+    CatalogEntry {
+        code: 61606,
+        title: "contour preparation error",
+        when: "CYCLE95 contour that cannot be prepared, with the NCK alarm that caused it: 10930 a motion other than G0-G3, 10931 an arc of more than 180 degrees / G41/G42 / a plane change, 10933 fewer than 3 blocks, 10934 more elements than the cycle holds, 15800 a first block without G0-G3 (lines 10820-10858: 轮廓预处理时出错)",
+    },
+    CatalogEntry {
+        code: 61607,
+        title: "start point wrong",
+        when: "CYCLE95 called from a point inside the rectangle the contour spans (table 12267: 起始点错误编程)",
+    },
+    CatalogEntry {
+        code: 61608,
+        title: "wrong edge position",
+        when: "CYCLE94/CYCLE96 with _VARI=0 and an active cutting edge position other than 1-4 (line 10527: 编程了错误的刀沿位置)",
+    },
+    CatalogEntry {
+        code: 61609,
+        title: "form wrong",
+        when: "CYCLE94 FORM not E/F, CYCLE96 FORM not A-D (lines 10513, 11024: 形状错误定义)",
+    },
+    CatalogEntry {
+        code: 61612,
+        title: "re-cutting impossible",
+        when: "CYCLE97/CYCLE98 with thread re-cutting (4.9) set up but the thread is a multi-start one or the synchronised angle is missing (table 12272: 不可能进行螺纹精整)",
+    },
+    CatalogEntry {
+        code: 61613,
+        title: "undercut position wrong",
+        when: "CYCLE94/CYCLE96 _VARI outside 0-4 (table 12273: 退刀槽位置错误定义)",
+    },
+    CatalogEntry {
+        code: 61701,
+        title: "finished contour wrong",
+        when: "CYCLE950 without a finished contour (_NP1, or _NP2/_NP3 not found), or one that cannot be prepared (table 12112: 成品轮廓描述错误)",
+    },
+    CatalogEntry {
+        code: 61702,
+        title: "blank contour wrong",
+        when: "CYCLE950 blank given wrongly: _APZA/_APXA other than 90/91, or a blank cylinder inside the finished contour (table 12113: 坯件轮廓描述错误)",
+    },
+    CatalogEntry {
+        code: 61720,
+        title: "illegal input",
+        when: "CYCLE950 _VARI with a digit outside its values, or a machining or infeed direction that does not fit the machining type (table 12124: 非法输入)",
+    },
+    CatalogEntry {
+        code: 61721,
+        title: "contour direction",
+        when: "CYCLE950 machining direction (_VARI hundred-thousands) against the direction the contour can be cut in (table 12125: 错误轮廓方向不可计算)",
+    },
+    CatalogEntry {
+        code: 61803,
+        title: "axis not present",
+        when: "CYCLE83/84/840 _AXN choosing a drilling axis the machine lacks (table: 编程的轴不存在)",
+    },
+    CatalogEntry {
+        code: 61807,
+        title: "spindle direction wrong",
+        when: "CYCLE840 SDR the direction the spindle turns into the hole (it must reverse), or SDAC other than 0/3/4/5 (table: 编程错误的主轴方向)",
+    },
 ];
 
 #[cfg(test)]
@@ -1345,6 +1837,51 @@ mod tests {
             ToolChangeInNoseComp,
             NoseCompGouge,
             NoseCompCornerAngle,
+            Siemens(SiemensAlarm::SyntaxError { what: "x" }),
+            Siemens(SiemensAlarm::TypeMismatch),
+            Siemens(SiemensAlarm::ValueRange),
+            Siemens(SiemensAlarm::StringTooLong),
+            Siemens(SiemensAlarm::NameDefinedTwice),
+            Siemens(SiemensAlarm::ParameterType { index: 1 }),
+            Siemens(SiemensAlarm::TooManyParameters),
+            Siemens(SiemensAlarm::TooManySymbols),
+            Siemens(SiemensAlarm::UnknownGFunction { code: 5 }),
+            Siemens(SiemensAlarm::NameNotDefined),
+            Siemens(SiemensAlarm::SubprogramNotFound),
+            Siemens(SiemensAlarm::SubprogramLevels),
+            Siemens(SiemensAlarm::LabelNotFound),
+            Siemens(SiemensAlarm::DefNotAtStart),
+            Siemens(SiemensAlarm::ProcMissing),
+            Siemens(SiemensAlarm::AxisProgrammedTwice { letter: b'X' }),
+            Siemens(SiemensAlarm::IndexOutOfRange),
+            Siemens(SiemensAlarm::IllegalDNumber { number: 99 }),
+            Siemens(SiemensAlarm::ModalCallNested),
+            SiemensCycle(CycleAlarm::NoToolOffset),
+            SiemensCycle(CycleAlarm::ThreadPitchWrong),
+            SiemensCycle(CycleAlarm::MachiningTypeWrong),
+            SiemensCycle(CycleAlarm::NoThirdAxis),
+            SiemensCycle(CycleAlarm::ParameterWrong),
+            SiemensCycle(CycleAlarm::ReferencePlaneWrong),
+            SiemensCycle(CycleAlarm::NoSpindleDirection),
+            SiemensCycle(CycleAlarm::FirstDepthWrong),
+            SiemensCycle(CycleAlarm::TechnologyWrong),
+            SiemensCycle(CycleAlarm::FinishedDiameterTooSmall),
+            SiemensCycle(CycleAlarm::ToolWidthWrong),
+            SiemensCycle(CycleAlarm::GrooveFormWrong),
+            SiemensCycle(CycleAlarm::ToolViolatesContour),
+            SiemensCycle(CycleAlarm::ContourWrong),
+            SiemensCycle(CycleAlarm::ContourPreparation { cause: 10933 }),
+            SiemensCycle(CycleAlarm::StartPointWrong),
+            SiemensCycle(CycleAlarm::WrongEdgePosition),
+            SiemensCycle(CycleAlarm::FormWrong),
+            SiemensCycle(CycleAlarm::RecutImpossible),
+            SiemensCycle(CycleAlarm::UndercutPositionWrong),
+            SiemensCycle(CycleAlarm::FinishedContourWrong),
+            SiemensCycle(CycleAlarm::BlankContourWrong),
+            SiemensCycle(CycleAlarm::IllegalInput),
+            SiemensCycle(CycleAlarm::ContourDirection),
+            SiemensCycle(CycleAlarm::AxisNotPresent),
+            SiemensCycle(CycleAlarm::WrongSpindleDirection),
         ]
     };
 
@@ -1356,6 +1893,59 @@ mod tests {
         for e in CATALOG {
             assert!(EVERY_KIND.iter().any(|k| k.code() == e.code), "CATALOG row {} has no kind", e.code);
         }
+    }
+
+    /// Kinds whose text has a branch or a number format `EVERY_KIND` does not reach.
+    #[cfg(all(feature = "siemens", feature = "mill"))]
+    const MORE_TEXTS: &[AlarmKind] = {
+        use AlarmKind::*;
+        &[
+            TooManyDigits { letter: 0x01 },
+            AddressNotFound { found: 0xC3 },
+            ImproperGCode { code: GNum(121) },
+            ArcRadiusTolerance { excess_nm: 12_345_678_901 },
+            ArcRadiusTolerance { excess_nm: -2_004_000 },
+            CurveEndOff { excess_nm: 999_999 },
+            ProgramNotFound { program: 123_456 },
+            UnknownMCode { m: 5 },
+            UnknownMCode { m: 198 },
+            ConflictingMCodes { first: 103, second: 8 },
+            VariableNumberOutOfRange { number: -7 },
+            MillToolNumber { number: 0, max: 1 },
+            ToolChangeTimeout { tool: 123, seconds: 0 },
+            FlowInMdi { m: 1 },
+            SelfCall { program: 99_999 },
+            DuplicateGroup { first: GNum(21), second: GNum(1000) },
+            Siemens(SiemensAlarm::UnknownGFunction { code: 65_535 }),
+            Siemens(SiemensAlarm::ParameterType { index: 255 }),
+            SiemensCycle(CycleAlarm::ContourPreparation { cause: 10930 }),
+            SiemensCycle(CycleAlarm::ContourPreparation { cause: 10931 }),
+            SiemensCycle(CycleAlarm::ContourPreparation { cause: 10934 }),
+            SiemensCycle(CycleAlarm::ContourPreparation { cause: 15800 }),
+            SiemensCycle(CycleAlarm::ContourPreparation { cause: 1 }),
+        ]
+    };
+
+    /// Every alarm text exactly as the board sends it (`alarm_texts.txt`, made from
+    /// the texts before they were packed: `ALARM_TEXTS_BLESS=1` writes it anew).
+    #[cfg(all(feature = "siemens", feature = "mill"))]
+    #[test]
+    fn every_text_is_the_same_byte_for_byte() {
+        use std::{format, string::String};
+        let mut all = String::new();
+        for k in EVERY_KIND.iter().chain(MORE_TEXTS) {
+            all += &format!("{:04} {}\n", k.code(), k);
+        }
+        all += &format!("{}\n", Alarm::in_program(7, 12, AlarmKind::EndOfRecord));
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/src/alarm_texts.txt");
+        if std::env::var_os("ALARM_TEXTS_BLESS").is_some() {
+            std::fs::write(path, &all).unwrap();
+        }
+        let want = std::fs::read_to_string(path).unwrap();
+        for (got, want) in all.lines().zip(want.lines()) {
+            assert_eq!(got, want);
+        }
+        assert_eq!(all, want);
     }
 
     #[test]

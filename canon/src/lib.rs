@@ -27,6 +27,7 @@ pub const MILL: bool = cfg!(feature = "mill");
 pub mod alarm;
 pub mod axis;
 pub mod config;
+pub mod text;
 pub mod units;
 pub mod xorshift;
 
@@ -188,6 +189,7 @@ impl SpindleSpeed {
 ///
 /// f32 (hardware on the Cortex-M4F) is plenty: a speed, not a position, and its
 /// 24-bit mantissa keeps the rounding error far below one rev/min.
+#[inline(never)]
 pub fn css_rpm(css: u32, x: i64) -> u32 {
     // The radius through u32 (capped at 4.29 m, beyond any lathe): u32 → f32 is one
     // instruction, u64 → f32 a library call of some 60 (this runs every G96 block).
@@ -196,8 +198,13 @@ pub fn css_rpm(css: u32, x: i64) -> u32 {
     if d_mm == 0.0 {
         return u32::MAX;
     }
-    let rpm = css as f32 / (core::f32::consts::PI * d_mm);
-    libm::roundf(rpm.min(u32::MAX as f32)) as u32
+    let rpm = (css as f32 / (core::f32::consts::PI * d_mm)).min(u32::MAX as f32);
+    // Rounded half away from zero as `libm::roundf` (rpm is positive: its whole
+    // part by the saturating cast, the fraction exact), without its call: the
+    // size-built firmware's link-time optimisation does not inline it. (Never
+    // inlined itself: its callers' code stays as it was with the call.)
+    let whole = rpm as u32;
+    if rpm - whole as f32 >= 0.5 { whole.saturating_add(1) } else { whole }
 }
 
 /// A straight move (rapid or cutting).
@@ -393,5 +400,40 @@ pub trait CanonSink {
     #[inline]
     fn push_ref(&mut self, action: &Canon) -> Result<(), Full> {
         self.push(*action)
+    }
+}
+
+impl<S: CanonSink + ?Sized> CanonSink for &mut S {
+    #[inline]
+    fn push(&mut self, action: Canon) -> Result<(), Full> {
+        (**self).push(action)
+    }
+
+    #[inline]
+    fn push_ref(&mut self, action: &Canon) -> Result<(), Full> {
+        (**self).push_ref(action)
+    }
+}
+
+#[cfg(test)]
+mod css_tests {
+    use super::css_rpm;
+
+    /// The spindle speed G96 commands is rounded exactly as `libm::roundf` rounds
+    /// it, over surface speeds and radii from 1 nm to beyond any lathe.
+    #[test]
+    fn css_rpm_rounds_as_roundf() {
+        let radii =
+            (0..4_000u32).map(|k| i64::from(k) * 997 + 1).chain([7_958_000, 1_000_000_000, i64::MAX, -25_000_000]);
+        for x in radii {
+            for css in [1u32, 2, 7, 100, 157, 200, 250, 999, 1_000, 12_345, 65_535, 1 << 24, u32::MAX] {
+                let r = x.unsigned_abs().min(u64::from(u32::MAX)) as u32;
+                let d_mm = 2.0 * (r as f32) / 1e6;
+                let rpm = css as f32 / (core::f32::consts::PI * d_mm);
+                let want = libm::roundf(rpm.min(u32::MAX as f32)) as u32;
+                assert_eq!(css_rpm(css, x), want, "css {css} x {x}");
+            }
+        }
+        assert_eq!(css_rpm(200, 0), u32::MAX);
     }
 }

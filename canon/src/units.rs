@@ -149,7 +149,7 @@ impl Number {
     /// The value as a float (for geometry and macro arithmetic only).
     #[inline]
     pub fn to_f64(&self) -> f64 {
-        self.mantissa as f64 / libm::pow(10.0, f64::from(self.frac_digits))
+        times_pow10(self.mantissa as f64, -i32::from(self.frac_digits))
     }
 
     /// The number nearest to `value` with [`MAX_FRAC_DIGITS`] fraction digits,
@@ -186,6 +186,34 @@ const POW10: [i64; 19] = {
     }
     t
 };
+
+/// The powers of ten a `f64` holds exactly (`10^22` is the last).
+const POW10_F64: [f64; 23] = {
+    let mut t = [1.0f64; 23];
+    let mut i = 1;
+    while i < 23 {
+        t[i] = t[i - 1] * 10.0;
+        i += 1;
+    }
+    t
+};
+
+/// `x × 10^e`, multiplying or dividing by exact powers of ten (one rounding for
+/// |e| ≤ 22, the range of every number a program can write with its fraction
+/// digits). Instead of `libm::pow(10, e)`: the same values there (`pow` is exact
+/// where the power is representable) without 1.2 KB of `pow` in the image.
+pub fn times_pow10(mut x: f64, mut e: i32) -> f64 {
+    while e > 22 {
+        x *= 1e22;
+        e -= 22;
+    }
+    while e < -22 {
+        x /= 1e22;
+        e += 22;
+    }
+    let p = POW10_F64[e.unsigned_abs() as usize];
+    if e < 0 { x / p } else { x * p }
+}
 
 /// `10^n` as an `i64`, `None` above `10^18`.
 #[inline]
@@ -382,6 +410,45 @@ pub fn nm_to_mm(nm: i64) -> f64 {
 
 #[cfg(test)]
 mod tests {
+    /// `to_f64` divides by an exact power of ten: the same bits as dividing by
+    /// `libm::pow(10, k)` for every fraction length a number can have.
+    #[test]
+    fn to_f64_as_pow() {
+        let mut m: i64 = 0x2545_f491_4f6c_dd1d;
+        for _ in 0..200_000 {
+            m ^= m << 13;
+            m ^= ((m as u64) >> 7) as i64;
+            m ^= m << 17;
+            for f in 0..=22u8 {
+                let n = super::Number { mantissa: m >> (f % 40), frac_digits: f, has_point: true };
+                let old = n.mantissa as f64 / libm::pow(10.0, f64::from(f));
+                assert_eq!(n.to_f64().to_bits(), old.to_bits(), "{n:?}");
+            }
+        }
+        // A decimal `m × 10^k` (SINUMERIK's `EX` exponent computes it so) comes out
+        // as exactly that decimal whenever it has at most nine fraction digits and
+        // fits 2^50 units of 10^-9 (`from_f64` rounds `v × 1e9`, a second
+        // rounding): one rounding here, no error a `Number` can show.
+        let mut m: u64 = 0x9e37_79b9_7f4a_7c15;
+        for _ in 0..200_000 {
+            m ^= m << 13;
+            m ^= m >> 7;
+            m ^= m << 17;
+            let k = (m % 41) as i32 - 20;
+            let mant = (((m >> 8) % 1_000_000_000_000_000) >> (m % 50)) as i64;
+            let exact = match i128::from(mant).checked_mul(10i128.pow((k + 9).max(0) as u32)) {
+                Some(x) if k >= -9 && x < 1i128 << 50 => x,
+                _ => continue,
+            };
+            let n = super::Number::from_f64(super::times_pow10(mant as f64, k)).unwrap();
+            assert_eq!(n.scaled(9), Some(exact as i64), "{mant}e{k}");
+        }
+        assert_eq!(super::times_pow10(1.5, 3), 1500.0);
+        assert_eq!(super::times_pow10(1.0, 30), 1e30);
+        assert_eq!(super::times_pow10(25.0, -1), 2.5);
+        assert_eq!(super::times_pow10(5.0, 24 - 16), 5e8);
+    }
+
     use super::*;
     use crate::xorshift::XorShift;
 

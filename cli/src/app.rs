@@ -8,6 +8,7 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
+use interp_core::config::Language;
 use interp_core::{MachineConfig, Panel};
 
 use crate::error::Error;
@@ -113,6 +114,20 @@ pub struct RunArgs {
     /// jump_input); inputs not given are 0. May be given several times.
     #[arg(long, value_name = "N=0|1", value_parser = parse_input)]
     pub input: Vec<(u8, bool)>,
+    /// Language the programs are written in: `siemens` (SINUMERIK 840D) or `fanuc`.
+    /// Without it, `.mpf`/`.spf` files are SINUMERIK programs and others are in the
+    /// machine's power-on language (machine file `language`, FANUC by default).
+    #[arg(long, value_enum, value_name = "LANG")]
+    pub lang: Option<LangArg>,
+}
+
+/// The language of `--lang`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum LangArg {
+    /// The FANUC-style lathe dialect (ISO).
+    Fanuc,
+    /// SINUMERIK 840D.
+    Siemens,
 }
 
 /// `N=0` or `N=1` with N in 0–31.
@@ -127,6 +142,21 @@ fn parse_input(s: &str) -> Result<(u8, bool), String> {
 }
 
 impl RunArgs {
+    /// The language program file `path` is read in on machine `cfg`: `--lang`,
+    /// else SINUMERIK for `.mpf`/`.spf`, else the machine's.
+    pub fn language(&self, path: &Path, cfg: &MachineConfig) -> Language {
+        match self.lang {
+            Some(LangArg::Fanuc) => Language::Fanuc,
+            Some(LangArg::Siemens) => Language::Siemens,
+            None => crate::program::language_of(path).unwrap_or(cfg.language),
+        }
+    }
+
+    /// The machine `cfg` with the language of `path` in force at the start.
+    fn machine_for(&self, path: &Path, cfg: &MachineConfig) -> MachineConfig {
+        MachineConfig { language: self.language(path, cfg), ..cfg.clone() }
+    }
+
     /// The input bits of [`Panel::inputs`].
     fn inputs(&self) -> u32 {
         self.input.iter().fold(0, |bits, &(n, on)| if on { bits | 1 << n } else { bits & !(1 << n) })
@@ -289,7 +319,8 @@ fn check_one(
     variables: &interp_core::lang::fanuc::macros::Variables,
     out: &mut dyn Write,
 ) -> Result<usize, Error> {
-    let programs = Programs::load(path, &args.lib)?;
+    let cfg = &args.machine_for(path, cfg);
+    let programs = Programs::load(path, &args.lib, cfg.language)?;
     let name = path.display().to_string();
     let (r, runaway) = match run_programs(&programs, cfg, panel, OnAlarm::Continue, variables) {
         Ok(r) => (r, false),
@@ -319,7 +350,8 @@ fn check_one(
 /// then report the alarm; with --vars, write the common variables back.
 fn sim(args: &SimArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result<u8, Error> {
     let cfg = machine::load_or_default(args.machine.as_deref())?;
-    let programs = Programs::load(&args.program, &args.run.lib)?;
+    let cfg = args.run.machine_for(&args.program, &cfg);
+    let programs = Programs::load(&args.program, &args.run.lib, cfg.language)?;
     let variables = args.run.variables()?;
     let name = args.program.display().to_string();
     let mut r = run_programs(&programs, &cfg, &panel(args), OnAlarm::Stop, &variables)

@@ -119,7 +119,7 @@ pub fn params_markdown() -> String {
          | ---: | --- | ---: | --- |\n",
     );
     for p in PARAMS {
-        let _ = writeln!(s, "| {} | {} | {} | {} |", p.number, p.unit.name(), p.default, cell(p.meaning));
+        let _ = writeln!(s, "| {} | {} | {} | {} |", p.number, p.unit.name(), p.default, cell(p.meaning()));
     }
     s
 }
@@ -401,6 +401,10 @@ pub const PROVEN_ELSEWHERE: &[(u16, &str)] = &[
     (4017, "alarms.rs alarms_needing_a_machine_setting (400 far moves on unlimited axes)"),
     (4035, "alarms.rs cycle_alarms_needing_a_machine_or_a_long_program (49-segment shape)"),
     (4036, "alarms.rs cycle_alarms_needing_a_machine_or_a_long_program (11 pockets)"),
+    (
+        4052,
+        "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (MCALL in a modally called SINUMERIK subprogram)",
+    ),
     (4501, "alarms.rs motion_alarms_are_raised_with_their_line (simulated drive)"),
     (4502, "alarms.rs motion_alarms_are_raised_with_their_line (simulated drive)"),
     (4503, "alarms.rs motion_alarms_are_raised_with_their_line (simulated spindle)"),
@@ -417,6 +421,178 @@ pub const PROVEN_ELSEWHERE: &[(u16, &str)] = &[
          answers; the time the controller is given) and cli board.rs (lathe board --atc-never)",
     ),
     (4601, "controller starve.rs (a stream cut mid-job; the time the controller is given) and sim faults.rs"),
+    (
+        12080,
+        "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)",
+    ),
+    (
+        12150,
+        "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)",
+    ),
+    (
+        12160,
+        "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)",
+    ),
+    (
+        12170,
+        "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)",
+    ),
+    (
+        12330,
+        "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)",
+    ),
+    (
+        12340,
+        "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)",
+    ),
+    (
+        12460,
+        "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)",
+    ),
+    (
+        12470,
+        "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)",
+    ),
+    (
+        12550,
+        "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)",
+    ),
+    (
+        14011,
+        "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)",
+    ),
+    (
+        14012,
+        "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)",
+    ),
+    (
+        14080,
+        "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)",
+    ),
+    (
+        14500,
+        "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)",
+    ),
+    (
+        14510,
+        "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)",
+    ),
+    (
+        16420,
+        "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)",
+    ),
+    (
+        17020,
+        "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)",
+    ),
+    (
+        17180,
+        "host-tests siemens_language.rs alarms_of_the_language_with_their_numbers_and_lines (and the 12330/12340, 16420 tests there: a SINUMERIK program)",
+    ),
+    (
+        61000,
+        "interp-siemens cycles::tests::undercut.rs undercut_alarms_move_nothing, groove.rs cycle93_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+    ),
+    (
+        61001,
+        "interp-siemens cycles::tests::threads.rs thread_alarms_move_nothing, undercut.rs undercut_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+    ),
+    (
+        61002,
+        "interp-siemens cycles::tests::threads.rs thread_alarms_move_nothing, stock.rs cycle95_alarms_move_nothing, groove.rs cycle93_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+    ),
+    (
+        61005,
+        "interp-siemens cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+    ),
+    (
+        61019,
+        "interp-siemens cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+    ),
+    (
+        61101,
+        "interp-siemens cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+    ),
+    (
+        61102,
+        "interp-siemens cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+    ),
+    (
+        61107,
+        "interp-siemens cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+    ),
+    (
+        61125,
+        "interp-siemens cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+    ),
+    (
+        61601,
+        "interp-siemens cycles::tests::undercut.rs undercut_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+    ),
+    (
+        61602,
+        "interp-siemens cycles::tests::groove.rs cycle93_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+    ),
+    (
+        61603,
+        "interp-siemens cycles::tests::groove.rs cycle93_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+    ),
+    (
+        61604,
+        "interp-siemens cycles::tests::stock.rs cycle95_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+    ),
+    (
+        61605,
+        "interp-siemens cycles::tests::stock.rs cycle95_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+    ),
+    (
+        61606,
+        "interp-siemens cycles::tests::stock.rs cycle95_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+    ),
+    (
+        61607,
+        "interp-siemens cycles::tests::stock.rs cycle95_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+    ),
+    (
+        61608,
+        "interp-siemens cycles::tests::undercut.rs undercut_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+    ),
+    (
+        61609,
+        "interp-siemens cycles::tests::undercut.rs undercut_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+    ),
+    (
+        61612,
+        "interp-siemens cycles::tests::threads.rs cycle97_recut_start_angle (the cycle called directly until SINUMERIK programs run)",
+    ),
+    (
+        61613,
+        "interp-siemens cycles::tests::undercut.rs undercut_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+    ),
+    (
+        61701,
+        "interp-siemens cycles::tests::stock.rs cycle950_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+    ),
+    (
+        61702,
+        "interp-siemens cycles::tests::stock.rs cycle950_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+    ),
+    (
+        61720,
+        "interp-siemens cycles::tests::stock.rs cycle950_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+    ),
+    (
+        61721,
+        "interp-siemens cycles::tests::stock.rs cycle950_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+    ),
+    (
+        61803,
+        "interp-siemens cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+    ),
+    (
+        61807,
+        "interp-siemens cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+    ),
 ];
 
 /// What this controller does where the manual says "报警" (alarm).

@@ -9,6 +9,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use interp_core::canon::{Canon, CanonSink, Full};
+use interp_core::config::Language;
 use interp_core::lang::fanuc::macros::Variables;
 use interp_core::program::{Cursor, ProgramId, ProgramIndex, ProgramStore};
 use interp_core::{Alarm, Interpreter, MachineConfig, Panel, Pos, Progress, SingleProgram};
@@ -37,35 +38,44 @@ pub struct Programs {
 }
 
 impl Programs {
-    /// The program file `path` (its first program is the main program; one without
-    /// an O number is program 0) and the library: every `.nc` file of each
-    /// directory in `library`, and each file named there. The main file is not
-    /// read twice when it lies in a library directory.
-    pub fn load(path: &Path, library: &[PathBuf]) -> Result<Programs, Error> {
+    /// The program file `path` in `language` (its first program is the main
+    /// program; one without an O number or `%_N_` header is program 0) and the
+    /// library: every `.nc`, `.mpf` and `.spf` file of each directory in
+    /// `library`, and each file named there (`.mpf`/`.spf` files are SINUMERIK
+    /// programs, `.nc` files FANUC ones, others in `language`). The main file is
+    /// not read twice when it lies in a library directory.
+    pub fn load(path: &Path, library: &[PathBuf], language: Language) -> Result<Programs, Error> {
         let mut p =
             Programs { space: Vec::new(), index: Box::new(ProgramIndex::new()), sources: BTreeMap::new(), main: 0 };
-        p.main = p.add(path, Some(0))?;
+        p.main = p.add(path, Some(0), language)?;
         let main_file = path.canonicalize().ok();
         for lib in library {
             for file in library_files(lib)? {
                 if file.canonicalize().ok() != main_file {
-                    p.add(&file, None)?;
+                    let lang = match file.extension() {
+                        Some(e) if e.eq_ignore_ascii_case("nc") => Language::Fanuc,
+                        _ => language_of(&file).unwrap_or(language),
+                    };
+                    p.add(&file, None, lang)?;
                 }
             }
         }
         Ok(p)
     }
 
-    /// Reads and indexes one file.
-    fn add(&mut self, path: &Path, unnamed: Option<ProgramId>) -> Result<ProgramId, Error> {
+    /// Reads and indexes one file: a SINUMERIK file by its `%_N_` headers and
+    /// PROC statements, a FANUC one by its O numbers.
+    fn add(&mut self, path: &Path, unnamed: Option<ProgramId>, language: Language) -> Result<ProgramId, Error> {
         let bytes = read_program(path)?;
         let name = path.display().to_string();
         let start = self.space.len();
         self.space.extend_from_slice(&bytes);
-        let first = self
-            .index
-            .add_file(&self.space, start, self.space.len(), unnamed)
-            .map_err(|e| Error::Library { path: name.clone(), message: e.to_string() })?;
+        let end = self.space.len();
+        let first = match language {
+            Language::Fanuc => self.index.add_file(&self.space, start, end, unnamed),
+            Language::Siemens => self.index.add_named_file(&self.space, start, end, unnamed),
+        }
+        .map_err(|e| Error::Library { path: name.clone(), message: e.to_string() })?;
         for n in self.index.numbers() {
             self.sources.entry(n).or_insert_with(|| name.clone());
         }
@@ -90,9 +100,21 @@ impl ProgramStore for Programs {
     fn find_sequence(&self, n: u32, from: Cursor) -> Option<Cursor> {
         self.index.find_sequence(n, from)
     }
+
+    fn find_named(&self, name: &[u8]) -> Option<Cursor> {
+        let id = self.index.find_named(&self.space, name)?;
+        self.index.start(id)
+    }
 }
 
-/// The program files of a `--lib` argument: the `.nc` files of a directory
+/// The language a file's extension names: SINUMERIK for `.mpf` (main program)
+/// and `.spf` (subprogram), none for others.
+pub fn language_of(path: &Path) -> Option<Language> {
+    let ext = path.extension()?;
+    (ext.eq_ignore_ascii_case("mpf") || ext.eq_ignore_ascii_case("spf")).then_some(Language::Siemens)
+}
+
+/// The program files of a `--lib` argument: the `.nc`, `.mpf` and `.spf` files of a directory
 /// (sorted), or the file itself.
 fn library_files(lib: &Path) -> Result<Vec<PathBuf>, Error> {
     if !lib.is_dir() {
@@ -102,7 +124,8 @@ fn library_files(lib: &Path) -> Result<Vec<PathBuf>, Error> {
     let mut files = Vec::new();
     for entry in std::fs::read_dir(lib).map_err(read_error)? {
         let path = entry.map_err(read_error)?.path();
-        if path.is_file() && path.extension().is_some_and(|e| e.eq_ignore_ascii_case("nc")) {
+        let program = |e: &std::ffi::OsStr| ["nc", "mpf", "spf"].iter().any(|x| e.eq_ignore_ascii_case(x));
+        if path.is_file() && path.extension().is_some_and(program) {
             files.push(path);
         }
     }
@@ -216,6 +239,7 @@ fn run_store<P: ProgramStore + ?Sized>(
 ) -> Result<Run, Runaway> {
     let start = cfg.reference[0];
     let mut interp = Interpreter::new(cfg.clone());
+    interp.plug(&interp_siemens::SINUMERIK);
     interp.set_machine_position(start);
     interp.select_main(main);
     *interp.variables_mut() = variables.clone();

@@ -1170,7 +1170,9 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             // is not duplicated for check mode; a call per action delivered).
             let (mut discard, mut to_port) = (Discard, PortSink(&mut *port));
             let sink: &mut dyn CanonSink = if self.check { &mut discard } else { &mut to_port };
-            let r = self.interp.step(&store, &self.panel, sink);
+            // The non-generic entry: the interpreter's per-block path is compiled
+            // in interp-core at its opt-level, not in the (size-built) firmware crate.
+            let r = self.interp.step_dyn(&store, &self.panel, sink);
             match r {
                 Ok(Progress::Blocked | Progress::Paused) => return,
                 Ok(Progress::Executed { .. }) => self.job_worked = true,
@@ -1191,13 +1193,7 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
     /// An interpreter alarm: a look-ahead in a stream that only lacks text waits
     /// for it; anything else is a program alarm.
     fn interp_alarm<M: MotionPort + ?Sized>(&mut self, a: Alarm, port: &mut M) {
-        let missing_text = matches!(
-            a.kind,
-            AlarmKind::EndOfRecord
-                | AlarmKind::JumpTargetNotFound { .. }
-                | AlarmKind::MissingEnd { .. }
-                | AlarmKind::SequenceNotFound { .. }
-        );
+        let missing_text = a.kind.waits_for_text();
         let at = self.interp.block_start();
         let at_end = at.offset >= self.window.len();
         if self.job == Job::Stream && a.program == 0 && missing_text {

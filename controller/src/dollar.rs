@@ -37,9 +37,10 @@ fn number(s: &[u8]) -> Option<f64> {
     crate::decimal::decimal(s)
 }
 
-/// A whole number.
+/// A whole number; ASCII blanks around it are ignored (the link is ASCII: no
+/// Unicode whitespace table in the image).
 fn whole(s: &[u8]) -> Option<u32> {
-    core::str::from_utf8(s).ok()?.trim().parse().ok()
+    core::str::from_utf8(s.trim_ascii()).ok()?.parse().ok()
 }
 
 impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<W, T, P, S> {
@@ -69,7 +70,11 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
                 let kind = kind_name(self.interp.config().kind);
                 self.out.fmt(Class::Info, format_args!("[VER:1.1h.{kind}:]"));
                 self.out.fmt(Class::Info, format_args!("[OPT:,{},{}]", port.status().capacity, crate::controller::RX));
-                self.msg(format_args!("lathe controller {} (FANUC {kind} language)", env!("CARGO_PKG_VERSION")));
+                let language = match self.interp.language() {
+                    interp_core::config::Language::Fanuc => "FANUC",
+                    interp_core::config::Language::Siemens => "SINUMERIK",
+                };
+                self.msg(format_args!("lathe controller {} ({language} {kind} language)", env!("CARGO_PKG_VERSION")));
             }
             b"N" => {
                 for i in 0..2 {

@@ -10,7 +10,7 @@
 
 use interp_core::MachineConfig;
 use interp_core::axis::Axis;
-use interp_core::config::{AxisConfig, MachineKind, Param, ParamUnit, ToolChanger};
+use interp_core::config::{AxisConfig, Language, MachineKind, Param, ParamUnit, ToolChanger};
 
 /// The controller's own settings (the rest live in the machine description).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -84,7 +84,7 @@ impl Default for Settings {
 /// The grbl-numbered settings, in `$$` order.
 pub const NUMBERS: &[u16] = &[
     11, 12, 20, 21, 22, 23, 24, 25, 27, 30, 100, 101, 102, 110, 111, 112, 120, 121, 122, 130, 131, 132, 300, 301, 302,
-    303, 304, 305, 306, 311, 312, 313,
+    303, 304, 305, 306, 310, 311, 312, 313,
 ];
 
 /// Why a setting write was refused.
@@ -203,6 +203,10 @@ pub fn get(n: u16, cfg: &MachineConfig, s: &Settings) -> Option<f64> {
         304 => f64::from(s.starve_timeout_s),
         305 => f64::from(s.lookahead_wait_ms),
         306 => f64::from(s.spindle_stream_timeout_s),
+        310 => match cfg.language {
+            Language::Fanuc => 0.0,
+            Language::Siemens => 1.0,
+        },
         311 => kind_number(cfg.kind),
         _ => return None,
     })
@@ -274,6 +278,13 @@ pub fn set(n: u16, v: f64, cfg: &mut MachineConfig, s: &mut Settings) -> Result<
             s.lookahead_wait_ms = ms;
         }
         306 => s.spindle_stream_timeout_s = whole(v)?.min(MAX_STARVE_S),
+        310 => {
+            cfg.language = match whole(v)? {
+                0 => Language::Fanuc,
+                1 => Language::Siemens,
+                _ => return Err(bad("is 0 (FANUC) or 1 (SINUMERIK)")),
+            }
+        }
         311 => match whole(v)? {
             0 => set_kind(MachineKind::Lathe, cfg, s),
             1 if !interp_core::MILL => {

@@ -245,3 +245,24 @@ fn a_grbl_sync_dwell_runs_as_seconds_or_raises_0007_as_the_manual_says() {
     r.stream("G4 P500\nM30\n", 5_000);
     assert!(r.port.pushed.iter().any(|c| c.line == 1 && c.action == Action::Dwell { ms: 500 }));
 }
+
+/// `$310`: the language at power-on and after a reset (FANUC 0, SINUMERIK 1),
+/// kept with the settings; `$I` names the language in force; a SINUMERIK
+/// program streams after the reset.
+#[test]
+fn setting_310_selects_the_sinumerik_language_from_the_next_reset() {
+    let mut r = idle_rig();
+    assert!(r.command("$$").contains(&"$310=0".to_string()));
+    assert!(r.command("$I").iter().any(|l| l.contains("FANUC lathe language")));
+    assert_eq!(r.command("$310=2").last().unwrap(), "error:2");
+    assert_eq!(r.command("$310=1"), vec!["ok"]);
+    assert!(r.ctl.take_dirty().settings, "stored like the other settings");
+    assert!(r.command("$$").contains(&"$310=1".to_string()));
+    r.send(&[0x18]);
+    r.run_ms(20);
+    r.take_lines();
+    assert!(r.command("$I").iter().any(|l| l.contains("SINUMERIK lathe language")), "{:?}", r.command("$I"));
+    let answers = r.stream("R1=25 ; SINUMERIK\nG0 X=R1*2 Z=IC(5)\nM30\n", 20_000);
+    assert!(answers.iter().any(|l| l == "[MSG:Pgm End]"), "{answers:?}");
+    assert_eq!(r.ctl.interpreter().siemens_vars().r(1), Ok(25.0));
+}

@@ -110,9 +110,17 @@ fn offsets_round_trip() {
     offsets.work[0] = Pos::xz(-150_000_000, -300_250_000);
     offsets.work[5] = Pos([1, 2, 3, 4]);
     offsets.external = Pos::xz(0, 12_000);
-    *offsets.tools.get_mut(1).unwrap() =
-        ToolOffset { x: 1_000, z: -2_000, x_wear: 30, z_wear: -40, radius: 400_000, tip: 3 };
-    *offsets.tools.get_mut(32).unwrap() = ToolOffset { x: -5, z: 6, x_wear: 0, z_wear: 0, radius: 0, tip: 9 };
+    *offsets.tools.get_mut(1).unwrap() = ToolOffset {
+        x: 1_000,
+        z: -2_000,
+        x_wear: 30,
+        z_wear: -40,
+        radius: 400_000,
+        tip: 3,
+        clearance_udeg: 60_000_000,
+    };
+    *offsets.tools.get_mut(32).unwrap() =
+        ToolOffset { x: -5, z: 6, x_wear: 0, z_wear: 0, radius: 0, tip: 9, clearance_udeg: 0 };
     {
         let mut p = open(&mut flash);
         p.save_offsets(&Offsets::default()).unwrap();

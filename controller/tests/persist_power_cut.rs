@@ -59,8 +59,15 @@ fn offsets(seed: i64) -> Box<Offsets> {
     o.work[(seed as usize) % 6] = Pos([seed, 2 * seed, 3 * seed, 0]);
     o.external = Pos::xz(0, seed * 1000);
     let row = 1 + (seed as u16 % MAX_OFFSETS as u16);
-    *o.tools.get_mut(row).unwrap() =
-        ToolOffset { x: seed, z: -seed, x_wear: 5, z_wear: -5, radius: 400_000, tip: (seed % 10) as u8 };
+    *o.tools.get_mut(row).unwrap() = ToolOffset {
+        x: seed,
+        z: -seed,
+        x_wear: 5,
+        z_wear: -5,
+        radius: 400_000,
+        tip: (seed % 10) as u8,
+        clearance_udeg: 0,
+    };
     Box::new(o)
 }
 

@@ -26,7 +26,7 @@ use embassy_stm32::interrupt::Priority;
 use interp_core::axis::{Axis, Pos};
 use interp_core::canon::{Canon, CanonSink, Full};
 use interp_core::config::{MachineConfig, MachineKind};
-use motion_core::motion::{MotionCore, QUEUE};
+use motion_driver::board::{self, BoardEngine, BoardPlayer};
 use motion_driver::engine::{Engine, EngineAxis, RING};
 use motion_driver::playback::{PlayTiming, Player};
 use motion_driver::ring::EdgeRing;
@@ -57,14 +57,14 @@ pub const DRIVER_PRIORITY: Priority = Priority::P3;
 const MOTION_BASEPRI: u8 = (MOTION_PRIORITY as u8) & 0xF0;
 
 /// The motion core with the firmware's look-ahead depth.
-pub type Core = MotionCore<QUEUE>;
+pub use motion_driver::board::Core;
 
 /// What the priority-P1 interrupts own: the motion core and the period engine.
 pub struct Motion {
     /// Planner, interpolator, step generators, spindle gearbox.
     pub core: Core,
     /// Period pipeline and encoder widening.
-    pub engine: Engine<3>,
+    pub engine: BoardEngine,
 }
 
 /// A static used by one execution priority only (plus set-up before that priority's
@@ -128,7 +128,7 @@ impl<T> PriorityCell<T> {
 static MOTION: PriorityCell<Motion> = PriorityCell::new();
 /// Owned by priority P0 (step interrupt) on the board; by the software motion task
 /// in the QEMU build.
-static PLAYER: PriorityCell<Player<RING, 3>> = PriorityCell::new();
+static PLAYER: PriorityCell<BoardPlayer> = PriorityCell::new();
 /// Edge rings X, Z, C: P1 produces, P0 consumes.
 static RINGS: [EdgeRing<RING>; 3] = [EdgeRing::new(), EdgeRing::new(), EdgeRing::new()];
 /// Raw TIM5 count latched by the index interrupt, and whether one was seen.
@@ -217,7 +217,7 @@ pub unsafe fn with_motion<R>(f: impl FnOnce(&mut Motion) -> R) -> Option<R> {
 ///
 /// Only from the step interrupt (P0), or from the one task that plays edges in
 /// the QEMU build (no step interrupt there).
-pub unsafe fn with_player<R>(f: impl FnOnce(&mut Player<RING, 3>) -> R) -> Option<R> {
+pub unsafe fn with_player<R>(f: impl FnOnce(&mut BoardPlayer) -> R) -> Option<R> {
     // SAFETY: the caller is the player's only user.
     unsafe { PLAYER.get() }.map(f)
 }
@@ -269,12 +269,12 @@ impl CanonSink for MotionPort {
     /// Queues a canonical action in the motion core: the interpreter writes straight
     /// into the planner, one critical section per action.
     fn push(&mut self, action: Canon) -> Result<(), Full> {
-        self.lock(|m| m.core.push(action)).unwrap_or(Err(Full))
+        self.lock(|m| board::push(&mut m.core, &action)).unwrap_or(Err(Full))
     }
 
     /// As [`CanonSink::push`], the action read where the interpreter keeps it.
     fn push_ref(&mut self, action: &Canon) -> Result<(), Full> {
-        self.lock(|m| m.core.push_ref(action)).unwrap_or(Err(Full))
+        self.lock(|m| board::push(&mut m.core, action)).unwrap_or(Err(Full))
     }
 }
 
@@ -313,6 +313,7 @@ pub mod isr {
     use embassy_stm32::interrupt::{self, InterruptExt};
     use embassy_stm32::pac;
     use embassy_stm32::pac::timer::regs::{SrCore, SrGp16};
+    use motion_driver::board;
     use motion_driver::encoder::Window;
     use motion_driver::engine::Sample;
 
@@ -373,7 +374,7 @@ pub mod isr {
                 loop {
                     let now = STEP_TIMER.cnt().read();
                     let estop = STEP_PORT.idr().read().0 & ESTOP_BIT != 0;
-                    let out = player.run(now, estop);
+                    let out = board::play(player, now, estop);
                     let bsrr = out.bsrr | if estop { DRIVE_ENABLE_BIT << 16 } else { 0 };
                     if bsrr != 0 {
                         STEP_PORT.bsrr().write_value(pac::gpio::regs::Bsrr(bsrr));
@@ -403,8 +404,8 @@ pub mod isr {
         // SAFETY: this is a P1 interrupt.
         let missed = unsafe {
             with_motion(|m| {
-                m.engine.period(&mut m.core, sample);
-                let w = m.engine.window(&mut m.core);
+                board::period(&mut m.engine, &mut m.core, sample);
+                let w = board::window(&mut m.engine, &mut m.core);
                 arm(w);
                 m.engine.reached(&w, ENCODER_TIMER.cnt().read())
             })
@@ -422,6 +423,7 @@ pub mod isr {
     /// after the values are written, so only a match with the new values pends
     /// the interrupt; the caller checks a fresh reading for a count that went past
     /// a compare before it was set ([`motion_driver::engine::Engine::reached`]).
+    #[inline(always)]
     fn arm(w: Window) {
         if let Some(up) = w.up {
             ENCODER_TIMER.ccr(2).write_value(up);
@@ -449,11 +451,11 @@ pub mod isr {
                 loop {
                     let raw = ENCODER_TIMER.cnt().read();
                     let now = STEP_TIMER.cnt().read();
-                    if m.engine.encoder(&mut m.core, now, raw) {
+                    if board::encoder(&mut m.engine, &mut m.core, now, raw) {
                         // Preempts this interrupt: the step edge is played now.
                         interrupt::TIM2.pend();
                     }
-                    let w = m.engine.window(&mut m.core);
+                    let w = board::window(&mut m.engine, &mut m.core);
                     arm(w);
                     if !m.engine.reached(&w, ENCODER_TIMER.cnt().read()) {
                         break;

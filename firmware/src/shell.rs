@@ -10,7 +10,7 @@ use core::mem::MaybeUninit;
 
 use controller::{Mode, MotionStatus};
 use interp_core::axis::Pos;
-use interp_core::canon::{Canon, CanonSink, Full, SpindleDir};
+use interp_core::canon::{Canon, Full, SpindleDir};
 use interp_core::{AlarmKind, MachineConfig};
 use motion_core::motion::Event;
 use motion_driver::io::Switch;
@@ -59,7 +59,12 @@ pub type Ctl = controller::Controller<WINDOW, TEXT, PROGRAMS, SEQUENCES>;
 /// copying it (the stack has no room for a second copy).
 #[inline(never)]
 pub fn build(slot: &'static mut MaybeUninit<Ctl>, cfg: MachineConfig, pos: Pos) -> &'static mut Ctl {
-    Ctl::new_in(slot, cfg, pos)
+    let ctl = Ctl::new_in(slot, cfg, pos);
+    // SINUMERIK mode: its front end plugged in (without the feature G290 and
+    // `$310=1` raise alarm 4007 and none of interp-siemens is linked).
+    #[cfg(feature = "siemens")]
+    ctl.interpreter_mut().plug(&interp_siemens::SINUMERIK);
+    ctl
 }
 
 /// The motion core behind the board's handle: every call is one critical section
@@ -67,11 +72,11 @@ pub fn build(slot: &'static mut MaybeUninit<Ctl>, cfg: MachineConfig, pos: Pos) 
 /// `impl MotionPort for MotionCore<N>` (controller/src/port.rs) does.
 impl controller::MotionPort for MotionPort {
     fn push(&mut self, c: Canon) -> Result<(), Full> {
-        self.lock(|m| CanonSink::push(&mut m.core, c)).unwrap_or(Err(Full))
+        self.lock(|m| motion_driver::board::push(&mut m.core, &c)).unwrap_or(Err(Full))
     }
 
     fn push_ref(&mut self, c: &Canon) -> Result<(), Full> {
-        self.lock(|m| CanonSink::push_ref(&mut m.core, c)).unwrap_or(Err(Full))
+        self.lock(|m| motion_driver::board::push(&mut m.core, c)).unwrap_or(Err(Full))
     }
 
     fn feed_hold(&mut self) {

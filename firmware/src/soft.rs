@@ -8,6 +8,7 @@
 //! revolution. So threads (G32, G76, G92) run in QEMU too.
 
 use interp_core::canon::SpindleDir;
+use motion_driver::board;
 use motion_driver::encoder::Window;
 use motion_driver::engine::Sample;
 
@@ -50,7 +51,7 @@ impl SoftMotion {
             // The spindle turns up to the period's start, then the period is computed.
             self.turn(port, start);
             let sample = Sample { now: start, raw_count: self.raw, index: motion::index_latch(), estop: false };
-            port.lock(|m| m.engine.period(&mut m.core, sample));
+            port.lock(|m| board::period(&mut m.engine, &mut m.core, sample));
             self.window = self.arm(port, start);
         }
         // The encoder never runs ahead of the periods computed: after a stall its
@@ -59,7 +60,7 @@ impl SoftMotion {
         let _ = unsafe {
             motion::with_player(|p| {
                 for _ in 0..MAX_EDGES {
-                    match p.run(now, false).next {
+                    match board::play(p, now, false).next {
                         Some(n) if now.wrapping_sub(n) as i32 >= 0 => {}
                         _ => break,
                     }
@@ -73,13 +74,13 @@ impl SoftMotion {
     fn arm(&mut self, port: &mut MotionPort, now: u32) -> Window {
         let raw = self.raw;
         port.lock(|m| {
-            let mut w = m.engine.window(&mut m.core);
+            let mut w = board::window(&mut m.engine, &mut m.core);
             for _ in 0..8 {
                 if !m.engine.reached(&w, raw) {
                     break;
                 }
-                m.engine.encoder(&mut m.core, now, raw);
-                w = m.engine.window(&mut m.core);
+                board::encoder(&mut m.engine, &mut m.core, now, raw);
+                w = board::window(&mut m.engine, &mut m.core);
             }
             w
         })

@@ -54,6 +54,8 @@ pub fn run_interp<P: ProgramStore + ?Sized>(
     panel: &Panel,
     max_steps: usize,
 ) -> Run {
+    // Both languages, as the lathe command and the F405 board have them.
+    interp.plug(&interp_siemens::SINUMERIK);
     let mut sink = VecSink::default();
     let mut alarms = Vec::new();
     for _ in 0..max_steps {

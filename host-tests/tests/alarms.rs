@@ -250,6 +250,13 @@ fn every_catalog_code_has_a_triggering_program() {
     covered.extend([32, 44, 45, 142, 212, 4048, 4049, 4051]);
     // controller/tests/starve.rs, sim/tests/faults.rs (a stream whose link is lost)
     covered.insert(4601);
+    // siemens_language.rs (SINUMERIK mode: the front end's alarms with the 840D's numbers)
+    covered.extend([12080, 12150, 12160, 12170, 12330, 12340, 12460, 12470, 12550, 14011, 14012, 14080, 14500]);
+    covered.extend([14510, 16420, 17020, 17180, 4052]);
+    // interp-siemens cycles tests (the SINUMERIK cycles called directly)
+    covered.extend([61000, 61001, 61002, 61601, 61602, 61603, 61604, 61605, 61606, 61607, 61608, 61609, 61612, 61613]);
+    covered.extend([61701, 61702, 61720, 61721]);
+    covered.extend([61005, 61019, 61101, 61102, 61107, 61125, 61803, 61807]);
     // controller/tests/mill.rs and cli board.rs (a tool changer that never reports done)
     covered.insert(4511);
     // macro_calls.rs nested_g66_calls_the_newest_then_the_older_one_from_its_moves

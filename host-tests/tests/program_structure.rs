@@ -188,9 +188,11 @@ fn g290_and_g291_stand_alone_and_switch_the_language() {
     assert!(run("G291\nG00 X10\nM30\n").alarms.is_empty());
     assert_eq!(run("G290 X10\nM30\n").alarm_codes(), vec![(1, 4016)]);
     assert_eq!(run("G00 G291\nM30\n").alarm_codes(), vec![(1, 4016)]);
-    let r = run("G00 X10\nN20 G290\nG0 X20\n");
-    assert_eq!(path(&r), vec![(10.0, 0.0)]);
-    assert_eq!(r.alarms.first().map(|a| a.line), Some(3), "{:?}", r.alarms);
+    // After G290 the blocks are SINUMERIK blocks (siemens_language.rs has more):
+    // `;` is a comment there, and the text ends without M30 (alarm 5010).
+    let r = run("G00 X10\nN20 G290\nG0 X20 ; SINUMERIK comment\n");
+    assert_eq!(path(&r), vec![(10.0, 0.0), (20.0, 0.0)]);
+    assert_eq!(r.alarm_codes(), vec![(4, 5010)], "{:?}", r.alarms);
 }
 
 /// The mill's table holds no lathe cycle: G71 on a machining centre is alarm 0010,

@@ -40,6 +40,12 @@ pub enum GCode {
     WorkFrame(u8),
     Inch,
     Metric,
+    /// A SINUMERIK standard cycle call (`CYCLE95("KONTUR_1", …)` in a block of its
+    /// own): no G number; to the engine one of the multiple cycles (next to them,
+    /// so that testing for them stays one range compare). The bound call reaches
+    /// the engine in the block's stage ([`crate::cycles::CycleStage::call`],
+    /// [`crate::lang::siemens::call`]).
+    CycleCall,
     FinishCycle,
     RoughTurnCycle,
     RoughFaceCycle,
@@ -344,7 +350,9 @@ impl GCode {
             | VariableLeadThread | TurningCycle | ThreadCycle | FacingCycle => Group::Motion,
             Dwell | ExactStopOnce | ReferenceReturn | ReferenceReturnN | LocalFrame | MachineCoordinates
             | SetCoordinates | FinishCycle | RoughTurnCycle | RoughFaceCycle | PatternCycle | FacePeckCycle
-            | GroovePeckCycle | MultiThreadCycle | Language(_) | DataSetting | ReturnFromReference => Group::NonModal,
+            | GroovePeckCycle | MultiThreadCycle | Language(_) | CycleCall | DataSetting | ReturnFromReference => {
+                Group::NonModal
+            }
             CssOn | CssOff => Group::SpindleMode,
             Absolute | Incremental => Group::Distance,
             StrokeCheckOn | StrokeCheckOff => Group::StrokeCheck,

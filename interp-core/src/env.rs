@@ -15,6 +15,21 @@ pub trait Environment {
     fn input(&self, n: u16) -> Option<bool>;
 }
 
+impl<E: Environment + ?Sized> Environment for &E {
+    fn block_skip(&self, level: u8) -> bool {
+        (**self).block_skip(level)
+    }
+    fn optional_stop(&self) -> bool {
+        (**self).optional_stop()
+    }
+    fn referenced(&self, axis: Axis) -> bool {
+        (**self).referenced(axis)
+    }
+    fn input(&self, n: u16) -> Option<bool> {
+        (**self).input(n)
+    }
+}
+
 /// Switch and input settings held in plain fields (simulator, tests, MDI).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Panel {

@@ -53,6 +53,12 @@ pub use ::canon;
 /// every G code: the M-series table is not in the image).
 pub const MILL: bool = ::canon::MILL;
 
+/// Whether this build carries SINUMERIK mode (cargo feature `siemens`, turned on
+/// by the `interp-siemens` crate: the interpreter's SINUMERIK state in
+/// `lang::siemens` and `interpreter::siemens`). Without it G290 and a power-on language of SINUMERIK raise
+/// alarm 4007.
+pub const SIEMENS: bool = cfg!(feature = "siemens");
+
 /// Whether `cfg` runs as a machining centre in this build: every M-series path
 /// is behind this test, so a build without the `mill` feature leaves them out.
 #[inline(always)]

@@ -240,7 +240,8 @@ impl VirtualBoard {
         let start = cfg.reference[0];
         let opts = SimOptions { spindle, start, max_time_s: f64::INFINITY, ..SimOptions::default() };
         let sim = Sim::new(cfg.clone(), opts)?;
-        let ctl = Box::new(controller::Board::new(cfg, start));
+        let mut ctl = Box::new(controller::Board::new(cfg, start));
+        ctl.interpreter_mut().plug(&interp_siemens::SINUMERIK);
         Ok(VirtualBoard {
             ctl,
             sim,

@@ -348,6 +348,7 @@ impl Sim {
         hook: impl FnMut(&mut Sim),
     ) -> Report {
         let mut interp = Box::new(Interpreter::new(self.cfg.clone()));
+        interp.plug(&interp_siemens::SINUMERIK);
         interp.set_machine_position(self.opts.start);
         interp.select_main(main);
         *interp.variables_mut() = variables.clone();

@@ -176,16 +176,25 @@ pub struct ParamDef {
     pub unit: ParamUnit,
     /// Default, in file units.
     pub default: f64,
-    /// What it does.
-    pub meaning: &'static str,
+}
+
+impl ParamDef {
+    /// What it does (for `lathe params` and docs/PARAMETERS.md). The texts are a
+    /// table of their own, apart from [`PARAMS`]: the board looks parameters up by
+    /// number and never shows a meaning, so 5 KB of text stay out of its flash.
+    pub fn meaning(&self) -> &'static str {
+        MEANINGS[self.id as usize]
+    }
 }
 
 macro_rules! defs {
     ($($id:ident $num:literal $unit:ident $def:literal $text:literal;)*) => {
         /// Every parameter, in the order of [`Param`].
         pub const PARAMS: &[ParamDef] = &[
-            $(ParamDef { id: Param::$id, number: $num, unit: ParamUnit::$unit, default: $def, meaning: $text },)*
+            $(ParamDef { id: Param::$id, number: $num, unit: ParamUnit::$unit, default: $def },)*
         ];
+        /// What each parameter of [`PARAMS`] does, in the same order.
+        const MEANINGS: &[&str] = &[$($text,)*];
     };
 }
 

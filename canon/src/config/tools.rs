@@ -30,8 +30,12 @@ pub struct ToolOffset {
     pub z_wear: i64,
     /// Nose radius (nm), for nose radius compensation.
     pub radius: i64,
-    /// Imaginary tip direction 0–9 (2.18.1).
+    /// Imaginary tip direction 0–9 (2.18.1); the SINUMERIK cutting edge position.
     pub tip: u8,
+    /// Clearance (free cutting) angle of the edge, µdeg, 0–90°: the SINUMERIK
+    /// offset parameter P24 (`$TC_DP24`) the turning cycles check undercuts against
+    /// (seed 001 lines 10163–10184); 0 = no check.
+    pub clearance_udeg: u32,
 }
 
 impl ToolOffset {

@@ -292,6 +292,11 @@ fn apply_offsets(rows: &[Offset], cfg: &mut MachineConfig) -> Result<(), String>
             Some(t) => row.tip = t,
             None => {}
         }
+        match r.clearance {
+            Some(c) if !(0.0..=90.0).contains(&c) => return Err(field("clearance must be 0 to 90 degrees")),
+            Some(c) => row.clearance_udeg = (c * 1e6).round() as u32,
+            None => {}
+        }
     }
     Ok(())
 }

@@ -159,6 +159,7 @@ fn offsets(cfg: &MachineConfig) -> Vec<Offset> {
                 z_wear: Some(external(r.z_wear, 1e6)),
                 radius: Some(external(r.radius, 1e6)),
                 tip: Some(r.tip),
+                clearance: (r.clearance_udeg != 0).then(|| external(i64::from(r.clearance_udeg), 1e6)),
                 ..Offset::default()
             }
         })

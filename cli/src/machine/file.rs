@@ -276,6 +276,8 @@ pub struct Offset {
     pub radius: Option<f64>,
     /// Imaginary tip direction 0–9.
     pub tip: Option<u8>,
+    /// Clearance angle of the edge, degrees 0–90 (SINUMERIK P24; 0 = no check).
+    pub clearance: Option<f64>,
 }
 
 /// Spindle limits.

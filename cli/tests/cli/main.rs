@@ -11,6 +11,7 @@ mod jsonl;
 mod link;
 mod machine;
 mod macros;
+mod siemens;
 mod sim;
 mod svg;
 mod tape_flow;

@@ -17,7 +17,9 @@ const EXTERNAL: u16 = WORK_OFFSETS as u16;
 /// Bytes of a stored position.
 const POS_LEN: usize = 8 * AXIS_COUNT;
 /// Bytes of a stored tool offset row.
-const TOOL_LEN: usize = 8 * 5 + 1;
+const TOOL_LEN: usize = 8 * 5 + 4 + 1;
+/// A tool record written before the clearance angle was stored (read as 0°).
+const TOOL_LEN_OLD: usize = 8 * 5 + 1;
 /// Bytes of a stored G54.1 offset: X, Y, Z as `i32` nm, as the interpreter holds them.
 const EXTRA_LEN: usize = 4 * 3;
 
@@ -74,13 +76,18 @@ fn encode_tool(t: &ToolOffset) -> [u8; TOOL_LEN] {
     for (dst, v) in out.chunks_exact_mut(8).zip([t.x, t.z, t.x_wear, t.z_wear, t.radius]) {
         dst.copy_from_slice(&v.to_le_bytes());
     }
+    out[40..44].copy_from_slice(&t.clearance_udeg.to_le_bytes());
     out[TOOL_LEN - 1] = t.tip;
     out
 }
 
 fn decode_tool(bytes: &[u8]) -> ToolOffset {
     let [x, z, x_wear, z_wear, radius] = decode_i64s::<5>(bytes);
-    ToolOffset { x, z, x_wear, z_wear, radius, tip: bytes.last().copied().unwrap_or(0) }
+    let clearance_udeg = match bytes.get(40..44) {
+        Some(b) if bytes.len() == TOOL_LEN => u32::from_le_bytes([b[0], b[1], b[2], b[3]]),
+        _ => 0,
+    };
+    ToolOffset { x, z, x_wear, z_wear, radius, tip: bytes.last().copied().unwrap_or(0), clearance_udeg }
 }
 
 /// `f64` bits of a variable value: NaN for null.
@@ -193,7 +200,7 @@ impl<F: NorFlash + MultiwriteNorFlash> Persist<F> {
                     *slot = p;
                 }
             }
-            Some(Kind::ToolOffset) if value.len() == TOOL_LEN => {
+            Some(Kind::ToolOffset) if value.len() == TOOL_LEN || value.len() == TOOL_LEN_OLD => {
                 if let Some(row) = offsets.tools.get_mut(keys::number(key)) {
                     *row = decode_tool(value);
                 }

@@ -126,7 +126,9 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Drive for C
         Controller::transmit(self, out)
     }
     fn make(cfg: MachineConfig) -> Box<Self> {
-        Box::new(Controller::new(cfg, Pos::ZERO))
+        let mut c = Box::new(Controller::new(cfg, Pos::ZERO));
+        c.interpreter_mut().plug(&interp_siemens::SINUMERIK);
+        c
     }
 }
 

@@ -119,7 +119,7 @@ impl Encoder {
     /// Whether raw reading `raw` has reached either compare value of `w` (after the
     /// compares are set: a count that went past one before it was set would never
     /// match it).
-    #[inline]
+    #[inline(always)]
     pub fn reached(&self, w: &Window, raw: u32) -> bool {
         w.up.is_some_and(|u| self.diff(u, raw) >= 0) || w.down.is_some_and(|d| self.diff(raw, d) >= 0)
     }

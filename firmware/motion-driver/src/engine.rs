@@ -270,6 +270,8 @@ impl<const A: usize> Engine<A> {
     /// Whether the encoder reading `raw_count`, taken after the compares were set
     /// to `w`, has already reached one of them: then [`Engine::encoder`] must run
     /// again (the counter went past the compare before it was set).
+    /// (Always inlined: the interrupt calls it in the size-built firmware crate.)
+    #[inline(always)]
     pub fn reached(&self, w: &Window, raw_count: u32) -> bool {
         self.encoder.reached(w, raw_count)
     }

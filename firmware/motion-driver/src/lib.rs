@@ -14,11 +14,14 @@
 //! - [`encoder`]: 32- or 16-bit hardware count → the core's 64-bit count, index on
 //!   the same scale; due counts → compare values.
 //! - [`io`]: switch debouncing, M-code outputs, spindle PWM duty.
+//! - [`board`]: the board's types and its interrupt bodies and planner push as
+//!   non-generic functions, compiled at this crate's opt-level.
 #![no_std]
 
 #[cfg(test)]
 extern crate std;
 
+pub mod board;
 pub mod encoder;
 pub mod engine;
 pub mod io;

@@ -171,7 +171,8 @@ pub fn is_cycle(code: GCode) -> bool {
     is_multiple(code) || is_single(code) || is_thread(code) || is_hole(code)
 }
 
-/// G70–G76.
+/// G70–G76, and a SINUMERIK cycle call (next to them in [`GCode`], so that the
+/// test stays one range compare).
 pub fn is_multiple(code: GCode) -> bool {
     use GCode::*;
     matches!(
@@ -183,6 +184,7 @@ pub fn is_multiple(code: GCode) -> bool {
             | FacePeckCycle
             | GroovePeckCycle
             | MultiThreadCycle
+            | CycleCall
     )
 }
 

@@ -10,6 +10,8 @@
 
 pub mod cycle;
 mod gset;
+pub mod hole;
+pub mod job;
 
 pub use cycle::CycleArgs;
 pub use gset::{EXTRA_FRAME, GSet, uses_axes};

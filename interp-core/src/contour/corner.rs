@@ -44,6 +44,15 @@ pub(super) fn shape(corner: Corner, plane: Plane, start: Pos, first: Canon, next
             let c = c as f64;
             (e1.back_from_end(c), e2.forward_from_start(c), None)
         }
+        Corner::ChamferLength(h) => {
+            // The chord between two points c from the corner, where the path turns
+            // by `turn`, is 2·c·cos(turn/2).
+            let c = h as f64 / (2.0 * crate::geom::sin_cos(turn / 2.0).1);
+            if !c.is_finite() {
+                return Err(AlarmKind::ChamferTooLarge);
+            }
+            (e1.back_from_end(c), e2.forward_from_start(c), None)
+        }
         Corner::Round(r) => {
             let f = fillet_center(&e1, &e2, r as f64, turn > 0.0).ok_or(AlarmKind::ChamferTooLarge)?;
             (Some(e1.foot(f)), Some(e2.foot(f)), Some((f, turn < 0.0)))

@@ -43,11 +43,7 @@ pub fn single(a: Xz, b: Xz, c: Xz, d: Xz, turning: bool, nose: Nose) -> Result<[
     if r <= 0.0 || libm::fabs(area2) < 1.0 {
         return Ok([b, c, d]);
     }
-    // The inside of the loop: left of travel when it runs counter-clockwise.
-    let inside = |from: V2, to: V2| {
-        let n = to.minus(from).unit().left();
-        if area2 > 0.0 { n } else { n.scale(-1.0) }
-    };
+    let inside = |from: V2, to: V2| inside(from, to, area2 > 0.0);
     let tip = super::comp::tip_vector(nose.tip, nose.radius);
     let (x_axis, z_axis) = (V2::new(0.0, 1.0), V2::new(1.0, 0.0));
     let (approach, back) = if turning { (x_axis, z_axis) } else { (z_axis, x_axis) };
@@ -63,14 +59,28 @@ pub fn single(a: Xz, b: Xz, c: Xz, d: Xz, turning: bool, nose: Nose) -> Result<[
             return Err(AlarmKind::NoseCompGouge);
         }
     }
-    Ok([bc, cc, dc].map(|q| {
-        let (z, x) = q.plus(tip).round();
-        (x, z)
-    }))
+    Ok([bc, cc, dc].map(|q| tip_point(q, tip)))
+}
+
+/// The unit normal of `from` → `to` towards the inside of the loop: left of travel
+/// when it runs counter-clockwise (`ccw`). Out of line, as [`tip_point`]: each was
+/// inlined at every use.
+#[inline(never)]
+fn inside(from: V2, to: V2, ccw: bool) -> V2 {
+    let n = to.minus(from).unit().left();
+    if ccw { n } else { n.scale(-1.0) }
+}
+
+/// The tip position (X, Z) of nose centre `q` (Z, X) with tip vector `tip`, rounded.
+#[inline(never)]
+fn tip_point(q: V2, tip: V2) -> Xz {
+    let (z, x) = q.plus(tip).round();
+    (x, z)
 }
 
 /// Where the line through `l.0` along `l.1` crosses the one through `m.0` along
 /// `m.1` (alarm 3605 for parallel lines: no corner to run to).
+#[inline(never)]
 fn cross(l: (V2, V2), m: (V2, V2)) -> Result<V2, AlarmKind> {
     let den = l.1.cross(m.1);
     if libm::fabs(den) < 1e-9 * l.1.len() * m.1.len() {

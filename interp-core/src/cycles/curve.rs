@@ -67,7 +67,7 @@ impl CurveGen {
         let from = libm::atan2(s1.1 - c.1, s1.0 - c.0);
         let to = libm::atan2(s2.1 - c.1, s2.0 - c.0);
         let tau = core::f64::consts::TAU;
-        let mut sweep = libm::fmod(to - from, tau);
+        let mut sweep = crate::geom::fmod(to - from, tau);
         if cw && sweep > 0.0 {
             sweep -= tau;
         } else if !cw && sweep < 0.0 {
@@ -105,7 +105,8 @@ impl CurveGen {
         let (s, t) = match self.kind {
             Kind::Ellipse { c, a, from, sweep, k } => {
                 let th = from + f * sweep;
-                (c.0 + a * libm::cos(th), (c.1 + a * libm::sin(th)) * k)
+                let (s, co) = crate::geom::sin_cos(th);
+                (c.0 + a * co, (c.1 + a * s) * k)
             }
             Kind::Parabola { s0, t0, sigma, p, t1, t2 } => {
                 let t = t1 + f * (t2 - t1);
@@ -123,7 +124,7 @@ impl CurveGen {
                 self.end
             } else {
                 let (z, x) = self.point(f64::from(self.next) / f64::from(self.steps));
-                Pt::new(libm::round(x) as i64, libm::round(z) as i64)
+                Pt::new(crate::geom::round_i64(x), crate::geom::round_i64(z))
             };
             queue.push_back(Step::Feed(p)).map_err(|_| AlarmKind::Overflow)?;
             self.next += 1;
@@ -141,10 +142,12 @@ fn count(n: f64) -> Result<u32, AlarmKind> {
     Ok((libm::ceil(n) as u32).max(1))
 }
 
-/// cos and sin of Q (µdeg).
+/// cos and sin of Q (µdeg; out of line: the parabola and the ellipse).
+#[inline(never)]
 fn rotation(q_udeg: i64) -> (f64, f64) {
     let q = (q_udeg as f64 / 1e6).to_radians();
-    (libm::cos(q), libm::sin(q))
+    let (s, c) = crate::geom::sin_cos(q);
+    (c, s)
 }
 
 /// A work point (X radius) in the frame whose first axis is +Z turned clockwise by

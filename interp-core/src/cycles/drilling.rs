@@ -39,7 +39,7 @@ pub fn hole_block(
     if f.active & on::ROTATE != 0 && f.rot_plane != Plane::Xy {
         return Err(AlarmKind::RotationPlaneChange);
     }
-    let here_work = st.work_pos(cfg);
+    let here_work = super::emit::work_pos(st, cfg);
     let here = if f.active != 0 { f.prog() } else { xyz(&here_work) };
     let initial = match st.mill.initial {
         Some(z) => i64::from(z),

@@ -12,6 +12,27 @@ use crate::config::MachineConfig;
 use crate::modal::State;
 use crate::moves::motion;
 
+pub use crate::geom::Pt;
+
+/// The step queue was full (a generator's bug: each checks for room first). At a
+/// `?` it becomes alarm [`AlarmKind::Overflow`], as the engine's own push says.
+#[derive(Debug)]
+pub struct Full;
+
+impl From<Full> for AlarmKind {
+    fn from(_: Full) -> Self {
+        AlarmKind::Overflow
+    }
+}
+
+/// Queues a planned step for the generators. Its error carries nothing, so each
+/// of the generators' ~130 `push(..)?` sites tests one register and shares one
+/// exit instead of copying an alarm out (~1 KB of flash).
+#[inline(never)]
+pub fn push(out: &mut super::StepQueue, s: Step) -> Result<(), Full> {
+    super::push(out, s).map_err(|_| Full)
+}
+
 /// The plain blocks' soft-limit check, out of line for the cycles' many moves (inlined
 /// at each of them it cost flash; a plain block keeps its inlined copy).
 #[inline(never)]
@@ -25,36 +46,12 @@ fn spindle_speed(st: &State, cfg: &MachineConfig, x: i64) -> crate::canon::Spind
     crate::moves::spindle_speed(st, cfg, x)
 }
 
-/// A point of the ZX plane in work coordinates: X as a radius, nm.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct Pt {
-    /// X (radius).
-    pub x: i64,
-    /// Z.
-    pub z: i64,
-}
-
-impl Pt {
-    /// A point.
-    pub const fn new(x: i64, z: i64) -> Self {
-        Pt { x, z }
-    }
-
-    /// Coordinate of `axis` (X or Z).
-    pub fn get(self, axis: Axis) -> i64 {
-        if axis == Axis::X { self.x } else { self.z }
-    }
-
-    /// The point with `axis` set to `v`.
-    pub fn with(mut self, axis: Axis, v: i64) -> Self {
-        if axis == Axis::X {
-            self.x = v;
-        } else {
-            self.z = v;
-        }
-        self
-    }
+/// The work position of `st`, out of line for the cycles (the emitter, the hole
+/// and polar set-ups, the shape reader): inlined, each of a dozen sites carried
+/// the work offsets' arithmetic (~150 B).
+#[inline(never)]
+pub fn work_pos(st: &State, cfg: &MachineConfig) -> Pos {
+    st.work_pos(cfg)
 }
 
 /// One move (or other action) a cycle plans.
@@ -118,6 +115,8 @@ pub enum Step {
     },
     /// Dwell.
     Dwell(u32),
+    /// The cycle's cutting feed from here on, in its feed mode (CYCLE95 FF1–FF3).
+    Feedrate(i64),
     /// Spindle direction change at the remembered speed.
     Spindle(SpindleDir),
     /// A machine output by M code (M19 spindle orientation of the boring cycles).
@@ -193,89 +192,45 @@ impl Emitter {
         Emitter { st, line, feed, lead: 0 }
     }
 
+    /// [`Emitter::new`] out of line, for the cycles' and the language calls'
+    /// set-ups (one copy for eleven sites; `curve_block`, which a plain G01 passes
+    /// through, keeps its inlined: out of line there it cost the G01 an instruction).
+    #[inline(never)]
+    pub fn for_block(st: &State, line: u32) -> Self {
+        Emitter::new(*st, line)
+    }
+
     /// The current work position in the ZX plane.
+    #[inline(never)]
     pub fn here(&self, cfg: &MachineConfig) -> Pt {
-        let w = self.st.work_pos(cfg);
+        let w = work_pos(&self.st, cfg);
         Pt::new(w[Axis::X], w[Axis::Z])
     }
 
     /// Emits one step (nothing for a move that goes nowhere).
     pub fn emit(&mut self, step: Step, cfg: &MachineConfig, out: &mut dyn Out) -> Result<(), AlarmKind> {
         let action = match step {
-            Step::Rapid(p) => {
-                let Some(to) = self.target(p, cfg)? else { return Ok(()) };
-                let m = Move { to, feed: self.feed, spindle: self.speed(cfg, p), exact_stop: true, independent: false };
-                Action::Rapid(m)
-            }
-            Step::RapidTo(w) => {
-                let Some(to) = self.target_pos(w, cfg)? else { return Ok(()) };
-                let spindle = spindle_speed(&self.st, cfg, w[Axis::X]);
-                Action::Rapid(Move { to, feed: self.feed, spindle, exact_stop: true, independent: false })
-            }
-            Step::Feed(p) => {
-                let feed = self.cutting_feed(cfg)?;
-                let Some(to) = self.target(p, cfg)? else { return Ok(()) };
-                let exact_stop = self.st.modal.exact_stop_mode;
-                Action::Linear(Move { to, feed, spindle: self.speed(cfg, p), exact_stop, independent: false })
-            }
-            Step::FeedTo(w) => {
-                let feed = self.cutting_feed(cfg)?;
-                let Some(to) = self.target_pos(w, cfg)? else { return Ok(()) };
-                let exact_stop = self.st.modal.exact_stop_mode;
-                let spindle = spindle_speed(&self.st, cfg, w[Axis::X]);
-                Action::Linear(Move { to, feed, spindle, exact_stop, independent: false })
-            }
-            Step::FeedPerRev(w) => {
-                let Some(to) = self.target_pos(w, cfg)? else { return Ok(()) };
-                let feed = Feed { mode: FeedMode::PerRev, value: self.lead };
-                let spindle = spindle_speed(&self.st, cfg, w[Axis::X]);
-                Action::Linear(Move { to, feed, spindle, exact_stop: true, independent: false })
-            }
             Step::Arc { to, center, cw } => self.arc(to, center, cw, cfg)?,
-            Step::Thread { to: p, lead, delta, start_udeg, sync } => {
-                let Some(to) = self.target(p, cfg)? else { return Ok(()) };
-                let spindle = self.speed(cfg, p);
-                // A thread waits for the spindle index: with the spindle stopped it
-                // would wait for ever.
-                if spindle.rpm.is_none_or(|r| r == 0) {
-                    return Err(AlarmKind::FeedPerRevSpindleStopped);
-                }
-                Action::Thread(ThreadMove { to, lead, lead_delta: delta, start_udeg, sync, spindle })
-            }
-            Step::Tap { to: w, dir } => {
-                let lead = self.lead;
-                let Some(to) = self.target_pos(w, cfg)? else { return Ok(()) };
-                // The spindle is position-controlled in the tapping direction at the M29 speed.
-                let mut locked = self.st;
-                locked.spindle.dir = dir;
-                let spindle = spindle_speed(&locked, cfg, w[Axis::X]);
-                Action::Tap(TapMove { to, lead, dir, spindle })
-            }
-            Step::PolarFeed { x, c, z, feed, .. } => {
-                let mut work = self.st.work_pos(cfg);
-                (work[Axis::X], work[Axis::C], work[Axis::Z]) = (x, c, z);
-                let feed = Feed { value: feed, ..self.feed };
-                let to = motion::endpoint(work, &self.st, cfg)?;
-                check_limits(&to.machine, cfg)?;
-                if to.machine == self.st.pos {
-                    return Ok(());
-                }
-                let spindle = spindle_speed(&self.st, cfg, work[Axis::X]);
-                let exact_stop = self.st.modal.exact_stop_mode;
-                Action::Linear(Move { to, feed, spindle, exact_stop, independent: false })
-            }
             Step::Dwell(ms) => Action::Dwell { ms },
-            // M19 and the operator's stop: only a machining centre's boring works.
-            Step::Aux(_) | Step::Stop if !crate::MILL => return Ok(()),
+            Step::Feedrate(v) => {
+                self.feed.value = v;
+                return Ok(());
+            }
+            // M19 and the operator's stop: only the boring works of a machining centre and SINUMERIK.
+            Step::Aux(_) | Step::Stop if !super::hole::BORING => return Ok(()),
             Step::Aux(m) => Action::Aux { m },
             Step::Stop => Action::Stop { optional: false },
             Step::Spindle(dir) => {
                 self.st.spindle.dir = dir;
-                let x = self.st.work_axis(cfg, Axis::X);
+                let x = work_pos(&self.st, cfg)[Axis::X];
                 let s = spindle_speed(&self.st, cfg, x);
                 let css = if self.st.modal.css { self.st.spindle.css } else { None };
                 Action::Spindle(SpindleCommand { dir, rpm: s.rpm, css: s.css.or(css) })
             }
+            _ => match self.motion(step, cfg)? {
+                Some(action) => action,
+                None => return Ok(()),
+            },
         };
         if let Some(area) = self.st.stroke {
             crate::moves::stroke::check_move(&area, self.st.pos, &action)?;
@@ -288,6 +243,84 @@ impl Emitter {
         out.put(Canon { line, action })
     }
 
+    /// The straight move of a step (rapid, feed, thread, tap); `None` for one that
+    /// goes nowhere. Every kind is a work position of all axes, a feed and the
+    /// spindle at the end's X: one end point and one spindle speed for all (out of
+    /// line: a copy per kind cost ~1 KB of flash).
+    #[inline(never)]
+    fn motion(&self, step: Step, cfg: &MachineConfig) -> Result<Option<Action>, AlarmKind> {
+        /// What the move is, once its end point is known.
+        enum Kind {
+            Rapid,
+            Linear,
+            Thread { lead: i64, delta: i64, start_udeg: u32, sync: ThreadSync },
+            Tap(SpindleDir),
+        }
+        let mut w = work_pos(&self.st, cfg);
+        let mode_stop = self.st.modal.exact_stop_mode;
+        let (kind, feed, exact_stop) = match step {
+            Step::Rapid(p) => {
+                (w[Axis::X], w[Axis::Z]) = (p.x, p.z);
+                (Kind::Rapid, self.feed, true)
+            }
+            Step::RapidTo(to) => {
+                w = to;
+                (Kind::Rapid, self.feed, true)
+            }
+            Step::Feed(p) => {
+                let feed = self.cutting_feed(cfg)?;
+                (w[Axis::X], w[Axis::Z]) = (p.x, p.z);
+                (Kind::Linear, feed, mode_stop)
+            }
+            Step::FeedTo(to) => {
+                let feed = self.cutting_feed(cfg)?;
+                w = to;
+                (Kind::Linear, feed, mode_stop)
+            }
+            Step::FeedPerRev(to) => {
+                w = to;
+                (Kind::Linear, Feed { mode: FeedMode::PerRev, value: self.lead }, true)
+            }
+            Step::Thread { to: p, lead, delta, start_udeg, sync } => {
+                (w[Axis::X], w[Axis::Z]) = (p.x, p.z);
+                (Kind::Thread { lead, delta, start_udeg, sync }, self.feed, true)
+            }
+            Step::Tap { to, dir } => {
+                w = to;
+                (Kind::Tap(dir), self.feed, true)
+            }
+            Step::PolarFeed { x, c, z, feed, .. } => {
+                (w[Axis::X], w[Axis::C], w[Axis::Z]) = (x, c, z);
+                (Kind::Linear, Feed { value: feed, ..self.feed }, mode_stop)
+            }
+            _ => return Ok(None),
+        };
+        let Some(to) = self.target_pos(w, cfg)? else { return Ok(None) };
+        let spindle = match kind {
+            // The spindle is position-controlled in the tapping direction at the M29 speed.
+            Kind::Tap(dir) => {
+                let mut locked = self.st;
+                locked.spindle.dir = dir;
+                spindle_speed(&locked, cfg, w[Axis::X])
+            }
+            _ => spindle_speed(&self.st, cfg, w[Axis::X]),
+        };
+        let m = Move { to, feed, spindle, exact_stop, independent: false };
+        Ok(Some(match kind {
+            Kind::Rapid => Action::Rapid(m),
+            Kind::Linear => Action::Linear(m),
+            Kind::Thread { lead, delta, start_udeg, sync } => {
+                // A thread waits for the spindle index: with the spindle stopped it
+                // would wait for ever.
+                if spindle.rpm.is_none_or(|r| r == 0) {
+                    return Err(AlarmKind::FeedPerRevSpindleStopped);
+                }
+                Action::Thread(ThreadMove { to, lead, lead_delta: delta, start_udeg, sync, spindle })
+            }
+            Kind::Tap(dir) => Action::Tap(TapMove { to, lead: self.lead, dir, spindle }),
+        }))
+    }
+
     /// The end point of a move to work position `w`, soft limits checked; `None` if
     /// already there.
     fn target_pos(&self, w: Pos, cfg: &MachineConfig) -> Result<Option<crate::canon::Endpoint>, AlarmKind> {
@@ -297,8 +330,9 @@ impl Emitter {
     }
 
     /// The end point of a move to `p`, soft limits checked; `None` if already there.
+    #[inline(never)]
     fn target(&self, p: Pt, cfg: &MachineConfig) -> Result<Option<crate::canon::Endpoint>, AlarmKind> {
-        let mut w: Pos = self.st.work_pos(cfg);
+        let mut w: Pos = work_pos(&self.st, cfg);
         w[Axis::X] = p.x;
         w[Axis::Z] = p.z;
         self.target_pos(w, cfg)
@@ -315,7 +349,7 @@ impl Emitter {
             return Err(AlarmKind::FeedZero);
         }
         if self.feed.mode == FeedMode::PerRev {
-            let x = self.st.work_axis(cfg, Axis::X);
+            let x = work_pos(&self.st, cfg)[Axis::X];
             if self.st.spindle.dir == SpindleDir::Stop || spindle_speed(&self.st, cfg, x).rpm == Some(0) {
                 return Err(AlarmKind::FeedPerRevSpindleStopped);
             }
@@ -327,7 +361,7 @@ impl Emitter {
         let feed = self.cutting_feed(cfg)?;
         let here = self.here(cfg);
         let end = self.target(to, cfg)?.ok_or(AlarmKind::Overflow)?;
-        let mut cw_pos = self.st.work_pos(cfg);
+        let mut cw_pos = work_pos(&self.st, cfg);
         cw_pos[Axis::X] = center.x;
         cw_pos[Axis::Z] = center.z;
         let c = motion::endpoint(cw_pos, &self.st, cfg)?;

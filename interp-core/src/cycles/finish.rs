@@ -3,7 +3,7 @@
 //! rapid back to the start point.
 
 use super::emit::{Emitter, Out, Pt, Step};
-use super::profile::{ShapeSource, next_shape_block, run_shape_block};
+use super::profile::{EnvRef, ShapeSource, next_shape_block, run_shape_block};
 use super::{CycleStage, Execute, StepQueue};
 use crate::alarm::AlarmKind;
 use crate::config::MachineConfig;
@@ -57,7 +57,7 @@ impl FinishGen {
             return Ok(false);
         }
         let src = ShapeSource { program, ns: self.ns, nf: self.nf };
-        let Some(sb) = next_shape_block(&src, &mut self.cur, env)? else {
+        let Some(sb) = next_shape_block(&src, &mut self.cur, &EnvRef(env))? else {
             return Err(AlarmKind::SequenceNotFound { n: self.nf });
         };
         let mut outbox = crate::stage::Outbox::new();

@@ -9,6 +9,7 @@
 //! shape at the cycle's feed, then X back to the start's X and Z to its Z.
 
 use super::StepQueue;
+use super::emit::push;
 use super::emit::{Pt, Step};
 use super::profile::Profile;
 use super::rough::contour_step;
@@ -42,23 +43,32 @@ impl PatternGen {
     pub fn offset(&self, n: u32) -> Pt {
         let left = i64::from(self.count.saturating_sub(n));
         let div = i64::from(self.count.max(2) - 1);
-        // |v| < 1e15 nm (nine digits of mm) and left < 10⁴: the product fits.
-        let part = |v: i64| if self.count == 1 { 0 } else { crate::units::div_round(v.saturating_mul(left), div) };
+        let part = |v: i64| if self.count == 1 { 0 } else { share(v, left, div) };
         Pt::new(part(self.relief.x) + self.allowance.x, part(self.relief.z) + self.allowance.z)
     }
 
     /// The next group of steps; `false` when finished.
     pub fn fill(&mut self, profile: &Profile, out: &mut StepQueue) -> Result<bool, AlarmKind> {
+        self.fill_segs(&profile.segs, profile.ns_rapid, out)
+    }
+
+    /// [`PatternGen::fill`] over a shape `segs` whose first segment is the move from
+    /// the start point onto it (G00 if `ns_rapid`).
+    pub fn fill_segs(
+        &mut self,
+        segs: &[super::profile::Seg],
+        ns_rapid: bool,
+        out: &mut StepQueue,
+    ) -> Result<bool, AlarmKind> {
         if self.pass > self.count {
             return Ok(false);
         }
         let d = self.offset(self.pass);
-        let segs = &profile.segs;
         if self.seg == 0 {
             let a_n = Pt::new(self.start.x + d.x, self.start.z + d.z);
             push(out, Step::Rapid(a_n))?;
             let ns = segs[0].shifted(d);
-            push(out, if profile.ns_rapid { Step::Rapid(ns.b) } else { Step::Feed(ns.b) })?;
+            push(out, if ns_rapid { Step::Rapid(ns.b) } else { Step::Feed(ns.b) })?;
             self.seg = 1;
         } else if let Some(s) = segs.get(self.seg) {
             push(out, contour_step(&s.shifted(d)))?;
@@ -74,6 +84,9 @@ impl PatternGen {
     }
 }
 
-fn push(out: &mut StepQueue, s: Step) -> Result<(), AlarmKind> {
-    out.push_back(s).map_err(|_| AlarmKind::Overflow)
+/// `v · left / div` rounded, for one axis of a pass's offset (out of line: X and Z
+/// share it). |v| < 1e15 nm (nine digits of mm) and left < 10⁴: the product fits.
+#[inline(never)]
+fn share(v: i64, left: i64, div: i64) -> i64 {
+    crate::units::div_round(v.saturating_mul(left), div)
 }

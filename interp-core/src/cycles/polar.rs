@@ -52,7 +52,8 @@ impl PolarGen {
     pub fn new(acts: &[Canon], start: Pos, tol: i64) -> Result<Self, AlarmKind> {
         let (r, c) = (start[Axis::X] as f64, start[Axis::C] as f64);
         let th = (c / 1e6).to_radians();
-        let from = (libm::round(r * libm::cos(th)) as i64, libm::round(r * libm::sin(th)) as i64, start[Axis::Z]);
+        let (sin, cos) = crate::geom::sin_cos(th);
+        let from = (crate::geom::round_i64(r * cos), crate::geom::round_i64(r * sin), start[Axis::Z]);
         let mut moves = heapless::Vec::new();
         for a in acts {
             let Some(to) = a.action.endpoint() else { continue };
@@ -114,7 +115,8 @@ impl PolarGen {
         [0.25, 0.5, 0.75].into_iter().any(|f| {
             let r = q0.0 + f * (q1.0 - q0.0);
             let th = ((q0.1 + f * (q1.1 - q0.1)) / 1e6).to_radians();
-            let real = V2::new(r * libm::cos(th), r * libm::sin(th));
+            let (s, c) = crate::geom::sin_cos(th);
+            let real = V2::new(r * c, r * s);
             real.minus(path.at(t0 + f * (t1 - t0))).len() > self.tol
         })
     }
@@ -136,7 +138,7 @@ impl PolarGen {
             return None;
         }
         let feed = libm::round(m.feed as f64 * planner / cart).max(1.0) as i64;
-        let round = |v: f64| libm::round(v) as i64;
+        let round = |v: f64| crate::geom::round_i64(v);
         Some(Step::PolarFeed { x: round(r), c: round(c), z: round(z), feed, line: m.line })
     }
 }

@@ -5,12 +5,13 @@
 
 use super::emit::Pt;
 use super::{CycleStage, Execute};
-use crate::alarm::AlarmKind;
+use crate::alarm::{AlarmKind, CycleAlarm};
 use crate::axis::Axis;
 use crate::canon::{Action, SpindleDir};
 use crate::codes::{GCode, MFunction};
 use crate::config::MachineConfig;
 use crate::env::Environment;
+pub use crate::geom::{Seg, SegKind};
 use crate::lang::ProgramText;
 use crate::lang::fanuc::check::check;
 use crate::lang::fanuc::macros::MacroStatement;
@@ -21,35 +22,6 @@ use crate::stage::Flow;
 
 /// Most segments a finishing shape may have (alarm 4035 beyond).
 pub const PROFILE_MAX: usize = 48;
-
-/// How a segment of the shape moves.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub enum SegKind {
-    /// G00.
-    Rapid,
-    /// G01.
-    Line,
-    /// G02/G03 around `center`.
-    Arc {
-        /// Centre.
-        center: Pt,
-        /// G02.
-        cw: bool,
-    },
-}
-
-/// One move of the shape, start to end.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct Seg {
-    /// Kind.
-    pub kind: SegKind,
-    /// Start.
-    pub a: Pt,
-    /// End.
-    pub b: Pt,
-}
 
 /// The finishing shape A → B → … → C.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -64,128 +36,6 @@ pub struct Profile {
     pub ns_rapid: bool,
     /// Where the program goes on after the cycle: the block after nf.
     pub resume: Cursor,
-}
-
-impl Seg {
-    /// The segment moved by `d`.
-    #[inline(never)]
-    pub fn shifted(self, d: Pt) -> Seg {
-        let mv = |p: Pt| Pt::new(p.x + d.x, p.z + d.z);
-        let kind = match self.kind {
-            SegKind::Arc { center, cw } => SegKind::Arc { center: mv(center), cw },
-            k => k,
-        };
-        Seg { kind, a: mv(self.a), b: mv(self.b) }
-    }
-
-    /// Signed sweep of an arc in radians, counter-clockwise positive in the (Z, X) plane.
-    fn sweep(&self, center: Pt, cw: bool) -> f64 {
-        let tau = core::f64::consts::TAU;
-        let d = wrap(angle(center, self.b) - angle(center, self.a));
-        if cw {
-            if d == 0.0 { -tau } else { d - tau }
-        } else if d == 0.0 {
-            tau
-        } else {
-            d
-        }
-    }
-
-    /// The point at parameter `t` ∈ [0, 1] (by length for lines, by angle for arcs), f64 nm.
-    pub fn point_at(&self, t: f64) -> (f64, f64) {
-        match self.kind {
-            SegKind::Arc { center, cw } => {
-                let r = radius(center, self.a);
-                let th = angle(center, self.a) + t * self.sweep(center, cw);
-                (center.x as f64 + r * libm::sin(th), center.z as f64 + r * libm::cos(th))
-            }
-            _ => {
-                let (ax, az) = (self.a.x as f64, self.a.z as f64);
-                (ax + t * (self.b.x - self.a.x) as f64, az + t * (self.b.z - self.a.z) as f64)
-            }
-        }
-    }
-
-    /// Parameters t ∈ (0, 1) where the segment's `axis` coordinate equals `v`.
-    pub fn crossings(&self, axis: Axis, v: f64) -> heapless::Vec<f64, 2> {
-        let mut out = heapless::Vec::new();
-        let coord = |p: Pt| if axis == Axis::X { p.x as f64 } else { p.z as f64 };
-        match self.kind {
-            SegKind::Arc { center, cw } => {
-                let r = radius(center, self.a);
-                let c = coord(center);
-                let s = (v - c) / r;
-                if !(-1.0..=1.0).contains(&s) {
-                    return out;
-                }
-                // x = cx + r·sin θ, z = cz + r·cos θ.
-                let (t1, t2) = if axis == Axis::X {
-                    let a = libm::asin(s);
-                    (a, core::f64::consts::PI - a)
-                } else {
-                    let a = libm::acos(s);
-                    (a, -a)
-                };
-                let sweep = self.sweep(center, cw);
-                let start = angle(center, self.a);
-                for th in [t1, t2] {
-                    let d = if sweep >= 0.0 { wrap(th - start) } else { wrap(start - th) };
-                    let t = d / sweep.abs();
-                    if t > 0.0 && t < 1.0 && !out.iter().any(|o: &f64| (o - t).abs() < 1e-12) {
-                        let _ = out.push(t);
-                    }
-                }
-                if out.len() == 2 && out[0] > out[1] {
-                    out.swap(0, 1);
-                }
-            }
-            _ => {
-                let (a, b) = (coord(self.a), coord(self.b));
-                if a != b {
-                    let t = (v - a) / (b - a);
-                    if t > 0.0 && t < 1.0 {
-                        let _ = out.push(t);
-                    }
-                }
-            }
-        }
-        out
-    }
-
-    /// Smallest and largest value of `axis` along the segment.
-    #[inline(never)]
-    pub fn extent(&self, axis: Axis) -> (i64, i64) {
-        match self.kind {
-            SegKind::Arc { center, cw } => {
-                let e = crate::geom::arc_extents(
-                    (self.a.z, self.a.x),
-                    (self.b.z, self.b.x),
-                    (center.z, center.x),
-                    cw,
-                    false,
-                );
-                if axis == Axis::X { e.b } else { e.a }
-            }
-            _ => {
-                let (a, b) = (self.a.get(axis), self.b.get(axis));
-                (a.min(b), a.max(b))
-            }
-        }
-    }
-}
-
-fn angle(c: Pt, p: Pt) -> f64 {
-    libm::atan2((p.x - c.x) as f64, (p.z - c.z) as f64)
-}
-
-fn radius(c: Pt, p: Pt) -> f64 {
-    libm::hypot((p.x - c.x) as f64, (p.z - c.z) as f64)
-}
-
-fn wrap(x: f64) -> f64 {
-    let tau = core::f64::consts::TAU;
-    let r = libm::fmod(x, tau);
-    if r < 0.0 { r + tau } else { r }
 }
 
 /// Where the blocks ns–nf are and how to run them.
@@ -217,10 +67,13 @@ pub struct ShapeBlock {
 /// Reads the next block of the shape at `cur` (skipping blank and skipped blocks),
 /// with the checks of 2.16.7 notes 2–3 that need only the words. `first` is the
 /// ns block. `None` past the text (alarm 0063 for nf then).
-pub fn next_shape_block<E: Environment + ?Sized>(
+/// Out of line and not generic: G70's finishing pass and the profile reader
+/// share one copy (generic over the environment, it had two).
+#[inline(never)]
+pub fn next_shape_block(
     src: &ShapeSource<'_>,
     cur: &mut Cursor,
-    env: &E,
+    env: &dyn Environment,
 ) -> Result<Option<ShapeBlock>, AlarmKind> {
     loop {
         let Some(raw) = next_block(src.program.text, cur) else {
@@ -284,7 +137,14 @@ pub fn check_shape_command(cmd: &crate::command::Command, first: bool) -> Result
     Ok(())
 }
 
-/// Runs one shape block on `st` through check and `execute` (exec) into `staged`.
+/// Runs one shape block on `st` through check and `execute` (exec) into `staged`;
+/// after an alarm `st` is left as the block's execution left it (every caller
+/// drops it then). Out of line: G70's finishing pass and the profile reader
+/// share one copy. (Generic over the environment on purpose: the profile
+/// reader's copy calls `exec::execute` directly, which `firmware/stack-bound.py`
+/// follows; one `&dyn Environment` copy, 500 B smaller, calls it only through
+/// the pointer, and the tool's bound then misses the shape blocks' recursion.)
+#[inline(never)]
 pub fn run_shape_block<E: Environment + ?Sized>(
     sb: &ShapeBlock,
     first: bool,
@@ -300,17 +160,18 @@ pub fn run_shape_block<E: Environment + ?Sized>(
     }
     let cmd = check(&sb.block, st, cfg)?;
     check_shape_command(&cmd, first)?;
-    let mut next = *st;
-    let flow = execute(&cmd, &mut next, cfg, &EnvRef(env), staged)?;
+    // Executed on `st` in place (no copy of the state on the stack under the
+    // block's execution): after an alarm `st` is thrown away with the cycle
+    // (the profile reader's scratch state, G70's expansion or its dry run).
+    let flow = execute(&cmd, st, cfg, &EnvRef(env), staged)?;
     if flow != Flow::Continue {
         return Err(AlarmKind::ProfileForbiddenCode { what: "M00/M01/M02/M30" });
     }
-    *st = next;
     Ok(cmd)
 }
 
 /// Adapts `&E` (possibly unsized) to `&dyn Environment`.
-struct EnvRef<'a, E: ?Sized>(&'a E);
+pub(super) struct EnvRef<'a, E: ?Sized>(pub(super) &'a E);
 
 impl<E: Environment + ?Sized> Environment for EnvRef<'_, E> {
     fn block_skip(&self, level: u8) -> bool {
@@ -328,7 +189,8 @@ impl<E: Environment + ?Sized> Environment for EnvRef<'_, E> {
 }
 
 /// Reads the shape ns–nf starting at the state `st` (the cycle's start point A)
-/// into `profile` (in the expansion itself: a profile is ~3 KB). Roughing ignores
+/// into `profile` (in the expansion itself: a profile is ~3 KB), each block's
+/// actions staged in `outbox` (the expansion's, left empty). Roughing ignores
 /// the shape's F, S and T, so the scratch state gets a feed and a turning spindle:
 /// geometry must not fail on a feed that roughing never uses.
 pub fn read_profile<E: Environment + ?Sized>(
@@ -338,25 +200,17 @@ pub fn read_profile<E: Environment + ?Sized>(
     env: &E,
     execute: Execute,
     profile: &mut Profile,
+    outbox: &mut crate::stage::Outbox,
 ) -> Result<(), AlarmKind> {
-    let mut scratch = *st;
-    // Roughing follows the programmed shape: no nose compensation (2.16.7 note 5).
-    scratch.contour.clear();
-    scratch.contour.no_comp = true;
-    scratch.feed.per_min = scratch.feed.per_min.max(1);
-    scratch.feed.per_rev = scratch.feed.per_rev.max(1);
-    if scratch.spindle.dir == SpindleDir::Stop {
-        scratch.spindle.dir = SpindleDir::Cw;
-    }
-    scratch.spindle.rpm = scratch.spindle.rpm.max(1);
+    let mut scratch = scratch(st);
     let mut cur = start_of(src)?;
     profile.segs.clear();
     let mut first = true;
     loop {
-        let Some(sb) = next_shape_block(src, &mut cur, env)? else { break };
-        let mut outbox = crate::stage::Outbox::new();
-        let mut staged = CycleStage::new(sb.block.line, &mut outbox);
-        let here = scratch.work_pos(cfg);
+        let Some(sb) = next_shape_block(src, &mut cur, &EnvRef(env))? else { break };
+        outbox.clear();
+        let mut staged = CycleStage::new(sb.block.line, outbox);
+        let here = super::emit::work_pos(&scratch, cfg);
         // A move held back for a corner (2.23) comes out with this block: it
         // starts where the last segment ended.
         let held = scratch.contour.is_holding();
@@ -366,33 +220,14 @@ pub fn read_profile<E: Environment + ?Sized>(
             profile.ns_z = cmd.axes[Axis::Z.index()].is_some();
             profile.ns_rapid = cmd.g.motion == Some(GCode::Rapid);
         }
-        let mut a = match profile.segs.last() {
+        let a = match profile.segs.last() {
             Some(s) if held => s.b,
             _ => Pt::new(here[Axis::X], here[Axis::Z]),
         };
         if sb.last {
             crate::contour::flush(&mut scratch, &mut staged)?;
         }
-        for c in staged.actions.iter() {
-            let (kind, to) = match c.action {
-                Action::Rapid(m) => (SegKind::Rapid, m.to.work),
-                Action::Linear(m) => (SegKind::Line, m.to.work),
-                Action::Arc(arc) => {
-                    if arc.plane != crate::canon::Plane::Zx {
-                        return Err(AlarmKind::CycleNotInZxPlane);
-                    }
-                    let center = Pt::new(arc.center.work[Axis::X], arc.center.work[Axis::Z]);
-                    (SegKind::Arc { center, cw: arc.cw }, arc.to.work)
-                }
-                Action::Thread(_) | Action::Tap(_) => {
-                    return Err(AlarmKind::ProfileForbiddenCode { what: "threading" });
-                }
-                _ => continue,
-            };
-            let b = Pt::new(to[Axis::X], to[Axis::Z]);
-            profile.segs.push(Seg { kind, a, b }).map_err(|_| AlarmKind::ProfileTooLong)?;
-            a = b;
-        }
+        keep_moves(&staged, a, profile)?;
         if first && profile.segs.is_empty() {
             // The ns block must move (it defines B).
             return Err(AlarmKind::ProfileFirstBlock);
@@ -400,37 +235,242 @@ pub fn read_profile<E: Environment + ?Sized>(
         first = false;
         if sb.last {
             profile.resume = cur;
+            outbox.clear();
             return Ok(());
         }
     }
     Err(AlarmKind::SequenceNotFound { n: src.nf })
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    const MM: i64 = 1_000_000;
-
-    #[test]
-    fn arc_points_and_crossings() {
-        // Quarter circle from (x0, z10) around (x0, z0) counter-clockwise in (Z, X):
-        // angle 0 at +Z, 90° at +X: ends at (x10, z0).
-        let s = Seg {
-            kind: SegKind::Arc { center: Pt::new(0, 0), cw: false },
-            a: Pt::new(0, 10 * MM),
-            b: Pt::new(10 * MM, 0),
-        };
-        let (x, z) = s.point_at(0.5);
-        assert!((x - 7.0710678e6).abs() < 1.0 && (z - 7.0710678e6).abs() < 1.0);
-        let c = s.crossings(Axis::X, 5.0 * MM as f64);
-        assert_eq!(c.len(), 1);
-        let (x, _) = s.point_at(c[0]);
-        assert!((x - 5.0e6).abs() < 1e-3);
-        assert_eq!(s.extent(Axis::X), (0, 10 * MM));
-        // Clockwise the long way round passes x = -10.
-        let s2 = Seg { kind: SegKind::Arc { center: Pt::new(0, 0), cw: true }, ..s };
-        assert_eq!(s2.extent(Axis::X), (-10 * MM, 10 * MM));
-        assert_eq!(s2.crossings(Axis::X, 5.0 * MM as f64).len(), 1);
+/// A copy of `st` to run a shape's blocks on. Roughing follows the programmed
+/// shape: no nose compensation (2.16.7 note 5); it ignores the shape's F, S and T,
+/// so the copy has a feed and a turning spindle: geometry must not fail on a feed
+/// the roughing never uses.
+fn scratch(st: &State) -> State {
+    let mut scratch = *st;
+    scratch.contour.clear();
+    scratch.contour.no_comp = true;
+    scratch.feed.per_min = scratch.feed.per_min.max(1);
+    scratch.feed.per_rev = scratch.feed.per_rev.max(1);
+    if scratch.spindle.dir == SpindleDir::Stop {
+        scratch.spindle.dir = SpindleDir::Cw;
     }
+    scratch.spindle.rpm = scratch.spindle.rpm.max(1);
+    scratch
+}
+
+/// Appends the moves staged in `staged` to `profile` as segments, the first from
+/// `a`; returns how many.
+fn keep_moves(staged: &CycleStage<'_>, mut a: Pt, profile: &mut Profile) -> Result<usize, AlarmKind> {
+    let mut n = 0;
+    for c in staged.actions.iter() {
+        let (kind, to) = match c.action {
+            Action::Rapid(m) => (SegKind::Rapid, m.to.work),
+            Action::Linear(m) => (SegKind::Line, m.to.work),
+            Action::Arc(arc) => {
+                if arc.plane != crate::canon::Plane::Zx {
+                    return Err(AlarmKind::CycleNotInZxPlane);
+                }
+                let center = Pt::new(arc.center.work[Axis::X], arc.center.work[Axis::Z]);
+                (SegKind::Arc { center, cw: arc.cw }, arc.to.work)
+            }
+            Action::Thread(_) | Action::Tap(_) => {
+                return Err(AlarmKind::ProfileForbiddenCode { what: "threading" });
+            }
+            _ => continue,
+        };
+        let b = Pt::new(to[Axis::X], to[Axis::Z]);
+        profile.segs.push(Seg { kind, a, b }).map_err(|_| AlarmKind::ProfileTooLong)?;
+        a = b;
+        n += 1;
+    }
+    Ok(n)
+}
+
+/// Reads and checks one block of a contour in the language of its program;
+/// `None` for a block without words. A SINUMERIK contour's words may use the
+/// calling level's variables (`src.vars`); its blocks are NC blocks only
+/// (a label, a comment, DIAMON/DIAMOF are fine; DEF, a jump or a call is 10930).
+/// Not inlined: the reader's scratch (words, pending assignments, call arguments,
+/// a FANUC block: ~1.8 KB) stays out of the frame that runs the contour's blocks.
+#[inline(never)]
+fn contour_command(
+    src: &crate::lang::siemens::call::ContourSource<'_>,
+    raw: &crate::program::RawBlock<'_>,
+    st: &State,
+    cfg: &MachineConfig,
+) -> Result<Option<crate::command::Command>, AlarmKind> {
+    let prep = |cause| AlarmKind::SiemensCycle(CycleAlarm::ContourPreparation { cause });
+    match src.program.language {
+        crate::config::Language::Fanuc => {
+            let mut block = Block::default();
+            if let Read::Macro(_) = read_with(raw.text, raw.line, src.program.vars, src.program.fmt, &mut block)? {
+                return Err(prep(10931));
+            }
+            if block.is_empty() {
+                return Ok(None);
+            }
+            check(&block, st, cfg).map(Some)
+        }
+        crate::config::Language::Siemens => src.front.contour_command(raw, src.vars, st, cfg),
+    }
+}
+
+/// The next block of a contour's text: a line in SINUMERIK, up to LF or `;` in
+/// FANUC; `None` at the end of the text or, in SINUMERIK, at the next PROC.
+fn next_contour_block<'t>(
+    language: crate::config::Language,
+    text: &'t [u8],
+    cur: &mut Cursor,
+) -> Option<crate::program::RawBlock<'t>> {
+    match language {
+        crate::config::Language::Fanuc => next_block(text, cur),
+        crate::config::Language::Siemens => {
+            let at = *cur;
+            let raw = crate::program::lines::next_line(text, cur)?;
+            if crate::program::lines::proc_name(raw.text).is_some() {
+                *cur = at;
+                return None;
+            }
+            Some(raw)
+        }
+    }
+}
+
+/// Whether a contour block ends its subprogram (M17/RET, M02/M30, M99).
+fn ends_subprogram(cmd: &crate::command::Command) -> bool {
+    matches!(cmd.flow, Some(crate::command::FlowWord::Return { .. }))
+        || cmd.m.iter().any(|&(_, f)| matches!(f, MFunction::End | MFunction::EndRewind))
+}
+
+/// The checks of a stock-removal contour block (CYCLE95, seed 001 lines
+/// 10820–10858), as the NCK alarm under 61606: G0–G3 only (10930); no G41/G42,
+/// plane selection or frame (10931); the first block moving in the plane must
+/// have its G0–G3 (15800).
+fn check_contour_command(cmd: &crate::command::Command, first: bool) -> Result<(), AlarmKind> {
+    use GCode::*;
+    let prep = |cause| Err(AlarmKind::SiemensCycle(CycleAlarm::ContourPreparation { cause }));
+    if let Some(m) = cmd.g.motion
+        && !matches!(m, Rapid | Linear | ArcCw | ArcCcw)
+    {
+        return prep(10930);
+    }
+    if cmd.g.one_shot.is_some_and(|c| c != Dwell) || cmd.g.drilling.is_some_and(|d| d != DrillCancel) {
+        return prep(10930);
+    }
+    if cmd.g.nose_comp.is_some_and(|c| c != NoseCompOff) || cmd.g.plane.is_some() || cmd.g.units.is_some() {
+        return prep(10931);
+    }
+    if first && cmd.has_axes() && cmd.g.motion.is_none() {
+        return prep(15800);
+    }
+    Ok(())
+}
+
+/// The contour of a stock-removal cycle (CYCLE95 `NPP`) read from `src`: its blocks
+/// run on a scratch copy of `st` through `execute`, their moves kept as segments
+/// in `profile` starting at the contour's first programmed point, which is
+/// returned (the first block's move only gets there). Alarms 61606 with the
+/// NCK cause: fewer than three moving blocks (10933), more elements than the
+/// profile holds (10934), an arc over 180° or a chamfer/rounding on the first
+/// block (10931), G41/G42 in force at the call (15800). Not inlined into the cycle
+/// call that starts the expansion: its frame (the scratch state and the outbox the
+/// contour's blocks run through) is on the stack only while the contour is read.
+#[inline(never)]
+pub fn read_contour<E: Environment + ?Sized>(
+    src: &crate::lang::siemens::call::ContourSource<'_>,
+    st: &State,
+    cfg: &MachineConfig,
+    env: &E,
+    execute: Execute,
+    profile: &mut Profile,
+) -> Result<Pt, AlarmKind> {
+    let prep = |cause| AlarmKind::SiemensCycle(CycleAlarm::ContourPreparation { cause });
+    if matches!(st.modal.nose_comp, GCode::NoseCompLeft | GCode::NoseCompRight) {
+        return Err(prep(15800));
+    }
+    let mut scratch = scratch(st);
+    profile.segs.clear();
+    let (text, mut cur) = (src.program.text, src.start);
+    let mut first: Option<Pt> = None;
+    let mut blocks = 0;
+    loop {
+        let at = cur;
+        let Some(raw) = next_contour_block(src.program.language, text, &mut cur) else {
+            if src.end.is_some() {
+                return Err(prep(10933));
+            }
+            break;
+        };
+        let last = src.end.is_some_and(|e| at.offset >= e.offset);
+        let Some(cmd) = contour_command(src, &raw, &scratch, cfg)? else {
+            if last {
+                break;
+            }
+            continue;
+        };
+        if ends_subprogram(&cmd) {
+            break;
+        }
+        check_contour_command(&cmd, first.is_none())?;
+        let mut outbox = crate::stage::Outbox::new();
+        let mut staged = CycleStage::new(raw.line, &mut outbox);
+        let here = super::emit::work_pos(&scratch, cfg);
+        let held = scratch.contour.is_holding();
+        // On the scratch copy itself: an alarm or a block that leaves the contour
+        // ends the reading, so nothing needs the state from before the block.
+        let flow = execute(&cmd, &mut scratch, cfg, &EnvRef(env), &mut staged)?;
+        if flow != Flow::Continue {
+            return Err(prep(10930));
+        }
+        if last {
+            crate::contour::flush(&mut scratch, &mut staged)?;
+        }
+        match first {
+            None => {
+                if scratch.contour.is_holding() {
+                    return Err(prep(10931));
+                }
+                let w = super::emit::work_pos(&scratch, cfg);
+                if staged.actions.iter().any(|c| c.action.endpoint().is_some()) || cmd.has_axes() {
+                    first = Some(Pt::new(w[Axis::X], w[Axis::Z]));
+                    blocks += 1;
+                }
+            }
+            Some(p0) => {
+                let a = match profile.segs.last() {
+                    Some(s) if held => s.b,
+                    Some(_) => Pt::new(here[Axis::X], here[Axis::Z]),
+                    None => p0,
+                };
+                if keep_moves(&staged, a, profile)
+                    .map_err(|e| if e == AlarmKind::ProfileTooLong { prep(10934) } else { e })?
+                    > 0
+                {
+                    blocks += 1;
+                }
+            }
+        }
+        if last {
+            break;
+        }
+    }
+    let Some(p0) = first else { return Err(prep(10933)) };
+    if blocks < 3 {
+        return Err(prep(10933));
+    }
+    for s in &profile.segs {
+        if let SegKind::Arc { center, cw } = s.kind {
+            let e = crate::geom::path::Elem::Arc {
+                start: crate::geom::path::V2::new(s.a.z as f64, s.a.x as f64),
+                end: crate::geom::path::V2::new(s.b.z as f64, s.b.x as f64),
+                center: crate::geom::path::V2::new(center.z as f64, center.x as f64),
+                ccw: !cw,
+            };
+            if e.length() > core::f64::consts::PI * e.radius() + 1.0 {
+                return Err(prep(10931));
+            }
+        }
+    }
+    Ok(p0)
 }

@@ -46,8 +46,9 @@ fn end_and_taper(
 }
 
 /// |R| ≤ |U/2| (|W| for G94) when R and U (W) have opposite signs (figures 2.24, 2.28).
+#[inline(never)]
 fn check_taper(r: i64, travel: i64) -> Result<(), AlarmKind> {
-    if r != 0 && travel != 0 && r.signum() != travel.signum() && r.abs() > travel.abs() {
+    if r != 0 && travel != 0 && super::sign(r) != super::sign(travel) && r.abs() > travel.abs() {
         return Err(AlarmKind::CycleTaperTooLarge);
     }
     Ok(())
@@ -67,7 +68,7 @@ fn cycle_nose(st: &State) -> Option<Nose> {
 
 /// G90, G94, G92 blocks.
 pub fn single_block(code: GCode, cmd: &Command, st: &mut State, cfg: &MachineConfig) -> Result<Option<Gen>, AlarmKind> {
-    let here = Emitter::new(*st, cmd.line).here(cfg);
+    let here = Emitter::for_block(st, cmd.line).here(cfg);
     let (taper, lead, starts) = match cmd.cycle {
         CycleArgs::Single { taper } => (taper, None, 1),
         CycleArgs::ThreadCycle { taper, lead, starts } => (taper, lead, starts),
@@ -132,7 +133,7 @@ pub fn thread_block(cmd: &Command, st: &mut State, ctx: &mut Ctx<'_, '_>, chaine
     }
     let lead = st.cycle.lead;
     args::check_lead(lead, st.modal.units)?;
-    let mut em = Emitter::new(*st, cmd.line);
+    let mut em = Emitter::for_block(st, cmd.line);
     let from = em.here(ctx.cfg);
     let w = motion::target(cmd, st, ctx.cfg)?;
     let to = Pt::new(w[Axis::X], w[Axis::Z]);
@@ -186,7 +187,7 @@ pub fn hole_block(
         Axis::X => Plane::Yz,
         _ => Plane::Zx,
     };
-    let here = st.work_pos(cfg);
+    let here = super::emit::work_pos(st, cfg);
     let mut position = here;
     let mut step = Pos::ZERO;
     for a in Axis::ALL {
@@ -253,6 +254,7 @@ fn hole_axis(code: GCode, plane: Plane) -> Axis {
 
 /// The lead of tapping at `rpm`: F/S under feed per minute (seed 004 @8614: "螺距
 /// T=F/S"), F under feed per revolution; alarms for F0 and a stopped spindle.
+#[inline(never)]
 pub(super) fn tap_lead(st: &State, rpm: u32) -> Result<i64, AlarmKind> {
     let mode = st.modal.feed_mode;
     let f = st.feed.get(mode);

@@ -8,11 +8,13 @@
 //! `ThreadSync::Continue` and the same lead: the long axis keeps its lead while the
 //! short axis pulls out.
 
-use super::StepQueue;
+use super::emit::push;
 use super::emit::{Pt, Step};
+use super::{StepQueue, sign};
 use crate::alarm::AlarmKind;
 use crate::axis::Axis;
 use crate::canon::ThreadSync;
+use crate::command::job::CHAIN_POINTS;
 
 /// Micro-degrees in a turn.
 const TURN_UDEG: i64 = 360_000_000;
@@ -22,17 +24,11 @@ pub fn long_axis(a: Pt, b: Pt) -> Axis {
     if (b.z - a.z).abs() > (b.x - a.x).abs() { Axis::Z } else { Axis::X }
 }
 
+pub use crate::command::job::Pullout;
+
 /// Pull-out of a thread from `b` to `c`: parameter 5130 (tenths of the lead `pitch`)
 /// along the long axis, the short axis at the angle of 5131 from the long axis
 /// (0 = 45°), never further than back to `retract_to` on the short axis (note 6).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Pullout {
-    /// Tenths of the pitch (5130 / G76 r).
-    pub tenths: i64,
-    /// Angle in degrees (5131), 0 = 45°.
-    pub angle_deg: i64,
-}
-
 impl Pullout {
     /// The point where the pull-out starts and its end, or `None` without pull-out.
     /// Alarm 4034 if it is longer than the thread (2.17.3 note 5, 2.17.4 note 8).
@@ -49,19 +45,19 @@ impl Pullout {
         }
         let t = (run - len) as f64 / run as f64;
         let p = Pt::new(lerp(b.x, c.x, t), lerp(b.z, c.z, t))
-            .with(long, c.get(long) - (c.get(long) - b.get(long)).signum() * len);
+            .with(long, c.get(long) - sign(c.get(long) - b.get(long)) * len);
         let deg = if self.angle_deg == 0 { 45.0 } else { self.angle_deg as f64 };
-        let pull = libm::round(len as f64 * libm::tan(deg.to_radians())) as i64;
+        let pull = crate::geom::round_i64(len as f64 * libm::tan(deg.to_radians()));
         let room = (retract_to - c.get(short)).abs();
         let pull = pull.min(room);
-        let e = c.with(short, c.get(short) + (retract_to - c.get(short)).signum() * pull);
+        let e = c.with(short, c.get(short) + sign(retract_to - c.get(short)) * pull);
         Ok(Some((p, e)))
     }
 }
 
 #[inline(never)]
 fn lerp(a: i64, b: i64, t: f64) -> i64 {
-    a + libm::round((b - a) as f64 * t) as i64
+    a + crate::geom::round_i64((b - a) as f64 * t)
 }
 
 /// The thread pass from `b` to `c` with its pull-out, as steps.
@@ -79,10 +75,11 @@ fn pass(
     match pull.points(b, c, pitch, retract_to)? {
         Some((p, e)) => {
             push(out, Step::Thread { to: p, lead, delta: 0, start_udeg, sync: ThreadSync::Index })?;
-            push(out, Step::Thread { to: e, lead, delta: 0, start_udeg, sync: ThreadSync::Continue })
+            push(out, Step::Thread { to: e, lead, delta: 0, start_udeg, sync: ThreadSync::Continue })?;
         }
-        None => push(out, Step::Thread { to: c, lead, delta: 0, start_udeg, sync: ThreadSync::Index }),
+        None => push(out, Step::Thread { to: c, lead, delta: 0, start_udeg, sync: ThreadSync::Index })?,
     }
+    Ok(())
 }
 
 /// G92: for each start, X to the thread start B, thread to C with pull-out,
@@ -136,123 +133,175 @@ impl ThreadCycleGen {
     }
 }
 
-/// What G76 needs (all radius values, nm).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct MultiThreadSpec {
-    /// Start A.
-    pub start: Pt,
-    /// Thread end D.
-    pub end: Pt,
-    /// Taper i.
-    pub taper: i64,
-    /// Thread height k.
-    pub height: i64,
-    /// First depth Δd.
-    pub first: i64,
-    /// Minimum depth Δdmin.
-    pub min_depth: i64,
-    /// Finishing allowance d.
-    pub allowance: i64,
-    /// Finishing passes m.
-    pub finish: u32,
-    /// Tool angle a, degrees.
-    pub angle_deg: u32,
-    /// Lead.
-    pub lead: i64,
-    /// Pull-out.
-    pub pull: Pullout,
-}
+pub use crate::command::job::{Depths, Flank, MultiThreadSpec};
 
-/// Where G76 is.
+/// Where the infeed engine is (G76; CYCLE97, CYCLE98).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MultiThreadGen {
     spec: MultiThreadSpec,
+    /// Thread start being cut (0-based).
+    start_no: u32,
     /// Rough passes done.
     n: u32,
     /// Depth of the last rough pass.
     depth: i64,
     /// Rough passes are over.
     rough_done: bool,
-    /// Finishing passes done.
+    /// Passes at the full height done.
     finished: u32,
 }
 
 impl MultiThreadGen {
-    /// Validates G76's values (notes 6–8, the missing P(k)/Q(Δd) alarm).
+    /// Validates the values (G76 notes 6–8, the missing P(k)/Q(Δd) alarm; the
+    /// front end checks its own cycle's values before).
     pub fn new(spec: MultiThreadSpec) -> Result<Self, AlarmKind> {
-        if spec.height <= 0 || spec.first <= 0 {
-            return Err(AlarmKind::CycleValueIllegal { what: "G76 needs thread height P(k) and first depth Q(d) > 0" });
+        if let Depths::Root { first, min_depth } = spec.depths {
+            if spec.height <= 0 || first <= 0 {
+                return Err(AlarmKind::CycleValueIllegal {
+                    what: "G76 needs thread height P(k) and first depth Q(d) > 0",
+                });
+            }
+            if min_depth > spec.height || spec.allowance > spec.height {
+                return Err(AlarmKind::CycleValueIllegal {
+                    what: "G76 minimum depth or finishing allowance above the height",
+                });
+            }
+            if spec.finish == 0 {
+                return Err(AlarmKind::CycleValueIllegal { what: "G76 finishing count m must be 01-99" });
+            }
         }
-        if spec.min_depth > spec.height || spec.allowance > spec.height {
-            return Err(AlarmKind::CycleValueIllegal {
-                what: "G76 minimum depth or finishing allowance above the height",
-            });
+        if spec.count < 2 || spec.count > spec.points.len() || spec.starts == 0 {
+            return Err(AlarmKind::CycleValueIllegal { what: "thread without a length" });
         }
-        if spec.end.x == spec.start.x {
-            return Err(AlarmKind::CycleValueIllegal { what: "G76 end point X equals the start point X" });
+        let g = MultiThreadGen { spec, start_no: 0, n: 0, depth: 0, rough_done: false, finished: 0 };
+        let lead = spec.leads[spec.count - 2];
+        for d in [0, spec.height] {
+            let (pts, n) = g.line(d, 0);
+            spec.pull.points(pts[n - 2], pts[n - 1], lead, spec.retract)?;
         }
-        if spec.finish == 0 {
-            return Err(AlarmKind::CycleValueIllegal { what: "G76 finishing count m must be 01-99" });
-        }
-        let g = MultiThreadGen { spec, n: 0, depth: 0, rough_done: false, finished: 0 };
-        let (b, c) = g.line(0);
-        spec.pull.points(b, c, spec.lead, spec.start.x)?;
-        let (b, c) = g.line(spec.height);
-        spec.pull.points(b, c, spec.lead, spec.start.x)?;
         Ok(g)
     }
 
-    /// Depth of rough pass `n` (1-based) after `prev`: the larger of √n·Δd and
-    /// prev + Δdmin, and at most k − d (then it is the last rough pass).
+    /// Depth of rough pass `n` (1-based) after `prev` and whether it is the last:
+    /// G76 the larger of √n·Δd and prev + Δdmin; CYCLE97 constant infeed or
+    /// constant cross-section. Never beyond k − d (then it is the last).
     pub fn rough_depth(spec: &MultiThreadSpec, n: u32, prev: i64) -> (i64, bool) {
         let limit = spec.height - spec.allowance;
-        let root = libm::round(libm::sqrt(f64::from(n)) * spec.first as f64) as i64;
-        let d = if n == 1 { spec.first } else { root.max(prev + spec.min_depth) };
+        let d = match spec.depths {
+            Depths::Root { first, min_depth } => {
+                let root = crate::geom::round_i64(libm::sqrt(f64::from(n)) * first as f64);
+                if n == 1 { first } else { root.max(prev + min_depth) }
+            }
+            // CYCLE97's spacings: only its front end makes them (without SINUMERIK
+            // their code is left out; the same for the other `crate::SIEMENS` below).
+            Depths::Split { .. } if !crate::SIEMENS => limit,
+            Depths::Split { passes, constant_section } => {
+                let passes = passes.max(1);
+                let share = f64::from(n) / f64::from(passes);
+                let share = if constant_section { libm::sqrt(share) } else { share };
+                if n >= passes { limit } else { crate::geom::round_i64(limit as f64 * share) }
+            }
+        };
         if d >= limit { (limit, true) } else { (d, false) }
     }
 
-    /// Start B_n and end of the pass at `depth`: from B shifted along the flank
-    /// (tan(a/2) = |ΔZ|/|ΔX|, towards D) parallel to C→D up to D's Z.
-    fn line(&self, depth: i64) -> (Pt, Pt) {
+    /// The long and the infeed axis.
+    fn axes(&self) -> (Axis, Axis) {
+        if crate::SIEMENS && self.spec.face { (Axis::X, Axis::Z) } else { (Axis::Z, Axis::X) }
+    }
+
+    /// The points of pass number `k` (0-based) at `depth`: the nominal line moved
+    /// inward by the depth and along the long axis as the flank rule says.
+    fn line(&self, depth: i64, k: u32) -> ([Pt; CHAIN_POINTS], usize) {
         let s = &self.spec;
-        let inward = (s.end.x - s.start.x).signum();
-        let c = Pt::new(s.end.x + s.taper, s.start.z);
-        let b = Pt::new(c.x - inward * s.height, c.z);
-        let half = (f64::from(s.angle_deg) / 2.0).to_radians();
-        let dz = libm::round(depth as f64 * libm::tan(half)) as i64;
-        let zdir = (s.end.z - s.start.z).signum();
-        let bn = Pt::new(b.x + inward * depth, b.z + zdir * dz);
-        let slope = (s.end.x - c.x) as f64 / (s.end.z - c.z) as f64;
-        let xe = bn.x + libm::round(slope * (s.end.z - bn.z) as f64) as i64;
-        (bn, Pt::new(xe, s.end.z))
+        let (long, feed) = self.axes();
+        let mut pts = s.points;
+        // G76 has two points (A's and D's); a chain of more is CYCLE98's.
+        let n = if crate::SIEMENS { s.count } else { 2 };
+        for p in pts[..n].iter_mut() {
+            *p = p.with(feed, p.get(feed) + s.inward * depth);
+        }
+        let dir = sign(s.points[n - 1].get(long) - s.points[0].get(long));
+        match s.flank {
+            Flank::FromStart { angle_udeg } => {
+                // G76: the start moves towards the end, the pass ends at the end's long
+                // coordinate on the line parallel to the thread.
+                let (a, e) = (pts[0], pts[n - 1]);
+                let shift = crate::geom::round_i64(depth as f64 * tan_udeg(angle_udeg));
+                let bn = a.with(long, a.get(long) + dir * shift);
+                let slope = (e.get(feed) - a.get(feed)) as f64 / (e.get(long) - a.get(long)) as f64;
+                let fe = bn.get(feed) + crate::geom::round_i64(slope * (e.get(long) - bn.get(long)) as f64);
+                pts[0] = bn;
+                pts[n - 1] = e.with(feed, fe);
+            }
+            Flank::ToFinal { .. } if !crate::SIEMENS => {}
+            Flank::ToFinal { angle_udeg, alternate } => {
+                let side = if alternate && k % 2 == 1 { -1 } else { 1 };
+                let shift = crate::geom::round_i64((s.height - depth) as f64 * tan_udeg(angle_udeg));
+                for p in pts[..n].iter_mut() {
+                    *p = p.with(long, p.get(long) + side * dir * shift);
+                }
+            }
+        }
+        (pts, n)
     }
 
     /// One pass; `false` when the cycle is done.
     pub fn fill(&mut self, out: &mut StepQueue) -> Result<bool, AlarmKind> {
+        let s = self.spec;
         let depth = if !self.rough_done {
             self.n += 1;
-            let (d, last) = Self::rough_depth(&self.spec, self.n, self.depth);
+            let (d, last) = Self::rough_depth(&s, self.n, self.depth);
             self.depth = d;
             self.rough_done = last;
             d
-        } else if self.finished < self.spec.finish {
+        } else if self.finished < s.finish {
             self.finished += 1;
-            self.spec.height
+            s.height
+        } else if crate::SIEMENS && self.start_no + 1 < s.starts {
+            // The next start: the whole sequence again (CYCLE97 NUMT).
+            self.start_no += 1;
+            (self.n, self.depth, self.rough_done, self.finished) = (0, 0, false, 0);
+            return Ok(true);
         } else {
             return Ok(false);
         };
-        let s = self.spec;
-        let (bn, e) = self.line(depth);
-        push(out, Step::Rapid(bn))?;
-        pass(out, bn, e, s.lead, s.lead, 0, s.pull, s.start.x)?;
-        let end_z = match s.pull.points(bn, e, s.lead, s.start.x)? {
-            Some((_, pe)) => pe.z,
-            None => e.z,
+        if self.start_no == 0 && self.n + self.finished == 1 {
+            // To the start point first (nothing for G76, which starts there).
+            push(out, Step::Rapid(s.start))?;
+        }
+        let k = self.n + self.finished - 1;
+        let turn = if crate::SIEMENS { i64::from(self.start_no) * TURN_UDEG / i64::from(s.starts) } else { 0 };
+        let angle = ((i64::from(s.start_udeg) + turn) % TURN_UDEG) as u32;
+        let (pts, n) = self.line(depth, k);
+        let (long, feed) = self.axes();
+        push(out, Step::Rapid(pts[0]))?;
+        let last = n - 2;
+        for i in 0..last {
+            let sync = if i == 0 { ThreadSync::Index } else { ThreadSync::Continue };
+            push(out, Step::Thread { to: pts[i + 1], lead: s.leads[i], delta: 0, start_udeg: angle, sync })?;
+        }
+        let lead = s.leads[last];
+        let end = if last == 0 {
+            pass(out, pts[0], pts[1], lead, lead, angle, s.pull, s.retract)?;
+            match s.pull.points(pts[0], pts[1], lead, s.retract)? {
+                Some((_, pe)) => pe,
+                None => pts[1],
+            }
+        } else {
+            let to = pts[last + 1];
+            push(out, Step::Thread { to, lead, delta: 0, start_udeg: angle, sync: ThreadSync::Continue })?;
+            to
         };
-        push(out, Step::Rapid(Pt::new(s.start.x, end_z)))?;
-        push(out, Step::Rapid(s.start))?;
+        push(out, Step::Rapid(end.with(feed, s.retract)))?;
+        push(out, Step::Rapid(s.start.with(feed, s.retract).with(long, s.start.get(long))))?;
         Ok(true)
     }
+}
+
+/// tan of an angle in µdeg.
+fn tan_udeg(udeg: i64) -> f64 {
+    libm::tan((udeg as f64 / 1e6).to_radians())
 }
 
 /// G32/G34: one thread move from `from` to `to`.
@@ -271,10 +320,6 @@ pub fn check_variable_lead(lead: i64, delta: i64, length: i64, max: i64) -> Resu
         return Err(AlarmKind::IllegalLead);
     }
     Ok(())
-}
-
-fn push(out: &mut StepQueue, s: Step) -> Result<(), AlarmKind> {
-    out.push_back(s).map_err(|_| AlarmKind::Overflow)
 }
 
 #[cfg(test)]

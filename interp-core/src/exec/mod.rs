@@ -179,6 +179,9 @@ fn plain(
 /// [`execute`] for the cycles below, which run the blocks of a G70–G73 shape.
 pub struct Blocks;
 
+/// What alarm 4007 names on a build without the `siemens` feature.
+pub(crate) const SINUMERIK: &str = "SINUMERIK mode";
+
 impl cycles::Executor for Blocks {
     fn execute(
         cmd: &Command,
@@ -188,6 +191,21 @@ impl cycles::Executor for Blocks {
         out: &mut CycleStage<'_>,
     ) -> Result<Flow, AlarmKind> {
         execute(cmd, st, cfg, env, out)
+    }
+
+    #[cfg(not(feature = "siemens"))]
+    fn cycle_call(_: &Command, _: &mut State, _: &mut cycles::Ctx<'_, '_>) -> Result<(), AlarmKind> {
+        Err(AlarmKind::NotInThisBuild { what: SINUMERIK })
+    }
+
+    #[cfg(feature = "siemens")]
+    fn cycle_call(cmd: &Command, st: &mut State, ctx: &mut cycles::Ctx<'_, '_>) -> Result<(), AlarmKind> {
+        use crate::lang::siemens::call::{Arg, MAX_ARGS};
+        // The driver puts the bound call into the stage of every cycle-call block.
+        let call = *ctx.out.call.ok_or(AlarmKind::NotSupportedYet { what: "a cycle call without its arguments" })?;
+        let mut buf = [Arg::Empty; MAX_ARGS];
+        let args = call.args.args(&mut buf);
+        call.front.cycle_start(call.sig, args, cmd, st, &mut cycles::CallEngine::<Blocks>::new(ctx), call.contour)
     }
 }
 
@@ -322,6 +340,10 @@ fn program_flow(
         }
     }
     if let Some(GCode::Language(l)) = cmd.g.one_shot {
+        // A board built without the `siemens` feature (the F446) refuses G290.
+        if cfg!(not(feature = "siemens")) && l == crate::config::Language::Siemens {
+            return Err(AlarmKind::NotInThisBuild { what: SINUMERIK });
+        }
         return Ok(Flow::Language(l));
     }
     Ok(match cmd.flow {
@@ -334,4 +356,80 @@ fn program_flow(
             if level == high { Flow::Jump { seq } } else { Flow::Continue }
         }
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::lang::siemens::call::{Arg, CallArgs, ContourSource, CycleCall, Signature, Ty};
+    use crate::stage::Outbox;
+
+    /// A front end whose cycles all refuse to start (the language's own are
+    /// interp-siemens's, tested there).
+    #[derive(Debug)]
+    struct Refuses;
+
+    impl crate::lang::Front for Refuses {
+        fn step(
+            &self,
+            _: &mut crate::Interpreter,
+            _: &dyn crate::program::ProgramStore,
+            _: &dyn Environment,
+            _: &mut dyn crate::canon::CanonSink,
+        ) -> Result<crate::Progress, crate::Alarm> {
+            unreachable!("not stepped")
+        }
+
+        fn ret(&self, _: &mut crate::Interpreter) {
+            unreachable!("no blocks of its own")
+        }
+
+        fn cycle_start(
+            &self,
+            _: &'static Signature,
+            _: &[Arg<'_>],
+            _: &Command,
+            _: &mut State,
+            _: &mut dyn crate::lang::Engine,
+            _: Option<ContourSource<'_>>,
+        ) -> Result<(), AlarmKind> {
+            Err(AlarmKind::NotSupportedYet { what: "this SINUMERIK cycle" })
+        }
+
+        fn contour_command(
+            &self,
+            _: &crate::program::RawBlock<'_>,
+            _: &crate::lang::siemens::vars::Vars,
+            _: &State,
+            _: &MachineConfig,
+        ) -> Result<Option<Command>, AlarmKind> {
+            Ok(None)
+        }
+    }
+
+    /// A cycle-call block reaches the language's cycle start through
+    /// `cycles::execute` with its bound call; without one it is refused. Either way
+    /// a refused block stages nothing and starts no cycle.
+    #[test]
+    fn a_cycle_call_block_reaches_the_cycle_start() {
+        static NOT_A_CYCLE: Signature = Signature { name: "CYCLE100", params: &[("MID", Ty::Real)] };
+        let cfg = MachineConfig::default();
+        let mut st = State::power_on(&cfg, Pos::ZERO);
+        let mut cmd = Command::EMPTY;
+        cmd.g.one_shot = Some(GCode::CycleCall);
+        let mut args = CallArgs::new();
+        args.push(Arg::Real(5.0)).unwrap();
+        args.bind(NOT_A_CYCLE.params.iter().map(|p| p.1)).unwrap();
+        let call = CycleCall { sig: &NOT_A_CYCLE, args: &args, contour: None, front: &Refuses };
+        for call in [None, Some(&call)] {
+            let mut outbox = Outbox::new();
+            let mut slot = None;
+            let mut stage =
+                CycleStage::in_program(1, &mut outbox, crate::lang::ProgramText::plain(b"CYCLE100(5)"), &mut slot);
+            stage.call = call;
+            assert!(execute(&cmd, &mut st, &cfg, &crate::env::Panel::default(), &mut stage).is_err());
+            assert!(stage.actions.is_empty());
+            assert!(slot.is_none());
+        }
+    }
 }

@@ -90,7 +90,7 @@ impl V2 {
     /// Rotated counter-clockwise by `t` radians.
     #[inline(never)]
     pub fn rotate(self, t: f64) -> V2 {
-        let (s, c) = (libm::sin(t), libm::cos(t));
+        let (s, c) = super::sin_cos(t);
         V2::new(self.a * c - self.b * s, self.a * s + self.b * c)
     }
 }
@@ -122,7 +122,7 @@ pub enum Elem {
 #[inline(never)]
 pub fn wrap_tau(x: f64) -> f64 {
     let tau = core::f64::consts::TAU;
-    let r = libm::fmod(x, tau);
+    let r = super::fmod(x, tau);
     if r < 0.0 { r + tau } else { r }
 }
 

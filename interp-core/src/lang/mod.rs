@@ -8,14 +8,123 @@
 //!
 //! - [`fanuc`]: the FANUC-style dialect of the ELESY-E3TA manual (G-code systems
 //!   A/B/C on a lathe, the M series on a mill), with custom macro B.
+//! - [`siemens`]: SINUMERIK 840D (R parameters, DEF variables, labels, PROC
+//!   subprograms, MCALL and the standard cycles of seed 001): the parts the
+//!   engine shares here (the reader and checker the cycles' contour reading
+//!   uses, the variables, the cycle calls' parameter mapping); the language's
+//!   flow is the `interp-siemens` crate, plugged in as a [`Front`].
+//!
+//! How a language plugs in: the FANUC front end is the interpreter's own; any
+//! other is a [`Front`] given to the interpreter with
+//! [`crate::Interpreter::plug`], which hands it every step while its language
+//! is in force (`G290`/`G291` switch). Both hand their blocks to the same
+//! execution (`Interpreter::run_cmd`) and share one call stack.
 
 pub mod fanuc;
+pub mod siemens;
 
+use crate::alarm::AlarmKind;
+use crate::canon::SpindleDir;
+use crate::command::Command;
+use crate::command::hole::HoleSpec;
+use crate::command::job::{GrooveSpec, MultiThreadSpec, StockSpec};
+use crate::config::MachineConfig;
+use crate::geom::{Pt, Seg};
 use crate::lang::fanuc::macros::Variables;
+use crate::lang::siemens::call::ContourSource;
+use crate::modal::State;
 use crate::program::Cursor;
 use crate::units::NumberFormat;
 
 pub use crate::config::Language;
+
+/// A language front end beside FANUC's: it reads, checks and runs the blocks of
+/// its language on the interpreter's engine, one step at a time. The FANUC step
+/// stays as it is: the interpreter calls a front end only while its language is
+/// in force (one test of the language per step, one call through this trait).
+pub trait Front: Sync + core::fmt::Debug {
+    /// One step in this language: statements up to the step budget, at most one
+    /// NC block, as [`crate::Interpreter::step`] describes.
+    fn step(
+        &self,
+        it: &mut crate::Interpreter,
+        programs: &dyn crate::program::ProgramStore,
+        env: &dyn crate::env::Environment,
+        sink: &mut dyn crate::canon::CanonSink,
+    ) -> Result<crate::Progress, crate::Alarm>;
+
+    /// M17, RET or the end of a subprogram in this language: back to the caller
+    /// (the level's sections end with it; a pass still due starts the level
+    /// again); in the main program the end. The interpreter calls it for a
+    /// block's [`Flow::Return`](crate::stage::Flow) routed by this language.
+    fn ret(&self, it: &mut crate::Interpreter);
+
+    /// Starts the standard cycle `sig` of a cycle-call block `cmd` with `args`
+    /// (bound to `sig`, padded with [`Arg::Empty`](siemens::call::Arg::Empty)):
+    /// checks the parameters (the language's alarms), maps them onto the
+    /// engine's specification and starts the generator on `engine`. Nothing moves
+    /// when an alarm is returned. Called by the engine (`Executor::cycle_call`).
+    fn cycle_start(
+        &self,
+        sig: &'static siemens::call::Signature,
+        args: &[siemens::call::Arg<'_>],
+        cmd: &Command,
+        st: &mut State,
+        engine: &mut dyn Engine,
+        contour: Option<siemens::call::ContourSource<'_>>,
+    ) -> Result<(), AlarmKind>;
+
+    /// One block of a cycle's contour written in this language, read and checked
+    /// against `vars` (a contour's blocks are NC blocks only: a statement is
+    /// alarm 61606 with the NCK cause 10930); `None` for a block without words.
+    /// Called by the engine's contour reading (`cycles::profile`).
+    fn contour_command(
+        &self,
+        raw: &crate::program::RawBlock<'_>,
+        vars: &siemens::vars::Vars,
+        st: &State,
+        cfg: &MachineConfig,
+    ) -> Result<Option<Command>, AlarmKind>;
+}
+
+/// The engine's side of a cycle call: the shared generators a cycle's parameters
+/// are mapped onto. Implemented by `interp_core::cycles` (which sits above the
+/// languages), handed down as a trait object.
+pub trait Engine {
+    /// The machine.
+    fn cfg(&self) -> &MachineConfig;
+    /// Starts the thread infeed engine (G76's) with `spec` for the cycle block `cmd`.
+    fn thread(&mut self, spec: &MultiThreadSpec, cmd: &Command, st: &mut State) -> Result<(), AlarmKind>;
+    /// One pass along `path` (work, X radius) with the nose compensated, the tool
+    /// left (or right) of it, from and back to `start` with G0, at the feed in force.
+    fn contour_pass(
+        &mut self,
+        path: &[Seg],
+        tool_left: bool,
+        start: Pt,
+        cmd: &Command,
+        st: &mut State,
+    ) -> Result<(), AlarmKind>;
+    /// Starts the grooving generator (G74/G75's columns) with `spec` on `segs`.
+    fn grooving(&mut self, spec: &GrooveSpec, segs: &[Seg], cmd: &Command, st: &mut State) -> Result<(), AlarmKind>;
+    /// Starts the one hole generator (G83–G89's, the mill's G73–G89) with `spec`,
+    /// the spindle turned on `spindle` at the R level first when given.
+    fn hole(
+        &mut self,
+        spec: &HoleSpec,
+        spindle: Option<SpindleDir>,
+        cmd: &Command,
+        st: &mut State,
+    ) -> Result<(), AlarmKind>;
+    /// Reads `contour` and starts the stock-removal generator (G71's geometry) on it.
+    fn stock(
+        &mut self,
+        spec: &StockSpec,
+        contour: ContourSource<'_>,
+        cmd: &Command,
+        st: &mut State,
+    ) -> Result<(), AlarmKind>;
+}
 
 /// A program as the blocks of a canned cycle's shape (G70–G73 ns–nf) are read from
 /// it: the text, where the program begins, the language it is written in, and what

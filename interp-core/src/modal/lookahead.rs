@@ -17,6 +17,9 @@ pub enum Corner {
     Chamfer(i64),
     /// `,R`: a corner arc of this radius (nm) tangent to both moves.
     Round(i64),
+    /// SINUMERIK `CHF=`: a straight chamfer this long (nm), its ends equally far
+    /// from the imaginary corner (`CHR=` gives that distance: [`Corner::Chamfer`]).
+    ChamferLength(i64),
 }
 
 /// G41 or G42.

@@ -49,6 +49,10 @@ pub struct Modal {
     pub return_to_r: bool,
     /// Polygon turning in force (G51.2, 2.8): its ratio; `None` = G50.2.
     pub polygon: Option<crate::canon::PolygonSync>,
+    /// X values are diameters: the machine's `diameter_x` at power-on. SINUMERIK
+    /// DIAMON/DIAMOF switch it (group 29); the SINUMERIK cycles read their
+    /// plane-axis parameters (SPD, DM1 …) and MID (`_ZSD[0]` = 0) by it.
+    pub diameter: bool,
 }
 
 /// Shifts that together with the work offsets make up the work frame.
@@ -195,6 +199,27 @@ pub struct CycleMemory {
     pub rigid: RigidTap,
     /// Direction floating tapping turns the spindle into the hole (2.22.3 note 2).
     pub tap_dir: SpindleDir,
+    /// SINUMERIK cycle setting data `_ZSD[0..7]` (GUD7, seed 001 lines 3522-3536,
+    /// 10139-10161): [0] CYCLE95 MID radius/diameter, [4] CYCLE93 retract after
+    /// the first groove, [5] CYCLE88 M5/M0, [6] CYCLE93 offsets under mirroring.
+    /// All 0 by default; the SINUMERIK front end writes them.
+    pub zsd: [i16; 8],
+    /// Thread re-cutting (SINUMERIK 4.9): where the tool was synchronised in an
+    /// existing thread; CYCLE97/CYCLE98 start their thread so that it runs through it.
+    pub recut: Option<ThreadRecut>,
+}
+
+/// A synchronisation point for thread re-cutting (seed 001 4.9, lines 11439–11509):
+/// with the threading tool set into the existing thread, the work Z and the spindle
+/// angle after the index there. The cycles add the angle that makes the thread
+/// they cut run through this point to the start offset NSP.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct ThreadRecut {
+    /// Work Z of the synchronisation point, nm.
+    pub z: i64,
+    /// Spindle angle after the index at that point, µdeg (0–360°).
+    pub angle_udeg: i64,
 }
 
 impl Default for CycleMemory {
@@ -206,6 +231,8 @@ impl Default for CycleMemory {
             hole: HoleMemory::default(),
             rigid: RigidTap::Off,
             tap_dir: SpindleDir::Stop,
+            zsd: [0; 8],
+            recut: None,
         }
     }
 }
@@ -304,6 +331,7 @@ impl State {
                 drilling: GCode::DrillCancel,
                 return_to_r: false,
                 polygon: None,
+                diameter: cfg.diameter_x,
             },
             pos,
             frames: Frames::default(),

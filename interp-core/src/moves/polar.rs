@@ -36,10 +36,11 @@ pub(crate) fn mode_change(cmd: &Command, st: &mut State, cfg: &MachineConfig) ->
             }
             let w = st.work_pos(cfg);
             let (r, th) = (w[Axis::X] as f64, (w[Axis::C] as f64 / 1e6).to_radians());
+            let (s, c) = crate::geom::sin_cos(th);
             st.polar = Some(Polar {
                 plane: st.modal.plane,
-                x: crate::geom::round_i64(r * libm::cos(th)),
-                c: crate::geom::round_i64(r * libm::sin(th)),
+                x: crate::geom::round_i64(r * c),
+                c: crate::geom::round_i64(r * s),
                 z: w[Axis::Z],
             });
             st.modal.plane = Plane::Xy;

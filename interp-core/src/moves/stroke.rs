@@ -84,7 +84,9 @@ fn strictly_inside(a: &StrokeArea, p: &[f64; 3]) -> bool {
     LINEAR.into_iter().enumerate().all(|(i, x)| p[i] > a.lo[x] as f64 + 0.5 && p[i] < a.hi[x] as f64 - 0.5)
 }
 
-/// Checks the moves staged in `acts`, the first starting at `from`.
+/// Checks the moves staged in `acts`, the first starting at `from`. Always inlined
+/// into the per-block paths (see `contour::after_block`).
+#[inline(always)]
 pub(crate) fn check_actions<'a, I>(st: &State, from: Pos, acts: I) -> Result<(), AlarmKind>
 where
     I: Iterator<Item = &'a Canon>,

@@ -5,7 +5,12 @@
 
 use core::fmt;
 
+use super::lines::{self, NamedProgram};
 use super::{Cursor, ProgramId, ProgramStore, leading_sequence, next_block, starts_program};
+
+/// The first id a named (SINUMERIK) program gets: named programs are numbered
+/// from here in the order they are loaded, above every O number.
+pub const NAMED_BASE: ProgramId = 100_000;
 
 /// One stored program.
 #[derive(Clone, Copy, Debug)]
@@ -167,9 +172,107 @@ impl<const P: usize, const S: usize> ProgramIndex<P, S> {
         }
     }
 
+    /// Indexes the SINUMERIK file `space[file..end]`: one or more programs named
+    /// by `%_N_NAME_MPF`/`_SPF` headers or PROC statements
+    /// ([`lines::split_programs`]). The first program gets the id `unnamed` if
+    /// given (a main program file), the others — and all of a library file's —
+    /// ids from [`NAMED_BASE`] on. Sequence numbers are the `N` numbers lines
+    /// start with (a `;` comment is no block end here). Returns the first
+    /// program's id. All or nothing.
+    pub fn add_named_file(
+        &mut self,
+        space: &[u8],
+        file: usize,
+        end: usize,
+        unnamed: Option<ProgramId>,
+    ) -> Result<ProgramId, LoadError> {
+        let (p, s) = (self.programs.len(), self.sequences.len());
+        let text = space.get(file..end).ok_or(LoadError::TextFull)?;
+        if u32::try_from(end).is_err() {
+            return Err(LoadError::TextFull);
+        }
+        let mut next =
+            self.programs.iter().map(|q| q.number + 1).filter(|&n| n > NAMED_BASE).max().unwrap_or(NAMED_BASE);
+        let mut first = None;
+        let r = lines::split_programs(text, |prog: NamedProgram<'_>| {
+            let id = match (first, unnamed) {
+                (None, Some(id)) => id,
+                _ => {
+                    next += 1;
+                    next - 1
+                }
+            };
+            first.get_or_insert(id);
+            let start = Cursor { program: id, ..prog.start };
+            self.add_lines(id, file, start, prog.end, text)
+        });
+        if r.is_err() {
+            self.programs.truncate(p);
+            self.sequences.truncate(s);
+        }
+        r.map(|()| first.unwrap_or(0))
+    }
+
+    /// The first program whose name (from its `%_N_…` header or PROC line) is
+    /// `name`, ignoring case.
+    pub fn find_named(&self, space: &[u8], name: &[u8]) -> Option<ProgramId> {
+        self.programs
+            .iter()
+            .find(|p| {
+                space.get(p.file as usize..(p.file + p.end) as usize).is_some_and(|t| {
+                    let mut cur = Cursor { program: p.number, offset: p.start as usize, line: p.line };
+                    // The name is on the header or the PROC line, before any statement.
+                    while let Some(l) = lines::next_line(t, &mut cur) {
+                        if let Some(n) = lines::header_name(l.text).or_else(|| lines::proc_name(l.text)) {
+                            if n.eq_ignore_ascii_case(name) {
+                                return true;
+                            }
+                            if lines::proc_name(l.text).is_some() {
+                                return false;
+                            }
+                        } else if lines::has_statement(l.text) {
+                            return false;
+                        }
+                    }
+                    false
+                })
+            })
+            .map(|p| p.number)
+    }
+
+    /// [`ProgramIndex::add`] for a SINUMERIK program: sequence numbers by line.
+    fn add_lines(
+        &mut self,
+        n: ProgramId,
+        file: usize,
+        start: Cursor,
+        end: usize,
+        text: &[u8],
+    ) -> Result<(), LoadError> {
+        self.add_with(n, file, start, end, text, true)
+    }
+
     /// Registers program `n` spanning `start..end` of `text` (the file at `file`)
     /// and indexes its sequence numbers.
     fn add(&mut self, n: ProgramId, file: usize, start: Cursor, end: usize, text: &[u8]) -> Result<(), LoadError> {
+        self.add_with(n, file, start, end, text, false)
+    }
+
+    /// [`ProgramIndex::add`] with the language's way of cutting blocks and reading
+    /// their sequence numbers (`siemens`: by line).
+    fn add_with(
+        &mut self,
+        n: ProgramId,
+        file: usize,
+        start: Cursor,
+        end: usize,
+        text: &[u8],
+        siemens: bool,
+    ) -> Result<(), LoadError> {
+        type Cut = for<'t> fn(&'t [u8], &mut Cursor) -> Option<super::RawBlock<'t>>;
+        type SeqOf = fn(&[u8]) -> Option<u32>;
+        let (cut, seq_of): (Cut, SeqOf) =
+            if siemens { (lines::next_line, lines::line_number) } else { (next_block, leading_sequence) };
         let slot = match self.programs.binary_search_by_key(&n, |p| p.number) {
             Ok(_) => return Err(LoadError::Duplicate { program: n }),
             Err(i) => i,
@@ -179,8 +282,8 @@ impl<const P: usize, const S: usize> ProgramIndex<P, S> {
         let mut cur = start;
         loop {
             let at = cur;
-            let Some(block) = next_block(body, &mut cur) else { break };
-            if let Some(s) = leading_sequence(block.text) {
+            let Some(block) = cut(body, &mut cur) else { break };
+            if let Some(s) = seq_of(block.text) {
                 let e = SeqEntry { n: s, offset: at.offset as u32, line: at.line };
                 self.sequences.push(e).map_err(|_| LoadError::TooManySequences)?;
             }
@@ -291,6 +394,18 @@ impl<const T: usize, const P: usize, const S: usize> ProgramMemory<T, P, S> {
         r
     }
 
+    /// Copies in a SINUMERIK text (a file) holding one or more named programs and
+    /// indexes them ([`ProgramIndex::add_named_file`]). All or nothing.
+    pub fn load_named(&mut self, text: &[u8], unnamed: Option<ProgramId>) -> Result<ProgramId, LoadError> {
+        let file = self.text.len();
+        self.text.extend_from_slice(text).map_err(|_| LoadError::TextFull)?;
+        let r = self.index.add_named_file(&self.text, file, self.text.len(), unnamed);
+        if r.is_err() {
+            self.text.truncate(file);
+        }
+        r
+    }
+
     /// Removes every program.
     pub fn clear(&mut self) {
         self.text.clear();
@@ -334,6 +449,10 @@ impl<const T: usize, const P: usize, const S: usize> ProgramStore for ProgramMem
         self.index.text(&self.text, id)
     }
 
+    fn find_named(&self, name: &[u8]) -> Option<Cursor> {
+        self.index.find_named(&self.text, name).and_then(|id| self.index.start(id))
+    }
+
     fn start(&self, id: ProgramId) -> Option<Cursor> {
         self.index.start(id)
     }
@@ -363,6 +482,16 @@ impl<'a, const P: usize, const S: usize> ProgramArea<'a, P, S> {
         self.index.add_file(self.space, file, end, unnamed)
     }
 
+    /// Indexes the SINUMERIK file at `space[file..end]` ([`ProgramIndex::add_named_file`]).
+    pub fn add_named_file(
+        &mut self,
+        file: usize,
+        end: usize,
+        unnamed: Option<ProgramId>,
+    ) -> Result<ProgramId, LoadError> {
+        self.index.add_named_file(self.space, file, end, unnamed)
+    }
+
     /// The O numbers indexed, ascending.
     pub fn numbers(&self) -> impl Iterator<Item = ProgramId> + '_ {
         self.index.numbers()
@@ -372,6 +501,10 @@ impl<'a, const P: usize, const S: usize> ProgramArea<'a, P, S> {
 impl<const P: usize, const S: usize> ProgramStore for ProgramArea<'_, P, S> {
     fn text(&self, id: ProgramId) -> Option<&[u8]> {
         self.index.text(self.space, id)
+    }
+
+    fn find_named(&self, name: &[u8]) -> Option<Cursor> {
+        self.index.find_named(self.space, name).and_then(|id| self.index.start(id))
     }
 
     fn start(&self, id: ProgramId) -> Option<Cursor> {
@@ -488,6 +621,26 @@ mod tests {
         assert_eq!(m.numbers().collect::<heapless::Vec<_, 4>>().as_slice(), &[5]);
         assert_eq!(m.load(b"%\n(nothing)\n%\n", Some(0)), Ok(0));
         assert_eq!(m.start(0), Some(Cursor::start(0)));
+    }
+
+    #[test]
+    fn named_programs_are_found_by_name_and_keep_their_lines() {
+        let mut m = Small::new();
+        let main = b"; CYCLE95 example 1\nN10 G0 X81\nN50 M30\nPROC KONTUR_1\nN100 G1 Z120 X37\nN220 M17\n";
+        assert_eq!(m.load_named(main, Some(0)), Ok(0));
+        let lib = b"%_N_ZYKL1_SPF\n; $PATH=/_N_CUS_DIR\n; VERSION: 01.02.03\nPROC ZYKL1 (REAL PAR1)\nN1 M17\n";
+        assert_eq!(m.load_named(lib, None), Ok(NAMED_BASE + 1));
+        assert_eq!(m.numbers().collect::<heapless::Vec<_, 4>>().as_slice(), &[0, NAMED_BASE, NAMED_BASE + 1]);
+        let k = m.find_named(b"kontur_1").unwrap();
+        assert_eq!((k.program, k.line), (NAMED_BASE, 4));
+        assert_eq!(m.find_named(b"ZYKL1").map(|c| (c.program, c.line)), Some((NAMED_BASE + 1, 1)));
+        assert_eq!(m.find_named(b"ZYKL"), None);
+        assert_eq!(m.find_named(b"PAR1"), None);
+        // Sequence numbers by line: a `;` comment is no block end.
+        assert_eq!(m.find_sequence(220, m.start(NAMED_BASE).unwrap()).map(|c| c.line), Some(6));
+        assert_eq!(m.find_sequence(50, m.start(0).unwrap()).map(|c| c.line), Some(3));
+        let single = crate::program::SingleProgram(main);
+        assert_eq!(single.find_named(b"KONTUR_1").map(|c| (c.program, c.line, c.offset)), Some((0, 4, 39)));
     }
 
     #[test]

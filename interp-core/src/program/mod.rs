@@ -7,9 +7,10 @@
 //! ([`ProgramArea`]: flash, host buffers); a [`Cursor`] is a position in a
 //! program; [`next_block`] cuts out the next block.
 
+pub mod lines;
 mod memory;
 
-pub use memory::{LoadError, ProgramArea, ProgramIndex, ProgramMemory};
+pub use memory::{LoadError, NAMED_BASE, ProgramArea, ProgramIndex, ProgramMemory};
 
 pub(crate) use crate::head::leading_sequence;
 
@@ -42,6 +43,32 @@ pub trait ProgramStore {
         let start = self.start(from.program)?;
         scan_sequence(text, from, None, n).or_else(|| scan_sequence(text, start, Some(from.offset), n))
     }
+
+    /// Where the SINUMERIK program (or PROC) called `name` begins, if stored: the
+    /// start of a named program in memory, or a `PROC name` line in the text of a
+    /// store that keeps whole files (the stream window). The default has none.
+    fn find_named(&self, name: &[u8]) -> Option<Cursor> {
+        let _ = name;
+        None
+    }
+}
+
+impl<P: ProgramStore + ?Sized> ProgramStore for &P {
+    fn text(&self, id: ProgramId) -> Option<&[u8]> {
+        (**self).text(id)
+    }
+
+    fn start(&self, id: ProgramId) -> Option<Cursor> {
+        (**self).start(id)
+    }
+
+    fn find_sequence(&self, n: u32, from: Cursor) -> Option<Cursor> {
+        (**self).find_sequence(n, from)
+    }
+
+    fn find_named(&self, name: &[u8]) -> Option<Cursor> {
+        (**self).find_named(name)
+    }
 }
 
 /// A store holding a single main program (id 0).
@@ -51,6 +78,11 @@ pub struct SingleProgram<'a>(pub &'a [u8]);
 impl ProgramStore for SingleProgram<'_> {
     fn text(&self, id: ProgramId) -> Option<&[u8]> {
         (id == 0).then_some(self.0)
+    }
+
+    /// A `PROC name` line in the text.
+    fn find_named(&self, name: &[u8]) -> Option<Cursor> {
+        lines::find_proc(self.0, Cursor::start(0), name)
     }
 }
 

@@ -249,6 +249,36 @@ impl State {
         saved
     }
 
+    /// [`State::save`] of everything (a SINUMERIK cycle call, which may change
+    /// what only few blocks change, such as its tool edge).
+    pub fn save_all(&self) -> Saved {
+        let State {
+            modal,
+            pos,
+            frames,
+            tool,
+            own_offsets: _,
+            feed,
+            spindle,
+            moved,
+            cycle,
+            polar,
+            stroke,
+            contour,
+            mill,
+        } = self;
+        Saved {
+            modal: *modal,
+            pos: *pos,
+            feed: *feed,
+            spindle: *spindle,
+            moved: *moved,
+            cycle: Some(*cycle),
+            rare: Some(Rare { frames: *frames, tool: *tool, polar: *polar, stroke: *stroke, mill: *mill }),
+            contour: contour.marks(),
+        }
+    }
+
     /// Puts the state back as it was when `saved` was taken; `held` is the copy of
     /// the contour look-ahead taken then if it held a move.
     pub fn restore(&mut self, saved: &Saved, held: Option<&Contour>) {

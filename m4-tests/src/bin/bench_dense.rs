@@ -23,10 +23,12 @@ use core::fmt::Write as _;
 use cortex_m_rt::entry;
 use cortex_m_semihosting::hprintln;
 use interp_core::axis::{Axis, Pos};
+use interp_core::canon::{Canon, CanonSink, Full};
 use interp_core::config::{MachineConfig, Param};
 use interp_core::{Interpreter, Panel, Progress, SingleProgram};
 use m4_tests::{exit, measure};
-use motion_core::motion::{MotionCore, QUEUE};
+use motion_core::motion::QUEUE;
+use motion_driver::board::{self, BoardEngine, BoardPlayer, Core};
 use motion_driver::engine::{Engine, EngineAxis, RING, Sample};
 use motion_driver::playback::{AxisPins, PlayTiming, Player};
 use motion_driver::ring::EdgeRing;
@@ -71,29 +73,35 @@ fn program(seg_um: i64, text: &mut Text) {
     let _ = text.push_str("M30\n");
 }
 
-/// The board's motion interrupts and what they drive: X and Z (rings 0–1).
+/// The board's motion interrupts and what they drive: X and Z (rings 0–1; C on
+/// ring 2 stands still), through the functions the board's interrupts call.
 struct Rig {
-    core: MotionCore<QUEUE>,
-    engine: Engine<2>,
-    player: Player<RING, 2>,
+    core: Core,
+    engine: BoardEngine,
+    player: BoardPlayer,
     /// Step timer now, and how far the player has played.
     now: u32,
     played: u32,
 }
 
 impl Rig {
-    fn new(rings: &'static [EdgeRing<RING>; 2], cfg: &MachineConfig, pos: Pos) -> Rig {
-        let core = MotionCore::new(cfg, pos).unwrap_or_else(|_| exit(false));
+    fn new(rings: &'static [EdgeRing<RING>; 3], cfg: &MachineConfig, pos: Pos) -> Rig {
+        let core = Core::new(cfg, pos).unwrap_or_else(|_| exit(false));
         let tb = TimeBase::new(TIMER_HZ, cfg.motion.tick_ns).unwrap_or_else(|_| exit(false));
-        let [(tx, rx), (tz, rz)] = rings.each_ref().map(|r| r.split().unwrap_or_else(|| exit(false)));
+        let [(tx, rx), (tz, rz), (tc, rc)] = rings.each_ref().map(|r| r.split().unwrap_or_else(|| exit(false)));
         let timing =
             |a: Axis| PlayTiming::new(core.stepper(a.index()).map(|s| s.timing()).unwrap_or_else(|| exit(false)), &tb);
         let player = Player::new([
             (rx, AxisPins { step: 6, dir: 10 }, timing(Axis::X)),
             (rz, AxisPins { step: 7, dir: 11 }, timing(Axis::Z)),
+            (rc, AxisPins { step: 8, dir: 12 }, timing(Axis::C)),
         ]);
-        let engine =
-            Engine::new(tb, [EngineAxis::new(Axis::X.index(), tx), EngineAxis::new(Axis::Z.index(), tz)], 0, 0);
+        let axes = [
+            EngineAxis::new(Axis::X.index(), tx),
+            EngineAxis::new(Axis::Z.index(), tz),
+            EngineAxis::new(Axis::C.index(), tc),
+        ];
+        let engine = Engine::new(tb, axes, 0, 0);
         Rig { core, engine, player, now: 0, played: 0 }
     }
 
@@ -103,13 +111,28 @@ impl Rig {
     }
 }
 
+/// The motion core as the board's control task reaches it: each action through
+/// the non-generic push (`motion_driver::board::push`).
+struct Port<'a>(&'a mut Core);
+
+impl CanonSink for Port<'_> {
+    fn push(&mut self, c: Canon) -> Result<(), Full> {
+        board::push(self.0, &c)
+    }
+
+    fn push_ref(&mut self, c: &Canon) -> Result<(), Full> {
+        board::push(self.0, c)
+    }
+}
+
 /// The control task's part of a period: the interpreter steps (each block from
-/// its text to its planned block) until the queue is full; returns the blocks.
-fn fill(input: (&mut Interpreter, &SingleProgram, &mut MotionCore<QUEUE>)) -> u32 {
+/// its text to its planned block, through the non-generic entry the firmware
+/// calls) until the queue is full; returns the blocks.
+fn fill(input: (&mut Interpreter, &SingleProgram, &mut Core)) -> u32 {
     let (interp, store, core) = input;
     let mut blocks = 0;
     for _ in 0..4 * QUEUE {
-        match interp.step(store, &Panel::default(), core) {
+        match interp.step_dyn(store, &Panel::default(), &mut Port(&mut *core)) {
             Ok(Progress::Executed { .. }) => blocks += 1,
             Ok(Progress::Blocked | Progress::Ended | Progress::Paused) => break,
             Ok(_) => {}
@@ -122,7 +145,7 @@ fn fill(input: (&mut Interpreter, &SingleProgram, &mut MotionCore<QUEUE>)) -> u3
 /// The period interrupt's body.
 fn period(rig: &mut Rig) {
     let s = Sample { now: rig.now, raw_count: 0, index: None, estop: false };
-    rig.engine.period(&mut rig.core, s);
+    board::period(&mut rig.engine, &mut rig.core, s);
 }
 
 /// Every step interrupt of the period that has just played, each at its edge's
@@ -132,7 +155,7 @@ fn play(rig: &mut Rig) -> u32 {
     let mut runs = 0;
     for _ in 0..10_000 {
         runs += 1;
-        match rig.player.run(t, false).next {
+        match board::play(&mut rig.player, t, false).next {
             Some(n) if rig.now.wrapping_sub(n) as i32 >= 0 => {
                 t = if n.wrapping_sub(t) as i32 > 0 { n } else { t.wrapping_add(1) };
             }
@@ -143,7 +166,7 @@ fn play(rig: &mut Rig) -> u32 {
     runs
 }
 
-fn run(rings: &'static [EdgeRing<RING>; 2], seg_um: i64, text: &mut Text) {
+fn run(rings: &'static [EdgeRing<RING>; 3], seg_um: i64, text: &mut Text) {
     text.clear();
     program(seg_um, text);
     let cfg = machine();
@@ -193,8 +216,7 @@ fn run(rings: &'static [EdgeRing<RING>; 2], seg_um: i64, text: &mut Text) {
 
 #[entry]
 fn main() -> ! {
-    static RINGS: [[EdgeRing<RING>; 2]; 3] =
-        [[EdgeRing::new(), EdgeRing::new()], [EdgeRing::new(), EdgeRing::new()], [EdgeRing::new(), EdgeRing::new()]];
+    static RINGS: [[EdgeRing<RING>; 3]; 3] = [const { [EdgeRing::new(), EdgeRing::new(), EdgeRing::new()] }; 3];
     let mut text = Text::new();
     for (rings, seg_um) in RINGS.iter().zip([10, 20, 50]) {
         run(rings, seg_um, &mut text);

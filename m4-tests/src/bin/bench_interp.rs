@@ -3,7 +3,8 @@
 //! read, checked and executed into a sink; then the same steps into the motion
 //! planner (text to planned block: the step with its action queued, prepared and
 //! look-ahead planned); then a machining centre's 3-axis G01 blocks the same two
-//! ways. Run through `bench.sh bench_interp`.
+//! ways; then the same for SINUMERIK `G1 X.. Z..` blocks (the machine's language
+//! SINUMERIK, issue 19). Run through `bench.sh bench_interp`.
 #![no_std]
 #![no_main]
 
@@ -21,6 +22,20 @@ const PROGRAM: &[u8] = b"G00 X40. Z2.\nG99 M3 S1200\nG01 Z0 F0.12\n\
 N100 G01 X40.412 Z-0.05\nN101 G01 X40.824 Z-0.1\nN102 G01 X41.234 Z-0.15\n\
 N103 G02 X42.1 Z-1.2 R25.\nN104 G03 X43.05 Z-2.3 R25.\n\
 G96 S200\nN105 G01 X43.5 Z-2.5\nN106 G01 X44.0 Z-2.7\nM30\n";
+
+/// The same stretch in SINUMERIK: the blocks measured are plain `G1 X.. Z..`.
+const SIEMENS_PROGRAM: &[u8] = b"G0 X40 Z2\nG95 M3 S1200\nG1 Z0 F0.12\n\
+N100 G1 X40.412 Z-0.05\nN101 G1 X40.824 Z-0.1\nN102 G1 X41.234 Z-0.15\nM30\n";
+
+/// What the steps of [`SIEMENS_PROGRAM`] read, in order.
+const SIEMENS_LABELS: [&str; 6] = [
+    "setup SINUMERIK G0",
+    "setup SINUMERIK G95 M3 S",
+    "setup SINUMERIK G1 F",
+    "SINUMERIK G1",
+    "SINUMERIK G1",
+    "SINUMERIK G1",
+];
 
 /// A machining centre's stretch (`MachineConfig::mill`): setup, then 3-axis G01s.
 const MILL_PROGRAM: &[u8] = b"G00 X-100. Y-100. Z-10.\nM3 S1200\nG01 Z-20. F300\n\
@@ -41,7 +56,8 @@ impl CanonSink for Last {
 }
 
 /// The motion planner as the sink: each action is prepared and queued (what the
-/// motion core's `push` does with it).
+/// motion core's `push` does with it), through the non-generic push the firmware's
+/// motion core runs (`motion_driver::board`).
 struct Plan {
     planner: Planner<QUEUE>,
     params: MotionParams,
@@ -54,7 +70,7 @@ impl CanonSink for Plan {
 
     /// As `MotionCore`'s: the action read where the interpreter keeps it.
     fn push_ref(&mut self, c: &Canon) -> Result<(), Full> {
-        match self.planner.push(c, &self.params) {
+        match motion_driver::board::plan(&mut self.planner, c, &self.params) {
             Err(PushError::Full) => Err(Full),
             // An alarm would stop the motion core; the benchmark's blocks raise none.
             Err(PushError::Alarm(_)) => exit(false),
@@ -63,17 +79,20 @@ impl CanonSink for Plan {
     }
 }
 
-/// The interpreter, its sink and its program, carried through `measure`.
+/// The interpreter, its sink, its program and its switches (held, as the board's
+/// controller holds its panel), carried through `measure`.
 struct Bench<S> {
     interp: Interpreter,
     sink: S,
     program: &'static [u8],
+    panel: Panel,
 }
 
-/// Runs one step.
+/// Runs one step, through the non-generic entry the firmware's control task calls
+/// (the program store and the sink behind `dyn`, as on the board).
 fn step<S: CanonSink>(b: &mut Bench<S>) -> bool {
     let program = SingleProgram(b.program);
-    matches!(b.interp.step(&program, &Panel::default(), &mut b.sink), Ok(Progress::Executed { .. }))
+    matches!(b.interp.step_dyn(&program, &b.panel, &mut b.sink), Ok(Progress::Executed { .. }))
 }
 
 /// Runs the program's steps, measuring each (`only`: just the one at that index)
@@ -129,19 +148,43 @@ fn main() -> ! {
         None => (None, None),
     };
     let cfg = MachineConfig::default();
-    let mut b = Bench { interp: Interpreter::new(cfg.clone()), sink: Last(None), program: PROGRAM };
+    let mut b =
+        Bench { interp: Interpreter::new(cfg.clone()), sink: Last(None), program: PROGRAM, panel: Panel::default() };
     run(&mut b, "step", steps, &LABELS);
     hprintln!("size of Interpreter: {} bytes", core::mem::size_of::<Interpreter>());
     let Ok(params) = MotionParams::new(&cfg) else { exit(false) };
     let plan = Plan { planner: Planner::new(Pos::ZERO), params };
-    let mut b = Bench { interp: Interpreter::new(cfg), sink: plan, program: PROGRAM };
+    let mut b = Bench { interp: Interpreter::new(cfg), sink: plan, program: PROGRAM, panel: Panel::default() };
     run(&mut b, "text to planned block", planned, &LABELS);
     let cfg = MachineConfig::mill();
-    let mut b = Bench { interp: Interpreter::new(cfg.clone()), sink: Last(None), program: MILL_PROGRAM };
+    let mut b = Bench {
+        interp: Interpreter::new(cfg.clone()),
+        sink: Last(None),
+        program: MILL_PROGRAM,
+        panel: Panel::default(),
+    };
     run(&mut b, "step", mill_steps, &MILL_LABELS);
     let Ok(params) = MotionParams::new(&cfg) else { exit(false) };
     let plan = Plan { planner: Planner::new(Pos::ZERO), params };
-    let mut b = Bench { interp: Interpreter::new(cfg), sink: plan, program: MILL_PROGRAM };
+    let mut b = Bench { interp: Interpreter::new(cfg), sink: plan, program: MILL_PROGRAM, panel: Panel::default() };
     run(&mut b, "text to planned block", mill_planned, &MILL_LABELS);
+    // SINUMERIK (not with BENCH_ONLY: its indexes are the FANUC program's).
+    if only.is_none() {
+        let cfg = MachineConfig { language: interp_core::config::Language::Siemens, ..MachineConfig::default() };
+        let mut b = Bench {
+            interp: Interpreter::new(cfg.clone()),
+            sink: Last(None),
+            program: SIEMENS_PROGRAM,
+            panel: Panel::default(),
+        };
+        b.interp.plug(&interp_siemens::SINUMERIK);
+        run(&mut b, "step", None, &SIEMENS_LABELS);
+        let Ok(params) = MotionParams::new(&cfg) else { exit(false) };
+        let plan = Plan { planner: Planner::new(Pos::ZERO), params };
+        let mut b =
+            Bench { interp: Interpreter::new(cfg), sink: plan, program: SIEMENS_PROGRAM, panel: Panel::default() };
+        b.interp.plug(&interp_siemens::SINUMERIK);
+        run(&mut b, "text to planned block", None, &SIEMENS_LABELS);
+    }
     exit(true)
 }

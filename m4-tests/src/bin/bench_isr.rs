@@ -28,8 +28,9 @@ use interp_core::canon::{
 };
 use interp_core::config::MachineConfig;
 use m4_tests::{exit, measure};
-use motion_core::motion::{MotionCore, QUEUE, State};
+use motion_core::motion::State;
 use motion_core::sync::Phase;
+use motion_driver::board::{self, BoardEngine, BoardPlayer, Core};
 use motion_driver::encoder::Window;
 use motion_driver::engine::{Engine, EngineAxis, RING, Sample};
 use motion_driver::playback::{AxisPins, PlayTiming, Player};
@@ -39,8 +40,6 @@ use motion_driver::timebase::TimeBase;
 const MM: i64 = 1_000_000;
 /// The board's step timer clock.
 const TIMER_HZ: u32 = 84_000_000;
-
-type Core = MotionCore<QUEUE>;
 
 fn at(x: i64, z: i64) -> Endpoint {
     let p = Pos::xz(x, z);
@@ -64,8 +63,8 @@ fn rapid(x: i64, z: i64) -> Action {
 /// The machine the firmware runs and its driven axes X, Z, C (rings 0–2).
 struct Rig {
     core: Core,
-    engine: Engine<3>,
-    player: Player<RING, 3>,
+    engine: BoardEngine,
+    player: BoardPlayer,
     /// Simulated step timer and spindle.
     now: u32,
     /// Step timer tick the player has played up to.
@@ -125,7 +124,7 @@ impl Rig {
     fn play(&mut self) {
         let mut t = self.played;
         for _ in 0..10_000 {
-            match self.player.run(t, false).next {
+            match board::play(&mut self.player, t, false).next {
                 Some(n) if self.now.wrapping_sub(n) as i32 >= 0 => {
                     t = if n.wrapping_sub(t) as i32 > 0 { n } else { t.wrapping_add(1) };
                 }
@@ -138,7 +137,7 @@ impl Rig {
     /// One period (unmeasured): the period interrupt, then the period's playing.
     fn period(&mut self) {
         let s = self.sample();
-        self.engine.period(&mut self.core, s);
+        board::period(&mut self.engine, &mut self.core, s);
         self.advance_period();
     }
 
@@ -156,12 +155,12 @@ impl Rig {
 /// The period interrupt's body.
 fn period(rig: &mut Rig) {
     let s = rig.sample();
-    rig.engine.period(&mut rig.core, s);
+    board::period(&mut rig.engine, &mut rig.core, s);
 }
 
 /// The step interrupt's body at the rig's time.
 fn step(rig: &mut Rig) -> u32 {
-    rig.player.run(rig.now, false).bsrr
+    board::play(&mut rig.player, rig.now, false).bsrr
 }
 
 /// Measures three period interrupts after `warm` periods of `action`.
@@ -218,7 +217,7 @@ fn steps() {
     let _ = tx.push(Timed { at: 5_000, edge: Edge::Step });
     let _ = tz.push(Timed { at: 5_000, edge: Edge::Step });
     let _ = tc.push(Timed { at: 5_000, edge: Edge::Dir(true) });
-    let run = |input: (&mut Player<RING, 3>, u32)| input.0.run(input.1, false).bsrr;
+    let run = |input: (&mut BoardPlayer, u32)| board::play(input.0, input.1, false).bsrr;
     hprintln!("bench step interrupt: nothing due");
     measure(run, (&mut player, 500));
     hprintln!("bench step interrupt: one STEP rise");
@@ -237,9 +236,9 @@ fn steps() {
     }
     hprintln!("bench step interrupt in a rapid (next edge of the queue)");
     let s = rig.sample();
-    rig.engine.period(&mut rig.core, s);
+    board::period(&mut rig.engine, &mut rig.core, s);
     for _ in 0..4 {
-        let mut next = rig.player.run(rig.now, false).next.unwrap_or(rig.now);
+        let mut next = board::play(&mut rig.player, rig.now, false).next.unwrap_or(rig.now);
         if next.wrapping_sub(rig.now) as i32 <= 0 {
             next = rig.now.wrapping_add(1);
         }
@@ -259,12 +258,12 @@ fn count_isr(rig: &mut Rig) -> bool {
 
 /// Its first part: up to the step edges queued (what a due step waits for).
 fn count_isr_step(rig: &mut Rig) -> bool {
-    rig.engine.encoder(&mut rig.core, rig.now, rig.raw)
+    board::encoder(&mut rig.engine, &mut rig.core, rig.now, rig.raw)
 }
 
 /// Its second part: the gearbox glides to the next due counts, the compares are set.
 fn count_isr_window(rig: &mut Rig) -> bool {
-    rig.window = rig.engine.window(&mut rig.core);
+    rig.window = board::window(&mut rig.engine, &mut rig.core);
     rig.engine.reached(&rig.window, rig.raw)
 }
 
@@ -338,7 +337,7 @@ fn thread_at(rings: &'static [EdgeRing<RING>; 3], rpm: u32, lead_um: i64, x_end:
                 period(&mut rig);
             }
             next_period = next_period.wrapping_add(period_ticks);
-            rig.window = rig.engine.window(&mut rig.core);
+            rig.window = board::window(&mut rig.engine, &mut rig.core);
             if rig.engine.reached(&rig.window, rig.raw) {
                 while measured_isr(&mut rig) {}
             }

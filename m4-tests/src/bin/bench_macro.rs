@@ -37,11 +37,12 @@ fn read(input: (&[u8], &Variables, &NumberFormat)) -> bool {
 /// The loop every step of the last measurement runs in.
 const LOOP: &[u8] = b"#1=0\nWHILE [#1 LT 1000000] DO1\n#1=#1+1\nEND1\nM30\n";
 
-/// One interpreter step: the default budget of statements.
+/// One interpreter step: the default budget of statements (through the non-generic
+/// entry the firmware's control task calls).
 fn step<P: ProgramStore>(input: (&mut Interpreter, &P, &Panel)) -> Result<Progress, Alarm> {
     let (interp, store, panel) = input;
     let mut sink = RecordingSink::<1>::new();
-    interp.step(store, panel, &mut sink)
+    interp.step_dyn(store, panel, &mut sink)
 }
 
 /// G65 calls with two arguments (docs/MACROS.md), the macro one statement and M99.

@@ -167,6 +167,7 @@ fn set_entry(block: &mut Block, u_next: u64, h_next: u32) -> bool {
 /// (`front` then `back`, oldest first; the last block ends at rest, the first is
 /// the next to run), newest first. Stops at the first block whose entry does not
 /// change (nothing before it can change either) or at a command (a barrier).
+#[inline]
 pub fn backward_pass(front: &mut [Item], back: &mut [Item]) {
     let mut pass = Pass { u_next: 0, h_next: 0, first: true };
     if pass.run(back) {

@@ -1017,6 +1017,10 @@ impl Gear {
     }
 
     /// The raw count of a thread's next count to take (none once done).
+    /// `#[inline]`: its callers are inlined into the encoder-count interrupt's
+    /// body (`motion_driver::board::window`), which the link-time optimisation of
+    /// the size-built firmware would not inline it into.
+    #[inline]
     fn due(&self) -> Due {
         let ahead = (!matches!(self.phase, Phase::Done)).then_some(self.m_max + 1);
         Due::forward(self.sigma, self.origin, ahead, None)

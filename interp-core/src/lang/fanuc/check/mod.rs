@@ -5,7 +5,12 @@
 pub mod cycle_args;
 mod gset;
 mod mill;
+#[cfg(feature = "siemens")]
+mod sinumerik;
 mod words;
+
+#[cfg(feature = "siemens")]
+pub use sinumerik::sinumerik_plain;
 
 use crate::alarm::AlarmKind;
 use crate::axis::{AXIS_COUNT, Axis};

@@ -166,12 +166,24 @@ impl<'t, 'v> Eval<'t, 'v> {
 
     /// The longest entry of `table` spelled at the current position (any case).
     fn find<K: Copy>(&self, table: &[(&[u8], K)]) -> Option<(K, usize)> {
+        let (i, len) = self.longest(&mut table.iter().map(|(w, _)| *w))?;
+        table.get(i).map(|(_, k)| (*k, len))
+    }
+
+    /// The index and length of the longest of `words` spelled at the current position
+    /// (any case; the last of equally long ones). Not generic: one copy in flash for
+    /// every table [`find`](Self::find) searches.
+    #[inline(never)]
+    fn longest(&self, words: &mut dyn Iterator<Item = &[u8]>) -> Option<(usize, usize)> {
         let rest = self.text.get(self.pos..).unwrap_or(&[]);
-        table
-            .iter()
-            .filter(|(w, _)| rest.len() >= w.len() && rest[..w.len()].eq_ignore_ascii_case(w))
-            .max_by_key(|(w, _)| w.len())
-            .map(|(w, k)| (*k, w.len()))
+        let mut best: Option<(usize, usize)> = None;
+        for (i, w) in words.enumerate() {
+            let spelled = rest.get(..w.len()).is_some_and(|r| r.eq_ignore_ascii_case(w));
+            if spelled && best.is_none_or(|(_, len)| w.len() >= len) {
+                best = Some((i, w.len()));
+            }
+        }
+        best
     }
 
     /// Consumes an entry of `table` at the current position (after blanks).
@@ -511,6 +523,7 @@ fn finite(x: f64) -> Result<Val, AlarmKind> {
 }
 
 /// A whole number 0..2^32-1 for a bit operation.
+#[inline(never)]
 fn bits(x: f64) -> Result<u32, AlarmKind> {
     if libm::trunc(x) == x && (0.0..=f64::from(u32::MAX)).contains(&x) {
         Ok(x as u32)

@@ -1,7 +1,11 @@
 //! The functions of 2.24.2 on `f64` (libm, so the board computes the same bits as
-//! the host). Angles are degrees. Domain errors are alarms, never NaN.
+//! the host). Angles are degrees. Domain errors are alarms, never NaN. The ones
+//! the SINUMERIK language shares are in [`crate::geom::deg`]; here are FANUC's
+//! own: ATAN[j]/[k] (−90..90°), ROUND in a statement, FUP.
 
 use crate::alarm::AlarmKind;
+pub(crate) use crate::geom::deg::{acos_deg, asin_deg, atan_deg, cos_deg, exp, fix, modulo, sin_deg, sqrt, tan_deg};
+use crate::geom::deg::{degrees, positive_zero};
 
 /// A function of the macro language.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -44,100 +48,6 @@ impl Func {
     }
 }
 
-/// π/180 split into a double-double: `D2R_HI + D2R_LO` is π/180 to ~1e-34.
-const D2R_HI: f64 = 0.017_453_292_519_943_295;
-const D2R_LO: f64 = 2.948_652_270_870_168_7e-19;
-/// 180/π.
-const R2D: f64 = 57.295_779_513_082_32;
-
-/// `x` in degrees reduced exactly to `r` in [-45, 45] and a quadrant `q` (0–3), with
-/// `x = r + 90·q (mod 360)`. `fmod` and the subtraction are exact in binary.
-fn reduce(x: f64) -> (f64, u8) {
-    let y = libm::fmod(x, 360.0);
-    let q = libm::round(y / 90.0);
-    let r = y - 90.0 * q;
-    (r, (q as i32).rem_euclid(4) as u8)
-}
-
-/// sin and cos of `r` degrees, |r| ≤ 45ish, with the argument converted to radians
-/// in double-double precision (so SIN[30] is exactly 0.5).
-fn sin_cos_reduced(r: f64) -> (f64, f64) {
-    if r.abs() == 45.0 {
-        // cos(hi) is rounded before the correction: pin the value both share.
-        return (core::f64::consts::FRAC_1_SQRT_2.copysign(r), core::f64::consts::FRAC_1_SQRT_2);
-    }
-    let hi = r * D2R_HI;
-    let lo = libm::fma(r, D2R_HI, -hi) + r * D2R_LO;
-    let (s, c) = (libm::sin(hi), libm::cos(hi));
-    (s + c * lo, c - s * lo)
-}
-
-/// sin of `x` degrees.
-pub(crate) fn sin_deg(x: f64) -> f64 {
-    let (r, q) = reduce(x);
-    let (s, c) = sin_cos_reduced(r);
-    positive_zero(match q {
-        0 => s,
-        1 => c,
-        2 => -s,
-        _ => -c,
-    })
-}
-
-/// cos of `x` degrees.
-pub(crate) fn cos_deg(x: f64) -> f64 {
-    let (r, q) = reduce(x);
-    let (s, c) = sin_cos_reduced(r);
-    positive_zero(match q {
-        0 => c,
-        1 => -s,
-        2 => -c,
-        _ => s,
-    })
-}
-
-/// tan of `x` degrees; alarm 0112 at odd multiples of 90° (2.24.2 (6): "TAN[90]").
-pub(crate) fn tan_deg(x: f64) -> Result<f64, AlarmKind> {
-    let (r, q) = reduce(x);
-    if r.abs() == 45.0 {
-        // tan ±45° = ±1, negated in the odd quadrants (tan(r + 90) = -1/tan r).
-        let t = if q % 2 == 0 { r.signum() } else { -r.signum() };
-        return Ok(t);
-    }
-    let (s, c) = sin_cos_reduced(r);
-    if q % 2 == 0 {
-        Ok(positive_zero(s / c))
-    } else if s == 0.0 {
-        Err(AlarmKind::DivideByZero)
-    } else {
-        Ok(positive_zero(-c / s))
-    }
-}
-
-/// Radians to degrees, snapped to a whole degree when within a few ulps of it, so
-/// ASIN[1], ACOS[0.5] and ATAN[1] give 90, 60 and 45 exactly.
-fn degrees(rad: f64) -> f64 {
-    let d = rad * R2D;
-    let whole = libm::round(d);
-    if (d - whole).abs() <= d.abs() * 1e-15 { positive_zero(whole) } else { d }
-}
-
-/// ASIN in degrees, -90..90; alarm 0119 outside -1..1 (2.24.2 (4)).
-pub(crate) fn asin_deg(x: f64) -> Result<f64, AlarmKind> {
-    if !(-1.0..=1.0).contains(&x) {
-        return Err(AlarmKind::ArgumentOutOfRange { function: "ASIN" });
-    }
-    Ok(degrees(libm::asin(x)))
-}
-
-/// ACOS in degrees, 0..180; alarm 0119 outside -1..1 (2.24.2 (5)).
-pub(crate) fn acos_deg(x: f64) -> Result<f64, AlarmKind> {
-    if !(-1.0..=1.0).contains(&x) {
-        return Err(AlarmKind::ArgumentOutOfRange { function: "ACOS" });
-    }
-    Ok(degrees(libm::acos(x)))
-}
-
 /// `ATAN[j]/[k]`: the angle whose tangent is j/k, -90..90 degrees, as the manual's
 /// example demands (ATAN[-1]/[-1] = 45°, 2.24.2 (6)); k = 0 gives ±90°, j = k = 0
 /// alarm 0119.
@@ -152,36 +62,10 @@ pub(crate) fn atan2_deg(j: f64, k: f64) -> Result<f64, AlarmKind> {
     Ok(degrees(libm::atan(j / k)))
 }
 
-/// One-argument ATAN in degrees, -90..90.
-pub(crate) fn atan_deg(x: f64) -> f64 {
-    degrees(libm::atan(x))
-}
-
-/// SQRT; alarm 0119 below zero.
-pub(crate) fn sqrt(x: f64) -> Result<f64, AlarmKind> {
-    if x < 0.0 {
-        return Err(AlarmKind::ArgumentOutOfRange { function: "SQRT" });
-    }
-    Ok(libm::sqrt(x))
-}
-
-/// EXP; alarm 0119 beyond ±80 (the manual's range).
-pub(crate) fn exp(x: f64) -> Result<f64, AlarmKind> {
-    if !(-80.0..=80.0).contains(&x) {
-        return Err(AlarmKind::ArgumentOutOfRange { function: "EXP" });
-    }
-    Ok(libm::exp(x))
-}
-
 /// ROUND in a macro statement: rounds at the first decimal place, half away from
 /// zero (2.24.2 (7): ROUND[1.2345] = 1).
 pub(crate) fn round_macro(x: f64) -> f64 {
     positive_zero(libm::round(x))
-}
-
-/// FIX: drops the fraction (toward zero): FIX[1.2] = 1, FIX[-1.2] = -1.
-pub(crate) fn fix(x: f64) -> f64 {
-    positive_zero(libm::trunc(x))
 }
 
 /// FUP: raises the fraction to the next whole number away from zero:
@@ -190,112 +74,21 @@ pub(crate) fn fup(x: f64) -> f64 {
     positive_zero(if x < 0.0 { libm::floor(x) } else { libm::ceil(x) })
 }
 
-/// `j MOD k`: the remainder of j / k with the sign of j; alarm 0112 for k = 0.
-pub(crate) fn modulo(j: f64, k: f64) -> Result<f64, AlarmKind> {
-    if k == 0.0 {
-        return Err(AlarmKind::DivideByZero);
-    }
-    Ok(positive_zero(libm::fmod(j, k)))
-}
-
-/// -0.0 becomes 0.0, so results never print as "-0".
-fn positive_zero(x: f64) -> f64 {
-    x + 0.0
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    fn close(a: f64, b: f64) -> bool {
-        (a - b).abs() <= 1e-14 * b.abs().max(1.0)
-    }
-
     #[test]
-    fn sine_and_cosine_are_exact_where_the_value_is_representable() {
-        for (x, s) in [
-            (0.0, 0.0),
-            (30.0, 0.5),
-            (90.0, 1.0),
-            (150.0, 0.5),
-            (180.0, 0.0),
-            (210.0, -0.5),
-            (270.0, -1.0),
-            (360.0, 0.0),
-            (-30.0, -0.5),
-            (-90.0, -1.0),
-            (390.0, 0.5),
-            (720.0, 0.0),
-        ] {
-            assert_eq!(sin_deg(x), s, "SIN[{x}]");
-        }
-        for (x, c) in [(0.0, 1.0), (60.0, 0.5), (90.0, 0.0), (120.0, -0.5), (180.0, -1.0), (300.0, 0.5), (-60.0, 0.5)] {
-            assert_eq!(cos_deg(x), c, "COS[{x}]");
-        }
-        assert_eq!(sin_deg(45.0), core::f64::consts::FRAC_1_SQRT_2);
-        assert_eq!(cos_deg(45.0), core::f64::consts::FRAC_1_SQRT_2);
-        assert!(close(sin_deg(60.0), 0.866_025_403_784_438_6));
-        assert!(close(sin_deg(12.3456), libm::sin(12.3456_f64.to_radians())));
-        assert!(close(cos_deg(1e6 + 60.0), cos_deg(280.0 + 60.0)), "1e6 = 2777 turns + 280");
-    }
-
-    #[test]
-    fn tangent_and_its_poles() {
-        assert_eq!(tan_deg(0.0), Ok(0.0));
-        assert_eq!(tan_deg(45.0), Ok(1.0));
-        assert_eq!(tan_deg(-45.0), Ok(-1.0));
-        assert_eq!(tan_deg(135.0), Ok(-1.0));
-        assert_eq!(tan_deg(225.0), Ok(1.0));
-        assert_eq!(tan_deg(180.0), Ok(0.0));
-        assert!(close(tan_deg(60.0).unwrap(), 3.0_f64.sqrt()));
-        assert!(close(tan_deg(30.0).unwrap(), 1.0 / 3.0_f64.sqrt()));
-        for pole in [90.0, 270.0, -90.0, 450.0] {
-            assert_eq!(tan_deg(pole), Err(AlarmKind::DivideByZero), "TAN[{pole}]");
-        }
-        assert!(tan_deg(89.999).unwrap() > 57_000.0);
-    }
-
-    #[test]
-    fn inverse_functions_in_degrees() {
-        assert_eq!(asin_deg(1.0), Ok(90.0));
-        assert_eq!(asin_deg(-1.0), Ok(-90.0));
-        assert_eq!(asin_deg(0.5), Ok(30.0));
-        assert_eq!(asin_deg(0.0), Ok(0.0));
-        assert_eq!(acos_deg(0.5), Ok(60.0));
-        assert_eq!(acos_deg(-1.0), Ok(180.0));
-        assert_eq!(acos_deg(1.0), Ok(0.0));
-        assert_eq!(acos_deg(0.0), Ok(90.0));
-        assert!(close(asin_deg(0.3).unwrap(), 17.457_603_123_722_095));
-        assert_eq!(asin_deg(1.000_001), Err(AlarmKind::ArgumentOutOfRange { function: "ASIN" }));
-        assert_eq!(acos_deg(-1.5), Err(AlarmKind::ArgumentOutOfRange { function: "ACOS" }));
-        assert_eq!(atan_deg(1.0), 45.0);
+    fn fanuc_atan_rounding_and_fup() {
         assert_eq!(atan2_deg(-1.0, -1.0), Ok(45.0), "the manual's example");
         assert_eq!(atan2_deg(1.0, -1.0), Ok(-45.0));
         assert_eq!(atan2_deg(1.0, 0.0), Ok(90.0));
         assert_eq!(atan2_deg(-2.0, 0.0), Ok(-90.0));
         assert_eq!(atan2_deg(0.0, 0.0), Err(AlarmKind::ArgumentOutOfRange { function: "ATAN" }));
-        assert!(close(atan2_deg(1.0, 2.0).unwrap(), 26.565_051_177_077_99));
-    }
-
-    #[test]
-    fn rounding_family_and_others() {
         assert_eq!(round_macro(1.2345), 1.0);
         assert_eq!(round_macro(2.5), 3.0);
         assert_eq!(round_macro(-2.5), -3.0);
-        assert_eq!(round_macro(-0.4), 0.0);
         assert!(round_macro(-0.4).is_sign_positive());
-        assert_eq!((fix(1.2), fix(-1.2), fup(1.2), fup(-1.2)), (1.0, -1.0, 2.0, -2.0));
-        assert_eq!((fix(3.0), fup(3.0), fup(-3.0)), (3.0, 3.0, -3.0));
-        assert_eq!(sqrt(16.0), Ok(4.0));
-        assert_eq!(sqrt(2.0), Ok(core::f64::consts::SQRT_2));
-        assert_eq!(sqrt(-0.1), Err(AlarmKind::ArgumentOutOfRange { function: "SQRT" }));
-        assert_eq!(exp(0.0), Ok(1.0));
-        assert!(close(exp(1.0).unwrap(), core::f64::consts::E));
-        assert!(exp(80.0).is_ok() && exp(-80.0).is_ok());
-        assert_eq!(exp(80.5), Err(AlarmKind::ArgumentOutOfRange { function: "EXP" }));
-        assert_eq!(modulo(7.0, 3.0), Ok(1.0));
-        assert_eq!(modulo(-7.0, 3.0), Ok(-1.0));
-        assert_eq!(modulo(7.5, 2.0), Ok(1.5));
-        assert_eq!(modulo(1.0, 0.0), Err(AlarmKind::DivideByZero));
+        assert_eq!((fup(1.2), fup(-1.2), fup(3.0), fup(-3.0)), (2.0, -2.0, 3.0, -3.0));
     }
 }

@@ -4,6 +4,8 @@
 
 mod reader;
 
+#[cfg(feature = "siemens")]
+pub use reader::read_plain_line;
 pub use reader::{read_block, read_block_into, read_program_block, read_statement, read_statement_into, read_with};
 
 use crate::alarm::AlarmKind;

@@ -545,6 +545,57 @@ impl<'a, 'v, 'c> Reader<'a, 'v, 'c> {
     }
 }
 
+/// Reads a SINUMERIK line of plain words only into `block` (issue 19's short
+/// way, [`crate::lang::fanuc::check::sinumerik_plain`]): `[N…] word…`, each word
+/// a letter right before its plain number ([`plain_number`]), blanks between
+/// them, an optional `;` comment to the end. N only first and whole; G and M
+/// whole numbers up to 999 without a point (G in tenths, as [`Block::g`] keeps
+/// them). False for anything else — a name (DIAMON, `CR=`, a call, a label), `=`,
+/// brackets, an expression, a string, a skip mark, a word given twice, more G or
+/// M codes than the block holds —: the front end's general reader reads that
+/// line, and raises its alarm. Which letters a line may use is the checker's.
+#[cfg(feature = "siemens")]
+pub fn read_plain_line(text: &[u8], line: u32, block: &mut Block) -> bool {
+    block.clear(line);
+    let mut i = 0;
+    let mut first = true;
+    loop {
+        while text.get(i).is_some_and(|&c| is_blank(c)) {
+            i += 1;
+        }
+        let Some(&c) = text.get(i) else { return true };
+        if c == b';' {
+            return true;
+        }
+        let letter = c & !0x20;
+        if letter.wrapping_sub(b'A') >= 26 {
+            return false;
+        }
+        let Some((n, end)) = plain_number(text, i + 1) else { return false };
+        // G, M and N: as written, whole (the general reader refuses a point in them).
+        let whole = (!n.has_point && (0..=999).contains(&n.mantissa)).then_some(n.mantissa as u16);
+        let stored = match letter {
+            // `N10` (`N-10`, `N+10`, `N10.` are the general reader's).
+            b'N' => {
+                let digit = text.get(i + 1).is_some_and(u8::is_ascii_digit);
+                if !first || !digit || n.has_point {
+                    return false;
+                }
+                block.seq = Some(n.mantissa as u32);
+                true
+            }
+            b'G' => whole.is_some_and(|g| block.g.push(g * 10).is_ok()),
+            b'M' => whole.is_some_and(|m| block.m.push(m).is_ok()),
+            _ => block.set(letter, n),
+        };
+        if !stored {
+            return false;
+        }
+        first = false;
+        i = end;
+    }
+}
+
 /// The plain number at `text[i]` (an optional sign, then digits with a point or
 /// without; at most 9 digits before the point, leading zeros included, and 9
 /// after it) and the index after it. `None` for anything else — no digits, a

@@ -14,14 +14,25 @@
 //! when the loop is entered, so a jump out of the range closes it. A frame also
 //! says how its program was entered ([`Entry`]): a FANUC macro call (G65, G66, a G
 //! or M code; [`macro_calls`]) starts a level of local variables that M99 ends.
+//!
+//! Two languages step their statements here and share the engine: the FANUC
+//! dialect (this file) and SINUMERIK ([`siemens`]: labels, PROC calls, REPEAT
+//! sections, MCALL, cycle calls). Both hand a checked [`Command`] to the same
+//! block execution (`run_cmd`: staging, undo, cycle delivery and validation, the
+//! outbox) and share one call stack, whose frames record the caller's language.
+
+// The SINUMERIK front end's state and frames (its driver is the interp-siemens
+// crate, which reaches them here).
+#[doc(hidden)]
+pub mod siemens;
 
 use crate::alarm::{Alarm, AlarmKind};
 use crate::axis::Pos;
 use crate::canon::CanonSink;
 use crate::command::Command;
 use crate::config::{MachineConfig, Param};
-use crate::cycles::{CycleStage, Expansion};
-use crate::env::Environment;
+use crate::cycles::{CycleStage, DryRun, Expansion};
+use crate::env::{Environment, Panel};
 use crate::exec::execute;
 use crate::lang::fanuc::calls::{CallCodes, CallRead, Caller, Calls, ModalCalls};
 use crate::lang::fanuc::check::check_into;
@@ -87,7 +98,8 @@ pub enum Progress {
 /// Where the run is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-enum Phase {
+#[doc(hidden)]
+pub enum Phase {
     Running,
     Paused,
     Ended,
@@ -95,7 +107,8 @@ enum Phase {
 
 /// An open DO range.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-struct Loop {
+#[doc(hidden)]
+pub struct Loop {
     /// Loop number 1–3.
     label: u8,
     /// The WHILE/DO block (END comes back here).
@@ -105,12 +118,14 @@ struct Loop {
 }
 
 /// The open loops of one program level.
-type Loops = heapless::Vec<Loop, MAX_LOOP_DEPTH>;
+#[doc(hidden)]
+pub type Loops = heapless::Vec<Loop, MAX_LOOP_DEPTH>;
 
 /// How a program level was entered: what its return gives back. (Two bytes: a
 /// [`Next`] that carries one stays as small as before.)
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Entry {
+#[doc(hidden)]
+pub enum Entry {
     /// M98 (`Caller::Program`), or a subprogram call by an M or T code
     /// (`Caller::Subprogram`): the caller's local variables go on.
     Subprogram(Caller),
@@ -123,18 +138,24 @@ enum Entry {
 
 /// A subprogram call in progress.
 #[derive(Clone, Debug)]
-struct Frame {
+#[doc(hidden)]
+pub struct Frame {
     /// The block after the M98 in the caller.
-    ret: Cursor,
+    pub ret: Cursor,
     /// The caller's open loops.
-    loops: Loops,
+    pub loops: Loops,
     /// Runs of the subprogram still to come after the current one (M98 L/packed P).
-    repeats_left: u16,
+    pub repeats_left: u16,
+    /// The caller's language, in force again after the return.
+    pub language: Language,
+    /// What kind of level the frame opened (a FANUC M98, a SINUMERIK PROC call or
+    /// REPEAT section).
+    pub kind: siemens::Level,
     /// How the program was entered.
-    entry: Entry,
+    pub entry: Entry,
     /// The code calls the caller's level had switched off (FANUC: see
     /// [`Caller::switches_off`]).
-    off: u8,
+    pub off: u8,
 }
 
 /// What a cycle block hands the interpreter besides its expansion (see
@@ -147,26 +168,30 @@ struct BlockCycle {
 }
 
 /// A cycle block executed but not yet committed: its dry run goes on a chunk per
-/// step ([`Expansion::dry_run`]); the block commits when it ends without an alarm.
+/// step ([`DryRun::run`] along the expansion in `Interpreter::cycle`); the block
+/// commits when it ends without an alarm.
 #[derive(Clone, Debug)]
-struct Validating {
+#[doc(hidden)]
+pub struct Validating {
     /// The block's state, to be settled by the dry run's end.
     state: State,
     /// What else the block hands over.
     block: BlockCycle,
     /// Where the program goes after the block.
     next: Next,
-    /// The dry-run copy of the expansion.
-    dry: Expansion,
+    /// The dry run's copy of what the expansion (`Interpreter::cycle`, which
+    /// stays as it is until the block commits) moves on.
+    dry: DryRun,
     /// Program and line of the cycle block, for alarms.
-    at: Cursor,
+    pub at: Cursor,
     line: u32,
 }
 
 /// Where the program goes after a block, decided (and checked) before the block
 /// is committed, so a failed call or jump leaves everything as it was.
 #[derive(Clone, Copy, Debug)]
-enum Next {
+#[doc(hidden)]
+pub enum Next {
     Go,
     Pause,
     End,
@@ -190,6 +215,9 @@ enum Next {
         to: Cursor,
     },
     Language(Language),
+    /// SINUMERIK M17/RET: back to the caller (in a main program: the end).
+    #[cfg_attr(not(feature = "siemens"), allow(dead_code))]
+    SiemensReturn,
 }
 
 /// The lathe interpreter.
@@ -200,46 +228,65 @@ enum Next {
 /// than with the compiler's own order.
 #[derive(Debug)]
 pub struct Interpreter {
-    phase: Phase,
+    #[doc(hidden)]
+    pub phase: Phase,
     /// The language blocks are read in now (the machine's at power-on and reset;
     /// `G290`/`G291` switch it).
-    language: Language,
+    #[doc(hidden)]
+    pub language: Language,
     /// A block other than `%`/`O` has been executed in the current program level
     /// (a later `%` or `O` ends the record).
-    started: bool,
+    #[doc(hidden)]
+    pub started: bool,
     /// Whether `cursor` has been set to the main program's start.
     positioned: bool,
-    budget: u16,
+    #[doc(hidden)]
+    pub budget: u16,
     /// The program a run starts with.
     main: ProgramId,
-    cursor: Cursor,
+    #[doc(hidden)]
+    pub cursor: Cursor,
     /// Where the block the last step read (or failed to read) begins.
-    last_block: Cursor,
+    #[doc(hidden)]
+    pub last_block: Cursor,
     /// A held move that nose compensation found faulty while the failed block ran
     /// (its line), for [`Interpreter::alarm_stop`].
     fault_line: Option<u32>,
     /// The code calls the level in force switches off ([`Caller::switches_off`]).
-    codes_off: u8,
+    #[doc(hidden)]
+    pub codes_off: u8,
     /// The block being read, reused from block to block.
     block: Block,
     /// The block checked, reused from block to block.
-    cmd: Command,
-    state: State,
+    #[doc(hidden)]
+    pub cmd: Command,
+    #[doc(hidden)]
+    pub state: State,
     /// Actions waiting for the sink; also where a block stages its actions.
-    outbox: Outbox,
-    cfg: MachineConfig,
-    loops: Loops,
-    calls: heapless::Vec<Frame, MAX_CALL_DEPTH>,
+    #[doc(hidden)]
+    pub outbox: Outbox,
+    #[doc(hidden)]
+    pub cfg: MachineConfig,
+    #[doc(hidden)]
+    pub loops: Loops,
+    #[doc(hidden)]
+    pub calls: heapless::Vec<Frame, MAX_CALL_DEPTH>,
     /// The canned cycle being delivered (see [`crate::cycles`]).
-    cycle: Option<Expansion>,
+    #[doc(hidden)]
+    pub cycle: Option<Expansion>,
     /// A cycle block whose dry run is still going on.
-    validating: Option<Validating>,
+    #[doc(hidden)]
+    pub validating: Option<Validating>,
     /// The codes that call programs at the level in force, and the macro call
     /// block just read with its arguments (`#1–#33` of the level it starts).
     macro_calls: Calls,
     /// The G66 modal calls in force.
     modal: ModalCalls,
-    vars: Variables,
+    #[doc(hidden)]
+    pub vars: Variables,
+    /// The SINUMERIK front end's state: variables, the block's words, MCALL.
+    #[doc(hidden)]
+    pub siemens: siemens::Front,
 }
 
 /// The machine configuration of an [`Interpreter`], borrowed to be changed (see
@@ -298,10 +345,44 @@ impl Interpreter {
             validating: None,
             last_block: Cursor::start(0),
             fault_line: None,
+            siemens: siemens::Front::new(),
             macro_calls: Calls { codes, read: CallRead::EMPTY },
             modal: ModalCalls::default(),
             codes_off: 0,
         }
+    }
+
+    /// A step of the plugged front end ([`Interpreter::plug`]). Out of line, on
+    /// trait objects: the FANUC step that calls it stays as it was (no FANUC
+    /// block gets slower, `m4-tests/budget.py`).
+    #[inline(never)]
+    fn front_step(
+        &mut self,
+        programs: &dyn ProgramStore,
+        env: &dyn Environment,
+        sink: &mut dyn CanonSink,
+    ) -> Result<Progress, Alarm> {
+        // (interp-siemens turns interp-core's `siemens` feature on: without it no
+        // front end can be plugged in and the call is left out.)
+        #[cfg(feature = "siemens")]
+        if let Some(front) = self.siemens.front {
+            return front.step(self, programs, env, sink);
+        }
+        let _ = (programs, env, sink);
+        // No front end (a board built without SINUMERIK mode, the F446, whose
+        // language setting — $310=1, machine file `language = "siemens"` — asks
+        // for it): alarm 4007 on the program's first SINUMERIK block, nothing runs.
+        self.phase = Phase::Ended;
+        let kind = AlarmKind::NotInThisBuild { what: crate::exec::SINUMERIK };
+        Err(Alarm::in_program(self.cursor.program, self.cursor.line, kind))
+    }
+
+    /// Plugs in the front end of the language beside FANUC (SINUMERIK:
+    /// `interp_siemens::SINUMERIK`): the interpreter hands it every step while
+    /// that language is in force. Without one, G290 or a SINUMERIK power-on
+    /// language raise alarm 4007 ("SINUMERIK mode not in this build").
+    pub fn plug(&mut self, front: &'static dyn crate::lang::Front) {
+        self.siemens.front = Some(front);
     }
 
     /// The machine configuration.
@@ -425,6 +506,7 @@ impl Interpreter {
         }
         self.calls.clear();
         self.loops.clear();
+        self.siemens.rewind();
         self.drop_calls();
     }
 
@@ -481,7 +563,8 @@ impl Interpreter {
         let loops = self.loops.iter().filter(|_| here).map(|l| l.start.offset);
         let frames = self.calls.iter().flat_map(|f| {
             let own = f.ret.program == program;
-            mine(&f.ret).into_iter().chain(f.loops.iter().filter(move |_| own).map(|l| l.start.offset))
+            let level = f.kind.kept().and_then(|c| mine(&c));
+            mine(&f.ret).into_iter().chain(level).chain(f.loops.iter().filter(move |_| own).map(|l| l.start.offset))
         });
         cursor.into_iter().chain(loops).chain(frames).min()
     }
@@ -511,7 +594,9 @@ impl Interpreter {
                 shift_loops(&mut f.loops);
             }
             shift(&mut f.ret);
+            f.kind.shift(program, bytes);
         }
+        self.siemens.shift(program, bytes);
     }
 
     /// Runs macro statements up to the step budget and at most one NC block (or
@@ -547,16 +632,14 @@ impl Interpreter {
             self.cursor = start;
             self.positioned = true;
         }
+        if self.language == Language::Siemens {
+            // The blocks after a G290 (or on a SINUMERIK machine) are SINUMERIK
+            // blocks, read by the front end plugged in (interp-siemens). Only an
+            // NC block (G290/G291) switches, and it ends a step.
+            return self.front_step(&programs, env, &mut &mut *sink);
+        }
         let mut budget = self.budget;
         loop {
-            if self.language == Language::Siemens {
-                // The blocks after a G290 are SINUMERIK blocks (crate::lang, issue 19).
-                return Err(Alarm::in_program(
-                    self.cursor.program,
-                    self.cursor.line,
-                    AlarmKind::NotSupportedYet { what: "SINUMERIK mode (G290)" },
-                ));
-            }
             let at = self.cursor;
             self.last_block = at;
             let text = programs.text(at.program).unwrap_or(&[]);
@@ -573,7 +656,7 @@ impl Interpreter {
             let fmt = self.number_format();
             let read = read_program_block(raw.text, line, &self.vars, &fmt, &mut self.block, &mut self.macro_calls);
             match read {
-                Ok(Read::Nc) => return self.nc_block(at, fmt, programs, env, sink),
+                Ok(Read::Nc) => return self.nc_block(at, fmt, text, programs, env, sink),
                 Ok(Read::Macro(m)) if m.statement != MacroStatement::Call => {
                     self.started = true;
                     if let Err(k) = self.macro_statement(&m, at, programs) {
@@ -600,6 +683,21 @@ impl Interpreter {
                 return Ok(Progress::Yielded { line });
             }
         }
+    }
+
+    /// [`Interpreter::step`] as one non-generic function: the program store and the
+    /// sink behind `dyn`, the switches a [`Panel`]. A generic function is compiled at
+    /// the opt-level of the crate that instantiates it; this one is compiled here, at
+    /// interp-core's (the firmware crate, which calls it from its control task, is
+    /// built for size: docs/FIRMWARE-SIZES.md). m4-tests' `bench_interp` measures it.
+    #[inline(never)]
+    pub fn step_dyn(
+        &mut self,
+        programs: &dyn ProgramStore,
+        env: &Panel,
+        sink: &mut dyn CanonSink,
+    ) -> Result<Progress, Alarm> {
+        self.step(programs, env, sink)
     }
 
     /// Executes one block typed in MDI (one block: a `;` or line break may end it,
@@ -647,11 +745,14 @@ impl Interpreter {
         Ok(Progress::Executed { line: 0 })
     }
 
-    /// The NC block just read into `self.block` by [`Interpreter::step`].
+    /// The NC block just read into `self.block` by [`Interpreter::step`] from
+    /// `text`, the text of its program (`at.program`).
+    #[allow(clippy::too_many_arguments)]
     fn nc_block<P, E, S>(
         &mut self,
         at: Cursor,
         fmt: NumberFormat,
+        text: &[u8],
         programs: &P,
         env: &E,
         sink: &mut S,
@@ -670,10 +771,11 @@ impl Interpreter {
             return Ok(Progress::Skipped { line });
         }
         self.started = true;
-        let here = self.cursor.program;
+        // (The text step read the block from: one call of the store fewer per block.)
+        let here = at.program;
         let program = ProgramText {
             language: self.language,
-            text: programs.text(here).unwrap_or(&[]),
+            text,
             start: programs.start(here).unwrap_or(Cursor::start(here)),
             vars: None,
             fmt: Some(fmt),
@@ -705,9 +807,13 @@ impl Interpreter {
         S: CanonSink + ?Sized,
     {
         let program = program_text(programs, self.cursor.program, self.language, &self.vars, self.number_format());
-        let Some(v) = self.validating.as_mut() else { return Ok(Progress::Blocked) };
+        let (Some(v), Some(exp)) = (self.validating.as_mut(), self.cycle.as_ref()) else {
+            // (A block is set aside only with its expansion, and both go together.)
+            self.validating = None;
+            return Ok(Progress::Blocked);
+        };
         let (at, line) = (v.at, v.line);
-        match v.dry.dry_run(&self.cfg, program, env) {
+        match v.dry.run(exp, &self.cfg, program, env) {
             Ok(false) => Ok(Progress::Yielded { line }),
             Ok(true) => {
                 if let Some(mut v) = self.validating.take() {
@@ -747,6 +853,28 @@ impl Interpreter {
         R: FnOnce(&Self, Flow) -> Result<Next, AlarmKind>,
     {
         check_into(&self.block, &self.state, &self.cfg, &mut self.cmd)?;
+        self.run_cmd(env, program, route, None, |_| {})
+    }
+
+    /// Executes the checked `self.cmd` on the state in place (the engine part of
+    /// [`Interpreter::run_block`], shared by the languages): `call` is the
+    /// SINUMERIK cycle a cycle-call block starts, `edit` what the block sets on the
+    /// state besides the command (SINUMERIK DIAMON, LIMS), undone with the block.
+    #[inline(always)]
+    #[doc(hidden)]
+    pub fn run_cmd<E, R, F>(
+        &mut self,
+        env: &E,
+        program: Option<ProgramText<'_>>,
+        route: R,
+        call: Option<siemens::CallSpec<'_>>,
+        edit: F,
+    ) -> Result<Option<Next>, AlarmKind>
+    where
+        E: Environment,
+        R: FnOnce(&Self, Flow) -> Result<Next, AlarmKind>,
+        F: FnOnce(&mut State),
+    {
         let cmd = &self.cmd;
         if program.is_none() {
             if self.block.sub_call().is_some() {
@@ -759,20 +887,32 @@ impl Interpreter {
                 return Err(AlarmKind::NotSupportedYet { what: "canned cycles in MDI" });
             }
         }
-        let before = self.state.save(cmd);
+        // A SINUMERIK cycle may change what few blocks do (its tool edge): all is saved.
+        let before = if call.is_some() { self.state.save_all() } else { self.state.save(cmd) };
         let held = self.state.contour.is_holding().then_some(self.state.contour);
         // Tests (debug builds) check that an undone block leaves the whole state as it was.
         #[cfg(debug_assertions)]
         let whole = self.state;
+        edit(&mut self.state);
         let mut cycle = BlockCycle::default();
         let program = program.map(|p| ProgramText { vars: Some(&self.vars), ..p });
+        #[cfg(feature = "siemens")]
+        let cycle_call;
         // A cycle the block starts goes straight into `self.cycle` (empty here: a
         // cycle is delivered completely before the next block is read), so the
         // expansion is never moved.
         let mut staged = match program {
-            Some(p) => CycleStage::in_program(self.block.line, &mut self.outbox, p, &mut self.cycle),
-            None => CycleStage::new(self.block.line, &mut self.outbox),
+            Some(p) => CycleStage::in_program(cmd.line, &mut self.outbox, p, &mut self.cycle),
+            None => CycleStage::new(cmd.line, &mut self.outbox),
         };
+        // (Only the SINUMERIK driver passes a call: none without its feature.)
+        #[cfg(feature = "siemens")]
+        if let Some(c) = call {
+            cycle_call = c.bind(&self.siemens.vars);
+            staged.call = Some(&cycle_call);
+        }
+        #[cfg(not(feature = "siemens"))]
+        let _ = call;
         let done = execute(cmd, &mut self.state, &self.cfg, env, &mut staged);
         let faulty = staged.faulty_move;
         if done.is_ok() {
@@ -807,8 +947,8 @@ impl Interpreter {
     }
 
     /// Sets the cycle block just executed aside for its dry run (`validating`, with
-    /// a copy of its expansion); the state stays as it was (`before`, `held`) until
-    /// the dry run has ended. Never inlined: the copy (~6 KB with the state) stays
+    /// a copy of what its expansion moves on); the state stays as it was (`before`,
+    /// `held`) until the dry run has ended. Never inlined: the copy (~3.8 KB with the state) stays
     /// out of the frame of [`Interpreter::nc_block`], which is on the stack under
     /// every block's execution.
     #[inline(never)]
@@ -820,8 +960,8 @@ impl Interpreter {
         next: Next,
     ) {
         let Some(exp) = &self.cycle else { return };
-        let (at, line) = (self.cursor, self.block.line);
-        let dry = exp.clone();
+        let (at, line) = (self.cursor, self.cmd.line);
+        let dry = exp.dry_copy();
         let state = self.state;
         self.state.restore(before, held);
         self.validating = Some(Validating { state, block, next, dry, at, line });
@@ -834,18 +974,11 @@ impl Interpreter {
     /// ([`crate::contour::stop_on_alarm`]). An alarm that only means the stream has
     /// not delivered the text yet (a jump target, an END further on) leaves the
     /// look-ahead as it is: the board waits for the text and reads the block again.
-    fn stop_lookahead(&mut self, faulty: Option<u32>, kind: &AlarmKind) -> Option<u32> {
-        let waits_for_text = matches!(
-            kind,
-            AlarmKind::EndOfRecord
-                | AlarmKind::JumpTargetNotFound { .. }
-                | AlarmKind::MissingEnd { .. }
-                | AlarmKind::SequenceNotFound { .. }
-        );
-        if waits_for_text || !self.state.contour.is_holding() {
+    fn stop_lookahead(&mut self, line: u32, faulty: Option<u32>, kind: &AlarmKind) -> Option<u32> {
+        if kind.waits_for_text() || !self.state.contour.is_holding() {
             return None;
         }
-        let mut out = Staged::new(self.block.line, &mut self.outbox);
+        let mut out = Staged::new(line, &mut self.outbox);
         crate::contour::stop_on_alarm(&mut self.state, faulty, &mut out);
         faulty
     }
@@ -854,9 +987,16 @@ impl Interpreter {
     /// has let go of its held moves ([`Interpreter::stop_lookahead`]) and they have
     /// been offered to `sink`: the alarm names the faulty held move's line if
     /// compensation found one.
-    fn alarm_stop<S: CanonSink + ?Sized>(&mut self, sink: &mut S, program: u32, line: u32, kind: AlarmKind) -> Alarm {
+    #[doc(hidden)]
+    pub fn alarm_stop<S: CanonSink + ?Sized>(
+        &mut self,
+        sink: &mut S,
+        program: u32,
+        line: u32,
+        kind: AlarmKind,
+    ) -> Alarm {
         let faulty = self.fault_line.take();
-        let line = self.stop_lookahead(faulty, &kind).unwrap_or(line);
+        let line = self.stop_lookahead(line, faulty, &kind).unwrap_or(line);
         self.deliver(sink);
         Alarm::in_program(program, line, kind)
     }
@@ -962,7 +1102,8 @@ impl Interpreter {
 
     /// Moves the run on as `next` says.
     #[inline]
-    fn go(&mut self, next: Next) {
+    #[doc(hidden)]
+    pub fn go(&mut self, next: Next) {
         if !matches!(next, Next::Go) {
             self.go_elsewhere(next);
         }
@@ -980,6 +1121,8 @@ impl Interpreter {
                     ret: self.cursor,
                     loops: core::mem::take(&mut self.loops),
                     repeats_left: repeats.saturating_sub(1),
+                    language: self.language,
+                    kind: siemens::Level::Fanuc,
                     entry,
                     off: self.codes_off,
                 };
@@ -1001,6 +1144,7 @@ impl Interpreter {
                     self.cursor = f.ret;
                     self.started = true;
                     self.leave_call(f.entry, f.off);
+                    self.language = f.language;
                 }
                 if let Some(to) = to {
                     self.jump(to);
@@ -1008,6 +1152,8 @@ impl Interpreter {
             }
             Next::Jump { to } => self.jump(to),
             Next::Language(l) => self.language = l,
+            // Only the SINUMERIK driver returns it: its front end goes back.
+            Next::SiemensReturn => self.front_return(),
         }
     }
 
@@ -1091,7 +1237,8 @@ impl Interpreter {
     }
 
     /// Offers waiting actions to the sink; true when the outbox is empty.
-    fn deliver<S: CanonSink + ?Sized>(&mut self, sink: &mut S) -> bool {
+    #[doc(hidden)]
+    pub fn deliver<S: CanonSink + ?Sized>(&mut self, sink: &mut S) -> bool {
         while let Some(c) = self.outbox.front() {
             if sink.push_ref(c).is_err() {
                 return false;
@@ -1101,7 +1248,8 @@ impl Interpreter {
         true
     }
 
-    fn end_of_record(&mut self, at: Cursor) -> Alarm {
+    #[doc(hidden)]
+    pub fn end_of_record(&mut self, at: Cursor) -> Alarm {
         self.phase = Phase::Ended;
         Alarm::in_program(at.program, at.line, AlarmKind::EndOfRecord)
     }
@@ -1122,5 +1270,85 @@ fn program_text<'a, P: ProgramStore + ?Sized>(
         start: programs.start(here).unwrap_or(Cursor::start(here)),
         vars: Some(vars),
         fmt: Some(fmt),
+    }
+}
+
+/// A build without the `siemens` feature (the F446 board) refuses SINUMERIK mode
+/// with alarm 4007 instead of reading a program in a language it does not carry.
+/// Run by `cargo test -p interp-core --no-default-features --lib` (.ci/run).
+#[cfg(all(test, not(feature = "siemens")))]
+mod without_siemens {
+    use super::*;
+    use crate::canon::RecordingSink;
+    use crate::config::Language;
+    use crate::env::Panel;
+    use crate::program::SingleProgram;
+
+    /// Steps until an alarm or the end; the alarm and the actions staged.
+    fn run(cfg: MachineConfig, text: &str) -> (Option<Alarm>, usize) {
+        let mut interp = Interpreter::new(cfg);
+        let mut sink = RecordingSink::<64>::new();
+        for _ in 0..100 {
+            match interp.step(&SingleProgram(text.as_bytes()), &Panel::default(), &mut sink) {
+                Ok(Progress::Ended) => return (None, sink.actions.len()),
+                Ok(_) => {}
+                Err(a) => return (Some(a), sink.actions.len()),
+            }
+        }
+        (None, sink.actions.len())
+    }
+
+    #[test]
+    fn g290_raises_4007_on_its_line_and_nothing_after_it_runs() {
+        let (alarm, _) = run(MachineConfig::default(), "G00 X10 Z10\nG290\nG1 X20 Z5 F0.2\nM30\n");
+        let alarm = alarm.expect("G290 must be refused");
+        assert_eq!(alarm.code(), 4007);
+        assert_eq!(alarm.line, 2);
+        assert_eq!(alarm.kind, AlarmKind::NotInThisBuild { what: "SINUMERIK mode" });
+        let mut text = heapless::String::<64>::new();
+        core::fmt::Write::write_fmt(&mut text, format_args!("{}", alarm.kind)).unwrap();
+        assert_eq!(text.as_str(), "SINUMERIK mode not in this build");
+    }
+
+    #[test]
+    fn a_sinumerik_power_on_language_raises_4007_before_any_motion() {
+        let cfg = MachineConfig { language: Language::Siemens, ..MachineConfig::default() };
+        let (alarm, actions) = run(cfg, "G0 X10 Z10\nM30\n");
+        assert_eq!(alarm.map(|a| a.code()), Some(4007));
+        assert_eq!(actions, 0);
+    }
+}
+
+/// An interpreter with SINUMERIK mode built in but no front end plugged in
+/// ([`Interpreter::plug`]): the first SINUMERIK block raises alarm 4007 and
+/// nothing after it runs (a host tool that forgot to plug interp-siemens in
+/// gets an alarm, not a wrong cut).
+#[cfg(all(test, feature = "siemens"))]
+mod no_front {
+    use super::*;
+    use crate::canon::RecordingSink;
+    use crate::env::Panel;
+    use crate::program::SingleProgram;
+
+    #[test]
+    fn a_sinumerik_block_without_a_front_end_raises_4007() {
+        let text = "G00 X10 Z10\nG290\nG1 X20 Z5 F0.2\nM30\n";
+        let mut interp = Interpreter::new(MachineConfig::default());
+        let mut sink = RecordingSink::<64>::new();
+        let mut alarm = None;
+        for _ in 0..20 {
+            match interp.step(&SingleProgram(text.as_bytes()), &Panel::default(), &mut sink) {
+                Ok(Progress::Ended) => break,
+                Ok(_) => {}
+                Err(a) => {
+                    alarm = Some(a);
+                    break;
+                }
+            }
+        }
+        let alarm = alarm.expect("the SINUMERIK block must be refused");
+        assert_eq!((alarm.code(), alarm.line), (4007, 3));
+        let moved = sink.actions.iter().filter(|c| c.action.endpoint().is_some()).count();
+        assert_eq!(moved, 1, "only the FANUC G00 moved: {:?}", sink.actions);
     }
 }

@@ -1,0 +1,420 @@
+//! The SINUMERIK standard turning cycles (seed 001 chapter 4): each cycle's
+//! parameter list, the checks and alarms (61xxx) its section names, and the mapping
+//! of its parameters onto the engine's shared generators — CYCLE97/CYCLE98 onto the
+//! thread infeed engine of G76, CYCLE95 onto the roughing generator of G71/G72 …
+//! ([`Engine`], implemented by the engine in `interp_core::cycles`).
+//!
+//! General rules (seed lines 514–701, 10099–10184): parameters are positional, an
+//! empty or missing one is zero; the plane is G18 (Z the longitudinal axis, X the
+//! plane axis); under diameter programming (DIAMON) the plane-axis values (SPD,
+//! DM1 …) are diameters; lengths are in the programmed unit (G70/G71);
+//! G functions active before the call are active after it.
+//!
+//! One file per cycle family: [`drill`] (CYCLE81–CYCLE89, CYCLE840), [`thread`] (CYCLE97, CYCLE98, thread re-cutting),
+//! [`groove`] (CYCLE93), [`stock`] (CYCLE95, CYCLE950), [`undercut`] (CYCLE94,
+//! CYCLE96).
+
+mod drill;
+mod groove;
+mod stock;
+mod thread;
+mod undercut;
+
+#[cfg(test)]
+mod tests;
+
+pub use interp_core::lang::Engine;
+pub use interp_core::lang::siemens::call::{Arg, ContourSource, Signature, Ty};
+
+use interp_core::alarm::AlarmKind;
+use interp_core::canon::Plane;
+use interp_core::command::Command;
+use interp_core::modal::State;
+use interp_core::units::Units;
+
+use Ty::{Char as C, Int as I, Real as R, Str as S};
+
+/// Every cycle of this module with its parameter list as the manual gives it.
+pub static SIGNATURES: &[Signature] = &[
+    // Line 1528: CYCLE81 (the drilling cycles' common five, lines 1530-1534).
+    Signature { name: "CYCLE81", params: &[("RTP", R), ("RFP", R), ("SDIS", R), ("DP", R), ("DPR", R)] },
+    // Line 1619: CYCLE82.
+    Signature { name: "CYCLE82", params: &[("RTP", R), ("RFP", R), ("SDIS", R), ("DP", R), ("DPR", R), ("DTB", R)] },
+    // Line 1709: CYCLE83.
+    Signature {
+        name: "CYCLE83",
+        params: &[
+            ("RTP", R),
+            ("RFP", R),
+            ("SDIS", R),
+            ("DP", R),
+            ("DPR", R),
+            ("FDEP", R),
+            ("FDPR", R),
+            ("DAM", R),
+            ("DTB", R),
+            ("DTS", R),
+            ("FRF", R),
+            ("VARI", I),
+            ("_AXN", I),
+            ("_MDEP", R),
+            ("_VRT", R),
+            ("_DTD", R),
+            ("_DIS1", R),
+        ],
+    },
+    // Line 1964: CYCLE84.
+    Signature {
+        name: "CYCLE84",
+        params: &[
+            ("RTP", R),
+            ("RFP", R),
+            ("SDIS", R),
+            ("DP", R),
+            ("DPR", R),
+            ("DTB", R),
+            ("SDAC", I),
+            ("MPIT", R),
+            ("PIT", R),
+            ("POSS", R),
+            ("SST", R),
+            ("SST1", R),
+            ("_AXN", I),
+            ("_PTAB", I),
+            ("_TECHNO", I),
+            ("_VARI", I),
+            ("_DAM", R),
+            ("_VRT", R),
+        ],
+    },
+    // Line 2212 (the print runs "PIT- AXN" together): CYCLE840.
+    Signature {
+        name: "CYCLE840",
+        params: &[
+            ("RTP", R),
+            ("RFP", R),
+            ("SDIS", R),
+            ("DP", R),
+            ("DPR", R),
+            ("DTB", R),
+            ("SDR", I),
+            ("SDAC", I),
+            ("ENC", I),
+            ("MPIT", R),
+            ("PIT", R),
+            ("_AXN", I),
+            ("_PTAB", I),
+            ("_TECHNO", I),
+        ],
+    },
+    // Line 2512: CYCLE85.
+    Signature {
+        name: "CYCLE85",
+        params: &[("RTP", R), ("RFP", R), ("SDIS", R), ("DP", R), ("DPR", R), ("DTB", R), ("FFR", R), ("RFF", R)],
+    },
+    // Line 2633: CYCLE86.
+    Signature {
+        name: "CYCLE86",
+        params: &[
+            ("RTP", R),
+            ("RFP", R),
+            ("SDIS", R),
+            ("DP", R),
+            ("DPR", R),
+            ("DTB", R),
+            ("SDIR", I),
+            ("RPA", R),
+            ("RPO", R),
+            ("RPAP", R),
+            ("POSS", R),
+        ],
+    },
+    // Line 2759: CYCLE87.
+    Signature { name: "CYCLE87", params: &[("RTP", R), ("RFP", R), ("SDIS", R), ("DP", R), ("DPR", R), ("SDIR", I)] },
+    // Line 2843: CYCLE88.
+    Signature {
+        name: "CYCLE88",
+        params: &[("RTP", R), ("RFP", R), ("SDIS", R), ("DP", R), ("DPR", R), ("DTB", R), ("SDIR", I)],
+    },
+    // Line 2926: CYCLE89.
+    Signature { name: "CYCLE89", params: &[("RTP", R), ("RFP", R), ("SDIS", R), ("DP", R), ("DPR", R), ("DTB", R)] },
+    // Line 10198: CYCLE93.
+    Signature {
+        name: "CYCLE93",
+        params: &[
+            ("SPD", R),
+            ("SPL", R),
+            ("WIDG", R),
+            ("DIAG", R),
+            ("STA1", R),
+            ("ANG1", R),
+            ("ANG2", R),
+            ("RCO1", R),
+            ("RCO2", R),
+            ("RCI1", R),
+            ("RCI2", R),
+            ("FAL1", R),
+            ("FAL2", R),
+            ("IDEP", R),
+            ("DTB", R),
+            ("VARI", I),
+            ("_VRT", R),
+        ],
+    },
+    // Line 10459: CYCLE94.
+    Signature { name: "CYCLE94", params: &[("SPD", R), ("SPL", R), ("FORM", C), ("_VARI", I)] },
+    // Line 10602: CYCLE95.
+    Signature {
+        name: "CYCLE95",
+        params: &[
+            ("NPP", S),
+            ("MID", R),
+            ("FALZ", R),
+            ("FALX", R),
+            ("FAL", R),
+            ("FF1", R),
+            ("FF2", R),
+            ("FF3", R),
+            ("VARI", I),
+            ("DT", R),
+            ("DAM", R),
+            ("_VRT", R),
+        ],
+    },
+    // Line 10962: CYCLE96.
+    Signature { name: "CYCLE96", params: &[("DIATH", R), ("SPL", R), ("FORM", C), ("_VARI", I)] },
+    // Line 11069: CYCLE97.
+    Signature {
+        name: "CYCLE97",
+        params: &[
+            ("PIT", R),
+            ("MPIT", R),
+            ("SPL", R),
+            ("FPL", R),
+            ("DM1", R),
+            ("DM2", R),
+            ("APP", R),
+            ("ROP", R),
+            ("TDEP", R),
+            ("FAL", R),
+            ("IANG", R),
+            ("NSP", R),
+            ("NRC", I),
+            ("NID", I),
+            ("VARI", I),
+            ("NUMT", I),
+            ("_VRT", R),
+        ],
+    },
+    // Line 11259: CYCLE98.
+    Signature {
+        name: "CYCLE98",
+        params: &[
+            ("PO1", R),
+            ("DM1", R),
+            ("PO2", R),
+            ("DM2", R),
+            ("PO3", R),
+            ("DM3", R),
+            ("PO4", R),
+            ("DM4", R),
+            ("APP", R),
+            ("ROP", R),
+            ("TDEP", R),
+            ("FAL", R),
+            ("IANG", R),
+            ("NSP", R),
+            ("NRC", I),
+            ("NID", I),
+            ("PP1", R),
+            ("PP2", R),
+            ("PP3", R),
+            ("VARI", I),
+            ("NUMT", I),
+            ("_VRT", R),
+        ],
+    },
+    // Lines 11523–11527: CYCLE950.
+    Signature {
+        name: "CYCLE950",
+        params: &[
+            ("_NP1", S),
+            ("_NP2", S),
+            ("_NP3", S),
+            ("_NP4", S),
+            ("_VARI", I),
+            ("_MID", R),
+            ("_FALZ", R),
+            ("_FALX", R),
+            ("_FF1", R),
+            ("_FF2", R),
+            ("_FF3", R),
+            ("_FF4", R),
+            ("_VRT", R),
+            ("_ANGB", R),
+            ("_SDIS", R),
+            ("_NP5", S),
+            ("_NP6", S),
+            ("_NP7", S),
+            ("_NP8", S),
+            ("_APZ", R),
+            ("_APZA", I),
+            ("_APX", R),
+            ("_APXA", I),
+            ("_TOL1", R),
+        ],
+    },
+];
+
+/// The cycle called `name` (case-insensitive), if this module implements it.
+pub fn signature(name: &[u8]) -> Option<&'static Signature> {
+    SIGNATURES.iter().find(|s| s.name.as_bytes().eq_ignore_ascii_case(name))
+}
+
+/// Starts the cycle `sig` with `args` (already type-checked and padded with
+/// [`Arg::Empty`]) on the state: checks the parameters (the cycle's 61xxx alarms),
+/// maps them onto the engine's specification and starts the generator. Nothing
+/// moves when an alarm is returned.
+pub fn start(
+    sig: &Signature,
+    args: &[Arg<'_>],
+    cmd: &Command,
+    st: &mut State,
+    ctx: &mut dyn Engine,
+    contour: Option<ContourSource<'_>>,
+) -> Result<(), AlarmKind> {
+    let p = Params::new(args, st);
+    let r = match sig.name {
+        "CYCLE81" => drill::cycle(drill::Drill::C81, &p, cmd, st, ctx),
+        "CYCLE82" => drill::cycle(drill::Drill::C82, &p, cmd, st, ctx),
+        "CYCLE83" => drill::cycle(drill::Drill::C83, &p, cmd, st, ctx),
+        "CYCLE84" => drill::cycle(drill::Drill::C84, &p, cmd, st, ctx),
+        "CYCLE840" => drill::cycle(drill::Drill::C840, &p, cmd, st, ctx),
+        "CYCLE85" => drill::cycle(drill::Drill::C85, &p, cmd, st, ctx),
+        "CYCLE86" => drill::cycle(drill::Drill::C86, &p, cmd, st, ctx),
+        "CYCLE87" => drill::cycle(drill::Drill::C87, &p, cmd, st, ctx),
+        "CYCLE88" => drill::cycle(drill::Drill::C88, &p, cmd, st, ctx),
+        "CYCLE89" => drill::cycle(drill::Drill::C89, &p, cmd, st, ctx),
+        "CYCLE93" => groove::cycle93(&p, cmd, st, ctx),
+        "CYCLE94" => undercut::cycle94(&p, cmd, st, ctx),
+        "CYCLE95" => stock::cycle95(&p, cmd, st, ctx, contour),
+        "CYCLE96" => undercut::cycle96(&p, cmd, st, ctx),
+        "CYCLE950" => stock::cycle950(&p, cmd, st, ctx, contour),
+        "CYCLE97" => thread::cycle97(&p, cmd, st, ctx),
+        "CYCLE98" => thread::cycle98(&p, cmd, st, ctx),
+        _ => Err(AlarmKind::NotSupportedYet { what: "this SINUMERIK cycle" }),
+    };
+    // A length read out of range stopped the call where it was read: whatever the
+    // cycle did after it (with 0 for the value) is void, its alarm is 61xxx's
+    // Overflow (see [`Params::nm`]).
+    if p.overflow.get() { Err(AlarmKind::Overflow) } else { r }
+}
+
+/// The turning cycles work in the ZX plane (G18, line 10113).
+fn need_zx(st: &State) -> Result<(), AlarmKind> {
+    if st.modal.plane != Plane::Zx {
+        return Err(AlarmKind::CycleNotInZxPlane);
+    }
+    Ok(())
+}
+
+/// The arguments of a call, read as the manual declares them, in internal units.
+struct Params<'s, 'a> {
+    args: &'s [Arg<'a>],
+    /// Nanometres per programmed length unit (mm or inch, G71/G70).
+    per_unit: f64,
+    /// Plane-axis values are diameters (DIAMON).
+    diameter: bool,
+    /// A length was out of range ([`Params::nm`]): the call's alarm is
+    /// [`AlarmKind::Overflow`], whatever the cycle found after it. The lengths
+    /// are read without a `?` each — one check per call instead of one per
+    /// parameter; [`Params::ok`] before the cycle hands anything to the engine.
+    overflow: core::cell::Cell<bool>,
+}
+
+/// 1 mm, the manual's default for retracts and clearances.
+const MM: i64 = 1_000_000;
+
+/// Largest length a cycle parameter may give (10 m).
+const MAX_LENGTH_NM: f64 = 1e13;
+
+impl<'s, 'a> Params<'s, 'a> {
+    fn new(args: &'s [Arg<'a>], st: &State) -> Self {
+        let per_unit = match st.modal.units {
+            Units::Metric => 1e6,
+            Units::Inch => 25.4e6,
+        };
+        Params { args, per_unit, diameter: st.modal.diameter, overflow: core::cell::Cell::new(false) }
+    }
+
+    fn arg(&self, i: usize) -> Arg<'a> {
+        self.args.get(i).copied().unwrap_or(Arg::Empty)
+    }
+
+    /// REAL parameter `i` (an INT is converted, a left-out one is zero).
+    fn real(&self, i: usize) -> f64 {
+        match self.arg(i) {
+            Arg::Real(v) => v,
+            Arg::Int(v) => v as f64,
+            _ => 0.0,
+        }
+    }
+
+    /// STRING or CHAR parameter `i` (empty when left out).
+    fn text(&self, i: usize) -> &'a [u8] {
+        match self.arg(i) {
+            Arg::Str(s) => s,
+            _ => &[],
+        }
+    }
+
+    /// INT parameter `i`.
+    fn int(&self, i: usize) -> i64 {
+        match self.arg(i) {
+            Arg::Int(v) => v,
+            Arg::Real(v) if v.is_finite() => v as i64,
+            _ => 0,
+        }
+    }
+
+    /// A length in nm from a value in program units. Beyond [`MAX_LENGTH_NM`] (or
+    /// not finite) the call stops with [`AlarmKind::Overflow`]: the value reads as
+    /// 0 and the call's result is the overflow ([`start`], [`Params::ok`]), as if
+    /// the alarm had been returned here.
+    fn nm(&self, v: f64) -> i64 {
+        let nm = v * self.per_unit;
+        if !nm.is_finite() || libm::fabs(nm) > MAX_LENGTH_NM {
+            self.overflow.set(true);
+            return 0;
+        }
+        interp_core::geom::round_i64(nm)
+    }
+
+    /// Overflow if a length read so far was out of range: called before a cycle
+    /// hands its specification to the engine (nothing moves on an alarm).
+    fn ok(&self) -> Result<(), AlarmKind> {
+        if self.overflow.get() { Err(AlarmKind::Overflow) } else { Ok(()) }
+    }
+
+    /// Length parameter `i`, nm, signed.
+    fn len(&self, i: usize) -> i64 {
+        self.nm(self.real(i))
+    }
+
+    /// Length parameter `i` the manual gives without sign (不输入符号), nm.
+    fn unsigned(&self, i: usize) -> i64 {
+        self.len(i).abs()
+    }
+
+    /// A plane-axis (X) position, as a radius: halved under DIAMON.
+    fn x(&self, i: usize) -> i64 {
+        let v = self.len(i);
+        if self.diameter { v / 2 } else { v }
+    }
+
+    /// A retract or clearance the manual defaults to 1 mm when zero (_VRT).
+    fn or_1mm(&self, i: usize) -> i64 {
+        let v = self.unsigned(i);
+        if v == 0 { MM } else { v }
+    }
+}
