@@ -955,7 +955,7 @@ impl Driver for Interpreter {
             self.siemens.end_pattern();
             return None;
         };
-        let (a, o, _) = crate::cycles::plane_axes(self.state.modal.plane);
+        let [a, o, _] = crate::cycles::plane_axes(self.state.modal.plane);
         self.cmd = Command::EMPTY;
         self.cmd.line = line;
         self.cmd.g.motion = Some(GCode::Rapid);

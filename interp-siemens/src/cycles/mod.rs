@@ -24,9 +24,10 @@ mod undercut;
 #[cfg(test)]
 mod tests;
 
+pub use drill::plane_axes;
 pub use interp_core::lang::Engine;
 pub use interp_core::lang::siemens::call::{Arg, ContourSource, Signature, Ty};
-pub use pattern::{Notice, hole_pattern, is_pattern, plane_axes};
+pub use pattern::{Notice, hole_pattern, is_pattern};
 
 use interp_core::alarm::AlarmKind;
 use interp_core::canon::Plane;

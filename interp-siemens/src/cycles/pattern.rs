@@ -27,8 +27,6 @@
 use super::Params;
 use interp_core::MachineConfig;
 use interp_core::alarm::{AlarmKind, CycleAlarm, SiemensAlarm};
-use interp_core::axis::Axis;
-use interp_core::canon::Plane;
 use interp_core::cycles::holes::HolePattern;
 use interp_core::lang::siemens::call::Arg;
 use interp_core::modal::State;
@@ -66,15 +64,6 @@ pub fn is_pattern(name: &str) -> bool {
     matches!(name, "HOLES1" | "HOLES2" | "CYCLE801")
 }
 
-/// The plane's abscissa and ordinate (lines 530-545).
-pub fn plane_axes(plane: Plane) -> (Axis, Axis, Axis) {
-    match plane {
-        Plane::Xy => (Axis::X, Axis::Y, Axis::Z),
-        Plane::Zx => (Axis::Z, Axis::X, Axis::Y),
-        Plane::Yz => (Axis::Y, Axis::Z, Axis::X),
-    }
-}
-
 /// The pattern `name` called on `line` with `args`: its positions in order, or
 /// `Ok(None)` with 62105 for a grid of no points. Nothing moves on an error.
 pub fn hole_pattern(
@@ -85,7 +74,7 @@ pub fn hole_pattern(
     line: u32,
 ) -> Result<Result<HolePattern, Notice>, AlarmKind> {
     let p = Params::new(args, st);
-    let (a, o, third) = plane_axes(st.modal.plane);
+    let [a, o, third] = super::drill::plane_axes(st.modal.plane);
     if [a, o, third].iter().any(|x| !cfg.axes[x.index()].present) {
         return Err(CycleAlarm::NoThirdAxis.into());
     }
