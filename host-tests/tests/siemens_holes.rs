@@ -280,3 +280,25 @@ fn without_mcall_62100_stops_then_positions_only() {
     }
     assert!(!sink.0.iter().any(|c| matches!(c.action, Action::Linear(_))));
 }
+
+/// The cycle-support program (lines 873-888): a labelled HOLES2 drilled with
+/// CYCLE82, then the same section repeated (REPEAT) under a tapping MCALL — the
+/// second pass taps at the same nine positions. (The document's label 孔圆弧1 is
+/// LOCH1 here: labels are ASCII names on this board.)
+#[test]
+fn a_repeated_pattern_section_taps_where_it_drilled() {
+    let text = "N100 G17 G0 G90 Z20 F2000 S500 M3 D1 T1\nN120 G0 G90 X50 Y50\n\
+                N130 MCALL CYCLE82(10,0,2,0,30,5)\nN140 LOCH1:\nN150 HOLES2(50,50,37,20,20,9)\n\
+                N160 ENDLABEL:\nN170 MCALL\nN190 S400 M3\n\
+                N200 MCALL CYCLE84(10,0,2,0,30,,3,5,0.8,180,300,500)\nN210 REPEAT LOCH1 ENDLABEL\n\
+                N220 MCALL\nM30\n";
+    let r = siemens(text);
+    clean(&r);
+    let expect = circle(50.0, 50.0, 37.0, 20.0, 20.0, 9);
+    assert_eq!(holes(&r), expect);
+    // After the last drilling feed: the tapping pass's positions.
+    let drilled = r.actions.iter().rposition(|c| matches!(c.action, Action::Linear(_))).expect("drilled");
+    assert!(r.actions[drilled..].iter().any(|c| matches!(c.action, Action::Tap(_))), "tapped");
+    let tapped: Vec<_> = rapids_xy(&r.actions[drilled..]).into_iter().skip(1).collect();
+    assert_eq!(tapped, expect);
+}
