@@ -52,20 +52,7 @@ impl fmt::Display for Alarm {
 /// An axis or address letter as written in the program (`b'X'`, `b'U'` …).
 pub type Letter = u8;
 
-/// A G code number in tenths (G01 = 10, G02.1 = 21, G12.1 = 121), for messages.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct GNum(pub u16);
-
-impl fmt::Display for GNum {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        if self.0.is_multiple_of(10) {
-            write!(f, "G{:02}", self.0 / 10)
-        } else {
-            write!(f, "G{:02}.{}", self.0 / 10, self.0 % 10)
-        }
-    }
-}
+pub use crate::text::GNum;
 
 /// Everything that can be wrong with a block, one variant per alarm code.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

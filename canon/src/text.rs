@@ -13,7 +13,20 @@
 
 use core::fmt;
 
-use crate::alarm::GNum;
+/// A G code number in tenths (G01 = 10, G02.1 = 21, G12.1 = 121), for messages.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct GNum(pub u16);
+
+impl fmt::Display for GNum {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.0.is_multiple_of(10) {
+            write!(f, "G{:02}", self.0 / 10)
+        } else {
+            write!(f, "G{:02}.{}", self.0 / 10, self.0 % 10)
+        }
+    }
+}
 
 /// The dictionary: the words (with the space after them where that is how they
 /// are used) that save most when packed, most useful first (`tools/text-dict.py`).
