@@ -302,3 +302,30 @@ fn a_repeated_pattern_section_taps_where_it_drilled() {
     let tapped: Vec<_> = rapids_xy(&r.actions[drilled..]).into_iter().skip(1).collect();
     assert_eq!(tapped, expect);
 }
+
+/// MCALL of a subprogram (lines 3095-3099: the pattern calls whatever was called
+/// modally): the subprogram runs whole at each hole before the next is approached.
+#[test]
+fn a_modally_called_subprogram_runs_at_each_hole() {
+    let main = "G17 G0 G90 X0 Y0 Z20 F100 S500 M3 D1 T1\nMCALL SPOT\nHOLES1(10, 0, 0, 0, 10, 3)\nMCALL\nM30\n";
+    let sub = "PROC SPOT\nG1 G91 Z-5\nG0 Z5\nG90\nRET\n";
+    let mut m = Box::new(host_tests::Memory::new());
+    let id = m.load_named(main.as_bytes(), Some(0)).expect("main program loads");
+    m.load_named(sub.as_bytes(), None).expect("subprogram loads");
+    let mut interp = interp_core::Interpreter::new(cfg());
+    interp.select_main(id);
+    let r = host_tests::run_interp(interp, &*m, &Panel::default(), 100_000);
+    clean(&r);
+    assert_eq!(holes(&r), row(10.0, 0.0, 0.0, 0.0, 10.0, 3));
+    // Each hole: a rapid to it, the feed down, the rapid up — in that order.
+    let kinds: Vec<char> = r
+        .actions
+        .iter()
+        .filter_map(|c| match c.action {
+            Action::Rapid(_) => Some('r'),
+            Action::Linear(_) => Some('l'),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(kinds.iter().collect::<String>(), "rrlrrlrrlr");
+}

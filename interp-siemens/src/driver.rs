@@ -921,7 +921,7 @@ impl Driver for Interpreter {
         self.started = true;
         match pattern {
             Ok(p) => {
-                self.siemens.begin_pattern(p);
+                self.siemens.begin_pattern(p, self.calls.len());
                 if self.siemens.mcall.is_none() || self.in_modal_call() {
                     return Ok(self.notice(crate::cycles::Notice::NoDrillingCycle, line));
                 }
@@ -949,6 +949,9 @@ impl Driver for Interpreter {
         E: Environment,
         K: CanonSink + ?Sized,
     {
+        if self.siemens.pattern.is_none() || self.calls.len() != self.siemens.pattern_depth {
+            return None;
+        }
         let pattern = self.siemens.pattern.as_mut()?;
         let line = pattern.line;
         let Some((u, v)) = pattern.advance() else {

@@ -147,6 +147,10 @@ pub struct Front {
     /// read first; no cost on the per-block path).
     #[cfg(feature = "siemens")]
     pub general_before: bool,
+    /// The call depth the pattern was called at: its holes are approached only
+    /// there, not while the modal call's subprogram runs one level deeper.
+    #[cfg(feature = "siemens")]
+    pub pattern_depth: usize,
     /// The last message of the cycles (62xxx: shown, the program goes on at NC
     /// start) and the line that raised it, for the operator's display.
     #[cfg(feature = "siemens")]
@@ -181,6 +185,8 @@ impl Front {
             #[cfg(feature = "siemens")]
             general_before: false,
             #[cfg(feature = "siemens")]
+            pattern_depth: 0,
+            #[cfg(feature = "siemens")]
             notice: None,
             front: None,
             general: false,
@@ -200,13 +206,14 @@ impl Front {
         }
     }
 
-    /// Starts running drilling pattern `p`: the short way for plain lines off
-    /// until it ends.
+    /// Starts running drilling pattern `p`, called at call depth `depth`: the
+    /// short way for plain lines off until it ends.
     #[cfg(feature = "siemens")]
-    pub fn begin_pattern(&mut self, p: crate::cycles::holes::HolePattern) {
+    pub fn begin_pattern(&mut self, p: crate::cycles::holes::HolePattern, depth: usize) {
         if self.pattern.is_none() {
             self.general_before = self.general;
         }
+        self.pattern_depth = depth;
         self.general = true;
         self.pattern = Some(p);
     }
