@@ -40,7 +40,11 @@ while IFS= read -r prog; do
     count=$((count + 1))
     head=$(head -n 10 "$prog")
     opts=("${libs[@]}")
-    case "$prog" in examples/mill/*) opts=("${mill_libs[@]}" --machine examples/machines/mill.toml) ;; esac
+    case "$prog" in
+        examples/mill/*) opts=("${mill_libs[@]}" --machine examples/machines/mill.toml) ;;
+        # SINUMERIK on the machining centre (HOLES1/HOLES2/CYCLE801 …): the mill, no libraries.
+        examples/sinumerik/mill/*) opts=(--machine examples/machines/mill.toml) ;;
+    esac
     machine=$(grep -oiE -- '--machine +examples/[A-Za-z0-9_/.-]+\.toml' <<<"$head" | head -n 1 | sed -E 's/^--machine +//I' || true)
     if [ -n "$machine" ]; then
         # The comment may be upper case (FANUC programs are): find the file whatever its case.

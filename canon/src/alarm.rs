@@ -793,6 +793,10 @@ pub enum CycleAlarm {
     ReferencePlaneWrong,
     /// 61102: SINUMERIK cycle alarm (seed 001 table 5.3): no spindle direction programmed.
     NoSpindleDirection,
+    /// 61103: SINUMERIK cycle alarm (seed 001 line 3107, table 5.3): number of holes is zero.
+    HoleCountZero,
+    /// 61106: SINUMERIK cycle alarm (seed 001 table 5.3): number or spacing of circle elements.
+    CircleElements,
     /// 61107: SINUMERIK cycle alarm (seed 001 line 1803): first drilling depth defined incorrectly.
     FirstDepthWrong,
     /// 61125: SINUMERIK cycle alarm (seed 001 table 5.3): _TECHNO defined incorrectly.
@@ -851,6 +855,8 @@ impl CycleAlarm {
             ParameterWrong => 61019,
             ReferencePlaneWrong => 61101,
             NoSpindleDirection => 61102,
+            HoleCountZero => 61103,
+            CircleElements => 61106,
             FirstDepthWrong => 61107,
             TechnologyWrong => 61125,
             FinishedDiameterTooSmall => 61601,
@@ -911,6 +917,8 @@ text_table! {
         ParameterWrong {} => "parameter programmed incorrectly (DAM, ENC)";
         ReferencePlaneWrong {} => "reference plane defined incorrectly (RTP, RFP, DP/DPR)";
         NoSpindleDirection {} => "no spindle direction programmed (SDIR/SDR 3 or 4, M3/M4 before CYCLE840)";
+        HoleCountZero {} => "number of holes is zero (NUM of HOLES1/HOLES2)";
+        CircleElements {} => "number or spacing of circle elements (NUM and INDA of HOLES2 do not fit on a full circle)";
         FirstDepthWrong {} => "first drilling depth defined incorrectly (FDEP/FDPR against the total depth)";
         TechnologyWrong {} => "technology selection in parameter _TECHNO defined incorrectly";
         FinishedDiameterTooSmall {} => "finished part diameter too small (under 3 mm)";
@@ -1586,6 +1594,16 @@ pub const CATALOG: &[CatalogEntry] = &[
         when: "CYCLE86/87/88 SDIR other than 3/4, CYCLE84 SDAC other than 0/3/4/5, CYCLE840 with the spindle stopped at the call or SDR = 0 without an encoder (ENC 1/11) (lines 2689, 2814, 2896, table 12217: 没有编程主轴方向)",
     },
     CatalogEntry {
+        code: 61103,
+        title: "number of holes zero",
+        when: "HOLES1/HOLES2 NUM zero, negative or left out (line 3107, table 12216: 孔数为零)",
+    },
+    CatalogEntry {
+        code: 61106,
+        title: "circle elements",
+        when: "HOLES2 NUM holes at INDA apart do not fit on a full circle: (NUM−1)·|INDA| ≥ 360° (table 12221: 圆弧单元个数或者间距)",
+    },
+    CatalogEntry {
         code: 61107,
         title: "first depth wrong",
         when: "CYCLE83 first depth FDEP/FDPR deeper than the final depth or not into the hole (lines 1803, 1823: 第一次钻深错误定义)",
@@ -1850,6 +1868,8 @@ mod tests {
             SiemensCycle(CycleAlarm::ParameterWrong),
             SiemensCycle(CycleAlarm::ReferencePlaneWrong),
             SiemensCycle(CycleAlarm::NoSpindleDirection),
+            SiemensCycle(CycleAlarm::HoleCountZero),
+            SiemensCycle(CycleAlarm::CircleElements),
             SiemensCycle(CycleAlarm::FirstDepthWrong),
             SiemensCycle(CycleAlarm::TechnologyWrong),
             SiemensCycle(CycleAlarm::FinishedDiameterTooSmall),

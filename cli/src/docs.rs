@@ -517,6 +517,8 @@ pub const PROVEN_ELSEWHERE: &[(u16, &str)] = &[
         61102,
         "interp-siemens cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
     ),
+    (61103, "host-tests siemens_holes.rs alarms_of_the_patterns_move_nothing"),
+    (61106, "host-tests siemens_holes.rs alarms_of_the_patterns_move_nothing"),
     (
         61107,
         "interp-siemens cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",

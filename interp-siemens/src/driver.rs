@@ -234,6 +234,22 @@ trait Driver {
         E: Environment,
         K: CanonSink + ?Sized;
 
+    fn start_pattern<K: CanonSink + ?Sized>(
+        &mut self,
+        sig: &'static Signature,
+        args: &CallArgs,
+        at: Cursor,
+        sink: &mut K,
+    ) -> Result<Progress, Alarm>;
+
+    fn pattern_hole<P, E, K>(&mut self, programs: &P, env: &E, sink: &mut K) -> Option<Result<Progress, Alarm>>
+    where
+        P: ProgramStore + ?Sized,
+        E: Environment,
+        K: CanonSink + ?Sized;
+
+    fn notice(&mut self, n: crate::cycles::Notice, line: u32) -> Progress;
+
     fn cycle<P, E, K>(
         &mut self,
         sig: &'static Signature,
@@ -284,6 +300,9 @@ impl Driver for Interpreter {
         loop {
             if let Some(line) = self.siemens.mcall_due.take().map(core::num::NonZeroU32::get) {
                 return self.modal_call(line, programs, env, sink);
+            }
+            if let Some(r) = self.pattern_hole(programs, env, sink) {
+                return r;
             }
             self.section_end();
             let at = self.cursor;
@@ -761,6 +780,7 @@ impl Driver for Interpreter {
                 Err(S::SyntaxError { what: "P (passes) with a cycle" }.into())
             } else {
                 match args.bind(sig.params.iter().map(|p| p.1)) {
+                    Ok(()) if crate::cycles::is_pattern(sig.name) => return self.start_pattern(sig, args, at, sink),
                     Ok(()) => return self.cycle(sig, args, at, line, programs, env, sink),
                     Err(k) => Err(k),
                 }
@@ -878,6 +898,81 @@ impl Driver for Interpreter {
                 Err(k) => Err(self.alarm_stop(sink, at.program, line, k)),
             },
         }
+    }
+
+    /// HOLES1, HOLES2 or CYCLE801 called on `at`: its parameters checked (an
+    /// alarm moves nothing), its holes laid out; the holes are approached by
+    /// [`Driver::pattern_hole`], one per step. Without a modal call: message 62100
+    /// and a stop; NC start positions the pattern without drilling (lines 3095-3101).
+    fn start_pattern<K: CanonSink + ?Sized>(
+        &mut self,
+        sig: &'static Signature,
+        args: &CallArgs,
+        at: Cursor,
+        sink: &mut K,
+    ) -> Result<Progress, Alarm> {
+        let line = at.line;
+        let mut buf = [Arg::Empty; interp_core::lang::siemens::call::MAX_ARGS];
+        let laid = crate::cycles::hole_pattern(sig.name, args.args(&mut buf), &self.state, &self.cfg, line);
+        let pattern = match laid {
+            Err(k) => return Err(self.alarm_stop(sink, at.program, line, k)),
+            Ok(p) => p,
+        };
+        self.started = true;
+        match pattern {
+            Ok(p) => {
+                self.siemens.begin_pattern(p, self.calls.len());
+                if self.siemens.mcall.is_none() || self.in_modal_call() {
+                    return Ok(self.notice(crate::cycles::Notice::NoDrillingCycle, line));
+                }
+                Ok(Progress::Executed { line })
+            }
+            Err(n) => Ok(self.notice(n, line)),
+        }
+    }
+
+    /// A cycle message (62xxx) on `line`: kept for the display, the program
+    /// stopped until NC start (cycle start), as the clear key and NC start of an
+    /// 840D (lines 3099-3101).
+    fn notice(&mut self, n: crate::cycles::Notice, line: u32) -> Progress {
+        self.siemens.notice = Some((n.code(), line));
+        self.phase = Phase::Paused;
+        Progress::Paused
+    }
+
+    /// The next hole of the drilling pattern being run: G0 to it in the plane
+    /// (the caller's motion mode kept), the modal call armed after it. `None`
+    /// when no pattern is running (or it has just finished).
+    fn pattern_hole<P, E, K>(&mut self, programs: &P, env: &E, sink: &mut K) -> Option<Result<Progress, Alarm>>
+    where
+        P: ProgramStore + ?Sized,
+        E: Environment,
+        K: CanonSink + ?Sized,
+    {
+        if self.siemens.pattern.is_none() || self.calls.len() != self.siemens.pattern_depth {
+            return None;
+        }
+        let pattern = self.siemens.pattern.as_mut()?;
+        let line = pattern.line;
+        let Some((u, v)) = pattern.advance() else {
+            self.siemens.end_pattern();
+            return None;
+        };
+        let [a, o, _] = crate::cycles::plane_axes(self.state.modal.plane);
+        self.cmd = Command::EMPTY;
+        self.cmd.line = line;
+        self.cmd.g.motion = Some(GCode::Rapid);
+        self.cmd.axes[a.index()] = Some(interp_core::command::AxisWord { value: u, incremental: false });
+        self.cmd.axes[o.index()] = Some(interp_core::command::AxisWord { value: v, incremental: false });
+        let motion = self.state.modal.motion;
+        let at = Cursor { line, ..self.cursor };
+        let then = After { pending: None, to: None, moves: true };
+        let r = self.run_block(at, line, None, Extras::default(), then, programs, env, sink);
+        self.state.modal.motion = motion;
+        if r.is_err() {
+            self.siemens.end_pattern();
+        }
+        Some(r)
     }
 
     /// A standard cycle call as a block of its own: its contour resolved, then

@@ -154,6 +154,32 @@ fn the_sinumerik_examples_check_clean() {
     }
 }
 
+/// The drilling-pattern examples (HOLES1, HOLES2, CYCLE801, seed 001 chapter 2.3)
+/// run clean on the machining centre and draw exactly their committed plan-view
+/// renders.
+#[test]
+fn the_sinumerik_mill_examples_run_and_match_their_renders() {
+    let machine = concat!(env!("CARGO_MANIFEST_DIR"), "/../examples/machines/mill.toml");
+    for name in ["holes1_row", "holes1_grid", "holes2_circle", "cycle801_grid"] {
+        let path = format!("{SINUMERIK}/mill/{name}.mpf");
+        let o = lathe(&["check", &path, "--machine", machine]);
+        assert_eq!(status(&o), 0, "{name}: {}", stdout(&o));
+        assert!(stdout(&o).ends_with("no alarms\n"), "{name}: {}", stdout(&o));
+        let svg = scratch(&format!("{name}.svg"), "");
+        let rel = format!("examples/sinumerik/mill/{name}.mpf");
+        let root = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_lathe"))
+            .current_dir(root)
+            .args(["sim", &rel, "--machine", "examples/machines/mill.toml", "--format", "svg", "--out", &svg])
+            .output()
+            .expect("lathe runs");
+        assert_eq!(status(&o), 0, "{name}: {}", stderr(&o));
+        let drawn = std::fs::read_to_string(&svg).expect("render written");
+        let committed = std::fs::read_to_string(format!("{SINUMERIK}/mill/{name}.svg")).expect("committed render");
+        assert_eq!(drawn, committed, "{name}: render differs (tools/render-examples.sh)");
+    }
+}
+
 #[test]
 fn lathe_machine_shows_the_power_on_language() {
     let o = lathe(&["machine"]);

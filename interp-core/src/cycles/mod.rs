@@ -37,6 +37,8 @@ mod finish;
 #[cfg_attr(not(feature = "siemens"), allow(dead_code))]
 mod groove;
 pub mod hole;
+#[cfg(feature = "siemens")]
+pub mod holes;
 mod offset;
 #[cfg_attr(not(feature = "siemens"), allow(dead_code))]
 mod pass;

@@ -138,6 +138,23 @@ pub struct Front {
     /// The modal state at the call of the PROC … SAVE running (one at a time).
     #[cfg(feature = "siemens")]
     pub saved: Option<Modal>,
+    /// A drilling pattern (HOLES1, HOLES2, CYCLE801) being positioned: the
+    /// driver moves to its next hole when the modal call of the last is done.
+    #[cfg(feature = "siemens")]
+    pub pattern: Option<crate::cycles::holes::HolePattern>,
+    /// [`Front::general`] before a drilling pattern switched the short way off
+    /// (the pattern's holes are approached between lines: no plain line may be
+    /// read first; no cost on the per-block path).
+    #[cfg(feature = "siemens")]
+    pub general_before: bool,
+    /// The call depth the pattern was called at: its holes are approached only
+    /// there, not while the modal call's subprogram runs one level deeper.
+    #[cfg(feature = "siemens")]
+    pub pattern_depth: usize,
+    /// The last message of the cycles (62xxx: shown, the program goes on at NC
+    /// start) and the line that raised it, for the operator's display.
+    #[cfg(feature = "siemens")]
+    pub notice: Option<(u16, u32)>,
     /// The front end plugged in ([`Interpreter::plug`]): kept with the language's
     /// cold state, so the FANUC step's fields stay where they were.
     pub front: Option<&'static dyn crate::lang::Front>,
@@ -163,6 +180,14 @@ impl Front {
             mcall_due: None,
             #[cfg(feature = "siemens")]
             saved: None,
+            #[cfg(feature = "siemens")]
+            pattern: None,
+            #[cfg(feature = "siemens")]
+            general_before: false,
+            #[cfg(feature = "siemens")]
+            pattern_depth: 0,
+            #[cfg(feature = "siemens")]
+            notice: None,
             front: None,
             general: false,
         }
@@ -176,6 +201,28 @@ impl Front {
             self.mcall = None;
             self.mcall_due = None;
             self.saved = None;
+            self.end_pattern();
+            self.notice = None;
+        }
+    }
+
+    /// Starts running drilling pattern `p`, called at call depth `depth`: the
+    /// short way for plain lines off until it ends.
+    #[cfg(feature = "siemens")]
+    pub fn begin_pattern(&mut self, p: crate::cycles::holes::HolePattern, depth: usize) {
+        if self.pattern.is_none() {
+            self.general_before = self.general;
+        }
+        self.pattern_depth = depth;
+        self.general = true;
+        self.pattern = Some(p);
+    }
+
+    /// No drilling pattern running any more: the short way as it was.
+    #[cfg(feature = "siemens")]
+    pub fn end_pattern(&mut self) {
+        if self.pattern.take().is_some() {
+            self.general = self.general_before;
         }
     }
 

@@ -49,7 +49,7 @@ struct Hole {
 }
 
 /// The axes of the plane: abscissa, ordinate, applicate (lines 530-545).
-fn plane_axes(plane: Plane) -> [Axis; 3] {
+pub fn plane_axes(plane: Plane) -> [Axis; 3] {
     match plane {
         Plane::Xy => [Axis::X, Axis::Y, Axis::Z],
         Plane::Zx => [Axis::Z, Axis::X, Axis::Y],

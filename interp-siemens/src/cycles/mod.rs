@@ -11,11 +11,12 @@
 //! G functions active before the call are active after it.
 //!
 //! One file per cycle family: [`drill`] (CYCLE81–CYCLE89, CYCLE840), [`thread`] (CYCLE97, CYCLE98, thread re-cutting),
-//! [`groove`] (CYCLE93), [`stock`] (CYCLE95, CYCLE950), [`undercut`] (CYCLE94,
+//! [`pattern`] (HOLES1, HOLES2, CYCLE801: positions for the modal drilling cycle), [`groove`] (CYCLE93), [`stock`] (CYCLE95, CYCLE950), [`undercut`] (CYCLE94,
 //! CYCLE96).
 
 mod drill;
 mod groove;
+mod pattern;
 mod stock;
 mod thread;
 mod undercut;
@@ -23,8 +24,10 @@ mod undercut;
 #[cfg(test)]
 mod tests;
 
+pub use drill::plane_axes;
 pub use interp_core::lang::Engine;
 pub use interp_core::lang::siemens::call::{Arg, ContourSource, Signature, Ty};
+pub use pattern::{Notice, hole_pattern, is_pattern};
 
 use interp_core::alarm::AlarmKind;
 use interp_core::canon::Plane;
@@ -138,6 +141,15 @@ pub static SIGNATURES: &[Signature] = &[
     },
     // Line 2926: CYCLE89.
     Signature { name: "CYCLE89", params: &[("RTP", R), ("RFP", R), ("SDIS", R), ("DP", R), ("DPR", R), ("DTB", R)] },
+    // Line 3117: HOLES1 (row of holes).
+    Signature { name: "HOLES1", params: &[("SPCA", R), ("SPCO", R), ("STA1", R), ("FDIS", R), ("DBH", R), ("NUM", I)] },
+    // Line 3250: HOLES2 (circle of holes).
+    Signature { name: "HOLES2", params: &[("CPA", R), ("CPO", R), ("RAD", R), ("STA1", R), ("INDA", R), ("NUM", I)] },
+    // Line 3332: CYCLE801 (grid of points).
+    Signature {
+        name: "CYCLE801",
+        params: &[("_SPCA", R), ("_SPCO", R), ("_STA", R), ("_DIS1", R), ("_DIS2", R), ("_NUM1", I), ("_NUM2", I)],
+    },
     // Line 10198: CYCLE93.
     Signature {
         name: "CYCLE93",
@@ -302,6 +314,8 @@ pub fn start(
         "CYCLE950" => stock::cycle950(&p, cmd, st, ctx, contour),
         "CYCLE97" => thread::cycle97(&p, cmd, st, ctx),
         "CYCLE98" => thread::cycle98(&p, cmd, st, ctx),
+        // A drilling pattern is run by the driver (positions, then the MCALL at
+        // each); called modally it is not a drilling cycle.
         _ => Err(AlarmKind::NotSupportedYet { what: "this SINUMERIK cycle" }),
     };
     // A length read out of range stopped the call where it was read: whatever the
