@@ -785,8 +785,12 @@ pub enum CycleAlarm {
     ThreadPitchWrong,
     /// 61002: SINUMERIK cycle alarm (seed 001 table 5.3): machining type wrong.
     MachiningTypeWrong,
+    /// 61003: SINUMERIK cycle alarm (seed 001 table 5.3): no feed programmed in the cycle.
+    NoFeed,
     /// 61005: SINUMERIK cycle alarm (seed 001 table 5.3): 3rd geometry axis not present.
     NoThirdAxis,
+    /// 61009: SINUMERIK cycle alarm (seed 001 table 5.3): active tool number = 0.
+    ToolNumberZero,
     /// 61019: SINUMERIK cycle alarm (seed 001 table 5.3): parameter programmed incorrectly.
     ParameterWrong,
     /// 61101: SINUMERIK cycle alarm (seed 001 table 5.3): reference plane defined incorrectly.
@@ -795,10 +799,18 @@ pub enum CycleAlarm {
     NoSpindleDirection,
     /// 61103: SINUMERIK cycle alarm (seed 001 line 3107, table 5.3): number of holes is zero.
     HoleCountZero,
+    /// 61105: SINUMERIK cycle alarm (seed 001 table 5.3): milling cutter radius too large.
+    CutterRadiusTooLarge,
     /// 61106: SINUMERIK cycle alarm (seed 001 table 5.3): number or spacing of circle elements.
     CircleElements,
     /// 61107: SINUMERIK cycle alarm (seed 001 line 1803): first drilling depth defined incorrectly.
     FirstDepthWrong,
+    /// 61111: SINUMERIK cycle alarm (seed 001 table 5.3): infeed width > tool diameter.
+    InfeedWidthTooLarge,
+    /// 61112: SINUMERIK cycle alarm (seed 001 table 5.3): tool radius negative.
+    ToolRadiusNegative,
+    /// 61117: SINUMERIK cycle alarm (seed 001 table 5.3): active tool radius <= 0.
+    ToolRadiusNotPositive,
     /// 61125: SINUMERIK cycle alarm (seed 001 table 5.3): _TECHNO defined incorrectly.
     TechnologyWrong,
     /// 61601: SINUMERIK cycle alarm (seed 001 table 5.3): finished diameter too small.
@@ -851,13 +863,19 @@ impl CycleAlarm {
             NoToolOffset => 61000,
             ThreadPitchWrong => 61001,
             MachiningTypeWrong => 61002,
+            NoFeed => 61003,
             NoThirdAxis => 61005,
+            ToolNumberZero => 61009,
             ParameterWrong => 61019,
             ReferencePlaneWrong => 61101,
             NoSpindleDirection => 61102,
             HoleCountZero => 61103,
+            CutterRadiusTooLarge => 61105,
             CircleElements => 61106,
             FirstDepthWrong => 61107,
+            InfeedWidthTooLarge => 61111,
+            ToolRadiusNegative => 61112,
+            ToolRadiusNotPositive => 61117,
             TechnologyWrong => 61125,
             FinishedDiameterTooSmall => 61601,
             ToolWidthWrong => 61602,
@@ -913,13 +931,19 @@ text_table! {
         NoToolOffset {} => "no tool offset active (program D before the cycle)";
         ThreadPitchWrong {} => "thread pitch defined incorrectly (PIT/MPIT contradict, or not a DIN 76 / ISO coarse size)";
         MachiningTypeWrong {} => "type of machining (VARI) defined incorrectly";
+        NoFeed {} => "no feed programmed in the cycle (FFP1/FFD/FFR zero)";
         NoThirdAxis {} => "3rd geometry axis not present (the drilling axis of the plane)";
+        ToolNumberZero {} => "active tool number = 0 (program T before the cycle)";
         ParameterWrong {} => "parameter programmed incorrectly (DAM, ENC)";
         ReferencePlaneWrong {} => "reference plane defined incorrectly (RTP, RFP, DP/DPR)";
         NoSpindleDirection {} => "no spindle direction programmed (SDIR/SDR 3 or 4, M3/M4 before CYCLE840)";
         HoleCountZero {} => "number of holes is zero (NUM of HOLES1/HOLES2)";
+        CutterRadiusTooLarge {} => "milling cutter radius too large for the contour to be machined";
         CircleElements {} => "number or spacing of circle elements (NUM and INDA of HOLES2 do not fit on a full circle)";
         FirstDepthWrong {} => "first drilling depth defined incorrectly (FDEP/FDPR against the total depth)";
+        InfeedWidthTooLarge {} => "infeed width greater than the tool diameter (_MIDA)";
+        ToolRadiusNegative {} => "tool radius negative";
+        ToolRadiusNotPositive {} => "active tool radius <= 0";
         TechnologyWrong {} => "technology selection in parameter _TECHNO defined incorrectly";
         FinishedDiameterTooSmall {} => "finished part diameter too small (under 3 mm)";
         ToolWidthWrong {} => "tool width defined incorrectly (grooving tool wider than the groove, or no width)";
@@ -1574,9 +1598,19 @@ pub const CATALOG: &[CatalogEntry] = &[
         when: "VARI outside the values of CYCLE93 (1-8, 11-18), CYCLE95 (1-12, hundreds 0/2), CYCLE97/CYCLE98 (1-4) (lines 10311, 10799, 11195, 11397: 加工方式错误定义)",
     },
     CatalogEntry {
+        code: 61003,
+        title: "no feed in the cycle",
+        when: "SINUMERIK CYCLE71/CYCLE72 (and the milling cycles' feeds) called with a feed of zero and none in force (table: 在循环中没有编程进给)",
+    },
+    CatalogEntry {
         code: 61005,
         title: "3rd geometry axis not present",
         when: "a SINUMERIK drilling cycle (CYCLE81-89, CYCLE840 without _AXN) whose drilling axis, the applicate of the plane, the machine lacks: a lathe in G18 drills along Y (line 2721: 3. 几何轴没有出现); use G17 or _AXN=1",
+    },
+    CatalogEntry {
+        code: 61009,
+        title: "active tool number 0",
+        when: "SINUMERIK milling cycle (CYCLE71, CYCLE72) called with no tool selected, T0 (table: 有效的刀具号=0)",
     },
     CatalogEntry {
         code: 61019,
@@ -1599,6 +1633,11 @@ pub const CATALOG: &[CatalogEntry] = &[
         when: "HOLES1/HOLES2 NUM zero, negative or left out (line 3107, table 12216: 孔数为零)",
     },
     CatalogEntry {
+        code: 61105,
+        title: "cutter radius too large",
+        when: "SINUMERIK milling cycle whose cutter does not fit the slot, pocket, elongated hole or thread (table: 铣刀半径太大; lines 3743, 3862, 4054, 4519)",
+    },
+    CatalogEntry {
         code: 61106,
         title: "circle elements",
         when: "HOLES2 NUM holes at INDA apart do not fit on a full circle: (NUM−1)·|INDA| ≥ 360° (table 12221: 圆弧单元个数或者间距)",
@@ -1607,6 +1646,21 @@ pub const CATALOG: &[CatalogEntry] = &[
         code: 61107,
         title: "first depth wrong",
         when: "CYCLE83 first depth FDEP/FDPR deeper than the final depth or not into the hole (lines 1803, 1823: 第一次钻深错误定义)",
+    },
+    CatalogEntry {
+        code: 61111,
+        title: "infeed width > tool diameter",
+        when: "SINUMERIK CYCLE71/POCKET3/POCKET4 _MIDA larger than the cutter diameter (table: 进刀宽度>刀具直径)",
+    },
+    CatalogEntry {
+        code: 61112,
+        title: "tool radius negative",
+        when: "SINUMERIK CYCLE72/76/77/90 with a negative radius in the active D offset (table: 刀具半径为负)",
+    },
+    CatalogEntry {
+        code: 61117,
+        title: "active tool radius <= 0",
+        when: "SINUMERIK CYCLE71/POCKET3/POCKET4 with a radius of zero or less in the active D offset (table: 有效的刀具半径<=0)",
     },
     CatalogEntry {
         code: 61125,
@@ -1864,13 +1918,19 @@ mod tests {
             SiemensCycle(CycleAlarm::NoToolOffset),
             SiemensCycle(CycleAlarm::ThreadPitchWrong),
             SiemensCycle(CycleAlarm::MachiningTypeWrong),
+            SiemensCycle(CycleAlarm::NoFeed),
             SiemensCycle(CycleAlarm::NoThirdAxis),
+            SiemensCycle(CycleAlarm::ToolNumberZero),
             SiemensCycle(CycleAlarm::ParameterWrong),
             SiemensCycle(CycleAlarm::ReferencePlaneWrong),
             SiemensCycle(CycleAlarm::NoSpindleDirection),
             SiemensCycle(CycleAlarm::HoleCountZero),
+            SiemensCycle(CycleAlarm::CutterRadiusTooLarge),
             SiemensCycle(CycleAlarm::CircleElements),
             SiemensCycle(CycleAlarm::FirstDepthWrong),
+            SiemensCycle(CycleAlarm::InfeedWidthTooLarge),
+            SiemensCycle(CycleAlarm::ToolRadiusNegative),
+            SiemensCycle(CycleAlarm::ToolRadiusNotPositive),
             SiemensCycle(CycleAlarm::TechnologyWrong),
             SiemensCycle(CycleAlarm::FinishedDiameterTooSmall),
             SiemensCycle(CycleAlarm::ToolWidthWrong),

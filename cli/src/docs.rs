@@ -501,10 +501,12 @@ pub const PROVEN_ELSEWHERE: &[(u16, &str)] = &[
         61002,
         "interp-siemens cycles::tests::threads.rs thread_alarms_move_nothing, stock.rs cycle95_alarms_move_nothing, groove.rs cycle93_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
     ),
+    (61003, "interp-siemens cycles::mill tests (the milling cycles' shared tool, feed, width and level checks)"),
     (
         61005,
         "interp-siemens cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
     ),
+    (61009, "interp-siemens cycles::mill tests (the milling cycles' shared tool, feed, width and level checks)"),
     (
         61019,
         "interp-siemens cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
@@ -519,10 +521,14 @@ pub const PROVEN_ELSEWHERE: &[(u16, &str)] = &[
     ),
     (61103, "host-tests siemens_holes.rs alarms_of_the_patterns_move_nothing"),
     (61106, "host-tests siemens_holes.rs alarms_of_the_patterns_move_nothing"),
+    (61105, "interp-siemens cycles::mill tests (the milling cycles' shared tool, feed, width and level checks)"),
     (
         61107,
         "interp-siemens cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
     ),
+    (61111, "interp-siemens cycles::mill tests (the milling cycles' shared tool, feed, width and level checks)"),
+    (61112, "interp-siemens cycles::mill tests (the milling cycles' shared tool, feed, width and level checks)"),
+    (61117, "interp-siemens cycles::mill tests (the milling cycles' shared tool, feed, width and level checks)"),
     (
         61125,
         "interp-siemens cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",

@@ -779,7 +779,7 @@ impl Driver for Interpreter {
             if passes != 1 {
                 Err(S::SyntaxError { what: "P (passes) with a cycle" }.into())
             } else {
-                match args.bind(sig.params.iter().map(|p| p.1)) {
+                match args.bind(sig.types()) {
                     Ok(()) if crate::cycles::is_pattern(sig.name) => return self.start_pattern(sig, args, at, sink),
                     Ok(()) => return self.cycle(sig, args, at, line, programs, env, sink),
                     Err(k) => Err(k),
@@ -872,7 +872,7 @@ impl Driver for Interpreter {
             bind_proc(text, entry, args, list)?;
             Callee::Proc(entry)
         } else if let Some(sig) = crate::cycles::signature(name) {
-            args.bind(sig.params.iter().map(|p| p.1))?;
+            args.bind(sig.types())?;
             Callee::Cycle(sig)
         } else {
             return Err(S::SubprogramNotFound.into());

@@ -110,6 +110,11 @@ impl<X: Executor> Engine for CallEngine<'_, '_, '_, X> {
         start_cycle(em, Gen::Hole(generator), self.ctx.out).map(|_| ())
     }
 
+    fn mill(&mut self, path: mill_paths::MillGen, cmd: &Command, st: &mut State) -> Result<(), AlarmKind> {
+        let run = super::mill::MillRun::new(path, st);
+        start_cycle(Emitter::for_block(st, cmd.line), Gen::Mill(run), self.ctx.out).map(|_| ())
+    }
+
     fn thread(&mut self, spec: &MultiThreadSpec, cmd: &Command, st: &mut State) -> Result<(), AlarmKind> {
         for &lead in &spec.leads[..spec.count - 1] {
             check_lead(lead, st.modal.units)?;

@@ -113,12 +113,27 @@ pub enum Step {
         /// Source line of the programmed move it belongs to.
         line: u32,
     },
+    /// Arc in the active plane at the cycle's feed to `to` about `centre` (the
+    /// plane's two axes): a change of the plane's normal axis makes it a helix,
+    /// an end on the start in the plane a full turn (the milling cycles,
+    /// `cycles::mill`). The axes outside the plane stay where they are.
+    ArcTo {
+        /// End point: abscissa, ordinate, applicate of the plane (work).
+        to: [i64; 3],
+        /// Centre (abscissa, ordinate of the plane), work.
+        centre: (i64, i64),
+        /// G02.
+        cw: bool,
+    },
     /// Dwell.
     Dwell(u32),
     /// The cycle's cutting feed from here on, in its feed mode (CYCLE95 FF1–FF3).
     Feedrate(i64),
     /// Spindle direction change at the remembered speed.
     Spindle(SpindleDir),
+    /// Spindle speed (rev/min, G97) from here on, in the direction in force (a
+    /// milling cycle's finishing speed).
+    Speed(u32),
     /// A machine output by M code (M19 spindle orientation of the boring cycles).
     Aux(u16),
     /// A stop for the operator: the machine waits for cycle start (G88 at the
@@ -210,7 +225,18 @@ impl Emitter {
     /// Emits one step (nothing for a move that goes nowhere).
     pub fn emit(&mut self, step: Step, cfg: &MachineConfig, out: &mut dyn Out) -> Result<(), AlarmKind> {
         let action = match step {
-            Step::Arc { to, center, cw } => self.arc(to, center, cw, cfg)?,
+            Step::Arc { to, center, cw } => {
+                let mut w = work_pos(&self.st, cfg);
+                (w[Axis::X], w[Axis::Z]) = (to.x, to.z);
+                self.arc_in(Plane::Zx, w, (center.z, center.x), cw, false, cfg)?
+            }
+            Step::ArcTo { to, centre, cw } => {
+                let plane = self.st.modal.plane;
+                let (a, o) = plane.axes();
+                let mut w = work_pos(&self.st, cfg);
+                (w[a], w[o], w[plane.normal()]) = (to[0], to[1], to[2]);
+                self.arc_in(plane, w, centre, cw, true, cfg)?
+            }
             Step::Dwell(ms) => Action::Dwell { ms },
             Step::Feedrate(v) => {
                 self.feed.value = v;
@@ -220,8 +246,13 @@ impl Emitter {
             Step::Aux(_) | Step::Stop if !super::hole::BORING => return Ok(()),
             Step::Aux(m) => Action::Aux { m },
             Step::Stop => Action::Stop { optional: false },
-            Step::Spindle(dir) => {
-                self.st.spindle.dir = dir;
+            Step::Spindle(_) | Step::Speed(_) => {
+                match step {
+                    Step::Spindle(dir) => self.st.spindle.dir = dir,
+                    Step::Speed(rpm) => self.st.spindle.rpm = rpm,
+                    _ => {}
+                }
+                let dir = self.st.spindle.dir;
                 let x = work_pos(&self.st, cfg)[Axis::X];
                 let s = spindle_speed(&self.st, cfg, x);
                 let css = if self.st.modal.css { self.st.spindle.css } else { None };
@@ -324,22 +355,16 @@ impl Emitter {
     /// The end point of a move to work position `w`, soft limits checked; `None` if
     /// already there.
     fn target_pos(&self, w: Pos, cfg: &MachineConfig) -> Result<Option<crate::canon::Endpoint>, AlarmKind> {
-        let to = motion::endpoint(w, &self.st, cfg)?;
+        let to = self.endpoint(w, cfg)?;
         check_limits(&to.machine, cfg)?;
         Ok((to.machine != self.st.pos).then_some(to))
     }
 
-    /// The end point of a move to `p`, soft limits checked; `None` if already there.
+    /// Both coordinates of the work position `w` (out of line: the moves' end
+    /// points and the arcs' centres share it).
     #[inline(never)]
-    fn target(&self, p: Pt, cfg: &MachineConfig) -> Result<Option<crate::canon::Endpoint>, AlarmKind> {
-        let mut w: Pos = work_pos(&self.st, cfg);
-        w[Axis::X] = p.x;
-        w[Axis::Z] = p.z;
-        self.target_pos(w, cfg)
-    }
-
-    fn speed(&self, cfg: &MachineConfig, p: Pt) -> crate::canon::SpindleSpeed {
-        spindle_speed(&self.st, cfg, p.x)
+    fn endpoint(&self, w: Pos, cfg: &MachineConfig) -> Result<crate::canon::Endpoint, AlarmKind> {
+        motion::endpoint(w, &self.st, cfg)
     }
 
     /// The cycle's feed, with the alarms of a cutting move (F0, G99 without spindle).
@@ -357,45 +382,42 @@ impl Emitter {
         Ok(self.feed)
     }
 
-    fn arc(&self, to: Pt, center: Pt, cw: bool, cfg: &MachineConfig) -> Result<Action, AlarmKind> {
+    /// The arc in `plane` from where the tool is to the work position `to` about
+    /// `centre` (the plane's two axes), soft limits checked at its end and at the
+    /// extremes it sweeps through. Start = end in the plane is a full turn when
+    /// `full_allowed` (a milling cycle's circle or helix), else no arc at all.
+    #[inline(never)]
+    fn arc_in(
+        &self,
+        plane: Plane,
+        to: Pos,
+        centre: (i64, i64),
+        cw: bool,
+        full_allowed: bool,
+        cfg: &MachineConfig,
+    ) -> Result<Action, AlarmKind> {
         let feed = self.cutting_feed(cfg)?;
-        let here = self.here(cfg);
-        let end = self.target(to, cfg)?.ok_or(AlarmKind::Overflow)?;
-        let mut cw_pos = work_pos(&self.st, cfg);
-        cw_pos[Axis::X] = center.x;
-        cw_pos[Axis::Z] = center.z;
-        let c = motion::endpoint(cw_pos, &self.st, cfg)?;
-        let ext = crate::geom::arc_extents((here.z, here.x), (to.z, to.x), (center.z, center.x), cw, false);
+        let here = work_pos(&self.st, cfg);
+        let (pa, pb) = plane.axes();
+        let (start, end) = ((here[pa], here[pb]), (to[pa], to[pb]));
+        let full = start == end;
+        if full && (!full_allowed || start == centre) {
+            return Err(AlarmKind::Overflow);
+        }
+        let end_ep = self.endpoint(to, cfg)?;
+        check_limits(&end_ep.machine, cfg)?;
+        let mut c = to;
+        (c[pa], c[pb]) = centre;
+        let center = self.endpoint(c, cfg)?;
+        let ext = crate::geom::arc_extents(start, end, centre, cw, full);
         let shift = self.st.work_to_machine(cfg);
-        let lo = Pos::xz(ext.b.0 + shift[Axis::X], ext.a.0 + shift[Axis::Z]);
-        let hi = Pos::xz(ext.b.1 + shift[Axis::X], ext.a.1 + shift[Axis::Z]);
-        check_limits(&lo.with_others(&self.st.pos), cfg)?;
-        check_limits(&hi.with_others(&self.st.pos), cfg)?;
-        let spindle = self.speed(cfg, to);
+        let (mut lo, mut hi) = (end_ep.machine, end_ep.machine);
+        (lo[pa], lo[pb]) = (ext.a.0 + shift[pa], ext.b.0 + shift[pb]);
+        (hi[pa], hi[pb]) = (ext.a.1 + shift[pa], ext.b.1 + shift[pb]);
+        check_limits(&lo, cfg)?;
+        check_limits(&hi, cfg)?;
+        let spindle = spindle_speed(&self.st, cfg, to[Axis::X]);
         let exact_stop = self.st.modal.exact_stop_mode;
-        Ok(Action::Arc(ArcMove {
-            to: end,
-            center: c,
-            plane: Plane::Zx,
-            cw,
-            full_circle: false,
-            feed,
-            spindle,
-            exact_stop,
-        }))
-    }
-}
-
-trait WithOthers {
-    fn with_others(self, from: &Pos) -> Pos;
-}
-
-impl WithOthers for Pos {
-    /// X and Z of `self`, the other axes from `from`.
-    fn with_others(self, from: &Pos) -> Pos {
-        let mut p = *from;
-        p[Axis::X] = self[Axis::X];
-        p[Axis::Z] = self[Axis::Z];
-        p
+        Ok(Action::Arc(ArcMove { to: end_ep, center, plane, cw, full_circle: full, feed, spindle, exact_stop }))
     }
 }

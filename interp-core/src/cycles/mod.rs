@@ -39,6 +39,8 @@ mod groove;
 pub mod hole;
 #[cfg(feature = "siemens")]
 pub mod holes;
+#[cfg(feature = "siemens")]
+pub mod mill;
 mod offset;
 #[cfg_attr(not(feature = "siemens"), allow(dead_code))]
 mod pass;
@@ -118,6 +120,9 @@ enum Gen {
     Pass(pass::PassGen),
     #[cfg(feature = "siemens")]
     Grooving(groove::GroovingGen),
+    /// A milling cycle (SINUMERIK POCKET1–4, SLOT1/2, CYCLE71–77, CYCLE90 …).
+    #[cfg(feature = "siemens")]
+    Mill(mill::MillRun),
 }
 
 /// A cycle being delivered: its generator, its copy of the state and what is
@@ -203,6 +208,8 @@ impl Walk<'_> {
                 Gen::Pass(g) => g.fill(&profile.segs, queue)?,
                 #[cfg(feature = "siemens")]
                 Gen::Grooving(g) => g.fill(&profile.segs, here, queue)?,
+                #[cfg(feature = "siemens")]
+                Gen::Mill(g) => g.fill(profile, emit::work_pos(&self.em.st, cfg), queue)?,
             };
             *self.gen_done = !more;
         }

@@ -361,7 +361,7 @@ fn program_flow(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::lang::siemens::call::{Arg, CallArgs, ContourSource, CycleCall, Signature, Ty};
+    use crate::lang::siemens::call::{Arg, CallArgs, ContourSource, CycleCall, Signature};
     use crate::stage::Outbox;
 
     /// A front end whose cycles all refuse to start (the language's own are
@@ -412,14 +412,14 @@ mod tests {
     /// a refused block stages nothing and starts no cycle.
     #[test]
     fn a_cycle_call_block_reaches_the_cycle_start() {
-        static NOT_A_CYCLE: Signature = Signature { name: "CYCLE100", params: &[("MID", Ty::Real)] };
+        static NOT_A_CYCLE: Signature = crate::signature!("CYCLE100" (MID: R));
         let cfg = MachineConfig::default();
         let mut st = State::power_on(&cfg, Pos::ZERO);
         let mut cmd = Command::EMPTY;
         cmd.g.one_shot = Some(GCode::CycleCall);
         let mut args = CallArgs::new();
         args.push(Arg::Real(5.0)).unwrap();
-        args.bind(NOT_A_CYCLE.params.iter().map(|p| p.1)).unwrap();
+        args.bind(NOT_A_CYCLE.types()).unwrap();
         let call = CycleCall { sig: &NOT_A_CYCLE, args: &args, contour: None, front: &Refuses };
         for call in [None, Some(&call)] {
             let mut outbox = Outbox::new();

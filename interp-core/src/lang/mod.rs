@@ -116,6 +116,10 @@ pub trait Engine {
         cmd: &Command,
         st: &mut State,
     ) -> Result<(), AlarmKind>;
+    /// Starts a milling cycle's tool path `path` (`mill_paths`) in the active
+    /// plane for the cycle block `cmd`.
+    #[cfg(feature = "siemens")]
+    fn mill(&mut self, path: mill_paths::MillGen, cmd: &Command, st: &mut State) -> Result<(), AlarmKind>;
     /// Reads `contour` and starts the stock-removal generator (G71's geometry) on it.
     fn stock(
         &mut self,

@@ -16,6 +16,7 @@
 
 mod drill;
 mod groove;
+mod mill;
 mod pattern;
 mod stock;
 mod thread;
@@ -35,247 +36,155 @@ use interp_core::command::Command;
 use interp_core::modal::State;
 use interp_core::units::Units;
 
-use Ty::{Char as C, Int as I, Real as R, Str as S};
+use interp_core::signature;
 
 /// Every cycle of this module with its parameter list as the manual gives it.
 pub static SIGNATURES: &[Signature] = &[
     // Line 1528: CYCLE81 (the drilling cycles' common five, lines 1530-1534).
-    Signature { name: "CYCLE81", params: &[("RTP", R), ("RFP", R), ("SDIS", R), ("DP", R), ("DPR", R)] },
+    signature!("CYCLE81" (RTP: R, RFP: R, SDIS: R, DP: R, DPR: R)),
     // Line 1619: CYCLE82.
-    Signature { name: "CYCLE82", params: &[("RTP", R), ("RFP", R), ("SDIS", R), ("DP", R), ("DPR", R), ("DTB", R)] },
+    signature!("CYCLE82" (RTP: R, RFP: R, SDIS: R, DP: R, DPR: R, DTB: R)),
     // Line 1709: CYCLE83.
-    Signature {
-        name: "CYCLE83",
-        params: &[
-            ("RTP", R),
-            ("RFP", R),
-            ("SDIS", R),
-            ("DP", R),
-            ("DPR", R),
-            ("FDEP", R),
-            ("FDPR", R),
-            ("DAM", R),
-            ("DTB", R),
-            ("DTS", R),
-            ("FRF", R),
-            ("VARI", I),
-            ("_AXN", I),
-            ("_MDEP", R),
-            ("_VRT", R),
-            ("_DTD", R),
-            ("_DIS1", R),
-        ],
-    },
+    signature!("CYCLE83" (
+        RTP: R, RFP: R, SDIS: R, DP: R, DPR: R, FDEP: R, FDPR: R, DAM: R, DTB: R, DTS: R, FRF: R, VARI: I, _AXN: I,
+        _MDEP: R, _VRT: R, _DTD: R, _DIS1: R
+    )),
     // Line 1964: CYCLE84.
-    Signature {
-        name: "CYCLE84",
-        params: &[
-            ("RTP", R),
-            ("RFP", R),
-            ("SDIS", R),
-            ("DP", R),
-            ("DPR", R),
-            ("DTB", R),
-            ("SDAC", I),
-            ("MPIT", R),
-            ("PIT", R),
-            ("POSS", R),
-            ("SST", R),
-            ("SST1", R),
-            ("_AXN", I),
-            ("_PTAB", I),
-            ("_TECHNO", I),
-            ("_VARI", I),
-            ("_DAM", R),
-            ("_VRT", R),
-        ],
-    },
+    signature!("CYCLE84" (
+        RTP: R, RFP: R, SDIS: R, DP: R, DPR: R, DTB: R, SDAC: I, MPIT: R, PIT: R, POSS: R, SST: R, SST1: R, _AXN: I,
+        _PTAB: I, _TECHNO: I, _VARI: I, _DAM: R, _VRT: R
+    )),
     // Line 2212 (the print runs "PIT- AXN" together): CYCLE840.
-    Signature {
-        name: "CYCLE840",
-        params: &[
-            ("RTP", R),
-            ("RFP", R),
-            ("SDIS", R),
-            ("DP", R),
-            ("DPR", R),
-            ("DTB", R),
-            ("SDR", I),
-            ("SDAC", I),
-            ("ENC", I),
-            ("MPIT", R),
-            ("PIT", R),
-            ("_AXN", I),
-            ("_PTAB", I),
-            ("_TECHNO", I),
-        ],
-    },
+    signature!("CYCLE840" (
+        RTP: R, RFP: R, SDIS: R, DP: R, DPR: R, DTB: R, SDR: I, SDAC: I, ENC: I, MPIT: R, PIT: R, _AXN: I, _PTAB: I,
+        _TECHNO: I
+    )),
     // Line 2512: CYCLE85.
-    Signature {
-        name: "CYCLE85",
-        params: &[("RTP", R), ("RFP", R), ("SDIS", R), ("DP", R), ("DPR", R), ("DTB", R), ("FFR", R), ("RFF", R)],
-    },
+    signature!("CYCLE85" (RTP: R, RFP: R, SDIS: R, DP: R, DPR: R, DTB: R, FFR: R, RFF: R)),
     // Line 2633: CYCLE86.
-    Signature {
-        name: "CYCLE86",
-        params: &[
-            ("RTP", R),
-            ("RFP", R),
-            ("SDIS", R),
-            ("DP", R),
-            ("DPR", R),
-            ("DTB", R),
-            ("SDIR", I),
-            ("RPA", R),
-            ("RPO", R),
-            ("RPAP", R),
-            ("POSS", R),
-        ],
-    },
+    signature!("CYCLE86" (RTP: R, RFP: R, SDIS: R, DP: R, DPR: R, DTB: R, SDIR: I, RPA: R, RPO: R, RPAP: R, POSS: R)),
     // Line 2759: CYCLE87.
-    Signature { name: "CYCLE87", params: &[("RTP", R), ("RFP", R), ("SDIS", R), ("DP", R), ("DPR", R), ("SDIR", I)] },
+    signature!("CYCLE87" (RTP: R, RFP: R, SDIS: R, DP: R, DPR: R, SDIR: I)),
     // Line 2843: CYCLE88.
-    Signature {
-        name: "CYCLE88",
-        params: &[("RTP", R), ("RFP", R), ("SDIS", R), ("DP", R), ("DPR", R), ("DTB", R), ("SDIR", I)],
-    },
+    signature!("CYCLE88" (RTP: R, RFP: R, SDIS: R, DP: R, DPR: R, DTB: R, SDIR: I)),
     // Line 2926: CYCLE89.
-    Signature { name: "CYCLE89", params: &[("RTP", R), ("RFP", R), ("SDIS", R), ("DP", R), ("DPR", R), ("DTB", R)] },
+    signature!("CYCLE89" (RTP: R, RFP: R, SDIS: R, DP: R, DPR: R, DTB: R)),
     // Line 3117: HOLES1 (row of holes).
-    Signature { name: "HOLES1", params: &[("SPCA", R), ("SPCO", R), ("STA1", R), ("FDIS", R), ("DBH", R), ("NUM", I)] },
+    signature!("HOLES1" (SPCA: R, SPCO: R, STA1: R, FDIS: R, DBH: R, NUM: I)),
     // Line 3250: HOLES2 (circle of holes).
-    Signature { name: "HOLES2", params: &[("CPA", R), ("CPO", R), ("RAD", R), ("STA1", R), ("INDA", R), ("NUM", I)] },
+    signature!("HOLES2" (CPA: R, CPO: R, RAD: R, STA1: R, INDA: R, NUM: I)),
     // Line 3332: CYCLE801 (grid of points).
-    Signature {
-        name: "CYCLE801",
-        params: &[("_SPCA", R), ("_SPCO", R), ("_STA", R), ("_DIS1", R), ("_DIS2", R), ("_NUM1", I), ("_NUM2", I)],
-    },
+    signature!("CYCLE801" (_SPCA: R, _SPCO: R, _STA: R, _DIS1: R, _DIS2: R, _NUM1: I, _NUM2: I)),
+    // Line 3544: CYCLE90.
+    signature!("CYCLE90" (
+        RTP: R, RFP: R, SDIS: R, DP: R, DPR: R, DIATH: R, KDIAM: R, PIT: R, FFR: R, CDIR: I, TYPTH: I, CPA: R,
+        CPO: R
+    )),
+    // Line 3780: LONGHOLE.
+    signature!("LONGHOLE" (
+        RTP: R, RFP: R, SDIS: R, DP: R, DPR: R, NUM: I, LENG: R, CPA: R, CPO: R, RAD: R, STA1: R, INDA: R, FFD: R,
+        FFP1: R, MID: R
+    )),
+    // Line 3964: SLOT1.
+    signature!("SLOT1" (
+        RTP: R, RFP: R, SDIS: R, DP: R, DPR: R, NUM: I, LENG: R, WID: R, CPA: R, CPO: R, RAD: R, STA1: R, INDA: R,
+        FFD: R, FFP1: R, MID: R, CDIR: I, FAL: R, VARI: I, MIDF: R, FFP2: R, SSF: R, _FALD: R, _STA2: R
+    )),
+    // Line 4243: SLOT2.
+    signature!("SLOT2" (
+        RTP: R, RFP: R, SDIS: R, DP: R, DPR: R, NUM: I, AFSL: R, WID: R, CPA: R, CPO: R, RAD: R, STA1: R, INDA: R,
+        FFD: R, FFP1: R, MID: R, CDIR: I, FAL: R, VARI: I, MIDF: R, FFP2: R, SSF: R, _FFCP: R
+    )),
+    // Line 4427 (the signature prints CPD, the table CPO): POCKET1.
+    signature!("POCKET1" (
+        RTP: R, RFP: R, SDIS: R, DP: R, DPR: R, LENG: R, WID: R, CRAD: R, CPA: R, CPO: R, STA1: R, FFD: R, FFP1: R,
+        MID: R, CDIR: I, FAL: R, VARI: I, MIDF: R, FFP2: R, SSF: R
+    )),
+    // Line 4582: POCKET2.
+    signature!("POCKET2" (
+        RTP: R, RFP: R, SDIS: R, DP: R, DPR: R, PRAD: R, CPA: R, CPO: R, FFD: R, FFP1: R, MID: R, CDIR: I, FAL: R,
+        VARI: I, MIDF: R, FFP2: R, SSF: R
+    )),
+    // Line 4724: POCKET3.
+    signature!("POCKET3" (
+        _RTP: R, _RFP: R, _SDIS: R, _DP: R, _LENG: R, _WID: R, _CRAD: R, _PA: R, _PO: R, _STA: R, _MID: R, _FAL: R,
+        _FALD: R, _FFP1: R, _FFD: R, _CDIR: I, _VARI: I, _MIDA: R, _AP1: R, _AP2: R, _AD: R, _RAD1: R, _DP1: R
+    )),
+    // Line 5026: POCKET4.
+    signature!("POCKET4" (
+        _RTP: R, _RFP: R, _SDIS: R, _DP: R, _PRAD: R, _PA: R, _PO: R, _MID: R, _FAL: R, _FALD: R, _FFP1: R, _FFD: R,
+        _CDIR: I, _VARI: I, _MIDA: R, _AP1: R, _AD: R, _RAD1: R, _DP1: R
+    )),
+    // Line 5270: CYCLE71.
+    signature!("CYCLE71" (
+        _RTP: R, _RFP: R, _SDIS: R, _DP: R, _PA: R, _PO: R, _LENG: R, _WID: R, _STA: R, _MID: R, _MIDA: R, _FDP: R,
+        _FALD: R, _FFP1: R, _VARI: I, _FDP1: R
+    )),
+    // Line 5456: CYCLE72.
+    signature!("CYCLE72" (
+        _KNAME: S, _RTP: R, _RFP: R, _SDIS: R, _DP: R, _MID: R, _FAL: R, _FALD: R, _FFP1: R, _FFD: R, _VARI: I,
+        _RL: I, _AS1: I, _LP1: R, _FF3: R, _AS2: I, _LP2: R
+    )),
+    // Line 6467: CYCLE73.
+    signature!("CYCLE73" (
+        _VARI: I, _BNAME: S, _PNAME: S, _TN: S, _RTP: R, _RFP: R, _SDIS: R, _DP: R, _DPR: R, _MID: R, _MIDA: R,
+        _FAL: R, _FALD: R, _FFP1: R, _FFD: R, _CDIR: I, _PA: R, _PO: R, _RAD: R, _DP1: R
+    )),
+    // Line 6156: CYCLE74.
+    signature!("CYCLE74" (_KNAME: S, _LSANF: S, _LSEND: S)),
+    // Line 6156: CYCLE75.
+    signature!("CYCLE75" (_KNAME: S, _LSANF: S, _LSEND: S)),
+    // Line 5772: CYCLE76.
+    signature!("CYCLE76" (
+        _RTP: R, _RFP: R, _SDIS: R, _DP: R, _DPR: R, _LENG: R, _WID: R, _CRAD: R, _PA: R, _PO: R, _STA: R, _MID: R,
+        _FAL: R, _FALD: R, _FFP1: R, _FFD: R, _CDIR: I, _VARI: I, _AP1: R, _AP2: R
+    )),
+    // Line 5961: CYCLE77.
+    signature!("CYCLE77" (
+        _RTP: R, _RFP: R, _SDIS: R, _DP: R, _DPR: R, _PRAD: R, _PA: R, _PO: R, _MID: R, _FAL: R, _FALD: R, _FFP1: R,
+        _FFD: R, _CDIR: I, _VARI: I, _AP1: R
+    )),
+    // Line 7696: CYCLE800.
+    signature!("CYCLE800" (
+        _FR: I, _TC: S, _ST: I, _MODE: I, _X0: R, _Y0: R, _Z0: R, _A: R, _B: R, _C: R, _X1: R, _Y1: R, _Z1: R,
+        _DIR: I, _FR_I: R
+    )),
+    // Line 9261: CYCLE832.
+    signature!("CYCLE832" (_TOL: R, _TOLM: I)),
+    // Line 9805: CYCLE60.
+    signature!("CYCLE60" (
+        _TEXT: S, _RTP: R, _RFP: R, _SDIS: R, _DP: R, _DPR: R, _PA: R, _PO: R, _STA: R, _CP1: R, _CP2: R, _WID: R,
+        _DF: R, _FFD: R, _FFP1: R, _VARI: I, _CODEP: I
+    )),
     // Line 10198: CYCLE93.
-    Signature {
-        name: "CYCLE93",
-        params: &[
-            ("SPD", R),
-            ("SPL", R),
-            ("WIDG", R),
-            ("DIAG", R),
-            ("STA1", R),
-            ("ANG1", R),
-            ("ANG2", R),
-            ("RCO1", R),
-            ("RCO2", R),
-            ("RCI1", R),
-            ("RCI2", R),
-            ("FAL1", R),
-            ("FAL2", R),
-            ("IDEP", R),
-            ("DTB", R),
-            ("VARI", I),
-            ("_VRT", R),
-        ],
-    },
+    signature!("CYCLE93" (
+        SPD: R, SPL: R, WIDG: R, DIAG: R, STA1: R, ANG1: R, ANG2: R, RCO1: R, RCO2: R, RCI1: R, RCI2: R, FAL1: R,
+        FAL2: R, IDEP: R, DTB: R, VARI: I, _VRT: R
+    )),
     // Line 10459: CYCLE94.
-    Signature { name: "CYCLE94", params: &[("SPD", R), ("SPL", R), ("FORM", C), ("_VARI", I)] },
+    signature!("CYCLE94" (SPD: R, SPL: R, FORM: C, _VARI: I)),
     // Line 10602: CYCLE95.
-    Signature {
-        name: "CYCLE95",
-        params: &[
-            ("NPP", S),
-            ("MID", R),
-            ("FALZ", R),
-            ("FALX", R),
-            ("FAL", R),
-            ("FF1", R),
-            ("FF2", R),
-            ("FF3", R),
-            ("VARI", I),
-            ("DT", R),
-            ("DAM", R),
-            ("_VRT", R),
-        ],
-    },
+    signature!("CYCLE95" (
+        NPP: S, MID: R, FALZ: R, FALX: R, FAL: R, FF1: R, FF2: R, FF3: R, VARI: I, DT: R, DAM: R, _VRT: R
+    )),
     // Line 10962: CYCLE96.
-    Signature { name: "CYCLE96", params: &[("DIATH", R), ("SPL", R), ("FORM", C), ("_VARI", I)] },
+    signature!("CYCLE96" (DIATH: R, SPL: R, FORM: C, _VARI: I)),
     // Line 11069: CYCLE97.
-    Signature {
-        name: "CYCLE97",
-        params: &[
-            ("PIT", R),
-            ("MPIT", R),
-            ("SPL", R),
-            ("FPL", R),
-            ("DM1", R),
-            ("DM2", R),
-            ("APP", R),
-            ("ROP", R),
-            ("TDEP", R),
-            ("FAL", R),
-            ("IANG", R),
-            ("NSP", R),
-            ("NRC", I),
-            ("NID", I),
-            ("VARI", I),
-            ("NUMT", I),
-            ("_VRT", R),
-        ],
-    },
+    signature!("CYCLE97" (
+        PIT: R, MPIT: R, SPL: R, FPL: R, DM1: R, DM2: R, APP: R, ROP: R, TDEP: R, FAL: R, IANG: R, NSP: R, NRC: I,
+        NID: I, VARI: I, NUMT: I, _VRT: R
+    )),
     // Line 11259: CYCLE98.
-    Signature {
-        name: "CYCLE98",
-        params: &[
-            ("PO1", R),
-            ("DM1", R),
-            ("PO2", R),
-            ("DM2", R),
-            ("PO3", R),
-            ("DM3", R),
-            ("PO4", R),
-            ("DM4", R),
-            ("APP", R),
-            ("ROP", R),
-            ("TDEP", R),
-            ("FAL", R),
-            ("IANG", R),
-            ("NSP", R),
-            ("NRC", I),
-            ("NID", I),
-            ("PP1", R),
-            ("PP2", R),
-            ("PP3", R),
-            ("VARI", I),
-            ("NUMT", I),
-            ("_VRT", R),
-        ],
-    },
+    signature!("CYCLE98" (
+        PO1: R, DM1: R, PO2: R, DM2: R, PO3: R, DM3: R, PO4: R, DM4: R, APP: R, ROP: R, TDEP: R, FAL: R, IANG: R,
+        NSP: R, NRC: I, NID: I, PP1: R, PP2: R, PP3: R, VARI: I, NUMT: I, _VRT: R
+    )),
     // Lines 11523–11527: CYCLE950.
-    Signature {
-        name: "CYCLE950",
-        params: &[
-            ("_NP1", S),
-            ("_NP2", S),
-            ("_NP3", S),
-            ("_NP4", S),
-            ("_VARI", I),
-            ("_MID", R),
-            ("_FALZ", R),
-            ("_FALX", R),
-            ("_FF1", R),
-            ("_FF2", R),
-            ("_FF3", R),
-            ("_FF4", R),
-            ("_VRT", R),
-            ("_ANGB", R),
-            ("_SDIS", R),
-            ("_NP5", S),
-            ("_NP6", S),
-            ("_NP7", S),
-            ("_NP8", S),
-            ("_APZ", R),
-            ("_APZA", I),
-            ("_APX", R),
-            ("_APXA", I),
-            ("_TOL1", R),
-        ],
-    },
+    signature!("CYCLE950" (
+        _NP1: S, _NP2: S, _NP3: S, _NP4: S, _VARI: I, _MID: R, _FALZ: R, _FALX: R, _FF1: R, _FF2: R, _FF3: R,
+        _FF4: R, _VRT: R, _ANGB: R, _SDIS: R, _NP5: S, _NP6: S, _NP7: S, _NP8: S, _APZ: R, _APZA: I, _APX: R,
+        _APXA: I, _TOL1: R
+    )),
 ];
 
 /// The cycle called `name` (case-insensitive), if this module implements it.

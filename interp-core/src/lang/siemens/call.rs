@@ -73,18 +73,50 @@ pub enum Ty {
     Char,
 }
 
-/// A cycle's parameter list as the manual gives it.
+/// A cycle's parameter list as the manual gives it: names and types as two
+/// strings (12 bytes a parameter as a table of `(&str, Ty)` pairs, 1 and its
+/// name's here: the document's 37 cycles have ~560 parameters). Written with
+/// [`signature!`](crate::signature).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Signature {
     /// The cycle's name (`"CYCLE95"`); calls match it case-insensitively.
     pub name: &'static str,
-    /// The parameters in order, with their names as the manual spells them.
-    pub params: &'static [(&'static str, Ty)],
+    /// The parameters' names in order, as the manual spells them, each followed
+    /// by a blank.
+    pub names: &'static str,
+    /// The parameters' types in order, a letter each: `R` REAL, `I` INT, `S`
+    /// STRING, `C` CHAR.
+    pub types: &'static str,
+}
+
+/// A [`Signature`]: `signature!("CYCLE81" (RTP: R, RFP: R, SDIS: R, DP: R, DPR: R))`,
+/// each parameter's type `R` REAL, `I` INT, `S` STRING or `C` CHAR.
+#[macro_export]
+macro_rules! signature {
+    ($name:literal ($($param:ident: $ty:ident),* $(,)?)) => {
+        $crate::lang::siemens::call::Signature {
+            name: $name,
+            names: concat!($(stringify!($param), " "),*),
+            types: concat!($(stringify!($ty)),*),
+        }
+    };
 }
 
 /// Parameter names that name a contour (CYCLE95 `NPP`, CYCLE72/74/75 `_KNAME`,
 /// CYCLE950 `_NP1`): the driver resolves their string into a [`ContourSource`].
 const CONTOUR_PARAMS: [&str; 3] = ["NPP", "_KNAME", "_NP1"];
+
+impl Ty {
+    /// The type a [`Signature`] letter stands for.
+    fn of_letter(c: u8) -> Ty {
+        match c {
+            b'I' => Ty::Int,
+            b'S' => Ty::Str,
+            b'C' => Ty::Char,
+            _ => Ty::Real,
+        }
+    }
+}
 
 impl Signature {
     /// Whether `name` (as written in the program) calls this cycle.
@@ -92,14 +124,40 @@ impl Signature {
         self.name.as_bytes().eq_ignore_ascii_case(name)
     }
 
+    /// Number of parameters.
+    pub fn len(&self) -> usize {
+        self.types.len()
+    }
+
+    /// No parameters.
+    pub fn is_empty(&self) -> bool {
+        self.types.is_empty()
+    }
+
+    /// The parameters' types in order.
+    pub fn types(&self) -> impl ExactSizeIterator<Item = Ty> + use<> {
+        self.types.bytes().map(Ty::of_letter)
+    }
+
+    /// The parameters' names in order.
+    pub fn names(&self) -> impl Iterator<Item = &'static str> + use<> {
+        self.names.split(' ').filter(|n| !n.is_empty())
+    }
+
+    /// The index of the first parameter whose name (bytes) and type satisfy `f`.
+    fn find(&self, f: impl Fn(&[u8], Ty) -> bool) -> Option<usize> {
+        let names = self.names.as_bytes().split(|&b| b == b' ');
+        names.zip(self.types()).position(|(n, t)| f(n, t))
+    }
+
     /// The index of the parameter that names the cycle's contour, if it has one.
     pub fn contour_param(&self) -> Option<usize> {
-        self.params.iter().position(|(n, t)| *t == Ty::Str && CONTOUR_PARAMS.iter().any(|c| c == n))
+        self.find(|n, t| t == Ty::Str && CONTOUR_PARAMS.iter().any(|c| c.as_bytes() == n))
     }
 
     /// The parameter called `name` (case-insensitive), by index.
     pub fn param(&self, name: &str) -> Option<usize> {
-        self.params.iter().position(|(n, _)| n.eq_ignore_ascii_case(name))
+        self.find(|n, _| n.eq_ignore_ascii_case(name.as_bytes()))
     }
 }
 
@@ -317,17 +375,14 @@ mod tests {
     use super::*;
 
     /// The document's fictitious CYCLE100 (lines 598–616).
-    const CYCLE100: Signature = Signature {
-        name: "CYCLE100",
-        params: &[("FORM", Ty::Char), ("MID", Ty::Real), ("FFR", Ty::Real), ("VARI", Ty::Int), ("FAL", Ty::Real)],
-    };
+    const CYCLE100: Signature = crate::signature!("CYCLE100" (FORM: C, MID: R, FFR: R, VARI: I, FAL: R));
 
     fn bind(args: &[Arg<'_>]) -> Result<CallArgs, AlarmKind> {
         let mut c = CallArgs::new();
         for a in args {
             c.push(*a)?;
         }
-        c.bind(CYCLE100.params.iter().map(|p| p.1))?;
+        c.bind(CYCLE100.types())?;
         Ok(c)
     }
 
@@ -377,7 +432,7 @@ mod tests {
 
     #[test]
     fn contour_parameters_are_found_by_name() {
-        const C95: Signature = Signature { name: "CYCLE95", params: &[("NPP", Ty::Str), ("MID", Ty::Real)] };
+        const C95: Signature = crate::signature!("CYCLE95" (NPP: S, MID: R));
         assert_eq!(C95.contour_param(), Some(0));
         assert_eq!(CYCLE100.contour_param(), None);
         assert!(C95.is(b"cycle95"));

@@ -1,0 +1,116 @@
+//! The milling cycles on the engine: a `mill_paths` generator (pocket, slot,
+//! spigot, face, contour, thread milling …) yields moves in the working plane —
+//! abscissa, ordinate, applicate — and this maps each onto the plane's axes
+//! (G17 X/Y/Z, G18 Z/X/Y, G19 Y/Z/X) as a planned [`Step`], so the cycle is
+//! emitted, dry-run and limit-checked like every other cycle. The axes outside
+//! the plane (C …) stay where they are.
+//!
+//! The feed of each move is the generator's (FFD into the depth, FFP1 in the
+//! plane, FFP2 finishing): a change is planned as [`Step::Feedrate`] before the
+//! move. A spindle speed the cycle sets (SSF) is set back to the call's when
+//! the cycle ends.
+
+use super::StepQueue;
+use super::emit::{Step, push};
+use super::profile::Profile;
+use crate::alarm::AlarmKind;
+use crate::axis::{Axis, Pos};
+use crate::canon::Plane;
+use crate::geom::SegKind;
+use crate::modal::State;
+use mill_paths::{Contour, Elem, MillGen, Move, P3};
+
+/// A milling cycle being run: its generator and the plane it lies in.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MillRun {
+    path: MillGen,
+    /// Abscissa, ordinate, applicate.
+    axes: [Axis; 3],
+    /// The feed planned last (nm/min or nm/rev).
+    feed: i64,
+    /// The spindle speed of the call, and whether the cycle changed it.
+    rpm: u32,
+    speed_changed: bool,
+}
+
+/// The axes of `plane`: abscissa, ordinate, applicate (seed 001 lines 526-543).
+pub fn plane_axes(plane: Plane) -> [Axis; 3] {
+    let (a, o) = plane.axes();
+    [a, o, plane.normal()]
+}
+
+impl MillRun {
+    /// The run of `path` in the active plane of `st`.
+    pub fn new(path: MillGen, st: &State) -> Self {
+        let feed = st.feed.get(st.modal.feed_mode);
+        MillRun { path, axes: plane_axes(st.modal.plane), feed, rpm: st.spindle.rpm, speed_changed: false }
+    }
+
+    /// `p` as a work position, the axes outside the plane from `here`.
+    fn pos(&self, p: P3, here: Pos) -> Pos {
+        let mut w = here;
+        let [a, o, d] = self.axes;
+        (w[a], w[o], w[d]) = (p.a, p.o, p.d);
+        w
+    }
+
+    /// Plans the generator's next moves into `queue` while it has room for a move
+    /// and its feed; false when the generator has ended. `here` is the work
+    /// position (the axes outside the plane), `profile` the cycle's contour.
+    pub fn fill(&mut self, profile: &Profile, here: Pos, queue: &mut StepQueue) -> Result<bool, AlarmKind> {
+        while queue.capacity() - queue.len() >= 2 {
+            let Some(m) = self.path.next(profile)? else {
+                if self.speed_changed {
+                    self.speed_changed = false;
+                    push(queue, Step::Speed(self.rpm))?;
+                }
+                return Ok(false);
+            };
+            let step = match m {
+                Move::Rapid(p) => Step::RapidTo(self.pos(p, here)),
+                Move::Line { to, feed } => {
+                    self.feed_of(feed, queue)?;
+                    Step::FeedTo(self.pos(to, here))
+                }
+                Move::Arc { to, centre, cw, feed } => {
+                    self.feed_of(feed, queue)?;
+                    Step::ArcTo { to: [to.a, to.o, to.d], centre, cw }
+                }
+                Move::Dwell(ms) => Step::Dwell(ms),
+                Move::Speed(rpm) => {
+                    self.speed_changed = true;
+                    Step::Speed(rpm)
+                }
+            };
+            push(queue, step)?;
+        }
+        Ok(true)
+    }
+
+    /// Plans a change to `feed` if it is not the feed in force.
+    fn feed_of(&mut self, feed: i64, queue: &mut StepQueue) -> Result<(), AlarmKind> {
+        if feed != self.feed {
+            self.feed = feed;
+            push(queue, Step::Feedrate(feed))?;
+        }
+        Ok(())
+    }
+}
+
+/// The cycle's contour as the generators read it: the shape store's elements in
+/// the plane (a shape's point keeps the abscissa in `z`, the ordinate in `x`, as
+/// a lathe's G18 ZX shape does).
+impl Contour for Profile {
+    fn len(&self) -> usize {
+        self.segs.len()
+    }
+
+    fn elem(&self, i: usize) -> Elem {
+        let Some(&s) = self.segs.get(i) else { return mill_paths::NoContour.elem(0) };
+        let arc = match s.kind {
+            SegKind::Arc { center, cw } => Some(((center.z, center.x), cw)),
+            _ => None,
+        };
+        Elem { from: (s.a.z, s.a.x), to: (s.b.z, s.b.x), arc }
+    }
+}
