@@ -965,6 +965,17 @@ text_table! {
     }
 }
 
+/// The text of a SINUMERIK cycle message (62000–62999, seed 001 table 5.3: shown,
+/// cleared by the clear key, the program goes on), `None` for a number that is
+/// not one of this controller's messages.
+pub fn cycle_message(code: u16) -> Option<&'static str> {
+    Some(match code {
+        62100 => "no drilling cycle active (program MCALL CYCLE81-89/840 before the pattern)",
+        62105 => "number of columns or rows is zero (_NUM1/_NUM2 of CYCLE801)",
+        _ => return None,
+    })
+}
+
 /// What CONTPRON's error `cause` of alarm 61606 says.
 #[cfg(feature = "siemens")]
 fn preparation_error(cause: u16) -> &'static str {

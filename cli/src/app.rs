@@ -327,6 +327,10 @@ fn check_one(
         Err(Runaway(r)) => (*r, true),
     };
     let mut report = String::new();
+    for &m in &r.messages {
+        report.push_str(&r.message_line(&name, m));
+        report.push('\n');
+    }
     for a in &r.alarms {
         report.push_str(&r.alarm_line(&name, a));
         report.push('\n');
@@ -378,6 +382,9 @@ fn sim(args: &SimArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result<u8, E
         Some(path) => std::fs::write(path, output)
             .map_err(|source| Error::Write { target: path.display().to_string(), source })?,
         None => out.write_all(&output).map_err(stream_error(STDOUT))?,
+    }
+    for &m in &r.messages {
+        writeln!(err, "{}", r.message_line(&name, m)).map_err(stream_error(STDERR))?;
     }
     for a in &r.alarms {
         writeln!(err, "{}", r.alarm_line(&name, a)).map_err(stream_error(STDERR))?;

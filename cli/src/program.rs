@@ -179,9 +179,19 @@ pub struct Run {
     pub sources: BTreeMap<ProgramId, String>,
     /// The macro variables at the end.
     pub variables: Variables,
+    /// The cycle messages (SINUMERIK 62xxx, shown and the program goes on): code,
+    /// line and program, in order.
+    pub messages: Vec<(u16, u32, ProgramId)>,
 }
 
 impl Run {
+    /// A cycle message as reported: `NAME line L: message 62100: text`.
+    pub fn message_line(&self, main_name: &str, (code, line, program): (u16, u32, ProgramId)) -> String {
+        let name = if program == self.main { None } else { self.sources.get(&program) };
+        let text = interp_core::alarm::cycle_message(code).unwrap_or("");
+        format!("{} line {line}: message {code}: {text}", name.map_or(main_name, String::as_str))
+    }
+
     /// An alarm as reported, named after the file of the program it happened in
     /// (`main_name` for the main program).
     pub fn alarm_line(&self, main_name: &str, alarm: &Alarm) -> String {
@@ -253,12 +263,16 @@ fn run_store<P: ProgramStore + ?Sized>(
         main,
         sources: BTreeMap::new(),
         variables: Variables::new(),
+        messages: Vec::new(),
     };
     let mut work = 0;
     while work < MAX_STEPS {
         let program = interp.program();
         let step = interp.step(store, panel, &mut sink);
         run.origins.resize(sink.0.len(), program);
+        if let Some((code, line)) = interp.take_notice() {
+            run.messages.push((code, line, program));
+        }
         work += 1;
         match step {
             Ok(Progress::Ended) => break,

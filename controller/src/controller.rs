@@ -1173,6 +1173,12 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> Controller<
             // The non-generic entry: the interpreter's per-block path is compiled
             // in interp-core at its opt-level, not in the (size-built) firmware crate.
             let r = self.interp.step_dyn(&store, &self.panel, sink);
+            if let Some((code, line)) = self.interp.take_notice() {
+                // A cycle message (SINUMERIK 62xxx): shown, the job goes on (or waits
+                // for cycle start where the cycle says so).
+                let text = interp_core::alarm::cycle_message(code).unwrap_or("");
+                self.msg(format_args!("line {line}: message {code}: {text}"));
+            }
             match r {
                 Ok(Progress::Blocked | Progress::Paused) => return,
                 Ok(Progress::Executed { .. }) => self.job_worked = true,

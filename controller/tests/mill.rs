@@ -262,3 +262,17 @@ fn settings_312_and_313_are_a_mills() {
     assert_eq!(cfg.tool_changer, interp_core::config::ToolChanger::Automatic);
     assert_eq!(cfg.tool_change_timeout.seconds(), 45);
 }
+
+/// A SINUMERIK cycle message (62xxx) reaches the sender as `[MSG:…]` with its
+/// line: HOLES1 without a modal drilling cycle only positions, 62100 (seed 001
+/// lines 3095-3101), and waits for cycle start before it goes on.
+#[test]
+fn a_cycle_message_reaches_the_sender_with_its_line() {
+    let cfg = MachineConfig { language: interp_core::config::Language::Siemens, ..MachineConfig::mill() };
+    let mut r = idle(Rig::with(cfg));
+    let answers = r.stream("G17 G90 G0 X0 Y0 Z-10\nHOLES1(10, 20, 0, 5, 10, 3)\nM30\n", 5_000);
+    let want =
+        "[MSG:line 2: message 62100: no drilling cycle active (program MCALL CYCLE81-89/840 before the pattern)]";
+    assert!(answers.iter().any(|l| l == want), "{answers:?}");
+    assert_eq!(answers.iter().filter(|l| l.contains("62100")).count(), 1, "shown once: {answers:?}");
+}

@@ -192,3 +192,19 @@ fn lathe_machine_shows_the_power_on_language() {
     let (m2, _) = moves(&[&nc, "--machine", &m]);
     assert_eq!(m2, [('r', 3.0, 3.0)]);
 }
+
+/// A cycle message (62xxx) is shown and the program goes on: HOLES1 without a
+/// modal drilling cycle only positions (62100, seed 001 lines 3095-3101) and
+/// `lathe sim`/`lathe check` say so with the message's number, line and text.
+#[test]
+fn cycle_messages_are_shown_with_their_line() {
+    let machine = concat!(env!("CARGO_MANIFEST_DIR"), "/../examples/machines/mill.toml");
+    let p = scratch("holes_no_mcall.mpf", "G17 G90 G0 X0 Y0 Z10\nHOLES1(10, 20, 0, 5, 10, 3)\nM30\n");
+    let o = lathe(&["sim", &p, "--machine", machine, "--format", "jsonl"]);
+    assert_eq!(status(&o), 0, "{}", stderr(&o));
+    let want = "line 2: message 62100: no drilling cycle active (program MCALL CYCLE81-89/840 before the pattern)";
+    assert!(stderr(&o).lines().any(|l| l.ends_with(want)), "{}", stderr(&o));
+    let o = lathe(&["check", &p, "--machine", machine]);
+    assert!(stdout(&o).contains(want), "{}", stdout(&o));
+    assert!(stdout(&o).ends_with("no alarms\n"), "{}", stdout(&o));
+}

@@ -510,6 +510,16 @@ impl Interpreter {
         self.drop_calls();
     }
 
+    /// The cycle message (SINUMERIK 62xxx: number, line) raised since the last
+    /// call, for the operator's display (the link's `[MSG:…]`, `lathe sim`); each
+    /// is handed out once.
+    pub fn take_notice(&mut self) -> Option<(u16, u32)> {
+        #[cfg(feature = "siemens")]
+        return self.siemens.notice.take();
+        #[cfg(not(feature = "siemens"))]
+        None
+    }
+
     /// Cycle start after M00/M01.
     pub fn cycle_start(&mut self) {
         if self.phase == Phase::Paused {

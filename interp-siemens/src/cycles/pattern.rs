@@ -52,10 +52,7 @@ impl Notice {
 
     /// The message text (the document's, in English).
     pub fn text(self) -> &'static str {
-        match self {
-            Notice::NoDrillingCycle => "no drilling cycle active (program MCALL CYCLE81-89/840 before the pattern)",
-            Notice::NoColumnsOrRows => "number of columns or rows is zero (_NUM1/_NUM2 of CYCLE801)",
-        }
+        interp_core::alarm::cycle_message(self.code()).unwrap_or("")
     }
 }
 
