@@ -110,6 +110,12 @@ impl<X: Executor> Engine for CallEngine<'_, '_, '_, X> {
         start_cycle(em, Gen::Hole(generator), self.ctx.out).map(|_| ())
     }
 
+    fn message(&mut self, code: u16) {
+        if let Some(exp) = self.ctx.out.started() {
+            exp.notice = Some(code);
+        }
+    }
+
     fn mill(&mut self, path: mill_paths::MillGen, cmd: &Command, st: &mut State) -> Result<(), AlarmKind> {
         let run = super::mill::MillRun::new(path, st);
         start_cycle(Emitter::for_block(st, cmd.line), Gen::Mill(run), self.ctx.out).map(|_| ())

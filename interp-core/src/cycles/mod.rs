@@ -142,6 +142,9 @@ pub struct Expansion {
     tail: Outbox,
     /// Steps planned so far.
     steps: u32,
+    /// A message the cycle raised when it started (SINUMERIK 62xxx: shown, the
+    /// program goes on), handed to the operator once its dry run has passed.
+    pub notice: Option<u16>,
 }
 
 /// What a run of an expansion moves on (the real run's or its dry run's copy):
@@ -260,7 +263,16 @@ impl DryRun {
 
 impl Expansion {
     fn new(em: Emitter, generator: Gen, profile: Profile) -> Self {
-        Expansion { em, generator, profile, queue: StepQueue::new(), gen_done: false, tail: Outbox::new(), steps: 0 }
+        Expansion {
+            em,
+            generator,
+            profile,
+            queue: StepQueue::new(),
+            gen_done: false,
+            tail: Outbox::new(),
+            steps: 0,
+            notice: None,
+        }
     }
 
     /// Line of the cycle block.
@@ -410,6 +422,13 @@ impl<'a> CycleStage<'a> {
         let slot = self.slot.as_deref_mut().ok_or(AlarmKind::ProfileForbiddenCode { what: "a cycle" })?;
         self.staged.split = Some(self.staged.actions.len());
         Ok(slot)
+    }
+}
+
+impl CycleStage<'_> {
+    /// The cycle this block has started, if any.
+    pub fn started(&mut self) -> Option<&mut Expansion> {
+        self.slot.as_deref_mut()?.as_mut()
     }
 }
 

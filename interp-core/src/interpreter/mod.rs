@@ -826,6 +826,10 @@ impl Interpreter {
         match v.dry.run(exp, &self.cfg, program, env) {
             Ok(false) => Ok(Progress::Yielded { line }),
             Ok(true) => {
+                #[cfg(feature = "siemens")]
+                if let Some(code) = exp.notice {
+                    self.siemens.notice = Some((code, line));
+                }
                 if let Some(mut v) = self.validating.take() {
                     v.dry.settle(&mut v.state, &self.cfg);
                     self.state = v.state;

@@ -169,3 +169,28 @@ fn signatures_are_found_in_any_case() {
         ]
     );
 }
+
+/// A cycle message raised after a milling cycle started travels with its
+/// expansion (the interpreter shows it once the dry run has passed).
+#[test]
+fn a_message_travels_with_the_cycle_it_belongs_to() {
+    use interp_core::lang::Engine;
+    let cfg = MachineConfig::mill();
+    let mut st = State::power_on(&cfg, Pos::default());
+    let panel = Panel::default();
+    let mut outbox = Outbox::new();
+    let mut slot: Option<Expansion> = None;
+    let mut cmd = Command::EMPTY;
+    cmd.line = 3;
+    {
+        let mut stage = CycleStage::in_program(3, &mut outbox, ProgramText::NONE, &mut slot);
+        let mut ctx = Ctx { cfg: &cfg, env: &panel, out: &mut stage };
+        let mut engine = CallEngine::<Blocks>::new(&mut ctx);
+        // No cycle yet: nothing to carry it.
+        engine.message(62101);
+        let plan = mill_paths::plan::Plan::new(&[mill_paths::Move::Dwell(10)]).unwrap();
+        engine.mill(mill_paths::MillGen::Plan(plan), &cmd, &mut st).unwrap();
+        engine.message(62101);
+    }
+    assert_eq!(slot.map(|e| e.notice), Some(Some(62101)));
+}
