@@ -27,25 +27,46 @@ const OFFSETS: Letters = Letters::of(b"HD");
 /// The words `code` takes besides F, S, T, and its name for messages.
 fn words_of(code: GCode) -> (Letters, &'static str) {
     use GCode::*;
-    match code {
-        Rapid => (AXES.with(OFFSETS), "G00"),
-        Linear => (AXES.with(OFFSETS), "G01"),
-        ArcCw | ArcCcw => (AXES.with(OFFSETS).with(Letters::of(b"IJKR")), "G02/G03"),
-        Dwell => (Letters::of(b"PX"), "G04"),
-        DataSetting => (AXES.with(Letters::of(b"LPR")), "G10"),
-        StrokeCheckOn => (Letters::of(b"XYZIJK"), "G22"),
-        ReferenceReturn => (AXES, "G28"),
-        ReturnFromReference => (AXES, "G29"),
-        ReferenceReturnN => (AXES.with(Letters::of(b"P")), "G30"),
-        ScalingOn => (AXES.with(Letters::of(b"PIJK")), "G51"),
-        MirrorOn | MirrorOff => (AXES, "G50.1/G51.1"),
-        LocalFrame => (AXES, "G52"),
-        MachineCoordinates => (AXES, "G53"),
-        RotationOn => (AXES.with(Letters::of(b"R")), "G68"),
-        SetCoordinates => (AXES, "G92"),
-        c if is_hole(c) => (AXES.with(Letters::of(b"RQPK")), "G73-G89"),
-        _ => (Letters(0), "this block"),
-    }
+    // A row number by code, then one table: the compiler's switch tables by
+    // code (one per field, ~350 B each) were three times this.
+    const ROWS: [(Letters, &str); 16] = [
+        (AXES.with(OFFSETS), "G00"),
+        (AXES.with(OFFSETS), "G01"),
+        (AXES.with(OFFSETS).with(Letters::of(b"IJKR")), "G02/G03"),
+        (Letters::of(b"PX"), "G04"),
+        (AXES.with(Letters::of(b"LPR")), "G10"),
+        (Letters::of(b"XYZIJK"), "G22"),
+        (AXES, "G28"),
+        (AXES, "G29"),
+        (AXES.with(Letters::of(b"P")), "G30"),
+        (AXES.with(Letters::of(b"PIJK")), "G51"),
+        (AXES, "G50.1/G51.1"),
+        (AXES, "G52"),
+        (AXES, "G53"),
+        (AXES.with(Letters::of(b"R")), "G68"),
+        (AXES, "G92"),
+        (AXES.with(Letters::of(b"RQPK")), "G73-G89"),
+    ];
+    let row = match code {
+        Rapid => 0,
+        Linear => 1,
+        ArcCw | ArcCcw => 2,
+        Dwell => 3,
+        DataSetting => 4,
+        StrokeCheckOn => 5,
+        ReferenceReturn => 6,
+        ReturnFromReference => 7,
+        ReferenceReturnN => 8,
+        ScalingOn => 9,
+        MirrorOn | MirrorOff => 10,
+        LocalFrame => 11,
+        MachineCoordinates => 12,
+        RotationOn => 13,
+        SetCoordinates => 14,
+        c if is_hole(c) => 15,
+        _ => return (Letters(0), "this block"),
+    };
+    ROWS[row]
 }
 
 /// Checks the block's words against the M series and converts them into `cmd`;
