@@ -813,6 +813,9 @@ pub enum CycleAlarm {
     ToolRadiusNotPositive,
     /// 61125: SINUMERIK cycle alarm (seed 001 table 5.3): _TECHNO defined incorrectly.
     TechnologyWrong,
+    /// 61180: SINUMERIK cycle alarm (seed 001 lines 9197, 12241): no name assigned to
+    /// the swivel data record (CYCLE800 on a machine without swivel data records).
+    SwivelDataNoName,
     /// 61601: SINUMERIK cycle alarm (seed 001 table 5.3): finished diameter too small.
     FinishedDiameterTooSmall,
     /// 61602: SINUMERIK cycle alarm (seed 001 table 5.3): tool width wrong.
@@ -877,6 +880,7 @@ impl CycleAlarm {
             ToolRadiusNegative => 61112,
             ToolRadiusNotPositive => 61117,
             TechnologyWrong => 61125,
+            SwivelDataNoName => 61180,
             FinishedDiameterTooSmall => 61601,
             ToolWidthWrong => 61602,
             GrooveFormWrong => 61603,
@@ -945,6 +949,7 @@ text_table! {
         ToolRadiusNegative {} => "tool radius negative";
         ToolRadiusNotPositive {} => "active tool radius <= 0";
         TechnologyWrong {} => "technology selection in parameter _TECHNO defined incorrectly";
+        SwivelDataNoName {} => "no name assigned to the swivel data record";
         FinishedDiameterTooSmall {} => "finished part diameter too small (under 3 mm)";
         ToolWidthWrong {} => "tool width defined incorrectly (grooving tool wider than the groove, or no width)";
         GrooveFormWrong {} => "groove form defined incorrectly";
@@ -1679,6 +1684,11 @@ pub const CATALOG: &[CatalogEntry] = &[
         when: "CYCLE84/CYCLE840 _TECHNO with a digit outside its values (table: 参数_TECHNO中工艺选择错误定义)",
     },
     CatalogEntry {
+        code: 61180,
+        title: "no swivel data record",
+        when: "SINUMERIK CYCLE800 that would swivel: this board has no swivel kinematics, so no swivel data records (lines 9197, 12241: 没有给回转数据组分配名称); CYCLE800() and _TC=\"0\" deselect and are accepted",
+    },
+    CatalogEntry {
         code: 61601,
         title: "finished diameter too small",
         when: "CYCLE94 SPD or CYCLE96 DIATH gives a finished diameter under 3 mm (lines 10504, 11003: 成品直径太小)",
@@ -1943,6 +1953,7 @@ mod tests {
             SiemensCycle(CycleAlarm::ToolRadiusNegative),
             SiemensCycle(CycleAlarm::ToolRadiusNotPositive),
             SiemensCycle(CycleAlarm::TechnologyWrong),
+            SiemensCycle(CycleAlarm::SwivelDataNoName),
             SiemensCycle(CycleAlarm::FinishedDiameterTooSmall),
             SiemensCycle(CycleAlarm::ToolWidthWrong),
             SiemensCycle(CycleAlarm::GrooveFormWrong),

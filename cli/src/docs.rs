@@ -533,6 +533,7 @@ pub const PROVEN_ELSEWHERE: &[(u16, &str)] = &[
         61125,
         "interp-siemens cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
     ),
+    (61180, "host-tests siemens_thread_mill.rs cycle800_swivels_raise_61180_and_deselect_is_accepted"),
     (
         61601,
         "interp-siemens cycles::tests::undercut.rs undercut_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",

@@ -223,6 +223,7 @@ pub fn start(
         "CYCLE950" => stock::cycle950(&p, cmd, st, ctx, contour),
         "CYCLE97" => thread::cycle97(&p, cmd, st, ctx),
         "CYCLE98" => thread::cycle98(&p, cmd, st, ctx),
+        "CYCLE800" => mill::cycle800(&p).map_err(AlarmKind::from),
         // A drilling pattern is run by the driver (positions, then the MCALL at
         // each); called modally it is not a drilling cycle.
         _ => Err(AlarmKind::NotSupportedYet { what: "this SINUMERIK cycle" }),

@@ -24,6 +24,10 @@
 // The shared parts land before the cycles that use them (issue 21's seam).
 #![allow(dead_code)]
 
+mod settings;
+
+pub(super) use settings::cycle800;
+
 use super::Params;
 use interp_core::MachineConfig;
 use interp_core::alarm::CycleAlarm;
