@@ -32,6 +32,7 @@
 pub mod contour;
 pub mod infeed;
 pub mod plan;
+pub mod pocket;
 pub mod rot;
 
 pub use canon::alarm::CycleAlarm;
@@ -101,6 +102,8 @@ pub enum Move {
 pub enum MillGen {
     /// A fixed handful of moves ([`plan::Plan`]).
     Plan(plan::Plan),
+    /// A rectangular or circular pocket ([`pocket::Pocket`]: POCKET1, POCKET2).
+    Pocket(pocket::Pocket),
 }
 
 impl MillGen {
@@ -113,6 +116,7 @@ impl MillGen {
         let _ = contour;
         match self {
             MillGen::Plan(p) => Ok(p.next()),
+            MillGen::Pocket(p) => Ok(p.next()),
         }
     }
 }
