@@ -134,40 +134,52 @@ impl Pocket {
         let (a, b, q) = (a - d, b - d, (q - d).max(0));
         let el = self.el;
         self.el += 1;
-        let at = |u: i64, v: i64| {
-            let (x, y) = s.rot.point(u as f64, if s.cw { -v } else { v } as f64);
-            P3::new(x, y, lvl)
-        };
-        let mv = match el {
-            0 => Move::Line { to: at(0, 0), feed: s.feeds[0] },
-            1 => Move::Line { to: at(a, 0), feed },
+        // The move in the pocket's axes: its end, an arc's centre, its feed.
+        let (mut to, mut arc, mut f) = ((a, 0), None, feed);
+        match el {
+            0 => (to, f) = ((0, 0), s.feeds[0]),
+            1 => {}
             2..=9 => {
-                // Quadrant i: a side up to the corner, then the corner's arc.
-                let i = (el - 2) / 2;
-                let (sx, sy) = ([1, -1, -1, 1][usize::from(i & 3)], [1, 1, -1, -1][usize::from(i & 3)]);
-                let (ca, co) = (sx * (a - q), sy * (b - q));
-                let unit = |k: u8| [(1, 0), (0, 1), (-1, 0), (0, -1)][usize::from(k & 3)];
-                if el % 2 == 0 {
-                    let (ua, uo) = unit(i);
-                    Move::Line { to: at(ca + q * ua, co + q * uo), feed }
-                } else {
-                    let (ua, uo) = unit(i + 1);
-                    let c = at(ca, co);
-                    Move::Arc { to: at(ca + q * ua, co + q * uo), centre: (c.a, c.o), cw: s.cw, feed }
+                // Quadrant i: a side up to the corner, then the corner's arc: its
+                // centre C, from C + q·u(i) to C + q·u(i + 1).
+                let i = usize::from((el - 2) / 2);
+                let unit = |k: usize| [(1, 0), (0, 1), (-1, 0), (0, -1)][k & 3];
+                let c = ([1, -1, -1, 1][i & 3] * (a - q), [1, 1, -1, -1][i & 3] * (b - q));
+                let u = unit(i + usize::from(el % 2));
+                to = (c.0 + q * u.0, c.1 + q * u.1);
+                if el % 2 == 1 {
+                    arc = Some(c);
                 }
             }
             10 => {
                 if self.ring < n {
                     (self.ring, self.el) = (self.ring + 1, 1);
                 }
-                Move::Line { to: at(a, 0), feed }
             }
             _ => {
                 (self.level, self.ring, self.el) = (self.level + 1, 0, 0);
-                Move::Line { to: at(0, 0), feed }
+                to = (0, 0);
             }
+        }
+        Some(self.plane(to, arc, lvl, f))
+    }
+
+    /// A move of the pocket's axes in the plane: a line to `to`, or an arc about
+    /// `arc`, at applicate `d` (G2 rings mirror the pocket's ordinate).
+    #[inline(never)]
+    fn plane(&self, to: (i64, i64), arc: Option<(i64, i64)>, d: i64, feed: i64) -> Move {
+        let s = &self.s;
+        let at = |(u, v): (i64, i64)| {
+            let (x, y) = s.rot.point(u as f64, if s.cw { -v } else { v } as f64);
+            P3::new(x, y, d)
         };
-        Some(mv)
+        match arc {
+            None => Move::Line { to: at(to), feed },
+            Some(c) => {
+                let c = at(c);
+                Move::Arc { to: at(to), centre: (c.a, c.o), cw: s.cw, feed }
+            }
+        }
     }
 }
 
