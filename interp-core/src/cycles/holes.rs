@@ -147,7 +147,7 @@ impl HolePattern {
 /// `at` moved `u` along the direction `deg` and `v` at right angles to it (nm).
 fn along(at: (i64, i64), deg: f64, u: f64, v: f64) -> (i64, i64) {
     let a = deg.to_radians();
-    let (s, c) = (libm::sin(a), libm::cos(a));
+    let (s, c) = crate::geom::sin_cos(a);
     (at.0 + crate::geom::round_i64(u * c - v * s), at.1 + crate::geom::round_i64(u * s + v * c))
 }
 
