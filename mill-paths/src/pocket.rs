@@ -226,6 +226,28 @@ mod tests {
         assert_eq!(m.last(), Some(&Move::Rapid(P3::new(0, 0, 5_000_000))));
     }
 
+    /// A rectangle 60 × 40 with a 5 mm cutter: the tool centre's half sides are
+    /// 25 × 15, the rings 7.5 mm apart (15 mm in the fewest steps of at most 8):
+    /// each starts (and closes) on the length axis, at 10, 17.5 and 25 mm from the centre.
+    #[test]
+    fn rectangle_rings_step_outwards() {
+        let s = PocketSpec {
+            finish: Levels { count: 0, ..spec(0, 0, 0).finish },
+            ..spec(30_000_000, 20_000_000, 8_000_000)
+        };
+        let first = s.rough.level(1);
+        let mut starts: Vec<i64> = moves(s)
+            .iter()
+            .filter_map(|m| match m {
+                Move::Line { to, .. } if to.o == 0 && to.a > 0 && to.d == first => Some(to.a),
+                _ => None,
+            })
+            .collect();
+        // Each ring is reached there and closed there.
+        starts.dedup();
+        assert_eq!(starts, [10_000_000, 17_500_000, 25_000_000]);
+    }
+
     /// The generator is pure: two runs give the same moves.
     #[test]
     fn two_runs_agree() {

@@ -84,7 +84,7 @@ fn spec12(circle: bool, p: &Params<'_, '_>, st: &State, ctx: &mut dyn Engine) ->
         rough: if vari == 2 { none } else { depth(k + 2) },
         finish: if vari == 1 { none } else { depth(k + 6) },
         feeds: [ffd, ffp1, ffp2],
-        ssf: p.real(k + 8).clamp(0.0, f64::from(u32::MAX)) as u32,
+        ssf: p.int(k + 8).clamp(0, i64::from(u32::MAX)) as u32,
         cw,
     })
 }
