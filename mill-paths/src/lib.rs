@@ -98,6 +98,9 @@ pub enum Move {
 /// lives in its own module and yields its moves through [`MillGen::next`]. Every
 /// generator is `Copy`: the engine copies it into the dry run, and a copy is one
 /// `memcpy` where a derived `Clone` is code per variant.
+// The variants differ in size (a plan holds its moves); a box would cost `Copy`,
+// and `generator_size_is_bounded` keeps the whole small.
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum MillGen {
     /// A fixed handful of moves ([`plan::Plan`]).

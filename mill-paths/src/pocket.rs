@@ -74,22 +74,6 @@ impl Pocket {
         Pocket { s, stage: 0, el: 0, level: 1, ring: 0, last: P3::new(i64::MIN, i64::MIN, i64::MIN) }
     }
 
-    /// The next move, `None` when the pocket is done.
-    pub fn next(&mut self) -> Option<Move> {
-        loop {
-            let m = self.step()?;
-            let Some(m) = m else { continue };
-            let to = match m {
-                Move::Rapid(p) | Move::Line { to: p, .. } | Move::Arc { to: p, .. } => p,
-                _ => return Some(m),
-            };
-            if to != self.last {
-                self.last = to;
-                return Some(m);
-            }
-        }
-    }
-
     /// The move at the cursor (`Some(None)`: nothing here), and the cursor on.
     fn step(&mut self) -> Option<Option<Move>> {
         let s = self.s;
@@ -178,6 +162,26 @@ impl Pocket {
             Some(c) => {
                 let c = at(c);
                 Move::Arc { to: at(to), centre: (c.a, c.o), cw: s.cw, feed }
+            }
+        }
+    }
+}
+
+impl Iterator for Pocket {
+    type Item = Move;
+
+    /// The next move, `None` when the pocket is done.
+    fn next(&mut self) -> Option<Move> {
+        loop {
+            let m = self.step()?;
+            let Some(m) = m else { continue };
+            let to = match m {
+                Move::Rapid(p) | Move::Line { to: p, .. } | Move::Arc { to: p, .. } => p,
+                _ => return Some(m),
+            };
+            if to != self.last {
+                self.last = to;
+                return Some(m);
             }
         }
     }
