@@ -412,6 +412,13 @@ fn tool(w: &Words, st: &State, cfg: &MachineConfig, cmd: &mut Command) -> Result
             .ok_or(AlarmKind::from(S::IllegalDNumber { number: edge.min(u32::from(u16::MAX)) as u16 }))?
     };
     cmd.tool = Some((t.map_or(0, |t| t as u16), row));
+    if cfg.kind == interp_core::config::MachineKind::Mill {
+        // A machining centre takes the cutter radius from D (`cmd.d`, as its
+        // FANUC D, on the mill's block path): the milling cycles and G41/G42
+        // read it; T selects and M6 changes, as on the FANUC mill.
+        cmd.d = Some(row);
+        cmd.g.mill = true;
+    }
     Ok(())
 }
 

@@ -32,6 +32,7 @@
 pub mod contour;
 pub mod infeed;
 pub mod plan;
+pub mod pocket;
 pub mod rot;
 
 pub use canon::alarm::CycleAlarm;
@@ -97,10 +98,15 @@ pub enum Move {
 /// lives in its own module and yields its moves through [`MillGen::next`]. Every
 /// generator is `Copy`: the engine copies it into the dry run, and a copy is one
 /// `memcpy` where a derived `Clone` is code per variant.
+// The variants differ in size (a plan holds its moves); a box would cost `Copy`,
+// and `generator_size_is_bounded` keeps the whole small.
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum MillGen {
     /// A fixed handful of moves ([`plan::Plan`]).
     Plan(plan::Plan),
+    /// A rectangular or circular pocket ([`pocket::Pocket`]: POCKET1, POCKET2).
+    Pocket(pocket::Pocket),
 }
 
 impl MillGen {
@@ -109,10 +115,12 @@ impl MillGen {
     /// the interpreter's shape store; [`NoContour`] for the others. An alarm here
     /// (a geometry only found while the passes are laid out) is raised in the dry
     /// run, before anything moves.
+    #[inline(never)]
     pub fn next(&mut self, contour: &dyn Contour) -> Result<Option<Move>, CycleAlarm> {
         let _ = contour;
         match self {
             MillGen::Plan(p) => Ok(p.next()),
+            MillGen::Pocket(p) => Ok(p.next()),
         }
     }
 }

@@ -27,6 +27,7 @@
 mod settings;
 
 pub(super) use settings::cycle800;
+pub(super) mod pocket;
 
 use super::Params;
 use interp_core::MachineConfig;
@@ -105,7 +106,8 @@ pub(super) enum Radius {
 /// The cutter radius of the active D offset, nm: D0 is 61000 "no tool offset
 /// active" (line 3478), a radius the cycle cannot use its `rule`'s alarm.
 pub(super) fn cutter(st: &State, rule: Radius) -> Result<i64, CycleAlarm> {
-    if st.tool.offset_number == 0 {
+    // A lathe's offset is T's row, a machining centre's D (`st.mill.d`).
+    if st.tool.offset_number == 0 && st.mill.d == 0 {
         return Err(CycleAlarm::NoToolOffset);
     }
     let r = st.tool.nose_radius;

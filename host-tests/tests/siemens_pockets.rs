@@ -1,0 +1,307 @@
+//! SINUMERIK POCKET1 and POCKET2 on the mill (seed 001 lines 4421-4712): the
+//! pocket walls, the infeed depths, the machining types and the alarms. The
+//! expected geometry is computed here from the document's definitions — the
+//! wall is the programmed rectangle (LENG × WID, corner radius CRAD, turned by
+//! STA1 about CPA/CPO) or circle (PRAD) — and every cutting move the cycle
+//! emits is measured against it, sampled along lines and arcs.
+
+mod mill_common;
+
+use host_tests::{Run, run_with};
+use interp_core::canon::{Action, Canon};
+use interp_core::config::Language;
+use interp_core::{MachineConfig, Panel};
+
+fn cfg() -> MachineConfig {
+    MachineConfig { language: Language::Siemens, ..mill_common::mill() }
+}
+
+fn siemens(text: &str) -> Run {
+    run_with(text, cfg(), Panel::default())
+}
+
+fn go(text: &str) -> Run {
+    let r = siemens(text);
+    assert!(r.alarms.is_empty(), "{:?}", r.alarms);
+    r
+}
+
+/// A cutting move in work mm: start, end, arc centre and direction, feed mm/min,
+/// spindle rev/min.
+#[derive(Clone, Copy, Debug)]
+struct Seg {
+    from: [f64; 3],
+    to: [f64; 3],
+    arc: Option<([f64; 2], bool)>,
+    feed: f64,
+    rpm: u32,
+}
+
+fn mm3(p: &interp_core::axis::Pos) -> [f64; 3] {
+    [p.0[0] as f64 / 1e6, p.0[1] as f64 / 1e6, p.0[2] as f64 / 1e6]
+}
+
+/// The cutting moves of the run (G17: X, Y the plane, Z the applicate), in order.
+fn cuts(actions: &[Canon]) -> Vec<Seg> {
+    let mut out = Vec::new();
+    let mut at: Option<[f64; 3]> = None;
+    for c in actions {
+        let Some(e) = c.action.endpoint() else { continue };
+        let to = mm3(&e.work);
+        if let Some(from) = at {
+            match c.action {
+                Action::Linear(m) => out.push(Seg {
+                    from,
+                    to,
+                    arc: None,
+                    feed: m.feed.value as f64 / 1e6,
+                    rpm: m.spindle.rpm.unwrap_or(0),
+                }),
+                Action::Arc(a) => {
+                    let cc = mm3(&a.center.work);
+                    out.push(Seg {
+                        from,
+                        to,
+                        arc: Some(([cc[0], cc[1]], a.cw)),
+                        feed: a.feed.value as f64 / 1e6,
+                        rpm: a.spindle.rpm.unwrap_or(0),
+                    })
+                }
+                _ => {}
+            }
+        }
+        at = Some(to);
+    }
+    out
+}
+
+/// Points along a move, every 0.1 mm or so (in the plane X, Y).
+fn samples(s: &Seg) -> Vec<[f64; 2]> {
+    let n = 64;
+    match s.arc {
+        None => (0..=n)
+            .map(|k| {
+                let t = k as f64 / n as f64;
+                [s.from[0] + t * (s.to[0] - s.from[0]), s.from[1] + t * (s.to[1] - s.from[1])]
+            })
+            .collect(),
+        Some((c, cw)) => {
+            let a0 = (s.from[1] - c[1]).atan2(s.from[0] - c[0]);
+            let a1 = (s.to[1] - c[1]).atan2(s.to[0] - c[0]);
+            let mut sweep = a1 - a0;
+            if cw && sweep > 0.0 {
+                sweep -= std::f64::consts::TAU;
+            }
+            if !cw && sweep < 0.0 {
+                sweep += std::f64::consts::TAU;
+            }
+            let r = (s.from[0] - c[0]).hypot(s.from[1] - c[1]);
+            (0..=n)
+                .map(|k| {
+                    let a = a0 + sweep * k as f64 / n as f64;
+                    [c[0] + r * a.cos(), c[1] + r * a.sin()]
+                })
+                .collect()
+        }
+    }
+}
+
+/// The pocket's wall: a rectangle of half sides `hl` × `hw` with corner radius
+/// `cr` about `c`, its length at `sta` degrees (a circle: hl = hw = cr).
+struct Wall {
+    c: [f64; 2],
+    sta: f64,
+    hl: f64,
+    hw: f64,
+    cr: f64,
+}
+
+impl Wall {
+    /// Distance of a point inside the pocket to the wall.
+    fn inside(&self, p: [f64; 2]) -> f64 {
+        let (s, c) = self.sta.to_radians().sin_cos();
+        let (x, y) = (p[0] - self.c[0], p[1] - self.c[1]);
+        let (u, v) = ((x * c + y * s).abs(), (-x * s + y * c).abs());
+        let (qx, qy) = (u - (self.hl - self.cr), v - (self.hw - self.cr));
+        let out = qx.max(0.0).hypot(qy.max(0.0)) + qx.max(qy).min(0.0) - self.cr;
+        -out
+    }
+
+    /// The closest any sample of `segs` comes to the wall, and the farthest.
+    fn range(&self, segs: &[Seg]) -> (f64, f64) {
+        let d: Vec<f64> = segs.iter().flat_map(samples).map(|p| self.inside(p)).collect();
+        (d.iter().copied().fold(f64::MAX, f64::min), d.iter().copied().fold(f64::MIN, f64::max))
+    }
+}
+
+fn near(a: f64, b: f64) -> bool {
+    (a - b).abs() < 0.0015
+}
+
+/// The depths the document divides a depth into: the fewest equal infeeds of at
+/// most `mid` from `from` to `to` (lines 3864-3876).
+fn levels(from: f64, to: f64, mid: f64) -> Vec<f64> {
+    let n = if mid == 0.0 { 1.0 } else { ((from - to) / mid - 1e-9).ceil() };
+    (1..=n as u32).map(|k| ((from + (to - from) * f64::from(k) / n) * 1000.0).round() / 1000.0).collect()
+}
+
+/// The depths of the plunges: the Z of every feed move straight down the Z axis
+/// at `feed`, rounded to µm.
+fn plunges(segs: &[Seg], feed: f64) -> Vec<f64> {
+    segs.iter()
+        .filter(|s| s.arc.is_none() && s.from[0] == s.to[0] && s.from[1] == s.to[1] && s.to[2] < s.from[2])
+        .filter(|s| s.feed == feed)
+        .map(|s| (s.to[2] * 1000.0).round() / 1000.0)
+        .collect()
+}
+
+const HEAD: &str = "G17 G0 G90 X60 Y40 Z20 F500 S600 M3 T1 D1\n";
+
+/// POCKET1 roughing (VARI 1): nothing comes closer to the wall than the cutter
+/// radius (D1: 5 mm) plus FAL, the outermost ring is exactly there, the plunges
+/// at the centre at the MID levels from RFP + SDIS, no finishing feed.
+#[test]
+fn pocket1_roughing_leaves_the_allowance() {
+    let r = go(&format!("{HEAD}POCKET1(5, 0, 1, -12, , 60, 40, 8, 60, 40, 30, 100, 300, 4, 3, 0.75, 1, 0, 77)\nM30\n"));
+    let segs = cuts(&r.actions);
+    let wall = Wall { c: [60.0, 40.0], sta: 30.0, hl: 30.0, hw: 20.0, cr: 8.0 };
+    let cut: Vec<Seg> = segs.iter().copied().filter(|s| s.to[2] < 0.0 || s.from[2] < 0.0).collect();
+    let (min, _) = wall.range(&cut);
+    assert!(near(min, 5.75), "closest to the wall {min}");
+    assert_eq!(plunges(&segs, 100.0), levels(1.0, -12.0, 4.0));
+    assert!(segs.iter().all(|s| s.feed != 77.0), "no finishing in VARI 1");
+    // It starts at the centre, at the retract plane, and ends there.
+    let rapids: Vec<[f64; 3]> = r
+        .actions
+        .iter()
+        .filter_map(|c| if let Action::Rapid(m) = c.action { Some(mm3(&m.to.work)) } else { None })
+        .collect();
+    assert_eq!(rapids.get(1), Some(&[60.0, 40.0, 5.0]));
+    assert_eq!(rapids.last(), Some(&[60.0, 40.0, 5.0]));
+}
+
+/// POCKET1 complete (VARI 0): the wall is finished at exactly the cutter radius
+/// (the finishing ring at FFP2 and SSF, every point of it), in one depth per
+/// MIDF; the corner radius below the cutter radius leaves the cutter's (line
+/// 4519): the finishing ring's corners are sharp.
+#[test]
+fn pocket1_complete_finishes_the_wall() {
+    let r = go(&format!(
+        "{HEAD}POCKET1(5, 0, 1, -12, , 60, 40, 3, 60, 40, 0, 100, 300, 6, 3, 0.5, 0, 5, 80, 900)\nG0 X0\nM30\n"
+    ));
+    let segs = cuts(&r.actions);
+    let wall = Wall { c: [60.0, 40.0], sta: 0.0, hl: 30.0, hw: 20.0, cr: 3.0 };
+    let (min, _) = wall.range(&segs);
+    assert!(near(min, 5.0), "closest to the wall {min}");
+    let centre = |p: [f64; 3]| near(p[0], 60.0) && near(p[1], 40.0);
+    let ring: Vec<Seg> = segs.iter().copied().filter(|s| s.feed == 80.0 && !centre(s.from) && !centre(s.to)).collect();
+    assert!(!ring.is_empty());
+    for s in &ring {
+        for p in samples(s) {
+            assert!(near(wall.inside(p), 5.0), "finishing off the wall: {p:?}");
+        }
+        assert_eq!(s.rpm, 900, "finishing speed SSF");
+    }
+    assert!(ring.iter().all(|s| s.arc.is_none()), "CRAD 3 < r 5: sharp tool-centre corners");
+    // Roughing per MID 6, finishing per MIDF 5 from RFP + SDIS.
+    let p = plunges(&segs, 100.0);
+    let (rough, finish) = (levels(1.0, -12.0, 6.0), levels(1.0, -12.0, 5.0));
+    assert_eq!(p, [rough, finish].concat());
+    // Each finishing level cuts the whole wall once: 4 sides.
+    assert_eq!(ring.len(), 3 * 5, "{ring:?}");
+    // The speed is set back after the cycle (the next block's move runs at S600).
+    let last = r.actions.iter().rev().find_map(|c| if let Action::Rapid(m) = c.action { m.spindle.rpm } else { None });
+    assert_eq!(last, Some(600));
+}
+
+/// VARI 2 finishes only: every cutting move in the plane is at FFP2 (FFP1 when
+/// FFP2 is left out), at the cutter radius from the wall.
+#[test]
+fn pocket1_finishing_only() {
+    let r = go(&format!("{HEAD}POCKET1(5, 0, 1, -10, , 60, 40, 8, 60, 40, 0, 100, 300, 4, 3, 0.5, 2)\nM30\n"));
+    let segs = cuts(&r.actions);
+    assert!(segs.iter().all(|s| s.feed == 300.0 || s.feed == 100.0));
+    assert_eq!(plunges(&segs, 100.0), [-10.0]);
+    let wall = Wall { c: [60.0, 40.0], sta: 0.0, hl: 30.0, hw: 20.0, cr: 8.0 };
+    let arcs: Vec<Seg> = segs.iter().copied().filter(|s| s.arc.is_some()).collect();
+    assert_eq!(arcs.len(), 4);
+    let (min, max) = wall.range(&arcs);
+    assert!(near(min, 5.0) && near(max, 5.0), "{min} {max}");
+}
+
+/// CDIR 2/3 give G2/G3; 0 (climb) and 1 (conventional) follow the spindle:
+/// M3 climb is G3, M4 climb G2 (line 4098).
+#[test]
+fn cdir_picks_the_arc_direction() {
+    for (m, cdir, cw) in
+        [("M3", 2, true), ("M3", 3, false), ("M3", 0, false), ("M3", 1, true), ("M4", 0, true), ("M4", 1, false)]
+    {
+        let text = format!(
+            "G17 G0 G90 X60 Y40 Z20 F500 S600 {m} T1 D1\nPOCKET2(5, 0, 1, -5, , 20, 60, 40, 100, 300, 0, {cdir}, 0, 2)\nM30\n"
+        );
+        let segs = cuts(&go(&text).actions);
+        let dirs: Vec<bool> = segs.iter().filter_map(|s| s.arc.map(|a| a.1)).collect();
+        assert!(!dirs.is_empty() && dirs.iter().all(|&d| d == cw), "{m} CDIR {cdir}");
+    }
+}
+
+/// POCKET2 complete: rings of quarter arcs about the centre from the inside
+/// out, the outermost roughing ring at PRAD − r − FAL, the finish at PRAD − r.
+#[test]
+fn pocket2_circle() {
+    let r = go(&format!("{HEAD}POCKET2(5, 0, 1, -8, , 25, 60, 40, 100, 300, 4, 3, 0.5, 0, 0, 200)\nM30\n"));
+    let segs = cuts(&r.actions);
+    let wall = Wall { c: [60.0, 40.0], sta: 0.0, hl: 25.0, hw: 25.0, cr: 25.0 };
+    let (min, _) = wall.range(&segs);
+    assert!(near(min, 5.0), "{min}");
+    let radii: Vec<f64> = segs
+        .iter()
+        .filter(|s| s.arc.is_some() && s.feed == 300.0)
+        .map(|s| ((s.to[0] - 60.0).hypot(s.to[1] - 40.0) * 1000.0).round() / 1000.0)
+        .collect();
+    // 19.5 mm in steps of at most 8 mm: 3 rings at 6.5, 13, 19.5, four arcs each,
+    // on each level.
+    let ring = [[6.5; 4], [13.0; 4], [19.5; 4]].concat();
+    assert_eq!(radii, ring.repeat(levels(1.0, -8.0, 4.0).len()));
+    let fin: Vec<Seg> = segs.iter().copied().filter(|s| s.arc.is_some() && s.feed == 200.0).collect();
+    assert_eq!(fin.len(), 4);
+    let (lo, hi) = wall.range(&fin);
+    assert!(near(lo, 5.0) && near(hi, 5.0));
+    assert!(fin.iter().all(|s| s.arc.unwrap().0 == [60.0, 40.0]));
+    // Depth: plunges at the centre per MID 4 from RFP + SDIS, then the finish
+    // (MIDF 0: straight to the depth).
+    assert_eq!(plunges(&segs, 100.0), [levels(1.0, -8.0, 4.0), vec![-8.0]].concat());
+}
+
+/// Bad calls stop on their line with the document's alarm and move nothing.
+#[test]
+fn alarms_of_the_pockets_move_nothing() {
+    let head = "G17 G0 G90 X60 Y40 Z20 F500 S600 M3 T1 D1\n";
+    for (call, code) in [
+        ("D0\nPOCKET1(5, 0, 1, -10, , 60, 40, 8, 60, 40, 0, 100, 300, 4, 3, 0.5, 1)", 61000),
+        ("POCKET1(5, 0, 1, -10, , 60, 40, 8, 60, 40, 0, 100, 300, 4, 3, 0.5, 3)", 61002),
+        ("POCKET1(5, 0, 1, -10, , 60, 40, 8, 60, 40, 0, 100, 300, 4, 3, 0.5, 11)", 61002),
+        ("POCKET2(5, 0, 1, -10, , 20, 60, 40, 100, 300, 4, 4, 0.5, 1)", 61002),
+        ("POCKET1(5, 5, 1, , 10, 60, 40, 8, 60, 40, 0, 100, 300, 4, 3, 0.5, 1)", 61101),
+        ("POCKET2(5, 0, 1, 3, , 20, 60, 40, 100, 300, 4, 3, 0.5, 1)", 61101),
+        ("POCKET1(5, 0, 1, -10, , 60, 9.9, 8, 60, 40, 0, 100, 300, 4, 3, 0.5, 1)", 61105),
+        ("POCKET2(5, 0, 1, -10, , 4.9, 60, 40, 100, 300, 4, 3, 0.5, 1)", 61105),
+    ] {
+        let r = siemens(&format!("{head}{call}\nM30\n"));
+        let line = 2 + call.matches('\n').count() as u32;
+        assert_eq!(r.alarm_codes(), vec![(line, code)], "{call}");
+        let before = siemens(&format!("{head}{}M30\n", if line == 3 { "D0\n" } else { "" }));
+        assert_eq!(r.actions.len(), before.actions.len(), "{call} moved");
+    }
+}
+
+/// The document's examples (lines 4543-4574, 4688-4712) run.
+#[test]
+fn the_documents_examples_run() {
+    for f in ["pocket1.mpf", "pocket2.mpf"] {
+        let text =
+            std::fs::read_to_string(format!("{}/../examples/sinumerik/mill/{f}", env!("CARGO_MANIFEST_DIR"))).unwrap();
+        let r = go(&text);
+        assert!(r.actions.iter().any(|c| matches!(c.action, Action::Arc(_))), "{f}");
+    }
+}
