@@ -105,10 +105,11 @@ pub fn number_format(units: Units, cfg: &MachineConfig) -> NumberFormat {
 }
 
 /// The M functions of the SINUMERIK language. M17 ends a subprogram (a return,
-/// like RET), M6 (tool change) needs nothing on a turret that indexes on T.
+/// like RET), M6 (tool change) needs nothing on a turret that indexes on T; on
+/// the machining centre it changes to the tool T selected (as FANUC's M06).
 fn m_of(m: u16, cfg: &MachineConfig) -> Result<Option<MFunction>, AlarmKind> {
     Ok(Some(match m {
-        6 => return Ok(None),
+        6 if cfg.kind != interp_core::config::MachineKind::Mill => return Ok(None),
         17 => MFunction::Return,
         29 | 91 | 92 | 98 | 99 => return Err(AlarmKind::UnknownMCode { m }),
         19 => return Err(AlarmKind::NotSupportedYet { what: "M19 (spindle positioning)" }),
@@ -185,6 +186,11 @@ pub fn check_into(w: &Words, st: &State, cfg: &MachineConfig, cmd: &mut Command)
     }
     if w.get(Addr::H).is_some() {
         return Err(AlarmKind::NotSupportedYet { what: "H auxiliary functions" });
+    }
+    // On the machining centre a block with M6 takes the mill's way (the tool
+    // change), as one with T or D does.
+    if cfg.kind == interp_core::config::MachineKind::Mill && cmd.m.iter().any(|&(_, f)| f == MFunction::ToolChange) {
+        cmd.g.mill = true;
     }
     Ok(extras)
 }

@@ -209,3 +209,15 @@ fn cycle_messages_are_shown_with_their_line() {
     assert!(stdout(&o).contains(want), "{}", stdout(&o));
     assert!(stdout(&o).ends_with("no alarms\n"), "{}", stdout(&o));
 }
+
+/// On the machining centre in SINUMERIK mode T selects the tool and M6 changes
+/// it (as FANUC's M06): the change is an action of the M6 block.
+#[test]
+fn m6_changes_the_tool_on_the_machining_centre() {
+    let machine = concat!(env!("CARGO_MANIFEST_DIR"), "/../examples/machines/mill.toml");
+    let p = scratch("m6_mill.mpf", "G17 G90\nT2 D1\nM6\nG0 X10 Y10 Z5\nM30\n");
+    let o = lathe(&["sim", &p, "--machine", machine, "--format", "jsonl"]);
+    assert_eq!(status(&o), 0, "{}", stderr(&o));
+    let first = stdout(&o).lines().next().unwrap_or_default().to_owned();
+    assert!(first.starts_with(r#"{"line":3,"kind":"tool_change","tool":2"#), "{}", stdout(&o));
+}
