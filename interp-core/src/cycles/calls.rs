@@ -65,7 +65,7 @@ impl<X: Executor> Engine for CallEngine<'_, '_, '_, X> {
             front: zero,
             back: zero,
             along: zero,
-            tip: crate::contour::comp::tip_vector(st.tool.tip, st.tool.nose_radius),
+            tip: crate::geom::path::tip_vector(st.tool.tip, st.tool.nose_radius),
         };
         self.expansion(em, |exp, _, _| {
             for s in path {
