@@ -176,9 +176,7 @@ fn cycle90_from_the_bottom_up() {
 /// with G2 the start is in the 1st quadrant.
 #[test]
 fn cycle90_external() {
-    let call = |cdir| {
-        format!("{HEAD}N2 CYCLE90(10, 0, 2, -12, , 20, 17, 1.5, 300, {cdir}, 1, 40, 30)\nM30\n")
-    };
+    let call = |cdir| format!("{HEAD}N2 CYCLE90(10, 0, 2, -12, , 20, 17, 1.5, 300, {cdir}, 1, 40, 30)\nM30\n");
     let r = siemens(&call(3));
     assert!(r.alarms.is_empty(), "{:?}", r.alarms);
     let (cuts, rapids) = moves_of(&r, 2);
@@ -230,7 +228,7 @@ fn cycle90_alarms() {
         ("D0", ok, 61000),
         ("T4 D1", ok, 61000),
         ("", "CYCLE90(0, 0, 2, -6, 6, 30, 27, 1.5, 300, 2, 0, 40, 30)", 61101),
-        ("", "CYCLE90(10, 0, 2, 5, , 30, 27, 1.5, 300, 2, 0, 40, 30)", 61101),
+        ("", "CYCLE90(10, 0, 2, 15, , 30, 27, 1.5, 300, 2, 0, 40, 30)", 61101),
         ("", "CYCLE90(10, 0, 2, -6, , 30, 27, 0, 300, 2, 0, 40, 30)", 61001),
         ("", "CYCLE90(10, 0, 2, -6, , 30, 27, 2000.5, 300, 2, 0, 40, 30)", 61001),
         ("", "CYCLE90(10, 0, 2, -6, , 30, 31, 1.5, 300, 2, 0, 40, 30)", 61001),
