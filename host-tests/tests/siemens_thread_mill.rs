@@ -244,3 +244,19 @@ fn cycle90_alarms() {
         assert!(moved <= 1, "{head} {call}: {:?}", &r.actions[before..]);
     }
 }
+
+/// The example programs (examples/sinumerik/mill/cycle90*.mpf) run and cut the
+/// helix the tests above measure: the same moves as the calls written out.
+#[test]
+fn cycle90_example_files_run() {
+    for (f, line, c, rc) in [("cycle90.mpf", 12, [60.0, 50.0], 25.0), ("cycle90_up.mpf", 6, [50.0, 50.0], 18.0)] {
+        let text =
+            std::fs::read_to_string(format!("{}/../examples/sinumerik/mill/{f}", env!("CARGO_MANIFEST_DIR"))).unwrap();
+        let r = siemens(&text);
+        assert!(r.alarms.is_empty(), "{f}: {:?}", r.alarms);
+        let (cuts, _) = moves_of(&r, line);
+        let h = helix(&cuts, c);
+        assert!(h.len() > 10, "{f}");
+        assert!(h.iter().all(|m| close((m.to[0] - c[0]).hypot(m.to[1] - c[1]), rc)), "{f}");
+    }
+}
