@@ -27,7 +27,7 @@
 //! FFR·R/(DIATH/2) on the helix and at FFR·ρ/(ρ + r) on the arcs in and out (the
 //! document's reduced feed) and on the G1 to `S`.
 
-use crate::rot::round;
+use crate::rot::{Rot, round};
 use crate::{Move, P3};
 use core::f64::consts::PI;
 
@@ -99,147 +99,116 @@ impl ThreadSpec {
     }
 }
 
-/// The thread milling generator.
+/// The thread milling generator: the moves before and after the helix laid out
+/// once, the helix's half turns counted out between them.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Thread {
-    s: ThreadSpec,
-    h: Helix,
-    /// Half turns of the helix before its last arc.
+    /// G1 to `S`, arc in, last helix arc, arc out.
+    moves: [Move; 4],
+    /// The rapids' ends: two in (RTP, safety level), two out.
+    rapids: [P3; 4],
+    /// The helix's points on the start ray and opposite it.
+    ends: [(i64, i64); 2],
+    /// Centre, start level, travel (±1), pitch, helix feed, G2.
+    centre: (i64, i64),
+    from: i64,
+    dir: i64,
+    pit: i64,
+    feed: i64,
+    cw: bool,
+    /// Half turns of the helix before its last arc, and the next move.
     halves: u64,
-    /// Stage: 0, 1 rapids in, 2 G1 to S, 3 arc in, 4 helix, 5 arc out, 6, 7
-    /// rapids out, 8 done.
-    stage: u8,
-    /// Half turn being cut (stage 4).
     k: u64,
-    /// The last point handed out (zero-length moves are left out).
-    last: P3,
+    at: u8,
 }
 
 impl Thread {
     /// The generator of `s`.
+    #[inline(never)]
     pub fn new(s: ThreadSpec) -> Self {
         let h = s.helix();
-        let mut t = Thread { s, h, halves: 0, stage: 0, k: 0, last: P3::new(i64::MIN, i64::MIN, i64::MIN) };
-        // Whole half turns before the last arc; a last arc that would end where
-        // its half turn ends (a remainder below a nm) is folded into it.
-        let mut n = libm::floor(h.angle / PI) as u64;
-        if n > 0 && t.at(h.radius, h.angle) == t.at(h.radius, n as f64 * PI) {
-            n -= 1;
-        }
-        t.halves = n;
-        t
-    }
-
-    /// The point at `radius` and `angle` (radians, the helix's direction) about
-    /// the thread's centre, in the plane.
-    fn at(&self, radius: f64, angle: f64) -> (i64, i64) {
-        let (s, c) = libm::sincos(angle);
-        let o = if self.s.cw { -radius * s } else { radius * s };
-        (self.s.centre.0 + round(radius * c), self.s.centre.1 + round(o))
-    }
-
-    /// A point of the helix's frame: `along` the ray at `angle`, `across` it
-    /// (the helix's direction), at applicate `d`.
-    fn frame(&self, angle: f64, along: f64, across: f64, d: i64) -> P3 {
-        let r = libm::hypot(along, across);
-        let (a, o) = self.at(r, angle + libm::atan2(across, along));
-        P3::new(a, o, d)
-    }
-
-    /// Travel along the applicate: +1 or −1.
-    fn dir(&self) -> i64 {
-        if self.s.to >= self.s.from { 1 } else { -1 }
-    }
-
-    /// The move at the cursor (`Some(None)`: nothing here), and the cursor on.
-    fn step(&mut self) -> Option<Option<Move>> {
-        let (s, h) = (self.s, self.h);
-        let dir = self.dir();
-        let (before, after) = (s.from - dir * h.dz, s.to.saturating_add(dir * h.dz));
-        let end = h.angle;
-        // S (the start of the arc in) and the arc's centre at angle `a`, in the
-        // helix's frame: internal on the ray, external across it.
-        let ends = |a: f64, d: i64, leaving: bool| {
-            let k = if leaving { 1.0 } else { -1.0 };
-            if s.internal {
-                (self.frame(a, h.radius - 2.0 * h.rho, 0.0, d), self.frame(a, h.radius - h.rho, 0.0, d))
+        let dir = if s.to >= s.from { 1 } else { -1 };
+        let (before, after) = (s.from - dir * h.dz, s.to + dir * h.dz);
+        // A point `along` the ray `u` (the thread's centre turned to the ray's
+        // angle, mirrored for G2) and `across` it in the helix's direction.
+        let m = if s.cw { -1.0 } else { 1.0 };
+        let at = |u: Rot, along: f64, across: f64, d: i64| {
+            let (a, o) = u.point(along, m * across);
+            P3::new(a, o, d)
+        };
+        // `S` or the end of the arc out, and the arc's centre, on the ray `u`:
+        // internal on the ray, external across it.
+        let ends = |u, d: i64, k: f64| {
+            let (along, c, across) = if s.internal {
+                (h.radius - 2.0 * h.rho, h.radius - h.rho, 0.0)
             } else {
-                let c = h.radius + h.rho;
-                (self.frame(a, c, k * h.rho, d), self.frame(a, c, 0.0, d))
-            }
+                (h.radius + h.rho, h.radius + h.rho, k * h.rho)
+            };
+            (at(u, along, across, d), at(u, c, 0.0, d))
         };
         let centre = |d| P3::new(s.centre.0, s.centre.1, d);
         let arc_cw = s.cw == s.internal;
         let arc = |to: P3, c: P3, cw: bool, feed: i64| Move::Arc { to, centre: (c.a, c.o), cw, feed };
-        let m = match self.stage {
-            0 | 1 => {
-                let d = if self.stage == 0 { s.rtp } else { s.safe };
-                Move::Rapid(if s.internal { centre(d) } else { ends(0.0, d, false).0 })
-            }
-            2 => Move::Line { to: ends(0.0, before, false).0, feed: h.feeds[1] },
-            3 => {
-                let (e, _) = self.helix_point(0);
-                arc(e, ends(0.0, before, false).1, arc_cw, h.feeds[1])
-            }
-            4 => {
-                self.k += 1;
-                if self.k <= self.halves {
-                    let (p, _) = self.helix_point(self.k);
-                    return Some(Some(arc(p, centre(0), s.cw, h.feeds[0])));
-                }
-                let (a, o) = self.at(h.radius, end);
-                let to = P3::new(a, o, s.to);
-                self.stage += 1;
-                // A last arc shorter than a nm in the plane is a straight feed.
-                if (a, o) == (self.last.a, self.last.o) {
-                    return Some(Some(Move::Line { to, feed: h.feeds[0] }));
-                }
-                return Some(Some(arc(to, centre(0), s.cw, h.feeds[0])));
-            }
-            5 => {
-                let (x, c) = ends(end, after, true);
-                arc(x, c, arc_cw, h.feeds[1])
-            }
-            6 if s.internal => Move::Rapid(centre(after)),
-            6 => {
-                self.stage += 1;
-                return Some(None);
-            }
-            7 => {
-                let p = self.last;
-                Move::Rapid(P3::new(p.a, p.o, s.rtp))
-            }
-            _ => return None,
-        };
-        self.stage += 1;
-        Some(Some(m))
-    }
-
-    /// The helix's point after `k` half turns, and its angle.
-    fn helix_point(&self, k: u64) -> (P3, f64) {
-        let (s, h) = (self.s, self.h);
-        let a = k as f64 * PI;
-        let span = (s.to - s.from) as f64 * a / h.angle.max(f64::MIN_POSITIVE);
-        let (x, y) = self.at(h.radius, a);
-        (P3::new(x, y, s.from + round(span)), a)
+        let u0 = Rot { at: s.centre, cs: (1.0, 0.0) };
+        let (sn, cs) = libm::sincos(h.angle);
+        let uf = Rot { at: s.centre, cs: (cs, m * sn) };
+        let (sp, sc) = ends(u0, before, -1.0);
+        let first = if s.internal { centre(0) } else { sp };
+        let e = [at(u0, h.radius, 0.0, s.from), at(u0, -h.radius, 0.0, s.from)];
+        // Whole half turns before the last arc; a last arc that would end where
+        // its half turn ends (a remainder below a nm) is folded into it.
+        let f = at(uf, h.radius, 0.0, s.to);
+        let mut halves = libm::floor(h.angle / PI) as u64;
+        let on = |n: u64| (e[(n % 2) as usize].a, e[(n % 2) as usize].o) == (f.a, f.o);
+        if halves > 0 && on(halves) {
+            halves -= 1;
+        }
+        // A last arc shorter than a nm in the plane is a straight feed.
+        let last =
+            if on(halves) { Move::Line { to: f, feed: h.feeds[0] } } else { arc(f, centre(0), s.cw, h.feeds[0]) };
+        let (x, xc) = ends(uf, after, 1.0);
+        let out = if s.internal { centre(after) } else { x };
+        Thread {
+            moves: [
+                Move::Line { to: sp, feed: h.feeds[1] },
+                arc(e[0], sc, arc_cw, h.feeds[1]),
+                last,
+                arc(x, xc, arc_cw, h.feeds[1]),
+            ],
+            rapids: [first.at(s.rtp), first.at(s.safe), out, out.at(s.rtp)],
+            ends: [(e[0].a, e[0].o), (e[1].a, e[1].o)],
+            centre: s.centre,
+            from: s.from,
+            dir,
+            pit: s.pit,
+            feed: h.feeds[0],
+            cw: s.cw,
+            halves,
+            k: 0,
+            at: 0,
+        }
     }
 }
 
 impl Iterator for Thread {
     type Item = Move;
 
-    /// The next move, `None` when the thread is done.
+    /// The next move, `None` when the thread is done. A move that goes nowhere
+    /// (the rapid back to the centre where the semicircle out ends there) is
+    /// left to the emitter, which emits nothing for it.
     fn next(&mut self) -> Option<Move> {
-        loop {
-            let Some(m) = self.step()? else { continue };
-            let to = match m {
-                Move::Rapid(p) | Move::Line { to: p, .. } | Move::Arc { to: p, .. } => p,
-                _ => return Some(m),
-            };
-            if to != self.last {
-                self.last = to;
-                return Some(m);
-            }
+        if self.at == 4 && self.k < self.halves {
+            // Half turn k + 1: to the other end of the diameter, PIT/2 on.
+            self.k += 1;
+            let (a, o) = self.ends[(self.k % 2) as usize];
+            let d = self.from + self.dir * (self.k as i64).saturating_mul(self.pit) / 2;
+            return Some(Move::Arc { to: P3::new(a, o, d), centre: self.centre, cw: self.cw, feed: self.feed });
+        }
+        let i = usize::from(self.at);
+        self.at += 1;
+        match i {
+            2..=5 => self.moves.get(i - 2).copied(),
+            _ => self.rapids.get(if i < 2 { i } else { i - 4 }).map(|&p| Move::Rapid(p)),
         }
     }
 }
@@ -270,9 +239,15 @@ mod tests {
         }
     }
 
+    /// The moves, less those that go nowhere (the emitter leaves them out).
     fn moves(s: ThreadSpec) -> Vec<Move> {
-        let mut g = Thread::new(s);
-        core::iter::from_fn(|| g.next()).collect()
+        let mut at = P3::new(i64::MIN, 0, 0);
+        Thread::new(s)
+            .filter(|m| {
+                let (Move::Rapid(p) | Move::Line { to: p, .. } | Move::Arc { to: p, .. }) = *m else { return true };
+                core::mem::replace(&mut at, p) != p
+            })
+            .collect()
     }
 
     fn dist(p: P3, c: (i64, i64)) -> f64 {
@@ -344,7 +319,7 @@ mod tests {
         let dz = (dz * 1e6) as i64;
         let c = |d| P3::new(s.centre.0, s.centre.1, d);
         assert_eq!(&m[..2], &[Move::Rapid(c(s.rtp)), Move::Rapid(c(s.safe))]);
-        let h = Thread::new(s).h;
+        let h = s.helix();
         let Move::Line { to, feed } = m[2] else { panic!("{:?}", m[2]) };
         assert_eq!((to, feed), (c(s.from + dz), h.feeds[1]));
         let Move::Arc { to, centre, cw, .. } = m[3] else { panic!() };
@@ -397,7 +372,7 @@ mod tests {
         assert!(p.a > s.centre.0 && p.o < s.centre.1, "4th quadrant: {p:?}");
         assert_eq!(p, P3::new(s.centre.0 + 52_500_000, s.centre.1 - 17_500_000, s.rtp));
         let dz = round(2e6 / 4.0 * (10e6 + 35e6) / 60e6);
-        assert_eq!(Thread::new(s).h.dz, dz);
+        assert_eq!(s.helix().dz, dz);
         let arcs = helix(s);
         let mut turned = 0.0;
         for &(a, b, cw) in &arcs {

@@ -38,6 +38,7 @@ pub(in crate::cycles) fn cycle90(
 }
 
 /// The thread of a CYCLE90 call, or its alarm.
+#[inline(never)]
 fn spec90(p: &Params<'_, '_>, st: &State, ctx: &mut dyn Engine) -> Result<ThreadSpec, CycleAlarm> {
     plane(st, ctx.cfg())?;
     let r = cutter(st, Radius::NotNegative)?;
