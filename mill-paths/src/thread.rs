@@ -86,15 +86,17 @@ impl ThreadSpec {
             let rc = d / 2.0 - r;
             (rc, if 3.0 * r < d { rc / 2.0 } else { self.kdiam as f64 / 2.0 - r }, 1.0)
         };
+        // (The front end has checked DIATH, PIT > 0 and r > 0; a division by 0
+        // would be a NaN that rounds to 0, never a panic.)
         let p = self.pit as f64;
-        let f = self.feed as f64;
+        let f = self.feed as f64 / d;
         let feed = |v: f64| round(v).max(1);
         Helix {
             radius,
             rho,
-            dz: round(k * p * (rho + r) / d.max(1.0)),
-            angle: 2.0 * PI * (self.to - self.from).unsigned_abs() as f64 / p.max(1.0),
-            feeds: [feed(f * radius / (d / 2.0).max(1.0)), feed(f * rho / (rho + r).max(1.0))],
+            dz: round(k * p * (rho + r) / d),
+            angle: 2.0 * PI * (self.to - self.from).unsigned_abs() as f64 / p,
+            feeds: [feed(2.0 * f * radius), feed(f * d * rho / (rho + r))],
         }
     }
 }

@@ -57,9 +57,9 @@ fn spec90(p: &Params<'_, '_>, st: &State, ctx: &mut dyn Engine) -> Result<Thread
             (rtp, rfp, dp, rfp - dir * p.unsigned(2))
         }
     };
-    let (diath, kdiam, internal) = (p.len(5), p.len(6), p.int(10) == 0);
-    let pit = p.real(7);
-    if !(0.001..=2000.0).contains(&pit) || diath <= 0 || kdiam < 0 || kdiam >= diath || (internal && kdiam == 0) {
+    let (diath, kdiam, pit, internal) = (p.len(5), p.len(6), p.len(7), p.int(10) == 0);
+    // PIT 0.001 … 2000 mm (in mm whatever the program's unit).
+    if !(1_000..=2_000_000_000).contains(&pit) || !(i64::from(internal)..diath).contains(&kdiam) {
         return Err(CycleAlarm::ThreadPitchWrong);
     }
     if !(0..=1).contains(&p.int(10)) {
@@ -73,7 +73,7 @@ fn spec90(p: &Params<'_, '_>, st: &State, ctx: &mut dyn Engine) -> Result<Thread
         diath,
         kdiam,
         r,
-        pit: p.len(7),
+        pit,
         internal,
         cw: p.int(9) == 2,
         rtp,
