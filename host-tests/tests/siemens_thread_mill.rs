@@ -260,3 +260,29 @@ fn cycle90_example_files_run() {
         assert!(h.iter().all(|m| close((m.to[0] - c[0]).hypot(m.to[1] - c[1]), rc)), "{f}");
     }
 }
+
+/// Odd values never panic: each call ends in an alarm or runs.
+#[test]
+fn cycle90_odd_values_do_not_panic() {
+    let vals = ["", "0", "-1", "1e9", "-1e12", "0.0005", "3", "-40", "2000", "1e-9"];
+    for (i, v) in vals.iter().enumerate() {
+        for k in 0..13 {
+            let mut args: Vec<String> =
+                ["10", "0", "2", "-6", "", "30", "27", "1.5", "300", "2", "0", "40", "30"].map(String::from).to_vec();
+            args[k] = v.to_string();
+            args[(k + i) % 13] = vals[(i * 7 + k) % vals.len()].to_string();
+            let text = format!("{HEAD}N2 CYCLE90({})\nM30\n", args.join(", "));
+            let r = run_interp_limited(&text);
+            assert!(r.alarms.len() <= 1, "{text}: {:?}", r.alarms);
+        }
+    }
+}
+
+fn run_interp_limited(text: &str) -> Run {
+    host_tests::run_interp(
+        interp_core::Interpreter::new(cfg()),
+        &interp_core::SingleProgram(text.as_bytes()),
+        &Panel::default(),
+        20_000,
+    )
+}
