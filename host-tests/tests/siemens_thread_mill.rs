@@ -286,3 +286,19 @@ fn run_interp_limited(text: &str) -> Run {
         20_000,
     )
 }
+
+/// In G19 the thread lies in the Y/Z plane and is cut along X (the plane's
+/// applicate): the helix about Y40 Z30 at DIATH/2 + r, X falling from 0 to −6.
+#[test]
+fn cycle90_in_g19_cuts_along_x() {
+    let text = "G19 G0 G90 X20 Y0 Z20 F200 S500 M3 T1 D1\nN2 CYCLE90(10, 0, 2, -6, , 20, 17, 1.5, 300, 3, 1, 40, 30)\nM30\n";
+    let r = siemens(text);
+    assert!(r.alarms.is_empty(), "{:?}", r.alarms);
+    let (cuts, _) = moves_of(&r, 2);
+    let arcs: Vec<_> = cuts.iter().filter(|m| m.arc.is_some()).collect();
+    assert!(arcs.len() > 8);
+    let on_helix: Vec<_> = arcs.iter().filter(|m| close((m.to[1] - 40.0).hypot(m.to[2] - 30.0), 15.0)).collect();
+    assert!(on_helix.len() >= 8, "{arcs:?}");
+    let xs: Vec<f64> = on_helix.iter().map(|m| m.to[0]).collect();
+    assert!(xs.windows(2).all(|w| w[1] <= w[0]) && close(xs[xs.len() - 1], -6.0), "{xs:?}");
+}
