@@ -218,8 +218,7 @@ fn cycle90_wrong_direction_is_g3_with_a_message() {
     assert_eq!(r.interp.siemens.notice.map(|n| n.0), Some(62101));
 }
 
-/// Each alarm of the section on its line, and nothing moves (a negative radius,
-/// 61112, is the shared check's: `cutter` in interp-siemens's mill module).
+/// Each alarm of the section on its line, and nothing moves.
 #[test]
 fn cycle90_alarms() {
     let before = siemens(&format!("{HEAD}M30\n")).actions.len();
@@ -291,7 +290,8 @@ fn run_interp_limited(text: &str) -> Run {
 /// applicate): the helix about Y40 Z30 at DIATH/2 + r, X falling from 0 to −6.
 #[test]
 fn cycle90_in_g19_cuts_along_x() {
-    let text = "G19 G0 G90 X20 Y0 Z20 F200 S500 M3 T1 D1\nN2 CYCLE90(10, 0, 2, -6, , 20, 17, 1.5, 300, 3, 1, 40, 30)\nM30\n";
+    let text =
+        "G19 G0 G90 X20 Y0 Z20 F200 S500 M3 T1 D1\nN2 CYCLE90(10, 0, 2, -6, , 20, 17, 1.5, 300, 3, 1, 40, 30)\nM30\n";
     let r = siemens(text);
     assert!(r.alarms.is_empty(), "{:?}", r.alarms);
     let (cuts, _) = moves_of(&r, 2);
@@ -301,4 +301,18 @@ fn cycle90_in_g19_cuts_along_x() {
     assert!(on_helix.len() >= 8, "{arcs:?}");
     let xs: Vec<f64> = on_helix.iter().map(|m| m.to[0]).collect();
     assert!(xs.windows(2).all(|w| w[1] <= w[0]) && close(xs[xs.len() - 1], -6.0), "{xs:?}");
+}
+
+/// A cutter radius below zero (row 3's wear beyond its radius: the D offset's
+/// geometry + wear) is 61112 "tool radius negative" (table 5.3), nothing moves.
+#[test]
+fn cycle90_negative_radius_is_61112() {
+    let mut c = cfg();
+    if let Some(row) = c.tools.get_mut(3) {
+        row.x_wear = -4_000_000;
+    }
+    let text =
+        "G17 G0 G90 X0 Y0 Z20 F200 S500 M3 T3 D1\nCYCLE90(10, 0, 2, -6, , 30, 27, 1.5, 300, 2, 0, 40, 30)\nM30\n";
+    let r = run_with(text, c, Panel::default());
+    assert_eq!(r.alarm_codes(), vec![(2, 61112)]);
 }
