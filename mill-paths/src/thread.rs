@@ -156,11 +156,12 @@ impl Thread {
         let uf = Rot { at: s.centre, cs: (cs, m * sn) };
         let (sp, sc) = ends(u0, before, -1.0);
         let first = if s.internal { centre(0) } else { sp };
-        let e = [at(u0, h.radius, 0.0, s.from), at(u0, -h.radius, 0.0, s.from)];
+        let rn = round(h.radius);
+        let e = [P3::new(s.centre.0 + rn, s.centre.1, s.from), P3::new(s.centre.0 - rn, s.centre.1, s.from)];
         // Whole half turns before the last arc; a last arc that would end where
         // its half turn ends (a remainder below a nm) is folded into it.
         let f = at(uf, h.radius, 0.0, s.to);
-        let mut halves = libm::floor(h.angle / PI) as u64;
+        let mut halves = (h.angle / PI) as u64;
         let on = |n: u64| (e[(n % 2) as usize].a, e[(n % 2) as usize].o) == (f.a, f.o);
         if halves > 0 && on(halves) {
             halves -= 1;
