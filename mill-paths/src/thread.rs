@@ -134,13 +134,13 @@ impl Thread {
         // A point `along` the ray `u` (the thread's centre turned to the ray's
         // angle, mirrored for G2) and `across` it in the helix's direction.
         let m = if s.cw { -1.0 } else { 1.0 };
-        let at = |u: Rot, along: f64, across: f64, d: i64| {
+        let at = |u: &Rot, along: f64, across: f64, d: i64| {
             let (a, o) = u.point(along, m * across);
             P3::new(a, o, d)
         };
         // `S` or the end of the arc out, and the arc's centre, on the ray `u`:
         // internal on the ray, external across it.
-        let ends = |u, d: i64, k: f64| {
+        let ends = |u: &Rot, d: i64, k: f64| {
             let (along, c, across) = if s.internal {
                 (h.radius - 2.0 * h.rho, h.radius - h.rho, 0.0)
             } else {
@@ -154,13 +154,13 @@ impl Thread {
         let u0 = Rot { at: s.centre, cs: (1.0, 0.0) };
         let (sn, cs) = libm::sincos(h.angle);
         let uf = Rot { at: s.centre, cs: (cs, m * sn) };
-        let (sp, sc) = ends(u0, before, -1.0);
+        let (sp, sc) = ends(&u0, before, -1.0);
         let first = if s.internal { centre(0) } else { sp };
         let rn = round(h.radius);
         let e = [P3::new(s.centre.0 + rn, s.centre.1, s.from), P3::new(s.centre.0 - rn, s.centre.1, s.from)];
         // Whole half turns before the last arc; a last arc that would end where
         // its half turn ends (a remainder below a nm) is folded into it.
-        let f = at(uf, h.radius, 0.0, s.to);
+        let f = at(&uf, h.radius, 0.0, s.to);
         let mut halves = (h.angle / PI) as u64;
         let on = |n: u64| (e[(n % 2) as usize].a, e[(n % 2) as usize].o) == (f.a, f.o);
         if halves > 0 && on(halves) {
@@ -169,7 +169,7 @@ impl Thread {
         // A last arc shorter than a nm in the plane is a straight feed.
         let last =
             if on(halves) { Move::Line { to: f, feed: h.feeds[0] } } else { arc(f, centre(0), s.cw, h.feeds[0]) };
-        let (x, xc) = ends(uf, after, 1.0);
+        let (x, xc) = ends(&uf, after, 1.0);
         let out = if s.internal { centre(after) } else { x };
         Thread {
             moves: [
