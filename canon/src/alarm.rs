@@ -976,6 +976,7 @@ text_table! {
 pub fn cycle_message(code: u16) -> Option<&'static str> {
     Some(match code {
         62100 => "no drilling cycle active (program MCALL CYCLE81-89/840 before the pattern)",
+        62101 => "wrong milling direction, G3 generated (CDIR not 2 or 3)",
         62105 => "number of columns or rows is zero (_NUM1/_NUM2 of CYCLE801)",
         _ => return None,
     })

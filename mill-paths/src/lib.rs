@@ -34,6 +34,7 @@ pub mod infeed;
 pub mod plan;
 pub mod pocket;
 pub mod rot;
+pub mod thread;
 
 pub use canon::alarm::CycleAlarm;
 pub use contour::{Contour, Elem, NoContour};
@@ -107,6 +108,8 @@ pub enum MillGen {
     Plan(plan::Plan),
     /// A rectangular or circular pocket ([`pocket::Pocket`]: POCKET1, POCKET2).
     Pocket(pocket::Pocket),
+    /// A thread milled on a helix ([`thread::Thread`]: CYCLE90).
+    Thread(thread::Thread),
 }
 
 impl MillGen {
@@ -121,6 +124,7 @@ impl MillGen {
         match self {
             MillGen::Plan(p) => Ok(p.next()),
             MillGen::Pocket(p) => Ok(p.next()),
+            MillGen::Thread(t) => Ok(t.next()),
         }
     }
 }
