@@ -30,10 +30,12 @@
 #![no_std]
 
 pub mod contour;
+pub mod face;
 pub mod infeed;
 pub mod plan;
 pub mod pocket;
 pub mod rot;
+pub mod spigot;
 
 pub use canon::alarm::CycleAlarm;
 pub use contour::{Contour, Elem, NoContour};
@@ -107,6 +109,10 @@ pub enum MillGen {
     Plan(plan::Plan),
     /// A rectangular or circular pocket ([`pocket::Pocket`]: POCKET1, POCKET2).
     Pocket(pocket::Pocket),
+    /// A face ([`face::Face`]: CYCLE71).
+    Face(face::Face),
+    /// A rectangular or circular spigot ([`spigot::Spigot`]: CYCLE76, CYCLE77).
+    Spigot(spigot::Spigot),
 }
 
 impl MillGen {
@@ -121,7 +127,17 @@ impl MillGen {
         match self {
             MillGen::Plan(p) => Ok(p.next()),
             MillGen::Pocket(p) => Ok(p.next()),
+            MillGen::Face(p) => Ok(p.next()),
+            MillGen::Spigot(p) => Ok(p.next()),
         }
+    }
+}
+
+/// Where a move ends (`None`: it does not move).
+pub(crate) fn end_of(m: &Move) -> Option<P3> {
+    match m {
+        Move::Rapid(p) | Move::Line { to: p, .. } | Move::Arc { to: p, .. } => Some(*p),
+        _ => None,
     }
 }
 
