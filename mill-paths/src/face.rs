@@ -180,7 +180,9 @@ impl Face {
                 } else {
                     self.path = j + 1;
                 }
-                if s.zigzag && !end {
+                // Alternating, the next path is reached at the level; after the
+                // last level the cutter goes straight up to RTP.
+                if (s.zigzag && !end) || (end && k >= s.levels.count) {
                     return Some(None);
                 }
                 Move::Rapid(self.at(to, tj, self.lift(k)))

@@ -27,6 +27,7 @@
 mod settings;
 
 pub(super) use settings::cycle800;
+pub(super) mod face;
 pub(super) mod pocket;
 
 use super::Params;
