@@ -43,16 +43,15 @@ use mill_paths::infeed::Levels;
 use mill_paths::rot::Rot;
 use mill_paths::spigot::{Spigot, SpigotSpec};
 
-/// The scale factors (thousandths) of the plane's abscissa and ordinate, when a
-/// scaling is in force.
-fn scales(st: &State) -> Option<(i32, i32)> {
+/// The scale factors (thousandths, no sign) of the plane's abscissa, ordinate
+/// and applicate when a scaling is in force.
+fn scales(st: &State) -> Option<[i32; 3]> {
     let f = &st.mill.frame;
     if f.active & on::SCALE == 0 {
         return None;
     }
-    let [a, o, _] = interp_core::cycles::mill::plane_axes(st.modal.plane);
-    let k = |x: interp_core::axis::Axis| f.scale.get(x.index()).map_or(1000, |k| k.abs());
-    Some((k(a), k(o)))
+    let axes = interp_core::cycles::mill::plane_axes(st.modal.plane);
+    Some(axes.map(|x| f.scale.get(x.index()).map_or(1000, |k| k.abs())))
 }
 
 /// CYCLE71: checks the call and starts its face.
@@ -77,7 +76,7 @@ fn spec71(p: &Params<'_, '_>, st: &State, ctx: &mut dyn Engine) -> Result<FaceSp
     }
     tool_selected(st)?;
     let r = cutter(st, Radius::Positive)?;
-    if scales(st).is_some_and(|(a, o)| a != 1000 || o != 1000) {
+    if scales(st).is_some_and(|k| k != [1000; 3]) {
         return Err(CycleAlarm::ScaleNotAllowed);
     }
     let vari = p.int(14);
@@ -142,7 +141,7 @@ fn spec_spigot(circle: bool, p: &Params<'_, '_>, st: &State, ctx: &mut dyn Engin
         CycleAlarm::NoToolOffset => CycleAlarm::ToolNumberZero,
         e => e,
     })?;
-    if scales(st).is_some_and(|(a, o)| a != o) {
+    if scales(st).is_some_and(|[a, o, _]| a != o) {
         return Err(CycleAlarm::ScaleDiffers);
     }
     // Where _MID is: the parameters after it are the same in both.
