@@ -453,3 +453,33 @@ fn alarms_move_nothing() {
         assert_eq!(r.actions.len(), before.actions.len(), "{call} moved");
     }
 }
+
+/// Odd values in every parameter (zero, negative, tiny, huge, out of range)
+/// raise an alarm or cut; nothing panics.
+#[test]
+fn odd_calls_do_not_panic() {
+    let odd = ["0", "-1", "0.001", "1e6", "-7.5", "99", ""];
+    for (name, base) in [
+        (
+            "CYCLE71",
+            ["10", "0", "2", "-9", "100", "80", "60", "40", "0", "4", "8", "3", "0.5", "800", "31", "1.5"].as_slice(),
+        ),
+        (
+            "CYCLE76",
+            &[
+                "10", "0", "2", "-12", "", "40", "30", "6", "60", "50", "0", "5", "0.4", "0.3", "300", "100", "0", "1",
+                "48", "36",
+            ],
+        ),
+        ("CYCLE77", &["10", "0", "3", "-20", "", "50", "60", "70", "10", "0.5", "0", "900", "800", "0", "1", "62"]),
+    ] {
+        for i in 0..base.len() {
+            for v in odd {
+                let mut a: Vec<&str> = base.to_vec();
+                a[i] = v;
+                let text = format!("{HEAD76}_ZSD[2]={}\n{name}({})\nM30\n", i % 2, a.join(", "));
+                let _ = siemens(&text);
+            }
+        }
+    }
+}

@@ -130,7 +130,10 @@ impl Face {
     fn step(&mut self) -> Option<Option<Move>> {
         let s = self.s;
         let (n, first, last) = self.paths();
-        let t = |j: u32| first + (last - first) * i64::from(j) / i64::from(n.saturating_sub(1).max(1));
+        // In f64: (last − first) · j overflows i64 for a 10 m face cut in 1 nm steps.
+        let t = |j: u32| {
+            first + crate::rot::round((last - first) as f64 * f64::from(j) / f64::from(n.saturating_sub(1).max(1)))
+        };
         let (a0, _) = self.ends(0);
         match self.stage {
             0 => {
