@@ -127,6 +127,7 @@ impl Face {
     }
 
     /// The move at the cursor (`Some(None)`: nothing here), and the cursor on.
+    #[inline(never)]
     fn step(&mut self) -> Option<Option<Move>> {
         let s = self.s;
         let (n, first, last) = self.paths();

@@ -75,6 +75,7 @@ impl Pocket {
     }
 
     /// The move at the cursor (`Some(None)`: nothing here), and the cursor on.
+    #[inline(never)]
     fn step(&mut self) -> Option<Option<Move>> {
         let s = self.s;
         let centre = |d| {

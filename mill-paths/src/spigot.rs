@@ -80,6 +80,7 @@ impl Spigot {
     }
 
     /// The move at the cursor (`Some(None)`: nothing here), and the cursor on.
+    #[inline(never)]
     fn step(&mut self) -> Option<Option<Move>> {
         let s = self.s;
         let (a, b, q, sx) = self.ring();
