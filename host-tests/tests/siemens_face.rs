@@ -483,3 +483,31 @@ fn odd_calls_do_not_panic() {
         }
     }
 }
+
+/// In G19 a spigot lies in the Y/Z plane and the infeed runs along X (lines
+/// 3486-3494): CYCLE77's ring is a circle about Y_PA Z_PO, the levels along X.
+#[test]
+fn cycle77_in_g19() {
+    let text = "G19 G0 G90 X20 Y0 Z0 F500 S600 M3 T1 D1\nM6\nCYCLE77(10, 0, 3, -20, , 50, 60, 70, 10, 0.5, 0, 900, 800, 0, 1, 62)\nM30\n";
+    let segs = moves(&go(text).actions);
+    // The arcs about the centre: their centre's Y (the abscissa) is _PA (the
+    // semicircles' lies beyond the ring); Seg keeps the centre's X and Y.
+    let ring: Vec<&Seg> = segs.iter().filter(|s| s.arc.is_some_and(|a| a.0[1] == 60.0)).collect();
+    assert_eq!(ring.len(), 4 * 3);
+    for s in &ring {
+        assert!(near((s.to[1] - 60.0).hypot(s.to[2] - 70.0), 25.0 + 5.0 + 0.5), "{s:?}");
+        assert_eq!(s.from[0], s.to[0]);
+    }
+    let xs: Vec<f64> = ring.iter().map(|s| um(s.to[0])).collect();
+    let mut lv = xs.clone();
+    lv.dedup();
+    assert_eq!(lv, levels(3.0, -20.0, 10.0));
+}
+
+/// `_ZSD[1]=1` starts the depth infeeds at RFP instead of RFP + SDIS (lines
+/// 3522-3536, named for CYCLE71 at line 5336).
+#[test]
+fn cycle71_infeeds_from_rfp_with_zsd1() {
+    let text = format!("{HEAD71}_ZSD[1]=1\nCYCLE71(10, 0, 2, -9, 100, 80, 60, 40, 0, 4, 8, 3, 0, 800, 31, 1.5)\nM30\n");
+    assert_eq!(cut_levels(&moves(&go(&text).actions)), levels(0.0, -9.0, 4.0));
+}
