@@ -505,9 +505,13 @@ fn cycle77_in_g19() {
 }
 
 /// `_ZSD[1]=1` starts the depth infeeds at RFP instead of RFP + SDIS (lines
-/// 3522-3536, named for CYCLE71 at line 5336).
+/// 3522-3536, named for CYCLE71 at line 5339); the spigots are not in its list
+/// (line 3531) and start at RFP + SDIS whatever it says.
 #[test]
 fn cycle71_infeeds_from_rfp_with_zsd1() {
     let text = format!("{HEAD71}_ZSD[1]=1\nCYCLE71(10, 0, 2, -9, 100, 80, 60, 40, 0, 4, 8, 3, 0, 800, 31, 1.5)\nM30\n");
     assert_eq!(cut_levels(&moves(&go(&text).actions)), levels(0.0, -9.0, 4.0));
+    let text =
+        format!("{HEAD76}_ZSD[1]=1\nCYCLE77(10, 0, 3, -20, , 50, 60, 70, 10, 0.5, 0, 900, 800, 0, 1, 62)\nM30\n");
+    assert_eq!(cut_levels(&moves(&go(&text).actions)), levels(3.0, -20.0, 10.0));
 }

@@ -193,10 +193,12 @@ fn spec_spigot(circle: bool, p: &Params<'_, '_>, st: &State, ctx: &mut dyn Engin
     let ffp1 = feed(p, k + 3, st)?;
     let ffd = feed(p, k + 4, st)?;
     let finish = vari == 2;
+    // _ZSD[1] does not name the spigots (line 3531): their infeeds always start
+    // at RFP + SDIS.
     let levels = match (finish, fal == 0 && fald > 0) {
-        (true, true) => Levels::new(l.start, l.bottom, 0),
-        (true, false) => Levels::new(l.start, l.bottom, mid),
-        _ => Levels::new(l.start, l.bottom - l.dir * fald, mid),
+        (true, true) => Levels::new(l.safe, l.bottom, 0),
+        (true, false) => Levels::new(l.safe, l.bottom, mid),
+        _ => Levels::new(l.safe, l.bottom - l.dir * fald, mid),
     };
     Ok(SpigotSpec {
         rot,
