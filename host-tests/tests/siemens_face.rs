@@ -228,7 +228,7 @@ fn cycle71_paths_cover_the_face() {
 }
 
 /// One direction: between paths the cutter lifts by the infeed + SDIS when
-/// roughing (lines 5320-5322), by _FALD + SDIS when finishing; finishing cuts
+/// roughing (lines 5325-5327), by _FALD + SDIS when finishing; finishing cuts
 /// once, at _DP. The approach: G0 at the height of the call, G0 to RFP + SDIS.
 #[test]
 fn cycle71_lifts_between_paths() {
@@ -252,7 +252,7 @@ fn cycle71_lifts_between_paths() {
 }
 
 /// A face whose width + _FDP1 is below _MIDA is one path at _MIDA − r (line
-/// 5314); _MIDA 0 is 80 % of the cutter diameter (line 5356).
+/// 5317); _MIDA 0 is 80 % of the cutter diameter (line 5361).
 #[test]
 fn cycle71_one_path_and_the_default_width() {
     let text = format!("{HEAD71}CYCLE71(10, 0, 2, -1, 0, 0, 50, 5, 0, 0, 8, 2, 0, 800, 11, 1)\nM30\n");

@@ -7,18 +7,18 @@
 //! `ls` in that direction) and `t` across the paths (0 to `wt`):
 //! - a path runs from `−(r + FDP)` to `ls + r + FDP`: the cutter clears the face
 //!   by the overrun `_FDP` at both ends, where the depth infeeds are made in G0
-//!   (lines 5303-5305, 5348);
+//!   (lines 5314, 5365);
 //! - the first path engages exactly `_MIDA` of the width (its centre at
-//!   `_MIDA − r`, so the cutter runs `2r − _MIDA` outside the edge, line 5312),
-//!   the last lies at `wt + FDP1 − r` (line 5362), the paths between at equal
+//!   `_MIDA − r`, so the cutter runs `2r − _MIDA` outside the edge, lines 5315-5317),
+//!   the last lies at `wt + FDP1 − r` (line 5369), the paths between at equal
 //!   steps of at most `_MIDA`; when `wt + FDP1 ≤ _MIDA` the first path is the
-//!   only one (line 5314).
+//!   only one (line 5317).
 //!
 //! Between paths in one direction the cutter lifts (roughing: the infeed + the
 //! safety distance, i.e. to the level above + SDIS; finishing: `_FALD` + SDIS,
-//! lines 5320-5322) and returns in G0; alternating, it steps across at the end
+//! lines 5325-5327) and returns in G0; alternating, it steps across at the end
 //! of a path at the feed. Each level starts at the first path's start (line
-//! 5322); after the last level the cutter goes up to RTP where it is (5324).
+//! 5327); after the last level the cutter goes up to RTP where it is (5329).
 
 use crate::infeed::{Levels, parts};
 use crate::rot::Rot;

@@ -6,12 +6,12 @@
 //!
 //! The tool centre runs once round the spigot per level, outside it at the
 //! cutter radius plus the wall allowance, starting and ending on the spigot's
-//! length axis (0°, lines 5812, 6010). It is reached and left by semicircles
+//! length axis (0°, lines 5822, 6004). It is reached and left by semicircles
 //! tangent to that ring, on the plus side of the length axis: the plunge point
 //! `S` lies a semicircle's diameter beyond the ring, clear of the blank (`_AP1`)
 //! by a cutter radius, so the semicircle's radius follows from the blank (lines
-//! 5910, 6078). Per level: the infeed at `S` at FFD (the first from RFP + SDIS,
-//! reached in G0, lines 5814, 6012), the approach semicircle, the ring, the
+//! 5917, 6079). Per level: the infeed at `S` at FFD (the first from RFP + SDIS,
+//! reached in G0, lines 5824, 6006), the approach semicircle, the ring, the
 //! retreating semicircle back to `S`; then G0 to RTP over `S`.
 //!
 //! Rings run counterclockwise (G3) in the spigot's axes; a G2 spigot mirrors the

@@ -7,7 +7,7 @@
 //! `_LENG`/`_WID` signed, turned by `_STA`; `_VARI` units 1 roughing to `_FALD`
 //! per `_MID`, 2 finishing at `_DP` once; tens 1 parallel to the abscissa in one
 //! direction, 2 to the ordinate in one direction, 3 and 4 the same alternating
-//! (line 5379; anything else 61002). Alarms: 61009 no tool (T0) — 61124 instead
+//! (lines 5385-5397; anything else 61002). Alarms: 61009 no tool (T0) — 61124 instead
 //! when `_MIDA` is 0 too (the width comes from the tool), 61000 no D, 61117 a
 //! radius ≤ 0, 61011 a scaling in force, 61101 the levels, 61118 `_LENG` or
 //! `_WID` 0, 61111 `_MIDA` above the diameter, 61003 no feed.
@@ -18,8 +18,8 @@
 //! _CDIR, _VARI, _AP1)` (`_PRAD` is the diameter, line 6045): `_VARI` 1 roughing
 //! to `_FAL`/`_FALD` per `_MID`, 2 finishing (the wall per `_MID` to `_DP`; the
 //! floor only, one ring at `_DP`, when `_FAL` is 0 and `_FALD` not, lines
-//! 5836, 6034); CYCLE76's reference point is the centre, or with `_ZSD[2]` = 1
-//! the corner (`_LENG`/`_WID` signed, line 5858). `_CDIR` 2 G2, 3 G3; 0 climb and
+//! 5852-5854, 6031-6033); CYCLE76's reference point is the centre, or with `_ZSD[2]` = 1
+//! the corner (`_LENG`/`_WID` signed, line 5868). `_CDIR` 2 G2, 3 G3; 0 climb and
 //! 1 conventional milling from the spindle: round the outside of a spigot
 //! climb milling under M3 is G2 (the document prints the pockets' table, M3 →
 //! G3, which is conventional milling outside a contour; we mill as the names
