@@ -791,6 +791,11 @@ pub enum CycleAlarm {
     NoThirdAxis,
     /// 61009: SINUMERIK cycle alarm (seed 001 table 5.3): active tool number = 0.
     ToolNumberZero,
+    /// 61011: SINUMERIK cycle alarm (seed 001 table 5.3): scaling not allowed (CYCLE71).
+    ScaleNotAllowed,
+    /// 61012: SINUMERIK cycle alarm (seed 001 table 5.3): different scaling in the plane
+    /// (CYCLE76, CYCLE77).
+    ScaleDiffers,
     /// 61019: SINUMERIK cycle alarm (seed 001 table 5.3): parameter programmed incorrectly.
     ParameterWrong,
     /// 61101: SINUMERIK cycle alarm (seed 001 table 5.3): reference plane defined incorrectly.
@@ -811,11 +816,21 @@ pub enum CycleAlarm {
     ToolRadiusNegative,
     /// 61117: SINUMERIK cycle alarm (seed 001 table 5.3): active tool radius <= 0.
     ToolRadiusNotPositive,
+    /// 61118: SINUMERIK cycle alarm (seed 001 table 5.3): length or width = 0 (CYCLE71).
+    LengthOrWidthZero,
+    /// 61124: SINUMERIK cycle alarm (seed 001 table 5.3): infeed width not programmed
+    /// (CYCLE71 `_MIDA` 0 with no tool to take it from).
+    InfeedWidthMissing,
     /// 61125: SINUMERIK cycle alarm (seed 001 table 5.3): _TECHNO defined incorrectly.
     TechnologyWrong,
     /// 61180: SINUMERIK cycle alarm (seed 001 lines 9197, 12241): no name assigned to
     /// the swivel data record (CYCLE800 on a machine without swivel data records).
     SwivelDataNoName,
+    /// 61213: SINUMERIK cycle alarm (seed 001 table 5.3): circle radius too small (CYCLE77).
+    CircleRadiusTooSmall,
+    /// 61215: SINUMERIK cycle alarm (seed 001 table 5.3): blank dimension programmed
+    /// incorrectly (CYCLE76, CYCLE77).
+    BlankWrong,
     /// 61601: SINUMERIK cycle alarm (seed 001 table 5.3): finished diameter too small.
     FinishedDiameterTooSmall,
     /// 61602: SINUMERIK cycle alarm (seed 001 table 5.3): tool width wrong.
@@ -834,6 +849,9 @@ pub enum CycleAlarm {
     WrongEdgePosition,
     /// 61609: SINUMERIK cycle alarm (seed 001 table 5.3): form wrong.
     FormWrong,
+    /// 61610: SINUMERIK cycle alarm (seed 001 table 5.3): no infeed depth programmed
+    /// (CYCLE76, CYCLE77 `_MID`).
+    NoInfeedDepth,
     /// 61612: SINUMERIK cycle alarm (seed 001 table 5.3): re-cutting impossible.
     RecutImpossible,
     /// 61613: SINUMERIK cycle alarm (seed 001 table 5.3): undercut position wrong.
@@ -869,6 +887,8 @@ impl CycleAlarm {
             NoFeed => 61003,
             NoThirdAxis => 61005,
             ToolNumberZero => 61009,
+            ScaleNotAllowed => 61011,
+            ScaleDiffers => 61012,
             ParameterWrong => 61019,
             ReferencePlaneWrong => 61101,
             NoSpindleDirection => 61102,
@@ -879,8 +899,12 @@ impl CycleAlarm {
             InfeedWidthTooLarge => 61111,
             ToolRadiusNegative => 61112,
             ToolRadiusNotPositive => 61117,
+            LengthOrWidthZero => 61118,
+            InfeedWidthMissing => 61124,
             TechnologyWrong => 61125,
             SwivelDataNoName => 61180,
+            CircleRadiusTooSmall => 61213,
+            BlankWrong => 61215,
             FinishedDiameterTooSmall => 61601,
             ToolWidthWrong => 61602,
             GrooveFormWrong => 61603,
@@ -890,6 +914,7 @@ impl CycleAlarm {
             StartPointWrong => 61607,
             WrongEdgePosition => 61608,
             FormWrong => 61609,
+            NoInfeedDepth => 61610,
             RecutImpossible => 61612,
             UndercutPositionWrong => 61613,
             FinishedContourWrong => 61701,
@@ -938,6 +963,8 @@ text_table! {
         NoFeed {} => "no feed programmed in the cycle (FFP1/FFD/FFR zero)";
         NoThirdAxis {} => "3rd geometry axis not present (the drilling axis of the plane)";
         ToolNumberZero {} => "active tool number = 0 (program T before the cycle)";
+        ScaleNotAllowed {} => "scaling not allowed";
+        ScaleDiffers {} => "different scaling in the plane";
         ParameterWrong {} => "parameter programmed incorrectly (DAM, ENC)";
         ReferencePlaneWrong {} => "reference plane defined incorrectly (RTP, RFP, DP/DPR)";
         NoSpindleDirection {} => "no spindle direction programmed (SDIR/SDR 3 or 4, M3/M4 before CYCLE840)";
@@ -948,8 +975,12 @@ text_table! {
         InfeedWidthTooLarge {} => "infeed width greater than the tool diameter (_MIDA)";
         ToolRadiusNegative {} => "tool radius negative";
         ToolRadiusNotPositive {} => "active tool radius <= 0";
+        LengthOrWidthZero {} => "length or width = 0 (_LENG, _WID)";
+        InfeedWidthMissing {} => "infeed width not programmed (_MIDA)";
         TechnologyWrong {} => "technology selection in parameter _TECHNO defined incorrectly";
         SwivelDataNoName {} => "no name assigned to the swivel data record";
+        CircleRadiusTooSmall {} => "circle radius too small (_PRAD)";
+        BlankWrong {} => "blank dimension programmed incorrectly (_AP1/_AP2 not larger than the spigot)";
         FinishedDiameterTooSmall {} => "finished part diameter too small (under 3 mm)";
         ToolWidthWrong {} => "tool width defined incorrectly (grooving tool wider than the groove, or no width)";
         GrooveFormWrong {} => "groove form defined incorrectly";
@@ -958,6 +989,7 @@ text_table! {
         StartPointWrong {} => "starting point programmed incorrectly (inside the rectangle of the contour)";
         WrongEdgePosition {} => "wrong tool point direction programmed (cutting edge position 1-4 needed)";
         FormWrong {} => "form defined incorrectly (CYCLE94: E or F, CYCLE96: A-D)";
+        NoInfeedDepth {} => "no infeed depth programmed (_MID)";
         RecutImpossible {} => "thread re-cutting not possible";
         UndercutPositionWrong {} => "undercut position (_VARI) defined incorrectly";
         FinishedContourWrong {} => "finished part contour description wrong (_NP1-_NP3)";
@@ -1627,7 +1659,17 @@ pub const CATALOG: &[CatalogEntry] = &[
     CatalogEntry {
         code: 61009,
         title: "active tool number 0",
-        when: "SINUMERIK milling cycle (CYCLE71, CYCLE72) called with no tool selected, T0 (table: 有效的刀具号=0)",
+        when: "SINUMERIK milling cycle (CYCLE71, CYCLE72) called with no tool selected, T0; CYCLE76/CYCLE77 with no tool or no offset active (lines 5921, 6083) (table: 有效的刀具号=0)",
+    },
+    CatalogEntry {
+        code: 61011,
+        title: "scaling not allowed",
+        when: "SINUMERIK CYCLE71 called with a scaling in force (table: 比例缩放不允许)",
+    },
+    CatalogEntry {
+        code: 61012,
+        title: "different scaling in the plane",
+        when: "SINUMERIK CYCLE76/CYCLE77 called with unequal scale factors on the plane's two axes (table: 平面中比例缩放不同)",
     },
     CatalogEntry {
         code: 61019,
@@ -1680,6 +1722,16 @@ pub const CATALOG: &[CatalogEntry] = &[
         when: "SINUMERIK CYCLE71/POCKET3/POCKET4 with a radius of zero or less in the active D offset (table: 有效的刀具半径<=0)",
     },
     CatalogEntry {
+        code: 61118,
+        title: "length or width 0",
+        when: "SINUMERIK CYCLE71 with _LENG or _WID zero (table: 长度或者宽度=0)",
+    },
+    CatalogEntry {
+        code: 61124,
+        title: "infeed width not programmed",
+        when: "SINUMERIK CYCLE71 with _MIDA zero and no tool selected (T0) to take 80 % of its diameter from (table: 进刀宽度没有编程)",
+    },
+    CatalogEntry {
         code: 61125,
         title: "_TECHNO wrong",
         when: "CYCLE84/CYCLE840 _TECHNO with a digit outside its values (table: 参数_TECHNO中工艺选择错误定义)",
@@ -1688,6 +1740,16 @@ pub const CATALOG: &[CatalogEntry] = &[
         code: 61180,
         title: "no swivel data record",
         when: "SINUMERIK CYCLE800 that would swivel: this board has no swivel kinematics, so no swivel data records (lines 9197, 12241: 没有给回转数据组分配名称); CYCLE800() and _TC=\"0\" deselect and are accepted",
+    },
+    CatalogEntry {
+        code: 61213,
+        title: "circle radius too small",
+        when: "SINUMERIK CYCLE77 with a spigot diameter _PRAD of zero (table: 圆弧半径太小)",
+    },
+    CatalogEntry {
+        code: 61215,
+        title: "blank dimension wrong",
+        when: "SINUMERIK CYCLE76/CYCLE77 with a blank _AP1 (_AP2) not larger than the spigot's length (width, diameter) (table: 毛坯尺寸错误编程)",
     },
     CatalogEntry {
         code: 61601,
@@ -1712,7 +1774,7 @@ pub const CATALOG: &[CatalogEntry] = &[
     CatalogEntry {
         code: 61605,
         title: "contour wrong",
-        when: "CYCLE95 contour with an element the cycle cannot machine (an undercut against the machining direction) (table 12260: 轮廓错误编程)",
+        when: "CYCLE95 contour with an element the cycle cannot machine (an undercut against the machining direction); CYCLE76 spigot with _LENG or _WID zero or a corner radius _CRAD above half its width (table 12260: 轮廓错误编程)",
     },
     CatalogEntry {
         code: 61606,
@@ -1733,6 +1795,11 @@ pub const CATALOG: &[CatalogEntry] = &[
         code: 61609,
         title: "form wrong",
         when: "CYCLE94 FORM not E/F, CYCLE96 FORM not A-D (lines 10513, 11024: 形状错误定义)",
+    },
+    CatalogEntry {
+        code: 61610,
+        title: "no infeed depth",
+        when: "SINUMERIK CYCLE76/CYCLE77 with _MID zero (table: 没有编程进刀深度)",
     },
     CatalogEntry {
         code: 61612,
@@ -1943,6 +2010,8 @@ mod tests {
             SiemensCycle(CycleAlarm::NoFeed),
             SiemensCycle(CycleAlarm::NoThirdAxis),
             SiemensCycle(CycleAlarm::ToolNumberZero),
+            SiemensCycle(CycleAlarm::ScaleNotAllowed),
+            SiemensCycle(CycleAlarm::ScaleDiffers),
             SiemensCycle(CycleAlarm::ParameterWrong),
             SiemensCycle(CycleAlarm::ReferencePlaneWrong),
             SiemensCycle(CycleAlarm::NoSpindleDirection),
@@ -1953,8 +2022,12 @@ mod tests {
             SiemensCycle(CycleAlarm::InfeedWidthTooLarge),
             SiemensCycle(CycleAlarm::ToolRadiusNegative),
             SiemensCycle(CycleAlarm::ToolRadiusNotPositive),
+            SiemensCycle(CycleAlarm::LengthOrWidthZero),
+            SiemensCycle(CycleAlarm::InfeedWidthMissing),
             SiemensCycle(CycleAlarm::TechnologyWrong),
             SiemensCycle(CycleAlarm::SwivelDataNoName),
+            SiemensCycle(CycleAlarm::CircleRadiusTooSmall),
+            SiemensCycle(CycleAlarm::BlankWrong),
             SiemensCycle(CycleAlarm::FinishedDiameterTooSmall),
             SiemensCycle(CycleAlarm::ToolWidthWrong),
             SiemensCycle(CycleAlarm::GrooveFormWrong),
@@ -1964,6 +2037,7 @@ mod tests {
             SiemensCycle(CycleAlarm::StartPointWrong),
             SiemensCycle(CycleAlarm::WrongEdgePosition),
             SiemensCycle(CycleAlarm::FormWrong),
+            SiemensCycle(CycleAlarm::NoInfeedDepth),
             SiemensCycle(CycleAlarm::RecutImpossible),
             SiemensCycle(CycleAlarm::UndercutPositionWrong),
             SiemensCycle(CycleAlarm::FinishedContourWrong),

@@ -30,10 +30,14 @@
 #![no_std]
 
 pub mod contour;
+#[cfg(feature = "face")]
+pub mod face;
 pub mod infeed;
 pub mod plan;
 pub mod pocket;
 pub mod rot;
+#[cfg(feature = "face")]
+pub mod spigot;
 pub mod thread;
 
 pub use canon::alarm::CycleAlarm;
@@ -110,6 +114,12 @@ pub enum MillGen {
     Pocket(pocket::Pocket),
     /// A thread milled on a helix ([`thread::Thread`]: CYCLE90).
     Thread(thread::Thread),
+    /// A face ([`face::Face`]: CYCLE71).
+    #[cfg(feature = "face")]
+    Face(face::Face),
+    /// A rectangular or circular spigot ([`spigot::Spigot`]: CYCLE76, CYCLE77).
+    #[cfg(feature = "face")]
+    Spigot(spigot::Spigot),
 }
 
 impl MillGen {
@@ -125,7 +135,19 @@ impl MillGen {
             MillGen::Plan(p) => Ok(p.next()),
             MillGen::Pocket(p) => Ok(p.next()),
             MillGen::Thread(t) => Ok(t.next()),
+            #[cfg(feature = "face")]
+            MillGen::Face(p) => Ok(p.next()),
+            #[cfg(feature = "face")]
+            MillGen::Spigot(p) => Ok(p.next()),
         }
+    }
+}
+
+/// Where a move ends (`None`: it does not move).
+pub(crate) fn end_of(m: &Move) -> Option<P3> {
+    match m {
+        Move::Rapid(p) | Move::Line { to: p, .. } | Move::Arc { to: p, .. } => Some(*p),
+        _ => None,
     }
 }
 

@@ -75,6 +75,7 @@ impl Pocket {
     }
 
     /// The move at the cursor (`Some(None)`: nothing here), and the cursor on.
+    #[inline(never)]
     fn step(&mut self) -> Option<Option<Move>> {
         let s = self.s;
         let centre = |d| {
@@ -123,18 +124,7 @@ impl Pocket {
         match el {
             0 => (to, f) = ((0, 0), s.feeds[0]),
             1 => {}
-            2..=9 => {
-                // Quadrant i: a side up to the corner, then the corner's arc: its
-                // centre C, from C + q·u(i) to C + q·u(i + 1).
-                let i = usize::from((el - 2) / 2);
-                let unit = |k: usize| [(1, 0), (0, 1), (-1, 0), (0, -1)][k & 3];
-                let c = ([1, -1, -1, 1][i & 3] * (a - q), [1, 1, -1, -1][i & 3] * (b - q));
-                let u = unit(i + usize::from(el % 2));
-                to = (c.0 + q * u.0, c.1 + q * u.1);
-                if el % 2 == 1 {
-                    arc = Some(c);
-                }
-            }
+            2..=9 => (to, arc) = ring_el(a, b, q, el),
             10 => {
                 if self.ring < n {
                     (self.ring, self.el) = (self.ring + 1, 1);
@@ -148,21 +138,50 @@ impl Pocket {
         Some(self.plane(to, arc, lvl, f))
     }
 
-    /// A move of the pocket's axes in the plane: a line to `to`, or an arc about
-    /// `arc`, at applicate `d` (G2 rings mirror the pocket's ordinate).
-    #[inline(never)]
+    /// A move of the pocket's axes in the plane (G2 rings mirror the ordinate).
     fn plane(&self, to: (i64, i64), arc: Option<(i64, i64)>, d: i64, feed: i64) -> Move {
-        let s = &self.s;
-        let at = |(u, v): (i64, i64)| {
-            let (x, y) = s.rot.point(u as f64, if s.cw { -v } else { v } as f64);
-            P3::new(x, y, d)
-        };
-        match arc {
-            None => Move::Line { to: at(to), feed },
-            Some(c) => {
-                let c = at(c);
-                Move::Arc { to: at(to), centre: (c.a, c.o), cw: s.cw, feed }
-            }
+        plane_move(&self.s.rot, self.s.cw, to, arc.map(|c| (c, false)), d, feed)
+    }
+}
+
+/// Element `el` (2..=10) of the ring of half sides `a`, `b` and corner radius `q`
+/// that starts at (`a`, 0) and runs counterclockwise: quadrant `(el − 2) / 2`'s
+/// side up to its corner (even `el`), the corner's arc (odd: its centre
+/// returned), and at 10 the half side back to the start. Its end.
+pub(crate) fn ring_el(a: i64, b: i64, q: i64, el: u8) -> ((i64, i64), Option<(i64, i64)>) {
+    if !(2..=9).contains(&el) {
+        return ((a, 0), None);
+    }
+    // Quadrant i: a side up to the corner, then the corner's arc: its centre C,
+    // from C + q·u(i) to C + q·u(i + 1).
+    let i = usize::from((el - 2) / 2);
+    let unit = |k: usize| [(1, 0), (0, 1), (-1, 0), (0, -1)][k & 3];
+    let c = ([1, -1, -1, 1][i & 3] * (a - q), [1, 1, -1, -1][i & 3] * (b - q));
+    let u = unit(i + usize::from(el % 2));
+    ((c.0 + q * u.0, c.1 + q * u.1), if el % 2 == 1 { Some(c) } else { None })
+}
+
+/// A move in turned axes `rot` in the plane: a line to `to`, or an arc about the
+/// centre of `arc` (its bool: clockwise in those axes), at applicate `d`; `mirror`
+/// mirrors the ordinate (and so every arc's sense: a G2 ring drawn as a G3 one).
+#[inline(never)]
+pub(crate) fn plane_move(
+    rot: &Rot,
+    mirror: bool,
+    to: (i64, i64),
+    arc: Option<((i64, i64), bool)>,
+    d: i64,
+    feed: i64,
+) -> Move {
+    let at = |(u, v): (i64, i64)| {
+        let (x, y) = rot.point(u as f64, if mirror { -v } else { v } as f64);
+        P3::new(x, y, d)
+    };
+    match arc {
+        None => Move::Line { to: at(to), feed },
+        Some((c, cw)) => {
+            let c = at(c);
+            Move::Arc { to: at(to), centre: (c.a, c.o), cw: cw != mirror, feed }
         }
     }
 }
@@ -175,10 +194,7 @@ impl Iterator for Pocket {
         loop {
             let m = self.step()?;
             let Some(m) = m else { continue };
-            let to = match m {
-                Move::Rapid(p) | Move::Line { to: p, .. } | Move::Arc { to: p, .. } => p,
-                _ => return Some(m),
-            };
+            let Some(to) = crate::end_of(&m) else { return Some(m) };
             if to != self.last {
                 self.last = to;
                 return Some(m);

@@ -227,6 +227,14 @@ pub fn start(
         "CYCLE90" => mill::thread::cycle90(&p, cmd, st, ctx),
         "POCKET1" => mill::pocket::pocket12(false, &p, cmd, st, ctx),
         "POCKET2" => mill::pocket::pocket12(true, &p, cmd, st, ctx),
+        #[cfg(feature = "mill-face")]
+        "CYCLE71" => mill::face::cycle71(&p, cmd, st, ctx),
+        #[cfg(feature = "mill-face")]
+        "CYCLE76" => mill::face::spigot(false, &p, cmd, st, ctx),
+        #[cfg(feature = "mill-face")]
+        "CYCLE77" => mill::face::spigot(true, &p, cmd, st, ctx),
+        #[cfg(not(feature = "mill-face"))]
+        "CYCLE71" | "CYCLE76" | "CYCLE77" => Err(LEFT_OUT),
         // A drilling pattern is run by the driver (positions, then the MCALL at
         // each); called modally it is not a drilling cycle.
         _ => Err(AlarmKind::NotSupportedYet { what: "this SINUMERIK cycle" }),
@@ -236,6 +244,11 @@ pub fn start(
     // Overflow (see [`Params::nm`]).
     if p.overflow.get() { Err(AlarmKind::Overflow) } else { r }
 }
+
+/// A milling cycle this board's build leaves out for flash (interp-siemens'
+/// features; docs/FIRMWARE-SIZES.md): alarm 4007, nothing moves.
+#[allow(dead_code)] // only in a build without one of the features
+const LEFT_OUT: AlarmKind = AlarmKind::NotInThisBuild { what: "this milling cycle" };
 
 /// The turning cycles work in the ZX plane (G18, line 10113).
 fn need_zx(st: &State) -> Result<(), AlarmKind> {

@@ -27,6 +27,8 @@
 mod settings;
 
 pub(super) use settings::cycle800;
+#[cfg(feature = "mill-face")]
+pub(super) mod face;
 pub(super) mod pocket;
 pub(super) mod thread;
 
