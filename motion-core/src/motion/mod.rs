@@ -28,7 +28,7 @@ pub use spindle::Spindle;
 
 use crate::alarm::{Alarm, AlarmKind};
 use crate::axis::{AXIS_COUNT, Axis, Pos};
-use crate::canon::{Canon, CanonSink, Full, SpindleDir};
+use crate::canon::{Action, Canon, CanonSink, Full, SpindleDir};
 use crate::config::{MachineConfig, MotionConfig};
 
 use crate::fixed::{STEP_FRAC, round_steps};
@@ -898,11 +898,24 @@ impl<const N: usize> MotionCore<N> {
             self.interp = Interpolator::new(self.steps());
         }
         self.planner.clear(self.commanded_position());
+        self.set_tolerance(0);
         self.streaming = false;
         self.starved = false;
         self.hold = false;
         self.state = State::Idle;
         false
+    }
+
+    /// The path tolerance `nm` the planner blends G64 junctions and chords arcs
+    /// with from the next block on (SINUMERIK CYCLE832, [`Action::Tolerance`]):
+    /// junction deviation and chord tolerance both; 0 puts the machine's back.
+    fn set_tolerance(&mut self, nm: u32) {
+        let p = &mut self.p;
+        (p.junction_deviation, p.chord_tolerance) = if nm == 0 {
+            (self.mc.junction_deviation.max(0) as f32, self.mc.chord_tolerance.max(1) as f32)
+        } else {
+            (nm as f32, nm as f32)
+        };
     }
 
     /// The commanded position, machine nm (where the planner continues from).
@@ -927,6 +940,15 @@ impl<const N: usize> CanonSink for MotionCore<N> {
         }
         if self.state == State::Ended {
             self.state = State::Idle;
+        }
+        match action.action {
+            Action::Tolerance { nm } => {
+                self.set_tolerance(nm);
+                return Ok(());
+            }
+            // M02/M30 put the machine's tolerance back (for the blocks after it).
+            Action::End { .. } => self.set_tolerance(0),
+            _ => {}
         }
         match self.planner.push(action, &self.p) {
             Ok(()) => {

@@ -26,7 +26,7 @@
 
 mod settings;
 
-pub(super) use settings::cycle800;
+pub(super) use settings::{cycle800, cycle832};
 pub(super) mod pocket;
 
 use super::Params;
