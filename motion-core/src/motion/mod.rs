@@ -898,24 +898,12 @@ impl<const N: usize> MotionCore<N> {
             self.interp = Interpolator::new(self.steps());
         }
         self.planner.clear(self.commanded_position());
-        self.set_tolerance(0);
+        self.p.set_tolerance(0);
         self.streaming = false;
         self.starved = false;
         self.hold = false;
         self.state = State::Idle;
         false
-    }
-
-    /// The path tolerance `nm` the planner blends G64 junctions and chords arcs
-    /// with from the next block on (SINUMERIK CYCLE832, [`Action::Tolerance`]):
-    /// junction deviation and chord tolerance both; 0 puts the machine's back.
-    fn set_tolerance(&mut self, nm: u32) {
-        let p = &mut self.p;
-        (p.junction_deviation, p.chord_tolerance) = if nm == 0 {
-            (self.mc.junction_deviation.max(0) as f32, self.mc.chord_tolerance.max(1) as f32)
-        } else {
-            (nm as f32, nm as f32)
-        };
     }
 
     /// The commanded position, machine nm (where the planner continues from).
@@ -943,11 +931,11 @@ impl<const N: usize> CanonSink for MotionCore<N> {
         }
         match action.action {
             Action::Tolerance { nm } => {
-                self.set_tolerance(nm);
+                self.p.set_tolerance(nm);
                 return Ok(());
             }
             // M02/M30 put the machine's tolerance back (for the blocks after it).
-            Action::End { .. } => self.set_tolerance(0),
+            Action::End { .. } => self.p.set_tolerance(0),
             _ => {}
         }
         match self.planner.push(action, &self.p) {

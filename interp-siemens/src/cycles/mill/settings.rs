@@ -57,11 +57,10 @@ pub(in crate::cycles) fn cycle832(p: &Params<'_, '_>, st: &mut State, ctx: &mut 
     if !(0..=TOL_MAX_NM).contains(&tol) {
         return Err(wrong);
     }
-    // Within range; a band under 0.5 nm is still one.
-    let mut nm = (tol as u32).max(u32::from(p.real(0) > 0.0));
+    let mut nm = tol as u32;
     let tol_only = matches!(p.arg(1), Arg::Empty) && !matches!(p.arg(0), Arg::Empty);
     if !tol_only {
-        let mut rest = u64::try_from(p.int(1)).map_err(|_| wrong)?;
+        let mut rest = u32::try_from(p.int(1)).map_err(|_| wrong)?;
         let mut d = [0u8; 6];
         for (digit, max) in d.iter_mut().zip(TOLM_MAX) {
             *digit = (rest % 10) as u8;
