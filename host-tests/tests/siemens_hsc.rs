@@ -9,7 +9,7 @@
 mod mill_common;
 
 use host_tests::{Run, run_with};
-use interp_core::canon::Action;
+use interp_core::canon::{Action, Canon};
 use interp_core::config::Language;
 use interp_core::{MachineConfig, Panel};
 use motion_core::fixed::STEP_ONE;
@@ -191,8 +191,8 @@ fn at_junction(speed: f64, want: f64, a: f64) -> bool {
 /// (junction deviation 10 µm, chord 1 µm) take it at the chord limit
 /// 2·1 µm / sin 10° = 11.5 µm a period (691 mm/min); after CYCLE832(0.05, 1)
 /// the 50 µm deviation circle allows 40.3 µm a period (2415 mm/min); after
-/// deselect the path stops at the corner. After M30 the next program has the
-/// machine's own tolerance again.
+/// deselect the path stops at the corner. After M30 and after reset the next
+/// program has the machine's own tolerance again.
 #[test]
 fn a_corner_after_cycle832_is_as_fast_as_its_tolerance_allows() {
     let phi = 20f64.to_radians();
@@ -231,6 +231,17 @@ fn a_corner_after_cycle832_is_as_fast_as_its_tolerance_allows() {
     run(&mut s, "CYCLE832(0.2, 3)");
     let again = run(&mut s, "");
     assert!((again - own).abs() <= 0.01 * own, "after M30: {again} vs {own}");
+
+    // A tolerance stays in force until M30 or reset (here one handed over
+    // alone, with no M30 after it), and reset puts the machine's back.
+    let tol = [Canon { line: 1, action: Action::Tolerance { nm: 50_000 } }];
+    s.run_actions(&tol);
+    let kept = run(&mut s, "");
+    assert!((kept - hsc).abs() <= 0.01 * hsc, "kept: {kept} vs {hsc}");
+    s.run_actions(&tol);
+    s.core.reset();
+    let reset = run(&mut s, "");
+    assert!((reset - own).abs() <= 0.01 * own, "after reset: {reset} vs {own}");
 }
 
 /// A full circle of radius 0.5 mm at F5000 on axes of 20,000 mm/s² (20,000
