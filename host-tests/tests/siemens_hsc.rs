@@ -68,7 +68,7 @@ fn the_documents_calls_set_tolerance_and_blending() {
 
 /// `CYCLE832()` deselects (line 9390); `CYCLE832(_TOL)` sets the tolerance
 /// alone and leaves the G functions as they are (line 9395); a `_TOL` of 0
-/// takes the machining type's preset (lines 9431-9436: finishing 0.01,
+/// takes the machining type's preset (lines 9434-9439: finishing 0.01,
 /// semi-finishing 0.05, roughing 0.1 mm); inch programs give it in inches.
 #[test]
 fn short_calls_presets_and_inches() {

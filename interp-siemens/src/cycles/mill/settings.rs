@@ -34,7 +34,7 @@ pub(in crate::cycles) fn cycle800(p: &Params<'_, '_>) -> Result<(), CycleAlarm> 
 /// technology adaptation (0 no, 1 yes).
 const TOLM_MAX: [u8; 6] = [3, 2, 3, 2, 2, 1];
 
-/// The tolerance each machining type starts with (line 9431), nm: deselect,
+/// The tolerance each machining type starts with (lines 9434-9439), nm: deselect,
 /// finishing, semi-finishing, roughing.
 const PRESET_NM: [u32; 4] = [10_000, 10_000, 50_000, 100_000];
 
