@@ -831,6 +831,15 @@ pub enum CycleAlarm {
     /// 61215: SINUMERIK cycle alarm (seed 001 table 5.3): blank dimension programmed
     /// incorrectly (CYCLE76, CYCLE77).
     BlankWrong,
+    /// 61191: SINUMERIK cycle alarm (seed 001 lines 9794, 12252): 5-axis transformation not
+    /// set up (CYCLE832 with TRAORI: this board has no 5-axis transformation).
+    FiveAxisNotSetUp,
+    /// 61192: SINUMERIK cycle alarm (seed 001 lines 9795, 12253): second 5-axis
+    /// transformation not set up (CYCLE832 with TRAORI(2)).
+    SecondFiveAxisNotSetUp,
+    /// 61194: SINUMERIK cycle alarm (seed 001 lines 9797, 12255): option spline
+    /// interpolation not set (CYCLE832 with B splines).
+    SplineNotSetUp,
     /// 61601: SINUMERIK cycle alarm (seed 001 table 5.3): finished diameter too small.
     FinishedDiameterTooSmall,
     /// 61602: SINUMERIK cycle alarm (seed 001 table 5.3): tool width wrong.
@@ -905,6 +914,9 @@ impl CycleAlarm {
             SwivelDataNoName => 61180,
             CircleRadiusTooSmall => 61213,
             BlankWrong => 61215,
+            FiveAxisNotSetUp => 61191,
+            SecondFiveAxisNotSetUp => 61192,
+            SplineNotSetUp => 61194,
             FinishedDiameterTooSmall => 61601,
             ToolWidthWrong => 61602,
             GrooveFormWrong => 61603,
@@ -965,7 +977,7 @@ text_table! {
         ToolNumberZero {} => "active tool number = 0 (program T before the cycle)";
         ScaleNotAllowed {} => "scaling not allowed";
         ScaleDiffers {} => "different scaling in the plane";
-        ParameterWrong {} => "parameter programmed incorrectly (DAM, ENC)";
+        ParameterWrong {} => "parameter programmed incorrectly (DAM, ENC, _TOL, _TOLM)";
         ReferencePlaneWrong {} => "reference plane defined incorrectly (RTP, RFP, DP/DPR)";
         NoSpindleDirection {} => "no spindle direction programmed (SDIR/SDR 3 or 4, M3/M4 before CYCLE840)";
         HoleCountZero {} => "number of holes is zero (NUM of HOLES1/HOLES2)";
@@ -981,6 +993,9 @@ text_table! {
         SwivelDataNoName {} => "no name assigned to the swivel data record";
         CircleRadiusTooSmall {} => "circle radius too small (_PRAD)";
         BlankWrong {} => "blank dimension programmed incorrectly (_AP1/_AP2 not larger than the spigot)";
+        FiveAxisNotSetUp {} => "5-axis transformation not set up (TRAORI)";
+        SecondFiveAxisNotSetUp {} => "second 5-axis transformation not set up (TRAORI(2))";
+        SplineNotSetUp {} => "option spline interpolation not set (B spline)";
         FinishedDiameterTooSmall {} => "finished part diameter too small (under 3 mm)";
         ToolWidthWrong {} => "tool width defined incorrectly (grooving tool wider than the groove, or no width)";
         GrooveFormWrong {} => "groove form defined incorrectly";
@@ -1674,7 +1689,7 @@ pub const CATALOG: &[CatalogEntry] = &[
     CatalogEntry {
         code: 61019,
         title: "parameter wrong",
-        when: "CYCLE83 DAM under -1 (line 1824), CYCLE840 ENC other than 0, 1, 11, 20 (table 12213: 参数错误编程)",
+        when: "CYCLE83 DAM under -1 (line 1824), CYCLE840 ENC other than 0, 1, 11, 20 (table 12213: 参数错误编程); CYCLE832 _TOL negative or above 10 mm, a _TOLM digit outside its values (the document names no alarm; see docs/SIEMENS-MILL.md)",
     },
     CatalogEntry {
         code: 61101,
@@ -1740,6 +1755,21 @@ pub const CATALOG: &[CatalogEntry] = &[
         code: 61180,
         title: "no swivel data record",
         when: "SINUMERIK CYCLE800 that would swivel: this board has no swivel kinematics, so no swivel data records (lines 9197, 12241: 没有给回转数据组分配名称); CYCLE800() and _TC=\"0\" deselect and are accepted",
+    },
+    CatalogEntry {
+        code: 61191,
+        title: "5-axis transformation not set up",
+        when: "SINUMERIK CYCLE832 _TOLM tens digit 1 (TRAORI): this board has no 5-axis transformation (lines 9794, 12252: 5轴转换没有设置)",
+    },
+    CatalogEntry {
+        code: 61192,
+        title: "second 5-axis transformation not set up",
+        when: "SINUMERIK CYCLE832 _TOLM tens digit 2 (TRAORI(2)) (lines 9795, 12253: 第二个5轴转换没有设置)",
+    },
+    CatalogEntry {
+        code: 61194,
+        title: "option spline interpolation not set",
+        when: "SINUMERIK CYCLE832 _TOLM hundreds digit 3 (B spline): this board has no spline interpolation (lines 9797, 12255: 选项样条插补没有设置)",
     },
     CatalogEntry {
         code: 61213,
@@ -2028,6 +2058,9 @@ mod tests {
             SiemensCycle(CycleAlarm::SwivelDataNoName),
             SiemensCycle(CycleAlarm::CircleRadiusTooSmall),
             SiemensCycle(CycleAlarm::BlankWrong),
+            SiemensCycle(CycleAlarm::FiveAxisNotSetUp),
+            SiemensCycle(CycleAlarm::SecondFiveAxisNotSetUp),
+            SiemensCycle(CycleAlarm::SplineNotSetUp),
             SiemensCycle(CycleAlarm::FinishedDiameterTooSmall),
             SiemensCycle(CycleAlarm::ToolWidthWrong),
             SiemensCycle(CycleAlarm::GrooveFormWrong),

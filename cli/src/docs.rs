@@ -534,6 +534,9 @@ pub const PROVEN_ELSEWHERE: &[(u16, &str)] = &[
         "interp-siemens cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
     ),
     (61180, "host-tests siemens_thread_mill.rs cycle800_swivels_raise_61180_and_deselect_is_accepted"),
+    (61191, "host-tests siemens_hsc.rs alarms_on_the_cycles_line_and_nothing_changes"),
+    (61192, "host-tests siemens_hsc.rs alarms_on_the_cycles_line_and_nothing_changes"),
+    (61194, "host-tests siemens_hsc.rs alarms_on_the_cycles_line_and_nothing_changes"),
     (
         61601,
         "interp-siemens cycles::tests::undercut.rs undercut_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",

@@ -116,6 +116,10 @@ impl<X: Executor> Engine for CallEngine<'_, '_, '_, X> {
         }
     }
 
+    fn emit(&mut self, action: crate::canon::Action) -> Result<(), AlarmKind> {
+        self.ctx.out.emit(action)
+    }
+
     fn mill(&mut self, path: mill_paths::MillGen, cmd: &Command, st: &mut State) -> Result<(), AlarmKind> {
         let run = super::mill::MillRun::new(path, st);
         start_cycle(Emitter::for_block(st, cmd.line), Gen::Mill(run), self.ctx.out).map(|_| ())

@@ -225,6 +225,7 @@ pub fn start(
         "CYCLE98" => thread::cycle98(&p, cmd, st, ctx),
         "CYCLE800" => mill::cycle800(&p).map_err(AlarmKind::from),
         "CYCLE90" => mill::thread::cycle90(&p, cmd, st, ctx),
+        "CYCLE832" => mill::cycle832(&p, st, ctx),
         "POCKET1" => mill::pocket::pocket12(false, &p, cmd, st, ctx),
         "POCKET2" => mill::pocket::pocket12(true, &p, cmd, st, ctx),
         #[cfg(feature = "mill-face")]

@@ -26,9 +26,9 @@
 
 mod settings;
 
-pub(super) use settings::cycle800;
 #[cfg(feature = "mill-face")]
 pub(super) mod face;
+pub(super) use settings::{cycle800, cycle832};
 pub(super) mod pocket;
 pub(super) mod thread;
 
