@@ -34,6 +34,7 @@ pub mod infeed;
 pub mod plan;
 pub mod pocket;
 pub mod rot;
+pub mod slot;
 
 pub use canon::alarm::CycleAlarm;
 pub use contour::{Contour, Elem, NoContour};
@@ -107,6 +108,8 @@ pub enum MillGen {
     Plan(plan::Plan),
     /// A rectangular or circular pocket ([`pocket::Pocket`]: POCKET1, POCKET2).
     Pocket(pocket::Pocket),
+    /// Slots on a circle ([`slot::Slots`]: LONGHOLE, SLOT1, SLOT2).
+    Slots(slot::Slots),
 }
 
 impl MillGen {
@@ -121,6 +124,7 @@ impl MillGen {
         match self {
             MillGen::Plan(p) => Ok(p.next()),
             MillGen::Pocket(p) => Ok(p.next()),
+            MillGen::Slots(p) => Ok(p.next()),
         }
     }
 }

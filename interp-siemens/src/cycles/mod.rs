@@ -224,6 +224,9 @@ pub fn start(
         "CYCLE97" => thread::cycle97(&p, cmd, st, ctx),
         "CYCLE98" => thread::cycle98(&p, cmd, st, ctx),
         "CYCLE800" => mill::cycle800(&p).map_err(AlarmKind::from),
+        "LONGHOLE" => mill::slot::slots(mill::slot::Kind::Longhole, &p, cmd, st, ctx),
+        "SLOT1" => mill::slot::slots(mill::slot::Kind::Slot1, &p, cmd, st, ctx),
+        "SLOT2" => mill::slot::slots(mill::slot::Kind::Slot2, &p, cmd, st, ctx),
         "POCKET1" => mill::pocket::pocket12(false, &p, cmd, st, ctx),
         "POCKET2" => mill::pocket::pocket12(true, &p, cmd, st, ctx),
         // A drilling pattern is run by the driver (positions, then the MCALL at

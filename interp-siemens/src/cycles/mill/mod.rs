@@ -28,6 +28,7 @@ mod settings;
 
 pub(super) use settings::cycle800;
 pub(super) mod pocket;
+pub(super) mod slot;
 
 use super::Params;
 use interp_core::MachineConfig;

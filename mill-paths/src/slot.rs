@@ -1,0 +1,347 @@
+//! Slots on a circle (SINUMERIK LONGHOLE, SLOT1, SLOT2, seed 001 lines
+//! 3774-4419): one generator for the three. NUM slots lie on a circle about
+//! `centre` of radius `rad`, slot k at STA1 + k·INDA degrees. A slot is an
+//! *axis* — the path of the centres of its two end caps, A to B — widened by
+//! WID/2 on either side:
+//! - LONGHOLE, SLOT1: a straight axis along the radius, its middle on the circle,
+//!   `e` either side of it (LENG − WID over two; LONGHOLE's width is the cutter's);
+//! - SLOT2: an arc of the circle itself, AFSL degrees from the slot's angle.
+//!
+//! The tool centre runs on *rings* about the axis: a ring of offset ρ is the
+//! axis widened by ρ (two sides and two half-circle caps, cut as quarter arcs).
+//! Per depth level: the infeed at A (vertical, or oscillating along the axis at
+//! most `_STA2` steep), the axis A → B, the rings from the inside out (each
+//! reached from the last along the axis beyond B), back to B and along the axis
+//! to A. A slot whose roughing offset is 0 (the width is the cutter's:
+//! LONGHOLE, or a FAL that leaves no room, line 4073) is cut as LONGHOLE's
+//! oscillation: the infeed alternately at either end, the axis traversed between
+//! (lines 3815-3817, 4391). Each slot is entered at its end nearer the tool
+//! (LONGHOLE's shortest path, lines 3812-3818); moves of zero length are left out.
+
+use crate::infeed::{Levels, parts};
+use crate::rot::round;
+use crate::{Move, P3};
+
+/// What a slot call cuts (nm, degrees).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SlotSpec {
+    /// Centre of the circle (CPA, CPO) and its radius (RAD).
+    pub centre: (i64, i64),
+    /// Radius of the circle.
+    pub rad: i64,
+    /// Angle of the first slot (STA1) and from slot to slot (INDA, resolved).
+    pub sta: f64,
+    /// Increment angle.
+    pub inda: f64,
+    /// Number of slots (≥ 1).
+    pub num: u32,
+    /// SLOT2: the axis is an arc of the circle over `afsl` degrees; else a
+    /// straight radial axis of half length `e`.
+    pub arc: bool,
+    /// Half length of a straight axis (nm).
+    pub e: i64,
+    /// Angle of an arc axis (AFSL, degrees).
+    pub afsl: f64,
+    /// Tool-centre offset of the outermost roughing ring (WID/2 − r − FAL), and
+    /// of the finishing ring (WID/2 − r); 0: the LONGHOLE oscillation.
+    pub rho: i64,
+    /// Finishing ring offset.
+    pub rho_f: i64,
+    /// Largest step between rings.
+    pub step: i64,
+    /// Retract plane; RFP + SDIS.
+    pub rtp: i64,
+    /// RFP + SDIS.
+    pub safe: i64,
+    /// Tool position at the call (the nearest end of the first slot).
+    pub here: P3,
+    /// Roughing levels (`to`: the rough floor, also when `count` is 0).
+    pub rough: Levels,
+    /// Finishing levels (`count` 0: no finishing).
+    pub finish: Levels,
+    /// FFD, FFP1, FFP2, and `_FFCP` (0: slot to slot with G0 in a straight line).
+    pub feeds: [i64; 4],
+    /// Finishing speed (0: the speed in force), and the call's (set back).
+    pub ssf: u32,
+    /// The call's spindle speed.
+    pub rpm: u32,
+    /// Rings clockwise (G2).
+    pub cw: bool,
+    /// Insertion (VARI tens): 0 vertical G0 down to the floor already cut, then
+    /// G1; 1 vertical G1 from where the tool is; 3 oscillating.
+    pub insert: u8,
+    /// tan of the largest insertion angle `_STA2` (oscillation).
+    pub tan2: f64,
+    /// Finishing cuts the whole floor at its last level (a floor allowance
+    /// `_FALD` was left); otherwise only the wall ring.
+    pub floor: bool,
+}
+
+/// A slot's axis in the plane (nm as f64): ends, unit tangents there in the
+/// A → B sense, and for an arc axis its direction (G2) from A to B.
+#[derive(Clone, Copy)]
+struct Geo {
+    a: [f64; 2],
+    b: [f64; 2],
+    ta: [f64; 2],
+    tb: [f64; 2],
+    cw: Option<bool>,
+}
+
+/// The slots generator.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Slots {
+    s: SlotSpec,
+    /// The slot being cut, and whether it is entered at B (nearer the tool).
+    slot: u32,
+    flip: bool,
+    /// Stage within the slot (see [`Slots::step`]), level and element.
+    stage: u8,
+    level: u32,
+    el: u32,
+    /// The last point handed out.
+    last: P3,
+}
+
+fn add(p: [f64; 2], k: f64, v: [f64; 2]) -> [f64; 2] {
+    [p[0] + k * v[0], p[1] + k * v[1]]
+}
+
+/// `v` turned 90° counterclockwise.
+fn left(v: [f64; 2]) -> [f64; 2] {
+    [-v[1], v[0]]
+}
+
+fn dir(deg: f64) -> [f64; 2] {
+    let (s, c) = libm::sincos(deg.to_radians());
+    [c, s]
+}
+
+impl Slots {
+    /// The generator of `s`.
+    pub fn new(s: SlotSpec) -> Self {
+        Slots { s, slot: 0, flip: false, stage: 0, level: 1, el: 0, last: s.here }
+    }
+
+    /// The axis of slot `k` (entered at B when `flip`: the ends swapped).
+    fn geo(&self, k: u32, flip: bool) -> Geo {
+        let s = &self.s;
+        let c = [s.centre.0 as f64, s.centre.1 as f64];
+        let rad = s.rad as f64;
+        let th = s.sta + f64::from(k) * s.inda;
+        let g = if s.arc {
+            let (ua, ub) = (dir(th), dir(th + s.afsl));
+            Geo { a: add(c, rad, ua), b: add(c, rad, ub), ta: left(ua), tb: left(ub), cw: Some(false) }
+        } else {
+            let u = dir(th);
+            let m = add(c, rad, u);
+            let e = s.e as f64;
+            Geo { a: add(m, -e, u), b: add(m, e, u), ta: u, tb: u, cw: None }
+        };
+        if flip {
+            let neg = |v: [f64; 2]| [-v[0], -v[1]];
+            Geo { a: g.b, b: g.a, ta: neg(g.tb), tb: neg(g.ta), cw: g.cw.map(|w| !w) }
+        } else {
+            g
+        }
+    }
+
+    fn pt(p: [f64; 2], d: i64) -> P3 {
+        P3::new(round(p[0]), round(p[1]), d)
+    }
+
+    /// Along the axis to `to` (B when `fwd`, else A) at depth `d`: a line, or an
+    /// arc about the circle's centre.
+    fn along(&self, g: &Geo, fwd: bool, d: i64, feed: i64) -> Move {
+        let to = Self::pt(if fwd { g.b } else { g.a }, d);
+        match g.cw {
+            None => Move::Line { to, feed },
+            Some(cw) => Move::Arc { to, centre: self.s.centre, cw: cw != !fwd, feed },
+        }
+    }
+
+    /// A quarter cap or a side of ring `rho` to `to` about `c` (`None`: a line).
+    fn ring_el(to: [f64; 2], c: Option<(i64, i64)>, cw: bool, d: i64, feed: i64) -> Move {
+        let to = Self::pt(to, d);
+        match c {
+            None => Move::Line { to, feed },
+            Some(centre) => Move::Arc { to, centre, cw, feed },
+        }
+    }
+
+    /// Element `el` of level `j` of the roughing (`finish` false) or finishing
+    /// pass; `None` past the level's last.
+    fn level_move(&self, finish: bool, j: u32, el: u32) -> Option<Move> {
+        let s = &self.s;
+        let g = self.geo(self.slot, self.flip);
+        let (levels, rho, feed) = if finish { (s.finish, s.rho_f, s.feeds[2]) } else { (s.rough, s.rho, s.feeds[1]) };
+        let depth = levels.level(j);
+        let cur = if j == 1 { s.safe } else { levels.level(j - 1) };
+        let sign = if s.rough.to < s.safe { -1 } else { 1 };
+        let deeper = |x: i64, y: i64| if (x - y) * sign > 0 { x } else { y };
+        let shallower = |x: i64, y: i64| if (x - y) * sign > 0 { y } else { x };
+        // The floor already cut under the plunge point: down to it at G0.
+        let floor = match (s.insert, finish) {
+            (1, _) => cur,
+            (_, true) => s.rough.to,
+            _ => levels.level(j - 1),
+        };
+        let f = deeper(cur, shallower(floor, depth));
+        let ffd = s.feeds[0];
+        if rho <= 0 {
+            // LONGHOLE: the infeed at the end reached, then across to the other.
+            let at_a = j % 2 == 1;
+            let e = if at_a { g.a } else { g.b };
+            return match el {
+                0 => Some(Move::Rapid(Self::pt(e, f))),
+                1 => Some(Move::Line { to: Self::pt(e, depth), feed: ffd }),
+                2 => Some(self.along(&g, at_a, depth, feed)),
+                _ => None,
+            };
+        }
+        if el == 0 {
+            return Some(Move::Rapid(Self::pt(g.a, f)));
+        }
+        // Oscillating insertion (roughing): 2m strokes along the axis from A,
+        // back at A at the level, each at most `_STA2` steep.
+        let len = match s.arc {
+            true => s.rad as f64 * s.afsl.to_radians(),
+            false => 2.0 * s.e as f64,
+        };
+        let strokes = if s.insert == 3 && !finish && len > 0.0 && s.tan2 > 0.0 {
+            let m = libm::ceil((depth - f).unsigned_abs() as f64 / (2.0 * len * s.tan2));
+            2 * (m.clamp(1.0, 1e6) as u32)
+        } else {
+            1
+        };
+        let el = el - 1;
+        if el < strokes {
+            if strokes == 1 {
+                return Some(Move::Line { to: Self::pt(g.a, depth), feed: ffd });
+            }
+            let d = f + round((depth - f) as f64 * f64::from(el + 1) / f64::from(strokes));
+            return Some(self.along(&g, el % 2 == 0, d, ffd));
+        }
+        let el = el - strokes;
+        if el == 0 {
+            return Some(self.along(&g, true, depth, feed));
+        }
+        // Rings lo..=n of offsets rho·i/n, seven moves each.
+        let n = parts(rho, s.step);
+        let all = !finish || (s.floor && j == levels.count);
+        let lo = if all { 1 } else { n };
+        let rings = n - lo + 1;
+        let el = el - 1;
+        if el < rings.saturating_mul(7) {
+            let i = lo + el / 7;
+            let r = (rho as f64) * f64::from(i) / f64::from(n);
+            let sg = if s.cw { -1.0 } else { 1.0 };
+            let (na, nb) = (left(g.ta), left(g.tb));
+            let (ca, cb) = ((round(g.a[0]), round(g.a[1])), (round(g.b[0]), round(g.b[1])));
+            let side = |fwd: bool| g.cw.map(|w| (s.centre, w != !fwd));
+            let (to, c, cw) = match el % 7 {
+                0 => (add(g.b, r, g.tb), None, false),
+                1 => (add(g.b, sg * r, nb), Some(cb), s.cw),
+                2 => {
+                    let sd = side(false);
+                    (add(g.a, sg * r, na), sd.map(|x| x.0), sd.is_some_and(|x| x.1))
+                }
+                3 => (add(g.a, -r, g.ta), Some(ca), s.cw),
+                4 => (add(g.a, -sg * r, na), Some(ca), s.cw),
+                5 => {
+                    let sd = side(true);
+                    (add(g.b, -sg * r, nb), sd.map(|x| x.0), sd.is_some_and(|x| x.1))
+                }
+                _ => (add(g.b, r, g.tb), Some(cb), s.cw),
+            };
+            return Some(Self::ring_el(to, c, cw, depth, feed));
+        }
+        match el - rings.saturating_mul(7) {
+            0 => Some(Move::Line { to: Self::pt(g.b, depth), feed }),
+            1 => Some(self.along(&g, false, depth, feed)),
+            _ => None,
+        }
+    }
+
+    /// The move at the cursor (`Some(None)`: nothing here), and the cursor on.
+    /// Stages per slot: 0 up to RTP where the tool is, 1 over to the slot's
+    /// nearer end at RTP, 2 down to RFP + SDIS, 3 roughing, 4 up to RFP + SDIS,
+    /// 5 the finishing speed, 6 over the slot's entry at RFP + SDIS, 7 finishing,
+    /// 8 up to RTP, 9 the call's speed back before the next slot's roughing.
+    fn step(&mut self) -> Option<Option<Move>> {
+        let s = self.s;
+        if self.slot >= s.num {
+            return None;
+        }
+        let here = self.last;
+        let speeds = s.ssf > 0 && s.finish.count > 0;
+        let m = match self.stage {
+            0 => Some(Move::Rapid(here.at(s.rtp))),
+            1 => {
+                let h = [here.a as f64, here.o as f64];
+                let dist = |p: [f64; 2]| libm::hypot(p[0] - h[0], p[1] - h[1]);
+                let g = self.geo(self.slot, false);
+                self.flip = dist(g.b) < dist(g.a);
+                let a = Self::pt(self.geo(self.slot, self.flip).a, s.rtp);
+                Some(if self.slot > 0 && s.feeds[3] > 0 {
+                    // SLOT2 VARI 1x: along the circle at _FFCP, the shorter way.
+                    let ang = |p: P3| libm::atan2((p.o - s.centre.1) as f64, (p.a - s.centre.0) as f64);
+                    let mut d = ang(a) - ang(here);
+                    if d > core::f64::consts::PI {
+                        d -= core::f64::consts::TAU;
+                    } else if d < -core::f64::consts::PI {
+                        d += core::f64::consts::TAU;
+                    }
+                    Move::Arc { to: a, centre: s.centre, cw: d < 0.0, feed: s.feeds[3] }
+                } else {
+                    Move::Rapid(a)
+                })
+            }
+            2 | 6 => Some(Move::Rapid(Self::pt(self.geo(self.slot, self.flip).a, s.safe))),
+            3 | 7 => {
+                let finish = self.stage == 7;
+                let levels = if finish { s.finish } else { s.rough };
+                if self.level <= levels.count {
+                    let m = self.level_move(finish, self.level, self.el);
+                    self.el += 1;
+                    if m.is_none() {
+                        (self.level, self.el) = (self.level + 1, 0);
+                    }
+                    return Some(m);
+                }
+                (self.level, self.el) = (1, 0);
+                None
+            }
+            4 => Some(Move::Rapid(here.at(s.safe))),
+            5 if speeds => Some(Move::Speed(s.ssf)),
+            8 => Some(Move::Rapid(here.at(s.rtp))),
+            9 if speeds && s.rough.count > 0 && self.slot + 1 < s.num => Some(Move::Speed(s.rpm)),
+            _ => None,
+        };
+        if self.stage >= 9 {
+            (self.slot, self.stage) = (self.slot + 1, 0);
+        } else {
+            self.stage += 1;
+        }
+        Some(m)
+    }
+}
+
+impl Iterator for Slots {
+    type Item = Move;
+
+    /// The next move, `None` when the last slot is done.
+    fn next(&mut self) -> Option<Move> {
+        loop {
+            let Some(m) = self.step()? else { continue };
+            let to = match m {
+                Move::Rapid(p) | Move::Line { to: p, .. } | Move::Arc { to: p, .. } => p,
+                _ => return Some(m),
+            };
+            if to != self.last {
+                self.last = to;
+                return Some(m);
+            }
+        }
+    }
+}
