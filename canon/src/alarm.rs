@@ -1999,6 +1999,9 @@ mod tests {
             SiemensCycle(CycleAlarm::ContourDirection),
             SiemensCycle(CycleAlarm::AxisNotPresent),
             SiemensCycle(CycleAlarm::WrongSpindleDirection),
+            SiemensCycle(CycleAlarm::SlotContourViolated),
+            SiemensCycle(CycleAlarm::InsertionAngleZero),
+            SiemensCycle(CycleAlarm::CutterRadiusTooSmall),
         ]
     };
 

@@ -156,7 +156,7 @@ impl Slots {
         let to = Self::pt(if fwd { g.b } else { g.a }, d);
         match g.cw {
             None => Move::Line { to, feed },
-            Some(cw) => Move::Arc { to, centre: self.s.centre, cw: cw != !fwd, feed },
+            Some(cw) => Move::Arc { to, centre: self.s.centre, cw: cw == fwd, feed },
         }
     }
 
@@ -220,7 +220,7 @@ impl Slots {
                 return Some(Move::Line { to: Self::pt(g.a, depth), feed: ffd });
             }
             let d = f + round((depth - f) as f64 * f64::from(el + 1) / f64::from(strokes));
-            return Some(self.along(&g, el % 2 == 0, d, ffd));
+            return Some(self.along(&g, el.is_multiple_of(2), d, ffd));
         }
         let el = el - strokes;
         if el == 0 {
@@ -238,7 +238,7 @@ impl Slots {
             let sg = if s.cw { -1.0 } else { 1.0 };
             let (na, nb) = (left(g.ta), left(g.tb));
             let (ca, cb) = ((round(g.a[0]), round(g.a[1])), (round(g.b[0]), round(g.b[1])));
-            let side = |fwd: bool| g.cw.map(|w| (s.centre, w != !fwd));
+            let side = |fwd: bool| g.cw.map(|w| (s.centre, w == fwd));
             let (to, c, cw) = match el % 7 {
                 0 => (add(g.b, r, g.tb), None, false),
                 1 => (add(g.b, sg * r, nb), Some(cb), s.cw),
@@ -342,6 +342,71 @@ impl Iterator for Slots {
                 self.last = to;
                 return Some(m);
             }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::vec::Vec;
+
+    fn spec(arc: bool, rho: i64) -> SlotSpec {
+        SlotSpec {
+            centre: (0, 0),
+            rad: 30_000_000,
+            sta: 0.0,
+            inda: 90.0,
+            num: 2,
+            arc,
+            e: 10_000_000,
+            afsl: 60.0,
+            rho,
+            rho_f: rho + 500_000,
+            step: 8_000_000,
+            rtp: 5_000_000,
+            safe: 1_000_000,
+            here: P3::new(0, 0, 20_000_000),
+            rough: Levels::new(1_000_000, -9_000_000, 4_000_000),
+            finish: Levels::new(1_000_000, -10_000_000, 0),
+            feeds: [100, 200, 300, 0],
+            ssf: 900,
+            rpm: 600,
+            cw: false,
+            insert: 1,
+            tan2: 0.1,
+            floor: false,
+        }
+    }
+
+    fn moves(s: SlotSpec) -> Vec<Move> {
+        let mut g = Slots::new(s);
+        core::iter::from_fn(|| g.next()).collect()
+    }
+
+    /// The generator is pure, and every arc's end lies at its start's distance
+    /// from its centre (caps about the ends, sides about the circle's centre).
+    #[test]
+    fn arcs_are_round_and_runs_agree() {
+        for (arc, rho) in [(false, 2_000_000), (true, 2_000_000), (true, 0), (false, 0)] {
+            let s = spec(arc, rho);
+            let m = moves(s);
+            assert_eq!(m, moves(s));
+            let mut at = s.here;
+            for mv in &m {
+                match *mv {
+                    Move::Arc { to, centre, .. } => {
+                        let r = |p: P3| libm::hypot((p.a - centre.0) as f64, (p.o - centre.1) as f64);
+                        assert!((r(at) - r(to)).abs() < 2.0, "{at:?} {mv:?}");
+                        at = to;
+                    }
+                    Move::Rapid(p) | Move::Line { to: p, .. } => at = p,
+                    _ => {}
+                }
+            }
+            assert_eq!(at.d, s.rtp, "ends at RTP");
+            // The finishing speed and the call's back before the second slot.
+            assert_eq!(m.iter().filter(|x| matches!(x, Move::Speed(_))).count(), 3);
         }
     }
 }

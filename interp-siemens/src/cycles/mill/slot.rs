@@ -98,7 +98,7 @@ fn spec(kind: Kind, p: &Params<'_, '_>, st: &State, ctx: &mut dyn Engine) -> Res
         inda = 360.0 / f64::from(num);
     }
     let span = f64::from(num - 1) * libm::fabs(inda);
-    if !(span < 360.0) {
+    if span.is_nan() || span >= 360.0 {
         return Err(A::CircleElements);
     }
     // The slot: its width and the half length of its axis.
