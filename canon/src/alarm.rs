@@ -951,7 +951,7 @@ text_table! {
         ReferencePlaneWrong {} => "reference plane defined incorrectly (RTP, RFP, DP/DPR)";
         NoSpindleDirection {} => "no spindle direction programmed (SDIR/SDR 3 or 4, M3/M4 before CYCLE840)";
         HoleCountZero {} => "number of holes is zero (NUM of HOLES1/HOLES2)";
-        SlotContourViolated {} => "contour violation of slots/elongated holes (NUM, INDA, RAD, LENG/AFSL, WID)";
+        SlotContourViolated {} => "contour violation of slots/elongated holes";
         CutterRadiusTooLarge {} => "milling cutter radius too large for the contour to be machined";
         CircleElements {} => "number or spacing of circle elements (NUM and INDA do not fit on a full circle)";
         FirstDepthWrong {} => "first drilling depth defined incorrectly (FDEP/FDPR against the total depth)";
@@ -959,7 +959,7 @@ text_table! {
         ToolRadiusNegative {} => "tool radius negative";
         ToolRadiusNotPositive {} => "active tool radius <= 0";
         TechnologyWrong {} => "technology selection in parameter _TECHNO defined incorrectly";
-        InsertionAngleZero {} => "insertion angle = 0 for oscillating insertion (_STA2)";
+        InsertionAngleZero {} => "insertion angle = 0 for oscillating insertion";
         SwivelDataNoName {} => "no name assigned to the swivel data record";
         FinishedDiameterTooSmall {} => "finished part diameter too small (under 3 mm)";
         ToolWidthWrong {} => "tool width defined incorrectly (grooving tool wider than the groove, or no width)";
@@ -968,7 +968,7 @@ text_table! {
         ContourWrong {} => "contour programmed incorrectly";
         StartPointWrong {} => "starting point programmed incorrectly (inside the rectangle of the contour)";
         WrongEdgePosition {} => "wrong tool point direction programmed (cutting edge position 1-4 needed)";
-        FormWrong {} => "form defined incorrectly (CYCLE94: E or F, CYCLE96: A-D, slot LENG/WID)";
+        FormWrong {} => "form defined incorrectly (CYCLE94: E or F, CYCLE96: A-D)";
         RecutImpossible {} => "thread re-cutting not possible";
         UndercutPositionWrong {} => "undercut position (_VARI) defined incorrectly";
         FinishedContourWrong {} => "finished part contour description wrong (_NP1-_NP3)";
@@ -976,7 +976,7 @@ text_table! {
         IllegalInput {} => "illegal input (a _VARI digit of CYCLE950 out of its range)";
         ContourDirection {} => "wrong contour direction, cannot be computed";
         AxisNotPresent {} => "programmed axis does not exist (_AXN)";
-        CutterRadiusTooSmall {} => "milling cutter radius too small: material stays in the slot (SLOT2)";
+        CutterRadiusTooSmall {} => "milling cutter radius too small";
         WrongSpindleDirection {} => "spindle direction programmed incorrectly (SDR/SDAC of CYCLE840)";
         ContourPreparation { cause } => "error during contour preparation ({})", Str(preparation_error(cause));
     }
@@ -988,7 +988,7 @@ text_table! {
 pub fn cycle_message(code: u16) -> Option<&'static str> {
     Some(match code {
         62100 => "no drilling cycle active (program MCALL CYCLE81-89/840 before the pattern)",
-        62101 => "wrong milling direction, G3 generated (CDIR of SLOT2 not 2 or 3)",
+        62101 => "wrong milling direction, G3 generated",
         62105 => "number of columns or rows is zero (_NUM1/_NUM2 of CYCLE801)",
         _ => return None,
     })

@@ -88,6 +88,14 @@ struct Geo {
     cw: Option<bool>,
 }
 
+/// A ring's seven moves (counterclockwise; a G2 ring mirrors the normal): the
+/// end it is at (A 0, B 1), its point's offset along the tangent and the normal
+/// there in ring offsets, and how it gets there: 0 a line, 1 about the end (a
+/// quarter cap), 2 a side back along the axis, 3 a side forwards (an arc about
+/// the circle's centre on SLOT2, else a line).
+const RING: [(u8, i8, i8, u8); 7] =
+    [(1, 1, 0, 0), (1, 0, 1, 1), (0, 0, 1, 2), (0, -1, 0, 1), (0, 0, -1, 1), (1, 0, -1, 3), (1, 1, 0, 1)];
+
 /// The slots generator.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Slots {
@@ -160,15 +168,7 @@ impl Slots {
         }
     }
 
-    /// A quarter cap or a side of ring `rho` to `to` about `c` (`None`: a line).
-    fn ring_el(to: [f64; 2], c: Option<(i64, i64)>, cw: bool, d: i64, feed: i64) -> Move {
-        let to = Self::pt(to, d);
-        match c {
-            None => Move::Line { to, feed },
-            Some(centre) => Move::Arc { to, centre, cw, feed },
-        }
-    }
-
+    #[inline(never)]
     /// Element `el` of level `j` of the roughing (`finish` false) or finishing
     /// pass; `None` past the level's last.
     fn level_move(&self, finish: bool, j: u32, el: u32) -> Option<Move> {
@@ -235,26 +235,16 @@ impl Slots {
         if el < rings.saturating_mul(7) {
             let i = lo + el / 7;
             let r = (rho as f64) * f64::from(i) / f64::from(n);
-            let sg = if s.cw { -1.0 } else { 1.0 };
-            let (na, nb) = (left(g.ta), left(g.tb));
-            let (ca, cb) = ((round(g.a[0]), round(g.a[1])), (round(g.b[0]), round(g.b[1])));
-            let side = |fwd: bool| g.cw.map(|w| (s.centre, w == fwd));
-            let (to, c, cw) = match el % 7 {
-                0 => (add(g.b, r, g.tb), None, false),
-                1 => (add(g.b, sg * r, nb), Some(cb), s.cw),
-                2 => {
-                    let sd = side(false);
-                    (add(g.a, sg * r, na), sd.map(|x| x.0), sd.is_some_and(|x| x.1))
-                }
-                3 => (add(g.a, -r, g.ta), Some(ca), s.cw),
-                4 => (add(g.a, -sg * r, na), Some(ca), s.cw),
-                5 => {
-                    let sd = side(true);
-                    (add(g.b, -sg * r, nb), sd.map(|x| x.0), sd.is_some_and(|x| x.1))
-                }
-                _ => (add(g.b, r, g.tb), Some(cb), s.cw),
-            };
-            return Some(Self::ring_el(to, c, cw, depth, feed));
+            let (end, kt, kn, turn) = RING[(el % 7) as usize];
+            let (p, t) = if end == 1 { (g.b, g.tb) } else { (g.a, g.ta) };
+            let n = left(t);
+            let (kt, kn) = (f64::from(kt) * r, f64::from(kn) * if s.cw { -r } else { r });
+            let to = Self::pt([p[0] + kt * t[0] + kn * n[0], p[1] + kt * t[1] + kn * n[1]], depth);
+            return Some(match (turn, g.cw) {
+                (1, _) => Move::Arc { to, centre: (round(p[0]), round(p[1])), cw: s.cw, feed },
+                (2 | 3, Some(w)) => Move::Arc { to, centre: s.centre, cw: w == (turn == 3), feed },
+                _ => Move::Line { to, feed },
+            });
         }
         match el - rings.saturating_mul(7) {
             0 => Some(Move::Line { to: Self::pt(g.b, depth), feed }),
@@ -269,7 +259,7 @@ impl Slots {
     /// 5 the finishing speed, 6 over the slot's entry at RFP + SDIS, 7 finishing,
     /// 8 up to RTP, 9 the call's speed back before the next slot's roughing.
     fn step(&mut self) -> Option<Option<Move>> {
-        let s = self.s;
+        let s = &self.s;
         if self.slot >= s.num {
             return None;
         }
@@ -279,20 +269,19 @@ impl Slots {
             0 => Some(Move::Rapid(here.at(s.rtp))),
             1 => {
                 let h = [here.a as f64, here.o as f64];
-                let dist = |p: [f64; 2]| libm::hypot(p[0] - h[0], p[1] - h[1]);
+                let dist = |p: [f64; 2]| {
+                    let (x, y) = (p[0] - h[0], p[1] - h[1]);
+                    x * x + y * y
+                };
                 let g = self.geo(self.slot, false);
                 self.flip = dist(g.b) < dist(g.a);
                 let a = Self::pt(self.geo(self.slot, self.flip).a, s.rtp);
                 Some(if self.slot > 0 && s.feeds[3] > 0 {
-                    // SLOT2 VARI 1x: along the circle at _FFCP, the shorter way.
-                    let ang = |p: P3| libm::atan2((p.o - s.centre.1) as f64, (p.a - s.centre.0) as f64);
-                    let mut d = ang(a) - ang(here);
-                    if d > core::f64::consts::PI {
-                        d -= core::f64::consts::TAU;
-                    } else if d < -core::f64::consts::PI {
-                        d += core::f64::consts::TAU;
-                    }
-                    Move::Arc { to: a, centre: s.centre, cw: d < 0.0, feed: s.feeds[3] }
+                    // SLOT2 VARI 1x: along the circle at _FFCP, the shorter way
+                    // (clockwise when the target lies to the right).
+                    let v = |p: P3| [(p.a - s.centre.0) as f64, (p.o - s.centre.1) as f64];
+                    let (u, w) = (v(here), v(a));
+                    Move::Arc { to: a, centre: s.centre, cw: u[0] * w[1] < u[1] * w[0], feed: s.feeds[3] }
                 } else {
                     Move::Rapid(a)
                 })

@@ -116,22 +116,13 @@ fn spec(kind: Kind, p: &Params<'_, '_>, st: &State, ctx: &mut dyn Engine) -> Res
     }
     let e = (leng - wid) / 2;
     // Neighbours must not touch: the closest two slots are |INDA| or the rest
-    // of the circle apart.
-    let rest = 360.0 - span;
-    let gap = |deg: f64| 2.0 * rad as f64 * libm::sin(deg.to_radians() / 2.0);
-    let collide = if kind == Kind::Slot2 {
-        let mut g = rest - afsl;
-        if num > 1 {
-            g = g.min(libm::fabs(inda) - afsl);
-        }
-        g <= 0.0 || gap(g) < wid as f64 || rad < wid / 2
-    } else if num > 1 {
-        let a = libm::fabs(inda).min(rest);
-        let inner = (rad - e).max(0) as f64;
-        2.0 * inner * libm::sin(a.to_radians() / 2.0) < wid as f64
-    } else {
-        false
-    };
+    // of the circle apart — at their inner ends' centres (LONGHOLE, SLOT1), or
+    // between one's end and the next one's start (SLOT2), a chord of the circle.
+    let arc = kind == Kind::Slot2;
+    let a = if num > 1 { libm::fabs(inda).min(360.0 - span) } else { 360.0 };
+    let (r0, g) = if arc { (rad, a - afsl) } else { ((rad - e).max(0), a) };
+    let chord = 2.0 * r0 as f64 * libm::sin(g.to_radians() / 2.0);
+    let collide = g <= 0.0 || (g < 360.0 && chord < wid as f64) || (arc && rad < wid / 2);
     if collide {
         return Err(A::SlotContourViolated);
     }
@@ -161,8 +152,8 @@ fn spec(kind: Kind, p: &Params<'_, '_>, st: &State, ctx: &mut dyn Engine) -> Res
         sta: p.real(k + 3),
         inda,
         num,
-        arc: kind == Kind::Slot2,
-        e: if kind == Kind::Slot2 { 0 } else { e },
+        arc,
+        e: if arc { 0 } else { e },
         afsl,
         rho: (half - fal).max(0),
         rho_f: half,
