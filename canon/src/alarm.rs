@@ -1664,7 +1664,7 @@ pub const CATALOG: &[CatalogEntry] = &[
     CatalogEntry {
         code: 61104,
         title: "slot contour violation",
-        when: "LONGHOLE/SLOT1/SLOT2 whose slots touch or cut each other on the circle (neighbours closer than the width at their inner ends, SLOT2's gap between slots no wider than WID) or a SLOT2 over the circle's centre (table: 键槽轮廓损伤; lines 3902, 4188, 4370)",
+        when: "LONGHOLE/SLOT1/SLOT2 whose slots touch or cut each other on the circle (neighbours closer than the width at their inner ends, SLOT2's gap between slots no wider than WID) or a SLOT2 over the circle's centre (table: 键槽轮廓损伤; lines 3905, 4194, 4376, table 12217)",
     },
     CatalogEntry {
         code: 61105,

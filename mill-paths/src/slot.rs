@@ -13,9 +13,9 @@
 //! most `_STA2` steep), the axis A → B, the rings from the inside out (each
 //! reached from the last along the axis beyond B), back to B and along the axis
 //! to A. A slot whose roughing offset is 0 (the width is the cutter's:
-//! LONGHOLE, or a FAL that leaves no room, line 4073) is cut as LONGHOLE's
+//! LONGHOLE, or a FAL that leaves no room, lines 4107-4113) is cut as LONGHOLE's
 //! oscillation: the infeed alternately at either end, the axis traversed between
-//! (lines 3815-3817, 4391). Each slot is entered at its end nearer the tool
+//! (lines 3815-3817, 4382-4385). Each slot is entered at its end nearer the tool
 //! (LONGHOLE's shortest path, lines 3812-3818); moves of zero length are left out.
 
 use crate::infeed::{Levels, parts};

@@ -9,9 +9,9 @@
 //!   the point at RAD, its length along the radius; a cutter wider than WID is
 //!   61105 (line 4054), WID 0 or LENG < WID 61609. SLOT2: WID wide along the
 //!   circle over AFSL degrees between its end caps' centres; 61105 as SLOT1,
-//!   a cutter diameter under WID/2 61905 (except VARI x3, line 4306).
+//!   a cutter diameter under WID/2 61905 (except VARI x3, line 4356).
 //! - Slots that touch or cut each other (or a SLOT2 over the circle's centre) are
-//!   61104 (lines 3902, 4188, 4370).
+//!   61104 (lines 3905, 4194, 4376, table 12217).
 //! - VARI: units 0 complete, 1 roughing, 2 finishing (SLOT2 also 3: the wall
 //!   only, per MID); tens SLOT1 0 G0/1 G1 vertical, 3 oscillating at most
 //!   `_STA2` (0 is 61128), SLOT2 0 G0 straight / 1 along the circle at `_FFCP`.
@@ -129,8 +129,8 @@ fn spec(kind: Kind, p: &Params<'_, '_>, st: &State, ctx: &mut dyn Engine) -> Res
     let (ffd, ffp1) = (feed(p, k + 5, st)?, feed(p, k + 6, st)?);
     let ffp2 = if !lh && p.unsigned(20) > 0 { feed(p, 20, st)? } else { ffp1 };
     let ffcp = if kind == Kind::Slot2 && tens == 1 { feed(p, 22, st)? } else { 0 };
-    // Roughing leaves FAL on the wall (less if the width leaves no room, line
-    // 4073) and _FALD on the floor; finishing cuts the wall per MIDF.
+    // Roughing leaves FAL on the wall (less if the width leaves no room, lines
+    // 4107-4113) and _FALD on the floor; finishing cuts the wall per MIDF.
     let half = wid / 2 - r;
     let fal = if lh { 0 } else { p.unsigned(17) };
     let fald = if kind == Kind::Slot1 { p.unsigned(22).min((l.bottom - l.rfp).abs()) } else { 0 };
@@ -142,7 +142,7 @@ fn spec(kind: Kind, p: &Params<'_, '_>, st: &State, ctx: &mut dyn Engine) -> Res
         1 => none(l.bottom),
         3 => Levels::new(l.start, l.bottom, mid),
         _ if lh => none(l.bottom),
-        // The width is the cutter's: only the floor is finished (line 4154).
+        // The width is the cutter's: only the floor is finished (line 4153).
         _ if half == 0 => Levels { from: rough_to, to: l.bottom, count: 1 },
         _ => Levels::new(l.start, l.bottom, p.unsigned(19)),
     };
