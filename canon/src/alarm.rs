@@ -1754,7 +1754,7 @@ pub const CATALOG: &[CatalogEntry] = &[
     CatalogEntry {
         code: 61609,
         title: "form wrong",
-        when: "CYCLE94 FORM not E/F, CYCLE96 FORM not A-D (lines 10513, 11024: 形状错误定义); LONGHOLE LENG 0, SLOT1 WID 0 or LENG < WID (table 12276)",
+        when: "CYCLE94 FORM not E/F, CYCLE96 FORM not A-D (lines 10513, 11024: 形状错误定义); LONGHOLE LENG 0, SLOT1 WID 0 or LENG < WID (table 12269)",
     },
     CatalogEntry {
         code: 61612,

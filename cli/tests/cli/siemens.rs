@@ -220,6 +220,24 @@ fn cycle_messages_are_shown_with_their_line() {
     assert!(stdout(&o).ends_with("no alarms\n"), "{}", stdout(&o));
 }
 
+/// SLOT2 with a CDIR other than 2/3 (seed 001 table 12278): message 62101 "wrong
+/// milling direction, G3 generated" on the call's line, and the slots run G3.
+#[test]
+fn slot2_cdir_other_than_2_or_3_is_message_62101() {
+    let machine = concat!(env!("CARGO_MANIFEST_DIR"), "/../examples/machines/mill.toml");
+    let p = scratch(
+        "slot2_cdir.mpf",
+        "G17 G90 G0 X60 Y60 Z5 S600 M3\nT1 D1\nSLOT2(2, 0, 2, -5, , 3, 30, 15, 60, 60, 42, , 120, 100, 300, 6, 7, 0.5)\nM30\n",
+    );
+    let o = lathe(&["sim", &p, "--machine", machine, "--format", "jsonl"]);
+    assert_eq!(status(&o), 0, "{}", stderr(&o));
+    let want = "line 3: message 62101: wrong milling direction, G3 generated";
+    assert!(stderr(&o).lines().any(|l| l.ends_with(want)), "{}", stderr(&o));
+    let out = stdout(&o);
+    let arcs: Vec<&str> = out.lines().filter(|l| l.contains(r#""kind":"arc""#)).collect();
+    assert!(!arcs.is_empty() && arcs.iter().all(|l| l.contains(r#""cw":false"#)), "{out}");
+}
+
 /// On the machining centre in SINUMERIK mode T selects the tool and M6 changes
 /// it (as FANUC's M06): the change is an action of the M6 block.
 #[test]
