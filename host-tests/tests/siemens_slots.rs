@@ -454,3 +454,22 @@ fn alarms_of_the_slots_move_nothing() {
         assert_eq!(r.actions.len(), before.actions.len(), "{call} moved");
     }
 }
+
+/// SLOT1 VARI 0x (vertical insertion with G0): where the floor is already cut
+/// the tool drops to it at G0 and feeds only the rest — the finishing infeed
+/// goes G0 down to the rough floor (DP + _FALD) and at FFD to DP.
+#[test]
+fn slot1_g0_insertion_drops_to_the_cut_floor() {
+    let r = go(&format!(
+        "{HEAD}SLOT1(5, 0, 1, -12, , 1, 40, 16, 60, 40, 30, 0, 0, 100, 300, 6, 3, 0.5, 0, 0, 0, 0, 0.5)\nM30\n"
+    ));
+    let a = radial([60.0, 40.0], 30.0, 0.0, 40.0, 16.0).a;
+    let rapids: Vec<[f64; 3]> = r
+        .actions
+        .iter()
+        .filter_map(|c| if let Action::Rapid(m) = c.action { Some(mm3(&m.to.work)) } else { None })
+        .collect();
+    assert!(rapids.iter().any(|p| near(p[0], a[0]) && near(p[1], a[1]) && near(p[2], -11.5)), "{rapids:?}");
+    let p = plunges(&cuts(&r.actions), 100.0);
+    assert_eq!(p.iter().map(|x| x.1).collect::<Vec<_>>(), [levels(1.0, -11.5, 6.0), vec![-12.0]].concat());
+}

@@ -227,7 +227,7 @@ impl Slots {
             return Some(self.along(&g, true, depth, feed));
         }
         // Rings lo..=n of offsets rho·i/n, seven moves each.
-        let n = parts(rho, s.step);
+        let n = parts(rho, s.step).min(1 << 16);
         let all = !finish || (s.floor && j == levels.count);
         let lo = if all { 1 } else { n };
         let rings = n - lo + 1;
