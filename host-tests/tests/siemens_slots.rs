@@ -331,9 +331,18 @@ fn slot1_oscillating_insertion() {
 /// SLOT2: three circumferential slots (the document's example in G17): the
 /// roughing rings WID/2 − r − FAL from the slot's arc, the finish at WID/2 − r,
 /// the ends AFSL apart on the circle, each slot's start at STA1 + k·INDA.
+/// Started near a slot's far end (X75 Y100: B of the first slot) the slots are
+/// entered there, the axis run the other way: the same walls.
 #[test]
 fn slot2_circumferential_slots() {
-    let r = go(&format!("{HEAD}SLOT2(2, 0, 2, -23, , 3, 70, 15, 60, 60, 42, , 120, 100, 300, 6, 2, 0.5)\nM30\n"));
+    for start in ["X60 Y40", "X75 Y100"] {
+        slot2_from(start);
+    }
+}
+
+fn slot2_from(start: &str) {
+    let head = HEAD.replace("X60 Y40", start);
+    let r = go(&format!("{head}SLOT2(2, 0, 2, -23, , 3, 70, 15, 60, 60, 42, , 120, 100, 300, 6, 2, 0.5)\nM30\n"));
     let segs = cuts(&r.actions);
     let c = [60.0, 60.0];
     let axes: Vec<Axis> = (0..3).map(|k| circumferential(c, 42.0, 120.0 * f64::from(k), 70.0)).collect();
@@ -361,6 +370,9 @@ fn slot2_circumferential_slots() {
     for (q, _) in &p {
         assert!(axes.iter().any(|a| near(dist(*q, a.a), 0.0) || near(dist(*q, a.b), 0.0)), "{q:?}");
     }
+    // The first slot entered at its end nearer the start.
+    let first = if start == "X60 Y40" { axes[0].a } else { axes[0].b };
+    assert!(near(dist(p[0].0, first), 0.0), "{start}: {:?}", p[0]);
 }
 
 /// SLOT2 VARI 11 (roughing, slot to slot on the circle at _FFCP): the

@@ -174,7 +174,7 @@ impl Slots {
     fn level_move(&self, finish: bool, j: u32, el: u32) -> Option<Move> {
         let s = &self.s;
         let g = self.geo(self.slot, self.flip);
-        let (levels, rho, feed) = if finish { (s.finish, s.rho_f, s.feeds[2]) } else { (s.rough, s.rho, s.feeds[1]) };
+        let (levels, rho, feed) = if finish { (&s.finish, s.rho_f, s.feeds[2]) } else { (&s.rough, s.rho, s.feeds[1]) };
         let depth = levels.level(j);
         let cur = if j == 1 { s.safe } else { levels.level(j - 1) };
         let sign = if s.rough.to < s.safe { -1 } else { 1 };
@@ -289,8 +289,8 @@ impl Slots {
             2 | 6 => Some(Move::Rapid(Self::pt(self.geo(self.slot, self.flip).a, s.safe))),
             3 | 7 => {
                 let finish = self.stage == 7;
-                let levels = if finish { s.finish } else { s.rough };
-                if self.level <= levels.count {
+                let count = if finish { s.finish.count } else { s.rough.count };
+                if self.level <= count {
                     let m = self.level_move(finish, self.level, self.el);
                     self.el += 1;
                     if m.is_none() {
