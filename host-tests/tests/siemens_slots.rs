@@ -485,3 +485,45 @@ fn slot1_g0_insertion_drops_to_the_cut_floor() {
     let p = plunges(&cuts(&r.actions), 100.0);
     assert_eq!(p.iter().map(|x| x.1).collect::<Vec<_>>(), [levels(1.0, -11.5, 6.0), vec![-12.0]].concat());
 }
+
+/// Odd calls (negative, zero and huge values, every VARI/CDIR digit in a
+/// valid call, one to three parameters at a time) end in an alarm or a run,
+/// never a panic.
+#[test]
+fn odd_calls_never_panic() {
+    let mut seed = 0x2545_f491_4f6c_dd1d_u64;
+    let mut next = move |n: usize| {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed % n as u64) as usize
+    };
+    let odd = [
+        "0", "-3", "7.5", "15", "1e9", "0.001", "-90", "359.9", "400", "1e300", "-1", "1", "2", "3", "4", "10", "11",
+        "13", "21", "30", "31", "33", "99", "",
+    ];
+    let base: [&[&str]; 3] = [
+        &["5", "0", "1", "-10", "", "3", "30", "60", "40", "25", "10", "0", "100", "320", "4"],
+        &[
+            "5", "0", "1", "-10", "", "2", "30", "15", "60", "40", "25", "0", "90", "100", "300", "4", "2", "0.5",
+            "30", "3", "80", "900", "0.4", "5",
+        ],
+        &[
+            "5", "0", "1", "-10", "", "3", "40", "15", "60", "60", "42", "0", "120", "100", "300", "4", "2", "0.5",
+            "10", "3", "80", "900", "250",
+        ],
+    ];
+    let mut ran = 0;
+    for _ in 0..300 {
+        let k = next(3);
+        let mut args: Vec<&str> = base[k].to_vec();
+        for _ in 0..=next(3) {
+            let i = next(args.len());
+            args[i] = odd[next(odd.len())];
+        }
+        let name = ["LONGHOLE", "SLOT1", "SLOT2"][k];
+        let r = siemens(&format!("{HEAD}{name}({})\nM30\n", args.join(", ")));
+        ran += usize::from(r.alarms.is_empty());
+    }
+    assert!(ran > 30, "{ran} of 300 odd calls ran");
+}
