@@ -173,8 +173,11 @@ impl Slots {
     /// pass; `None` past the level's last.
     fn level_move(&self, finish: bool, j: u32, el: u32) -> Option<Move> {
         let s = &self.s;
-        let g = self.geo(self.slot, self.flip);
         let (levels, rho, feed) = if finish { (&s.finish, s.rho_f, s.feeds[2]) } else { (&s.rough, s.rho, s.feeds[1]) };
+        // LONGHOLE's path (no room for a ring): the infeed at the end reached,
+        // alternately A and B — on even levels the axis runs the other way.
+        let alt = rho <= 0;
+        let g = self.geo(self.slot, self.flip != (alt && j.is_multiple_of(2)));
         let depth = levels.level(j);
         let cur = if j == 1 { s.safe } else { levels.level(j - 1) };
         let sign = if s.rough.to < s.safe { -1 } else { 1 };
@@ -188,17 +191,6 @@ impl Slots {
         };
         let f = deeper(cur, shallower(floor, depth));
         let ffd = s.feeds[0];
-        if rho <= 0 {
-            // LONGHOLE: the infeed at the end reached, then across to the other.
-            let at_a = j % 2 == 1;
-            let e = if at_a { g.a } else { g.b };
-            return match el {
-                0 => Some(Move::Rapid(Self::pt(e, f))),
-                1 => Some(Move::Line { to: Self::pt(e, depth), feed: ffd }),
-                2 => Some(self.along(&g, at_a, depth, feed)),
-                _ => None,
-            };
-        }
         if el == 0 {
             return Some(Move::Rapid(Self::pt(g.a, f)));
         }
@@ -208,7 +200,7 @@ impl Slots {
             true => s.rad as f64 * s.afsl.to_radians(),
             false => 2.0 * s.e as f64,
         };
-        let strokes = if s.insert == 3 && !finish && len > 0.0 && s.tan2 > 0.0 {
+        let strokes = if s.insert == 3 && !finish && !alt && len > 0.0 && s.tan2 > 0.0 {
             let m = libm::ceil((depth - f).unsigned_abs() as f64 / (2.0 * len * s.tan2));
             2 * (m.clamp(1.0, 1e6) as u32)
         } else {
@@ -223,8 +215,8 @@ impl Slots {
             return Some(self.along(&g, el.is_multiple_of(2), d, ffd));
         }
         let el = el - strokes;
-        if el == 0 {
-            return Some(self.along(&g, true, depth, feed));
+        if el == 0 || alt {
+            return (el == 0).then(|| self.along(&g, true, depth, feed));
         }
         // Rings lo..=n of offsets rho·i/n, seven moves each.
         let n = parts(rho, s.step).min(1 << 16);
