@@ -102,7 +102,10 @@ fn spec(kind: Kind, p: &Params<'_, '_>, st: &State, ctx: &mut dyn Engine) -> Res
         return Err(A::CircleElements);
     }
     // The slot: its width and the half length of its axis.
-    let (leng, wid) = if lh { (p.unsigned(6), 2 * r) } else { (p.unsigned(6), p.unsigned(7)) };
+    // (SLOT2's 7th parameter is AFSL, an angle: not read as a length.)
+    let arc = kind == Kind::Slot2;
+    let leng = if arc { 0 } else { p.unsigned(6) };
+    let wid = if lh { 2 * r } else { p.unsigned(7) };
     let rad = p.unsigned(k + 2);
     let afsl = libm::fabs(p.real(6));
     match kind {
@@ -114,11 +117,10 @@ fn spec(kind: Kind, p: &Params<'_, '_>, st: &State, ctx: &mut dyn Engine) -> Res
     if kind == Kind::Slot2 && units != 3 && 4 * r < wid {
         return Err(A::CutterRadiusTooSmall);
     }
-    let e = (leng - wid) / 2;
+    let e = (leng - wid).max(0) / 2;
     // Neighbours must not touch: the closest two slots are |INDA| or the rest
     // of the circle apart — at their inner ends' centres (LONGHOLE, SLOT1), or
     // between one's end and the next one's start (SLOT2), a chord of the circle.
-    let arc = kind == Kind::Slot2;
     let a = if num > 1 { libm::fabs(inda).min(360.0 - span) } else { 360.0 };
     let (r0, g) = if arc { (rad, a - afsl) } else { ((rad - e).max(0), a) };
     let chord = 2.0 * r0 as f64 * libm::sin(g.to_radians() / 2.0);
@@ -153,7 +155,7 @@ fn spec(kind: Kind, p: &Params<'_, '_>, st: &State, ctx: &mut dyn Engine) -> Res
         inda,
         num,
         arc,
-        e: if arc { 0 } else { e },
+        e,
         afsl,
         rho: (half - fal).max(0),
         rho_f: half,
