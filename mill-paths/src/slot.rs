@@ -312,6 +312,7 @@ impl Iterator for Slots {
     type Item = Move;
 
     /// The next move, `None` when the last slot is done.
+    #[inline(never)]
     fn next(&mut self) -> Option<Move> {
         loop {
             let Some(m) = self.step()? else { continue };
