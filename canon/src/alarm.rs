@@ -804,6 +804,8 @@ pub enum CycleAlarm {
     NoSpindleDirection,
     /// 61103: SINUMERIK cycle alarm (seed 001 line 3107, table 5.3): number of holes is zero.
     HoleCountZero,
+    /// 61104: SINUMERIK cycle alarm (seed 001 table 5.3): contour violation of slots/elongated holes.
+    SlotContourViolated,
     /// 61105: SINUMERIK cycle alarm (seed 001 table 5.3): milling cutter radius too large.
     CutterRadiusTooLarge,
     /// 61106: SINUMERIK cycle alarm (seed 001 table 5.3): number or spacing of circle elements.
@@ -821,6 +823,8 @@ pub enum CycleAlarm {
     /// 61124: SINUMERIK cycle alarm (seed 001 table 5.3): infeed width not programmed
     /// (CYCLE71 `_MIDA` 0 with no tool to take it from).
     InfeedWidthMissing,
+    /// 61128: SINUMERIK cycle alarm (seed 001 table 5.3): insertion angle = 0 for oscillating insertion.
+    InsertionAngleZero,
     /// 61125: SINUMERIK cycle alarm (seed 001 table 5.3): _TECHNO defined incorrectly.
     TechnologyWrong,
     /// 61180: SINUMERIK cycle alarm (seed 001 lines 9197, 12241): no name assigned to
@@ -873,6 +877,8 @@ pub enum CycleAlarm {
     IllegalInput,
     /// 61721: SINUMERIK cycle alarm (seed 001 table 5.3): contour direction.
     ContourDirection,
+    /// 61905: SINUMERIK cycle alarm (seed 001 table 5.3): milling cutter radius too small (SLOT2).
+    CutterRadiusTooSmall,
     /// 61803: SINUMERIK cycle alarm (seed 001 table 5.3): programmed axis not present.
     AxisNotPresent,
     /// 61807: SINUMERIK cycle alarm (seed 001 table 5.3): spindle direction programmed incorrectly.
@@ -902,6 +908,7 @@ impl CycleAlarm {
             ReferencePlaneWrong => 61101,
             NoSpindleDirection => 61102,
             HoleCountZero => 61103,
+            SlotContourViolated => 61104,
             CutterRadiusTooLarge => 61105,
             CircleElements => 61106,
             FirstDepthWrong => 61107,
@@ -911,6 +918,7 @@ impl CycleAlarm {
             LengthOrWidthZero => 61118,
             InfeedWidthMissing => 61124,
             TechnologyWrong => 61125,
+            InsertionAngleZero => 61128,
             SwivelDataNoName => 61180,
             CircleRadiusTooSmall => 61213,
             BlankWrong => 61215,
@@ -934,6 +942,7 @@ impl CycleAlarm {
             IllegalInput => 61720,
             ContourDirection => 61721,
             AxisNotPresent => 61803,
+            CutterRadiusTooSmall => 61905,
             WrongSpindleDirection => 61807,
         }
     }
@@ -981,8 +990,9 @@ text_table! {
         ReferencePlaneWrong {} => "reference plane defined incorrectly (RTP, RFP, DP/DPR)";
         NoSpindleDirection {} => "no spindle direction programmed (SDIR/SDR 3 or 4, M3/M4 before CYCLE840)";
         HoleCountZero {} => "number of holes is zero (NUM of HOLES1/HOLES2)";
+        SlotContourViolated {} => "contour violation of slots/elongated holes";
         CutterRadiusTooLarge {} => "milling cutter radius too large for the contour to be machined";
-        CircleElements {} => "number or spacing of circle elements (NUM and INDA of HOLES2 do not fit on a full circle)";
+        CircleElements {} => "number or spacing of circle elements (NUM and INDA do not fit on a full circle)";
         FirstDepthWrong {} => "first drilling depth defined incorrectly (FDEP/FDPR against the total depth)";
         InfeedWidthTooLarge {} => "infeed width greater than the tool diameter (_MIDA)";
         ToolRadiusNegative {} => "tool radius negative";
@@ -990,6 +1000,7 @@ text_table! {
         LengthOrWidthZero {} => "length or width = 0 (_LENG, _WID)";
         InfeedWidthMissing {} => "infeed width not programmed (_MIDA)";
         TechnologyWrong {} => "technology selection in parameter _TECHNO defined incorrectly";
+        InsertionAngleZero {} => "insertion angle = 0 for oscillating insertion";
         SwivelDataNoName {} => "no name assigned to the swivel data record";
         CircleRadiusTooSmall {} => "circle radius too small (_PRAD)";
         BlankWrong {} => "blank dimension programmed incorrectly (_AP1/_AP2 not larger than the spigot)";
@@ -1012,6 +1023,7 @@ text_table! {
         IllegalInput {} => "illegal input (a _VARI digit of CYCLE950 out of its range)";
         ContourDirection {} => "wrong contour direction, cannot be computed";
         AxisNotPresent {} => "programmed axis does not exist (_AXN)";
+        CutterRadiusTooSmall {} => "milling cutter radius too small";
         WrongSpindleDirection {} => "spindle direction programmed incorrectly (SDR/SDAC of CYCLE840)";
         ContourPreparation { cause } => "error during contour preparation ({})", Str(preparation_error(cause));
     }
@@ -1707,6 +1719,11 @@ pub const CATALOG: &[CatalogEntry] = &[
         when: "HOLES1/HOLES2 NUM zero, negative or left out (line 3107, table 12216: 孔数为零)",
     },
     CatalogEntry {
+        code: 61104,
+        title: "slot contour violation",
+        when: "LONGHOLE/SLOT1/SLOT2 whose slots touch or cut each other on the circle (neighbours closer than the width at their inner ends, SLOT2's gap between slots no wider than WID) or a SLOT2 over the circle's centre (table: 键槽轮廓损伤; lines 3905, 4194, 4376, table 12217)",
+    },
+    CatalogEntry {
         code: 61105,
         title: "cutter radius too large",
         when: "SINUMERIK milling cycle whose cutter does not fit the slot, pocket, elongated hole or thread (table: 铣刀半径太大; lines 3743, 3862, 4054, 4519)",
@@ -1714,7 +1731,7 @@ pub const CATALOG: &[CatalogEntry] = &[
     CatalogEntry {
         code: 61106,
         title: "circle elements",
-        when: "HOLES2 NUM holes at INDA apart do not fit on a full circle: (NUM−1)·|INDA| ≥ 360° (table 12221: 圆弧单元个数或者间距)",
+        when: "HOLES2 NUM holes, LONGHOLE/SLOT1/SLOT2 NUM slots at INDA apart do not fit on a full circle: (NUM−1)·|INDA| ≥ 360°; slots also for NUM ≤ 0 (table 12221: 圆弧单元个数或者间距)",
     },
     CatalogEntry {
         code: 61107,
@@ -1750,6 +1767,11 @@ pub const CATALOG: &[CatalogEntry] = &[
         code: 61125,
         title: "_TECHNO wrong",
         when: "CYCLE84/CYCLE840 _TECHNO with a digit outside its values (table: 参数_TECHNO中工艺选择错误定义)",
+    },
+    CatalogEntry {
+        code: 61128,
+        title: "insertion angle 0",
+        when: "SLOT1 with oscillating insertion (VARI tens 3) and _STA2 = 0 (table: 在以摆动或者螺旋插入时再入角=0)",
     },
     CatalogEntry {
         code: 61180,
@@ -1824,7 +1846,7 @@ pub const CATALOG: &[CatalogEntry] = &[
     CatalogEntry {
         code: 61609,
         title: "form wrong",
-        when: "CYCLE94 FORM not E/F, CYCLE96 FORM not A-D (lines 10513, 11024: 形状错误定义)",
+        when: "CYCLE94 FORM not E/F, CYCLE96 FORM not A-D (lines 10513, 11024: 形状错误定义); LONGHOLE LENG 0, SLOT1 WID 0 or LENG < WID (table 12269)",
     },
     CatalogEntry {
         code: 61610,
@@ -1870,6 +1892,11 @@ pub const CATALOG: &[CatalogEntry] = &[
         code: 61807,
         title: "spindle direction wrong",
         when: "CYCLE840 SDR the direction the spindle turns into the hole (it must reverse), or SDAC other than 0/3/4/5 (table: 编程错误的主轴方向)",
+    },
+    CatalogEntry {
+        code: 61905,
+        title: "cutter radius too small",
+        when: "SLOT2 (not VARI x3) with a cutter diameter below half the slot width: material would stay in the slot (table: 铣刀半径太小)",
     },
 ];
 
@@ -2079,6 +2106,9 @@ mod tests {
             SiemensCycle(CycleAlarm::ContourDirection),
             SiemensCycle(CycleAlarm::AxisNotPresent),
             SiemensCycle(CycleAlarm::WrongSpindleDirection),
+            SiemensCycle(CycleAlarm::SlotContourViolated),
+            SiemensCycle(CycleAlarm::InsertionAngleZero),
+            SiemensCycle(CycleAlarm::CutterRadiusTooSmall),
         ]
     };
 

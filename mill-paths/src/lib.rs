@@ -36,6 +36,8 @@ pub mod infeed;
 pub mod plan;
 pub mod pocket;
 pub mod rot;
+#[cfg(feature = "slot")]
+pub mod slot;
 #[cfg(feature = "face")]
 pub mod spigot;
 pub mod thread;
@@ -120,6 +122,9 @@ pub enum MillGen {
     /// A rectangular or circular spigot ([`spigot::Spigot`]: CYCLE76, CYCLE77).
     #[cfg(feature = "face")]
     Spigot(spigot::Spigot),
+    /// Slots on a circle ([`slot::Slots`]: LONGHOLE, SLOT1, SLOT2).
+    #[cfg(feature = "slot")]
+    Slots(slot::Slots),
 }
 
 impl MillGen {
@@ -139,6 +144,8 @@ impl MillGen {
             MillGen::Face(p) => Ok(p.next()),
             #[cfg(feature = "face")]
             MillGen::Spigot(p) => Ok(p.next()),
+            #[cfg(feature = "slot")]
+            MillGen::Slots(p) => Ok(p.next()),
         }
     }
 }

@@ -226,6 +226,14 @@ pub fn start(
         "CYCLE800" => mill::cycle800(&p).map_err(AlarmKind::from),
         "CYCLE90" => mill::thread::cycle90(&p, cmd, st, ctx),
         "CYCLE832" => mill::cycle832(&p, st, ctx),
+        #[cfg(feature = "mill-slots")]
+        "LONGHOLE" => mill::slot::slots(mill::slot::Kind::Longhole, &p, cmd, st, ctx),
+        #[cfg(feature = "mill-slots")]
+        "SLOT1" => mill::slot::slots(mill::slot::Kind::Slot1, &p, cmd, st, ctx),
+        #[cfg(feature = "mill-slots")]
+        "SLOT2" => mill::slot::slots(mill::slot::Kind::Slot2, &p, cmd, st, ctx),
+        #[cfg(not(feature = "mill-slots"))]
+        "LONGHOLE" | "SLOT1" | "SLOT2" => Err(LEFT_OUT),
         "POCKET1" => mill::pocket::pocket12(false, &p, cmd, st, ctx),
         "POCKET2" => mill::pocket::pocket12(true, &p, cmd, st, ctx),
         #[cfg(feature = "mill-face")]
@@ -248,7 +256,7 @@ pub fn start(
 
 /// A milling cycle this board's build leaves out for flash (interp-siemens'
 /// features; docs/FIRMWARE-SIZES.md): alarm 4007, nothing moves.
-#[allow(dead_code)] // only in a build without one of the features
+#[cfg(not(all(feature = "mill-face", feature = "mill-slots")))]
 const LEFT_OUT: AlarmKind = AlarmKind::NotInThisBuild { what: "this milling cycle" };
 
 /// The turning cycles work in the ZX plane (G18, line 10113).

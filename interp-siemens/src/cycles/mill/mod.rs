@@ -30,6 +30,8 @@ mod settings;
 pub(super) mod face;
 pub(super) use settings::{cycle800, cycle832};
 pub(super) mod pocket;
+#[cfg(feature = "mill-slots")]
+pub(super) mod slot;
 pub(super) mod thread;
 
 use super::Params;
