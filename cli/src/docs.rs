@@ -611,6 +611,19 @@ pub const PROVEN_ELSEWHERE: &[(u16, &str)] = &[
         "interp-siemens cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
     ),
     (61905, "host-tests siemens_slots.rs alarms_of_the_slots_move_nothing"),
+    (
+        61011,
+        "interp-siemens cycles::tests::face scaling_alarms (no SINUMERIK program sets a scaling yet: the state is scaled directly)",
+    ),
+    (
+        61012,
+        "interp-siemens cycles::tests::face scaling_alarms (no SINUMERIK program sets a scaling yet: the state is scaled directly)",
+    ),
+    (61118, "host-tests siemens_face.rs alarms_move_nothing"),
+    (61124, "host-tests siemens_face.rs alarms_move_nothing"),
+    (61213, "host-tests siemens_face.rs alarms_move_nothing"),
+    (61215, "host-tests siemens_face.rs alarms_move_nothing"),
+    (61610, "host-tests siemens_face.rs alarms_move_nothing"),
 ];
 
 /// What this controller does where the manual says "报警" (alarm).
