@@ -805,10 +805,18 @@ pub enum CycleAlarm {
     CircleElements,
     /// 61107: SINUMERIK cycle alarm (seed 001 line 1803): first drilling depth defined incorrectly.
     FirstDepthWrong,
+    /// 61108: SINUMERIK cycle alarm (seed 001 table 5.3): values of _RAD1/_DP1 not allowed.
+    InsertionWrong,
+    /// 61109: SINUMERIK cycle alarm (seed 001 table 5.3): _CDIR defined incorrectly.
+    CdirWrong,
+    /// 61110: SINUMERIK cycle alarm (seed 001 table 5.3): floor allowance > depth infeed.
+    FloorAllowanceTooLarge,
     /// 61111: SINUMERIK cycle alarm (seed 001 table 5.3): infeed width > tool diameter.
     InfeedWidthTooLarge,
     /// 61112: SINUMERIK cycle alarm (seed 001 table 5.3): tool radius negative.
     ToolRadiusNegative,
+    /// 61113: SINUMERIK cycle alarm (seed 001 table 5.3): corner radius _CRAD too large.
+    CornerRadiusTooLarge,
     /// 61117: SINUMERIK cycle alarm (seed 001 table 5.3): active tool radius <= 0.
     ToolRadiusNotPositive,
     /// 61125: SINUMERIK cycle alarm (seed 001 table 5.3): _TECHNO defined incorrectly.
@@ -876,8 +884,12 @@ impl CycleAlarm {
             CutterRadiusTooLarge => 61105,
             CircleElements => 61106,
             FirstDepthWrong => 61107,
+            InsertionWrong => 61108,
+            CdirWrong => 61109,
+            FloorAllowanceTooLarge => 61110,
             InfeedWidthTooLarge => 61111,
             ToolRadiusNegative => 61112,
+            CornerRadiusTooLarge => 61113,
             ToolRadiusNotPositive => 61117,
             TechnologyWrong => 61125,
             SwivelDataNoName => 61180,
@@ -945,8 +957,12 @@ text_table! {
         CutterRadiusTooLarge {} => "milling cutter radius too large for the contour to be machined";
         CircleElements {} => "number or spacing of circle elements (NUM and INDA of HOLES2 do not fit on a full circle)";
         FirstDepthWrong {} => "first drilling depth defined incorrectly (FDEP/FDPR against the total depth)";
+        InsertionWrong {} => "values of _RAD1 and _DP1 not allowed (helix or oscillating insertion)";
+        CdirWrong {} => "parameter _CDIR defined incorrectly";
+        FloorAllowanceTooLarge {} => "floor finishing allowance > depth infeed (_FALD, _MID)";
         InfeedWidthTooLarge {} => "infeed width greater than the tool diameter (_MIDA)";
         ToolRadiusNegative {} => "tool radius negative";
+        CornerRadiusTooLarge {} => "corner radius parameter _CRAD too large";
         ToolRadiusNotPositive {} => "active tool radius <= 0";
         TechnologyWrong {} => "technology selection in parameter _TECHNO defined incorrectly";
         SwivelDataNoName {} => "no name assigned to the swivel data record";
@@ -1664,6 +1680,21 @@ pub const CATALOG: &[CatalogEntry] = &[
         when: "CYCLE83 first depth FDEP/FDPR deeper than the final depth or not into the hole (lines 1803, 1823: 第一次钻深错误定义)",
     },
     CatalogEntry {
+        code: 61108,
+        title: "_RAD1/_DP1 not allowed",
+        when: "SINUMERIK POCKET3/POCKET4 helical insertion (_VARI 2x) with _RAD1 or _DP1 zero or a helix that does not fit the pocket, POCKET3 oscillating insertion (3x) with an angle _RAD1 outside 0-90 degrees (table: 不允许的值用于参数_RAD1和_DP1)",
+    },
+    CatalogEntry {
+        code: 61109,
+        title: "_CDIR wrong",
+        when: "SINUMERIK POCKET3/POCKET4 _CDIR other than 0-3 (table: 参数_CDIR错误定义)",
+    },
+    CatalogEntry {
+        code: 61110,
+        title: "floor allowance > depth infeed",
+        when: "SINUMERIK POCKET3/POCKET4 floor allowance _FALD larger than the depth infeed _MID (table: 底部的精加工余量>深度进刀)",
+    },
+    CatalogEntry {
         code: 61111,
         title: "infeed width > tool diameter",
         when: "SINUMERIK CYCLE71/POCKET3/POCKET4 _MIDA larger than the cutter diameter (table: 进刀宽度>刀具直径)",
@@ -1672,6 +1703,11 @@ pub const CATALOG: &[CatalogEntry] = &[
         code: 61112,
         title: "tool radius negative",
         when: "SINUMERIK CYCLE72/76/77/90 with a negative radius in the active D offset (table: 刀具半径为负)",
+    },
+    CatalogEntry {
+        code: 61113,
+        title: "_CRAD too large",
+        when: "SINUMERIK POCKET3 corner radius _CRAD above half the pocket's length or width (table: 拐角半径参数_CRAD太大)",
     },
     CatalogEntry {
         code: 61117,
@@ -1949,8 +1985,12 @@ mod tests {
             SiemensCycle(CycleAlarm::CutterRadiusTooLarge),
             SiemensCycle(CycleAlarm::CircleElements),
             SiemensCycle(CycleAlarm::FirstDepthWrong),
+            SiemensCycle(CycleAlarm::InsertionWrong),
+            SiemensCycle(CycleAlarm::CdirWrong),
+            SiemensCycle(CycleAlarm::FloorAllowanceTooLarge),
             SiemensCycle(CycleAlarm::InfeedWidthTooLarge),
             SiemensCycle(CycleAlarm::ToolRadiusNegative),
+            SiemensCycle(CycleAlarm::CornerRadiusTooLarge),
             SiemensCycle(CycleAlarm::ToolRadiusNotPositive),
             SiemensCycle(CycleAlarm::TechnologyWrong),
             SiemensCycle(CycleAlarm::SwivelDataNoName),
