@@ -18,6 +18,30 @@ use crate::infeed::{Levels, parts};
 use crate::rot::Rot;
 use crate::{Move, P3};
 
+/// How a pass gets down to its level at the pocket's centre.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Insert {
+    /// G0 straight down (POCKET3/4 `_VARI` 0x: into a pre-drilled hole).
+    Rapid,
+    /// G1 at the depth feed straight down (POCKET1/2; POCKET3/4 `_VARI` 1x).
+    Feed,
+    /// On a helix of radius `rad` about the centre in the rings' direction, in
+    /// whole turns of at most `pitch`, then one flat turn (`_VARI` 2x).
+    Helix {
+        /// Helix radius (tool centre, `_RAD1`).
+        rad: i64,
+        /// Largest depth per turn (`_DP1`).
+        pitch: i64,
+    },
+    /// Oscillating along the length (centre → +L → centre → −L → centre) at a
+    /// slope of at most `tan`, then one flat oscillation (`_VARI` 3x). L is the
+    /// outermost roughing ring's half length.
+    Swing {
+        /// Tangent of the largest insertion angle (`_RAD1`).
+        tan: f64,
+    },
+}
+
 /// What a pocket call cuts, in the pocket's own axes (nm; the centre and the
 /// angle in `rot`).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -42,8 +66,22 @@ pub struct PocketSpec {
     pub safe: i64,
     /// Roughing levels (MID); `count` 0: no roughing.
     pub rough: Levels,
-    /// Finishing levels (MIDF); `count` 0: no finishing.
+    /// Finishing levels of the wall (MIDF); `count` 0: no finishing.
     pub finish: Levels,
+    /// Floor finishing (POCKET3/4): one level, from the applicate the tool is
+    /// taken to at G0 (`from`) down to the floor (`to`); `count` 0: none.
+    pub floor: Levels,
+    /// How roughing gets down to each level.
+    pub insert: Insert,
+    /// Finishing approach (POCKET3/4): the wall ring is reached on a quarter arc
+    /// of this radius, tangentially, and left on another; the levels are reached
+    /// at G0. 0: plunged at FFD and reached on a line (POCKET1/2).
+    pub arc_in: i64,
+    /// Pre-machined pocket (POCKET3/4 `_AP1`, `_AP2`, `_AD`): its half length,
+    /// half width (wall, not tool centre) and the applicate of its floor; a half
+    /// length of 0: none. Roughing leaves out the rings that would cut only its
+    /// air above its floor.
+    pub blank: [i64; 3],
     /// Feeds: into the depth (FFD), roughing (FFP1), finishing (FFP2).
     pub feeds: [i64; 3],
     /// Finishing spindle speed (SSF), 0: the speed in force.
@@ -57,13 +95,16 @@ pub struct PocketSpec {
 pub struct Pocket {
     s: PocketSpec,
     /// Stage: 0 rapid to RTP, 1 to the safety level, 2 roughing, 3 back to the
-    /// safety level, 4 the finishing speed, 5 finishing, 6 rapid to RTP, 7 done.
+    /// safety level, 4 the finishing speed, 5 finishing the wall, 6 the floor,
+    /// 7 rapid to RTP, 8 done.
     stage: u8,
     /// Element of the ring or level being cut.
     el: u8,
     /// Level (1-based) and ring of the pass.
     level: u32,
     ring: u32,
+    /// Move of the insertion (element 0).
+    sub: u32,
     /// The last point handed out (zero-length moves are left out).
     last: P3,
 }
@@ -71,20 +112,16 @@ pub struct Pocket {
 impl Pocket {
     /// The generator of `s`.
     pub fn new(s: PocketSpec) -> Self {
-        Pocket { s, stage: 0, el: 0, level: 1, ring: 0, last: P3::new(i64::MIN, i64::MIN, i64::MIN) }
+        Pocket { s, stage: 0, el: 0, level: 1, ring: 0, sub: 0, last: P3::new(i64::MIN, i64::MIN, i64::MIN) }
     }
 
     /// The move at the cursor (`Some(None)`: nothing here), and the cursor on.
     fn step(&mut self) -> Option<Option<Move>> {
         let s = self.s;
-        let centre = |d| {
-            let (a, o) = s.rot.at;
-            P3::new(a, o, d)
-        };
         let m = match self.stage {
-            0 | 6 => Move::Rapid(centre(s.rtp)),
-            1 | 3 => Move::Rapid(centre(s.safe)),
-            2 | 5 => return Some(self.pass()),
+            0 | 7 => Move::Rapid(self.pt((0, 0), s.rtp)),
+            1 | 3 => Move::Rapid(self.pt((0, 0), s.safe)),
+            2 | 5 | 6 => return Some(self.pass()),
             4 if s.ssf > 0 && s.finish.count > 0 => Move::Speed(s.ssf),
             4 => {
                 self.stage += 1;
@@ -96,72 +133,143 @@ impl Pocket {
         Some(Some(m))
     }
 
-    /// The move of a roughing (stage 2) or finishing (stage 5) pass at the
-    /// cursor: per level, the plunge at the centre, then each ring reached by a
-    /// line along the length from the last ring's start, then back to the centre.
+    /// The move of a roughing (stage 2), wall finishing (5) or floor (6) pass at
+    /// the cursor: per level, the insertion at the centre, then each ring reached
+    /// by a line along the length from the last ring's start (finishing with an
+    /// approach arc: one ring, reached and left on quarter arcs), then back to the
+    /// centre.
     fn pass(&mut self) -> Option<Move> {
         let s = self.s;
-        let finish = self.stage == 5;
-        let (levels, fal, feed) = if finish { (s.finish, 0, s.feeds[2]) } else { (s.rough, s.fal, s.feeds[1]) };
+        let stage = self.stage;
+        let (levels, fal, feed) = match stage {
+            2 => (s.rough, s.fal, s.feeds[1]),
+            5 => (s.finish, 0, s.feeds[2]),
+            _ => (s.floor, 0, s.feeds[2]),
+        };
+        let arc_in = if stage == 5 { s.arc_in } else { 0 };
         // The outermost ring: half sides and corner radius of the tool centre.
         let off = s.r + fal;
         let (a, b) = ((s.hl - off).max(0), (s.hw - off).max(0));
         let q = (s.cr - off).clamp(0, a.min(b));
         let m = a.min(b);
-        let n = if finish { 0 } else { parts(m, s.step) };
+        let n = if stage == 5 { 0 } else { parts(m, s.step) };
         if self.level > levels.count {
-            (self.stage, self.level, self.el) = (self.stage + 1, 1, 0);
+            (self.stage, self.level, self.el, self.sub) = (stage + 1, 1, 0, 0);
             return None;
         }
-        let lvl = levels.level(self.level);
-        let d = if finish { 0 } else { m - m * i64::from(self.ring) / i64::from(n.max(1)) };
+        let (prev, lvl) = (levels.level(self.level - 1), levels.level(self.level));
+        // Above the pre-machined pocket's floor only air is inside it.
+        let blank = s.blank;
+        let in_blank = stage == 2 && blank[0] > 0 && (lvl - blank[2]) * (levels.to - levels.from).signum() <= 0;
+        if self.el == 0 {
+            let how = match stage {
+                // Room at the centre: straight down in the air (line 4923).
+                2 if in_blank && blank[0].min(blank[1]) >= s.r => Insert::Feed,
+                2 => s.insert,
+                5 if arc_in > 0 => Insert::Rapid,
+                _ => Insert::Feed,
+            };
+            return self.plunge(how, prev, lvl, a);
+        }
+        let d = if n == 0 { 0 } else { m - m * i64::from(self.ring) / i64::from(n) };
         let (a, b, q) = (a - d, b - d, (q - d).max(0));
+        let rho = arc_in.min(a).min(b);
         let el = self.el;
         self.el += 1;
         // The move in the pocket's axes: its end, an arc's centre, its feed.
-        let (mut to, mut arc, mut f) = ((a, 0), None, feed);
+        let (mut to, mut arc) = ((a, 0), None);
         match el {
-            0 => (to, f) = ((0, 0), s.feeds[0]),
+            1 if arc_in > 0 => return Some(Move::Rapid(self.pt((a - rho, -rho), lvl))),
+            1 if in_blank && self.ring < n && a + s.r <= blank[0] && b + s.r <= blank[1] => {
+                // This ring cuts only air: on to the next.
+                (self.ring, self.el) = (self.ring + 1, 1);
+                return None;
+            }
             1 => {}
-            2..=9 => {
+            2 if arc_in > 0 => arc = Some((a - rho, 0)),
+            2 => return None,
+            3..=10 => {
                 // Quadrant i: a side up to the corner, then the corner's arc: its
                 // centre C, from C + q·u(i) to C + q·u(i + 1).
-                let i = usize::from((el - 2) / 2);
+                let e = el - 1;
+                let i = usize::from((e - 2) / 2);
                 let unit = |k: usize| [(1, 0), (0, 1), (-1, 0), (0, -1)][k & 3];
                 let c = ([1, -1, -1, 1][i & 3] * (a - q), [1, 1, -1, -1][i & 3] * (b - q));
-                let u = unit(i + usize::from(el % 2));
+                let u = unit(i + usize::from(e % 2));
                 to = (c.0 + q * u.0, c.1 + q * u.1);
-                if el % 2 == 1 {
+                if e % 2 == 1 {
                     arc = Some(c);
                 }
             }
-            10 => {
+            // The ring closes where it started.
+            11 => {}
+            12 if arc_in > 0 => (to, arc) = ((a - rho, rho), Some((a - rho, 0))),
+            12 => {
                 if self.ring < n {
                     (self.ring, self.el) = (self.ring + 1, 1);
                 }
+                return None;
             }
             _ => {
                 (self.level, self.ring, self.el) = (self.level + 1, 0, 0);
                 to = (0, 0);
             }
         }
-        Some(self.plane(to, arc, lvl, f))
+        Some(self.plane(to, arc, lvl, feed))
+    }
+
+    /// Move `sub` of the insertion from `prev` down to `lvl` at the centre (`len`:
+    /// the oscillation's half length): first G0 to the centre at `prev` (left out
+    /// when the tool is there), then `how`'s moves; element 1 follows.
+    fn plunge(&mut self, how: Insert, prev: i64, lvl: i64, len: i64) -> Option<Move> {
+        let k = self.sub;
+        self.sub += 1;
+        if k == 0 {
+            return Some(Move::Rapid(self.pt((0, 0), prev)));
+        }
+        // The applicate `t`/`n` of the way down.
+        let at = |t: u32, n: u32| prev + ((i128::from(lvl - prev) * i128::from(t)) / i128::from(n.max(1))) as i64;
+        let f = self.s.feeds[0];
+        let (last, m) = match how {
+            Insert::Rapid => (true, Move::Rapid(self.pt((0, 0), lvl))),
+            Insert::Feed => (true, self.plane((0, 0), None, lvl, f)),
+            Insert::Helix { rad, pitch } => {
+                // The start on the length at G1, whole turns, one flat turn.
+                let n = parts(lvl - prev, pitch);
+                let t = k - 1;
+                let d = if t == 0 { prev } else { at(t.min(n), n) };
+                (t > n, self.plane((rad, 0), (t > 0).then_some((0, 0)), d, f))
+            }
+            Insert::Swing { tan } => {
+                let n = parts(lvl - prev, libm::round(4.0 * len as f64 * tan) as i64).saturating_mul(4);
+                let u = [len, 0, -len, 0][(k as usize - 1) & 3];
+                (k >= n.saturating_add(4), self.plane((u, 0), None, at(k.min(n), n), f))
+            }
+        };
+        if last {
+            (self.sub, self.el) = (0, 1);
+        }
+        Some(m)
+    }
+
+    /// The plane point of the pocket's axes `(u, v)` at applicate `d` (G2 rings
+    /// mirror the pocket's ordinate).
+    fn pt(&self, (u, v): (i64, i64), d: i64) -> P3 {
+        let s = &self.s;
+        let (x, y) = s.rot.point(u as f64, if s.cw { -v } else { v } as f64);
+        P3::new(x, y, d)
     }
 
     /// A move of the pocket's axes in the plane: a line to `to`, or an arc about
-    /// `arc`, at applicate `d` (G2 rings mirror the pocket's ordinate).
+    /// `arc`, at applicate `d`.
     #[inline(never)]
     fn plane(&self, to: (i64, i64), arc: Option<(i64, i64)>, d: i64, feed: i64) -> Move {
-        let s = &self.s;
-        let at = |(u, v): (i64, i64)| {
-            let (x, y) = s.rot.point(u as f64, if s.cw { -v } else { v } as f64);
-            P3::new(x, y, d)
-        };
+        let to = self.pt(to, d);
         match arc {
-            None => Move::Line { to: at(to), feed },
+            None => Move::Line { to, feed },
             Some(c) => {
-                let c = at(c);
-                Move::Arc { to: at(to), centre: (c.a, c.o), cw: s.cw, feed }
+                let c = self.pt(c, d);
+                Move::Arc { to, centre: (c.a, c.o), cw: self.s.cw, feed }
             }
         }
     }
@@ -175,11 +283,14 @@ impl Iterator for Pocket {
         loop {
             let m = self.step()?;
             let Some(m) = m else { continue };
-            let to = match m {
-                Move::Rapid(p) | Move::Line { to: p, .. } | Move::Arc { to: p, .. } => p,
+            // Moves of zero length (and arcs of radius 0) are left out; an arc
+            // back to where it starts is a full turn.
+            let (to, zero) = match m {
+                Move::Rapid(p) | Move::Line { to: p, .. } => (p, true),
+                Move::Arc { to, centre, .. } => (to, centre == (to.a, to.o)),
                 _ => return Some(m),
             };
-            if to != self.last {
+            if !(zero && to == self.last) {
                 self.last = to;
                 return Some(m);
             }
@@ -205,6 +316,10 @@ mod tests {
             safe: 1_000_000,
             rough: Levels::new(1_000_000, -10_000_000, 6_000_000),
             finish: Levels::new(1_000_000, -10_000_000, 0),
+            floor: Levels { count: 0, ..Levels::new(0, 0, 0) },
+            insert: Insert::Feed,
+            arc_in: 0,
+            blank: [0; 3],
             feeds: [100, 200, 300],
             ssf: 0,
             cw: false,

@@ -226,6 +226,8 @@ pub fn start(
         "CYCLE800" => mill::cycle800(&p).map_err(AlarmKind::from),
         "POCKET1" => mill::pocket::pocket12(false, &p, cmd, st, ctx),
         "POCKET2" => mill::pocket::pocket12(true, &p, cmd, st, ctx),
+        "POCKET3" => mill::pocket::pocket34(false, &p, cmd, st, ctx),
+        "POCKET4" => mill::pocket::pocket34(true, &p, cmd, st, ctx),
         // A drilling pattern is run by the driver (positions, then the MCALL at
         // each); called modally it is not a drilling cycle.
         _ => Err(AlarmKind::NotSupportedYet { what: "this SINUMERIK cycle" }),
