@@ -355,9 +355,7 @@ fn pocket4_helix_insertion_pitch_and_wall() {
 /// _MIDA apart and evenly spaced.
 #[test]
 fn pocket3_roughing_leaves_wall_and_floor_allowances() {
-    let r = go(&format!(
-        "{HEAD}POCKET3(5, 0, 1, -10, 60, 40, 8, 60, 40, 30, 4, 0.75, 0.5, 300, 100, 3, 11, 3)\nM30\n"
-    ));
+    let r = go(&format!("{HEAD}POCKET3(5, 0, 1, -10, 60, 40, 8, 60, 40, 30, 4, 0.75, 0.5, 300, 100, 3, 11, 3)\nM30\n"));
     let segs = cuts(&r.actions);
     let wall = Wall { c: [60.0, 40.0], sta: 30.0, hl: 30.0, hw: 20.0, cr: 8.0 };
     let (min, _) = wall.range(&segs);
@@ -409,7 +407,9 @@ fn pocket3_finishing_edge_then_floor() {
         // Quarter arcs of 2 mm in and out.
         let quarter = segs
             .iter()
-            .filter(|s| near(s.to[2], *z) && s.arc.is_some_and(|(c, _)| near((s.to[0] - c[0]).hypot(s.to[1] - c[1]), 2.0)))
+            .filter(|s| {
+                near(s.to[2], *z) && s.arc.is_some_and(|(c, _)| near((s.to[0] - c[0]).hypot(s.to[1] - c[1]), 2.0))
+            })
             .count();
         assert_eq!(quarter, 2, "approach and departure at {z}");
     }
@@ -462,14 +462,17 @@ fn pocket3_oscillating_insertion() {
 fn pocket3_pre_machined_pocket_is_not_cut_again() {
     let call = |ap: &str| {
         cuts(
-            &go(&format!("{HEAD}POCKET3(5, 0, 1, -10, 60, 40, 8, 60, 40, 0, 4, 0, 0, 300, 100, 3, 21, 4, {ap}, 2, 1)\nM30\n"))
-                .actions,
+            &go(&format!(
+                "{HEAD}POCKET3(5, 0, 1, -10, 60, 40, 8, 60, 40, 0, 4, 0, 0, 300, 100, 3, 21, 4, {ap}, 2, 1)\nM30\n"
+            ))
+            .actions,
         )
     };
     let segs = call("40, 24, 6");
     let full = call("0, 0, 0");
     let lv = levels(1.0, -10.0, 4.0);
-    let arcs = |s: &[Seg], z: f64| s.iter().filter(|g| g.arc.is_some() && near(g.to[2], z) && near(g.from[2], z)).count();
+    let arcs =
+        |s: &[Seg], z: f64| s.iter().filter(|g| g.arc.is_some() && near(g.to[2], z) && near(g.from[2], z)).count();
     for z in &lv {
         let ring_arcs: Vec<Seg> = segs
             .iter()
@@ -478,7 +481,9 @@ fn pocket3_pre_machined_pocket_is_not_cut_again() {
             .collect();
         if *z >= -6.0 {
             for g in &ring_arcs {
-                let out = samples(g).iter().any(|p| (p[0] - 60.0).abs() + 5.0 > 20.0 + 1e-3 || (p[1] - 40.0).abs() + 5.0 > 12.0 + 1e-3);
+                let out = samples(g)
+                    .iter()
+                    .any(|p| (p[0] - 60.0).abs() + 5.0 > 20.0 + 1e-3 || (p[1] - 40.0).abs() + 5.0 > 12.0 + 1e-3);
                 assert!(out, "a ring inside the blank at {z}: {g:?}");
             }
             assert!(arcs(&segs, *z) < arcs(&full, *z), "fewer rings at {z}");

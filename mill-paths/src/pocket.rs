@@ -223,7 +223,7 @@ impl Pocket {
     /// when the tool is there), then `how`'s moves; element 1 follows.
     fn plunge(&mut self, how: Insert, prev: i64, lvl: i64, len: i64) -> Option<Move> {
         let k = self.sub;
-        self.sub += 1;
+        self.sub = k.saturating_add(1);
         if k == 0 {
             return Some(Move::Rapid(self.pt((0, 0), prev)));
         }

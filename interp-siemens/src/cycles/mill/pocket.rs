@@ -175,7 +175,8 @@ fn spec34(circle: bool, p: &Params<'_, '_>, st: &State, ctx: &mut dyn Engine) ->
     let to = l.bottom - l.dir * fald;
     let none = Levels { count: 0, ..Levels::new(l.start, to, 0) };
     let rough = vari % 10 == 1;
-    let (ap1, ap2) = if circle { (p.unsigned(k + 8), p.unsigned(k + 8)) } else { (p.unsigned(k + 8) / 2, p.unsigned(19) / 2) };
+    let (ap1, ap2) =
+        if circle { (p.unsigned(k + 8), p.unsigned(k + 8)) } else { (p.unsigned(k + 8) / 2, p.unsigned(19) / 2) };
     let ad = p.unsigned(j);
     Ok(PocketSpec {
         rot: centre,
@@ -189,7 +190,11 @@ fn spec34(circle: bool, p: &Params<'_, '_>, st: &State, ctx: &mut dyn Engine) ->
         safe: l.safe,
         rough: if rough { Levels::new(l.start, to, mid) } else { none },
         finish: if rough || fal == 0 { none } else { Levels::new(l.start, to, mid) },
-        floor: if rough || fald == 0 { none } else { Levels { count: 1, ..Levels::new(to + l.safe - l.rfp, l.bottom, 0) } },
+        floor: if rough || fald == 0 {
+            none
+        } else {
+            Levels { count: 1, ..Levels::new(to + l.safe - l.rfp, l.bottom, 0) }
+        },
         insert,
         arc_in: fal.max(2_000_000),
         blank: if ap1 > 0 && ap2 > 0 && ad > 0 { [ap1, ap2, l.rfp + l.dir * ad] } else { [0; 3] },
