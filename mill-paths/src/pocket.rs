@@ -228,7 +228,7 @@ impl Pocket {
             return Some(Move::Rapid(self.pt((0, 0), prev)));
         }
         // The applicate `t`/`n` of the way down.
-        let at = |t: u32, n: u32| prev + ((i128::from(lvl - prev) * i128::from(t)) / i128::from(n.max(1))) as i64;
+        let at = |t: u32, count: u32| Levels { from: prev, to: lvl, count }.level(t);
         let f = self.s.feeds[0];
         let (last, m) = match how {
             Insert::Rapid => (true, Move::Rapid(self.pt((0, 0), lvl))),

@@ -140,15 +140,17 @@ fn spec34(circle: bool, p: &Params<'_, '_>, st: &State, ctx: &mut dyn Engine) ->
     } else {
         let sta = p.real(9);
         let (leng, wid) = (p.len(4), p.len(5));
-        let at = Rot::new((p.len(7), p.len(8)), sta);
+        let mut rot = Rot::new((p.len(7), p.len(8)), sta);
         // _ZSD[2] = 1: _PA/_PO is a corner, _LENG/_WID signed towards the centre
         // (lines 3533-3534, 4842-4852).
-        let at = if st.cycle.zsd[2] == 1 { at.point(leng as f64 / 2.0, wid as f64 / 2.0) } else { at.at };
+        if st.cycle.zsd[2] == 1 {
+            rot.at = rot.point(leng as f64 / 2.0, wid as f64 / 2.0);
+        }
         let (hl, hw, cr) = (leng.abs() / 2, wid.abs() / 2, p.unsigned(6));
         if cr > hl.min(hw) {
             return Err(CycleAlarm::CornerRadiusTooLarge);
         }
-        (hl, hw, cr, Rot::new(at, sta))
+        (hl, hw, cr, rot)
     };
     fits(2 * hl.min(hw), r)?;
     let step = width_infeed(p.unsigned(k + 7), r)?;
@@ -163,8 +165,9 @@ fn spec34(circle: bool, p: &Params<'_, '_>, st: &State, ctx: &mut dyn Engine) ->
         1 => Insert::Feed,
         // The helix must fit inside the roughed pocket.
         2 if rad1 > 0 && dp1 > 0 && rad1 + r <= hl.min(hw) - fal => Insert::Helix { rad: rad1, pitch: dp1 },
-        3 if (0.0..90.0).contains(&p.real(j + 1).abs()) && p.real(j + 1) != 0.0 => {
-            Insert::Swing { tan: libm::tan(p.real(j + 1).abs().to_radians()) }
+        3 if rad1 > 0 && p.real(j + 1).abs() < 90.0 => {
+            let (s, c) = libm::sincos(p.real(j + 1).abs().to_radians());
+            Insert::Swing { tan: s / c }
         }
         _ => return Err(CycleAlarm::InsertionWrong),
     };
