@@ -1627,7 +1627,7 @@ pub const CATALOG: &[CatalogEntry] = &[
     CatalogEntry {
         code: 61002,
         title: "machining type wrong",
-        when: "VARI outside the values of CYCLE93 (1-8, 11-18), CYCLE95 (1-12, hundreds 0/2), CYCLE97/CYCLE98 (1-4) (lines 10311, 10799, 11195, 11397: 加工方式错误定义)",
+        when: "VARI outside the values of CYCLE93 (1-8, 11-18), CYCLE95 (1-12, hundreds 0/2), CYCLE97/CYCLE98 (1-4), POCKET1/POCKET2 (0-2), POCKET3 (1, 2, 11, 12, 21, 22, 31, 32), POCKET4 (the same without 3x) (lines 10311, 10799, 11195, 11397: 加工方式错误定义)",
     },
     CatalogEntry {
         code: 61003,
@@ -1657,7 +1657,7 @@ pub const CATALOG: &[CatalogEntry] = &[
     CatalogEntry {
         code: 61102,
         title: "no spindle direction",
-        when: "CYCLE86/87/88 SDIR other than 3/4, CYCLE84 SDAC other than 0/3/4/5, CYCLE840 with the spindle stopped at the call or SDR = 0 without an encoder (ENC 1/11) (lines 2689, 2814, 2896, table 12217: 没有编程主轴方向)",
+        when: "CYCLE86/87/88 SDIR other than 3/4, CYCLE84 SDAC other than 0/3/4/5, CYCLE840 with the spindle stopped at the call or SDR = 0 without an encoder (ENC 1/11), POCKET3/POCKET4 climb/conventional milling (_CDIR 0/1) with the spindle stopped (lines 2689, 2814, 2896, table 12217: 没有编程主轴方向)",
     },
     CatalogEntry {
         code: 61103,
