@@ -562,3 +562,25 @@ fn alarms_of_pocket3_and_pocket4_move_nothing() {
         assert_eq!(r.actions.len(), before.actions.len(), "{call} moved");
     }
 }
+
+/// POCKET4 edge roughing only (lines 5181-5199): with `_ZSD[1]=1`, `_DP` −21,
+/// `_FALD` 1.25 and `_AD` 19.75 every level is inside the pre-machined pocket
+/// (radius `_AP1` 15): each level goes straight down at the centre and cuts only
+/// the rings whose cutter reaches beyond 15 mm, down to −19.75.
+#[test]
+fn pocket4_edge_roughing_only() {
+    let r = go(&format!(
+        "{HEAD}_ZSD[1]=1\nPOCKET4(5, 0, 2, -21, 25, 60, 40, 5, 0, 1.25, 300, 100, 3, 21, 0, 15, 19.75, 3, 2)\nM30\n"
+    ));
+    let segs = cuts(&r.actions);
+    assert!(segs.iter().all(|s| s.arc.is_none() || near(s.from[2], s.to[2])), "no helix in the air");
+    let rings: Vec<f64> = segs
+        .iter()
+        .filter(|s| s.arc.is_some() && s.feed == 300.0)
+        .map(|s| (s.to[0] - 60.0).hypot(s.to[1] - 40.0))
+        .collect();
+    assert!(!rings.is_empty() && rings.iter().all(|&rad| rad + 5.0 > 15.0 + 1e-3), "{rings:?}");
+    let deepest = segs.iter().map(|s| s.to[2]).fold(f64::MAX, f64::min);
+    assert!(near(deepest, -19.75), "{deepest}");
+    assert_eq!(plunges(&segs, 100.0), levels(0.0, -19.75, 5.0));
+}

@@ -13,6 +13,11 @@
 //! out, `n` + 1 of them at equal steps of at most the width infeed; finishing
 //! cuts the wall ring at allowance 0, level by level per MIDF. Moves of zero
 //! length (a degenerate ring's sides and corners) are left out.
+//!
+//! POCKET3/POCKET4 (lines 4714-5258, any cutter) add: the insertion ([`Insert`]:
+//! G0, G1, a helix in whole turns, an oscillation along the length), a
+//! pre-machined pocket whose air is not cut again, the wall finish reached and
+//! left on quarter arcs, and the floor finish (one level of rings).
 
 use crate::infeed::{Levels, parts};
 use crate::rot::Rot;
@@ -365,6 +370,27 @@ mod tests {
         // Each ring is reached there and closed there.
         starts.dedup();
         assert_eq!(starts, [10_000_000, 17_500_000, 25_000_000]);
+    }
+
+    /// A helix insertion: whole turns of at most the pitch (a 7 mm infeed at
+    /// 3 mm a turn: three turns of 7/3 mm), full circles kept, one flat turn.
+    #[test]
+    fn helix_turns_are_whole_and_end_flat() {
+        let s = PocketSpec {
+            rough: Levels::new(1_000_000, -6_000_000, 0),
+            finish: Levels { count: 0, ..spec(0, 0, 0).finish },
+            insert: Insert::Helix { rad: 3_000_000, pitch: 3_000_000 },
+            ..spec(20_000_000, 20_000_000, 20_000_000)
+        };
+        let turns: Vec<P3> = moves(s)
+            .iter()
+            .filter_map(|m| match m {
+                Move::Arc { to, centre: (0, 0), .. } if to.a == 3_000_000 && to.o == 0 => Some(*to),
+                _ => None,
+            })
+            .collect();
+        let d: Vec<i64> = turns.iter().map(|p| p.d).collect();
+        assert_eq!(d, [-1_333_333, -3_666_667, -6_000_000, -6_000_000]);
     }
 
     /// The generator is pure: two runs give the same moves.

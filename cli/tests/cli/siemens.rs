@@ -161,7 +161,9 @@ fn the_sinumerik_examples_check_clean() {
 #[test]
 fn the_sinumerik_mill_examples_run_and_match_their_renders() {
     let machine = concat!(env!("CARGO_MANIFEST_DIR"), "/../examples/machines/mill.toml");
-    for name in ["holes1_row", "holes1_grid", "holes2_circle", "cycle801_grid", "pocket1", "pocket2", "pocket3", "pocket4"] {
+    for name in
+        ["holes1_row", "holes1_grid", "holes2_circle", "cycle801_grid", "pocket1", "pocket2", "pocket3", "pocket4"]
+    {
         let path = format!("{SINUMERIK}/mill/{name}.mpf");
         let o = lathe(&["check", &path, "--machine", machine]);
         assert_eq!(status(&o), 0, "{name}: {}", stdout(&o));

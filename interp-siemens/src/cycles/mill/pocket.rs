@@ -1,3 +1,6 @@
+//! POCKET3/POCKET4 (lines 4714-5258, any cutter): see [`pocket34`] and
+//! docs/SIEMENS-MILL.md.
+//!
 //! POCKET1 (rectangular pocket, lines 4421-4574) and POCKET2 (circular pocket,
 //! lines 4576-4712): a centre-cutting cutter (DIN 844) plunges at the pocket's
 //! centre and clears it ring by ring from the inside out, level by level per
@@ -95,6 +98,15 @@ fn spec12(circle: bool, p: &Params<'_, '_>, st: &State, ctx: &mut dyn Engine) ->
 
 /// POCKET3 (`circle` false, lines 4714-5014) or POCKET4 (5016-5258): checks the
 /// call and starts its pocket.
+///
+/// - `_VARI` units 1 roughing (to `_FAL` and `_FALD`), 2 finishing (the wall if
+///   `_FAL` > 0, then the floor if `_FALD` > 0); tens the insertion: 0 G0, 1 G1
+///   straight down, 2 helix (`_RAD1`, `_DP1`), 3 oscillating at `_RAD1` degrees
+///   (POCKET3 only); else 61002.
+/// - `_CDIR` 0-3 as POCKET1's, else 61109; 0/1 with the spindle stopped 61102.
+/// - 61113 `_CRAD` above half a side, 61105 the cutter wider than a side (or a
+///   radius above `_PRAD`), 61111 `_MIDA`, 61110 `_FALD` above `_MID`, 61108 a
+///   helix or oscillation that cannot run, 61117 a radius ≤ 0.
 pub(in crate::cycles) fn pocket34(
     circle: bool,
     p: &Params<'_, '_>,
