@@ -240,7 +240,8 @@ impl Pocket {
             Insert::Feed => (true, self.plane((0, 0), None, lvl, f)),
             Insert::Helix { rad, pitch } => {
                 // The start on the length at G1, whole turns, one flat turn.
-                let n = parts(lvl - prev, pitch);
+                // (Capped so that the flat turn still comes after the last one.)
+                let n = parts(lvl - prev, pitch).min(u32::MAX - 2);
                 let t = k - 1;
                 let d = if t == 0 { prev } else { at(t.min(n), n) };
                 (t > n, self.plane((rad, 0), (t > 0).then_some((0, 0)), d, f))
