@@ -137,7 +137,7 @@ fn spec34(circle: bool, p: &Params<'_, '_>, st: &State, ctx: &mut dyn Engine) ->
     let cw = match p.int(k + 5) {
         2 => true,
         3 => false,
-        // Climb (0) is G3 under M3, conventional (1) G2 (line 4960); they need
+        // Climb (0) is G3 under M3, conventional (1) G2 (lines 4925-4933); they need
         // the spindle's direction (61102 lists POCKET3/POCKET4).
         d @ 0..=1 => match st.spindle.dir {
             SpindleDir::Cw => d == 1,
@@ -154,7 +154,7 @@ fn spec34(circle: bool, p: &Params<'_, '_>, st: &State, ctx: &mut dyn Engine) ->
         let (leng, wid) = (p.len(4), p.len(5));
         let mut rot = Rot::new((p.len(7), p.len(8)), sta);
         // _ZSD[2] = 1: _PA/_PO is a corner, _LENG/_WID signed towards the centre
-        // (lines 3533-3534, 4842-4852).
+        // (lines 3533-3534, 4876-4884).
         if st.cycle.zsd[2] == 1 {
             rot.at = rot.point(leng as f64 / 2.0, wid as f64 / 2.0);
         }
