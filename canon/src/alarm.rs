@@ -791,6 +791,11 @@ pub enum CycleAlarm {
     NoThirdAxis,
     /// 61009: SINUMERIK cycle alarm (seed 001 table 5.3): active tool number = 0.
     ToolNumberZero,
+    /// 61011: SINUMERIK cycle alarm (seed 001 table 5.3): scaling not allowed (CYCLE71).
+    ScaleNotAllowed,
+    /// 61012: SINUMERIK cycle alarm (seed 001 table 5.3): different scaling in the plane
+    /// (CYCLE76, CYCLE77).
+    ScaleDiffers,
     /// 61019: SINUMERIK cycle alarm (seed 001 table 5.3): parameter programmed incorrectly.
     ParameterWrong,
     /// 61101: SINUMERIK cycle alarm (seed 001 table 5.3): reference plane defined incorrectly.
@@ -799,6 +804,8 @@ pub enum CycleAlarm {
     NoSpindleDirection,
     /// 61103: SINUMERIK cycle alarm (seed 001 line 3107, table 5.3): number of holes is zero.
     HoleCountZero,
+    /// 61104: SINUMERIK cycle alarm (seed 001 table 5.3): contour violation of slots/elongated holes.
+    SlotContourViolated,
     /// 61105: SINUMERIK cycle alarm (seed 001 table 5.3): milling cutter radius too large.
     CutterRadiusTooLarge,
     /// 61106: SINUMERIK cycle alarm (seed 001 table 5.3): number or spacing of circle elements.
@@ -819,11 +826,32 @@ pub enum CycleAlarm {
     CornerRadiusTooLarge,
     /// 61117: SINUMERIK cycle alarm (seed 001 table 5.3): active tool radius <= 0.
     ToolRadiusNotPositive,
+    /// 61118: SINUMERIK cycle alarm (seed 001 table 5.3): length or width = 0 (CYCLE71).
+    LengthOrWidthZero,
+    /// 61124: SINUMERIK cycle alarm (seed 001 table 5.3): infeed width not programmed
+    /// (CYCLE71 `_MIDA` 0 with no tool to take it from).
+    InfeedWidthMissing,
+    /// 61128: SINUMERIK cycle alarm (seed 001 table 5.3): insertion angle = 0 for oscillating insertion.
+    InsertionAngleZero,
     /// 61125: SINUMERIK cycle alarm (seed 001 table 5.3): _TECHNO defined incorrectly.
     TechnologyWrong,
     /// 61180: SINUMERIK cycle alarm (seed 001 lines 9197, 12241): no name assigned to
     /// the swivel data record (CYCLE800 on a machine without swivel data records).
     SwivelDataNoName,
+    /// 61213: SINUMERIK cycle alarm (seed 001 table 5.3): circle radius too small (CYCLE77).
+    CircleRadiusTooSmall,
+    /// 61215: SINUMERIK cycle alarm (seed 001 table 5.3): blank dimension programmed
+    /// incorrectly (CYCLE76, CYCLE77).
+    BlankWrong,
+    /// 61191: SINUMERIK cycle alarm (seed 001 lines 9794, 12252): 5-axis transformation not
+    /// set up (CYCLE832 with TRAORI: this board has no 5-axis transformation).
+    FiveAxisNotSetUp,
+    /// 61192: SINUMERIK cycle alarm (seed 001 lines 9795, 12253): second 5-axis
+    /// transformation not set up (CYCLE832 with TRAORI(2)).
+    SecondFiveAxisNotSetUp,
+    /// 61194: SINUMERIK cycle alarm (seed 001 lines 9797, 12255): option spline
+    /// interpolation not set (CYCLE832 with B splines).
+    SplineNotSetUp,
     /// 61601: SINUMERIK cycle alarm (seed 001 table 5.3): finished diameter too small.
     FinishedDiameterTooSmall,
     /// 61602: SINUMERIK cycle alarm (seed 001 table 5.3): tool width wrong.
@@ -842,6 +870,9 @@ pub enum CycleAlarm {
     WrongEdgePosition,
     /// 61609: SINUMERIK cycle alarm (seed 001 table 5.3): form wrong.
     FormWrong,
+    /// 61610: SINUMERIK cycle alarm (seed 001 table 5.3): no infeed depth programmed
+    /// (CYCLE76, CYCLE77 `_MID`).
+    NoInfeedDepth,
     /// 61612: SINUMERIK cycle alarm (seed 001 table 5.3): re-cutting impossible.
     RecutImpossible,
     /// 61613: SINUMERIK cycle alarm (seed 001 table 5.3): undercut position wrong.
@@ -854,6 +885,8 @@ pub enum CycleAlarm {
     IllegalInput,
     /// 61721: SINUMERIK cycle alarm (seed 001 table 5.3): contour direction.
     ContourDirection,
+    /// 61905: SINUMERIK cycle alarm (seed 001 table 5.3): milling cutter radius too small (SLOT2).
+    CutterRadiusTooSmall,
     /// 61803: SINUMERIK cycle alarm (seed 001 table 5.3): programmed axis not present.
     AxisNotPresent,
     /// 61807: SINUMERIK cycle alarm (seed 001 table 5.3): spindle direction programmed incorrectly.
@@ -877,10 +910,13 @@ impl CycleAlarm {
             NoFeed => 61003,
             NoThirdAxis => 61005,
             ToolNumberZero => 61009,
+            ScaleNotAllowed => 61011,
+            ScaleDiffers => 61012,
             ParameterWrong => 61019,
             ReferencePlaneWrong => 61101,
             NoSpindleDirection => 61102,
             HoleCountZero => 61103,
+            SlotContourViolated => 61104,
             CutterRadiusTooLarge => 61105,
             CircleElements => 61106,
             FirstDepthWrong => 61107,
@@ -891,8 +927,16 @@ impl CycleAlarm {
             ToolRadiusNegative => 61112,
             CornerRadiusTooLarge => 61113,
             ToolRadiusNotPositive => 61117,
+            LengthOrWidthZero => 61118,
+            InfeedWidthMissing => 61124,
             TechnologyWrong => 61125,
+            InsertionAngleZero => 61128,
             SwivelDataNoName => 61180,
+            CircleRadiusTooSmall => 61213,
+            BlankWrong => 61215,
+            FiveAxisNotSetUp => 61191,
+            SecondFiveAxisNotSetUp => 61192,
+            SplineNotSetUp => 61194,
             FinishedDiameterTooSmall => 61601,
             ToolWidthWrong => 61602,
             GrooveFormWrong => 61603,
@@ -902,6 +946,7 @@ impl CycleAlarm {
             StartPointWrong => 61607,
             WrongEdgePosition => 61608,
             FormWrong => 61609,
+            NoInfeedDepth => 61610,
             RecutImpossible => 61612,
             UndercutPositionWrong => 61613,
             FinishedContourWrong => 61701,
@@ -909,6 +954,7 @@ impl CycleAlarm {
             IllegalInput => 61720,
             ContourDirection => 61721,
             AxisNotPresent => 61803,
+            CutterRadiusTooSmall => 61905,
             WrongSpindleDirection => 61807,
         }
     }
@@ -950,12 +996,15 @@ text_table! {
         NoFeed {} => "no feed programmed in the cycle (FFP1/FFD/FFR zero)";
         NoThirdAxis {} => "3rd geometry axis not present (the drilling axis of the plane)";
         ToolNumberZero {} => "active tool number = 0 (program T before the cycle)";
-        ParameterWrong {} => "parameter programmed incorrectly (DAM, ENC)";
+        ScaleNotAllowed {} => "scaling not allowed";
+        ScaleDiffers {} => "different scaling in the plane";
+        ParameterWrong {} => "parameter programmed incorrectly (DAM, ENC, _TOL, _TOLM)";
         ReferencePlaneWrong {} => "reference plane defined incorrectly (RTP, RFP, DP/DPR)";
         NoSpindleDirection {} => "no spindle direction programmed (SDIR/SDR 3 or 4, M3/M4 before CYCLE840)";
         HoleCountZero {} => "number of holes is zero (NUM of HOLES1/HOLES2)";
+        SlotContourViolated {} => "contour violation of slots/elongated holes";
         CutterRadiusTooLarge {} => "milling cutter radius too large for the contour to be machined";
-        CircleElements {} => "number or spacing of circle elements (NUM and INDA of HOLES2 do not fit on a full circle)";
+        CircleElements {} => "number or spacing of circle elements (NUM and INDA do not fit on a full circle)";
         FirstDepthWrong {} => "first drilling depth defined incorrectly (FDEP/FDPR against the total depth)";
         InsertionWrong {} => "values of _RAD1 and _DP1 not allowed (helix or oscillating insertion)";
         CdirWrong {} => "parameter _CDIR defined incorrectly";
@@ -964,8 +1013,16 @@ text_table! {
         ToolRadiusNegative {} => "tool radius negative";
         CornerRadiusTooLarge {} => "corner radius parameter _CRAD too large";
         ToolRadiusNotPositive {} => "active tool radius <= 0";
+        LengthOrWidthZero {} => "length or width = 0 (_LENG, _WID)";
+        InfeedWidthMissing {} => "infeed width not programmed (_MIDA)";
         TechnologyWrong {} => "technology selection in parameter _TECHNO defined incorrectly";
+        InsertionAngleZero {} => "insertion angle = 0 for oscillating insertion";
         SwivelDataNoName {} => "no name assigned to the swivel data record";
+        CircleRadiusTooSmall {} => "circle radius too small (_PRAD)";
+        BlankWrong {} => "blank dimension programmed incorrectly (_AP1/_AP2 not larger than the spigot)";
+        FiveAxisNotSetUp {} => "5-axis transformation not set up (TRAORI)";
+        SecondFiveAxisNotSetUp {} => "second 5-axis transformation not set up (TRAORI(2))";
+        SplineNotSetUp {} => "option spline interpolation not set (B spline)";
         FinishedDiameterTooSmall {} => "finished part diameter too small (under 3 mm)";
         ToolWidthWrong {} => "tool width defined incorrectly (grooving tool wider than the groove, or no width)";
         GrooveFormWrong {} => "groove form defined incorrectly";
@@ -974,6 +1031,7 @@ text_table! {
         StartPointWrong {} => "starting point programmed incorrectly (inside the rectangle of the contour)";
         WrongEdgePosition {} => "wrong tool point direction programmed (cutting edge position 1-4 needed)";
         FormWrong {} => "form defined incorrectly (CYCLE94: E or F, CYCLE96: A-D)";
+        NoInfeedDepth {} => "no infeed depth programmed (_MID)";
         RecutImpossible {} => "thread re-cutting not possible";
         UndercutPositionWrong {} => "undercut position (_VARI) defined incorrectly";
         FinishedContourWrong {} => "finished part contour description wrong (_NP1-_NP3)";
@@ -981,6 +1039,7 @@ text_table! {
         IllegalInput {} => "illegal input (a _VARI digit of CYCLE950 out of its range)";
         ContourDirection {} => "wrong contour direction, cannot be computed";
         AxisNotPresent {} => "programmed axis does not exist (_AXN)";
+        CutterRadiusTooSmall {} => "milling cutter radius too small";
         WrongSpindleDirection {} => "spindle direction programmed incorrectly (SDR/SDAC of CYCLE840)";
         ContourPreparation { cause } => "error during contour preparation ({})", Str(preparation_error(cause));
     }
@@ -992,6 +1051,7 @@ text_table! {
 pub fn cycle_message(code: u16) -> Option<&'static str> {
     Some(match code {
         62100 => "no drilling cycle active (program MCALL CYCLE81-89/840 before the pattern)",
+        62101 => "wrong milling direction, G3 generated (CDIR not 2 or 3)",
         62105 => "number of columns or rows is zero (_NUM1/_NUM2 of CYCLE801)",
         _ => return None,
     })
@@ -1642,12 +1702,22 @@ pub const CATALOG: &[CatalogEntry] = &[
     CatalogEntry {
         code: 61009,
         title: "active tool number 0",
-        when: "SINUMERIK milling cycle (CYCLE71, CYCLE72) called with no tool selected, T0 (table: 有效的刀具号=0)",
+        when: "SINUMERIK milling cycle (CYCLE71, CYCLE72) called with no tool selected, T0; CYCLE76/CYCLE77 with no tool or no offset active (lines 5921, 6083) (table: 有效的刀具号=0)",
+    },
+    CatalogEntry {
+        code: 61011,
+        title: "scaling not allowed",
+        when: "SINUMERIK CYCLE71 called with a scaling in force (table: 比例缩放不允许)",
+    },
+    CatalogEntry {
+        code: 61012,
+        title: "different scaling in the plane",
+        when: "SINUMERIK CYCLE76/CYCLE77 called with unequal scale factors on the plane's two axes (table: 平面中比例缩放不同)",
     },
     CatalogEntry {
         code: 61019,
         title: "parameter wrong",
-        when: "CYCLE83 DAM under -1 (line 1824), CYCLE840 ENC other than 0, 1, 11, 20 (table 12213: 参数错误编程)",
+        when: "CYCLE83 DAM under -1 (line 1824), CYCLE840 ENC other than 0, 1, 11, 20 (table 12213: 参数错误编程); CYCLE832 _TOL negative or above 10 mm, a _TOLM digit outside its values (the document names no alarm; see docs/SIEMENS-MILL.md)",
     },
     CatalogEntry {
         code: 61101,
@@ -1665,6 +1735,11 @@ pub const CATALOG: &[CatalogEntry] = &[
         when: "HOLES1/HOLES2 NUM zero, negative or left out (line 3107, table 12216: 孔数为零)",
     },
     CatalogEntry {
+        code: 61104,
+        title: "slot contour violation",
+        when: "LONGHOLE/SLOT1/SLOT2 whose slots touch or cut each other on the circle (neighbours closer than the width at their inner ends, SLOT2's gap between slots no wider than WID) or a SLOT2 over the circle's centre (table: 键槽轮廓损伤; lines 3905, 4194, 4376, table 12217)",
+    },
+    CatalogEntry {
         code: 61105,
         title: "cutter radius too large",
         when: "SINUMERIK milling cycle whose cutter does not fit the slot, pocket, elongated hole or thread (table: 铣刀半径太大; lines 3743, 3862, 4054, 4519)",
@@ -1672,7 +1747,7 @@ pub const CATALOG: &[CatalogEntry] = &[
     CatalogEntry {
         code: 61106,
         title: "circle elements",
-        when: "HOLES2 NUM holes at INDA apart do not fit on a full circle: (NUM−1)·|INDA| ≥ 360° (table 12221: 圆弧单元个数或者间距)",
+        when: "HOLES2 NUM holes, LONGHOLE/SLOT1/SLOT2 NUM slots at INDA apart do not fit on a full circle: (NUM−1)·|INDA| ≥ 360°; slots also for NUM ≤ 0 (table 12221: 圆弧单元个数或者间距)",
     },
     CatalogEntry {
         code: 61107,
@@ -1715,14 +1790,54 @@ pub const CATALOG: &[CatalogEntry] = &[
         when: "SINUMERIK CYCLE71/POCKET3/POCKET4 with a radius of zero or less in the active D offset (table: 有效的刀具半径<=0)",
     },
     CatalogEntry {
+        code: 61118,
+        title: "length or width 0",
+        when: "SINUMERIK CYCLE71 with _LENG or _WID zero (table: 长度或者宽度=0)",
+    },
+    CatalogEntry {
+        code: 61124,
+        title: "infeed width not programmed",
+        when: "SINUMERIK CYCLE71 with _MIDA zero and no tool selected (T0) to take 80 % of its diameter from (table: 进刀宽度没有编程)",
+    },
+    CatalogEntry {
         code: 61125,
         title: "_TECHNO wrong",
         when: "CYCLE84/CYCLE840 _TECHNO with a digit outside its values (table: 参数_TECHNO中工艺选择错误定义)",
     },
     CatalogEntry {
+        code: 61128,
+        title: "insertion angle 0",
+        when: "SLOT1 with oscillating insertion (VARI tens 3) and _STA2 = 0 (table: 在以摆动或者螺旋插入时再入角=0)",
+    },
+    CatalogEntry {
         code: 61180,
         title: "no swivel data record",
         when: "SINUMERIK CYCLE800 that would swivel: this board has no swivel kinematics, so no swivel data records (lines 9197, 12241: 没有给回转数据组分配名称); CYCLE800() and _TC=\"0\" deselect and are accepted",
+    },
+    CatalogEntry {
+        code: 61191,
+        title: "5-axis transformation not set up",
+        when: "SINUMERIK CYCLE832 _TOLM tens digit 1 (TRAORI): this board has no 5-axis transformation (lines 9794, 12252: 5轴转换没有设置)",
+    },
+    CatalogEntry {
+        code: 61192,
+        title: "second 5-axis transformation not set up",
+        when: "SINUMERIK CYCLE832 _TOLM tens digit 2 (TRAORI(2)) (lines 9795, 12253: 第二个5轴转换没有设置)",
+    },
+    CatalogEntry {
+        code: 61194,
+        title: "option spline interpolation not set",
+        when: "SINUMERIK CYCLE832 _TOLM hundreds digit 3 (B spline): this board has no spline interpolation (lines 9797, 12255: 选项样条插补没有设置)",
+    },
+    CatalogEntry {
+        code: 61213,
+        title: "circle radius too small",
+        when: "SINUMERIK CYCLE77 with a spigot diameter _PRAD of zero (table: 圆弧半径太小)",
+    },
+    CatalogEntry {
+        code: 61215,
+        title: "blank dimension wrong",
+        when: "SINUMERIK CYCLE76/CYCLE77 with a blank _AP1 (_AP2) not larger than the spigot's length (width, diameter) (table: 毛坯尺寸错误编程)",
     },
     CatalogEntry {
         code: 61601,
@@ -1747,7 +1862,7 @@ pub const CATALOG: &[CatalogEntry] = &[
     CatalogEntry {
         code: 61605,
         title: "contour wrong",
-        when: "CYCLE95 contour with an element the cycle cannot machine (an undercut against the machining direction) (table 12260: 轮廓错误编程)",
+        when: "CYCLE95 contour with an element the cycle cannot machine (an undercut against the machining direction); CYCLE76 spigot with _LENG or _WID zero or a corner radius _CRAD above half its width (table 12260: 轮廓错误编程)",
     },
     CatalogEntry {
         code: 61606,
@@ -1767,7 +1882,12 @@ pub const CATALOG: &[CatalogEntry] = &[
     CatalogEntry {
         code: 61609,
         title: "form wrong",
-        when: "CYCLE94 FORM not E/F, CYCLE96 FORM not A-D (lines 10513, 11024: 形状错误定义)",
+        when: "CYCLE94 FORM not E/F, CYCLE96 FORM not A-D (lines 10513, 11024: 形状错误定义); LONGHOLE LENG 0, SLOT1 WID 0 or LENG < WID (table 12269)",
+    },
+    CatalogEntry {
+        code: 61610,
+        title: "no infeed depth",
+        when: "SINUMERIK CYCLE76/CYCLE77 with _MID zero (table: 没有编程进刀深度)",
     },
     CatalogEntry {
         code: 61612,
@@ -1808,6 +1928,11 @@ pub const CATALOG: &[CatalogEntry] = &[
         code: 61807,
         title: "spindle direction wrong",
         when: "CYCLE840 SDR the direction the spindle turns into the hole (it must reverse), or SDAC other than 0/3/4/5 (table: 编程错误的主轴方向)",
+    },
+    CatalogEntry {
+        code: 61905,
+        title: "cutter radius too small",
+        when: "SLOT2 (not VARI x3) with a cutter diameter below half the slot width: material would stay in the slot (table: 铣刀半径太小)",
     },
 ];
 
@@ -1978,6 +2103,8 @@ mod tests {
             SiemensCycle(CycleAlarm::NoFeed),
             SiemensCycle(CycleAlarm::NoThirdAxis),
             SiemensCycle(CycleAlarm::ToolNumberZero),
+            SiemensCycle(CycleAlarm::ScaleNotAllowed),
+            SiemensCycle(CycleAlarm::ScaleDiffers),
             SiemensCycle(CycleAlarm::ParameterWrong),
             SiemensCycle(CycleAlarm::ReferencePlaneWrong),
             SiemensCycle(CycleAlarm::NoSpindleDirection),
@@ -1992,8 +2119,15 @@ mod tests {
             SiemensCycle(CycleAlarm::ToolRadiusNegative),
             SiemensCycle(CycleAlarm::CornerRadiusTooLarge),
             SiemensCycle(CycleAlarm::ToolRadiusNotPositive),
+            SiemensCycle(CycleAlarm::LengthOrWidthZero),
+            SiemensCycle(CycleAlarm::InfeedWidthMissing),
             SiemensCycle(CycleAlarm::TechnologyWrong),
             SiemensCycle(CycleAlarm::SwivelDataNoName),
+            SiemensCycle(CycleAlarm::CircleRadiusTooSmall),
+            SiemensCycle(CycleAlarm::BlankWrong),
+            SiemensCycle(CycleAlarm::FiveAxisNotSetUp),
+            SiemensCycle(CycleAlarm::SecondFiveAxisNotSetUp),
+            SiemensCycle(CycleAlarm::SplineNotSetUp),
             SiemensCycle(CycleAlarm::FinishedDiameterTooSmall),
             SiemensCycle(CycleAlarm::ToolWidthWrong),
             SiemensCycle(CycleAlarm::GrooveFormWrong),
@@ -2003,6 +2137,7 @@ mod tests {
             SiemensCycle(CycleAlarm::StartPointWrong),
             SiemensCycle(CycleAlarm::WrongEdgePosition),
             SiemensCycle(CycleAlarm::FormWrong),
+            SiemensCycle(CycleAlarm::NoInfeedDepth),
             SiemensCycle(CycleAlarm::RecutImpossible),
             SiemensCycle(CycleAlarm::UndercutPositionWrong),
             SiemensCycle(CycleAlarm::FinishedContourWrong),
@@ -2011,6 +2146,9 @@ mod tests {
             SiemensCycle(CycleAlarm::ContourDirection),
             SiemensCycle(CycleAlarm::AxisNotPresent),
             SiemensCycle(CycleAlarm::WrongSpindleDirection),
+            SiemensCycle(CycleAlarm::SlotContourViolated),
+            SiemensCycle(CycleAlarm::InsertionAngleZero),
+            SiemensCycle(CycleAlarm::CutterRadiusTooSmall),
         ]
     };
 

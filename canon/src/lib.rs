@@ -101,6 +101,14 @@ pub enum Action {
     /// locked to the encoder; `None` (G50.2) ends it once C is a whole number of
     /// revolutions from where it locked.
     Polygon(Option<PolygonSync>),
+    /// The path tolerance (SINUMERIK CYCLE832 `_TOL`) the motion core plans with
+    /// from the next block on: it is the junction deviation of G64 corners and
+    /// the chord tolerance of corners and arcs ([`config::MotionConfig`]). 0
+    /// puts the machine's own back, as M02/M30 and reset do.
+    Tolerance {
+        /// The tolerance, nm (0: the machine's).
+        nm: u32,
+    },
 }
 
 /// A machining centre's tool change (M06): what the board needs to drive a tool

@@ -520,7 +520,11 @@ pub const PROVEN_ELSEWHERE: &[(u16, &str)] = &[
         "interp-siemens cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
     ),
     (61103, "host-tests siemens_holes.rs alarms_of_the_patterns_move_nothing"),
-    (61106, "host-tests siemens_holes.rs alarms_of_the_patterns_move_nothing"),
+    (61104, "host-tests siemens_slots.rs alarms_of_the_slots_move_nothing"),
+    (
+        61106,
+        "host-tests siemens_holes.rs alarms_of_the_patterns_move_nothing, siemens_slots.rs alarms_of_the_slots_move_nothing",
+    ),
     (61105, "interp-siemens cycles::mill tests (the milling cycles' shared tool, feed, width and level checks)"),
     (
         61107,
@@ -537,7 +541,11 @@ pub const PROVEN_ELSEWHERE: &[(u16, &str)] = &[
         61125,
         "interp-siemens cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
     ),
+    (61128, "host-tests siemens_slots.rs alarms_of_the_slots_move_nothing"),
     (61180, "host-tests siemens_thread_mill.rs cycle800_swivels_raise_61180_and_deselect_is_accepted"),
+    (61191, "host-tests siemens_hsc.rs alarms_on_the_cycles_line_and_nothing_changes"),
+    (61192, "host-tests siemens_hsc.rs alarms_on_the_cycles_line_and_nothing_changes"),
+    (61194, "host-tests siemens_hsc.rs alarms_on_the_cycles_line_and_nothing_changes"),
     (
         61601,
         "interp-siemens cycles::tests::undercut.rs undercut_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
@@ -572,7 +580,7 @@ pub const PROVEN_ELSEWHERE: &[(u16, &str)] = &[
     ),
     (
         61609,
-        "interp-siemens cycles::tests::undercut.rs undercut_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
+        "interp-siemens cycles::tests::undercut.rs undercut_alarms_move_nothing (the cycle called directly until SINUMERIK programs run); host-tests siemens_slots.rs alarms_of_the_slots_move_nothing",
     ),
     (
         61612,
@@ -606,6 +614,7 @@ pub const PROVEN_ELSEWHERE: &[(u16, &str)] = &[
         61807,
         "interp-siemens cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
     ),
+    (61905, "host-tests siemens_slots.rs alarms_of_the_slots_move_nothing"),
 ];
 
 /// What this controller does where the manual says "报警" (alarm).

@@ -100,6 +100,11 @@ pub enum Body {
         /// Tool-spindle turns Q.
         q: Option<u16>,
     },
+    /// SINUMERIK CYCLE832: the path tolerance of the blocks after it.
+    Tolerance {
+        /// mm; null: the machine's own.
+        mm: Option<f64>,
+    },
 }
 
 /// Where a move ends: work X (diameter on a lathe), Y, Z, C (the machine
@@ -246,6 +251,7 @@ pub fn record(c: &Canon, cfg: &MachineConfig) -> Record {
         Action::Stop { optional } => Body::Stop { optional: *optional },
         Action::End { rewind } => Body::End { rewind: *rewind },
         Action::Polygon(p) => Body::Polygon { p: p.map(|s| s.p), q: p.map(|s| s.q) },
+        Action::Tolerance { nm } => Body::Tolerance { mm: (*nm > 0).then(|| f64::from(*nm) / 1e6) },
     };
     Record { line: c.line, program: None, body }
 }

@@ -158,6 +158,7 @@ pub fn kind_names(r: &Run) -> Vec<String> {
             Action::End { rewind } => format!("end {rewind}"),
             Action::Polygon(Some(p)) => format!("polygon {}/{}", p.q, p.p),
             Action::Polygon(None) => "polygon off".into(),
+            Action::Tolerance { nm } => format!("tolerance {nm}"),
         })
         .collect()
 }

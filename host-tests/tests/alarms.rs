@@ -265,6 +265,13 @@ fn every_catalog_code_has_a_triggering_program() {
     covered.extend([61103, 61106]);
     // siemens_thread_mill.rs (CYCLE90, CYCLE800, CYCLE832 on the mill)
     covered.extend([61180]);
+    // siemens_face.rs (CYCLE71, CYCLE76, CYCLE77 on the mill) and interp-siemens
+    // cycles::tests::face (61011, 61012: a scaling no SINUMERIK program sets yet)
+    covered.extend([61011, 61012, 61118, 61124, 61213, 61215, 61610]);
+    // siemens_hsc.rs (CYCLE832: TRAORI, TRAORI(2), B spline)
+    covered.extend([61191, 61192, 61194]);
+    // siemens_slots.rs (LONGHOLE, SLOT1, SLOT2 on the mill)
+    covered.extend([61104, 61128, 61905]);
     // controller/tests/mill.rs and cli board.rs (a tool changer that never reports done)
     covered.insert(4511);
     // macro_calls.rs nested_g66_calls_the_newest_then_the_older_one_from_its_moves

@@ -32,7 +32,7 @@ pub mod contour;
 pub mod cycles;
 pub mod env;
 pub mod exec;
-pub mod geom;
+pub use ::geom;
 mod head;
 pub mod interpreter;
 pub mod lang;

@@ -34,6 +34,7 @@ pub struct Levels {
 
 impl Levels {
     /// `from` → `to` in the fewest equal infeeds of at most `max` (`max` ≤ 0: one).
+    #[inline(never)]
     pub fn new(from: i64, to: i64, max: i64) -> Self {
         Levels { from, to, count: parts(to - from, max) }
     }

@@ -30,10 +30,17 @@
 #![no_std]
 
 pub mod contour;
+#[cfg(feature = "face")]
+pub mod face;
 pub mod infeed;
 pub mod plan;
 pub mod pocket;
 pub mod rot;
+#[cfg(feature = "slot")]
+pub mod slot;
+#[cfg(feature = "face")]
+pub mod spigot;
+pub mod thread;
 
 pub use canon::alarm::CycleAlarm;
 pub use contour::{Contour, Elem, NoContour};
@@ -107,6 +114,17 @@ pub enum MillGen {
     Plan(plan::Plan),
     /// A rectangular or circular pocket ([`pocket::Pocket`]: POCKET1 to POCKET4).
     Pocket(pocket::Pocket),
+    /// A thread milled on a helix ([`thread::Thread`]: CYCLE90).
+    Thread(thread::Thread),
+    /// A face ([`face::Face`]: CYCLE71).
+    #[cfg(feature = "face")]
+    Face(face::Face),
+    /// A rectangular or circular spigot ([`spigot::Spigot`]: CYCLE76, CYCLE77).
+    #[cfg(feature = "face")]
+    Spigot(spigot::Spigot),
+    /// Slots on a circle ([`slot::Slots`]: LONGHOLE, SLOT1, SLOT2).
+    #[cfg(feature = "slot")]
+    Slots(slot::Slots),
 }
 
 impl MillGen {
@@ -121,7 +139,22 @@ impl MillGen {
         match self {
             MillGen::Plan(p) => Ok(p.next()),
             MillGen::Pocket(p) => Ok(p.next()),
+            MillGen::Thread(t) => Ok(t.next()),
+            #[cfg(feature = "face")]
+            MillGen::Face(p) => Ok(p.next()),
+            #[cfg(feature = "face")]
+            MillGen::Spigot(p) => Ok(p.next()),
+            #[cfg(feature = "slot")]
+            MillGen::Slots(p) => Ok(p.next()),
         }
+    }
+}
+
+/// Where a move ends (`None`: it does not move).
+pub(crate) fn end_of(m: &Move) -> Option<P3> {
+    match m {
+        Move::Rapid(p) | Move::Line { to: p, .. } | Move::Arc { to: p, .. } => Some(*p),
+        _ => None,
     }
 }
 

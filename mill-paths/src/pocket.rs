@@ -23,6 +23,11 @@ use crate::infeed::{Levels, parts};
 use crate::rot::Rot;
 use crate::{Move, P3};
 
+/// Whether the parts only POCKET3/POCKET4 use are built (mill-paths' feature
+/// `pocket34`): without them a pre-machined pocket, a finishing approach arc and
+/// full turns are never cut, and the helix and oscillation do not exist.
+const P34: bool = cfg!(feature = "pocket34");
+
 /// How a pass gets down to its level at the pocket's centre.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Insert {
@@ -32,6 +37,7 @@ pub enum Insert {
     Feed,
     /// On a helix of radius `rad` about the centre in the rings' direction, in
     /// whole turns of at most `pitch`, then one flat turn (`_VARI` 2x).
+    #[cfg(feature = "pocket34")]
     Helix {
         /// Helix radius (tool centre, `_RAD1`).
         rad: i64,
@@ -41,6 +47,7 @@ pub enum Insert {
     /// Oscillating along the length (centre → +L → centre → −L → centre) at a
     /// slope of at most `tan`, then one flat oscillation (`_VARI` 3x). L is the
     /// outermost roughing ring's half length.
+    #[cfg(feature = "pocket34")]
     Swing {
         /// Tangent of the largest insertion angle (`_RAD1`).
         tan: f64,
@@ -121,6 +128,7 @@ impl Pocket {
     }
 
     /// The move at the cursor (`Some(None)`: nothing here), and the cursor on.
+    #[inline(never)]
     fn step(&mut self) -> Option<Option<Move>> {
         let s = self.s;
         let m = match self.stage {
@@ -151,7 +159,7 @@ impl Pocket {
             5 => (s.finish, 0, s.feeds[2]),
             _ => (s.floor, 0, s.feeds[2]),
         };
-        let arc_in = if stage == 5 { s.arc_in } else { 0 };
+        let arc_in = if P34 && stage == 5 { s.arc_in } else { 0 };
         // The outermost ring: half sides and corner radius of the tool centre.
         let off = s.r + fal;
         let (a, b) = ((s.hl - off).max(0), (s.hw - off).max(0));
@@ -165,7 +173,7 @@ impl Pocket {
         let (prev, lvl) = (levels.level(self.level - 1), levels.level(self.level));
         // Above the pre-machined pocket's floor only air is inside it.
         let blank = s.blank;
-        let in_blank = stage == 2 && blank[0] > 0 && (lvl - blank[2]) * (levels.to - levels.from).signum() <= 0;
+        let in_blank = P34 && stage == 2 && blank[0] > 0 && (lvl - blank[2]) * (levels.to - levels.from).signum() <= 0;
         if self.el == 0 {
             let how = match stage {
                 // Room at the centre: straight down in the air (line 4923).
@@ -193,21 +201,9 @@ impl Pocket {
             1 => {}
             2 if arc_in > 0 => arc = Some((a - rho, 0)),
             2 => return None,
-            3..=10 => {
-                // Quadrant i: a side up to the corner, then the corner's arc: its
-                // centre C, from C + q·u(i) to C + q·u(i + 1).
-                let e = el - 1;
-                let i = usize::from((e - 2) / 2);
-                let unit = |k: usize| [(1, 0), (0, 1), (-1, 0), (0, -1)][k & 3];
-                let c = ([1, -1, -1, 1][i & 3] * (a - q), [1, 1, -1, -1][i & 3] * (b - q));
-                let u = unit(i + usize::from(e % 2));
-                to = (c.0 + q * u.0, c.1 + q * u.1);
-                if e % 2 == 1 {
-                    arc = Some(c);
-                }
-            }
-            // The ring closes where it started.
-            11 => {}
+            // The ring (main's elements 2..=10, one on here): sides and corners,
+            // and at 11 the half side back to where it started.
+            3..=11 => (to, arc) = ring_el(a, b, q, el - 1),
             12 if arc_in > 0 => (to, arc) = ((a - rho, rho), Some((a - rho, 0))),
             12 => {
                 if self.ring < n {
@@ -226,6 +222,7 @@ impl Pocket {
     /// Move `sub` of the insertion from `prev` down to `lvl` at the centre (`len`:
     /// the oscillation's half length): first G0 to the centre at `prev` (left out
     /// when the tool is there), then `how`'s moves; element 1 follows.
+    #[cfg_attr(not(feature = "pocket34"), allow(unused_variables))]
     fn plunge(&mut self, how: Insert, prev: i64, lvl: i64, len: i64) -> Option<Move> {
         let k = self.sub;
         self.sub = k.saturating_add(1);
@@ -233,11 +230,13 @@ impl Pocket {
             return Some(Move::Rapid(self.pt((0, 0), prev)));
         }
         // The applicate `t`/`n` of the way down.
+        #[cfg(feature = "pocket34")]
         let at = |t: u32, count: u32| Levels { from: prev, to: lvl, count }.level(t);
         let f = self.s.feeds[0];
         let (last, m) = match how {
             Insert::Rapid => (true, Move::Rapid(self.pt((0, 0), lvl))),
             Insert::Feed => (true, self.plane((0, 0), None, lvl, f)),
+            #[cfg(feature = "pocket34")]
             Insert::Helix { rad, pitch } => {
                 // The start on the length at G1, whole turns, one flat turn.
                 // (Capped so that the flat turn still comes after the last one.)
@@ -246,6 +245,7 @@ impl Pocket {
                 let d = if t == 0 { prev } else { at(t.min(n), n) };
                 (t > n, self.plane((rad, 0), (t > 0).then_some((0, 0)), d, f))
             }
+            #[cfg(feature = "pocket34")]
             Insert::Swing { tan } => {
                 let n = parts(lvl - prev, libm::round(4.0 * len as f64 * tan) as i64).saturating_mul(4);
                 let u = [len, 0, -len, 0][(k as usize - 1) & 3];
@@ -260,23 +260,58 @@ impl Pocket {
 
     /// The plane point of the pocket's axes `(u, v)` at applicate `d` (G2 rings
     /// mirror the pocket's ordinate).
-    fn pt(&self, (u, v): (i64, i64), d: i64) -> P3 {
-        let s = &self.s;
-        let (x, y) = s.rot.point(u as f64, if s.cw { -v } else { v } as f64);
-        P3::new(x, y, d)
+    fn pt(&self, uv: (i64, i64), d: i64) -> P3 {
+        plane_pt(&self.s.rot, self.s.cw, uv, d)
     }
 
-    /// A move of the pocket's axes in the plane: a line to `to`, or an arc about
-    /// `arc`, at applicate `d`.
-    #[inline(never)]
+    /// A move of the pocket's axes in the plane (G2 rings mirror the ordinate).
     fn plane(&self, to: (i64, i64), arc: Option<(i64, i64)>, d: i64, feed: i64) -> Move {
-        let to = self.pt(to, d);
-        match arc {
-            None => Move::Line { to, feed },
-            Some(c) => {
-                let c = self.pt(c, d);
-                Move::Arc { to, centre: (c.a, c.o), cw: self.s.cw, feed }
-            }
+        plane_move(&self.s.rot, self.s.cw, to, arc.map(|c| (c, false)), d, feed)
+    }
+}
+
+/// Element `el` (2..=10) of the ring of half sides `a`, `b` and corner radius `q`
+/// that starts at (`a`, 0) and runs counterclockwise: quadrant `(el − 2) / 2`'s
+/// side up to its corner (even `el`), the corner's arc (odd: its centre
+/// returned), and at 10 the half side back to the start. Its end.
+pub(crate) fn ring_el(a: i64, b: i64, q: i64, el: u8) -> ((i64, i64), Option<(i64, i64)>) {
+    if !(2..=9).contains(&el) {
+        return ((a, 0), None);
+    }
+    // Quadrant i: a side up to the corner, then the corner's arc: its centre C,
+    // from C + q·u(i) to C + q·u(i + 1).
+    let i = usize::from((el - 2) / 2);
+    let unit = |k: usize| [(1, 0), (0, 1), (-1, 0), (0, -1)][k & 3];
+    let c = ([1, -1, -1, 1][i & 3] * (a - q), [1, 1, -1, -1][i & 3] * (b - q));
+    let u = unit(i + usize::from(el % 2));
+    ((c.0 + q * u.0, c.1 + q * u.1), if el % 2 == 1 { Some(c) } else { None })
+}
+
+/// The point `(u, v)` of turned axes `rot` at applicate `d`; `mirror` mirrors the
+/// ordinate.
+fn plane_pt(rot: &Rot, mirror: bool, (u, v): (i64, i64), d: i64) -> P3 {
+    let (x, y) = rot.point(u as f64, if mirror { -v } else { v } as f64);
+    P3::new(x, y, d)
+}
+
+/// A move in turned axes `rot` in the plane: a line to `to`, or an arc about the
+/// centre of `arc` (its bool: clockwise in those axes), at applicate `d`; `mirror`
+/// mirrors the ordinate (and so every arc's sense: a G2 ring drawn as a G3 one).
+#[inline(never)]
+pub(crate) fn plane_move(
+    rot: &Rot,
+    mirror: bool,
+    to: (i64, i64),
+    arc: Option<((i64, i64), bool)>,
+    d: i64,
+    feed: i64,
+) -> Move {
+    let at = |uv| plane_pt(rot, mirror, uv, d);
+    match arc {
+        None => Move::Line { to: at(to), feed },
+        Some((c, cw)) => {
+            let c = at(c);
+            Move::Arc { to: at(to), centre: (c.a, c.o), cw: cw != mirror, feed }
         }
     }
 }
@@ -289,14 +324,11 @@ impl Iterator for Pocket {
         loop {
             let m = self.step()?;
             let Some(m) = m else { continue };
+            let Some(to) = crate::end_of(&m) else { return Some(m) };
             // Moves of zero length (and arcs of radius 0) are left out; an arc
             // back to where it starts is a full turn.
-            let (to, zero) = match m {
-                Move::Rapid(p) | Move::Line { to: p, .. } => (p, true),
-                Move::Arc { to, centre, .. } => (to, centre == (to.a, to.o)),
-                _ => return Some(m),
-            };
-            if !(zero && to == self.last) {
+            let turn = P34 && matches!(m, Move::Arc { centre, .. } if centre != (to.a, to.o));
+            if turn || to != self.last {
                 self.last = to;
                 return Some(m);
             }
@@ -376,6 +408,7 @@ mod tests {
     /// A helix insertion: whole turns of at most the pitch (a 7 mm infeed at
     /// 3 mm a turn: three turns of 7/3 mm), full circles kept, one flat turn.
     #[test]
+    #[cfg(feature = "pocket34")]
     fn helix_turns_are_whole_and_end_flat() {
         let s = PocketSpec {
             rough: Levels::new(1_000_000, -6_000_000, 0),

@@ -155,15 +155,28 @@ fn the_sinumerik_examples_check_clean() {
 }
 
 /// The drilling-pattern examples (HOLES1, HOLES2, CYCLE801, seed 001 chapter 2.3) and
-/// the pockets (POCKET1 to POCKET4, chapter 3)
+/// the pockets (POCKET1 to POCKET4), thread milling (CYCLE90) and slots (LONGHOLE,
+/// SLOT1, SLOT2, chapter 3)
 /// run clean on the machining centre and draw exactly their committed plan-view
 /// renders.
 #[test]
 fn the_sinumerik_mill_examples_run_and_match_their_renders() {
     let machine = concat!(env!("CARGO_MANIFEST_DIR"), "/../examples/machines/mill.toml");
-    for name in
-        ["holes1_row", "holes1_grid", "holes2_circle", "cycle801_grid", "pocket1", "pocket2", "pocket3", "pocket4"]
-    {
+    for name in [
+        "holes1_row",
+        "holes1_grid",
+        "holes2_circle",
+        "cycle801_grid",
+        "pocket1",
+        "pocket2",
+        "pocket3",
+        "pocket4",
+        "cycle90",
+        "cycle90_up",
+        "longhole",
+        "slot1",
+        "slot2",
+    ] {
         let path = format!("{SINUMERIK}/mill/{name}.mpf");
         let o = lathe(&["check", &path, "--machine", machine]);
         assert_eq!(status(&o), 0, "{name}: {}", stdout(&o));
@@ -210,6 +223,26 @@ fn cycle_messages_are_shown_with_their_line() {
     let o = lathe(&["check", &p, "--machine", machine]);
     assert!(stdout(&o).contains(want), "{}", stdout(&o));
     assert!(stdout(&o).ends_with("no alarms\n"), "{}", stdout(&o));
+}
+
+/// SLOT2 with a CDIR other than 2/3 (seed 001 table 12278): message 62101 "wrong
+/// milling direction, G3 generated" on the call's line, and the rings run G3 (the
+/// end caps counterclockwise; the sides about the circle's centre go both ways).
+#[test]
+fn slot2_cdir_other_than_2_or_3_is_message_62101() {
+    let machine = concat!(env!("CARGO_MANIFEST_DIR"), "/../examples/machines/mill.toml");
+    let p = scratch(
+        "slot2_cdir.mpf",
+        "G17 G90 G0 X60 Y60 Z5 S600 M3\nT1 D1\nSLOT2(2, 0, 2, -5, , 3, 30, 15, 60, 60, 42, , 120, 100, 300, 6, 7, 0.5)\nM30\n",
+    );
+    let o = lathe(&["sim", &p, "--machine", machine, "--format", "jsonl"]);
+    assert_eq!(status(&o), 0, "{}", stderr(&o));
+    let want = "line 3: message 62101: wrong milling direction, G3 generated (CDIR not 2 or 3)";
+    assert!(stderr(&o).lines().any(|l| l.ends_with(want)), "{}", stderr(&o));
+    let out = stdout(&o);
+    let caps = |l: &&str| l.contains(r#""kind":"arc""#) && !l.contains(r#""cx":60.0,"cy":60.0"#);
+    let arcs: Vec<&str> = out.lines().filter(caps).collect();
+    assert!(!arcs.is_empty() && arcs.iter().all(|l| l.contains(r#""cw":false"#)), "{out}");
 }
 
 /// On the machining centre in SINUMERIK mode T selects the tool and M6 changes

@@ -10,8 +10,7 @@
 
 pub mod cycle;
 mod gset;
-pub mod hole;
-pub mod job;
+pub use cycle_paths::spec::{hole, job};
 
 pub use cycle::CycleArgs;
 pub use gset::{EXTRA_FRAME, GSet, uses_axes};

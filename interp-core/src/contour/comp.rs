@@ -19,7 +19,7 @@ use super::{Buffer, in_plane, moved_to};
 use crate::alarm::AlarmKind;
 use crate::axis::Pos;
 use crate::canon::{Action, ArcMove, Canon, Move, Plane, SpindleSpeed};
-use crate::geom::path::{Elem, V2, intersect, nearest, wrap_tau};
+use crate::geom::path::{Elem, V2, intersect, nearest, tip_vector, wrap_tau};
 use crate::modal::lookahead::Waiting;
 pub use crate::modal::lookahead::{Comp, Side};
 use crate::stage::Staged;
@@ -102,24 +102,6 @@ impl Comp {
         let start2 = if line2 { b } else { p2 };
         Ok(Join { end1, mids, start2 })
     }
-}
-
-/// The vector (G18 plane coordinates: Z, X) from the nose centre to the
-/// imaginary tip of direction `tip` for a nose of `radius` nm (figure 2.63).
-#[inline(never)]
-pub(crate) fn tip_vector(tip: u8, radius: i64) -> V2 {
-    let (x, z) = match tip {
-        1 => (1.0, 1.0),
-        2 => (1.0, -1.0),
-        3 => (-1.0, -1.0),
-        4 => (-1.0, 1.0),
-        5 => (0.0, 1.0),
-        6 => (1.0, 0.0),
-        7 => (0.0, -1.0),
-        8 => (-1.0, 0.0),
-        _ => (0.0, 0.0),
-    };
-    V2::new(z, x).scale(radius as f64)
 }
 
 /// The offset of `e` (alarm 3605 if an arc's radius would vanish: the nose does

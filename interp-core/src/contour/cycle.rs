@@ -44,7 +44,7 @@ pub fn single(a: Xz, b: Xz, c: Xz, d: Xz, turning: bool, nose: Nose) -> Result<[
         return Ok([b, c, d]);
     }
     let inside = |from: V2, to: V2| inside(from, to, area2 > 0.0);
-    let tip = super::comp::tip_vector(nose.tip, nose.radius);
+    let tip = crate::geom::path::tip_vector(nose.tip, nose.radius);
     let (x_axis, z_axis) = (V2::new(0.0, 1.0), V2::new(1.0, 0.0));
     let (approach, back) = if turning { (x_axis, z_axis) } else { (z_axis, x_axis) };
     let ac = p[0].minus(tip);

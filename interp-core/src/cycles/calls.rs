@@ -65,7 +65,7 @@ impl<X: Executor> Engine for CallEngine<'_, '_, '_, X> {
             front: zero,
             back: zero,
             along: zero,
-            tip: crate::contour::comp::tip_vector(st.tool.tip, st.tool.nose_radius),
+            tip: crate::geom::path::tip_vector(st.tool.tip, st.tool.nose_radius),
         };
         self.expansion(em, |exp, _, _| {
             for s in path {
@@ -114,6 +114,10 @@ impl<X: Executor> Engine for CallEngine<'_, '_, '_, X> {
         if let Some(exp) = self.ctx.out.started() {
             exp.notice = Some(code);
         }
+    }
+
+    fn emit(&mut self, action: crate::canon::Action) -> Result<(), AlarmKind> {
+        self.ctx.out.emit(action)
     }
 
     fn mill(&mut self, path: mill_paths::MillGen, cmd: &Command, st: &mut State) -> Result<(), AlarmKind> {

@@ -11,13 +11,14 @@
 //! the cycle ends.
 
 use super::StepQueue;
-use super::emit::{Step, push};
+use super::emit::Step;
 use super::profile::Profile;
 use crate::alarm::AlarmKind;
 use crate::axis::{Axis, Pos};
 use crate::canon::Plane;
 use crate::geom::SegKind;
 use crate::modal::State;
+use cycle_paths::step::push;
 use mill_paths::{Contour, Elem, MillGen, Move, P3};
 
 /// A milling cycle being run: its generator and the plane it lies in.
@@ -59,7 +60,7 @@ impl MillRun {
     /// position (the axes outside the plane), `profile` the cycle's contour.
     pub fn fill(&mut self, profile: &Profile, here: Pos, queue: &mut StepQueue) -> Result<bool, AlarmKind> {
         while queue.capacity() - queue.len() >= 2 {
-            let Some(m) = self.path.next(profile)? else {
+            let Some(m) = self.path.next(&Shape(profile))? else {
                 if self.speed_changed {
                     self.speed_changed = false;
                     push(queue, Step::Speed(self.rpm))?;
@@ -100,13 +101,15 @@ impl MillRun {
 /// The cycle's contour as the generators read it: the shape store's elements in
 /// the plane (a shape's point keeps the abscissa in `z`, the ordinate in `x`, as
 /// a lathe's G18 ZX shape does).
-impl Contour for Profile {
+struct Shape<'a>(&'a Profile);
+
+impl Contour for Shape<'_> {
     fn len(&self) -> usize {
-        self.segs.len()
+        self.0.segs.len()
     }
 
     fn elem(&self, i: usize) -> Elem {
-        let Some(&s) = self.segs.get(i) else { return mill_paths::NoContour.elem(0) };
+        let Some(&s) = self.0.segs.get(i) else { return mill_paths::NoContour.elem(0) };
         let arc = match s.kind {
             SegKind::Arc { center, cw } => Some(((center.z, center.x), cw)),
             _ => None,

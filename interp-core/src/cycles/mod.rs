@@ -25,31 +25,23 @@
 //! first; the ones after the motion (M05, M09, M30 …) are kept in the expansion
 //! and delivered after its last move. Every action carries the cycle block's line.
 
-// The SINUMERIK cycles (CYCLE93/95, the finishing passes of their contours) use
-// these generators and nothing else does: a build without the `siemens` feature
-// leaves them out (and their code out of flash).
+// The generators are the crate `cycle-paths` (built for size on the board); the
+// SINUMERIK cycles (CYCLE93/95, the finishing passes of their contours) use some of
+// them and nothing else does: a build without the `siemens` feature leaves them out
+// (and their code out of flash).
 #[cfg(feature = "siemens")]
 mod calls;
-pub mod curve;
 mod drilling;
 mod emit;
 mod finish;
-#[cfg_attr(not(feature = "siemens"), allow(dead_code))]
-mod groove;
-pub mod hole;
 #[cfg(feature = "siemens")]
-pub mod holes;
+pub use cycle_paths::holes;
 #[cfg(feature = "siemens")]
 pub mod mill;
-mod offset;
-#[cfg_attr(not(feature = "siemens"), allow(dead_code))]
-mod pass;
-mod pattern;
-pub mod polar;
 pub mod profile;
-mod rough;
 mod single;
-mod thread;
+
+pub use cycle_paths::{curve, groove, hole, offset, pass, pattern, polar, rough, thread};
 
 pub use crate::command::cycle::CycleArgs;
 #[cfg(feature = "siemens")]
@@ -74,23 +66,8 @@ use profile::{Profile, ShapeSource};
 use rough::RoughGen;
 use thread::{MultiThreadGen, ThreadCycleGen};
 
-/// Steps planned and not yet emitted.
-pub type StepQueue = heapless::Deque<Step, 8>;
-
-/// Queues a planned step (an error if the queue is full: a generator's bug, as it
-/// checks for room first). One out-of-line copy for every generator: inlined, each
-/// of its ~100 call sites carried its own copy of the queue's index arithmetic.
-#[inline(never)]
-fn push(out: &mut StepQueue, s: Step) -> Result<(), AlarmKind> {
-    out.push_back(s).map_err(|_| AlarmKind::Overflow)
-}
-
-/// The sign of `v` (-1, 0, 1), out of line: 64-bit `signum` is ~36 B inlined
-/// and the engines take it at a dozen and a half sites.
-#[inline(never)]
-fn sign(v: i64) -> i64 {
-    v.signum()
-}
+pub use cycle_paths::StepQueue;
+use cycle_paths::sign;
 
 /// Actions of the cycle block that follow its motion (M05, M09, M30 …).
 const TAIL: usize = 6;
@@ -655,7 +632,7 @@ fn multiple<X: Executor>(code: GCode, cmd: &Command, st: &mut State, ctx: &mut C
             // The shape is read straight into the expansion (its generator follows).
             let exp = start_cycle(em, Gen::Plan(heapless::Vec::new()), ctx.out)?;
             let shape = &mut exp.profile;
-            profile::read_profile(&src, st, cfg, env, X::execute, shape, &mut exp.tail)?;
+            let resume = profile::read_profile(&src, st, cfg, env, X::execute, shape, &mut exp.tail)?;
             let allowance = Pt::new(du, dw);
             exp.generator = if code == GCode::PatternCycle {
                 let count = u32::try_from(p(Param::PatternDivisions)).unwrap_or(0);
@@ -672,7 +649,6 @@ fn multiple<X: Executor>(code: GCode, cmd: &Command, st: &mut State, ctx: &mut C
                 Gen::Rough(RoughGen::new(&spec, shape)?)
             };
             // The shape's blocks only describe it: the program goes on after nf.
-            let resume = exp.profile.resume;
             ctx.out.resume = Some(resume);
             return Ok(());
         }

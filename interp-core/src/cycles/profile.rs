@@ -20,23 +20,7 @@ use crate::modal::State;
 use crate::program::{Cursor, find_sequence_from, next_block};
 use crate::stage::Flow;
 
-/// Most segments a finishing shape may have (alarm 4035 beyond).
-pub const PROFILE_MAX: usize = 48;
-
-/// The finishing shape A → B → … → C.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct Profile {
-    /// The segments in order; the first is the ns block's move from A.
-    pub segs: heapless::Vec<Seg, PROFILE_MAX>,
-    /// The ns block commanded X (or U).
-    pub ns_x: bool,
-    /// The ns block commanded Z (or W).
-    pub ns_z: bool,
-    /// The ns block is G00 (else G01).
-    pub ns_rapid: bool,
-    /// Where the program goes on after the cycle: the block after nf.
-    pub resume: Cursor,
-}
+pub use cycle_paths::profile::{PROFILE_MAX, Profile};
 
 /// Where the blocks ns–nf are and how to run them.
 pub struct ShapeSource<'a> {
@@ -201,7 +185,7 @@ pub fn read_profile<E: Environment + ?Sized>(
     execute: Execute,
     profile: &mut Profile,
     outbox: &mut crate::stage::Outbox,
-) -> Result<(), AlarmKind> {
+) -> Result<Cursor, AlarmKind> {
     let mut scratch = scratch(st);
     let mut cur = start_of(src)?;
     profile.segs.clear();
@@ -234,9 +218,8 @@ pub fn read_profile<E: Environment + ?Sized>(
         }
         first = false;
         if sb.last {
-            profile.resume = cur;
             outbox.clear();
-            return Ok(());
+            return Ok(cur);
         }
     }
     Err(AlarmKind::SequenceNotFound { n: src.nf })

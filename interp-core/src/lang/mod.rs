@@ -116,12 +116,12 @@ pub trait Engine {
         cmd: &Command,
         st: &mut State,
     ) -> Result<(), AlarmKind>;
-    /// Starts a milling cycle's tool path `path` (`mill_paths`) in the active
-    /// plane for the cycle block `cmd`.
     /// Raises the cycle message `code` (SINUMERIK 62xxx, its text in
     /// `canon::alarm::cycle_message`: shown, the program goes on) for the cycle
     /// just started: the operator sees it once the cycle's dry run has passed.
     fn message(&mut self, code: u16);
+    /// Starts a milling cycle's tool path `path` (`mill_paths`) in the active
+    /// plane for the cycle block `cmd`.
     #[cfg(feature = "siemens")]
     fn mill(&mut self, path: mill_paths::MillGen, cmd: &Command, st: &mut State) -> Result<(), AlarmKind>;
     /// Reads `contour` and starts the stock-removal generator (G71's geometry) on it.
@@ -132,6 +132,12 @@ pub trait Engine {
         cmd: &Command,
         st: &mut State,
     ) -> Result<(), AlarmKind>;
+    /// Stages `action` with the cycle block (a setting cycle's canonical action,
+    /// such as CYCLE832's path tolerance): delivered only if the block succeeds.
+    /// Last in the trait: the other methods keep their vtable slots (the stack
+    /// bound, `firmware/stack-bound.py`, resolves calls through a slot to every
+    /// vtable's method in it).
+    fn emit(&mut self, action: crate::canon::Action) -> Result<(), AlarmKind>;
 }
 
 /// A program as the blocks of a canned cycle's shape (G70–G73 ns–nf) are read from

@@ -98,6 +98,9 @@ enum Aside {
     End {
         rewind: bool,
     },
+    Tolerance {
+        nm: u32,
+    },
     Polygon(Option<crate::canon::PolygonSync>),
     /// A move along the compensation plane's normal only (a mill's plunge or
     /// retract between compensated moves): made where the compensated path is
@@ -141,6 +144,7 @@ impl Aside {
             Action::Aux { m } => Aside::Aux { m },
             Action::Stop { optional } => Aside::Stop { optional },
             Action::End { rewind } => Aside::End { rewind },
+            Action::Tolerance { nm } => Aside::Tolerance { nm },
             Action::Polygon(p) => Aside::Polygon(p),
             _ => return None,
         })
@@ -156,6 +160,7 @@ impl Aside {
             Aside::Aux { m } => Action::Aux { m },
             Aside::Stop { optional } => Action::Stop { optional },
             Aside::End { rewind } => Action::End { rewind },
+            Aside::Tolerance { nm } => Action::Tolerance { nm },
             Aside::Polygon(p) => Action::Polygon(p),
             // Only a mill's compensation makes plunges (`contour::comp::plunge`):
             // without the profile the arm below is all that is compiled.

@@ -17,7 +17,7 @@ use crate::canon::{Action, ArcMove, Endpoint, Feed, FeedMode, Move, Plane, Spind
 use crate::codes::GCode;
 use crate::command::Command;
 use crate::config::MachineConfig;
-use crate::geom::{center_from_radius, path::V2};
+use crate::geom::center_from_radius;
 use crate::modal::{Polar, State};
 use crate::stage::Staged;
 
@@ -155,14 +155,4 @@ fn feed(st: &State) -> Result<Feed, AlarmKind> {
         return Err(AlarmKind::FeedPerRevSpindleStopped);
     }
     Ok(Feed { mode, value })
-}
-
-/// The polar point (X radius, C µdeg) of a virtual point, C taken nearest to `near`.
-#[inline(never)]
-pub fn to_polar(v: V2, near_udeg: f64) -> (f64, f64) {
-    let r = libm::hypot(v.a, v.b);
-    let raw = libm::atan2(v.b, v.a).to_degrees() * 1e6;
-    let turn = 360.0e6;
-    let k = libm::round((near_udeg - raw) / turn);
-    (r, raw + k * turn)
 }

@@ -224,10 +224,32 @@ pub fn start(
         "CYCLE97" => thread::cycle97(&p, cmd, st, ctx),
         "CYCLE98" => thread::cycle98(&p, cmd, st, ctx),
         "CYCLE800" => mill::cycle800(&p).map_err(AlarmKind::from),
+        "CYCLE90" => mill::thread::cycle90(&p, cmd, st, ctx),
+        "CYCLE832" => mill::cycle832(&p, st, ctx),
+        #[cfg(feature = "mill-slots")]
+        "LONGHOLE" => mill::slot::slots(mill::slot::Kind::Longhole, &p, cmd, st, ctx),
+        #[cfg(feature = "mill-slots")]
+        "SLOT1" => mill::slot::slots(mill::slot::Kind::Slot1, &p, cmd, st, ctx),
+        #[cfg(feature = "mill-slots")]
+        "SLOT2" => mill::slot::slots(mill::slot::Kind::Slot2, &p, cmd, st, ctx),
+        #[cfg(not(feature = "mill-slots"))]
+        "LONGHOLE" | "SLOT1" | "SLOT2" => Err(LEFT_OUT),
         "POCKET1" => mill::pocket::pocket12(false, &p, cmd, st, ctx),
         "POCKET2" => mill::pocket::pocket12(true, &p, cmd, st, ctx),
+        #[cfg(feature = "mill-pockets")]
         "POCKET3" => mill::pocket::pocket34(false, &p, cmd, st, ctx),
+        #[cfg(feature = "mill-pockets")]
         "POCKET4" => mill::pocket::pocket34(true, &p, cmd, st, ctx),
+        #[cfg(not(feature = "mill-pockets"))]
+        "POCKET3" | "POCKET4" => Err(LEFT_OUT),
+        #[cfg(feature = "mill-face")]
+        "CYCLE71" => mill::face::cycle71(&p, cmd, st, ctx),
+        #[cfg(feature = "mill-face")]
+        "CYCLE76" => mill::face::spigot(false, &p, cmd, st, ctx),
+        #[cfg(feature = "mill-face")]
+        "CYCLE77" => mill::face::spigot(true, &p, cmd, st, ctx),
+        #[cfg(not(feature = "mill-face"))]
+        "CYCLE71" | "CYCLE76" | "CYCLE77" => Err(LEFT_OUT),
         // A drilling pattern is run by the driver (positions, then the MCALL at
         // each); called modally it is not a drilling cycle.
         _ => Err(AlarmKind::NotSupportedYet { what: "this SINUMERIK cycle" }),
@@ -237,6 +259,11 @@ pub fn start(
     // Overflow (see [`Params::nm`]).
     if p.overflow.get() { Err(AlarmKind::Overflow) } else { r }
 }
+
+/// A milling cycle this board's build leaves out for flash (interp-siemens'
+/// features; docs/FIRMWARE-SIZES.md): alarm 4007, nothing moves.
+#[cfg(not(all(feature = "mill-face", feature = "mill-slots", feature = "mill-pockets")))]
+const LEFT_OUT: AlarmKind = AlarmKind::NotInThisBuild { what: "this milling cycle" };
 
 /// The turning cycles work in the ZX plane (G18, line 10113).
 fn need_zx(st: &State) -> Result<(), AlarmKind> {

@@ -14,6 +14,7 @@ use std::vec;
 use std::vec::Vec;
 
 mod drill;
+mod face;
 mod groove;
 mod stock;
 mod threads;

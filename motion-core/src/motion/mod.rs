@@ -28,7 +28,7 @@ pub use spindle::Spindle;
 
 use crate::alarm::{Alarm, AlarmKind};
 use crate::axis::{AXIS_COUNT, Axis, Pos};
-use crate::canon::{Canon, CanonSink, Full, SpindleDir};
+use crate::canon::{Action, Canon, CanonSink, Full, SpindleDir};
 use crate::config::{MachineConfig, MotionConfig};
 
 use crate::fixed::{STEP_FRAC, round_steps};
@@ -898,6 +898,7 @@ impl<const N: usize> MotionCore<N> {
             self.interp = Interpolator::new(self.steps());
         }
         self.planner.clear(self.commanded_position());
+        self.p.set_tolerance(0);
         self.streaming = false;
         self.starved = false;
         self.hold = false;
@@ -927,6 +928,15 @@ impl<const N: usize> CanonSink for MotionCore<N> {
         }
         if self.state == State::Ended {
             self.state = State::Idle;
+        }
+        match action.action {
+            Action::Tolerance { nm } => {
+                self.p.set_tolerance(nm);
+                return Ok(());
+            }
+            // M02/M30 put the machine's tolerance back (for the blocks after it).
+            Action::End { .. } => self.p.set_tolerance(0),
+            _ => {}
         }
         match self.planner.push(action, &self.p) {
             Ok(()) => {

@@ -246,4 +246,23 @@ mod tests {
         let v = junction_speed(&dir(0.0), &dir(2.0), 1e9, &p);
         assert!((v - jump).abs() < 2.0, "{v} vs {jump}");
     }
+
+    /// CYCLE832's tolerance is both the junction deviation and the chord
+    /// tolerance; 0 puts the machine's back.
+    #[test]
+    fn a_path_tolerance_replaces_both_and_goes_back() {
+        let mut p = params();
+        // 10°: jump limit 5 µm/ms / sin 10° = 28.8 µm/ms, above both others.
+        let (c, s) = (libm::cosf(5f32.to_radians()), libm::sinf(5f32.to_radians()));
+        let v0 = junction_speed(&dir(0.0), &dir(10.0), 1e9, &p);
+        assert!((v0 - 2.0 * 1_000.0 / s).abs() < 2.0, "{v0}");
+        p.set_tolerance(2_000);
+        assert_eq!((p.junction_deviation, p.chord_tolerance), (2_000.0, 2_000.0));
+        let v = junction_speed(&dir(0.0), &dir(10.0), 1e9, &p);
+        // √(a·δ·cos / (1 − cos)) = 16.2 µm/ms against the chord's 45.9.
+        let want = libm::sqrtf(500.0 * 2_000.0 * c / (1.0 - c));
+        assert!((v - want).abs() < 2.0, "{v} vs {want}");
+        p.set_tolerance(0);
+        assert_eq!(p, params());
+    }
 }

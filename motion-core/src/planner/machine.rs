@@ -132,6 +132,9 @@ pub struct MotionParams {
     pub junction_deviation: f32,
     /// Chord tolerance, nm.
     pub chord_tolerance: f32,
+    /// The machine's own junction deviation and chord tolerance, nm: what
+    /// [`MotionParams::set_tolerance`] puts back.
+    own_tolerance: [f32; 2],
     /// Smallest acceleration of the present axes, nm per period².
     pub accel_min: f32,
     /// Spindle encoder counts per revolution.
@@ -197,14 +200,16 @@ impl MotionParams {
         };
         let fastest = limits.iter().filter(|l| l.present).map(|l| l.feed).fold(0.0f32, f32::max);
         let settle_len = bend::settle_len(path_feed.min(fastest * core::f32::consts::SQRT_2), accel_min, input_noise);
+        let own_tolerance = [m.junction_deviation.max(0) as f32, m.chord_tolerance.max(1) as f32];
         Ok(MotionParams {
             tick_ns: m.tick_ns,
             scale,
             limits,
             timing,
             path_feed,
-            junction_deviation: m.junction_deviation.max(0) as f32,
-            chord_tolerance: m.chord_tolerance.max(1) as f32,
+            junction_deviation: own_tolerance[0],
+            chord_tolerance: own_tolerance[1],
+            own_tolerance,
             accel_min,
             cpr: cfg.spindle.encoder_cpr,
             spindle_accel_rpm_s: cfg.spindle.accel_rpm_per_s.max(1),
@@ -214,6 +219,15 @@ impl MotionParams {
             per_min: per_min as f32,
             rate_q32: libm::round(per_min * 256.0 * 4_294_967_296.0) as i64,
         })
+    }
+
+    /// Plans from now on with the path tolerance `nm` (SINUMERIK CYCLE832,
+    /// `canon::Action::Tolerance`) as junction deviation and chord tolerance;
+    /// 0 puts the machine's own back.
+    #[inline(never)]
+    pub fn set_tolerance(&mut self, nm: u32) {
+        let t = nm as f32;
+        [self.junction_deviation, self.chord_tolerance] = if nm == 0 { self.own_tolerance } else { [t, t] };
     }
 
     /// A speed in nm/min as nm per interpolation period.

@@ -26,8 +26,13 @@
 
 mod settings;
 
-pub(super) use settings::cycle800;
+#[cfg(feature = "mill-face")]
+pub(super) mod face;
+pub(super) use settings::{cycle800, cycle832};
 pub(super) mod pocket;
+#[cfg(feature = "mill-slots")]
+pub(super) mod slot;
+pub(super) mod thread;
 
 use super::Params;
 use interp_core::MachineConfig;

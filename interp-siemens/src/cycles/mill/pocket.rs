@@ -18,7 +18,9 @@
 //! - The width step between rings is 80 % of the cutter diameter (the document
 //!   gives none for POCKET1/2; POCKET3's `_MIDA` default, line 4960).
 
-use super::{Radius, cutter, feed, fits, levels, plane, width_infeed};
+#[cfg(feature = "mill-pockets")]
+use super::width_infeed;
+use super::{Radius, cutter, feed, fits, levels, plane};
 use crate::cycles::{Engine, Params};
 use interp_core::alarm::{AlarmKind, CycleAlarm};
 use interp_core::canon::SpindleDir;
@@ -107,6 +109,7 @@ fn spec12(circle: bool, p: &Params<'_, '_>, st: &State, ctx: &mut dyn Engine) ->
 /// - 61113 `_CRAD` above half a side, 61105 the cutter wider than a side (or a
 ///   radius above `_PRAD`), 61111 `_MIDA`, 61110 `_FALD` above `_MID`, 61108 a
 ///   helix or oscillation that cannot run, 61117 a radius ≤ 0.
+#[cfg(feature = "mill-pockets")]
 pub(in crate::cycles) fn pocket34(
     circle: bool,
     p: &Params<'_, '_>,
@@ -120,6 +123,7 @@ pub(in crate::cycles) fn pocket34(
 }
 
 /// The pocket of a POCKET3/POCKET4 call, or its alarm.
+#[cfg(feature = "mill-pockets")]
 fn spec34(circle: bool, p: &Params<'_, '_>, st: &State, ctx: &mut dyn Engine) -> Result<PocketSpec, CycleAlarm> {
     plane(st, ctx.cfg())?;
     let r = cutter(st, Radius::Positive)?;

@@ -17,13 +17,13 @@
 //! words each time; each repetition positions at the level the last one left the
 //! tool on.
 
-use super::emit::Step;
-use super::emit::{Full, push};
 use super::{StepQueue, sign};
 use crate::alarm::AlarmKind;
 use crate::axis::{Axis, Pos};
 use crate::canon::SpindleDir;
-pub use crate::command::hole::{DeepDrill, Degression, HoleSpec, HoleWork};
+pub use crate::spec::hole::{DeepDrill, Degression, HoleSpec, HoleWork};
+use crate::step::Step;
+use crate::step::{Full, push};
 
 /// M19: spindle orientation before a boring cycle's shift (seed 004 @10321).
 const ORIENT: u16 = 19;
@@ -31,7 +31,7 @@ const ORIENT: u16 = 19;
 /// Whether this build has a language that asks for the boring works with a
 /// spindle stop, an operator stop or an oriented shift (FANUC M G86/G88/G76/G87,
 /// SINUMERIK CYCLE86-89): without one their code is left out.
-pub(crate) const BORING: bool = crate::MILL || crate::SIEMENS;
+pub const BORING: bool = crate::MILL || crate::SIEMENS;
 
 /// Where a hole cycle is.
 #[derive(Clone, Copy, Debug, PartialEq)]

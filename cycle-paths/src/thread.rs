@@ -8,13 +8,13 @@
 //! `ThreadSync::Continue` and the same lead: the long axis keeps its lead while the
 //! short axis pulls out.
 
-use super::emit::push;
-use super::emit::{Pt, Step};
 use super::{StepQueue, sign};
 use crate::alarm::AlarmKind;
 use crate::axis::Axis;
 use crate::canon::ThreadSync;
-use crate::command::job::CHAIN_POINTS;
+use crate::spec::job::CHAIN_POINTS;
+use crate::step::push;
+use crate::step::{Pt, Step};
 
 /// Micro-degrees in a turn.
 const TURN_UDEG: i64 = 360_000_000;
@@ -24,7 +24,7 @@ pub fn long_axis(a: Pt, b: Pt) -> Axis {
     if (b.z - a.z).abs() > (b.x - a.x).abs() { Axis::Z } else { Axis::X }
 }
 
-pub use crate::command::job::Pullout;
+pub use crate::spec::job::Pullout;
 
 /// Pull-out of a thread from `b` to `c`: parameter 5130 (tenths of the lead `pitch`)
 /// along the long axis, the short axis at the angle of 5131 from the long axis
@@ -133,7 +133,7 @@ impl ThreadCycleGen {
     }
 }
 
-pub use crate::command::job::{Depths, Flank, MultiThreadSpec};
+pub use crate::spec::job::{Depths, Flank, MultiThreadSpec};
 
 /// Where the infeed engine is (G76; CYCLE97, CYCLE98).
 #[derive(Clone, Copy, Debug, PartialEq)]

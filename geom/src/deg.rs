@@ -3,7 +3,7 @@
 //! computes the same bits as the host. Domain errors are alarms, never NaN
 //! (0112 division by zero, 0119 argument out of range, in both languages).
 
-use crate::alarm::AlarmKind;
+use canon::alarm::AlarmKind;
 
 /// π/180 split into a double-double: `D2R_HI + D2R_LO` is π/180 to ~1e-34.
 const D2R_HI: f64 = 0.017_453_292_519_943_295;

@@ -3,6 +3,11 @@
 //! functions in degrees both languages share ([`deg`]).
 //! Uses f64 (libm) for the computation, returns integer nanometres.
 
+#![no_std]
+
+#[cfg(test)]
+extern crate std;
+
 mod arc;
 pub mod deg;
 pub mod path;

@@ -21,8 +21,8 @@
 //! An end point no curve of the given size reaches raises alarm 0020.
 
 use super::Step;
-use super::emit::Pt;
 use crate::alarm::AlarmKind;
+use crate::step::Pt;
 
 /// The curve of a G02.1/G03.1/G02.2/G03.2 block, in a frame turned by Q.
 #[derive(Clone, Copy, Debug, PartialEq)]

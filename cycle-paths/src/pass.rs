@@ -5,11 +5,11 @@
 //! the expansion's profile.
 
 use super::StepQueue;
-use super::emit::Step;
-use super::emit::push;
 use super::offset::{Offsets, nth};
 use crate::alarm::AlarmKind;
 use crate::geom::{Pt, Seg, SegKind};
+use crate::step::Step;
+use crate::step::push;
 
 /// Where a pass is.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -1,7 +1,7 @@
 //! Arc centres and extents. Coordinates are the plane's two axes `(a, b)` in the
-//! order of [`crate::canon::Plane::axes`], so G02 is clockwise with `a` right, `b` up.
+//! order of [`canon::Plane::axes`], so G02 is clockwise with `a` right, `b` up.
 
-use crate::alarm::AlarmKind;
+use canon::alarm::AlarmKind;
 use canon::units::{f32_of, f64_of_u128, sqrt_u64};
 
 /// A point in a plane, nanometres.

@@ -9,11 +9,11 @@
 //! shape at the cycle's feed, then X back to the start's X and Z to its Z.
 
 use super::StepQueue;
-use super::emit::push;
-use super::emit::{Pt, Step};
 use super::profile::Profile;
 use super::rough::contour_step;
 use crate::alarm::AlarmKind;
+use crate::step::push;
+use crate::step::{Pt, Step};
 
 /// Where G73 is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -3,7 +3,7 @@
 //! (a cycle's finishing shape, an undercut's contour). Points along a segment,
 //! crossings with a level and extents are the geometry the roughing cycles need.
 
-use crate::axis::Axis;
+use canon::axis::Axis;
 
 /// A point of the ZX plane in work coordinates: X as a radius, nm.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -162,13 +162,7 @@ impl Seg {
     pub fn extent(&self, axis: Axis) -> (i64, i64) {
         match self.kind {
             SegKind::Arc { center, cw } => {
-                let e = crate::geom::arc_extents(
-                    (self.a.z, self.a.x),
-                    (self.b.z, self.b.x),
-                    (center.z, center.x),
-                    cw,
-                    false,
-                );
+                let e = crate::arc_extents((self.a.z, self.a.x), (self.b.z, self.b.x), (center.z, center.x), cw, false);
                 if axis == Axis::X { e.b } else { e.a }
             }
             _ => {

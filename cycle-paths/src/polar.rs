@@ -9,8 +9,8 @@ use super::Step;
 use crate::alarm::AlarmKind;
 use crate::axis::{Axis, Pos};
 use crate::canon::{Action, Canon};
+use crate::geom::path::to_polar;
 use crate::geom::path::{Elem, V2};
-use crate::moves::polar::to_polar;
 
 /// Most virtual moves one block hands over (its own, a chamfer, the compensation's
 /// corner lines and the move released from before).

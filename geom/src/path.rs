@@ -1,7 +1,7 @@
 //! Plane path elements in f64 nanometres — lines and arcs with their tangents,
 //! points at a distance, offsets and intersections — for the contour layer
 //! (chamfers, corner rounding, tool-nose compensation). Coordinates are the
-//! plane's `(a, b)` axes ([`crate::canon::Plane::axes`]): G03 is counter-clockwise.
+//! plane's `(a, b)` axes ([`canon::Plane::axes`]): G03 is counter-clockwise.
 //!
 //! The vector helpers marked `#[inline(never)]` (as are a few small helpers of the
 //! cycles) stay out of line for flash: each is a handful of soft-f64 calls (the
@@ -358,6 +358,34 @@ fn circle_circle(c1: V2, r1: f64, c2: V2, r2: f64) -> heapless::Vec<V2, 2> {
 /// The one of `pts` nearest to `p`.
 pub fn nearest(pts: &[V2], p: V2) -> Option<V2> {
     pts.iter().copied().min_by(|x, y| x.minus(p).len().total_cmp(&y.minus(p).len()))
+}
+
+/// The vector (G18 plane coordinates: Z, X) from the nose centre to the
+/// imaginary tip of direction `tip` for a nose of `radius` nm (figure 2.63).
+#[inline(never)]
+pub fn tip_vector(tip: u8, radius: i64) -> V2 {
+    let (x, z) = match tip {
+        1 => (1.0, 1.0),
+        2 => (1.0, -1.0),
+        3 => (-1.0, -1.0),
+        4 => (-1.0, 1.0),
+        5 => (0.0, 1.0),
+        6 => (1.0, 0.0),
+        7 => (0.0, -1.0),
+        8 => (-1.0, 0.0),
+        _ => (0.0, 0.0),
+    };
+    V2::new(z, x).scale(radius as f64)
+}
+
+/// The polar point (X radius, C µdeg) of a virtual point, C taken nearest to `near`.
+#[inline(never)]
+pub fn to_polar(v: V2, near_udeg: f64) -> (f64, f64) {
+    let r = libm::hypot(v.a, v.b);
+    let raw = libm::atan2(v.b, v.a).to_degrees() * 1e6;
+    let turn = 360.0e6;
+    let k = libm::round((near_udeg - raw) / turn);
+    (r, raw + k * turn)
 }
 
 #[cfg(test)]

@@ -8,11 +8,11 @@
 //! level with the start); rapid back to the start's X (⑤); rapid to the next column
 //! (⑥); after the last column rapid back to the start along the step axis (⑦).
 
-use super::emit::push;
-use super::emit::{Pt, Step};
 use super::{StepQueue, sign};
 use crate::alarm::{AlarmKind, CycleAlarm};
 use crate::axis::Axis;
+use crate::step::push;
+use crate::step::{Pt, Step};
 
 /// Where G74/G75 is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -165,9 +165,9 @@ impl GrooveGen {
 
 use super::offset::Offsets;
 use super::pass::PassGen;
-pub use crate::command::job::GrooveSpec;
 use crate::geom::Seg;
 use crate::geom::path::V2;
+pub use crate::spec::job::GrooveSpec;
 
 /// Where CYCLE93 is.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -472,7 +472,7 @@ impl GroovingGen {
             front: zero,
             back: zero,
             along: zero,
-            tip: crate::contour::comp::tip_vector(tip, radius),
+            tip: crate::geom::path::tip_vector(tip, radius),
         }
     }
 }

@@ -54,12 +54,12 @@
 //! first. The start point (lines 10878–10886): allowance + _VRT off the contour's
 //! highest point on the infeed axis, allowance + _VRT before its start on the other.
 
-use super::emit::push;
-use super::emit::{Pt, Step};
 use super::profile::{Profile, Seg, SegKind};
 use super::sign;
 use crate::alarm::AlarmKind;
 use crate::axis::Axis;
+use crate::step::push;
+use crate::step::{Pt, Step};
 #[cfg(feature = "siemens")]
 use {super::pattern::PatternGen, sections::Part};
 
@@ -609,12 +609,12 @@ pub use sections::{Nose, Sections};
 #[cfg(feature = "siemens")]
 mod sections {
     use super::*;
+    use crate::StepQueue;
     use crate::alarm::CycleAlarm;
-    use crate::command::job::{Blank, Pull, StockSpec};
-    use crate::cycles::StepQueue;
-    use crate::cycles::offset::{Offsets, nth, walk};
-    use crate::cycles::pass::{PassGen, along};
     use crate::geom::path::V2;
+    use crate::offset::{Offsets, nth, walk};
+    use crate::pass::{PassGen, along};
+    use crate::spec::job::{Blank, Pull, StockSpec};
 
     /// A roughing level's material within 1 µm of the contour counts: the last pass of
     /// a section cuts along a floor that lies exactly at its level.
@@ -701,7 +701,7 @@ mod sections {
         #[inline(never)]
         pub fn sections(
             spec: &StockSpec,
-            raw: &mut heapless::Vec<Seg, { crate::cycles::profile::PROFILE_MAX }>,
+            raw: &mut heapless::Vec<Seg, { crate::profile::PROFILE_MAX }>,
             here: Pt,
             nose: Nose,
             base_feed: i64,
@@ -758,7 +758,7 @@ mod sections {
                     .map_err(|_| AlarmKind::SiemensCycle(CycleAlarm::ContourPreparation { cause: 10934 }))?;
             }
             let tool_left = tool_left(&frame);
-            let tip = crate::contour::comp::tip_vector(nose.tip, nose.radius);
+            let tip = crate::geom::path::tip_vector(nose.tip, nose.radius);
             let r = nose.radius as f64;
             let unit = |a: Axis, s: i64| if a == Axis::Z { V2::new(s as f64, 0.0) } else { V2::new(0.0, s as f64) };
             let along = unit(cut, dir);
