@@ -812,10 +812,18 @@ pub enum CycleAlarm {
     CircleElements,
     /// 61107: SINUMERIK cycle alarm (seed 001 line 1803): first drilling depth defined incorrectly.
     FirstDepthWrong,
+    /// 61108: SINUMERIK cycle alarm (seed 001 table 5.3): values of _RAD1/_DP1 not allowed.
+    InsertionWrong,
+    /// 61109: SINUMERIK cycle alarm (seed 001 table 5.3): _CDIR defined incorrectly.
+    CdirWrong,
+    /// 61110: SINUMERIK cycle alarm (seed 001 table 5.3): floor allowance > depth infeed.
+    FloorAllowanceTooLarge,
     /// 61111: SINUMERIK cycle alarm (seed 001 table 5.3): infeed width > tool diameter.
     InfeedWidthTooLarge,
     /// 61112: SINUMERIK cycle alarm (seed 001 table 5.3): tool radius negative.
     ToolRadiusNegative,
+    /// 61113: SINUMERIK cycle alarm (seed 001 table 5.3): corner radius _CRAD too large.
+    CornerRadiusTooLarge,
     /// 61117: SINUMERIK cycle alarm (seed 001 table 5.3): active tool radius <= 0.
     ToolRadiusNotPositive,
     /// 61118: SINUMERIK cycle alarm (seed 001 table 5.3): length or width = 0 (CYCLE71).
@@ -912,8 +920,12 @@ impl CycleAlarm {
             CutterRadiusTooLarge => 61105,
             CircleElements => 61106,
             FirstDepthWrong => 61107,
+            InsertionWrong => 61108,
+            CdirWrong => 61109,
+            FloorAllowanceTooLarge => 61110,
             InfeedWidthTooLarge => 61111,
             ToolRadiusNegative => 61112,
+            CornerRadiusTooLarge => 61113,
             ToolRadiusNotPositive => 61117,
             LengthOrWidthZero => 61118,
             InfeedWidthMissing => 61124,
@@ -994,8 +1006,12 @@ text_table! {
         CutterRadiusTooLarge {} => "milling cutter radius too large for the contour to be machined";
         CircleElements {} => "number or spacing of circle elements (NUM and INDA do not fit on a full circle)";
         FirstDepthWrong {} => "first drilling depth defined incorrectly (FDEP/FDPR against the total depth)";
+        InsertionWrong {} => "values of _RAD1 and _DP1 not allowed (helix or oscillating insertion)";
+        CdirWrong {} => "parameter _CDIR defined incorrectly";
+        FloorAllowanceTooLarge {} => "floor finishing allowance > depth infeed (_FALD, _MID)";
         InfeedWidthTooLarge {} => "infeed width greater than the tool diameter (_MIDA)";
         ToolRadiusNegative {} => "tool radius negative";
+        CornerRadiusTooLarge {} => "corner radius parameter _CRAD too large";
         ToolRadiusNotPositive {} => "active tool radius <= 0";
         LengthOrWidthZero {} => "length or width = 0 (_LENG, _WID)";
         InfeedWidthMissing {} => "infeed width not programmed (_MIDA)";
@@ -1671,7 +1687,7 @@ pub const CATALOG: &[CatalogEntry] = &[
     CatalogEntry {
         code: 61002,
         title: "machining type wrong",
-        when: "VARI outside the values of CYCLE93 (1-8, 11-18), CYCLE95 (1-12, hundreds 0/2), CYCLE97/CYCLE98 (1-4) (lines 10311, 10799, 11195, 11397: 加工方式错误定义)",
+        when: "VARI outside the values of CYCLE93 (1-8, 11-18), CYCLE95 (1-12, hundreds 0/2), CYCLE97/CYCLE98 (1-4), POCKET1/POCKET2 (0-2), POCKET3 (1, 2, 11, 12, 21, 22, 31, 32), POCKET4 (the same without 3x) (lines 10311, 10799, 11195, 11397: 加工方式错误定义)",
     },
     CatalogEntry {
         code: 61003,
@@ -1711,7 +1727,7 @@ pub const CATALOG: &[CatalogEntry] = &[
     CatalogEntry {
         code: 61102,
         title: "no spindle direction",
-        when: "CYCLE86/87/88 SDIR other than 3/4, CYCLE84 SDAC other than 0/3/4/5, CYCLE840 with the spindle stopped at the call or SDR = 0 without an encoder (ENC 1/11) (lines 2689, 2814, 2896, table 12217: 没有编程主轴方向)",
+        when: "CYCLE86/87/88 SDIR other than 3/4, CYCLE84 SDAC other than 0/3/4/5, CYCLE840 with the spindle stopped at the call or SDR = 0 without an encoder (ENC 1/11), POCKET3/POCKET4 climb/conventional milling (_CDIR 0/1) with the spindle stopped (lines 2689, 2814, 2896, table 12217: 没有编程主轴方向)",
     },
     CatalogEntry {
         code: 61103,
@@ -1739,6 +1755,21 @@ pub const CATALOG: &[CatalogEntry] = &[
         when: "CYCLE83 first depth FDEP/FDPR deeper than the final depth or not into the hole (lines 1803, 1823: 第一次钻深错误定义)",
     },
     CatalogEntry {
+        code: 61108,
+        title: "_RAD1/_DP1 not allowed",
+        when: "SINUMERIK POCKET3/POCKET4 helical insertion (_VARI 2x) with _RAD1 or _DP1 zero or a helix that does not fit the pocket, POCKET3 oscillating insertion (3x) with an angle _RAD1 outside 0-90 degrees (table: 不允许的值用于参数_RAD1和_DP1)",
+    },
+    CatalogEntry {
+        code: 61109,
+        title: "_CDIR wrong",
+        when: "SINUMERIK POCKET3/POCKET4 _CDIR other than 0-3 (table: 参数_CDIR错误定义)",
+    },
+    CatalogEntry {
+        code: 61110,
+        title: "floor allowance > depth infeed",
+        when: "SINUMERIK POCKET3/POCKET4 floor allowance _FALD larger than the depth infeed _MID (table: 底部的精加工余量>深度进刀)",
+    },
+    CatalogEntry {
         code: 61111,
         title: "infeed width > tool diameter",
         when: "SINUMERIK CYCLE71/POCKET3/POCKET4 _MIDA larger than the cutter diameter (table: 进刀宽度>刀具直径)",
@@ -1747,6 +1778,11 @@ pub const CATALOG: &[CatalogEntry] = &[
         code: 61112,
         title: "tool radius negative",
         when: "SINUMERIK CYCLE72/76/77/90 with a negative radius in the active D offset (table: 刀具半径为负)",
+    },
+    CatalogEntry {
+        code: 61113,
+        title: "_CRAD too large",
+        when: "SINUMERIK POCKET3 corner radius _CRAD above half the pocket's length or width (table: 拐角半径参数_CRAD太大)",
     },
     CatalogEntry {
         code: 61117,
@@ -2076,8 +2112,12 @@ mod tests {
             SiemensCycle(CycleAlarm::CutterRadiusTooLarge),
             SiemensCycle(CycleAlarm::CircleElements),
             SiemensCycle(CycleAlarm::FirstDepthWrong),
+            SiemensCycle(CycleAlarm::InsertionWrong),
+            SiemensCycle(CycleAlarm::CdirWrong),
+            SiemensCycle(CycleAlarm::FloorAllowanceTooLarge),
             SiemensCycle(CycleAlarm::InfeedWidthTooLarge),
             SiemensCycle(CycleAlarm::ToolRadiusNegative),
+            SiemensCycle(CycleAlarm::CornerRadiusTooLarge),
             SiemensCycle(CycleAlarm::ToolRadiusNotPositive),
             SiemensCycle(CycleAlarm::LengthOrWidthZero),
             SiemensCycle(CycleAlarm::InfeedWidthMissing),

@@ -530,8 +530,12 @@ pub const PROVEN_ELSEWHERE: &[(u16, &str)] = &[
         61107,
         "interp-siemens cycles::tests::drill.rs drilling_alarms_move_nothing (the cycle called directly until SINUMERIK programs run)",
     ),
+    (61108, "host-tests siemens_pockets.rs alarms_of_pocket3_and_pocket4_move_nothing"),
+    (61109, "host-tests siemens_pockets.rs alarms_of_pocket3_and_pocket4_move_nothing"),
+    (61110, "host-tests siemens_pockets.rs alarms_of_pocket3_and_pocket4_move_nothing"),
     (61111, "interp-siemens cycles::mill tests (the milling cycles' shared tool, feed, width and level checks)"),
     (61112, "interp-siemens cycles::mill tests (the milling cycles' shared tool, feed, width and level checks)"),
+    (61113, "host-tests siemens_pockets.rs alarms_of_pocket3_and_pocket4_move_nothing"),
     (61117, "interp-siemens cycles::mill tests (the milling cycles' shared tool, feed, width and level checks)"),
     (
         61125,

@@ -259,6 +259,8 @@ fn every_catalog_code_has_a_triggering_program() {
     covered.extend([61005, 61019, 61101, 61102, 61107, 61125, 61803, 61807]);
     // interp-siemens cycles::mill tests (the milling cycles' shared checks)
     covered.extend([61003, 61009, 61105, 61111, 61112, 61117]);
+    // siemens_pockets.rs alarms_of_pocket3_and_pocket4_move_nothing
+    covered.extend([61108, 61109, 61110, 61113]);
     // siemens_holes.rs (HOLES1/HOLES2 run on the mill)
     covered.extend([61103, 61106]);
     // siemens_thread_mill.rs (CYCLE90, CYCLE800, CYCLE832 on the mill)

@@ -112,7 +112,7 @@ pub enum Move {
 pub enum MillGen {
     /// A fixed handful of moves ([`plan::Plan`]).
     Plan(plan::Plan),
-    /// A rectangular or circular pocket ([`pocket::Pocket`]: POCKET1, POCKET2).
+    /// A rectangular or circular pocket ([`pocket::Pocket`]: POCKET1 to POCKET4).
     Pocket(pocket::Pocket),
     /// A thread milled on a helix ([`thread::Thread`]: CYCLE90).
     Thread(thread::Thread),

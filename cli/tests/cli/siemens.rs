@@ -155,8 +155,8 @@ fn the_sinumerik_examples_check_clean() {
 }
 
 /// The drilling-pattern examples (HOLES1, HOLES2, CYCLE801, seed 001 chapter 2.3) and
-/// the pockets (POCKET1, POCKET2), thread milling (CYCLE90) and slots (LONGHOLE, SLOT1,
-/// SLOT2, chapter 3)
+/// the pockets (POCKET1 to POCKET4), thread milling (CYCLE90) and slots (LONGHOLE,
+/// SLOT1, SLOT2, chapter 3)
 /// run clean on the machining centre and draw exactly their committed plan-view
 /// renders.
 #[test]
@@ -169,6 +169,8 @@ fn the_sinumerik_mill_examples_run_and_match_their_renders() {
         "cycle801_grid",
         "pocket1",
         "pocket2",
+        "pocket3",
+        "pocket4",
         "cycle90",
         "cycle90_up",
         "longhole",

@@ -236,6 +236,12 @@ pub fn start(
         "LONGHOLE" | "SLOT1" | "SLOT2" => Err(LEFT_OUT),
         "POCKET1" => mill::pocket::pocket12(false, &p, cmd, st, ctx),
         "POCKET2" => mill::pocket::pocket12(true, &p, cmd, st, ctx),
+        #[cfg(feature = "mill-pockets")]
+        "POCKET3" => mill::pocket::pocket34(false, &p, cmd, st, ctx),
+        #[cfg(feature = "mill-pockets")]
+        "POCKET4" => mill::pocket::pocket34(true, &p, cmd, st, ctx),
+        #[cfg(not(feature = "mill-pockets"))]
+        "POCKET3" | "POCKET4" => Err(LEFT_OUT),
         #[cfg(feature = "mill-face")]
         "CYCLE71" => mill::face::cycle71(&p, cmd, st, ctx),
         #[cfg(feature = "mill-face")]
@@ -256,7 +262,7 @@ pub fn start(
 
 /// A milling cycle this board's build leaves out for flash (interp-siemens'
 /// features; docs/FIRMWARE-SIZES.md): alarm 4007, nothing moves.
-#[cfg(not(all(feature = "mill-face", feature = "mill-slots")))]
+#[cfg(not(all(feature = "mill-face", feature = "mill-slots", feature = "mill-pockets")))]
 const LEFT_OUT: AlarmKind = AlarmKind::NotInThisBuild { what: "this milling cycle" };
 
 /// The turning cycles work in the ZX plane (G18, line 10113).
