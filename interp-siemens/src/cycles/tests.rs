@@ -14,6 +14,7 @@ use std::vec;
 use std::vec::Vec;
 
 mod drill;
+#[cfg(feature = "mill-face")]
 mod face;
 mod groove;
 mod stock;
