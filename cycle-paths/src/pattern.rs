@@ -10,8 +10,8 @@
 
 use super::StepQueue;
 use super::profile::Profile;
-use super::rough::contour_step;
 use crate::alarm::AlarmKind;
+use crate::step::contour_step;
 use crate::step::push;
 use crate::step::{Pt, Step};
 

@@ -59,7 +59,7 @@ use super::sign;
 use crate::alarm::AlarmKind;
 use crate::axis::Axis;
 use crate::step::push;
-use crate::step::{Pt, Step};
+use crate::step::{Pt, Step, contour_step};
 #[cfg(feature = "siemens")]
 use {super::pattern::PatternGen, sections::Part};
 
@@ -584,17 +584,6 @@ fn lowest(f: &Frame, s: &Seg) -> i64 {
 #[inline(never)]
 fn inside(r: &Run, p: &Run) -> bool {
     r.w0 >= p.w0 - 0.5 && r.w1 <= p.w1 + 0.5
-}
-
-/// The contour pass move of a shape segment (the shape's G00 stays a rapid; out
-/// of line: G71/G72's and G73's contour passes).
-#[inline(never)]
-pub fn contour_step(s: &Seg) -> Step {
-    match s.kind {
-        SegKind::Rapid => Step::Rapid(s.b),
-        SegKind::Line => Step::Feed(s.b),
-        SegKind::Arc { center, cw } => Step::Arc { to: s.b, center, cw },
-    }
 }
 
 /// CYCLE95 / CYCLE950's options of the engine (the SINUMERIK side fills them).

@@ -7,6 +7,7 @@ use crate::axis::Pos;
 use crate::canon::{SpindleDir, ThreadSync};
 
 pub use crate::geom::Pt;
+use crate::geom::{Seg, SegKind};
 
 /// The step queue was full (a generator's bug: each checks for room first). At a
 /// `?` it becomes alarm [`AlarmKind::Overflow`], as the engine's own push says.
@@ -112,4 +113,15 @@ pub enum Step {
     /// A stop for the operator: the machine waits for cycle start (G88 at the
     /// bottom of the hole).
     Stop,
+}
+
+/// The contour pass move of a shape segment (the shape's G00 stays a rapid; out
+/// of line: G71/G72's and G73's contour passes).
+#[inline(never)]
+pub fn contour_step(s: &Seg) -> Step {
+    match s.kind {
+        SegKind::Rapid => Step::Rapid(s.b),
+        SegKind::Line => Step::Feed(s.b),
+        SegKind::Arc { center, cw } => Step::Arc { to: s.b, center, cw },
+    }
 }
