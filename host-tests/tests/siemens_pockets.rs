@@ -7,104 +7,9 @@
 
 mod mill_common;
 
-use host_tests::{Run, run_with};
-use interp_core::canon::{Action, Canon};
-use interp_core::config::Language;
-use interp_core::{MachineConfig, Panel};
+use mill_common::plane::*;
 
-fn cfg() -> MachineConfig {
-    MachineConfig { language: Language::Siemens, ..mill_common::mill() }
-}
-
-fn siemens(text: &str) -> Run {
-    run_with(text, cfg(), Panel::default())
-}
-
-fn go(text: &str) -> Run {
-    let r = siemens(text);
-    assert!(r.alarms.is_empty(), "{:?}", r.alarms);
-    r
-}
-
-/// A cutting move in work mm: start, end, arc centre and direction, feed mm/min,
-/// spindle rev/min.
-#[derive(Clone, Copy, Debug)]
-struct Seg {
-    from: [f64; 3],
-    to: [f64; 3],
-    arc: Option<([f64; 2], bool)>,
-    feed: f64,
-    rpm: u32,
-}
-
-fn mm3(p: &interp_core::axis::Pos) -> [f64; 3] {
-    [p.0[0] as f64 / 1e6, p.0[1] as f64 / 1e6, p.0[2] as f64 / 1e6]
-}
-
-/// The cutting moves of the run (G17: X, Y the plane, Z the applicate), in order.
-fn cuts(actions: &[Canon]) -> Vec<Seg> {
-    let mut out = Vec::new();
-    let mut at: Option<[f64; 3]> = None;
-    for c in actions {
-        let Some(e) = c.action.endpoint() else { continue };
-        let to = mm3(&e.work);
-        if let Some(from) = at {
-            match c.action {
-                Action::Linear(m) => out.push(Seg {
-                    from,
-                    to,
-                    arc: None,
-                    feed: m.feed.value as f64 / 1e6,
-                    rpm: m.spindle.rpm.unwrap_or(0),
-                }),
-                Action::Arc(a) => {
-                    let cc = mm3(&a.center.work);
-                    out.push(Seg {
-                        from,
-                        to,
-                        arc: Some(([cc[0], cc[1]], a.cw)),
-                        feed: a.feed.value as f64 / 1e6,
-                        rpm: a.spindle.rpm.unwrap_or(0),
-                    })
-                }
-                _ => {}
-            }
-        }
-        at = Some(to);
-    }
-    out
-}
-
-/// Points along a move, every 0.1 mm or so (in the plane X, Y).
-fn samples(s: &Seg) -> Vec<[f64; 2]> {
-    let n = 64;
-    match s.arc {
-        None => (0..=n)
-            .map(|k| {
-                let t = k as f64 / n as f64;
-                [s.from[0] + t * (s.to[0] - s.from[0]), s.from[1] + t * (s.to[1] - s.from[1])]
-            })
-            .collect(),
-        Some((c, cw)) => {
-            let a0 = (s.from[1] - c[1]).atan2(s.from[0] - c[0]);
-            let a1 = (s.to[1] - c[1]).atan2(s.to[0] - c[0]);
-            let mut sweep = a1 - a0;
-            if cw && sweep > 0.0 {
-                sweep -= std::f64::consts::TAU;
-            }
-            if !cw && sweep < 0.0 {
-                sweep += std::f64::consts::TAU;
-            }
-            let r = (s.from[0] - c[0]).hypot(s.from[1] - c[1]);
-            (0..=n)
-                .map(|k| {
-                    let a = a0 + sweep * k as f64 / n as f64;
-                    [c[0] + r * a.cos(), c[1] + r * a.sin()]
-                })
-                .collect()
-        }
-    }
-}
+use interp_core::canon::Action;
 
 /// The pocket's wall: a rectangle of half sides `hl` × `hw` with corner radius
 /// `cr` about `c`, its length at `sta` degrees (a circle: hl = hw = cr).
@@ -132,17 +37,6 @@ impl Wall {
         let d: Vec<f64> = segs.iter().flat_map(samples).map(|p| self.inside(p)).collect();
         (d.iter().copied().fold(f64::MAX, f64::min), d.iter().copied().fold(f64::MIN, f64::max))
     }
-}
-
-fn near(a: f64, b: f64) -> bool {
-    (a - b).abs() < 0.0015
-}
-
-/// The depths the document divides a depth into: the fewest equal infeeds of at
-/// most `mid` from `from` to `to` (lines 3864-3876).
-fn levels(from: f64, to: f64, mid: f64) -> Vec<f64> {
-    let n = if mid == 0.0 { 1.0 } else { ((from - to) / mid - 1e-9).ceil() };
-    (1..=n as u32).map(|k| ((from + (to - from) * f64::from(k) / n) * 1000.0).round() / 1000.0).collect()
 }
 
 /// The depths of the plunges: the Z of every feed move straight down the Z axis

@@ -9,128 +9,19 @@
 
 mod mill_common;
 
-use host_tests::{Run, run_with};
-use interp_core::canon::{Action, Canon};
-use interp_core::config::Language;
-use interp_core::{MachineConfig, Panel};
+use mill_common::plane::*;
 
-fn cfg() -> MachineConfig {
-    MachineConfig { language: Language::Siemens, ..mill_common::mill() }
-}
-
-fn siemens(text: &str) -> Run {
-    run_with(text, cfg(), Panel::default())
-}
-
-fn go(text: &str) -> Run {
-    let r = siemens(text);
-    assert!(r.alarms.is_empty(), "{:?}", r.alarms);
-    r
-}
+use interp_core::canon::Action;
 
 /// The cutter radius of T1 D1 on the mill.
 const R: f64 = 5.0;
-
-/// A cutting move in work mm (G17: X, Y the plane, Z the applicate).
-#[derive(Clone, Copy, Debug)]
-struct Seg {
-    from: [f64; 3],
-    to: [f64; 3],
-    arc: Option<([f64; 2], bool)>,
-    feed: f64,
-    rpm: u32,
-}
-
-fn mm3(p: &interp_core::axis::Pos) -> [f64; 3] {
-    [p.0[0] as f64 / 1e6, p.0[1] as f64 / 1e6, p.0[2] as f64 / 1e6]
-}
-
-/// The cutting moves of the run, in order.
-fn cuts(actions: &[Canon]) -> Vec<Seg> {
-    let mut out = Vec::new();
-    let mut at: Option<[f64; 3]> = None;
-    for c in actions {
-        let Some(e) = c.action.endpoint() else { continue };
-        let to = mm3(&e.work);
-        if let Some(from) = at {
-            match c.action {
-                Action::Linear(m) => out.push(Seg {
-                    from,
-                    to,
-                    arc: None,
-                    feed: m.feed.value as f64 / 1e6,
-                    rpm: m.spindle.rpm.unwrap_or(0),
-                }),
-                Action::Arc(a) => {
-                    let cc = mm3(&a.center.work);
-                    out.push(Seg {
-                        from,
-                        to,
-                        arc: Some(([cc[0], cc[1]], a.cw)),
-                        feed: a.feed.value as f64 / 1e6,
-                        rpm: a.spindle.rpm.unwrap_or(0),
-                    })
-                }
-                _ => {}
-            }
-        }
-        at = Some(to);
-    }
-    out
-}
-
-/// Points along a move in the plane.
-fn samples(s: &Seg) -> Vec<[f64; 2]> {
-    let n = 64;
-    match s.arc {
-        None => (0..=n)
-            .map(|k| {
-                let t = k as f64 / n as f64;
-                [s.from[0] + t * (s.to[0] - s.from[0]), s.from[1] + t * (s.to[1] - s.from[1])]
-            })
-            .collect(),
-        Some((c, cw)) => {
-            let a0 = (s.from[1] - c[1]).atan2(s.from[0] - c[0]);
-            let a1 = (s.to[1] - c[1]).atan2(s.to[0] - c[0]);
-            let mut sweep = a1 - a0;
-            if cw && sweep > 0.0 {
-                sweep -= std::f64::consts::TAU;
-            }
-            if !cw && sweep < 0.0 {
-                sweep += std::f64::consts::TAU;
-            }
-            let r = (s.from[0] - c[0]).hypot(s.from[1] - c[1]);
-            (0..=n)
-                .map(|k| {
-                    let a = a0 + sweep * k as f64 / n as f64;
-                    [c[0] + r * a.cos(), c[1] + r * a.sin()]
-                })
-                .collect()
-        }
-    }
-}
-
-fn near(a: f64, b: f64) -> bool {
-    (a - b).abs() < 0.0015
-}
-
-fn r3(v: f64) -> f64 {
-    (v * 1000.0).round() / 1000.0
-}
-
-/// The depths the document divides a depth into: the fewest equal infeeds of at
-/// most `mid` from `from` to `to` (lines 3864-3876).
-fn levels(from: f64, to: f64, mid: f64) -> Vec<f64> {
-    let n = if mid == 0.0 { 1.0 } else { ((from - to) / mid - 1e-9).ceil() };
-    (1..=n as u32).map(|k| r3(from + (to - from) * f64::from(k) / n)).collect()
-}
 
 /// The vertical infeeds at `feed`: (point in the plane, depth reached).
 fn plunges(segs: &[Seg], feed: f64) -> Vec<([f64; 2], f64)> {
     segs.iter()
         .filter(|s| s.arc.is_none() && s.from[0] == s.to[0] && s.from[1] == s.to[1] && s.to[2] < s.from[2])
         .filter(|s| s.feed == feed)
-        .map(|s| ([r3(s.to[0]), r3(s.to[1])], r3(s.to[2])))
+        .map(|s| ([um(s.to[0]), um(s.to[1])], um(s.to[2])))
         .collect()
 }
 
@@ -291,7 +182,7 @@ fn slot1_walls_ends_and_depths() {
     // G3 (CDIR 3): every arc counterclockwise.
     assert!(segs.iter().filter_map(|s| s.arc).all(|a| !a.1));
     // Roughing leaves _FALD on the floor, finishing cuts it.
-    let deepest = |v: &[Seg]| v.iter().map(|s| r3(s.to[2])).fold(f64::MAX, f64::min);
+    let deepest = |v: &[Seg]| v.iter().map(|s| um(s.to[2])).fold(f64::MAX, f64::min);
     assert_eq!((deepest(&rough), deepest(&finish)), (-12.0 + fald, -12.0));
 }
 
@@ -321,7 +212,7 @@ fn slot1_oscillating_insertion() {
         .filter(|w| w[0].feed == 100.0 && w[0].to[2] < w[0].from[2] && w[1].feed == 300.0)
         .map(|w| {
             assert!(near(dist([w[0].to[0], w[0].to[1]], ax.a), 0.0), "{w:?}");
-            r3(w[0].to[2])
+            um(w[0].to[2])
         })
         .collect();
     assert_eq!(ends, levels(1.0, -9.0, 3.0));
@@ -407,7 +298,7 @@ fn slot2_circular_transitions_and_wall_only() {
         }
     }
     let levels_cut: Vec<f64> = {
-        let mut v: Vec<f64> = ring.iter().filter(|s| s.arc.is_some()).map(|s| r3(s.to[2])).collect();
+        let mut v: Vec<f64> = ring.iter().filter(|s| s.arc.is_some()).map(|s| um(s.to[2])).collect();
         v.dedup();
         v
     };

@@ -6,6 +6,8 @@
 use host_tests::{Run, run_with};
 use interp_core::{MachineConfig, Panel};
 
+pub mod plane;
+
 /// examples/machines/mill.toml: G54 at X-300 Y-200 Z-250, H1 100 mm, D1 5 mm …
 pub fn mill() -> MachineConfig {
     lathe::machine::parse(include_str!("../../../examples/machines/mill.toml")).expect("mill.toml parses")
