@@ -158,6 +158,20 @@ pub(crate) fn end_of(m: &Move) -> Option<P3> {
     }
 }
 
+/// `m`, unless it ends where the path already is (`last`, then moved on to its
+/// end): the generators leave moves of zero length out.
+#[cfg(any(feature = "face", feature = "slot"))]
+pub(crate) fn moved(last: &mut P3, m: Move) -> Option<Move> {
+    match end_of(&m) {
+        Some(to) if to == *last => None,
+        Some(to) => {
+            *last = to;
+            Some(m)
+        }
+        None => Some(m),
+    }
+}
+
 #[cfg(test)]
 extern crate std;
 

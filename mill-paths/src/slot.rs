@@ -316,12 +316,7 @@ impl Iterator for Slots {
     fn next(&mut self) -> Option<Move> {
         loop {
             let Some(m) = self.step()? else { continue };
-            let to = match m {
-                Move::Rapid(p) | Move::Line { to: p, .. } | Move::Arc { to: p, .. } => p,
-                _ => return Some(m),
-            };
-            if to != self.last {
-                self.last = to;
+            if let Some(m) = crate::moved(&mut self.last, m) {
                 return Some(m);
             }
         }

@@ -130,13 +130,9 @@ impl Iterator for Spigot {
     fn next(&mut self) -> Option<Move> {
         loop {
             let Some(m) = self.step()? else { continue };
-            if let Some(to) = crate::end_of(&m) {
-                if to == self.last {
-                    continue;
-                }
-                self.last = to;
+            if let Some(m) = crate::moved(&mut self.last, m) {
+                return Some(m);
             }
-            return Some(m);
         }
     }
 }
