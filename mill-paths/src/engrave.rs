@@ -1,0 +1,365 @@
+//! Engraving a text (CYCLE60, seed 001 lines 9799-10068): the characters of a
+//! single-stroke font ([`crate::font`], the public-domain Hershey Roman simplex),
+//! scaled to the text height, laid out along a line or on the top or bottom of a
+//! circle, each stroke plunged at the depth feed and cut at the surface feed,
+//! with a rapid retract to the safety plane between strokes.
+//!
+//! # Layout
+//! A character's box is its strokes' extent along the text (the tool-centre path;
+//! a space is its advance). `gap` is the distance between neighbouring boxes
+//! (on a circle an arc length at the reference radius). The text runs from
+//! `s = 0` (left edge of the first box) to its length `L`; the reference point is
+//! at `s = 0`, `L/2` or `L` (left, centre, right) and at the height 0, H/2 or H
+//! above the baseline (bottom, middle, top; H the capitals' height).
+//! - On a line the text runs at `sta` degrees through the reference point.
+//! - On the top of a circle it reads clockwise, the letters' tops outwards; on the
+//!   bottom counterclockwise, the tops towards the centre. The reference point's
+//!   distance from the centre is the radius; each character is placed upright
+//!   (not bent) with its box centre at its arc position.
+
+use crate::font::{ADVANCE, CAP, GLYPHS, START};
+use crate::{CycleAlarm, Move, P3};
+use core::f64::consts::PI;
+
+/// Most characters a text may have (line 9805).
+pub const TEXT_MAX: usize = 91;
+
+/// Where the text runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Path {
+    /// Along a straight line.
+    Line,
+    /// On the top of a circle (reads clockwise).
+    Top,
+    /// On the bottom of a circle (reads counterclockwise).
+    Bottom,
+}
+
+/// What `df` gives (`_VARI` hundred-thousands).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Width {
+    /// The distance between characters, nm.
+    Spacing,
+    /// The text's total width, nm (on a line).
+    Total,
+    /// The angle between the first and the last character's centre lines, degrees
+    /// (on a circle; 360 spreads the characters evenly round it).
+    Angle,
+}
+
+/// An engraving, as the front end read it (plane coordinates, nm).
+#[derive(Clone, Copy, Debug)]
+pub struct EngraveSpec<'t> {
+    /// The characters (printable ASCII).
+    pub text: &'t [u8],
+    /// Where the text runs.
+    pub path: Path,
+    /// The reference point (abscissa, ordinate).
+    pub reference: (i64, i64),
+    /// The circle's centre (on a circle).
+    pub centre: (i64, i64),
+    /// The line's angle to the abscissa, degrees (on a line).
+    pub sta: f64,
+    /// Height of the capitals and digits (tool-centre path), nm.
+    pub height: i64,
+    /// Spacing, total width (nm) or opening angle (degrees), per `width`.
+    pub df: f64,
+    /// What `df` gives.
+    pub width: Width,
+    /// Reference point along the text: 0 left, 1 centre, 2 right.
+    pub h_align: u8,
+    /// Reference point across the text: 0 baseline, 1 middle, 2 top of the capitals.
+    pub v_align: u8,
+    /// Retract plane, the safety plane (RFP + SDIS) and the depth, along the applicate.
+    pub rtp: i64,
+    /// The safety plane.
+    pub safe: i64,
+    /// The engraving depth.
+    pub bottom: i64,
+    /// Depth feed (plunges) and surface feed (strokes).
+    pub feeds: [i64; 2],
+}
+
+/// The generator of one engraving.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Engrave {
+    text: [u8; TEXT_MAX],
+    n: u8,
+    path: Path,
+    /// Line: the reference point; circle: the centre.
+    org: (f64, f64),
+    /// Line: the text direction; circle: unused.
+    dir: (f64, f64),
+    /// Circle: the radius and the reference point's angle (rad).
+    r: f64,
+    th0: f64,
+    /// nm per font grid unit.
+    k: f64,
+    gap: f64,
+    /// Baseline's offset below the reference point, nm.
+    v: f64,
+    /// Left edge of the current character's box, nm from the reference point.
+    s: f64,
+    rtp: i64,
+    safe: i64,
+    bottom: i64,
+    feeds: [i64; 2],
+    // The cursor: character, next glyph byte, its end, the character's frame.
+    ci: u8,
+    pi: u16,
+    end: u16,
+    xmin: i32,
+    o: (f64, f64),
+    a: (f64, f64),
+    b: (f64, f64),
+    stage: u8,
+    down: bool,
+    started: bool,
+    last: P3,
+}
+
+/// The glyph of `c` (its range in [`GLYPHS`]), or 61179 when the font lacks it.
+fn glyph(c: u8) -> Result<(usize, usize), CycleAlarm> {
+    let i = usize::from(c.wrapping_sub(32));
+    match (START.get(i), START.get(i + 1)) {
+        (Some(&a), Some(&b)) => Ok((usize::from(a), usize::from(b))),
+        _ => Err(CycleAlarm::CharacterMissing),
+    }
+}
+
+/// The box of `c`: its left edge on the grid and its width in grid units.
+fn extent(c: u8) -> (i32, i32) {
+    let Ok((a, b)) = glyph(c) else { return (0, 0) };
+    let (mut lo, mut hi) = (i32::MAX, i32::MIN);
+    for x in GLYPHS.get(a..b).unwrap_or(&[]).iter().step_by(2) {
+        let x = i32::from(x & 0x7f);
+        (lo, hi) = (lo.min(x), hi.max(x));
+    }
+    if lo > hi {
+        // No strokes (a space): its advance.
+        return (0, i32::from(ADVANCE.get(usize::from(c.wrapping_sub(32))).copied().unwrap_or(0)));
+    }
+    (lo, hi - lo)
+}
+
+impl Engrave {
+    /// The engraving of `s`, or its alarm: 61179 a character the font lacks (or
+    /// more than [`TEXT_MAX`]), 61176 characters that do not fit the total width,
+    /// the opening angle or the circle.
+    pub fn new(s: &EngraveSpec<'_>) -> Result<Self, CycleAlarm> {
+        let n = s.text.len();
+        if n > TEXT_MAX {
+            return Err(CycleAlarm::CharacterMissing);
+        }
+        let mut text = [0u8; TEXT_MAX];
+        text[..n].copy_from_slice(s.text);
+        let k = s.height as f64 / f64::from(CAP);
+        let mut sum = 0.0;
+        for &c in s.text {
+            glyph(c)?;
+            sum += f64::from(extent(c).1) * k;
+        }
+        let (first, last) = match (s.text.first(), s.text.last()) {
+            (Some(&f), Some(&l)) => (f64::from(extent(f).1) * k, f64::from(extent(l).1) * k),
+            _ => (0.0, 0.0),
+        };
+        let (ra, ro) = (s.reference.0 as f64, s.reference.1 as f64);
+        let (ca, co) = (s.centre.0 as f64, s.centre.1 as f64);
+        let r = libm::hypot(ra - ca, ro - co);
+        let gaps = n.saturating_sub(1).max(1) as f64;
+        let gap = match s.width {
+            Width::Spacing => s.df,
+            Width::Total => (s.df - sum) / gaps,
+            // The full circle: as many gaps as characters.
+            Width::Angle if s.df >= 360.0 => (2.0 * PI * r - sum) / n.max(1) as f64,
+            Width::Angle => (s.df * PI / 180.0 * r - sum + (first + last) / 2.0) / gaps,
+        };
+        let len = sum + gap * n.saturating_sub(1) as f64;
+        if !(gap >= 0.0) || (s.path != Path::Line && len > 2.0 * PI * r) {
+            return Err(CycleAlarm::TextLengthTooSmall);
+        }
+        let h = s.height as f64;
+        let (sn, cs) = libm::sincos(s.sta * PI / 180.0);
+        let line = s.path == Path::Line;
+        let mut e = Engrave {
+            text,
+            n: n as u8,
+            path: s.path,
+            org: if line { (ra, ro) } else { (ca, co) },
+            dir: (cs, sn),
+            r,
+            th0: libm::atan2(ro - co, ra - ca),
+            k,
+            gap,
+            v: h * f64::from(s.v_align.min(2)) / 2.0,
+            s: -len * f64::from(s.h_align.min(2)) / 2.0,
+            rtp: s.rtp,
+            safe: s.safe,
+            bottom: s.bottom,
+            feeds: s.feeds,
+            ci: 0,
+            pi: 0,
+            end: 0,
+            xmin: 0,
+            o: (0.0, 0.0),
+            a: (0.0, 0.0),
+            b: (0.0, 0.0),
+            stage: 0,
+            down: false,
+            started: false,
+            last: P3::default(),
+        };
+        e.frame();
+        Ok(e)
+    }
+
+    /// Sets the cursor on character `ci` (its strokes and its frame).
+    fn frame(&mut self) {
+        let c = self.text.get(usize::from(self.ci)).copied().unwrap_or(b' ');
+        let (a, b) = glyph(c).unwrap_or((0, 0));
+        (self.pi, self.end) = (a as u16, b as u16);
+        let (xmin, w) = extent(c);
+        self.xmin = xmin;
+        let w = f64::from(w) * self.k;
+        let (oa, oo) = self.org;
+        (self.o, self.a) = match self.path {
+            Path::Line => ((oa + self.s * self.dir.0, oo + self.s * self.dir.1), self.dir),
+            Path::Top | Path::Bottom => {
+                let top = self.path == Path::Top;
+                let arc = (self.s + w / 2.0) / self.r;
+                let phi = if top { self.th0 - arc } else { self.th0 + arc };
+                let (sn, cs) = libm::sincos(phi);
+                let a = if top { (sn, -cs) } else { (-sn, cs) };
+                ((oa + self.r * cs - w / 2.0 * a.0, oo + self.r * sn - w / 2.0 * a.1), a)
+            }
+        };
+        // Up: the text direction turned a quarter counterclockwise.
+        self.b = (-self.a.1, self.a.0);
+    }
+
+    /// Grid point (`x`, `y` + 8) of the current character, in the plane.
+    fn point(&self, x: u8, y: u8) -> P3 {
+        let du = f64::from(i32::from(x & 0x7f) - self.xmin) * self.k;
+        let w = f64::from(i32::from(y) - 8) * self.k - self.v;
+        let a = self.o.0 + du * self.a.0 + w * self.b.0;
+        let o = self.o.1 + du * self.a.1 + w * self.b.1;
+        P3::new(libm::round(a) as i64, libm::round(o) as i64, self.bottom)
+    }
+
+    /// The next move.
+    pub fn next(&mut self) -> Option<Move> {
+        loop {
+            match self.stage {
+                1 => {
+                    self.stage = 2;
+                    return Some(Move::Rapid(self.last.at(self.safe)));
+                }
+                2 => {
+                    (self.stage, self.down) = (0, true);
+                    return Some(Move::Line { to: self.last, feed: self.feeds[0] });
+                }
+                3 => return None,
+                _ => {}
+            }
+            if self.pi >= self.end {
+                if self.ci >= self.n {
+                    if self.down {
+                        self.down = false;
+                        return Some(Move::Rapid(self.last.at(self.safe)));
+                    }
+                    self.stage = 3;
+                    return self.started.then_some(Move::Rapid(self.last.at(self.rtp)));
+                }
+                let c = self.text.get(usize::from(self.ci)).copied().unwrap_or(b' ');
+                self.s += f64::from(extent(c).1) * self.k + self.gap;
+                self.ci += 1;
+                if self.ci < self.n {
+                    self.frame();
+                }
+                continue;
+            }
+            let i = usize::from(self.pi);
+            let (x, y) = (GLYPHS.get(i).copied().unwrap_or(0), GLYPHS.get(i + 1).copied().unwrap_or(8));
+            if x & 0x80 != 0 && self.down {
+                // The pen lifts: back to the safety plane.
+                self.down = false;
+                return Some(Move::Rapid(self.last.at(self.safe)));
+            }
+            self.pi += 2;
+            let p = self.point(x, y);
+            self.last = p;
+            if x & 0x80 == 0 {
+                return Some(Move::Line { to: p, feed: self.feeds[1] });
+            }
+            if !self.started {
+                self.started = true;
+                self.stage = 1;
+                return Some(Move::Rapid(p.at(self.rtp)));
+            }
+            self.stage = 2;
+            return Some(Move::Rapid(p.at(self.safe)));
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::vec::Vec;
+
+    fn spec(text: &[u8]) -> EngraveSpec<'_> {
+        EngraveSpec {
+            text,
+            path: Path::Line,
+            reference: (10_000_000, 25_000_000),
+            centre: (0, 0),
+            sta: 0.0,
+            height: 21_000_000,
+            df: 5_000_000.0,
+            width: Width::Spacing,
+            h_align: 0,
+            v_align: 0,
+            rtp: 100_000_000,
+            safe: 1_000_000,
+            bottom: -1_500_000,
+            feeds: [2500, 2000],
+        }
+    }
+
+    fn all(s: &EngraveSpec<'_>) -> Vec<Move> {
+        let mut e = Engrave::new(s).unwrap();
+        core::iter::from_fn(|| e.next()).collect()
+    }
+
+    /// "L" (two strokes joined: the stem down, the foot right) at 1 mm per unit:
+    /// the Hershey L is (4,21)-(4,0)-(16,0) on the grid; its box starts at x 4.
+    #[test]
+    fn the_letter_l_is_its_grid_scaled() {
+        let m = all(&spec(b"L"));
+        let (x, y) = (10_000_000, 25_000_000);
+        assert_eq!(
+            m,
+            [
+                Move::Rapid(P3::new(x, y + 21_000_000, 100_000_000)),
+                Move::Rapid(P3::new(x, y + 21_000_000, 1_000_000)),
+                Move::Line { to: P3::new(x, y + 21_000_000, -1_500_000), feed: 2500 },
+                Move::Line { to: P3::new(x, y, -1_500_000), feed: 2000 },
+                Move::Line { to: P3::new(x + 12_000_000, y, -1_500_000), feed: 2000 },
+                Move::Rapid(P3::new(x + 12_000_000, y, 1_000_000)),
+                Move::Rapid(P3::new(x + 12_000_000, y, 100_000_000)),
+            ]
+        );
+        assert!(all(&spec(b"")).is_empty());
+    }
+
+    #[test]
+    fn alarms() {
+        assert_eq!(Engrave::new(&spec(b"A\xe4")).err(), Some(CycleAlarm::CharacterMissing));
+        assert_eq!(Engrave::new(&spec(&[b'A'; 92])).err(), Some(CycleAlarm::CharacterMissing));
+        let mut s = spec(b"LL");
+        (s.width, s.df) = (Width::Total, 23_000_000.0);
+        assert_eq!(Engrave::new(&s).err(), Some(CycleAlarm::TextLengthTooSmall));
+        s.df = 24_000_000.0;
+        assert!(Engrave::new(&s).is_ok());
+    }
+}
