@@ -52,11 +52,13 @@ print(f"""//! CYCLE60's stroke font: the Hershey "Roman simplex" glyphs (A. V. H
 pub const CAP: i32 = 21;
 
 /// Offset of each glyph's first byte in [`GLYPHS`] (and the end).
+#[rustfmt::skip]
 pub static START: [u16; {len(start)}] = [
 {rows(start, 16)}
 ];
 
 /// Width of each glyph with its side bearings, grid units.
+#[rustfmt::skip]
 pub static ADVANCE: [u8; {len(adv)}] = [
 {rows(adv)}
 ];

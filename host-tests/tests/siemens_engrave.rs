@@ -119,10 +119,7 @@ fn character_pitch_and_total_width() {
     // Right aligned (thousands 2): the text ends on the reference point;
     // centred at the middle (thousands 1, ten-thousands 1: half the height).
     same(&strokes(&call("II", 10.0, 25.0, 0.0, (0.0, 0.0), 14.0, 5.0, 2000), -1.5), &[stem(5.0), stem(10.0)]);
-    same(
-        &strokes(&call("II", 10.0, 25.0 + 7.0, 0.0, (0.0, 0.0), 14.0, 5.0, 11000), -1.5),
-        &[stem(7.5), stem(12.5)],
-    );
+    same(&strokes(&call("II", 10.0, 25.0 + 7.0, 0.0, (0.0, 0.0), 14.0, 5.0, 11000), -1.5), &[stem(7.5), stem(12.5)]);
 }
 
 /// _STA turns the line; a polar reference point (units 1) is radius and angle

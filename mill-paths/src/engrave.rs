@@ -175,7 +175,7 @@ impl Engrave {
             Width::Angle => (s.df * PI / 180.0 * r - sum + (first + last) / 2.0) / gaps,
         };
         let len = sum + gap * n.saturating_sub(1) as f64;
-        if !(gap >= 0.0) || (s.path != Path::Line && len > 2.0 * PI * r) {
+        if gap.is_nan() || gap < 0.0 || (s.path != Path::Line && len > 2.0 * PI * r) {
             return Err(CycleAlarm::TextLengthTooSmall);
         }
         let h = s.height as f64;
@@ -245,9 +245,13 @@ impl Engrave {
         let o = self.o.1 + du * self.a.1 + w * self.b.1;
         P3::new(libm::round(a) as i64, libm::round(o) as i64, self.bottom)
     }
+}
+
+impl Iterator for Engrave {
+    type Item = Move;
 
     /// The next move.
-    pub fn next(&mut self) -> Option<Move> {
+    fn next(&mut self) -> Option<Move> {
         loop {
             match self.stage {
                 1 => {

@@ -11,6 +11,7 @@
 pub const CAP: i32 = 21;
 
 /// Offset of each glyph's first byte in [`GLYPHS`] (and the end).
+#[rustfmt::skip]
 pub static START: [u16; 96] = [
     0, 0, 14, 22, 38, 86, 144, 212, 226, 246, 266, 278, 286, 302, 306, 316,
     320, 354, 362, 390, 420, 430, 464, 510, 518, 576, 622, 642, 668, 674, 682, 688,
@@ -21,6 +22,7 @@ pub static START: [u16; 96] = [
 ];
 
 /// Width of each glyph with its side bearings, grid units.
+#[rustfmt::skip]
 pub static ADVANCE: [u8; 95] = [
     16, 10, 16, 21, 20, 24, 26, 10, 14, 14, 16, 26, 10, 26, 10, 22, 20, 20, 20, 20, 20, 20, 20, 20,
     20, 20, 10, 10, 24, 26, 24, 18, 27, 18, 21, 21, 21, 19, 18, 21, 22, 8, 16, 21, 17, 24, 22, 22,

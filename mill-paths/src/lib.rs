@@ -32,10 +32,10 @@
 pub mod contour;
 #[cfg(feature = "engrave")]
 pub mod engrave;
-#[cfg(feature = "engrave")]
-pub mod font;
 #[cfg(feature = "face")]
 pub mod face;
+#[cfg(feature = "engrave")]
+pub mod font;
 pub mod infeed;
 pub mod plan;
 pub mod pocket;
