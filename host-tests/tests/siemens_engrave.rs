@@ -182,7 +182,7 @@ fn alarms_of_cycle60_move_nothing() {
         (call("AB", 10.0, 25.0, 0.0, (0.0, 0.0), 14.0, -5.0, 0), 61176),
         (call("ABCDEFGH", 50.0, 52.0, 0.0, (50.0, 50.0), 9.0, 5.0, 10), 61176),
         (ok.replace("1252)", "850)"), 61178),
-        (call("A\u{c4}B", 10.0, 25.0, 0.0, (0.0, 0.0), 14.0, 5.0, 0), 61179),
+        (call("A\u{c6}B", 10.0, 25.0, 0.0, (0.0, 0.0), 14.0, 5.0, 0), 61179),
         (call(&"A".repeat(92), 10.0, 25.0, 0.0, (0.0, 0.0), 1.0, 0.0, 0), 61179),
     ] {
         let r = siemens(&format!("{HEAD}{c}\nM30\n"));
@@ -191,6 +191,18 @@ fn alarms_of_cycle60_move_nothing() {
         let before = siemens(&format!("{HEAD}{}M30\n", if line == 3 { "D0\n" } else { "" }));
         assert_eq!(r.actions.len(), before.actions.len(), "{c} moved");
     }
+}
+
+/// The document's accented letters (code page 1252, written in UTF-8 in the
+/// program) are their letter and the accent: "Ü" is "U" and two dots above it.
+#[test]
+fn accented_letters() {
+    let u = strokes(&call("U", 10.0, 25.0, 0.0, (0.0, 0.0), 21.0, 5.0, 0), -1.5);
+    let uu = strokes(&call("\u{dc}", 10.0, 25.0, 0.0, (0.0, 0.0), 21.0, 5.0, 0), -1.5);
+    assert_eq!(uu.len(), u.len() + 2);
+    same(&uu[..u.len()], &u);
+    // U's box is x 4..18 on the grid (anchor 11), the dots at 11 ± 2 from 23 to 24.
+    same(&uu[u.len()..], &[([15.0, 48.0], [15.0, 49.0]), ([19.0, 48.0], [19.0, 49.0])]);
 }
 
 /// The document's examples (lines 10003-10068) run and cut at the depth.

@@ -108,6 +108,10 @@ pub struct Engrave {
     ci: u8,
     pi: u16,
     end: u16,
+    /// The accent's strokes still to cut (in [`ACCENTS`]) and its anchor on the grid.
+    ai: u8,
+    aend: u8,
+    anchor: (i32, i32),
     xmin: i32,
     o: (f64, f64),
     a: (f64, f64),
@@ -118,7 +122,44 @@ pub struct Engrave {
     last: P3,
 }
 
-/// The glyph of `c` (its range in [`GLYPHS`]), or 61179 when the font lacks it.
+/// Code page 1252's accented letters 0xC0-0xFF as an ASCII letter and an accent
+/// ([`ACCENT_AT`]'s 1-7); `.` is a letter the font cannot make (61179), × is x.
+const LATIN_BASE: &[u8; 64] = b"AAAAAA.CEEEEIIII.NOOOOOx.UUUUY..aaaaaa.ceeeeiiii.nooooo..uuuuy.y";
+const LATIN_ACCENT: &[u8; 64] = b"1234560712351235041234500123520012345607123512350412345001235205";
+
+/// The accents' strokes, as the glyphs' (`x` + 8, `y` + 8 about the accent's anchor:
+/// the middle of the letter's box, 2 units above its capitals or its x-height 14, the
+/// baseline for the cedilla): grave, acute, circumflex, tilde, diaeresis, ring,
+/// cedilla (drawn here, not Hershey's).
+#[rustfmt::skip]
+static ACCENTS: [u8; 46] = [
+    0x86, 11, 9, 8,
+    0x87, 8, 10, 11,
+    0x85, 8, 8, 11, 11, 8,
+    0x85, 9, 7, 11, 9, 9, 11, 11,
+    0x86, 8, 6, 9, 0x8a, 8, 10, 9,
+    0x88, 8, 6, 10, 8, 12, 10, 10, 8, 8,
+    0x88, 8, 9, 6, 7, 4,
+];
+
+/// Where each accent's strokes start in [`ACCENTS`] (accent `i` is `[i - 1]..[i]`).
+const ACCENT_AT: [u8; 8] = [0, 4, 8, 14, 22, 30, 40, 46];
+
+/// The letter and the accent (0: none) character `c` is made of (`c` printable
+/// ASCII, or code page 1252 0xC0-0xFF), or 61179.
+fn parts(c: u8) -> Result<(u8, u8), CycleAlarm> {
+    let (b, a) = match c {
+        32..=126 => (c, b'0'),
+        0xc0.. => (LATIN_BASE[usize::from(c - 0xc0)], LATIN_ACCENT[usize::from(c - 0xc0)]),
+        _ => (b'.', b'0'),
+    };
+    if b == b'.' && c != b'.' {
+        return Err(CycleAlarm::CharacterMissing);
+    }
+    Ok((b, a - b'0'))
+}
+
+/// The glyph of ASCII `c` (its range in [`GLYPHS`]), or 61179 when the font lacks it.
 fn glyph(c: u8) -> Result<(usize, usize), CycleAlarm> {
     let i = usize::from(c.wrapping_sub(32));
     match (START.get(i), START.get(i + 1)) {
@@ -127,8 +168,9 @@ fn glyph(c: u8) -> Result<(usize, usize), CycleAlarm> {
     }
 }
 
-/// The box of `c`: its left edge on the grid and its width in grid units.
+/// The box of `c` (its letter's): its left edge on the grid and its width in grid units.
 fn extent(c: u8) -> (i32, i32) {
+    let c = parts(c).map_or(b' ', |p| p.0);
     let Ok((a, b)) = glyph(c) else { return (0, 0) };
     let (mut lo, mut hi) = (i32::MAX, i32::MIN);
     for x in GLYPHS.get(a..b).unwrap_or(&[]).iter().step_by(2) {
@@ -147,19 +189,28 @@ impl Engrave {
     /// more than [`TEXT_MAX`]), 61176 characters that do not fit the total width,
     /// the opening angle or the circle.
     pub fn new(s: &EngraveSpec<'_>) -> Result<Self, CycleAlarm> {
-        let n = s.text.len();
-        if n > TEXT_MAX {
-            return Err(CycleAlarm::CharacterMissing);
-        }
+        // The program's text: UTF-8 (U+00C0-U+00FF as two bytes) or code page 1252.
         let mut text = [0u8; TEXT_MAX];
-        text[..n].copy_from_slice(s.text);
+        let (mut i, mut n) = (0, 0);
+        while let Some(&b) = s.text.get(i) {
+            let c = match s.text.get(i + 1) {
+                Some(&t) if b & 0xfe == 0xc2 && t & 0xc0 == 0x80 => {
+                    i += 1;
+                    (b & 3) << 6 | (t & 0x3f)
+                }
+                _ => b,
+            };
+            i += 1;
+            parts(c)?;
+            *text.get_mut(n).ok_or(CycleAlarm::CharacterMissing)? = c;
+            n += 1;
+        }
         let k = s.height as f64 / f64::from(CAP);
         let mut sum = 0.0;
-        for &c in s.text {
-            glyph(c)?;
+        for &c in &text[..n] {
             sum += f64::from(extent(c).1) * k;
         }
-        let (first, last) = match (s.text.first(), s.text.last()) {
+        let (first, last) = match (text[..n].first(), text[..n].last()) {
             (Some(&f), Some(&l)) => (f64::from(extent(f).1) * k, f64::from(extent(l).1) * k),
             _ => (0.0, 0.0),
         };
@@ -200,6 +251,9 @@ impl Engrave {
             ci: 0,
             pi: 0,
             end: 0,
+            ai: 0,
+            aend: 0,
+            anchor: (0, 0),
             xmin: 0,
             o: (0.0, 0.0),
             a: (0.0, 0.0),
@@ -216,9 +270,23 @@ impl Engrave {
     /// Sets the cursor on character `ci` (its strokes and its frame).
     fn frame(&mut self) {
         let c = self.text.get(usize::from(self.ci)).copied().unwrap_or(b' ');
-        let (a, b) = glyph(c).unwrap_or((0, 0));
+        let (letter, accent) = parts(c).unwrap_or((b' ', 0));
+        let (a, b) = glyph(letter).unwrap_or((0, 0));
         (self.pi, self.end) = (a as u16, b as u16);
+        let i = usize::from(accent);
+        (self.ai, self.aend) = match (ACCENT_AT.get(i.wrapping_sub(1)), ACCENT_AT.get(i)) {
+            (Some(&a), Some(&b)) if accent > 0 => (a, b),
+            _ => (0, 0),
+        };
         let (xmin, w) = extent(c);
+        let top = if accent == 7 {
+            0
+        } else if letter.is_ascii_uppercase() {
+            23
+        } else {
+            16
+        };
+        self.anchor = (xmin + w / 2, top);
         self.xmin = xmin;
         let w = f64::from(w) * self.k;
         let (oa, oo) = self.org;
@@ -237,10 +305,24 @@ impl Engrave {
         self.b = (-self.a.1, self.a.0);
     }
 
-    /// Grid point (`x`, `y` + 8) of the current character, in the plane.
-    fn point(&self, x: u8, y: u8) -> P3 {
-        let du = f64::from(i32::from(x & 0x7f) - self.xmin) * self.k;
-        let w = f64::from(i32::from(y) - 8) * self.k - self.v;
+    /// The current character's next stroke point on the grid and whether it
+    /// starts a stroke: its letter's, then its accent's.
+    fn peek(&self) -> Option<(i32, i32, bool)> {
+        let (data, i, d): (&[u8], usize, (i32, i32)) = if self.pi < self.end {
+            (&GLYPHS, usize::from(self.pi), (0, 0))
+        } else if self.ai < self.aend {
+            (&ACCENTS, usize::from(self.ai), (self.anchor.0 - 8, self.anchor.1))
+        } else {
+            return None;
+        };
+        let (x, y) = (data.get(i).copied().unwrap_or(0), data.get(i + 1).copied().unwrap_or(8));
+        Some((i32::from(x & 0x7f) + d.0, i32::from(y) - 8 + d.1, x & 0x80 != 0))
+    }
+
+    /// Grid point (`x`, `y`) of the current character, in the plane.
+    fn point(&self, x: i32, y: i32) -> P3 {
+        let du = f64::from(x - self.xmin) * self.k;
+        let w = f64::from(y) * self.k - self.v;
         let a = self.o.0 + du * self.a.0 + w * self.b.0;
         let o = self.o.1 + du * self.a.1 + w * self.b.1;
         P3::new(libm::round(a) as i64, libm::round(o) as i64, self.bottom)
@@ -265,7 +347,7 @@ impl Iterator for Engrave {
                 3 => return None,
                 _ => {}
             }
-            if self.pi >= self.end {
+            let Some((x, y, new)) = self.peek() else {
                 if self.ci >= self.n {
                     if self.down {
                         self.down = false;
@@ -281,18 +363,20 @@ impl Iterator for Engrave {
                     self.frame();
                 }
                 continue;
-            }
-            let i = usize::from(self.pi);
-            let (x, y) = (GLYPHS.get(i).copied().unwrap_or(0), GLYPHS.get(i + 1).copied().unwrap_or(8));
-            if x & 0x80 != 0 && self.down {
+            };
+            if new && self.down {
                 // The pen lifts: back to the safety plane.
                 self.down = false;
                 return Some(Move::Rapid(self.last.at(self.safe)));
             }
-            self.pi += 2;
+            if self.pi < self.end {
+                self.pi += 2;
+            } else {
+                self.ai += 2;
+            }
             let p = self.point(x, y);
             self.last = p;
-            if x & 0x80 == 0 {
+            if !new {
                 return Some(Move::Line { to: p, feed: self.feeds[1] });
             }
             if !self.started {
@@ -356,9 +440,33 @@ mod tests {
         assert!(all(&spec(b"")).is_empty());
     }
 
+    /// "É" (UTF-8, or code page 1252's 0xC9) is "E" and an acute: (-1,0)-(2,3)
+    /// about the middle of E's box (x 4..17: 10) 2 above the capitals (23).
+    #[test]
+    fn an_accented_letter_is_its_letter_and_the_accent() {
+        let e = all(&spec(b"E"));
+        let ea = all(&spec(b"\xc3\x89"));
+        assert_eq!(ea, all(&spec(b"\xc9")));
+        // E's moves up to its last retract, then the accent's stroke.
+        assert_eq!(ea[..e.len() - 1], e[..e.len() - 1]);
+        let at = |x: i64, y: i64, d: i64| P3::new(10_000_000 + (x - 4) * 1_000_000, 25_000_000 + y * 1_000_000, d);
+        assert_eq!(
+            ea[e.len() - 1..],
+            [
+                Move::Rapid(at(9, 23, 1_000_000)),
+                Move::Line { to: at(9, 23, -1_500_000), feed: 2500 },
+                Move::Line { to: at(12, 26, -1_500_000), feed: 2000 },
+                Move::Rapid(at(12, 26, 1_000_000)),
+                Move::Rapid(at(12, 26, 100_000_000)),
+            ]
+        );
+    }
+
     #[test]
     fn alarms() {
-        assert_eq!(Engrave::new(&spec(b"A\xe4")).err(), Some(CycleAlarm::CharacterMissing));
+        for t in [&b"A\xe6"[..], b"\xc3\xa6", b"\x7f", b"\x1f", b"\xb0"] {
+            assert_eq!(Engrave::new(&spec(t)).err(), Some(CycleAlarm::CharacterMissing), "{t:?}");
+        }
         assert_eq!(Engrave::new(&spec(&[b'A'; 92])).err(), Some(CycleAlarm::CharacterMissing));
         let mut s = spec(b"LL");
         (s.width, s.df) = (Width::Total, 23_000_000.0);
