@@ -130,9 +130,9 @@ const LATIN_ACCENT: &[u8; 64] = b"1234560712351235041234500123520012345607123512
 /// The accents' strokes, as the glyphs' (`x` + 8, `y` + 8 about the accent's anchor:
 /// the middle of the letter's box, 2 units above its capitals or its x-height 14, the
 /// baseline for the cedilla): grave, acute, circumflex, tilde, diaeresis, ring,
-/// cedilla (drawn here, not Hershey's).
+/// cedilla, caron (drawn here, not Hershey's).
 #[rustfmt::skip]
-static ACCENTS: [u8; 46] = [
+static ACCENTS: [u8; 52] = [
     0x86, 11, 9, 8,
     0x87, 8, 10, 11,
     0x85, 8, 8, 11, 11, 8,
@@ -140,10 +140,11 @@ static ACCENTS: [u8; 46] = [
     0x86, 8, 6, 9, 0x8a, 8, 10, 9,
     0x88, 8, 6, 10, 8, 12, 10, 10, 8, 8,
     0x88, 8, 9, 6, 7, 4,
+    0x85, 11, 8, 8, 11, 11,
 ];
 
 /// Where each accent's strokes start in [`ACCENTS`] (accent `i` is `[i - 1]..[i]`).
-const ACCENT_AT: [u8; 8] = [0, 4, 8, 14, 22, 30, 40, 46];
+const ACCENT_AT: [u8; 9] = [0, 4, 8, 14, 22, 30, 40, 46, 52];
 
 /// The letter and the accent (0: none) character `c` is made of (`c` printable
 /// ASCII, or code page 1252 0xC0-0xFF), or 61179.
@@ -151,6 +152,11 @@ fn parts(c: u8) -> Result<(u8, u8), CycleAlarm> {
     let (b, a) = match c {
         32..=126 => (c, b'0'),
         0xc0.. => (LATIN_BASE[usize::from(c - 0xc0)], LATIN_ACCENT[usize::from(c - 0xc0)]),
+        0x8a => (b'S', b'8'),
+        0x9a => (b's', b'8'),
+        0x8e => (b'Z', b'8'),
+        0x9e => (b'z', b'8'),
+        0x9f => (b'Y', b'5'),
         _ => (b'.', b'0'),
     };
     if b == b'.' && c != b'.' {
@@ -189,14 +195,25 @@ impl Engrave {
     /// more than [`TEXT_MAX`]), 61176 characters that do not fit the total width,
     /// the opening angle or the circle.
     pub fn new(s: &EngraveSpec<'_>) -> Result<Self, CycleAlarm> {
-        // The program's text: UTF-8 (U+00C0-U+00FF as two bytes) or code page 1252.
+        // The program's text: UTF-8 (U+00C0-U+00FF and Š š Ž ž Ÿ as two bytes) or
+        // code page 1252.
         let mut text = [0u8; TEXT_MAX];
         let (mut i, mut n) = (0, 0);
         while let Some(&b) = s.text.get(i) {
-            let c = match s.text.get(i + 1) {
-                Some(&t) if b & 0xfe == 0xc2 && t & 0xc0 == 0x80 => {
+            let c = match (b, s.text.get(i + 1)) {
+                (0xc2 | 0xc3, Some(&t)) if t & 0xc0 == 0x80 => {
                     i += 1;
                     (b & 3) << 6 | (t & 0x3f)
+                }
+                (0xc5, Some(&t)) if matches!(t, 0xa0 | 0xa1 | 0xb8 | 0xbd | 0xbe) => {
+                    i += 1;
+                    match t {
+                        0xa0 => 0x8a,
+                        0xa1 => 0x9a,
+                        0xb8 => 0x9f,
+                        0xbd => 0x8e,
+                        _ => 0x9e,
+                    }
                 }
                 _ => b,
             };
@@ -447,6 +464,9 @@ mod tests {
         let e = all(&spec(b"E"));
         let ea = all(&spec(b"\xc3\x89"));
         assert_eq!(ea, all(&spec(b"\xc9")));
+        // Š in UTF-8 is code page 1252's 0x8A: S and a caron.
+        assert_eq!(all(&spec("\u{160}".as_bytes())), all(&spec(b"\x8a")));
+        assert!(all(&spec(b"\x8a")).len() > all(&spec(b"S")).len());
         // E's moves up to its last retract, then the accent's stroke.
         assert_eq!(ea[..e.len() - 1], e[..e.len() - 1]);
         let at = |x: i64, y: i64, d: i64| P3::new(10_000_000 + (x - 4) * 1_000_000, 25_000_000 + y * 1_000_000, d);
