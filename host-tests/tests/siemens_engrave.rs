@@ -217,3 +217,26 @@ fn the_documents_examples_run() {
         assert!(p.iter().filter(|m| !m.0 && near(m.2[2], -1.5)).count() > 50, "{f}");
     }
 }
+
+/// Extreme and odd calls end in an alarm or a path, never a panic.
+#[test]
+fn odd_calls_do_not_panic() {
+    let big = 99_999_999.0;
+    for vari in [0, 1, 10, 11, 20, 21, 1010, 12020, 22010, 101000, 201010, 1001021, 2201020, 9999999, 99999999] {
+        for (pa, po, wid, df) in [
+            (big, big, big, big),
+            (9e6, -9e6, 9e6, 9e6),
+            (-9e6, 1.0, 9e6, 3e6),
+            (-big, 0.0, 0.001, -big),
+            (0.0, 0.0, 1.0, 360.0),
+            (1e-6, 1e-6, 1e-6, 0.0),
+        ] {
+            for cp in [(0.0, 0.0), (big, -big), (9e6, -9e6), (1e-6, 0.0)] {
+                for t in ["", " ", "~}|{", "\u{e9}\u{ff}\u{c7}"] {
+                    let c = call(t, pa, po, big, cp, wid, df, vari);
+                    let _ = siemens(&format!("{HEAD}{c}\nM30\n"));
+                }
+            }
+        }
+    }
+}
