@@ -15,9 +15,9 @@
 //!   A digit outside its values is 61002.
 //! - `_WID` the height of the capitals' tool-centre path (line 9900: the letter's
 //!   height less the cutter diameter); 0 is 61019.
-//! - `_CODEP` 0 or 1252, else 61178; a character the font lacks (outside ASCII
-//!   32-126, e.g. the document's accented letters, €, £, µ) 61179, as is a text of
-//!   more than 91 characters; characters that do not fit `_DF` 61176.
+//! - `_CODEP` 0 or 1252, else 61178; a character the font lacks (beyond ASCII
+//!   32-126 and the accented letters of code page 1252: æ, ø, ß, €, £, µ …) 61179,
+//!   as is a text of more than 91 characters; characters that do not fit `_DF` 61176.
 //! - A circle with the reference point on its centre (radius 0) is 61019.
 
 use super::{Radius, cutter, feed, levels, plane};
