@@ -205,6 +205,18 @@ fn accented_letters() {
     same(&uu[u.len()..], &[([15.0, 48.0], [15.0, 49.0]), ([19.0, 48.0], [19.0, 49.0])]);
 }
 
+/// A double quote in the text is written in single quotes (lines 9990-10000):
+/// "A'"'B" engraves A, ", B (" is two strokes).
+#[test]
+fn a_quote_in_single_quotes() {
+    let plunges = |t: &str| {
+        moves(&call(t, 10.0, 25.0, 0.0, (0.0, 0.0), 14.0, 5.0, 0)).iter().filter(|m| !m.0 && m.2[2] < m.1[2]).count()
+    };
+    assert_eq!(plunges("A'\"'B"), plunges("A") + 2 + plunges("B"));
+    // A ; inside the string is text, not a comment.
+    assert_eq!(plunges("A;B"), plunges("A") + plunges(";") + plunges("B"));
+}
+
 /// The document's examples (lines 10003-10068) run and cut at the depth.
 #[test]
 fn the_documents_examples_run() {

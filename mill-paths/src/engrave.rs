@@ -215,6 +215,11 @@ impl Engrave {
                         _ => 0x9e,
                     }
                 }
+                // A quote written in single quotes ('"', '''; lines 9990-10000).
+                (b'\'', Some(&q @ (b'"' | b'\''))) if s.text.get(i + 2) == Some(&b'\'') => {
+                    i += 2;
+                    q
+                }
                 _ => b,
             };
             i += 1;
@@ -464,6 +469,9 @@ mod tests {
         let e = all(&spec(b"E"));
         let ea = all(&spec(b"\xc3\x89"));
         assert_eq!(ea, all(&spec(b"\xc9")));
+        // A quote in single quotes is the quote.
+        assert_eq!(all(&spec(b"'\"'")), all(&spec(b"\"")));
+        assert_eq!(all(&spec(b"'''")), all(&spec(b"'")));
         // Š in UTF-8 is code page 1252's 0x8A: S and a caron.
         assert_eq!(all(&spec("\u{160}".as_bytes())), all(&spec(b"\x8a")));
         assert!(all(&spec(b"\x8a")).len() > all(&spec(b"S")).len());
