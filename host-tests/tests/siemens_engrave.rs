@@ -252,3 +252,16 @@ fn odd_calls_do_not_panic() {
         }
     }
 }
+
+/// In G19 the text lies in the Y/Z plane (Y the abscissa) and the depth is along X.
+#[test]
+fn the_plane_g19() {
+    let c = call("I", 10.0, 25.0, 0.0, (0.0, 0.0), 14.0, 5.0, 0);
+    let r = siemens(&format!("G19 G0 G90 X100 Y0 Z0 F2000 S1500 M3 T1 D1\n{c}\nM30\n"));
+    assert!(r.alarms.is_empty(), "{:?}", r.alarms);
+    let cuts: Vec<_> =
+        path(&r.actions).into_iter().filter(|m| !m.0 && near(m.1[0], -1.5) && near(m.2[0], -1.5)).collect();
+    assert_eq!(cuts.len(), 1, "{cuts:?}");
+    let (from, to) = (cuts[0].1, cuts[0].2);
+    assert!(near(from[1], 10.0) && near(from[2], 39.0) && near(to[1], 10.0) && near(to[2], 25.0), "{cuts:?}");
+}
