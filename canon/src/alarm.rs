@@ -838,6 +838,16 @@ pub enum CycleAlarm {
     /// 61180: SINUMERIK cycle alarm (seed 001 lines 9197, 12241): no name assigned to
     /// the swivel data record (CYCLE800 on a machine without swivel data records).
     SwivelDataNoName,
+    /// 61176: SINUMERIK cycle alarm (seed 001 line 9934): text length _DF programmed
+    /// too small (CYCLE60: the characters do not fit the total width, the opening
+    /// angle or the circle).
+    TextLengthTooSmall,
+    /// 61178: SINUMERIK cycle alarm (seed 001 line 9964): no code page (CYCLE60
+    /// `_CODEP` other than 0 or 1252).
+    NoCodePage,
+    /// 61179: SINUMERIK cycle alarm (seed 001 line 9882): character does not exist
+    /// (CYCLE60 `_TEXT` with a character its stroke font lacks).
+    CharacterMissing,
     /// 61213: SINUMERIK cycle alarm (seed 001 table 5.3): circle radius too small (CYCLE77).
     CircleRadiusTooSmall,
     /// 61215: SINUMERIK cycle alarm (seed 001 table 5.3): blank dimension programmed
@@ -932,6 +942,9 @@ impl CycleAlarm {
             TechnologyWrong => 61125,
             InsertionAngleZero => 61128,
             SwivelDataNoName => 61180,
+            TextLengthTooSmall => 61176,
+            NoCodePage => 61178,
+            CharacterMissing => 61179,
             CircleRadiusTooSmall => 61213,
             BlankWrong => 61215,
             FiveAxisNotSetUp => 61191,
@@ -1018,6 +1031,9 @@ text_table! {
         TechnologyWrong {} => "technology selection in parameter _TECHNO defined incorrectly";
         InsertionAngleZero {} => "insertion angle = 0 for oscillating insertion";
         SwivelDataNoName {} => "no name assigned to the swivel data record";
+        TextLengthTooSmall {} => "text length _DF programmed too small";
+        NoCodePage {} => "engraving cycle: no code page (_CODEP)";
+        CharacterMissing {} => "character does not exist (not in the engraving font)";
         CircleRadiusTooSmall {} => "circle radius too small (_PRAD)";
         BlankWrong {} => "blank dimension programmed incorrectly (_AP1/_AP2 not larger than the spigot)";
         FiveAxisNotSetUp {} => "5-axis transformation not set up (TRAORI)";
@@ -1810,6 +1826,21 @@ pub const CATALOG: &[CatalogEntry] = &[
         when: "SLOT1 with oscillating insertion (VARI tens 3) and _STA2 = 0 (table: 在以摆动或者螺旋插入时再入角=0)",
     },
     CatalogEntry {
+        code: 61176,
+        title: "text length _DF too small",
+        when: "SINUMERIK CYCLE60 whose characters do not fit the total width _DF, the opening angle _DF or the circle (line 9934: 文字长度_DF编程太小)",
+    },
+    CatalogEntry {
+        code: 61178,
+        title: "no code page",
+        when: "SINUMERIK CYCLE60 with _CODEP other than 0 or 1252 (line 9964: 没有代码页)",
+    },
+    CatalogEntry {
+        code: 61179,
+        title: "character does not exist",
+        when: "SINUMERIK CYCLE60 _TEXT with a character outside printable ASCII, which the engraving font does not cover (line 9882: 字符不存在)",
+    },
+    CatalogEntry {
         code: 61180,
         title: "no swivel data record",
         when: "SINUMERIK CYCLE800 that would swivel: this board has no swivel kinematics, so no swivel data records (lines 9197, 12241: 没有给回转数据组分配名称); CYCLE800() and _TC=\"0\" deselect and are accepted",
@@ -2123,6 +2154,9 @@ mod tests {
             SiemensCycle(CycleAlarm::InfeedWidthMissing),
             SiemensCycle(CycleAlarm::TechnologyWrong),
             SiemensCycle(CycleAlarm::SwivelDataNoName),
+            SiemensCycle(CycleAlarm::TextLengthTooSmall),
+            SiemensCycle(CycleAlarm::NoCodePage),
+            SiemensCycle(CycleAlarm::CharacterMissing),
             SiemensCycle(CycleAlarm::CircleRadiusTooSmall),
             SiemensCycle(CycleAlarm::BlankWrong),
             SiemensCycle(CycleAlarm::FiveAxisNotSetUp),

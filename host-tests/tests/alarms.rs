@@ -270,6 +270,8 @@ fn every_catalog_code_has_a_triggering_program() {
     covered.extend([61011, 61012, 61118, 61124, 61213, 61215, 61610]);
     // siemens_hsc.rs (CYCLE832: TRAORI, TRAORI(2), B spline)
     covered.extend([61191, 61192, 61194]);
+    // siemens_engrave.rs (CYCLE60 on the mill)
+    covered.extend([61176, 61178, 61179]);
     // siemens_slots.rs (LONGHOLE, SLOT1, SLOT2 on the mill)
     covered.extend([61104, 61128, 61905]);
     // controller/tests/mill.rs and cli board.rs (a tool changer that never reports done)

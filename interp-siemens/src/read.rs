@@ -611,7 +611,7 @@ impl<'t> Reader<'_, 't, '_> {
         while let Some(&c) = self.src.t.get(self.src.i) {
             self.src.i += 1;
             match c {
-                b'"' => quoted = !quoted,
+                b'"' if crate::lex::quote_at(self.src.t, self.src.i - 1) => quoted = !quoted,
                 b'(' if !quoted => depth += 1,
                 b')' if !quoted => {
                     depth -= 1;

@@ -30,8 +30,12 @@
 #![no_std]
 
 pub mod contour;
+#[cfg(feature = "engrave")]
+pub mod engrave;
 #[cfg(feature = "face")]
 pub mod face;
+#[cfg(feature = "engrave")]
+pub mod font;
 pub mod infeed;
 pub mod plan;
 pub mod pocket;
@@ -125,6 +129,9 @@ pub enum MillGen {
     /// Slots on a circle ([`slot::Slots`]: LONGHOLE, SLOT1, SLOT2).
     #[cfg(feature = "slot")]
     Slots(slot::Slots),
+    /// A text engraved stroke by stroke ([`engrave::Engrave`]: CYCLE60).
+    #[cfg(feature = "engrave")]
+    Engrave(engrave::Engrave),
 }
 
 impl MillGen {
@@ -146,6 +153,8 @@ impl MillGen {
             MillGen::Spigot(p) => Ok(p.next()),
             #[cfg(feature = "slot")]
             MillGen::Slots(p) => Ok(p.next()),
+            #[cfg(feature = "engrave")]
+            MillGen::Engrave(p) => Ok(p.next()),
         }
     }
 }

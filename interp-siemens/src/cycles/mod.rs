@@ -179,6 +179,11 @@ pub static SIGNATURES: &[Signature] = &[
         PO1: R, DM1: R, PO2: R, DM2: R, PO3: R, DM3: R, PO4: R, DM4: R, APP: R, ROP: R, TDEP: R, FAL: R, IANG: R,
         NSP: R, NRC: I, NID: I, PP1: R, PP2: R, PP3: R, VARI: I, NUMT: I, _VRT: R
     )),
+    // Line 9805: CYCLE60.
+    signature!("CYCLE60" (
+        _TEXT: S, _RTP: R, _RFP: R, _SDIS: R, _DP: R, _DPR: R, _PA: R, _PO: R, _STA: R, _CP1: R, _CP2: R, _WID: R,
+        _DF: R, _FFD: R, _FFP1: R, _VARI: I, _CODEP: I
+    )),
     // Lines 11523–11527: CYCLE950.
     signature!("CYCLE950" (
         _NP1: S, _NP2: S, _NP3: S, _NP4: S, _VARI: I, _MID: R, _FALZ: R, _FALX: R, _FF1: R, _FF2: R, _FF3: R,
@@ -250,6 +255,10 @@ pub fn start(
         "CYCLE77" => mill::face::spigot(true, &p, cmd, st, ctx),
         #[cfg(not(feature = "mill-face"))]
         "CYCLE71" | "CYCLE76" | "CYCLE77" => Err(LEFT_OUT),
+        #[cfg(feature = "mill-engrave")]
+        "CYCLE60" => mill::engrave::cycle60(&p, cmd, st, ctx),
+        #[cfg(not(feature = "mill-engrave"))]
+        "CYCLE60" => Err(LEFT_OUT),
         // A drilling pattern is run by the driver (positions, then the MCALL at
         // each); called modally it is not a drilling cycle.
         _ => Err(AlarmKind::NotSupportedYet { what: "this SINUMERIK cycle" }),
@@ -262,7 +271,7 @@ pub fn start(
 
 /// A milling cycle this board's build leaves out for flash (interp-siemens'
 /// features; docs/FIRMWARE-SIZES.md): alarm 4007, nothing moves.
-#[cfg(not(all(feature = "mill-face", feature = "mill-slots", feature = "mill-pockets")))]
+#[cfg(not(all(feature = "mill-face", feature = "mill-slots", feature = "mill-pockets", feature = "mill-engrave")))]
 const LEFT_OUT: AlarmKind = AlarmKind::NotInThisBuild { what: "this milling cycle" };
 
 /// The turning cycles work in the ZX plane (G18, line 10113).
