@@ -816,6 +816,8 @@ pub enum CycleAlarm {
     InfeedWidthTooLarge,
     /// 61112: SINUMERIK cycle alarm (seed 001 table 5.3): tool radius negative.
     ToolRadiusNegative,
+    /// 61116: SINUMERIK cycle alarm (seed 001 line 12231): approach or departure path = 0 (CYCLE72 _LP1/_LP2).
+    ApproachPathZero,
     /// 61117: SINUMERIK cycle alarm (seed 001 table 5.3): active tool radius <= 0.
     ToolRadiusNotPositive,
     /// 61118: SINUMERIK cycle alarm (seed 001 table 5.3): length or width = 0 (CYCLE71).
@@ -914,6 +916,7 @@ impl CycleAlarm {
             FirstDepthWrong => 61107,
             InfeedWidthTooLarge => 61111,
             ToolRadiusNegative => 61112,
+            ApproachPathZero => 61116,
             ToolRadiusNotPositive => 61117,
             LengthOrWidthZero => 61118,
             InfeedWidthMissing => 61124,
@@ -996,6 +999,7 @@ text_table! {
         FirstDepthWrong {} => "first drilling depth defined incorrectly (FDEP/FDPR against the total depth)";
         InfeedWidthTooLarge {} => "infeed width greater than the tool diameter (_MIDA)";
         ToolRadiusNegative {} => "tool radius negative";
+        ApproachPathZero {} => "approach or departure path = 0";
         ToolRadiusNotPositive {} => "active tool radius <= 0";
         LengthOrWidthZero {} => "length or width = 0 (_LENG, _WID)";
         InfeedWidthMissing {} => "infeed width not programmed (_MIDA)";
@@ -1749,6 +1753,11 @@ pub const CATALOG: &[CatalogEntry] = &[
         when: "SINUMERIK CYCLE72/76/77/90 with a negative radius in the active D offset (table: 刀具半径为负)",
     },
     CatalogEntry {
+        code: 61116,
+        title: "approach or departure path = 0",
+        when: "SINUMERIK CYCLE72 with _LP1 or _LP2 zero (table: 返回运行位移或者开始运行位移=0)",
+    },
+    CatalogEntry {
         code: 61117,
         title: "active tool radius <= 0",
         when: "SINUMERIK CYCLE71/POCKET3/POCKET4 with a radius of zero or less in the active D offset (table: 有效的刀具半径<=0)",
@@ -2078,6 +2087,7 @@ mod tests {
             SiemensCycle(CycleAlarm::FirstDepthWrong),
             SiemensCycle(CycleAlarm::InfeedWidthTooLarge),
             SiemensCycle(CycleAlarm::ToolRadiusNegative),
+            SiemensCycle(CycleAlarm::ApproachPathZero),
             SiemensCycle(CycleAlarm::ToolRadiusNotPositive),
             SiemensCycle(CycleAlarm::LengthOrWidthZero),
             SiemensCycle(CycleAlarm::InfeedWidthMissing),

@@ -30,6 +30,8 @@
 #![no_std]
 
 pub mod contour;
+#[cfg(feature = "contour")]
+pub mod contour_mill;
 #[cfg(feature = "face")]
 pub mod face;
 pub mod infeed;
@@ -125,6 +127,9 @@ pub enum MillGen {
     /// Slots on a circle ([`slot::Slots`]: LONGHOLE, SLOT1, SLOT2).
     #[cfg(feature = "slot")]
     Slots(slot::Slots),
+    /// Along a programmed contour ([`contour_mill::ContourMill`]: CYCLE72).
+    #[cfg(feature = "contour")]
+    Contour(contour_mill::ContourMill),
 }
 
 impl MillGen {
@@ -146,6 +151,8 @@ impl MillGen {
             MillGen::Spigot(p) => Ok(p.next()),
             #[cfg(feature = "slot")]
             MillGen::Slots(p) => Ok(p.next()),
+            #[cfg(feature = "contour")]
+            MillGen::Contour(p) => p.next(contour),
         }
     }
 }
