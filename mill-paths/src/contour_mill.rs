@@ -260,6 +260,9 @@ impl ContourMill {
                     return None;
                 }
                 let to = self.shifted(&c.elem(i + 1)).0;
+                if len(sub(to, self.shifted(&e).1)) < 1.0 {
+                    return None;
+                }
                 Some(Move::Arc { to: p3(iv(to), z), centre: e.to, cw: s.side > 0, feed: ffp })
             }
             k if k == 4 + 2 * n => {

@@ -244,6 +244,10 @@ pub fn start(
         "CYCLE77" => mill::face::spigot(true, &p, cmd, st, ctx),
         #[cfg(not(feature = "mill-face"))]
         "CYCLE71" | "CYCLE76" | "CYCLE77" => Err(LEFT_OUT),
+        #[cfg(feature = "mill-contour")]
+        "CYCLE72" => mill::contour::cycle72(&p, cmd, st, ctx, contour),
+        #[cfg(not(feature = "mill-contour"))]
+        "CYCLE72" => Err(LEFT_OUT),
         // A drilling pattern is run by the driver (positions, then the MCALL at
         // each); called modally it is not a drilling cycle.
         _ => Err(AlarmKind::NotSupportedYet { what: "this SINUMERIK cycle" }),
@@ -256,7 +260,7 @@ pub fn start(
 
 /// A milling cycle this board's build leaves out for flash (interp-siemens'
 /// features; docs/FIRMWARE-SIZES.md): alarm 4007, nothing moves.
-#[cfg(not(all(feature = "mill-face", feature = "mill-slots")))]
+#[cfg(not(all(feature = "mill-face", feature = "mill-slots", feature = "mill-contour")))]
 const LEFT_OUT: AlarmKind = AlarmKind::NotInThisBuild { what: "this milling cycle" };
 
 /// The turning cycles work in the ZX plane (G18, line 10113).

@@ -26,6 +26,8 @@
 
 mod settings;
 
+#[cfg(feature = "mill-contour")]
+pub(super) mod contour;
 #[cfg(feature = "mill-face")]
 pub(super) mod face;
 pub(super) use settings::{cycle800, cycle832};
