@@ -279,8 +279,8 @@ fn alarms_move_nothing() {
         ("", "250, 200, 3, 210, 10, 1, 1.5, 800, 400, 1, 41, 2, 20, 1000, 2, 20", 61101),
         ("T20 D0", ok, 61000),
         ("M6\nS", ok, 61009),
-        ("DP6[20,1]=-1", ok, 61112),
-        ("DP6[20,1]=30", ok, 61105),
+        // Inside (G42) the G2 arc of radius 25 would be offset through its centre.
+        ("DP6[20,1]=30", "250, 200, 3, 175, 10, 1, 1.5, 800, 400, 111, 42, 1, 5, 1000, 1, 5", 61105),
     ] {
         let head = match edit {
             "" => HEAD.to_string(),
@@ -294,6 +294,14 @@ fn alarms_move_nothing() {
         assert_eq!(r.alarm_codes(), vec![(line, code)], "{edit}{args}");
         assert!(!r.actions.iter().any(|c| c.line == line && c.action.endpoint().is_some()), "{args} moved");
     }
+    // A negative cutter radius (row 3's wear beyond its radius, as CYCLE90's test).
+    let mut c = cfg();
+    if let Some(row) = c.tools.get_mut(3) {
+        row.x_wear = -4_000_000;
+    }
+    let text = format!("T3 D1\nM6\nS500 M3 F3000\nG17 G0 G90 G94 X100 Y200 Z250\nCYCLE72(\"MYKONTUR\", {ok})\n{CONTOUR}");
+    let r = run_with(&text, c, Panel::default());
+    assert_eq!(r.alarm_codes(), vec![(5, 61112)]);
     // A label that is not there.
     let r = siemens(&format!("{HEAD}CYCLE72(\"ANFANG:ENDE\", {ok})\nM02\n"));
     assert_eq!(r.alarm_codes().len(), 1, "{:?}", r.alarms);
