@@ -258,7 +258,7 @@ fn every_catalog_code_has_a_triggering_program() {
     covered.extend([61701, 61702, 61720, 61721]);
     covered.extend([61005, 61019, 61101, 61102, 61107, 61125, 61803, 61807]);
     // interp-siemens cycles::mill tests (the milling cycles' shared checks)
-    covered.extend([61003, 61009, 61105, 61111, 61112, 61117]);
+    covered.extend([61003, 61009, 61105, 61111, 61112, 61116, 61117]);
     // siemens_holes.rs (HOLES1/HOLES2 run on the mill)
     covered.extend([61103, 61106]);
     // siemens_thread_mill.rs (CYCLE90, CYCLE800, CYCLE832 on the mill)

@@ -96,9 +96,15 @@ fn samples(s: &Seg) -> Vec<[f64; 2]> {
 /// length 10, legs 10/√2.
 fn corners() -> Vec<[f64; 2]> {
     let c = 10.0 / 2f64.sqrt();
-    vec![[150.0, 160.0], [230.0 - c, 160.0], [230.0, 160.0 - c], [230.0, 80.0 + c], [230.0 - c, 80.0], [125.0, 80.0], [
-        125.0, 135.0,
-    ]]
+    vec![
+        [150.0, 160.0],
+        [230.0 - c, 160.0],
+        [230.0, 160.0 - c],
+        [230.0, 80.0 + c],
+        [230.0 - c, 80.0],
+        [125.0, 80.0],
+        [125.0, 135.0],
+    ]
 }
 
 fn dist_seg(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
@@ -117,12 +123,9 @@ fn dist(p: [f64; 2]) -> f64 {
     }
     let (cx, cy) = (150.0, 135.0);
     let ang = (p[1] - cy).atan2(p[0] - cx).to_degrees();
-    let on_arc = if (90.0..=180.0).contains(&ang) {
-        ((p[0] - cx).hypot(p[1] - cy) - 25.0).abs()
-    } else {
-        f64::MAX
-    };
-    let ends = [[125.0, 135.0], [150.0, 160.0]].iter().map(|e| (p[0] - e[0]).hypot(p[1] - e[1])).fold(f64::MAX, f64::min);
+    let on_arc = if (90.0..=180.0).contains(&ang) { ((p[0] - cx).hypot(p[1] - cy) - 25.0).abs() } else { f64::MAX };
+    let ends =
+        [[125.0, 135.0], [150.0, 160.0]].iter().map(|e| (p[0] - e[0]).hypot(p[1] - e[1])).fold(f64::MAX, f64::min);
     d.min(on_arc).min(ends)
 }
 
@@ -209,7 +212,8 @@ fn depth_levels_per_mid() {
             &run72(&format!("250, 200, 3, 175, {mid}, 1, 1.5, 800, 400, {vari}, 41, 2, 20, 1000, 2, 20")).actions,
         ))
     };
-    let want = |from: f64, to: f64, n: usize| (1..=n).map(|k| from + (to - from) * k as f64 / n as f64).collect::<Vec<_>>();
+    let want =
+        |from: f64, to: f64, n: usize| (1..=n).map(|k| from + (to - from) * k as f64 / n as f64).collect::<Vec<_>>();
     for (got, w) in [
         (each(1, 10.0), want(203.0, 176.5, 3)),
         (each(2, 10.0), want(203.0, 175.0, 3)),
@@ -299,7 +303,8 @@ fn alarms_move_nothing() {
     if let Some(row) = c.tools.get_mut(3) {
         row.x_wear = -4_000_000;
     }
-    let text = format!("T3 D1\nM6\nS500 M3 F3000\nG17 G0 G90 G94 X100 Y200 Z250\nCYCLE72(\"MYKONTUR\", {ok})\n{CONTOUR}");
+    let text =
+        format!("T3 D1\nM6\nS500 M3 F3000\nG17 G0 G90 G94 X100 Y200 Z250\nCYCLE72(\"MYKONTUR\", {ok})\n{CONTOUR}");
     let r = run_with(&text, c, Panel::default());
     assert_eq!(r.alarm_codes(), vec![(5, 61112)]);
     // A label that is not there.
