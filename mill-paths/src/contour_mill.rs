@@ -17,6 +17,8 @@ use crate::rot::round as nm;
 use crate::{Contour, CycleAlarm, Elem, Move, P3};
 
 type V = (f64, f64);
+/// An arc's centre and sense (G2).
+type ArcOf = ((i64, i64), bool);
 
 fn sub(a: V, b: V) -> V {
     (a.0 - b.0, a.1 - b.1)
@@ -179,7 +181,7 @@ impl ContourMill {
 
     /// The approach (`dep` false) or departure: the point off the contour and,
     /// for an arc, its centre and sense.
-    fn soft(&self, k: &dyn Contour, dep: bool) -> (V, Option<((i64, i64), bool)>) {
+    fn soft(&self, k: &dyn Contour, dep: bool) -> (V, Option<ArcOf>) {
         let n = k.len();
         let (p, t) = if dep {
             (self.trimmed(k, n - 1).1, tangent(&k.elem(n - 1), true))
