@@ -214,7 +214,7 @@ impl ContourMill {
         }
         match s.lift {
             1 => s.safe,
-            2 => self.level_at() - s.dir * s.sdis,
+            2 => self.level_at().saturating_sub(s.dir.saturating_mul(s.sdis)),
             _ => s.rtp,
         }
     }
@@ -228,7 +228,7 @@ impl ContourMill {
         let s = &self.spec;
         let n = c.len() as u32;
         let z = self.level_at();
-        let above = z - s.dir * s.sdis;
+        let above = z.saturating_sub(s.dir.saturating_mul(s.sdis));
         let (a, arc_in) = self.soft(c, false);
         let a = iv(a);
         let [ffd, ffp, _] = s.feeds;

@@ -77,8 +77,8 @@ fn spec(p: &Params<'_, '_>, st: &State, ctx: &mut dyn Engine) -> Result<ContourS
     let ff3 = if p.unsigned(14) > 0 { p.unsigned(14) } else { ffp1 };
     let rough = unit == 1;
     // Roughing stops `_FALD` above the bottom (towards the surface).
-    let bottom = if rough { l.bottom - l.dir * p.unsigned(7) } else { l.bottom };
-    if (bottom - l.rfp) * l.dir <= 0 {
+    let bottom = if rough { l.bottom.saturating_sub(l.dir.saturating_mul(p.unsigned(7))) } else { l.bottom };
+    if bottom.saturating_sub(l.rfp).saturating_mul(l.dir) <= 0 {
         return Err(CycleAlarm::ReferencePlaneWrong);
     }
     Ok(ContourSpec {
