@@ -824,6 +824,8 @@ pub enum CycleAlarm {
     ToolRadiusNegative,
     /// 61113: SINUMERIK cycle alarm (seed 001 table 5.3): corner radius _CRAD too large.
     CornerRadiusTooLarge,
+    /// 61116: SINUMERIK cycle alarm (seed 001 line 12231): approach or departure path = 0 (CYCLE72 _LP1/_LP2).
+    ApproachPathZero,
     /// 61117: SINUMERIK cycle alarm (seed 001 table 5.3): active tool radius <= 0.
     ToolRadiusNotPositive,
     /// 61118: SINUMERIK cycle alarm (seed 001 table 5.3): length or width = 0 (CYCLE71).
@@ -936,6 +938,7 @@ impl CycleAlarm {
             InfeedWidthTooLarge => 61111,
             ToolRadiusNegative => 61112,
             CornerRadiusTooLarge => 61113,
+            ApproachPathZero => 61116,
             ToolRadiusNotPositive => 61117,
             LengthOrWidthZero => 61118,
             InfeedWidthMissing => 61124,
@@ -1025,6 +1028,7 @@ text_table! {
         InfeedWidthTooLarge {} => "infeed width greater than the tool diameter (_MIDA)";
         ToolRadiusNegative {} => "tool radius negative";
         CornerRadiusTooLarge {} => "corner radius parameter _CRAD too large";
+        ApproachPathZero {} => "approach or departure path = 0";
         ToolRadiusNotPositive {} => "active tool radius <= 0";
         LengthOrWidthZero {} => "length or width = 0 (_LENG, _WID)";
         InfeedWidthMissing {} => "infeed width not programmed (_MIDA)";
@@ -1801,6 +1805,11 @@ pub const CATALOG: &[CatalogEntry] = &[
         when: "SINUMERIK POCKET3 corner radius _CRAD above half the pocket's length or width (table: 拐角半径参数_CRAD太大)",
     },
     CatalogEntry {
+        code: 61116,
+        title: "approach or departure path = 0",
+        when: "SINUMERIK CYCLE72 with _LP1 or _LP2 zero (table: 返回运行位移或者开始运行位移=0)",
+    },
+    CatalogEntry {
         code: 61117,
         title: "active tool radius <= 0",
         when: "SINUMERIK CYCLE71/POCKET3/POCKET4 with a radius of zero or less in the active D offset (table: 有效的刀具半径<=0)",
@@ -2149,6 +2158,7 @@ mod tests {
             SiemensCycle(CycleAlarm::InfeedWidthTooLarge),
             SiemensCycle(CycleAlarm::ToolRadiusNegative),
             SiemensCycle(CycleAlarm::CornerRadiusTooLarge),
+            SiemensCycle(CycleAlarm::ApproachPathZero),
             SiemensCycle(CycleAlarm::ToolRadiusNotPositive),
             SiemensCycle(CycleAlarm::LengthOrWidthZero),
             SiemensCycle(CycleAlarm::InfeedWidthMissing),

@@ -536,6 +536,7 @@ pub const PROVEN_ELSEWHERE: &[(u16, &str)] = &[
     (61111, "interp-siemens cycles::mill tests (the milling cycles' shared tool, feed, width and level checks)"),
     (61112, "interp-siemens cycles::mill tests (the milling cycles' shared tool, feed, width and level checks)"),
     (61113, "host-tests siemens_pockets.rs alarms_of_pocket3_and_pocket4_move_nothing"),
+    (61116, "host-tests siemens_contour alarms_move_nothing (CYCLE72 _LP1/_LP2 = 0)"),
     (61117, "interp-siemens cycles::mill tests (the milling cycles' shared tool, feed, width and level checks)"),
     (
         61125,

@@ -30,6 +30,8 @@
 #![no_std]
 
 pub mod contour;
+#[cfg(feature = "contour")]
+pub mod contour_mill;
 #[cfg(feature = "engrave")]
 pub mod engrave;
 #[cfg(feature = "face")]
@@ -132,6 +134,9 @@ pub enum MillGen {
     /// A text engraved stroke by stroke ([`engrave::Engrave`]: CYCLE60).
     #[cfg(feature = "engrave")]
     Engrave(engrave::Engrave),
+    /// Along a programmed contour ([`contour_mill::ContourMill`]: CYCLE72).
+    #[cfg(feature = "contour")]
+    Contour(contour_mill::ContourMill),
 }
 
 impl MillGen {
@@ -155,6 +160,8 @@ impl MillGen {
             MillGen::Slots(p) => Ok(p.next()),
             #[cfg(feature = "engrave")]
             MillGen::Engrave(p) => Ok(p.next()),
+            #[cfg(feature = "contour")]
+            MillGen::Contour(p) => p.next(contour),
         }
     }
 }

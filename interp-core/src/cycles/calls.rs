@@ -125,6 +125,23 @@ impl<X: Executor> Engine for CallEngine<'_, '_, '_, X> {
         start_cycle(Emitter::for_block(st, cmd.line), Gen::Mill(run), self.ctx.out).map(|_| ())
     }
 
+    #[cfg(feature = "mill-contour")]
+    fn mill_contour(
+        &mut self,
+        path: mill_paths::MillGen,
+        contour: ContourSource<'_>,
+        cmd: &Command,
+        st: &mut State,
+    ) -> Result<(), AlarmKind> {
+        let run = super::mill::MillRun::new(path, st);
+        let plane = st.modal.plane;
+        self.expansion(Emitter::for_block(st, cmd.line), |exp, cfg, env| {
+            profile::read_contour(&contour, plane, 2, st, cfg, env, X::execute, &mut exp.profile)?;
+            exp.generator = Gen::Mill(run);
+            Ok(())
+        })
+    }
+
     fn thread(&mut self, spec: &MultiThreadSpec, cmd: &Command, st: &mut State) -> Result<(), AlarmKind> {
         for &lead in &spec.leads[..spec.count - 1] {
             check_lead(lead, st.modal.units)?;
@@ -170,7 +187,7 @@ impl<X: Executor> CallEngine<'_, '_, '_, X> {
             clearance_udeg: self.ctx.cfg.tools.get(st.tool.offset_number).map_or(0, |r| r.clearance_udeg),
         };
         self.expansion(em, |exp, cfg, env| {
-            profile::read_contour(&contour, st, cfg, env, X::execute, &mut exp.profile)?;
+            profile::read_contour(&contour, crate::canon::Plane::Zx, 3, st, cfg, env, X::execute, &mut exp.profile)?;
             exp.generator = Gen::Rough(RoughGen::sections(spec, &mut exp.profile.segs, here, nose, feed)?);
             Ok(())
         })

@@ -211,7 +211,7 @@ pub fn read_profile<E: Environment + ?Sized>(
         if sb.last {
             crate::contour::flush(&mut scratch, &mut staged)?;
         }
-        keep_moves(&staged, a, profile)?;
+        keep_moves(&staged, a, crate::canon::Plane::Zx, profile)?;
         if first && profile.segs.is_empty() {
             // The ns block must move (it defines B).
             return Err(AlarmKind::ProfileFirstBlock);
@@ -242,19 +242,31 @@ fn scratch(st: &State) -> State {
     scratch
 }
 
-/// Appends the moves staged in `staged` to `profile` as segments, the first from
-/// `a`; returns how many.
-fn keep_moves(staged: &CycleStage<'_>, mut a: Pt, profile: &mut Profile) -> Result<usize, AlarmKind> {
+/// `w` in `plane` as a shape point: the abscissa in `z`, the ordinate in `x`
+/// (a lathe's G18: Z and X; a mill's G17: X and Y).
+fn in_plane(w: &crate::axis::Pos, plane: crate::canon::Plane) -> Pt {
+    let (a, o) = plane.axes();
+    Pt::new(w[o], w[a])
+}
+
+/// Appends the moves staged in `staged` to `profile` as segments in `plane`, the
+/// first from `a`; returns how many.
+fn keep_moves(
+    staged: &CycleStage<'_>,
+    mut a: Pt,
+    plane: crate::canon::Plane,
+    profile: &mut Profile,
+) -> Result<usize, AlarmKind> {
     let mut n = 0;
     for c in staged.actions.iter() {
         let (kind, to) = match c.action {
             Action::Rapid(m) => (SegKind::Rapid, m.to.work),
             Action::Linear(m) => (SegKind::Line, m.to.work),
             Action::Arc(arc) => {
-                if arc.plane != crate::canon::Plane::Zx {
+                if arc.plane != plane {
                     return Err(AlarmKind::CycleNotInZxPlane);
                 }
-                let center = Pt::new(arc.center.work[Axis::X], arc.center.work[Axis::Z]);
+                let center = in_plane(&arc.center.work, plane);
                 (SegKind::Arc { center, cw: arc.cw }, arc.to.work)
             }
             Action::Thread(_) | Action::Tap(_) => {
@@ -262,7 +274,7 @@ fn keep_moves(staged: &CycleStage<'_>, mut a: Pt, profile: &mut Profile) -> Resu
             }
             _ => continue,
         };
-        let b = Pt::new(to[Axis::X], to[Axis::Z]);
+        let b = in_plane(&to, plane);
         profile.segs.push(Seg { kind, a, b }).map_err(|_| AlarmKind::ProfileTooLong)?;
         a = b;
         n += 1;
@@ -359,9 +371,14 @@ fn check_contour_command(cmd: &crate::command::Command, first: bool) -> Result<(
 /// block (10931), G41/G42 in force at the call (15800). Not inlined into the cycle
 /// call that starts the expansion: its frame (the scratch state and the outbox the
 /// contour's blocks run through) is on the stack only while the contour is read.
+/// `plane` is where the points are read (CYCLE95: G18's Z/X; CYCLE72: the
+/// active plane), `min` the fewest moving blocks (the start point included).
 #[inline(never)]
+#[allow(clippy::too_many_arguments)]
 pub fn read_contour<E: Environment + ?Sized>(
     src: &crate::lang::siemens::call::ContourSource<'_>,
+    plane: crate::canon::Plane,
+    min: usize,
     st: &State,
     cfg: &MachineConfig,
     env: &E,
@@ -416,17 +433,17 @@ pub fn read_contour<E: Environment + ?Sized>(
                 }
                 let w = super::emit::work_pos(&scratch, cfg);
                 if staged.actions.iter().any(|c| c.action.endpoint().is_some()) || cmd.has_axes() {
-                    first = Some(Pt::new(w[Axis::X], w[Axis::Z]));
+                    first = Some(in_plane(&w, plane));
                     blocks += 1;
                 }
             }
             Some(p0) => {
                 let a = match profile.segs.last() {
                     Some(s) if held => s.b,
-                    Some(_) => Pt::new(here[Axis::X], here[Axis::Z]),
+                    Some(_) => in_plane(&here, plane),
                     None => p0,
                 };
-                if keep_moves(&staged, a, profile)
+                if keep_moves(&staged, a, plane, profile)
                     .map_err(|e| if e == AlarmKind::ProfileTooLong { prep(10934) } else { e })?
                     > 0
                 {
@@ -439,7 +456,7 @@ pub fn read_contour<E: Environment + ?Sized>(
         }
     }
     let Some(p0) = first else { return Err(prep(10933)) };
-    if blocks < 3 {
+    if blocks < min {
         return Err(prep(10933));
     }
     for s in &profile.segs {

@@ -138,6 +138,17 @@ pub trait Engine {
     /// bound, `firmware/stack-bound.py`, resolves calls through a slot to every
     /// vtable's method in it).
     fn emit(&mut self, action: crate::canon::Action) -> Result<(), AlarmKind>;
+    /// Reads `contour` in the active plane (the cycle's shape store) and starts
+    /// the milling tool path `path` along it (CYCLE72; a board build without it
+    /// leaves the method out, `mill-contour`).
+    #[cfg(feature = "mill-contour")]
+    fn mill_contour(
+        &mut self,
+        path: mill_paths::MillGen,
+        contour: ContourSource<'_>,
+        cmd: &Command,
+        st: &mut State,
+    ) -> Result<(), AlarmKind>;
 }
 
 /// A program as the blocks of a canned cycle's shape (G70–G73 ns–nf) are read from

@@ -259,6 +259,10 @@ pub fn start(
         "CYCLE60" => mill::engrave::cycle60(&p, cmd, st, ctx),
         #[cfg(not(feature = "mill-engrave"))]
         "CYCLE60" => Err(LEFT_OUT),
+        #[cfg(feature = "mill-contour")]
+        "CYCLE72" => mill::contour::cycle72(&p, cmd, st, ctx, contour),
+        #[cfg(not(feature = "mill-contour"))]
+        "CYCLE72" => Err(LEFT_OUT),
         // A drilling pattern is run by the driver (positions, then the MCALL at
         // each); called modally it is not a drilling cycle.
         _ => Err(AlarmKind::NotSupportedYet { what: "this SINUMERIK cycle" }),
@@ -271,7 +275,13 @@ pub fn start(
 
 /// A milling cycle this board's build leaves out for flash (interp-siemens'
 /// features; docs/FIRMWARE-SIZES.md): alarm 4007, nothing moves.
-#[cfg(not(all(feature = "mill-face", feature = "mill-slots", feature = "mill-pockets", feature = "mill-engrave")))]
+#[cfg(not(all(
+    feature = "mill-face",
+    feature = "mill-slots",
+    feature = "mill-pockets",
+    feature = "mill-engrave",
+    feature = "mill-contour"
+)))]
 const LEFT_OUT: AlarmKind = AlarmKind::NotInThisBuild { what: "this milling cycle" };
 
 /// The turning cycles work in the ZX plane (G18, line 10113).

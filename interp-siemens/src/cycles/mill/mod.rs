@@ -26,6 +26,8 @@
 
 mod settings;
 
+#[cfg(feature = "mill-contour")]
+pub(super) mod contour;
 #[cfg(feature = "mill-engrave")]
 pub(super) mod engrave;
 #[cfg(feature = "mill-face")]
