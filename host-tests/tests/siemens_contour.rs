@@ -6,91 +6,10 @@
 
 mod mill_common;
 
+use mill_common::plane::*;
+
 use host_tests::{Run, run_with};
-use interp_core::canon::{Action, Canon};
-use interp_core::config::Language;
-use interp_core::{MachineConfig, Panel};
-
-fn cfg() -> MachineConfig {
-    MachineConfig { language: Language::Siemens, ..mill_common::mill() }
-}
-
-fn siemens(text: &str) -> Run {
-    run_with(text, cfg(), Panel::default())
-}
-
-fn go(text: &str) -> Run {
-    let r = siemens(text);
-    assert!(r.alarms.is_empty(), "{:?}", r.alarms);
-    r
-}
-
-/// A cutting move in work mm (G17): start, end, arc centre and sense, feed.
-#[derive(Clone, Copy, Debug)]
-struct Seg {
-    from: [f64; 3],
-    to: [f64; 3],
-    arc: Option<([f64; 2], bool)>,
-    feed: f64,
-}
-
-fn mm3(p: &interp_core::axis::Pos) -> [f64; 3] {
-    [p.0[0] as f64 / 1e6, p.0[1] as f64 / 1e6, p.0[2] as f64 / 1e6]
-}
-
-/// Every move of the run after the first (rapids included), in order.
-fn moves(actions: &[Canon]) -> Vec<Seg> {
-    let mut out = Vec::new();
-    let mut at: Option<[f64; 3]> = None;
-    for c in actions {
-        let Some(e) = c.action.endpoint() else { continue };
-        let to = mm3(&e.work);
-        if let Some(from) = at {
-            let (arc, feed) = match c.action {
-                Action::Linear(m) => (None, m.feed.value as f64 / 1e6),
-                Action::Arc(a) => {
-                    let cc = mm3(&a.center.work);
-                    (Some(([cc[0], cc[1]], a.cw)), a.feed.value as f64 / 1e6)
-                }
-                _ => (None, 0.0),
-            };
-            out.push(Seg { from, to, arc, feed });
-        }
-        at = Some(to);
-    }
-    out
-}
-
-/// Points along a move in the plane.
-fn samples(s: &Seg) -> Vec<[f64; 2]> {
-    let n = 64;
-    match s.arc {
-        None => (0..=n)
-            .map(|k| {
-                let t = k as f64 / n as f64;
-                [s.from[0] + t * (s.to[0] - s.from[0]), s.from[1] + t * (s.to[1] - s.from[1])]
-            })
-            .collect(),
-        Some((c, cw)) => {
-            let a0 = (s.from[1] - c[1]).atan2(s.from[0] - c[0]);
-            let a1 = (s.to[1] - c[1]).atan2(s.to[0] - c[0]);
-            let mut sweep = a1 - a0;
-            if cw && sweep > 0.0 {
-                sweep -= std::f64::consts::TAU;
-            }
-            if !cw && sweep < 0.0 {
-                sweep += std::f64::consts::TAU;
-            }
-            let r = (s.from[0] - c[0]).hypot(s.from[1] - c[1]);
-            (0..=n)
-                .map(|k| {
-                    let a = a0 + sweep * k as f64 / n as f64;
-                    [c[0] + r * a.cos(), c[1] + r * a.sin()]
-                })
-                .collect()
-        }
-    }
-}
+use interp_core::Panel;
 
 /// The document's contour MYKONTUR (lines 5712-5720): CHF=10 is a chamfer of
 /// length 10, legs 10/√2.
