@@ -9,18 +9,9 @@
 
 mod mill_common;
 
-use host_tests::{Run, run_with};
-use interp_core::canon::{Action, Canon};
-use interp_core::config::Language;
-use interp_core::{MachineConfig, Panel};
+use mill_common::plane::siemens;
 
-fn cfg() -> MachineConfig {
-    MachineConfig { language: Language::Siemens, ..mill_common::mill() }
-}
-
-fn siemens(text: &str) -> Run {
-    run_with(text, cfg(), Panel::default())
-}
+use interp_core::canon::Canon;
 
 const HEAD: &str = "G17 G0 G90 X0 Y0 Z100 F2000 S1500 M3 T1 D1\n";
 
@@ -32,22 +23,11 @@ fn moves(call: &str) -> Vec<(bool, [f64; 3], [f64; 3], f64)> {
 }
 
 fn path(actions: &[Canon]) -> Vec<(bool, [f64; 3], [f64; 3], f64)> {
-    let mut out = Vec::new();
-    let mut at: Option<[f64; 3]> = None;
-    for c in actions {
-        let Some(e) = c.action.endpoint() else { continue };
-        let p = e.work.0;
-        let to = [p[0] as f64 / 1e6, p[1] as f64 / 1e6, p[2] as f64 / 1e6];
-        if let Some(from) = at {
-            match c.action {
-                Action::Linear(m) => out.push((false, from, to, m.feed.value as f64 / 1e6)),
-                Action::Rapid(_) => out.push((true, from, to, 0.0)),
-                _ => {}
-            }
-        }
-        at = Some(to);
-    }
-    out
+    mill_common::plane::moves(actions)
+        .into_iter()
+        .filter(|s| s.arc.is_none())
+        .map(|s| (s.feed == 0.0, s.from, s.to, s.feed))
+        .collect()
 }
 
 /// The cutting strokes at depth: (from, to) in the plane.

@@ -8,20 +8,14 @@
 
 mod mill_common;
 
-use host_tests::{Run, run_with};
+use mill_common::plane::siemens;
+
+use host_tests::Run;
+use interp_core::MachineConfig;
 use interp_core::canon::{Action, Canon};
 use interp_core::config::Language;
-use interp_core::{MachineConfig, Panel};
 use motion_core::fixed::STEP_ONE;
 use sim::{Sim, SimOptions};
-
-fn cfg() -> MachineConfig {
-    MachineConfig { language: Language::Siemens, ..mill_common::mill() }
-}
-
-fn siemens(text: &str) -> Run {
-    run_with(text, cfg(), Panel::default())
-}
 
 const HEAD: &str = "G17 G0 G90 X0 Y0 Z20 F200 S500 M3 T1 D1\n";
 

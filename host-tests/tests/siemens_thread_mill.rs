@@ -5,17 +5,10 @@
 
 mod mill_common;
 
+use mill_common::plane::{cfg, mm3, siemens};
+
 use host_tests::{Run, run_with};
-use interp_core::config::Language;
-use interp_core::{MachineConfig, Panel};
-
-fn cfg() -> MachineConfig {
-    MachineConfig { language: Language::Siemens, ..mill_common::mill() }
-}
-
-fn siemens(text: &str) -> Run {
-    run_with(text, cfg(), Panel::default())
-}
+use interp_core::Panel;
 
 const HEAD: &str = "G17 G0 G90 X0 Y0 Z20 F200 S500 M3 T1 D1\n";
 
@@ -51,10 +44,6 @@ struct Cut {
     to: [f64; 3],
     arc: Option<([f64; 2], bool)>,
     feed: f64,
-}
-
-fn mm3(p: &interp_core::axis::Pos) -> [f64; 3] {
-    [p.0[0] as f64 / 1e6, p.0[1] as f64 / 1e6, p.0[2] as f64 / 1e6]
 }
 
 /// The cutting moves (G17: X, Y the plane, Z the applicate) and the rapids'
