@@ -181,27 +181,6 @@ fn the_documents_examples_run() {
 
 // ---------------------------------------------------------------- spigots
 
-/// A spigot's wall: a rectangle of half sides `hl` × `hw` with corner radius
-/// `cr` about `c`, its length at `sta` degrees (a circle: hl = hw = cr).
-struct Wall {
-    c: [f64; 2],
-    sta: f64,
-    hl: f64,
-    hw: f64,
-    cr: f64,
-}
-
-impl Wall {
-    /// Signed distance of a point from the wall, positive outside.
-    fn outside(&self, p: [f64; 2]) -> f64 {
-        let (s, c) = self.sta.to_radians().sin_cos();
-        let (x, y) = (p[0] - self.c[0], p[1] - self.c[1]);
-        let (u, v) = ((x * c + y * s).abs(), (-x * s + y * c).abs());
-        let (qx, qy) = (u - (self.hl - self.cr), v - (self.hw - self.cr));
-        qx.max(0.0).hypot(qy.max(0.0)) + qx.max(qy).min(0.0) - self.cr
-    }
-}
-
 const HEAD76: &str = "G17 G0 G90 X0 Y0 Z20 F500 S1000 M3 T1 D1\nM6\n";
 
 /// The cutting moves below the reference plane, split into the rings (every

@@ -11,25 +11,10 @@ use mill_common::plane::*;
 
 use interp_core::canon::Action;
 
-/// The pocket's wall: a rectangle of half sides `hl` × `hw` with corner radius
-/// `cr` about `c`, its length at `sta` degrees (a circle: hl = hw = cr).
-struct Wall {
-    c: [f64; 2],
-    sta: f64,
-    hl: f64,
-    hw: f64,
-    cr: f64,
-}
-
 impl Wall {
     /// Distance of a point inside the pocket to the wall.
     fn inside(&self, p: [f64; 2]) -> f64 {
-        let (s, c) = self.sta.to_radians().sin_cos();
-        let (x, y) = (p[0] - self.c[0], p[1] - self.c[1]);
-        let (u, v) = ((x * c + y * s).abs(), (-x * s + y * c).abs());
-        let (qx, qy) = (u - (self.hl - self.cr), v - (self.hw - self.cr));
-        let out = qx.max(0.0).hypot(qy.max(0.0)) + qx.max(qy).min(0.0) - self.cr;
-        -out
+        -self.outside(p)
     }
 
     /// The closest any sample of `segs` comes to the wall, and the farthest.

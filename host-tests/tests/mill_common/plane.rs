@@ -127,3 +127,24 @@ pub fn levels(from: f64, to: f64, mid: f64) -> Vec<f64> {
     let n = if mid == 0.0 { 1.0 } else { ((from - to) / mid - 1e-9).ceil() };
     (1..=n as u32).map(|k| um(from + (to - from) * f64::from(k) / n)).collect()
 }
+
+/// A pocket's or spigot's wall: a rectangle of half sides `hl` × `hw` with corner
+/// radius `cr` about `c`, its length at `sta` degrees (a circle: hl = hw = cr).
+pub struct Wall {
+    pub c: [f64; 2],
+    pub sta: f64,
+    pub hl: f64,
+    pub hw: f64,
+    pub cr: f64,
+}
+
+impl Wall {
+    /// Signed distance of a point from the wall, positive outside.
+    pub fn outside(&self, p: [f64; 2]) -> f64 {
+        let (s, c) = self.sta.to_radians().sin_cos();
+        let (x, y) = (p[0] - self.c[0], p[1] - self.c[1]);
+        let (u, v) = ((x * c + y * s).abs(), (-x * s + y * c).abs());
+        let (qx, qy) = (u - (self.hl - self.cr), v - (self.hw - self.cr));
+        qx.max(0.0).hypot(qy.max(0.0)) + qx.max(qy).min(0.0) - self.cr
+    }
+}
