@@ -134,6 +134,12 @@ impl<const W: usize, const T: usize, const P: usize, const S: usize> ProgramStor
         let start = Cursor { program: 0, offset: 0, line: self.window.first_line() };
         find_sequence_from(text, from, n).or_else(|| find_sequence_from(text, start, n))
     }
+
+    /// The stream may bring what a look-ahead looks for (the controller decides
+    /// how long to wait: `lookahead_wait_ms`); stored programs are complete.
+    fn still_arriving(&self, id: ProgramId) -> bool {
+        id == 0
+    }
 }
 
 #[cfg(test)]

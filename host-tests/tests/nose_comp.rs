@@ -296,6 +296,19 @@ fn an_alarm_in_the_next_block_lets_the_held_move_run_to_its_normal_first() {
 }
 
 #[test]
+fn a_missing_sequence_number_in_a_stored_program_lets_the_held_move_run() {
+    // G71 P8 Q9 with no N8 (0063) in a complete text is final, not "wait for the
+    // stream": line 3 (held for its end normal) runs to (Z0, r0.8) before the stop,
+    // as after any other alarm. (A stream keeps it held while the board waits for
+    // the text: controller tests.)
+    let (acts, alarm) = until_alarm("T0101\nG00 X0 Z5\nG42 G01 Z0 F0.1\nG71 P8 Q9 U0.5 W0.1\nM30\n", 0);
+    assert_eq!(alarm, Some((4, 63)));
+    let (line, end) = last_move(&acts);
+    assert_eq!(line, 3);
+    assert!(near(end, (0.0, R)), "{end:?}");
+}
+
+#[test]
 fn interference_stops_before_the_block_whose_offset_runs_backwards() {
     // The groove bottom (line 6, 1 mm) is narrower than the nose (1.6 mm): its
     // offset would run +Z. The machine stops at the end of line 5 — the corner of

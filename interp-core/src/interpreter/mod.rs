@@ -252,6 +252,10 @@ pub struct Interpreter {
     /// A held move that nose compensation found faulty while the failed block ran
     /// (its line), for [`Interpreter::alarm_stop`].
     fault_line: Option<u32>,
+    /// The stream (program 0) is still arriving ([`ProgramStore::still_arriving`],
+    /// read at each step): an alarm that only means its text has not come yet
+    /// leaves the look-ahead holding, as the board waits for the text.
+    stream_open: bool,
     /// The code calls the level in force switches off ([`Caller::switches_off`]).
     #[doc(hidden)]
     pub codes_off: u8,
@@ -345,6 +349,7 @@ impl Interpreter {
             validating: None,
             last_block: Cursor::start(0),
             fault_line: None,
+            stream_open: false,
             siemens: siemens::Front::new(),
             macro_calls: Calls { codes, read: CallRead::EMPTY },
             modal: ModalCalls::default(),
@@ -619,6 +624,7 @@ impl Interpreter {
         E: Environment,
         S: CanonSink + ?Sized,
     {
+        self.stream_open = programs.still_arriving(0);
         if self.validating.is_some() {
             return self.validate(programs, env, sink);
         }
@@ -985,11 +991,13 @@ impl Interpreter {
     /// contour layer holds back go into the outbox to run before the machine stops,
     /// or, if compensation found one of them faulty (`faulty`, its line), the
     /// machine stops before it and the alarm names that line
-    /// ([`crate::contour::stop_on_alarm`]). An alarm that only means the stream has
-    /// not delivered the text yet (a jump target, an END further on) leaves the
-    /// look-ahead as it is: the board waits for the text and reads the block again.
-    fn stop_lookahead(&mut self, line: u32, faulty: Option<u32>, kind: &AlarmKind) -> Option<u32> {
-        if kind.waits_for_text() || !self.state.contour.is_holding() {
+    /// ([`crate::contour::stop_on_alarm`]). An alarm that only means the stream
+    /// (`program` 0, still arriving) has not delivered the text yet (a jump target,
+    /// an END further on) leaves the look-ahead as it is: the board waits for the
+    /// text and reads the block again. In a complete text the same alarm is final.
+    fn stop_lookahead(&mut self, program: u32, line: u32, faulty: Option<u32>, kind: &AlarmKind) -> Option<u32> {
+        let may_come = program == 0 && self.stream_open && kind.waits_for_text();
+        if may_come || !self.state.contour.is_holding() {
             return None;
         }
         let mut out = Staged::new(line, &mut self.outbox);
@@ -1010,7 +1018,7 @@ impl Interpreter {
         kind: AlarmKind,
     ) -> Alarm {
         let faulty = self.fault_line.take();
-        let line = self.stop_lookahead(line, faulty, &kind).unwrap_or(line);
+        let line = self.stop_lookahead(program, line, faulty, &kind).unwrap_or(line);
         self.deliver(sink);
         Alarm::in_program(program, line, kind)
     }

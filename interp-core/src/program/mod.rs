@@ -51,6 +51,15 @@ pub trait ProgramStore {
         let _ = name;
         None
     }
+
+    /// Whether more text of program `id` may still arrive (a stream being sent):
+    /// then a jump target or END not found yet may come, and the interpreter waits
+    /// for it instead of letting its look-ahead go. The default: every text is
+    /// complete.
+    fn still_arriving(&self, id: ProgramId) -> bool {
+        let _ = id;
+        false
+    }
 }
 
 impl<P: ProgramStore + ?Sized> ProgramStore for &P {
@@ -64,6 +73,10 @@ impl<P: ProgramStore + ?Sized> ProgramStore for &P {
 
     fn find_sequence(&self, n: u32, from: Cursor) -> Option<Cursor> {
         (**self).find_sequence(n, from)
+    }
+
+    fn still_arriving(&self, id: ProgramId) -> bool {
+        (**self).still_arriving(id)
     }
 
     fn find_named(&self, name: &[u8]) -> Option<Cursor> {
