@@ -12,6 +12,9 @@
 # fuzz/runs.log (date, target, executions, seconds, exec/s, findings).
 #   fuzz/run.sh 20            # 20 s per target
 #   fuzz/run.sh 600 board     # one target
+# With FUZZ_RUNS=n each target runs n inputs from seed FUZZ_SEED (default 1) instead,
+# SECONDS only a limit: the same inputs every time, so a run passes or fails the same
+# way (CI). A timed run (the default) draws a fresh seed and explores.
 set -euo pipefail
 cd "$(dirname "$0")"
 secs="${1:-20}"
@@ -19,6 +22,10 @@ shift || true
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=(parser program cycles board)
 read -r -a build <<<"${FUZZ_BUILD:--s none --no-trace-compares}"
+bound=(-max_total_time="$secs")
+if [ -n "${FUZZ_RUNS:-}" ]; then
+    bound=(-runs="$FUZZ_RUNS" -seed="${FUZZ_SEED:-1}" -max_total_time="$secs")
+fi
 export RUSTC_BOOTSTRAP=1
 command -v cargo-fuzz >/dev/null || cargo install cargo-fuzz --locked
 for t in "${targets[@]}"; do
@@ -31,7 +38,7 @@ for t in "${targets[@]}"; do
         board) dict=(-dict=dict/board.dict) ;;
     esac
     log="work/$t.log"
-    nice -n 19 cargo fuzz run "${build[@]}" "$t" "work/$t" "corpus/$t" -- -max_total_time="$secs" -max_len=4096 \
+    nice -n 19 cargo fuzz run "${build[@]}" "$t" "work/$t" "corpus/$t" -- "${bound[@]}" -max_len=4096 \
         -rss_limit_mb=2048 -timeout=10 -print_final_stats=1 "${dict[@]}" >"$log" 2>&1 || true
     grep -E '^(stat::number_of_executed_units|stat::average_exec_per_sec|#[0-9]+ +DONE)|ERROR|panicked|SUMMARY|Test unit written' "$log" || true
     execs=$(grep -oP '^stat::number_of_executed_units: *\K[0-9]+' "$log" || echo 0)
