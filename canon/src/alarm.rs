@@ -899,6 +899,11 @@ pub enum CycleAlarm {
     ContourDirection,
     /// 61905: SINUMERIK cycle alarm (seed 001 table 5.3): milling cutter radius too small (SLOT2).
     CutterRadiusTooSmall,
+    /// 61900–61989 but 61905: the alarms of CYCLE73–CYCLE75, pocket milling with
+    /// islands (seed 001 lines 7357-7392), `code` the alarm number. One variant
+    /// for the table: their texts ([`island_text`]) are only in a build with the
+    /// cycle (canon's feature `mill-island`).
+    IslandPocket { code: u16 },
     /// 61803: SINUMERIK cycle alarm (seed 001 table 5.3): programmed axis not present.
     AxisNotPresent,
     /// 61807: SINUMERIK cycle alarm (seed 001 table 5.3): spindle direction programmed incorrectly.
@@ -971,6 +976,7 @@ impl CycleAlarm {
             ContourDirection => 61721,
             AxisNotPresent => 61803,
             CutterRadiusTooSmall => 61905,
+            IslandPocket { code } => *code,
             WrongSpindleDirection => 61807,
         }
     }
@@ -1062,6 +1068,7 @@ text_table! {
         CutterRadiusTooSmall {} => "milling cutter radius too small";
         WrongSpindleDirection {} => "spindle direction programmed incorrectly (SDR/SDAC of CYCLE840)";
         ContourPreparation { cause } => "error during contour preparation ({})", Str(preparation_error(cause));
+        IslandPocket { code } => "{}", Str(island_text(code));
     }
 }
 
@@ -1087,6 +1094,46 @@ fn preparation_error(cause: u16) -> &'static str {
         10934 => "10934: contour table overflow",
         15800 => "15800: incorrect start conditions for CONTPRON",
         _ => "the contour",
+    }
+}
+
+/// The text of CYCLE73–CYCLE75 alarm `code` (seed 001 lines 7357-7392, the
+/// document's texts).
+#[cfg(feature = "siemens")]
+fn island_text(code: u16) -> &'static str {
+    #[cfg(feature = "mill-island")]
+    return match code {
+        61900 => "no contour (CYCLE74 not called before CYCLE73)",
+        61901 => "contour not closed",
+        61903 => "too many contour elements",
+        61904 => "too many intersections (a contour crosses itself or another)",
+        61906 => "too many contours (islands)",
+        61907 => "circle without centre",
+        61908 => "start point wrong",
+        61909 => "helix radius too small",
+        61910 => "helix violates the contour",
+        61911 => "more insertion points required",
+        61912 => "no path generated",
+        61913 => "no rest material generated",
+        61914 => "programmed helix violates the contour",
+        61915 => "approach or departure violates the contour",
+        61916 => "ramp too short",
+        61917 => "with less than 50 % overlap residual corners may remain",
+        61918 => "cutter radius for rest material too large",
+        61980 => "island contour wrong",
+        61981 => "edge contour wrong",
+        61982 => "infeed width in the plane too large",
+        61983 => "pocket edge contour wrong",
+        61984 => "tool parameter _TN not defined",
+        61985 => "name of the drilling positions program wrong",
+        61988 => "name of the pocket milling program wrong",
+        61989 => "D1 not programmed as the active tool edge",
+        _ => "pocket milling with islands",
+    };
+    #[cfg(not(feature = "mill-island"))]
+    {
+        let _ = code;
+        "pocket milling with islands (CYCLE73-CYCLE75, not in this build)"
     }
 }
 

@@ -39,6 +39,8 @@ pub mod face;
 #[cfg(feature = "engrave")]
 pub mod font;
 pub mod infeed;
+#[cfg(feature = "island")]
+pub mod island;
 pub mod plan;
 pub mod pocket;
 pub mod rot;
