@@ -25,6 +25,9 @@
 
 #[cfg(test)]
 extern crate std;
+// CYCLE73's planned path (mill-paths' `island`): only builds with a heap.
+#[cfg(feature = "mill-island")]
+extern crate alloc;
 
 pub mod codes;
 pub mod command;

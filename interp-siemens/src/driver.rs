@@ -18,6 +18,8 @@ use crate::check::{Extras, apply, check_into, number_format};
 use crate::def::{self, Proc, proc_params};
 use crate::labels::{self, Level as Section};
 use crate::read::{Dir, Jump, Pending, Scope, Stmt, Target, Words, read};
+#[cfg(feature = "mill-island")]
+use interp_core::alarm::CycleAlarm;
 use interp_core::alarm::{Alarm, AlarmKind, SiemensAlarm as S};
 use interp_core::canon::{Action, Canon, CanonSink};
 use interp_core::codes::GCode;
@@ -26,6 +28,8 @@ use interp_core::config::Language;
 use interp_core::env::Environment;
 use interp_core::geom::round_i64;
 use interp_core::interpreter::siemens::{CallSpec, Callee, ContourAt, Level, ModalCall, Plain};
+#[cfg(feature = "mill-island")]
+use interp_core::interpreter::siemens::{POCKET_CONTOURS, PocketContour};
 use interp_core::interpreter::{Entry, Frame, Interpreter, Next, Phase, Progress};
 use interp_core::lang::ProgramText;
 use interp_core::lang::fanuc::calls::Caller;
@@ -272,7 +276,37 @@ trait Driver {
         at: Cursor,
         programs: &'p P,
     ) -> Result<Option<ContourAt<'p>>, AlarmKind>;
+
+    fn contour_at<'p, P: ProgramStore + ?Sized>(
+        &self,
+        prog: &[u8],
+        start: &[u8],
+        end: &[u8],
+        at: Cursor,
+        programs: &'p P,
+    ) -> Result<ContourAt<'p>, AlarmKind>;
+
+    #[cfg(feature = "mill-island")]
+    fn pocket_contour<P: ProgramStore + ?Sized>(
+        &mut self,
+        sig: &Signature,
+        args: &CallArgs,
+        at: Cursor,
+        programs: &P,
+    ) -> Result<(), AlarmKind>;
+
+    #[cfg(feature = "mill-island")]
+    fn pocket_contours<'p, P: ProgramStore + ?Sized>(
+        &self,
+        at: Cursor,
+        programs: &'p P,
+        islands: &mut Islands<'p>,
+    ) -> Result<ContourAt<'p>, AlarmKind>;
 }
+
+/// CYCLE73's islands, resolved for its call.
+#[cfg(feature = "mill-island")]
+type Islands<'p> = heapless::Vec<ContourAt<'p>, { POCKET_CONTOURS - 1 }>;
 
 impl Driver for Interpreter {
     /// Steps SINUMERIK lines: statements up to the step budget, at most one NC
@@ -781,6 +815,8 @@ impl Driver for Interpreter {
             } else {
                 match args.bind(sig.types()) {
                     Ok(()) if crate::cycles::is_pattern(sig.name) => return self.start_pattern(sig, args, at, sink),
+                    #[cfg(feature = "mill-island")]
+                    Ok(()) if matches!(sig.name, "CYCLE74" | "CYCLE75") => self.pocket_contour(sig, args, at, programs),
                     Ok(()) => return self.cycle(sig, args, at, line, programs, env, sink),
                     Err(k) => Err(k),
                 }
@@ -1000,7 +1036,25 @@ impl Driver for Interpreter {
             Ok(c) => c,
             Err(k) => return Err(self.alarm_stop(sink, at.program, line, k)),
         };
-        let spec = CallSpec { sig, front: &SINUMERIK, args, contour };
+        // CYCLE73: the edge is its contour, the islands go with the call.
+        #[cfg(feature = "mill-island")]
+        let mut islands = Islands::new();
+        #[cfg(feature = "mill-island")]
+        let contour = match sig.name {
+            "CYCLE73" => match self.pocket_contours(at, programs, &mut islands) {
+                Ok(edge) => Some(edge),
+                Err(k) => return Err(self.alarm_stop(sink, at.program, line, k)),
+            },
+            _ => contour,
+        };
+        let spec = CallSpec {
+            sig,
+            front: &SINUMERIK,
+            args,
+            contour,
+            #[cfg(feature = "mill-island")]
+            islands: &islands,
+        };
         let then = After { pending: None, to: None, moves: false };
         self.run_block(at, line, Some(spec), Extras::default(), then, programs, env, sink)
     }
@@ -1033,6 +1087,20 @@ impl Driver for Interpreter {
                 (Some(b), Some(c)) => (a, b, c),
             }
         };
+        self.contour_at(prog, start, end, at, programs).map(Some)
+    }
+
+    /// The contour in program `prog` (empty: the calling program, at `at`) from
+    /// label or block number `start` to `end` (empty `start`: the whole
+    /// subprogram `prog`).
+    fn contour_at<'p, P: ProgramStore + ?Sized>(
+        &self,
+        prog: &[u8],
+        start: &[u8],
+        end: &[u8],
+        at: Cursor,
+        programs: &'p P,
+    ) -> Result<ContourAt<'p>, AlarmKind> {
         let (id, text, level_start) = if prog.is_empty() {
             let text = programs.text(at.program).unwrap_or(&[]);
             (at.program, text, self.level_start(programs))
@@ -1052,13 +1120,71 @@ impl Driver for Interpreter {
         if start.is_empty() {
             // A whole subprogram: its blocks after the PROC line.
             let (_, body) = find_proc_line(text, level_start);
-            return Ok(Some(ContourAt { program, start: body, end: None }));
+            return Ok(ContourAt { program, start: body, end: None });
         }
         let sec = Section { text, start: level_start };
         let s = sec.anywhere(if prog.is_empty() { at } else { level_start }, start);
         let s = s.ok_or(AlarmKind::from(S::LabelNotFound))?;
         let e = sec.forward(s, end).ok_or(AlarmKind::from(S::LabelNotFound))?;
-        Ok(Some(ContourAt { program, start: s, end: Some(e) }))
+        Ok(ContourAt { program, start: s, end: Some(e) })
+    }
+
+    /// CYCLE74 (the pocket's edge: the transfer starts again) or CYCLE75 (one
+    /// more island): the contour `_KNAME`/`_LSANF`/`_LSEND` names must be there
+    /// (14080/12..., the labels' alarms); its names are kept for CYCLE73 (seed 001
+    /// lines 6161-6204). Nothing named: 61983 (edge) or 61980 (island); CYCLE75
+    /// before CYCLE74 61900; a 16th contour 61906.
+    #[cfg(feature = "mill-island")]
+    fn pocket_contour<P: ProgramStore + ?Sized>(
+        &mut self,
+        sig: &Signature,
+        args: &CallArgs,
+        at: Cursor,
+        programs: &P,
+    ) -> Result<(), AlarmKind> {
+        let island = |code| AlarmKind::from(CycleAlarm::IslandPocket { code });
+        let edge = sig.name == "CYCLE74";
+        let mut buf = [Arg::Empty; interp_core::lang::siemens::call::MAX_ARGS];
+        let a = args.args(&mut buf);
+        let text = |i: usize| match a.get(i) {
+            Some(Arg::Str(s)) => trim(s),
+            _ => &[],
+        };
+        let (name, start, end) = (text(0), text(1), text(2));
+        if name.is_empty() && start.is_empty() {
+            return Err(island(if edge { 61983 } else { 61980 }));
+        }
+        self.contour_at(name, start, end, at, programs)?;
+        let long = |_| AlarmKind::from(S::StringTooLong);
+        let kept = PocketContour {
+            name: heapless::Vec::from_slice(name).map_err(long)?,
+            start: heapless::Vec::from_slice(start).map_err(long)?,
+            end: heapless::Vec::from_slice(end).map_err(long)?,
+        };
+        let pocket = &mut self.siemens.pocket;
+        if edge {
+            pocket.clear();
+        } else if pocket.is_empty() {
+            return Err(island(61900));
+        }
+        pocket.push(kept).map_err(|_| island(61906))
+    }
+
+    /// The contours CYCLE74/CYCLE75 transferred, found again for the CYCLE73 at
+    /// `at`: the edge (61900 without a CYCLE74), the islands into `islands`.
+    #[cfg(feature = "mill-island")]
+    fn pocket_contours<'p, P: ProgramStore + ?Sized>(
+        &self,
+        at: Cursor,
+        programs: &'p P,
+        islands: &mut Islands<'p>,
+    ) -> Result<ContourAt<'p>, AlarmKind> {
+        let mut all = self.siemens.pocket.iter().map(|c| self.contour_at(&c.name, &c.start, &c.end, at, programs));
+        let edge = all.next().ok_or(AlarmKind::from(CycleAlarm::IslandPocket { code: 61900 }))??;
+        for c in all {
+            islands.push(c?).map_err(|_| AlarmKind::from(CycleAlarm::IslandPocket { code: 61906 }))?;
+        }
+        Ok(edge)
     }
 }
 

@@ -25,6 +25,13 @@ use mill_paths::{Contour, Elem, MillGen, Move, P3};
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MillRun {
     path: MillGen,
+    map: PlaneMap,
+}
+
+/// How a milling cycle's moves become planned steps: the plane's axes and the
+/// feed and speed planned so far.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct PlaneMap {
     /// Abscissa, ordinate, applicate.
     axes: [Axis; 3],
     /// The feed planned last (nm/min or nm/rev).
@@ -43,8 +50,23 @@ pub fn plane_axes(plane: Plane) -> [Axis; 3] {
 impl MillRun {
     /// The run of `path` in the active plane of `st`.
     pub fn new(path: MillGen, st: &State) -> Self {
+        MillRun { path, map: PlaneMap::new(st) }
+    }
+
+    /// Plans the generator's next moves into `queue` while it has room for a move
+    /// and its feed; false when the generator has ended. `here` is the work
+    /// position (the axes outside the plane), `profile` the cycle's contour.
+    pub fn fill(&mut self, profile: &Profile, here: Pos, queue: &mut StepQueue) -> Result<bool, AlarmKind> {
+        let path = &mut self.path;
+        self.map.fill(|| Ok(path.next(&Shape(profile))?), here, queue)
+    }
+}
+
+impl PlaneMap {
+    /// The mapping onto the active plane of `st`, from the feed and speed in force.
+    fn new(st: &State) -> Self {
         let feed = st.feed.get(st.modal.feed_mode);
-        MillRun { path, axes: plane_axes(st.modal.plane), feed, rpm: st.spindle.rpm, speed_changed: false }
+        PlaneMap { axes: plane_axes(st.modal.plane), feed, rpm: st.spindle.rpm, speed_changed: false }
     }
 
     /// `p` as a work position, the axes outside the plane from `here`.
@@ -55,12 +77,17 @@ impl MillRun {
         w
     }
 
-    /// Plans the generator's next moves into `queue` while it has room for a move
-    /// and its feed; false when the generator has ended. `here` is the work
-    /// position (the axes outside the plane), `profile` the cycle's contour.
-    pub fn fill(&mut self, profile: &Profile, here: Pos, queue: &mut StepQueue) -> Result<bool, AlarmKind> {
+    /// Plans the moves `next` yields into `queue` while it has room for a move
+    /// and its feed; false when `next` has ended (the call's speed set back if the
+    /// cycle changed it).
+    fn fill(
+        &mut self,
+        mut next: impl FnMut() -> Result<Option<Move>, AlarmKind>,
+        here: Pos,
+        queue: &mut StepQueue,
+    ) -> Result<bool, AlarmKind> {
         while queue.capacity() - queue.len() >= 2 {
-            let Some(m) = self.path.next(&Shape(profile))? else {
+            let Some(m) = next()? else {
                 if self.speed_changed {
                     self.speed_changed = false;
                     push(queue, Step::Speed(self.rpm))?;
@@ -98,10 +125,43 @@ impl MillRun {
     }
 }
 
+/// CYCLE73 being run: the path [`mill_paths::island::plan`] laid out when the
+/// cycle started (shared by the run and its dry run: a copy is a count), and how
+/// far it has been planned.
+#[cfg(feature = "mill-island")]
+#[derive(Clone, Debug, PartialEq)]
+pub struct IslandRun {
+    map: PlaneMap,
+    moves: alloc::sync::Arc<[Move]>,
+    at: usize,
+}
+
+#[cfg(feature = "mill-island")]
+impl IslandRun {
+    /// The run of `moves` in the active plane of `st`.
+    pub fn new(moves: alloc::vec::Vec<Move>, st: &State) -> Self {
+        IslandRun { map: PlaneMap::new(st), moves: moves.into(), at: 0 }
+    }
+
+    /// As [`MillRun::fill`], from the planned moves.
+    pub fn fill(&mut self, here: Pos, queue: &mut StepQueue) -> Result<bool, AlarmKind> {
+        let (moves, at) = (&self.moves, &mut self.at);
+        self.map.fill(
+            || {
+                let m = moves.get(*at).copied();
+                *at = at.saturating_add(1);
+                Ok(m)
+            },
+            here,
+            queue,
+        )
+    }
+}
+
 /// The cycle's contour as the generators read it: the shape store's elements in
 /// the plane (a shape's point keeps the abscissa in `z`, the ordinate in `x`, as
 /// a lathe's G18 ZX shape does).
-struct Shape<'a>(&'a Profile);
+pub(super) struct Shape<'a>(pub(super) &'a Profile);
 
 impl Contour for Shape<'_> {
     fn len(&self) -> usize {

@@ -100,6 +100,9 @@ enum Gen {
     /// A milling cycle (SINUMERIK POCKET1–4, SLOT1/2, CYCLE71–77, CYCLE90 …).
     #[cfg(feature = "siemens")]
     Mill(mill::MillRun),
+    /// CYCLE73's planned path.
+    #[cfg(feature = "mill-island")]
+    Island(mill::IslandRun),
 }
 
 /// A cycle being delivered: its generator, its copy of the state and what is
@@ -190,6 +193,8 @@ impl Walk<'_> {
                 Gen::Grooving(g) => g.fill(&profile.segs, here, queue)?,
                 #[cfg(feature = "siemens")]
                 Gen::Mill(g) => g.fill(profile, emit::work_pos(&self.em.st, cfg), queue)?,
+                #[cfg(feature = "mill-island")]
+                Gen::Island(g) => g.fill(emit::work_pos(&self.em.st, cfg), queue)?,
             };
             *self.gen_done = !more;
         }

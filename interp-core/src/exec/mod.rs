@@ -420,7 +420,14 @@ mod tests {
         let mut args = CallArgs::new();
         args.push(Arg::Real(5.0)).unwrap();
         args.bind(NOT_A_CYCLE.types()).unwrap();
-        let call = CycleCall { sig: &NOT_A_CYCLE, args: &args, contour: None, front: &Refuses };
+        let call = CycleCall {
+            sig: &NOT_A_CYCLE,
+            args: &args,
+            contour: None,
+            front: &Refuses,
+            #[cfg(feature = "mill-island")]
+            islands: &[],
+        };
         for call in [None, Some(&call)] {
             let mut outbox = Outbox::new();
             let mut slot = None;

@@ -24,7 +24,6 @@
 
 use super::Interpreter;
 use crate::config::Language;
-use crate::lang::ProgramText;
 #[cfg(feature = "siemens")]
 use crate::lang::fanuc::check::sinumerik_plain;
 #[cfg(feature = "siemens")]
@@ -155,12 +154,35 @@ pub struct Front {
     /// start) and the line that raised it, for the operator's display.
     #[cfg(feature = "siemens")]
     pub notice: Option<(u16, u32)>,
+    /// The contours CYCLE74 (the edge, first) and CYCLE75 (the islands)
+    /// transferred to the next CYCLE73.
+    #[cfg(feature = "mill-island")]
+    pub pocket: heapless::Vec<PocketContour, POCKET_CONTOURS>,
     /// The front end plugged in ([`Interpreter::plug`]): kept with the language's
     /// cold state, so the FANUC step's fields stay where they were.
     pub front: Option<&'static dyn crate::lang::Front>,
     /// Every line the front end's general way, the short way for plain lines
     /// ([`Interpreter::siemens_plain`]) off: tests compare the two.
     pub general: bool,
+}
+
+/// Most contours one CYCLE73 pocket has: its edge and 15 islands (61906 beyond).
+#[cfg(feature = "mill-island")]
+pub const POCKET_CONTOURS: usize = 16;
+
+/// Where one contour of a pocket with islands is, as CYCLE74/CYCLE75 named it
+/// (seed 001 lines 6172-6204: the 840D keeps the names in a temporary file for
+/// CYCLE73): a program name (`_KNAME`), the start and end labels or block numbers
+/// (`_LSANF`, `_LSEND`). CYCLE73 finds the contour again by these.
+#[cfg(feature = "mill-island")]
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct PocketContour {
+    /// `_KNAME`: the program the contour is in (empty: the calling program).
+    pub name: heapless::Vec<u8, 64>,
+    /// `_LSANF` (empty: the whole program `name`).
+    pub start: heapless::Vec<u8, 32>,
+    /// `_LSEND`.
+    pub end: heapless::Vec<u8, 32>,
 }
 
 impl Default for Front {
@@ -188,13 +210,18 @@ impl Front {
             pattern_depth: 0,
             #[cfg(feature = "siemens")]
             notice: None,
+            #[cfg(feature = "mill-island")]
+            pocket: heapless::Vec::new(),
             front: None,
             general: false,
         }
     }
 
-    /// A new run: no DEF variables, no modal call (R parameters stay).
+    /// A new run: no DEF variables, no modal call, no pocket contours
+    /// transferred (R parameters stay).
     pub fn rewind(&mut self) {
+        #[cfg(feature = "mill-island")]
+        self.pocket.clear();
         #[cfg(feature = "siemens")]
         {
             self.vars.clear_locals();
@@ -251,13 +278,7 @@ impl Front {
     }
 }
 
-/// Where a cycle's contour is, before the variables are attached.
-#[derive(Clone, Copy, Debug)]
-pub struct ContourAt<'c> {
-    pub program: ProgramText<'c>,
-    pub start: Cursor,
-    pub end: Option<Cursor>,
-}
+pub use crate::lang::siemens::call::ContourAt;
 
 /// A cycle call for `run_cmd`: the cycle, its bound arguments and its contour.
 #[derive(Clone, Copy, Debug)]
@@ -267,6 +288,9 @@ pub struct CallSpec<'c> {
     pub front: &'static dyn crate::lang::Front,
     pub args: &'c CallArgs,
     pub contour: Option<ContourAt<'c>>,
+    /// CYCLE73's islands (`contour` is its edge).
+    #[cfg(feature = "mill-island")]
+    pub islands: &'c [ContourAt<'c>],
 }
 
 impl<'c> CallSpec<'c> {
@@ -275,7 +299,14 @@ impl<'c> CallSpec<'c> {
         let front = self.front;
         let contour =
             self.contour.map(|c| ContourSource { program: c.program, start: c.start, end: c.end, vars, front });
-        CycleCall { sig: self.sig, args: self.args, contour, front }
+        CycleCall {
+            sig: self.sig,
+            args: self.args,
+            contour,
+            front,
+            #[cfg(feature = "mill-island")]
+            islands: self.islands,
+        }
     }
 }
 

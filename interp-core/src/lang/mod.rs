@@ -149,6 +149,18 @@ pub trait Engine {
         cmd: &Command,
         st: &mut State,
     ) -> Result<(), AlarmKind>;
+    /// CYCLE73: reads the pocket's `edge` and the islands of the call
+    /// ([`siemens::call::CycleCall::island`]) in the active plane, plans the
+    /// path of `spec` through them (`mill_paths::island`) and starts it (a board
+    /// build without a heap leaves the method out, `mill-island`).
+    #[cfg(feature = "mill-island")]
+    fn mill_islands(
+        &mut self,
+        spec: &mill_paths::island::IslandSpec,
+        edge: ContourSource<'_>,
+        cmd: &Command,
+        st: &mut State,
+    ) -> Result<(), AlarmKind>;
 }
 
 /// A program as the blocks of a canned cycle's shape (G70–G73 ns–nf) are read from

@@ -263,6 +263,11 @@ pub fn start(
         "CYCLE72" => mill::contour::cycle72(&p, cmd, st, ctx, contour),
         #[cfg(not(feature = "mill-contour"))]
         "CYCLE72" => Err(LEFT_OUT),
+        // CYCLE74/CYCLE75 are kept by the driver for the CYCLE73 that follows.
+        #[cfg(feature = "mill-island")]
+        "CYCLE73" => mill::island::cycle73(&p, cmd, st, ctx, contour),
+        #[cfg(not(feature = "mill-island"))]
+        "CYCLE73" | "CYCLE74" | "CYCLE75" => Err(LEFT_OUT),
         // A drilling pattern is run by the driver (positions, then the MCALL at
         // each); called modally it is not a drilling cycle.
         _ => Err(AlarmKind::NotSupportedYet { what: "this SINUMERIK cycle" }),
@@ -280,7 +285,8 @@ pub fn start(
     feature = "mill-slots",
     feature = "mill-pockets",
     feature = "mill-engrave",
-    feature = "mill-contour"
+    feature = "mill-contour",
+    feature = "mill-island"
 )))]
 const LEFT_OUT: AlarmKind = AlarmKind::NotInThisBuild { what: "this milling cycle" };
 

@@ -356,6 +356,18 @@ pub struct ContourSource<'a> {
     pub front: &'a dyn Front,
 }
 
+/// Where a cycle's contour is, before the variables and the front end that
+/// read it are attached ([`ContourSource`]).
+#[derive(Clone, Copy, Debug)]
+pub struct ContourAt<'c> {
+    /// The program the contour is in.
+    pub program: ProgramText<'c>,
+    /// Its first block.
+    pub start: Cursor,
+    /// Its last block (`None`: to the subprogram's end).
+    pub end: Option<Cursor>,
+}
+
 /// A standard cycle call as the engine receives it: the cycle, its bound
 /// arguments and its contour, if it names one.
 #[derive(Clone, Copy, Debug)]
@@ -368,6 +380,21 @@ pub struct CycleCall<'a> {
     pub contour: Option<ContourSource<'a>>,
     /// The front end whose cycle it is ([`Front::cycle_start`]).
     pub front: &'a dyn Front,
+    /// CYCLE73: the islands CYCLE75 transferred (`contour` is the pocket's edge,
+    /// CYCLE74's), read by the engine ([`CycleCall::island`]).
+    #[cfg(feature = "mill-island")]
+    pub islands: &'a [ContourAt<'a>],
+}
+
+impl<'a> CycleCall<'a> {
+    /// Island `i` of a CYCLE73 call, read with the edge contour's variables and
+    /// front end; `None` past the last (or without an edge).
+    #[cfg(feature = "mill-island")]
+    pub fn island(&self, i: usize) -> Option<ContourSource<'a>> {
+        let edge = self.contour?;
+        let at = self.islands.get(i)?;
+        Some(ContourSource { program: at.program, start: at.start, end: at.end, ..edge })
+    }
 }
 
 #[cfg(test)]

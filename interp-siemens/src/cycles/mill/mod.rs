@@ -29,7 +29,8 @@
         feature = "mill-slots",
         feature = "mill-pockets",
         feature = "mill-engrave",
-        feature = "mill-contour"
+        feature = "mill-contour",
+        feature = "mill-island"
     )),
     allow(dead_code)
 )]
@@ -42,6 +43,8 @@ pub(super) mod contour;
 pub(super) mod engrave;
 #[cfg(feature = "mill-face")]
 pub(super) mod face;
+#[cfg(feature = "mill-island")]
+pub(super) mod island;
 pub(super) use settings::{cycle800, cycle832};
 pub(super) mod pocket;
 #[cfg(feature = "mill-slots")]
