@@ -26,7 +26,16 @@ pub enum Layout {
     Circle { centre: (i64, i64), radius: i64, start: f64, step: f64 },
     /// CYCLE801: reference point, angle, column and row spacing, column count.
     Grid { at: (i64, i64), angle: f64, dis1: i64, dis2: i64, columns: u32 },
+    /// CYCLE73's pre-drilling (`_VARI` units 5): the insertion points of its
+    /// clearing, in the order they are cut.
+    #[cfg(feature = "listed")]
+    Listed { points: [(i64, i64); LISTED_MAX] },
 }
+
+/// Most points a listed pattern holds (CYCLE73 pre-drilling: a pocket divided into
+/// more parts is 61911 "more insertion points required").
+#[cfg(feature = "listed")]
+pub const LISTED_MAX: usize = 32;
 
 /// A drilling pattern being run: its layout, its hole count, the order chosen
 /// and the next hole.
@@ -63,6 +72,14 @@ impl HolePattern {
         HolePattern { layout: Layout::Circle { centre, radius, start, step }, count: num, order: 0, next: 0, line }
     }
 
+    /// The points `list` in order; `None` beyond [`LISTED_MAX`].
+    #[cfg(feature = "listed")]
+    pub fn listed(list: &[(i64, i64)], line: u32) -> Option<Self> {
+        let mut points = [(0, 0); LISTED_MAX];
+        points.get_mut(..list.len())?.copy_from_slice(list);
+        Some(HolePattern { layout: Layout::Listed { points }, count: list.len() as u32, order: 0, next: 0, line })
+    }
+
     /// CYCLE801 with `columns` × `rows` points, started at the corner nearest `here`.
     #[allow(clippy::too_many_arguments)]
     pub fn grid(
@@ -97,6 +114,8 @@ impl HolePattern {
         match self.layout {
             Layout::Row { .. } => self.natural(if self.order & 1 != 0 { self.count - 1 - k } else { k }),
             Layout::Circle { .. } => self.natural(k),
+            #[cfg(feature = "listed")]
+            Layout::Listed { points } => points.get(k as usize).copied().unwrap_or_default(),
             Layout::Grid { columns, .. } => {
                 let rows = self.count / columns.max(1);
                 let by_columns = self.order & 4 != 0;
@@ -123,7 +142,7 @@ impl HolePattern {
         match self.layout {
             Layout::Row { at, angle, first, spacing } => along(at, angle, first as f64 + k * spacing as f64, 0.0),
             Layout::Circle { centre, radius, start, step } => along(centre, start + k * step, radius as f64, 0.0),
-            Layout::Grid { .. } => (0, 0),
+            _ => (0, 0),
         }
     }
 

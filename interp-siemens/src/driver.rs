@@ -15,6 +15,8 @@
 //!   stream reads as "wait for more text".
 
 use crate::check::{Extras, apply, check_into, number_format};
+#[cfg(feature = "mill-island")]
+use crate::cycles::predrills;
 use crate::def::{self, Proc, proc_params};
 use crate::labels::{self, Level as Section};
 use crate::read::{Dir, Jump, Pending, Scope, Stmt, Target, Words, read};
@@ -302,6 +304,32 @@ trait Driver {
         programs: &'p P,
         islands: &mut Islands<'p>,
     ) -> Result<ContourAt<'p>, AlarmKind>;
+
+    #[cfg(feature = "mill-island")]
+    fn start_predrill<P, E, K>(
+        &mut self,
+        args: &CallArgs,
+        at: Cursor,
+        programs: &P,
+        env: &E,
+        sink: &mut K,
+    ) -> Result<Progress, Alarm>
+    where
+        P: ProgramStore + ?Sized,
+        E: Environment,
+        K: CanonSink + ?Sized;
+
+    #[cfg(feature = "mill-island")]
+    fn insertion_points<'p, P, E>(
+        &self,
+        args: &CallArgs,
+        at: Cursor,
+        programs: &'p P,
+        env: &E,
+    ) -> Result<interp_core::cycles::holes::HolePattern, AlarmKind>
+    where
+        P: ProgramStore + ?Sized,
+        E: Environment;
 }
 
 /// CYCLE73's islands, resolved for its call.
@@ -817,6 +845,10 @@ impl Driver for Interpreter {
                     Ok(()) if crate::cycles::is_pattern(sig.name) => return self.start_pattern(sig, args, at, sink),
                     #[cfg(feature = "mill-island")]
                     Ok(()) if matches!(sig.name, "CYCLE74" | "CYCLE75") => self.pocket_contour(sig, args, at, programs),
+                    #[cfg(feature = "mill-island")]
+                    Ok(()) if sig.name == "CYCLE73" && predrills(args) => {
+                        return self.start_predrill(args, at, programs, env, sink);
+                    }
                     Ok(()) => return self.cycle(sig, args, at, line, programs, env, sink),
                     Err(k) => Err(k),
                 }
@@ -1168,6 +1200,75 @@ impl Driver for Interpreter {
             return Err(island(61900));
         }
         pocket.push(kept).map_err(|_| island(61906))
+    }
+
+    /// CYCLE73 pre-drilling (`_VARI` units 5, lines 6560-6588): the insertion
+    /// points of the clearing its parameters describe, each approached with G0
+    /// and drilled by the modal drilling cycle (MCALL) as a drilling pattern's
+    /// holes; without one, message 62100 and the points only approached.
+    #[cfg(feature = "mill-island")]
+    fn start_predrill<P, E, K>(
+        &mut self,
+        args: &CallArgs,
+        at: Cursor,
+        programs: &P,
+        env: &E,
+        sink: &mut K,
+    ) -> Result<Progress, Alarm>
+    where
+        P: ProgramStore + ?Sized,
+        E: Environment,
+        K: CanonSink + ?Sized,
+    {
+        let line = at.line;
+        let pattern = match self.insertion_points(args, at, programs, env) {
+            Ok(p) => p,
+            Err(k) => return Err(self.alarm_stop(sink, at.program, line, k)),
+        };
+        self.started = true;
+        self.siemens.begin_pattern(pattern, self.calls.len());
+        if self.siemens.mcall.is_none() || self.in_modal_call() {
+            return Ok(self.notice(crate::cycles::Notice::NoDrillingCycle, line));
+        }
+        Ok(Progress::Executed { line })
+    }
+
+    /// The insertion points of the pre-drilling CYCLE73 at `at` as a drilling
+    /// pattern: the transferred contours read in the plane (61900 without them),
+    /// the call checked, more points than a pattern lists 61911.
+    #[cfg(feature = "mill-island")]
+    fn insertion_points<'p, P, E>(
+        &self,
+        args: &CallArgs,
+        at: Cursor,
+        programs: &'p P,
+        env: &E,
+    ) -> Result<interp_core::cycles::holes::HolePattern, AlarmKind>
+    where
+        P: ProgramStore + ?Sized,
+        E: Environment,
+    {
+        use interp_core::cycles::{Executor, mill::read_pocket, profile::Profile};
+        use interp_core::lang::siemens::call::ContourSource;
+        let mut islands = Islands::new();
+        let edge = self.pocket_contours(at, programs, &mut islands)?;
+        let mut buf = [Arg::Empty; interp_core::lang::siemens::call::MAX_ARGS];
+        let spec = crate::cycles::predrill(args.args(&mut buf), &self.state, &self.cfg)?;
+        let vars = &self.siemens.vars;
+        let src = |c: &ContourAt<'p>| ContourSource {
+            program: c.program,
+            start: c.start,
+            end: c.end,
+            vars,
+            front: &SINUMERIK,
+        };
+        let mut profile = Profile::default();
+        let execute = <interp_core::exec::Blocks as Executor>::execute;
+        let shape =
+            read_pocket(&src(&edge), islands.iter().map(src), &self.state, &self.cfg, env, execute, &mut profile)?;
+        let points = mill_paths::island::start_points(&spec, &shape.edge, &shape.island_refs())?;
+        interp_core::cycles::holes::HolePattern::listed(&points, at.line)
+            .ok_or(AlarmKind::from(CycleAlarm::IslandPocket { code: 61911 }))
     }
 
     /// The contours CYCLE74/CYCLE75 transferred, found again for the CYCLE73 at

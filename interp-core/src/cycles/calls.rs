@@ -11,8 +11,6 @@ use super::rough::{Nose, RoughGen};
 use super::thread::MultiThreadGen;
 use super::{Ctx, Executor, Gen, profile, start_cycle};
 use crate::alarm::AlarmKind;
-#[cfg(feature = "mill-island")]
-use crate::alarm::CycleAlarm;
 use crate::command::Command;
 use crate::command::cycle::check_lead;
 use crate::command::job::{MultiThreadSpec, StockSpec};
@@ -154,29 +152,9 @@ impl<X: Executor> Engine for CallEngine<'_, '_, '_, X> {
     ) -> Result<(), AlarmKind> {
         let call = self.ctx.out.call.copied();
         self.expansion(Emitter::for_block(st, cmd.line), |exp, cfg, env| {
-            let read = |src: &ContourSource<'_>, profile: &mut profile::Profile, code: u16| {
-                profile::read_contour(src, st.modal.plane, 2, st, cfg, env, X::execute, profile).map_err(
-                    |e| match e {
-                        // The contour store's size (48 elements) is CYCLE73's 61903.
-                        AlarmKind::SiemensCycle(CycleAlarm::ContourPreparation { cause: 10934 }) => {
-                            CycleAlarm::IslandPocket { code: 61903 }.into()
-                        }
-                        AlarmKind::SiemensCycle(CycleAlarm::ContourPreparation { .. }) => {
-                            CycleAlarm::IslandPocket { code }.into()
-                        }
-                        e => e,
-                    },
-                )?;
-                Ok::<_, AlarmKind>(elems(profile))
-            };
-            let edge = read(&edge, &mut exp.profile, 61983)?;
-            let mut islands = alloc::vec::Vec::new();
-            for i in 0.. {
-                let Some(src) = call.and_then(|c| c.island(i)) else { break };
-                islands.push(read(&src, &mut exp.profile, 61980)?);
-            }
-            let refs: alloc::vec::Vec<&[mill_paths::Elem]> = islands.iter().map(|v| v.as_slice()).collect();
-            let moves = mill_paths::island::plan(spec, &edge, &refs)?;
+            let islands = (0..).map_while(|i| call.and_then(|c| c.island(i)));
+            let shape = super::mill::read_pocket(&edge, islands, st, cfg, env, X::execute, &mut exp.profile)?;
+            let moves = mill_paths::island::plan(spec, &shape.edge, &shape.island_refs())?;
             exp.generator = Gen::Island(super::mill::IslandRun::new(moves, st));
             Ok(())
         })
@@ -189,13 +167,6 @@ impl<X: Executor> Engine for CallEngine<'_, '_, '_, X> {
         let generator = MultiThreadGen::new(*spec)?;
         start_cycle(Emitter::for_block(st, cmd.line), Gen::MultiThread(generator), self.ctx.out).map(|_| ())
     }
-}
-
-/// The elements of the contour just read into `profile`, in the plane.
-#[cfg(feature = "mill-island")]
-fn elems(profile: &profile::Profile) -> alloc::vec::Vec<mill_paths::Elem> {
-    let shape = super::mill::Shape(profile);
-    (0..mill_paths::Contour::len(&shape)).map(|i| mill_paths::Contour::elem(&shape, i)).collect()
 }
 
 impl<X: Executor> CallEngine<'_, '_, '_, X> {

@@ -158,10 +158,61 @@ impl IslandRun {
     }
 }
 
+/// A pocket's contours read in the working plane (CYCLE73: its edge, then its
+/// islands), as [`mill_paths::island`] takes them.
+#[cfg(feature = "mill-island")]
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PocketShape {
+    /// The edge (CYCLE74).
+    pub edge: alloc::vec::Vec<Elem>,
+    /// The islands (CYCLE75), in the order transferred.
+    pub islands: alloc::vec::Vec<alloc::vec::Vec<Elem>>,
+}
+
+#[cfg(feature = "mill-island")]
+impl PocketShape {
+    /// The islands as slices.
+    pub fn island_refs(&self) -> alloc::vec::Vec<&[Elem]> {
+        self.islands.iter().map(|v| v.as_slice()).collect()
+    }
+}
+
+/// Reads the pocket `edge` and its `islands` in the active plane of `st`, each
+/// through `profile` (the cycle's shape store) with the contour reader of
+/// CYCLE72 ([`super::profile::read_contour`]). A contour that cannot be
+/// prepared is CYCLE73's 61983 (the edge) or 61980 (an island), one of more than
+/// the store's 48 elements 61903.
+#[cfg(feature = "mill-island")]
+pub fn read_pocket<'a, E: crate::env::Environment + ?Sized>(
+    edge: &crate::lang::siemens::call::ContourSource<'a>,
+    islands: impl Iterator<Item = crate::lang::siemens::call::ContourSource<'a>>,
+    st: &State,
+    cfg: &crate::config::MachineConfig,
+    env: &E,
+    execute: super::Execute,
+    profile: &mut Profile,
+) -> Result<PocketShape, AlarmKind> {
+    use crate::alarm::CycleAlarm;
+    let mut read = |src: &crate::lang::siemens::call::ContourSource<'_>, code: u16| {
+        super::profile::read_contour(src, st.modal.plane, 2, st, cfg, env, execute, profile).map_err(|e| match e {
+            AlarmKind::SiemensCycle(CycleAlarm::ContourPreparation { cause: 10934 }) => {
+                CycleAlarm::IslandPocket { code: 61903 }.into()
+            }
+            AlarmKind::SiemensCycle(CycleAlarm::ContourPreparation { .. }) => CycleAlarm::IslandPocket { code }.into(),
+            e => e,
+        })?;
+        let shape = Shape(profile);
+        Ok::<_, AlarmKind>((0..shape.len()).map(|i| shape.elem(i)).collect())
+    };
+    let edge = read(edge, 61983)?;
+    let islands = islands.map(|src| read(&src, 61980)).collect::<Result<_, _>>()?;
+    Ok(PocketShape { edge, islands })
+}
+
 /// The cycle's contour as the generators read it: the shape store's elements in
 /// the plane (a shape's point keeps the abscissa in `z`, the ordinate in `x`, as
 /// a lathe's G18 ZX shape does).
-pub(super) struct Shape<'a>(pub(super) &'a Profile);
+struct Shape<'a>(&'a Profile);
 
 impl Contour for Shape<'_> {
     fn len(&self) -> usize {

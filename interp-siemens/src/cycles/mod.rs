@@ -28,6 +28,8 @@ mod tests;
 pub use drill::plane_axes;
 pub use interp_core::lang::Engine;
 pub use interp_core::lang::siemens::call::{Arg, ContourSource, Signature, Ty};
+#[cfg(feature = "mill-island")]
+pub use mill::island::{predrill, predrills};
 pub use pattern::{Notice, hole_pattern, is_pattern};
 
 use interp_core::alarm::AlarmKind;

@@ -19,7 +19,8 @@
 //!   `_CDIR` 61109 (0/1 need the spindle's direction, 61102).
 
 use super::{Radius, cutter, feed, levels, plane};
-use crate::cycles::{ContourSource, Engine, Params};
+use crate::cycles::{Arg, ContourSource, Engine, Params};
+use interp_core::MachineConfig;
 use interp_core::alarm::{AlarmKind, CycleAlarm};
 use interp_core::canon::SpindleDir;
 use interp_core::command::Command;
@@ -36,13 +37,27 @@ pub(in crate::cycles) fn cycle73(
     ctx: &mut dyn Engine,
     edge: Option<ContourSource<'_>>,
 ) -> Result<(), AlarmKind> {
-    let s = spec(p, st, ctx)?;
+    let s = spec(p, st, ctx.cfg())?;
     p.ok()?;
     let edge = edge.ok_or(island(61900))?;
-    if p.int(0) % 10 == 5 {
-        return Err(AlarmKind::NotSupportedYet { what: "CYCLE73 pre-drilling positions (_VARI units 5)" });
-    }
     ctx.mill_islands(&s, edge, cmd, st)
+}
+
+/// Whether a CYCLE73 call pre-drills (`_VARI` units 5): the driver runs the
+/// modal drilling cycle at the insertion points ([`predrill`]).
+pub fn predrills(args: &interp_core::lang::siemens::call::CallArgs) -> bool {
+    let mut buf = [Arg::Empty; interp_core::lang::siemens::call::MAX_ARGS];
+    matches!(args.args(&mut buf).first(), Some(Arg::Int(v)) if v % 10 == 5)
+}
+
+/// A pre-drilling CYCLE73 call checked: the clearing whose insertion points are
+/// drilled (`mill_paths::island::start_points`), or the call's alarm.
+pub fn predrill(args: &[Arg<'_>], st: &State, cfg: &MachineConfig) -> Result<IslandSpec, AlarmKind> {
+    let p = Params::new(args, st);
+    let mut s = spec(&p, st, cfg)?;
+    p.ok()?;
+    s.job = Job::Rough;
+    Ok(s)
 }
 
 /// A CYCLE73 alarm.
@@ -51,8 +66,7 @@ fn island(code: u16) -> CycleAlarm {
 }
 
 /// The call as the path needs it, or its alarm.
-fn spec(p: &Params<'_, '_>, st: &State, ctx: &mut dyn Engine) -> Result<IslandSpec, CycleAlarm> {
-    let cfg = ctx.cfg();
+fn spec(p: &Params<'_, '_>, st: &State, cfg: &MachineConfig) -> Result<IslandSpec, CycleAlarm> {
     plane(st, cfg)?;
     let vari = p.int(0);
     let (unit, tens, hund, thou) = (vari % 10, vari / 10 % 10, vari / 100 % 10, vari / 1000);
@@ -66,10 +80,12 @@ fn spec(p: &Params<'_, '_>, st: &State, ctx: &mut dyn Engine) -> Result<IslandSp
     if st.mill.d > cfg.tool_count {
         return Err(island(61989));
     }
+    names(p, unit)?;
+    // Pre-drilling lays out the clearing of the tool `_TN` (the drill is active).
+    let r = if unit == 5 { tool_radius(p, cfg)? } else { r };
     if r <= 0 {
         return Err(CycleAlarm::CutterRadiusTooSmall);
     }
-    names(p, unit)?;
     let l = levels(p, st, [4, 5, 6, 7], Some(8))?;
     let mida = p.unsigned(10);
     if mida > 2 * r * 4 / 5 {
@@ -172,13 +188,19 @@ fn plunge(p: &Params<'_, '_>, tens: i64) -> Result<Plunge, CycleAlarm> {
 
 /// The radius of the cutter that cleared before (tool `_TN`, its D1: line
 /// 6744), larger than this one's, or 61918.
-fn previous_radius(p: &Params<'_, '_>, st: &State, cfg: &interp_core::MachineConfig) -> Result<i64, CycleAlarm> {
-    let tn = p.text(3);
-    let t = core::str::from_utf8(tn).ok().and_then(|s| s.trim().parse::<i64>().ok()).ok_or(island(61984))?;
-    let row = crate::read::tool_row(cfg, t, 1).ok_or(island(61984))?;
-    let prev = cfg.tools.get(row).map_or(0, |o| o.radius);
+fn previous_radius(p: &Params<'_, '_>, st: &State, cfg: &MachineConfig) -> Result<i64, CycleAlarm> {
+    let prev = tool_radius(p, cfg)?;
     if prev <= st.tool.nose_radius {
         return Err(island(61918));
     }
     Ok(prev)
+}
+
+/// The radius of tool `_TN` (a tool number without tool management, line
+/// 6738), its D1; a name that is no tool of the table is 61984.
+fn tool_radius(p: &Params<'_, '_>, cfg: &MachineConfig) -> Result<i64, CycleAlarm> {
+    let tn = p.text(3);
+    let t = core::str::from_utf8(tn).ok().and_then(|s| s.trim().parse::<i64>().ok()).ok_or(island(61984))?;
+    let row = crate::read::tool_row(cfg, t, 1).ok_or(island(61984))?;
+    Ok(cfg.tools.get(row).map_or(0, |o| o.radius))
 }

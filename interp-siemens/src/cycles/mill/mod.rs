@@ -44,7 +44,7 @@ pub(super) mod engrave;
 #[cfg(feature = "mill-face")]
 pub(super) mod face;
 #[cfg(feature = "mill-island")]
-pub(super) mod island;
+pub(crate) mod island;
 pub(super) use settings::{cycle800, cycle832};
 pub(super) mod pocket;
 #[cfg(feature = "mill-slots")]
