@@ -167,16 +167,20 @@ impl El {
         match *self {
             El::Line(a, b) => {
                 let n = (len(sub(b, a)) / 0.05).ceil().max(1.0) as usize;
-                (0..n).map(|k| [a[0] + (b[0] - a[0]) * k as f64 / n as f64, a[1] + (b[1] - a[1]) * k as f64 / n as f64]).collect()
+                (0..n)
+                    .map(|k| [a[0] + (b[0] - a[0]) * k as f64 / n as f64, a[1] + (b[1] - a[1]) * k as f64 / n as f64])
+                    .collect()
             }
             El::Arc(s, _, c, cw) => {
                 let (a0, sw) = El::sweep(s, self.end(), c, cw);
                 let r = len(sub(s, c));
                 let n = (r * sw.abs() / 0.05).ceil().max(1.0) as usize;
-                (0..n).map(|k| {
-                    let a = a0 + sw * k as f64 / n as f64;
-                    [c[0] + r * a.cos(), c[1] + r * a.sin()]
-                }).collect()
+                (0..n)
+                    .map(|k| {
+                        let a = a0 + sw * k as f64 / n as f64;
+                        [c[0] + r * a.cos(), c[1] + r * a.sin()]
+                    })
+                    .collect()
             }
         }
     }
@@ -204,8 +208,14 @@ fn filleted(corners: &[([f64; 2], f64)], close: Option<([f64; 2], bool)>) -> Vec
             continue;
         }
         let q = corners[i + 1].0;
-        let u = { let d = sub(p, start); [d[0] / len(d), d[1] / len(d)] };
-        let v = { let d = sub(q, p); [d[0] / len(d), d[1] / len(d)] };
+        let u = {
+            let d = sub(p, start);
+            [d[0] / len(d), d[1] / len(d)]
+        };
+        let v = {
+            let d = sub(q, p);
+            [d[0] / len(d), d[1] / len(d)]
+        };
         // The turn between the lines, and the tangent length of the fillet.
         let cos = (u[0] * v[0] + u[1] * v[1]).clamp(-1.0, 1.0);
         let t = rho * (cos.acos() / 2.0).tan();
@@ -249,7 +259,14 @@ struct Pocket {
 impl Pocket {
     fn example1() -> Self {
         let edge = filleted(
-            &[([25.0, 30.0], 0.0), ([118.0, 30.0], 5.0), ([118.0, 96.0], 5.0), ([40.0, 96.0], 5.0), ([20.0, 75.0], 5.0), ([20.0, 35.0], 0.0)],
+            &[
+                ([25.0, 30.0], 0.0),
+                ([118.0, 30.0], 5.0),
+                ([118.0, 96.0], 5.0),
+                ([40.0, 96.0], 5.0),
+                ([20.0, 75.0], 5.0),
+                ([20.0, 35.0], 0.0),
+            ],
             Some(([25.0, 35.0], false)),
         );
         let i1 = vec![El::Line([34.0, 58.0], [64.0, 58.0]), El::Arc([64.0, 58.0], [34.0, 58.0], [49.0, 58.0], true)];
@@ -321,7 +338,8 @@ fn missed(pocket: &Pocket, cuts: &[Seg], r: f64, fal: f64) -> Vec<[f64; 2]> {
             let reach = (0..72).any(|k| {
                 let a = f64::from(k) * 5f64.to_radians();
                 (1..=8).any(|m| {
-                    let q = [p[0] + (r - h) * f64::from(m) / 8.0 * a.cos(), p[1] + (r - h) * f64::from(m) / 8.0 * a.sin()];
+                    let q =
+                        [p[0] + (r - h) * f64::from(m) / 8.0 * a.cos(), p[1] + (r - h) * f64::from(m) / 8.0 * a.sin()];
                     let (dq, iq) = pocket.at(q);
                     iq && dq >= r + fal + 1e-3
                 })

@@ -320,11 +320,11 @@ trait Driver {
         K: CanonSink + ?Sized;
 
     #[cfg(feature = "mill-island")]
-    fn insertion_points<'p, P, E>(
+    fn insertion_points<P, E>(
         &self,
         args: &CallArgs,
         at: Cursor,
-        programs: &'p P,
+        programs: &P,
         env: &E,
     ) -> Result<interp_core::cycles::holes::HolePattern, AlarmKind>
     where

@@ -206,6 +206,7 @@ impl Aside {
 
 /// An action waiting behind a held move, with its line.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub(crate) struct Waiting {
     line: u32,
     aside: Aside,

@@ -71,7 +71,7 @@ fn spec(p: &Params<'_, '_>, st: &State, cfg: &MachineConfig) -> Result<IslandSpe
     let vari = p.int(0);
     let (unit, tens, hund, thou) = (vari % 10, vari / 10 % 10, vari / 100 % 10, vari / 1000);
     let digits_ok = (1..=5).contains(&unit) && (1..=3).contains(&tens) && hund <= 1 && (1..=2).contains(&thou);
-    if vari < 0 || vari > 9999 || !digits_ok || (unit == 3 && tens != 1) {
+    if !(0..=9999).contains(&vari) || !digits_ok || (unit == 3 && tens != 1) {
         return Err(CycleAlarm::MachiningTypeWrong);
     }
     let r = cutter(st, Radius::NotNegative)?;
