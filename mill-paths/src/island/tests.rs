@@ -364,3 +364,111 @@ fn two_islands_divide_the_pocket_into_two_parts() {
     assert_eq!(pts.len(), 2, "{pts:?}");
     assert!(pts.iter().any(|p| p.0 < mm(45.0)) && pts.iter().any(|p| p.0 > mm(55.0)));
 }
+
+fn refs(islands: &[Vec<Elem>]) -> Vec<&[Elem]> {
+    islands.iter().map(|v| v.as_slice()).collect()
+}
+
+/// The moves that go down in the material (applicate changes at feed), with
+/// where they start.
+fn descents(moves: &[Move]) -> Vec<(P3, Move)> {
+    let mut out = Vec::new();
+    let mut pos = P3::default();
+    for m in moves {
+        let Some(to) = crate::end_of(m) else { continue };
+        if !matches!(m, Move::Rapid(_)) && to.d != pos.d {
+            out.push((pos, *m));
+        }
+        pos = to;
+    }
+    out
+}
+
+#[test]
+fn insertions_follow_the_levels_and_the_helix_ends_flat() {
+    let (edge, islands) = example1();
+    let mut s = spec(4.0, 0.5, 17.5, 6.0);
+    // Vertical: each chain's insertion ends at the level, one per chain and level.
+    let moves = plan(&s, &edge, &refs(&islands)).unwrap();
+    let chains = start_points(&s, &edge, &refs(&islands)).unwrap().len();
+    let ends: Vec<i64> = descents(&moves).iter().map(|(_, m)| crate::end_of(m).unwrap().d).collect();
+    let levels: Vec<i64> = (1..=s.levels.count).map(|k| s.levels.level(k)).collect();
+    assert_eq!(s.levels.count, 4);
+    let mut expect = Vec::new();
+    for &l in &levels {
+        expect.extend(std::iter::repeat_n(l, chains));
+    }
+    // Re-insertions after a link that would leave the region come on top.
+    for l in &levels {
+        assert!(ends.iter().filter(|&&e| e == *l).count() >= chains);
+    }
+    assert!(ends.iter().all(|e| levels.contains(e)), "{ends:?}");
+    // The first move: in the plane at the retract plane; then down to RFP + SDIS.
+    assert!(matches!(moves[0], Move::Rapid(p) if p.d == s.rtp));
+    assert!(matches!(moves[1], Move::Rapid(p) if p.d == s.safe));
+    assert!(matches!(moves.last(), Some(Move::Rapid(p)) if p.d == s.rtp));
+    // Helix: turns of at most the pitch, the last one flat, about the start point.
+    s.plunge = Plunge::Helix { rad: mm(2.5), pitch: mm(2.0) };
+    let moves = plan(&s, &edge, &refs(&islands)).unwrap();
+    let starts = start_points(&s, &edge, &refs(&islands)).unwrap();
+    let mut flat_after = 0;
+    let mut pos = P3::default();
+    let mut in_helix = false;
+    for m in &moves {
+        let to = crate::end_of(m).unwrap();
+        if let Move::Arc { centre, cw, .. } = *m {
+            assert!(!cw);
+            assert!(starts.contains(&centre));
+            assert_eq!((to.a, to.o), (centre.0 + mm(2.5), centre.1), "a whole turn");
+            assert_eq!((pos.a, pos.o), (to.a, to.o));
+            assert!((pos.d - to.d).abs() <= mm(2.0));
+            if to.d == pos.d {
+                assert!(in_helix, "flat circle after the descent");
+                assert!(levels.contains(&to.d));
+                flat_after += 1;
+                in_helix = false;
+            } else {
+                in_helix = true;
+            }
+        } else {
+            assert!(!in_helix, "the helix ends with a flat circle");
+        }
+        pos = to;
+    }
+    assert_eq!(flat_after, chains * levels.len());
+}
+
+/// Points along the walls (every 0.5 mm of each element).
+fn wall_samples(k: &[Elem]) -> Vec<(f64, f64)> {
+    fine(k).windows(2).flat_map(|w| {
+        let (a, b) = (w[0], w[1]);
+        let n = (libm::ceil(libm::hypot(b.0 - a.0, b.1 - a.1) / 0.5) as usize).max(1);
+        (0..n).map(move |i| (a.0 + (b.0 - a.0) * i as f64 / n as f64, a.1 + (b.1 - a.1) * i as f64 / n as f64))
+    }).collect()
+}
+
+#[test]
+fn outer_rings_keep_r_plus_fal_from_every_wall() {
+    let (edge, islands) = example1();
+    for (job, fal) in [(Job::Rough, 0.5), (Job::Edge, 0.0)] {
+        let mut s = spec(4.0, fal, 5.0, 0.0);
+        s.job = job;
+        let moves = plan(&s, &edge, &refs(&islands)).unwrap();
+        let segs = segments(&moves, s.levels.to);
+        let walls = Walls::new(&edge, &islands);
+        // Every wall point has the path at r + fal (the nearest centre point),
+        // and no centre point is nearer any wall.
+        let want = 4.0 + fal;
+        let mut all = wall_samples(&edge);
+        for i in &islands {
+            all.extend(wall_samples(i));
+        }
+        for p in all {
+            let d = segs.iter().map(|&(a, b)| seg_dist_mm(a, b, p)).fold(f64::INFINITY, f64::min);
+            assert!((d - want).abs() < 0.002, "{job:?}: wall point {p:?}: path at {d} mm");
+        }
+        for (a, _) in segs {
+            assert!(walls.dist(a) > want - 0.002);
+        }
+    }
+}
