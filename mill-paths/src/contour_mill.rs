@@ -13,45 +13,11 @@
 //! store on each step; the generator itself holds only its indices.
 
 use crate::infeed::Levels;
-use crate::rot::round as nm;
 use crate::{Contour, CycleAlarm, Elem, Move, P3};
 
-type V = (f64, f64);
+use crate::v2::{V, add, cross, dot, fv, iv, left, len, mul, sub, tangent, unit};
 /// An arc's centre and sense (G2).
 type ArcOf = ((i64, i64), bool);
-
-fn sub(a: V, b: V) -> V {
-    (a.0 - b.0, a.1 - b.1)
-}
-fn add(a: V, b: V) -> V {
-    (a.0 + b.0, a.1 + b.1)
-}
-fn mul(a: V, k: f64) -> V {
-    (a.0 * k, a.1 * k)
-}
-fn dot(a: V, b: V) -> f64 {
-    a.0 * b.0 + a.1 * b.1
-}
-fn cross(a: V, b: V) -> f64 {
-    a.0 * b.1 - a.1 * b.0
-}
-fn len(a: V) -> f64 {
-    libm::hypot(a.0, a.1)
-}
-fn unit(a: V) -> V {
-    let l = len(a);
-    if l > 0.0 { mul(a, 1.0 / l) } else { (0.0, 0.0) }
-}
-/// `a` turned 90° counterclockwise.
-fn left(a: V) -> V {
-    (-a.1, a.0)
-}
-fn fv(p: (i64, i64)) -> V {
-    (p.0 as f64, p.1 as f64)
-}
-fn iv(p: V) -> (i64, i64) {
-    (nm(p.0), nm(p.1))
-}
 
 /// How the cutter reaches (`_AS1`) or leaves (`_AS2`) the contour.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -102,18 +68,6 @@ pub struct ContourMill {
     level: u32,
     /// Step within the level.
     step: u32,
-}
-
-/// The tangent of `e` at its start (`end` false) or end, unit.
-fn tangent(e: &Elem, end: bool) -> V {
-    let p = fv(if end { e.to } else { e.from });
-    match e.arc {
-        None => unit(sub(fv(e.to), fv(e.from))),
-        Some((c, cw)) => {
-            let u = unit(sub(p, fv(c)));
-            if cw { mul(left(u), -1.0) } else { left(u) }
-        }
-    }
 }
 
 impl ContourMill {

@@ -49,6 +49,8 @@ pub mod slot;
 #[cfg(feature = "face")]
 pub mod spigot;
 pub mod thread;
+#[cfg(any(feature = "contour", feature = "island"))]
+mod v2;
 
 pub use canon::alarm::CycleAlarm;
 pub use contour::{Contour, Elem, NoContour};

@@ -1,0 +1,474 @@
+//! CYCLE73's geometry against the document's example 1 and made-up pockets:
+//! coverage and gouging by rasterising the cutter along the moves, with the
+//! walls' distances computed here from the contours' elements.
+
+extern crate std;
+
+use super::*;
+use std::vec;
+use std::vec::Vec;
+
+const MM: f64 = 1e6;
+
+fn mm(v: f64) -> i64 {
+    libm::round(v * MM) as i64
+}
+
+fn pt(p: (f64, f64)) -> (i64, i64) {
+    (mm(p.0), mm(p.1))
+}
+
+fn line(a: (f64, f64), b: (f64, f64)) -> Elem {
+    Elem { from: pt(a), to: pt(b), arc: None }
+}
+
+fn arc(a: (f64, f64), b: (f64, f64), c: (f64, f64), cw: bool) -> Elem {
+    Elem { from: pt(a), to: pt(b), arc: Some((pt(c), cw)) }
+}
+
+/// A closed polyline of lines (mm) with a fillet of radius `rnd[i]` at vertex
+/// `i` (0: none), as CYCLE74/75 contours with RND give it.
+fn filleted(v: &[(f64, f64)], rnd: &[f64]) -> Vec<Elem> {
+    let n = v.len();
+    // Each vertex: (where the incoming side ends, the fillet arc, where the
+    // outgoing side starts).
+    let mut corner = Vec::new();
+    for i in 0..n {
+        let (p, c, q) = (v[(i + n - 1) % n], v[i], v[(i + 1) % n]);
+        if rnd[i] == 0.0 {
+            corner.push((c, None, c));
+            continue;
+        }
+        let u1 = unit_mm((c.0 - p.0, c.1 - p.1));
+        let u2 = unit_mm((q.0 - c.0, q.1 - c.1));
+        let turn = u1.0 * u2.1 - u1.1 * u2.0;
+        let cosang = -(u1.0 * u2.0 + u1.1 * u2.1); // between −u1 and u2
+        let half = libm::acos(cosang.clamp(-1.0, 1.0)) / 2.0;
+        let t = rnd[i] / libm::tan(half);
+        let t1 = (c.0 - u1.0 * t, c.1 - u1.1 * t);
+        let t2 = (c.0 + u2.0 * t, c.1 + u2.1 * t);
+        let nrm = if turn > 0.0 { (-u1.1, u1.0) } else { (u1.1, -u1.0) };
+        let m = (t1.0 + nrm.0 * rnd[i], t1.1 + nrm.1 * rnd[i]);
+        corner.push((t1, Some((m, turn < 0.0)), t2));
+    }
+    let mut e = Vec::new();
+    for i in 0..n {
+        let (t1, a, t2) = corner[i];
+        if let Some((m, cw)) = a {
+            e.push(arc(t1, t2, m, cw));
+        }
+        e.push(line(t2, corner[(i + 1) % n].0));
+    }
+    e
+}
+
+fn unit_mm(a: (f64, f64)) -> (f64, f64) {
+    let l = libm::hypot(a.0, a.1);
+    (a.0 / l, a.1 / l)
+}
+
+/// Example 1 (seed 001 lines 6279-6420): the edge N510-N560, islands N570-N590
+/// (the lower, a half circle under a line) and N600-N620 (the upper).
+fn example1() -> (Vec<Elem>, Vec<Vec<Elem>>) {
+    // X25 Y30 → X118 RND=5 → Y96 RND=5 → X40 RND=5 → X20 Y75 RND=5 → Y35,
+    // then G3 X25 Y30 CR=5 (centre X25 Y35, tangent to both neighbours).
+    let mut edge = filleted(&[(25.0, 30.0), (118.0, 30.0), (118.0, 96.0), (40.0, 96.0), (20.0, 75.0), (20.0, 35.0)], &[
+        0.0, 5.0, 5.0, 5.0, 5.0, 0.0,
+    ]);
+    // The closing side (20,35)→(25,30) is the arc, not a line.
+    let last = edge.pop().unwrap();
+    assert_eq!(last.from, pt((20.0, 35.0)));
+    edge.push(arc((20.0, 35.0), (25.0, 30.0), (25.0, 35.0), false));
+    let i1 = vec![line((34.0, 58.0), (64.0, 58.0)), arc((64.0, 58.0), (34.0, 58.0), (49.0, 58.0), true)];
+    let i2 = vec![line((79.0, 73.0), (99.0, 73.0)), arc((99.0, 73.0), (79.0, 73.0), (89.0, 73.0), false)];
+    (edge, vec![i1, i2])
+}
+
+fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Vec<Elem> {
+    vec![line((x0, y0), (x1, y0)), line((x1, y0), (x1, y1)), line((x1, y1), (x0, y1)), line((x0, y1), (x0, y0))]
+}
+
+fn spec(r: f64, fal: f64, depth: f64, mid: f64) -> IslandSpec {
+    let r = mm(r);
+    IslandSpec {
+        job: Job::Rough,
+        r,
+        fal: mm(fal),
+        step: crate::infeed::max_width(0, r),
+        levels: Levels::new(mm(1.0), mm(-depth), mm(mid)),
+        rtp: mm(10.0),
+        safe: mm(1.0),
+        sdis: mm(1.0),
+        dir: -1,
+        lift: 0,
+        plunge: Plunge::Vertical,
+        start: None,
+        cw: false,
+        feeds: [400_000_000, 2_000_000_000],
+    }
+}
+
+/// Distance (mm) from `p` to element `e`.
+fn elem_dist(e: &Elem, p: (f64, f64)) -> f64 {
+    let f = (e.from.0 as f64 / MM, e.from.1 as f64 / MM);
+    let t = (e.to.0 as f64 / MM, e.to.1 as f64 / MM);
+    let end = libm::hypot(p.0 - f.0, p.1 - f.1).min(libm::hypot(p.0 - t.0, p.1 - t.1));
+    match e.arc {
+        None => {
+            let d = (t.0 - f.0, t.1 - f.1);
+            let l2 = d.0 * d.0 + d.1 * d.1;
+            let s = (((p.0 - f.0) * d.0 + (p.1 - f.1) * d.1) / l2).clamp(0.0, 1.0);
+            libm::hypot(p.0 - f.0 - s * d.0, p.1 - f.1 - s * d.1)
+        }
+        Some((c, cw)) => {
+            let c = (c.0 as f64 / MM, c.1 as f64 / MM);
+            let r = libm::hypot(f.0 - c.0, f.1 - c.1);
+            let ang = |q: (f64, f64)| libm::atan2(q.1 - c.1, q.0 - c.0);
+            let tau = 2.0 * core::f64::consts::PI;
+            let norm = |a: f64| ((a % tau) + tau) % tau;
+            let (a0, a1, ap) = (ang(f), ang(t), ang(p));
+            // Counterclockwise sweep from the start to the point and to the end.
+            let (sp, se) = if cw { (norm(a0 - ap), norm(a0 - a1)) } else { (norm(ap - a0), norm(a1 - a0)) };
+            let se = if se == 0.0 { tau } else { se };
+            if sp <= se { (libm::hypot(p.0 - c.0, p.1 - c.1) - r).abs() } else { end }
+        }
+    }
+}
+
+/// A fine polygon (mm) of a contour, for inside tests.
+fn fine(k: &[Elem]) -> Vec<(f64, f64)> {
+    let pts = discretise(k, None).unwrap();
+    pts.iter().map(|p| (p[0] / MM, p[1] / MM)).collect()
+}
+
+fn inside_poly(c: &[(f64, f64)], p: (f64, f64)) -> bool {
+    let mut inside = false;
+    let n = c.len();
+    for i in 0..n {
+        let (a, b) = (c[i], c[(i + 1) % n]);
+        if (a.1 > p.1) != (b.1 > p.1) && p.0 < a.0 + (p.1 - a.1) * (b.0 - a.0) / (b.1 - a.1) {
+            inside = !inside;
+        }
+    }
+    inside
+}
+
+/// The pocket as the test sees it: signed distance (mm) to the walls,
+/// positive in the region.
+struct Walls {
+    elems: Vec<Elem>,
+    edge: Vec<(f64, f64)>,
+    islands: Vec<Vec<(f64, f64)>>,
+}
+
+impl Walls {
+    fn new(edge: &[Elem], islands: &[Vec<Elem>]) -> Self {
+        let mut elems = edge.to_vec();
+        for i in islands {
+            elems.extend_from_slice(i);
+        }
+        Walls { elems, edge: fine(edge), islands: islands.iter().map(|i| fine(i)).collect() }
+    }
+
+    fn dist(&self, p: (f64, f64)) -> f64 {
+        let d = self.elems.iter().map(|e| elem_dist(e, p)).fold(f64::INFINITY, f64::min);
+        let inside = inside_poly(&self.edge, p) && !self.islands.iter().any(|i| inside_poly(i, p));
+        if inside { d } else { -d }
+    }
+}
+
+/// The moves' tool-centre path at applicate `z` (mm), as segments (arcs cut
+/// into 0.05 mm pieces), from `start`.
+fn segments(moves: &[Move], z: i64) -> Vec<((f64, f64), (f64, f64))> {
+    let mut out = Vec::new();
+    let mut pos: Option<P3> = None;
+    let f = |p: P3| (p.a as f64 / MM, p.o as f64 / MM);
+    for m in moves {
+        let Some(to) = crate::end_of(m) else { continue };
+        if let Some(from) = pos {
+            let cutting = !matches!(m, Move::Rapid(_)) && to.d == z;
+            if cutting {
+                match *m {
+                    Move::Arc { centre, cw, .. } => {
+                        let c = (centre.0 as f64 / MM, centre.1 as f64 / MM);
+                        let (a, b) = (f(from), f(to));
+                        let r = libm::hypot(a.0 - c.0, a.1 - c.1);
+                        let a0 = libm::atan2(a.1 - c.1, a.0 - c.0);
+                        let a1 = libm::atan2(b.1 - c.1, b.0 - c.0);
+                        let tau = 2.0 * core::f64::consts::PI;
+                        let mut sw = a1 - a0;
+                        if cw {
+                            while sw >= 0.0 {
+                                sw -= tau;
+                            }
+                        } else {
+                            while sw <= 0.0 {
+                                sw += tau;
+                            }
+                        }
+                        let n = (libm::ceil(sw.abs() * r / 0.05) as usize).max(1);
+                        let mut prev = a;
+                        for i in 1..=n {
+                            let t = a0 + sw * i as f64 / n as f64;
+                            let q = (c.0 + r * libm::cos(t), c.1 + r * libm::sin(t));
+                            out.push((prev, q));
+                            prev = q;
+                        }
+                    }
+                    _ => out.push((f(from), f(to))),
+                }
+            }
+        }
+        pos = Some(to);
+    }
+    out
+}
+
+/// Raster of the cells (0.1 mm) the cutter of radius `r` (mm) sweeps along
+/// `segs`, over the box `b` (mm).
+struct Raster {
+    x0: f64,
+    y0: f64,
+    w: usize,
+    h: usize,
+    cut: Vec<bool>,
+}
+
+const CELL: f64 = 0.1;
+
+impl Raster {
+    fn new(b: [f64; 4], segs: &[((f64, f64), (f64, f64))], r: f64) -> Self {
+        let w = ((b[2] - b[0]) / CELL) as usize + 1;
+        let h = ((b[3] - b[1]) / CELL) as usize + 1;
+        let mut ras = Raster { x0: b[0], y0: b[1], w, h, cut: vec![false; w * h] };
+        for &(a, c) in segs {
+            let lo = ((a.0.min(c.0) - r - b[0]) / CELL).floor().max(0.0) as usize;
+            let hi = (((a.0.max(c.0) + r - b[0]) / CELL).ceil() as usize).min(w - 1);
+            let lo_y = ((a.1.min(c.1) - r - b[1]) / CELL).floor().max(0.0) as usize;
+            let hi_y = (((a.1.max(c.1) + r - b[1]) / CELL).ceil() as usize).min(h - 1);
+            for j in lo_y..=hi_y {
+                for i in lo..=hi {
+                    if ras.cut[j * w + i] {
+                        continue;
+                    }
+                    let p = ras.centre(i, j);
+                    if seg_dist_mm(a, c, p) <= r {
+                        ras.cut[j * w + i] = true;
+                    }
+                }
+            }
+        }
+        ras
+    }
+
+    fn centre(&self, i: usize, j: usize) -> (f64, f64) {
+        (self.x0 + i as f64 * CELL, self.y0 + j as f64 * CELL)
+    }
+}
+
+fn seg_dist_mm(a: (f64, f64), b: (f64, f64), p: (f64, f64)) -> f64 {
+    let d = (b.0 - a.0, b.1 - a.1);
+    let l2 = d.0 * d.0 + d.1 * d.1;
+    let s = if l2 > 0.0 { (((p.0 - a.0) * d.0 + (p.1 - a.1) * d.1) / l2).clamp(0.0, 1.0) } else { 0.0 };
+    libm::hypot(p.0 - a.0 - s * d.0, p.1 - a.1 - s * d.1)
+}
+
+/// Whether a cutter of radius `r` whose centre keeps `r + fal` from the walls
+/// can reach `p` (with 0.02 mm to spare): some centre within r of it.
+fn reachable(w: &Walls, p: (f64, f64), r: f64, fal: f64) -> bool {
+    if w.dist(p) >= r + fal + 0.02 {
+        return true;
+    }
+    for k in 1..=8 {
+        let rho = (r - 0.02) * k as f64 / 8.0;
+        for i in 0..144 {
+            let a = 2.0 * core::f64::consts::PI * i as f64 / 144.0;
+            let c = (p.0 + rho * libm::cos(a), p.1 + rho * libm::sin(a));
+            if w.dist(c) >= r + fal + 0.02 {
+                return true;
+            }
+        }
+    }
+    false
+}
+
+/// (a) every reachable cell at least fal + one cell inside the walls is cut
+/// at the last level; (b) no tool-centre point of a cutting move at any level
+/// comes closer to a wall than r + fal (less 2 µm), nor does any rapid move at
+/// a level below the top. Returns the uncut count (0) and the moves.
+fn check_clearing(s: &IslandSpec, edge: &[Elem], islands: &[Vec<Elem>]) -> Vec<Move> {
+    let refs: Vec<&[Elem]> = islands.iter().map(|v| v.as_slice()).collect();
+    let moves = plan(s, edge, &refs).unwrap();
+    let walls = Walls::new(edge, islands);
+    let (r, fal) = (s.r as f64 / MM, s.fal as f64 / MM);
+    // (b) No gouge, every level, every move in the material (below the top).
+    for k in 1..=s.levels.count {
+        for (a, b) in segments(&moves, s.levels.level(k)) {
+            let n = (libm::ceil(libm::hypot(b.0 - a.0, b.1 - a.1) / 0.05) as usize).max(1);
+            for i in 0..=n {
+                let t = i as f64 / n as f64;
+                let p = (a.0 + (b.0 - a.0) * t, a.1 + (b.1 - a.1) * t);
+                let d = walls.dist(p);
+                assert!(d >= r + fal - 0.002, "gouge: centre {p:?} {d} mm from a wall");
+            }
+        }
+    }
+    // (a) Coverage at the last level.
+    let segs = segments(&moves, s.levels.to);
+    let e = &walls.edge;
+    let b = [
+        e.iter().map(|p| p.0).fold(f64::INFINITY, f64::min),
+        e.iter().map(|p| p.1).fold(f64::INFINITY, f64::min),
+        e.iter().map(|p| p.0).fold(f64::NEG_INFINITY, f64::max),
+        e.iter().map(|p| p.1).fold(f64::NEG_INFINITY, f64::max),
+    ];
+    let ras = Raster::new(b, &segs, r);
+    let mut missed = Vec::new();
+    for j in 0..ras.h {
+        for i in 0..ras.w {
+            if ras.cut[j * ras.w + i] {
+                continue;
+            }
+            let p = ras.centre(i, j);
+            if walls.dist(p) >= fal + CELL && reachable(&walls, p, r, fal) {
+                missed.push(p);
+            }
+        }
+    }
+    assert!(missed.is_empty(), "{} cells left: {:?}", missed.len(), &missed[..missed.len().min(20)]);
+    moves
+}
+
+#[test]
+fn example1_roughing_clears_everything_and_gouges_nothing() {
+    let (edge, islands) = example1();
+    // T5 of the listing that calls CYCLE73 (line 6930): $TC_DP6 = 4; the
+    // first listing's 6 makes the 13 mm gaps under the lower island and over the
+    // upper exactly 2·(r + fal): a tool-centre region of width 0 there.
+    let s = spec(4.0, 0.5, 17.5, 6.0);
+    let t = std::time::Instant::now();
+    let refs: Vec<&[Elem]> = islands.iter().map(|v| v.as_slice()).collect();
+    let n = plan(&s, &edge, &refs).unwrap().len();
+    std::println!("example 1: plan {:?}, {n} moves", t.elapsed());
+    check_clearing(&s, &edge, &islands);
+}
+
+#[test]
+fn two_islands_divide_the_pocket_into_two_parts() {
+    let edge = rect(0.0, 0.0, 100.0, 50.0);
+    let islands = vec![rect(45.0, 3.0, 55.0, 24.0), rect(45.0, 26.0, 55.0, 47.0)];
+    let s = spec(4.0, 0.5, 5.0, 0.0);
+    check_clearing(&s, &edge, &islands);
+    let refs: Vec<&[Elem]> = islands.iter().map(|v| v.as_slice()).collect();
+    let pts = start_points(&s, &edge, &refs).unwrap();
+    assert_eq!(pts.len(), 2, "{pts:?}");
+    assert!(pts.iter().any(|p| p.0 < mm(45.0)) && pts.iter().any(|p| p.0 > mm(55.0)));
+}
+
+fn refs(islands: &[Vec<Elem>]) -> Vec<&[Elem]> {
+    islands.iter().map(|v| v.as_slice()).collect()
+}
+
+/// The moves that go down in the material (applicate changes at feed), with
+/// where they start.
+fn descents(moves: &[Move]) -> Vec<(P3, Move)> {
+    let mut out = Vec::new();
+    let mut pos = P3::default();
+    for m in moves {
+        let Some(to) = crate::end_of(m) else { continue };
+        if !matches!(m, Move::Rapid(_)) && to.d != pos.d {
+            out.push((pos, *m));
+        }
+        pos = to;
+    }
+    out
+}
+
+#[test]
+fn insertions_follow_the_levels_and_the_helix_ends_flat() {
+    let (edge, islands) = example1();
+    let mut s = spec(4.0, 0.5, 17.5, 6.0);
+    // Vertical: each chain's insertion ends at the level, one per chain and level.
+    let moves = plan(&s, &edge, &refs(&islands)).unwrap();
+    let chains = start_points(&s, &edge, &refs(&islands)).unwrap().len();
+    let ends: Vec<i64> = descents(&moves).iter().map(|(_, m)| crate::end_of(m).unwrap().d).collect();
+    let levels: Vec<i64> = (1..=s.levels.count).map(|k| s.levels.level(k)).collect();
+    assert_eq!(s.levels.count, 4);
+    let mut expect = Vec::new();
+    for &l in &levels {
+        expect.extend(std::iter::repeat_n(l, chains));
+    }
+    // Re-insertions after a link that would leave the region come on top.
+    for l in &levels {
+        assert!(ends.iter().filter(|&&e| e == *l).count() >= chains);
+    }
+    assert!(ends.iter().all(|e| levels.contains(e)), "{ends:?}");
+    // The first move: in the plane at the retract plane; then down to RFP + SDIS.
+    assert!(matches!(moves[0], Move::Rapid(p) if p.d == s.rtp));
+    assert!(matches!(moves[1], Move::Rapid(p) if p.d == s.safe));
+    assert!(matches!(moves.last(), Some(Move::Rapid(p)) if p.d == s.rtp));
+    // Helix: turns of at most the pitch, the last one flat, about the start point.
+    s.plunge = Plunge::Helix { rad: mm(2.5), pitch: mm(2.0) };
+    let moves = plan(&s, &edge, &refs(&islands)).unwrap();
+    let starts = start_points(&s, &edge, &refs(&islands)).unwrap();
+    let mut flat_after = 0;
+    let mut pos = P3::default();
+    let mut in_helix = false;
+    for m in &moves {
+        let to = crate::end_of(m).unwrap();
+        if let Move::Arc { centre, cw, .. } = *m {
+            assert!(!cw);
+            assert!(starts.contains(&centre));
+            assert_eq!((to.a, to.o), (centre.0 + mm(2.5), centre.1), "a whole turn");
+            assert_eq!((pos.a, pos.o), (to.a, to.o));
+            assert!((pos.d - to.d).abs() <= mm(2.0));
+            if to.d == pos.d {
+                assert!(in_helix, "flat circle after the descent");
+                assert!(levels.contains(&to.d));
+                flat_after += 1;
+                in_helix = false;
+            } else {
+                in_helix = true;
+            }
+        } else {
+            assert!(!in_helix, "the helix ends with a flat circle");
+        }
+        pos = to;
+    }
+    assert_eq!(flat_after, chains * levels.len());
+}
+
+/// Points along the walls (every 0.5 mm of each element).
+fn wall_samples(k: &[Elem]) -> Vec<(f64, f64)> {
+    fine(k).windows(2).flat_map(|w| {
+        let (a, b) = (w[0], w[1]);
+        let n = (libm::ceil(libm::hypot(b.0 - a.0, b.1 - a.1) / 0.5) as usize).max(1);
+        (0..n).map(move |i| (a.0 + (b.0 - a.0) * i as f64 / n as f64, a.1 + (b.1 - a.1) * i as f64 / n as f64))
+    }).collect()
+}
+
+#[test]
+fn outer_rings_keep_r_plus_fal_from_every_wall() {
+    let (edge, islands) = example1();
+    for (job, fal) in [(Job::Rough, 0.5), (Job::Edge, 0.0)] {
+        let mut s = spec(4.0, fal, 5.0, 0.0);
+        s.job = job;
+        let moves = plan(&s, &edge, &refs(&islands)).unwrap();
+        let segs = segments(&moves, s.levels.to);
+        let walls = Walls::new(&edge, &islands);
+        // Every wall point has the path at r + fal (the nearest centre point),
+        // and no centre point is nearer any wall.
+        let want = 4.0 + fal;
+        let mut all = wall_samples(&edge);
+        for i in &islands {
+            all.extend(wall_samples(i));
+        }
+        for p in all {
+            let d = segs.iter().map(|&(a, b)| seg_dist_mm(a, b, p)).fold(f64::INFINITY, f64::min);
+            assert!((d - want).abs() < 0.002, "{job:?}: wall point {p:?}: path at {d} mm");
+        }
+        for (a, _) in segs {
+            assert!(walls.dist(a) > want - 0.002);
+        }
+    }
+}
