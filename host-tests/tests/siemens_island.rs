@@ -293,63 +293,154 @@ fn move_dist(s: &Seg, p: [f64; 2]) -> f64 {
     }
 }
 
-/// The cells of a 0.1 mm grid over the pocket that the cutter of radius `r`
-/// sweeps along `cuts`, and those it should: inside the pocket at least `fal`
-/// (+ a cell) from every wall, and reachable by a disc of radius `r` whose
-/// centre keeps `r + fal` from the walls. Returns the cells missed.
+/// The pocket on a 0.1 mm grid: whether each cell's centre is in the pocket (a
+/// scanline over the walls' points, even-odd across the edge and the islands),
+/// and its distance from the nearest wall.
+struct Raster {
+    x0: f64,
+    y0: f64,
+    h: f64,
+    nx: usize,
+    ny: usize,
+    inn: Vec<bool>,
+    d: Vec<f64>,
+}
+
+impl Raster {
+    fn new(pocket: &Pocket) -> Self {
+        let (x0, y0, h, nx, ny) = (19.0, 29.0, 0.1, 1000, 680);
+        let mut inn = vec![false; nx * ny];
+        for j in 0..ny {
+            let y = y0 + j as f64 * h;
+            let mut xs: Vec<f64> = Vec::new();
+            for poly in &pocket.polys {
+                for k in 0..poly.len() {
+                    let (a, b) = (poly[k], poly[(k + 1) % poly.len()]);
+                    if (a[1] > y) != (b[1] > y) {
+                        xs.push(a[0] + (y - a[1]) / (b[1] - a[1]) * (b[0] - a[0]));
+                    }
+                }
+            }
+            xs.sort_by(f64::total_cmp);
+            for pair in xs.chunks(2) {
+                if let [a, b] = pair {
+                    let lo = ((a - x0) / h).ceil().max(0.0) as usize;
+                    let hi = (((b - x0) / h).floor() as usize).min(nx - 1);
+                    for i in lo..=hi {
+                        inn[j * nx + i] = true;
+                    }
+                }
+            }
+        }
+        let walls: Vec<El> = pocket.edge.iter().chain(pocket.islands.iter().flatten()).copied().collect();
+        let d = (0..nx * ny)
+            .map(|k| {
+                let p = [x0 + (k % nx) as f64 * h, y0 + (k / nx) as f64 * h];
+                walls.iter().map(|e| e.dist(p)).fold(f64::MAX, f64::min)
+            })
+            .collect();
+        Raster { x0, y0, h, nx, ny, inn, d }
+    }
+
+    fn point(&self, k: usize) -> [f64; 2] {
+        [self.x0 + (k % self.nx) as f64 * self.h, self.y0 + (k / self.nx) as f64 * self.h]
+    }
+}
+
+/// Squared distance (in cells²) from every cell to the nearest cell of `mask`:
+/// the exact Euclidean distance transform (Felzenszwalb and Huttenlocher), a pass
+/// along the rows, then along the columns.
+fn distance_transform(mask: &[bool], nx: usize, ny: usize) -> Vec<f64> {
+    const INF: f64 = 1e20;
+    fn pass(f: &[f64]) -> Vec<f64> {
+        let n = f.len();
+        let (mut v, mut z) = (vec![0usize; n], vec![0f64; n + 1]);
+        let mut k = 0;
+        z[0] = -INF;
+        z[1] = INF;
+        for q in 1..n {
+            loop {
+                let p = v[k];
+                let s = ((f[q] + (q * q) as f64) - (f[p] + (p * p) as f64)) / (2.0 * (q as f64 - p as f64));
+                if s <= z[k] && k > 0 {
+                    k -= 1;
+                    continue;
+                }
+                if s <= z[k] {
+                    v[0] = q;
+                    z[0] = -INF;
+                    z[1] = INF;
+                    break;
+                }
+                k += 1;
+                v[k] = q;
+                z[k] = s;
+                z[k + 1] = INF;
+                break;
+            }
+        }
+        let mut out = vec![0.0; n];
+        k = 0;
+        for (q, o) in out.iter_mut().enumerate() {
+            while z[k + 1] < q as f64 {
+                k += 1;
+            }
+            let p = v[k];
+            *o = (q as f64 - p as f64).powi(2) + f[p];
+        }
+        out
+    }
+    let mut g: Vec<f64> = mask.iter().map(|&m| if m { 0.0 } else { INF }).collect();
+    for j in 0..ny {
+        let row = pass(&g[j * nx..(j + 1) * nx]);
+        g[j * nx..(j + 1) * nx].copy_from_slice(&row);
+    }
+    for i in 0..nx {
+        let col: Vec<f64> = (0..ny).map(|j| g[j * nx + i]).collect();
+        for (j, v) in pass(&col).into_iter().enumerate() {
+            g[j * nx + i] = v;
+        }
+    }
+    g
+}
+
+/// The cells of the grid that the cutter of radius `r` sweeps along `cuts`, and
+/// those it should: inside the pocket at least `fal` (+ a cell) from every wall,
+/// and reachable by a disc of radius `r` whose centre keeps `r + fal` from the
+/// walls. Returns the cells missed.
 fn missed(pocket: &Pocket, cuts: &[Seg], r: f64, fal: f64) -> Vec<[f64; 2]> {
-    let (x0, y0, h) = (19.0, 29.0, 0.1);
-    let (nx, ny) = (1000, 680);
+    let g = Raster::new(pocket);
+    let (x0, y0, h, nx, ny) = (g.x0, g.y0, g.h, g.nx, g.ny);
     let mut cut = vec![false; nx * ny];
     for s in cuts {
-        let (lo_x, hi_x) = (s.from[0].min(s.to[0]) - r, s.from[0].max(s.to[0]) + r);
-        let (lo_y, hi_y) = (s.from[1].min(s.to[1]) - r, s.from[1].max(s.to[1]) + r);
-        // An arc's box: its whole circle's (simple, a little larger).
         let (lo_x, hi_x, lo_y, hi_y) = match s.arc {
+            // An arc's box: its whole circle's (simple, a little larger).
             Some((c, _)) => {
                 let rr = len(sub([s.from[0], s.from[1]], c)) + r;
                 (c[0] - rr, c[0] + rr, c[1] - rr, c[1] + rr)
             }
-            None => (lo_x, hi_x, lo_y, hi_y),
+            None => (
+                s.from[0].min(s.to[0]) - r,
+                s.from[0].max(s.to[0]) + r,
+                s.from[1].min(s.to[1]) - r,
+                s.from[1].max(s.to[1]) + r,
+            ),
         };
         let ix = |x: f64| (((x - x0) / h).floor().max(0.0) as usize).min(nx - 1);
         let iy = |y: f64| (((y - y0) / h).floor().max(0.0) as usize).min(ny - 1);
         for j in iy(lo_y)..=iy(hi_y) {
             for i in ix(lo_x)..=ix(hi_x) {
-                let p = [x0 + i as f64 * h, y0 + j as f64 * h];
-                if !cut[j * nx + i] && move_dist(s, p) <= r + 1e-3 {
+                if !cut[j * nx + i] && move_dist(s, g.point(j * nx + i)) <= r + 1e-3 {
                     cut[j * nx + i] = true;
                 }
             }
         }
     }
-    let mut out = Vec::new();
-    for j in 0..ny {
-        for i in 0..nx {
-            let p = [x0 + i as f64 * h, y0 + j as f64 * h];
-            if cut[j * nx + i] {
-                continue;
-            }
-            let (d, inn) = pocket.at(p);
-            if !inn || d < fal + h {
-                continue;
-            }
-            // Reachable: some centre within r − h of p keeps r + fal from the walls.
-            let reach = (0..72).any(|k| {
-                let a = f64::from(k) * 5f64.to_radians();
-                (1..=8).any(|m| {
-                    let q =
-                        [p[0] + (r - h) * f64::from(m) / 8.0 * a.cos(), p[1] + (r - h) * f64::from(m) / 8.0 * a.sin()];
-                    let (dq, iq) = pocket.at(q);
-                    iq && dq >= r + fal + 1e-3
-                })
-            });
-            if reach {
-                out.push(p);
-            }
-        }
-    }
-    out
+    // Where a centre may be, and how far (cells²) each cell is from there.
+    let centre: Vec<bool> = (0..nx * ny).map(|k| g.inn[k] && g.d[k] >= r + fal + 1e-3).collect();
+    let far = distance_transform(&centre, nx, ny);
+    let reach = ((r - h) / h).powi(2);
+    (0..nx * ny).filter(|&k| !cut[k] && g.inn[k] && g.d[k] >= fal + h && far[k] <= reach).map(|k| g.point(k)).collect()
 }
 
 /// No move below the reference plane brings the cutter's centre closer than
@@ -396,4 +487,136 @@ fn the_test_pocket_is_example1() {
     // The closing G3 CR=5 from (20, 35) to (25, 30) about (25, 35).
     let (d, _) = p.at([25.0 - 5.0 / 2f64.sqrt(), 35.0 - 5.0 / 2f64.sqrt()]);
     assert!(d < 1e-9);
+}
+
+/// The moves of `body`'s line `k` (0: its first) in a run of `body`.
+fn moves_of(body: &str, k: u32) -> Vec<Seg> {
+    let (text, first) = program(body);
+    let run = go(&text);
+    moves(&run.actions.iter().filter(|c| c.line == first + k).cloned().collect::<Vec<_>>())
+}
+
+/// The cutting moves at depth `z`.
+fn flat(segs: &[Seg], z: f64) -> Vec<Seg> {
+    segs.iter().filter(|s| s.feed > 0.0 && near(s.from[2], z) && near(s.to[2], z)).copied().collect()
+}
+
+/// Angle swept by an arc move, degrees (positive).
+fn swept(s: &Seg) -> f64 {
+    let (c, cw) = s.arc.unwrap();
+    let (_, sw) = El::sweep([s.from[0], s.from[1]], [s.to[0], s.to[1]], c, cw);
+    sw.abs().to_degrees()
+}
+
+/// Example 1's helical insertion (`_RAD` 4, `_DP1` 3): from RFP + SDIS (Z1) to
+/// −17.5 in whole turns of at most 3 mm — 18.5 / 3 → 7 turns of 2.643 mm — on a
+/// circle of radius 4, then one flat full circle at the depth (lines 6789-6797).
+#[test]
+fn example1_inserts_on_a_helix_in_whole_turns() {
+    let segs = moves_of(&format!("{TRANSFER}CYCLE73({ROUGH})\n"), 3);
+    // The first insertion: the arcs from the first one that descends.
+    let first = segs.iter().position(|s| s.arc.is_some() && s.to[2] < s.from[2]).unwrap();
+    let helix: Vec<&Seg> = segs[first..].iter().take_while(|s| s.arc.is_some()).collect();
+    let (c, _) = helix[0].arc.unwrap();
+    for s in &helix {
+        assert_eq!(s.arc.unwrap().0, c, "one axis");
+        assert!(near(len(sub([s.to[0], s.to[1]], c)), 4.0), "radius 4: {s:?}");
+        assert_eq!(s.feed, 3000.0, "at _FFD");
+    }
+    let down: Vec<&&Seg> = helix.iter().filter(|s| s.to[2] < s.from[2]).collect();
+    assert!(near(down[0].from[2], 1.0), "{:?}", down[0]);
+    let turns: f64 = down.iter().map(|s| swept(s)).sum::<f64>() / 360.0;
+    assert!((turns - 7.0).abs() < 1e-6, "{turns} turns");
+    for s in &down {
+        let pitch = (s.from[2] - s.to[2]) / (swept(s) / 360.0);
+        assert!((pitch - 18.5 / 7.0).abs() < 2e-3, "{pitch} mm a turn");
+    }
+    let flat_turn: f64 =
+        helix.iter().filter(|s| near(s.from[2], -17.5) && near(s.to[2], -17.5)).map(|s| swept(s)).sum();
+    assert!((flat_turn - 360.0).abs() < 1e-6, "one flat circle: {flat_turn}");
+}
+
+/// Example 1's edge finish (VARI 1113, T2 radius 5): the cutter's centre keeps
+/// exactly its radius from the walls, and every wall point is touched (its fillets
+/// are the cutter's radius: nothing out of reach).
+#[test]
+fn example1_edge_finish_touches_every_wall_at_the_radius() {
+    let finish = "1113, \"\", \"BEISPIEL1_MILL3\", \"5\", 10, 0, 1, -17.5, 0, , 2, , , 8000, 1000, 0, , , 4, 2";
+    let segs = moves_of(&format!("{TRANSFER}T2 D1\nCYCLE73({finish})\n"), 4);
+    let pocket = Pocket::example1();
+    no_gouge(&pocket, &segs, 5.0, 0.0);
+    let cuts = flat(&segs, -17.5);
+    let walls = pocket.edge.iter().chain(pocket.islands.iter().flatten());
+    for p in walls.flat_map(|e| e.points()).step_by(10) {
+        let d = cuts.iter().map(|s| move_dist(s, p)).fold(f64::MAX, f64::min);
+        assert!(d <= 5.002, "wall point {p:?} {d} from the nearest cut");
+    }
+}
+
+/// Rest material (VARI 1012): after clearing with T3 (radius 6, VARI 1011), T5 (radius 4)
+/// cuts only what T3 left; together they leave nothing T5 can reach.
+#[test]
+fn rest_material_after_a_larger_cutter_leaves_nothing_reachable() {
+    // Straight insertion: T3's helix of radius 4 does not fit every part (61910).
+    let rough = ROUGH.replacen("1021", "1011", 1).replacen("\"5\"", "\"3\"", 1);
+    let rest = ROUGH.replacen("1021", "1012", 1).replacen("\"5\"", "\"3\"", 1);
+    let body = format!("{TRANSFER}T3 D1\nCYCLE73({rough})\nT5 D1\nCYCLE73({rest})\n");
+    let (text, first) = program(&body);
+    let run = go(&text);
+    let of = |k: u32| moves(&run.actions.iter().filter(|c| c.line == first + k).cloned().collect::<Vec<_>>());
+    let (big, small) = (of(4), of(6));
+    let pocket = Pocket::example1();
+    no_gouge(&pocket, &big, 6.0, 0.5);
+    no_gouge(&pocket, &small, 4.0, 0.5);
+    // What T3 left at the depth: T5's cells reachable, not swept by T3.
+    let before = missed(&pocket, &flat(&big, -17.5), 4.0, 0.5);
+    assert!(!before.is_empty(), "T3 leaves material in the corners T5 reaches");
+    let both: Vec<Seg> = flat(&big, -17.5).into_iter().chain(flat(&small, -17.5)).collect();
+    let left = missed(&pocket, &both, 4.0, 0.5);
+    assert!(left.is_empty(), "{} cells left, first {:?}", left.len(), &left[..left.len().min(5)]);
+    // The rest is much less cutting than a clearing.
+    let length = |v: &[Seg]| {
+        v.iter().filter(|s| s.feed > 0.0).map(|s| len(sub([s.to[0], s.to[1]], [s.from[0], s.from[1]]))).sum::<f64>()
+    };
+    assert!(length(&small) < length(&big) / 2.0, "{} vs {}", length(&small), length(&big));
+}
+
+/// Floor finishing (VARI 1114, FALD 0.2): G0 down to DP + FALD + SDIS, at _FFD to
+/// DP (line 6632), the floor cleared once keeping _FAL on the walls.
+#[test]
+fn floor_finish_clears_the_floor_once() {
+    let floor = "1014, \"\", \"BEISPIEL1_MILL4\", \"5\", 10, 0, 1, -17.5, 0, , 2, 0.5, 0.2, 9000, 3000, 0, , , 4, 3";
+    let segs = moves_of(&format!("{TRANSFER}CYCLE73({floor})\n"), 3);
+    let pocket = Pocket::example1();
+    no_gouge(&pocket, &segs, 4.0, 0.5);
+    let cut_depths: Vec<f64> =
+        segs.iter().filter(|s| s.feed > 0.0 && near(s.from[2], s.to[2])).map(|s| um(s.to[2])).collect();
+    assert!(cut_depths.iter().all(|&z| z == -17.5), "only the floor: {cut_depths:?}");
+    let plunge = segs.iter().position(|s| s.to[2] < s.from[2] && s.feed > 0.0).unwrap();
+    assert!(near(segs[plunge].from[2], -16.3), "G0 to DP + FALD + SDIS: {:?}", segs[plunge]);
+    assert!(segs[plunge - 1].feed == 0.0 && near(segs[plunge - 1].to[2], -16.3));
+    assert!(missed(&pocket, &flat(&segs, -17.5), 4.0, 0.5).is_empty());
+}
+
+/// Pre-drilling (VARI 1015) under MCALL CYCLE81: the drill goes to each insertion
+/// point the clearing with straight insertion (VARI 1011) uses, and drills there.
+#[test]
+fn predrilling_drills_where_the_clearing_inserts() {
+    let drill = ROUGH.replacen("1021", "1015", 1).replacen("\"\"", "\"P_DRILL\"", 1);
+    let body = format!("{TRANSFER}MCALL CYCLE81(10, 0, 1, -3)\nCYCLE73({drill})\nMCALL\n");
+    let (text, first) = program(&body);
+    let run = go(&text);
+    // The drilling cycle's feed moves to Z−3, each from the hole's position.
+    let segs = moves(&run.actions);
+    let holes: Vec<[f64; 2]> =
+        segs.iter().filter(|s| s.feed > 0.0 && near(s.to[2], -3.0)).map(|s| [um(s.to[0]), um(s.to[1])]).collect();
+    let rough = moves_of(&format!("{TRANSFER}CYCLE73({})\n", ROUGH.replacen("1021", "1011", 1)), 3);
+    let inserts: Vec<[f64; 2]> = rough
+        .iter()
+        .filter(|s| s.feed > 0.0 && s.to[2] < s.from[2] && near(s.to[2], -17.5))
+        .map(|s| [um(s.to[0]), um(s.to[1])])
+        .collect();
+    assert!(!holes.is_empty());
+    assert_eq!(holes, inserts);
+    let _ = first;
 }

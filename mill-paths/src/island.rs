@@ -639,13 +639,17 @@ impl<'a> Geometry<'a> {
             let i = match pos {
                 None => 0,
                 Some(p) => (0..rings.len())
-                    .min_by(|&a, &b| poly::nearest_on_ring(&rings[a], p).2.total_cmp(&poly::nearest_on_ring(&rings[b], p).2))
+                    .min_by(|&a, &b| {
+                        poly::nearest_on_ring(&rings[a], p).2.total_cmp(&poly::nearest_on_ring(&rings[b], p).2)
+                    })
                     .unwrap_or(0),
             };
             let ring = self.oriented(rings.swap_remove(i));
             // The approach at the middle of the longest side.
             let n = ring.len();
-            let j = (0..n).max_by(|&a, &b| dist(ring[a], ring[(a + 1) % n]).total_cmp(&dist(ring[b], ring[(b + 1) % n]))).unwrap_or(0);
+            let j = (0..n)
+                .max_by(|&a, &b| dist(ring[a], ring[(a + 1) % n]).total_cmp(&dist(ring[b], ring[(b + 1) % n])))
+                .unwrap_or(0);
             let (a, b) = (ring[j], ring[(j + 1) % n]);
             let p = [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0];
             let t = v2::unit((b[0] - a[0], b[1] - a[1]));
@@ -750,7 +754,8 @@ impl<'a> Geometry<'a> {
             let from = self.approach(&levels, k);
             for l in laps {
                 e.insert(Plunge::Vertical, l.q_in, from, z);
-                let arc = |to: Pt| Move::Arc { to: p3(to, z), centre: (nm(l.m[0]), nm(l.m[1])), cw: self.spec.cw, feed: f };
+                let arc =
+                    |to: Pt| Move::Arc { to: p3(to, z), centre: (nm(l.m[0]), nm(l.m[1])), cw: self.spec.cw, feed: f };
                 e.push(arc(l.pts[0]));
                 for &p in &l.pts[1..] {
                     e.push(Move::Line { to: p3(p, z), feed: f });
@@ -783,12 +788,7 @@ fn ring_centre(r: &Ring) -> Pt {
 }
 
 fn nearest_boundary(s: &Shapes, p: Pt) -> Pt {
-    s.iter()
-        .flatten()
-        .map(|c| poly::nearest_on_ring(c, p))
-        .min_by(|a, b| a.2.total_cmp(&b.2))
-        .map(|x| x.1)
-        .unwrap_or(p)
+    s.iter().flatten().map(|c| poly::nearest_on_ring(c, p)).min_by(|a, b| a.2.total_cmp(&b.2)).map(|x| x.1).unwrap_or(p)
 }
 
 /// The deepest node whose shape holds `c` (or is nearest it).

@@ -72,9 +72,10 @@ fn unit_mm(a: (f64, f64)) -> (f64, f64) {
 fn example1() -> (Vec<Elem>, Vec<Vec<Elem>>) {
     // X25 Y30 → X118 RND=5 → Y96 RND=5 → X40 RND=5 → X20 Y75 RND=5 → Y35,
     // then G3 X25 Y30 CR=5 (centre X25 Y35, tangent to both neighbours).
-    let mut edge = filleted(&[(25.0, 30.0), (118.0, 30.0), (118.0, 96.0), (40.0, 96.0), (20.0, 75.0), (20.0, 35.0)], &[
-        0.0, 5.0, 5.0, 5.0, 5.0, 0.0,
-    ]);
+    let mut edge = filleted(
+        &[(25.0, 30.0), (118.0, 30.0), (118.0, 96.0), (40.0, 96.0), (20.0, 75.0), (20.0, 35.0)],
+        &[0.0, 5.0, 5.0, 5.0, 5.0, 0.0],
+    );
     // The closing side (20,35)→(25,30) is the arc, not a line.
     let last = edge.pop().unwrap();
     assert_eq!(last.from, pt((20.0, 35.0)));
@@ -440,11 +441,14 @@ fn insertions_follow_the_levels_and_the_helix_ends_flat() {
 
 /// Points along the walls (every 0.5 mm of each element).
 fn wall_samples(k: &[Elem]) -> Vec<(f64, f64)> {
-    fine(k).windows(2).flat_map(|w| {
-        let (a, b) = (w[0], w[1]);
-        let n = (libm::ceil(libm::hypot(b.0 - a.0, b.1 - a.1) / 0.5) as usize).max(1);
-        (0..n).map(move |i| (a.0 + (b.0 - a.0) * i as f64 / n as f64, a.1 + (b.1 - a.1) * i as f64 / n as f64))
-    }).collect()
+    fine(k)
+        .windows(2)
+        .flat_map(|w| {
+            let (a, b) = (w[0], w[1]);
+            let n = (libm::ceil(libm::hypot(b.0 - a.0, b.1 - a.1) / 0.5) as usize).max(1);
+            (0..n).map(move |i| (a.0 + (b.0 - a.0) * i as f64 / n as f64, a.1 + (b.1 - a.1) * i as f64 / n as f64))
+        })
+        .collect()
 }
 
 #[test]
