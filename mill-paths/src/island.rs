@@ -17,6 +17,8 @@ extern crate alloc;
 mod poly;
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+extern crate std;
 
 use crate::infeed::{Levels, parts};
 use crate::v2;
@@ -156,7 +158,7 @@ const TOL: f64 = 1000.0;
 /// chords), nm.
 const SLIVER: f64 = 3000.0;
 /// Most ring levels of one clearing (alarm 61904 beyond).
-const MAX_LEVELS: i64 = 5000;
+const MAX_LEVELS: i64 = 2000;
 
 /// The polygon of one closed contour, counterclockwise. `island`: its arcs are
 /// approximated from outside the island (the chords never enter the pocket
@@ -378,7 +380,12 @@ impl<'a> Geometry<'a> {
             }
             _ => (None, None),
         };
-        // The ring levels: d_k = r + fal + k·s until nothing is left.
+        // The ring levels: d_k = r + fal + k·s until nothing is left (at most
+        // half the region's smaller extent).
+        let bb = bounds(&self.region);
+        if ((bb[2] - bb[0]).min(bb[3] - bb[1]) / 2.0 - d0) / self.step > MAX_LEVELS as f64 {
+            return Err(alarm(61904));
+        }
         let mut nodes: Vec<Node> = Vec::new();
         let mut prev: Vec<usize> = Vec::new();
         let mut k = 0i64;
@@ -781,10 +788,39 @@ fn closed(c: &Ring) -> Ring {
     v
 }
 
+/// The bounding box of `s`: min abscissa, ordinate, max abscissa, ordinate.
+fn bounds(s: &Shapes) -> [f64; 4] {
+    let mut b = [f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY];
+    for p in s.iter().flatten().flatten() {
+        b = [b[0].min(p[0]), b[1].min(p[1]), b[2].max(p[0]), b[3].max(p[1])];
+    }
+    b
+}
+
 fn ring_centre(r: &Ring) -> Pt {
     let n = r.len().max(1) as f64;
     let s = r.iter().fold([0.0, 0.0], |a, p| [a[0] + p[0], a[1] + p[1]]);
     [s[0] / n, s[1] / n]
+}
+
+/// The closest points of rings `a` and `b`: (segment of a, point, segment of
+/// b, point, distance).
+fn closest_pair(a: &Ring, b: &Ring) -> (usize, Pt, usize, Pt, f64) {
+    let mut best = (0, a[0], 0, b[0], f64::INFINITY);
+    let (n, m) = (a.len(), b.len());
+    for (i, &p) in a.iter().enumerate() {
+        let (j, q, d) = poly::nearest_on_ring(b, p);
+        if d < best.4 {
+            best = (i % n, p, j, q, d);
+        }
+    }
+    for (j, &q) in b.iter().enumerate() {
+        let (i, p, d) = poly::nearest_on_ring(a, q);
+        if d < best.4 {
+            best = (i, p, j % m, q, d);
+        }
+    }
+    best
 }
 
 fn nearest_boundary(s: &Shapes, p: Pt) -> Pt {
@@ -929,8 +965,9 @@ impl<'g, 'a> Emit<'g, 'a> {
                 for t in 1..=n {
                     self.push(Move::Arc { to: p3(start, l.level(t)), centre, cw: s.cw, feed: f });
                 }
-                // One flat turn.
+                // One flat turn, and to the centre (inside the helix's circle).
                 self.push(Move::Arc { to: p3(start, z), centre, cw: s.cw, feed: f });
+                self.push(Move::Line { to: p3(c, z), feed: s.feeds[1] });
             }
             Plunge::Swing { tan } => {
                 let (u, len) = swing.unwrap_or(([1.0, 0.0], 0.0));
@@ -959,36 +996,105 @@ impl<'g, 'a> Emit<'g, 'a> {
         if poly::seg_inside(&self.g.a0, p, q, TOL) {
             self.push(Move::Line { to: p3(q, z), feed: self.g.spec.feeds[1] });
         } else {
-            self.insert(Plunge::Vertical, q, from, z);
+            #[cfg(test)]
+            tests::REINSERTED.with(|c| c.set(c.get() + 1));
+            // In again as at a start point when the insertion fits here.
+            let how = self.g.plunge();
+            let how = if self.g.check_plunge(q, false).is_ok() { how } else { Plunge::Vertical };
+            self.insert(how, q, from, z);
         }
     }
 
-    /// Node `n`'s rings (nearest first), then its visits.
+    /// Node `n`'s rings, each with the excursions to its visits where they are
+    /// nearest: the first ring the one nearest the tool, each next one the
+    /// remaining ring nearest the ring just cut, reached along that ring.
     fn node(&mut self, n: &Node, z: i64, from: i64) {
-        let f = self.g.spec.feeds[1];
-        let mut rings: Vec<Ring> = n.shape.iter().map(|c| self.g.oriented(c.clone())).collect();
-        while !rings.is_empty() {
-            let p = self.at();
-            let (i, (j, q, _)) = rings
-                .iter()
-                .map(|c| poly::nearest_on_ring(c, p))
-                .enumerate()
-                .min_by(|a, b| a.1.2.total_cmp(&b.1.2))
-                .unwrap_or((0, (0, p, 0.0)));
-            let ring = rings.swap_remove(i);
-            self.link(q, z, from);
-            let m = ring.len();
-            for k in 1..=m {
-                self.push(Move::Line { to: p3(ring[(j + k) % m], z), feed: f });
+        let rings: Vec<Ring> = n.shape.iter().map(|c| self.g.oriented(c.clone())).collect();
+        // Each visit on its ring: (ring, segment, parameter, foot, visit).
+        let mut exc: Vec<(usize, usize, f64, Pt, Pt)> = Vec::new();
+        for &v in &n.visits {
+            let near = rings.iter().map(|c| poly::nearest_on_ring(c, v)).enumerate().min_by(|a, b| a.1.2.total_cmp(&b.1.2));
+            if let Some((i, (j, q, _))) = near {
+                let m = rings[i].len();
+                let t = nearest_on_seg(rings[i][j], rings[i][(j + 1) % m], q).1;
+                exc.push((i, j, t, q, v));
             }
-            self.push(Move::Line { to: p3(q, z), feed: f });
         }
-        let mut visits = n.visits.clone();
-        while !visits.is_empty() {
-            let p = self.at();
-            let i = (0..visits.len()).min_by(|&a, &b| dist(visits[a], p).total_cmp(&dist(visits[b], p))).unwrap_or(0);
-            let v = visits.swap_remove(i);
-            self.link(v, z, from);
+        let mut left: Vec<usize> = (0..rings.len()).collect();
+        // The ring the tool stands on: (ring, segment, point).
+        let mut on: Option<(usize, usize, Pt)> = None;
+        while !left.is_empty() {
+            let (k, j, q) = match on {
+                None => {
+                    // Nearest the tool (the disc argument: the link stays inside).
+                    let p = self.at();
+                    let (k, (j, q, _)) = left
+                        .iter()
+                        .map(|&i| (i, poly::nearest_on_ring(&rings[i], p)))
+                        .min_by(|a, b| a.1.2.total_cmp(&b.1.2))
+                        .unwrap_or((left[0], (0, p, 0.0)));
+                    (k, j, q)
+                }
+                Some((c, cj, cq)) => {
+                    let (k, (sa, pa, sb, pb, _)) = left
+                        .iter()
+                        .map(|&i| (i, closest_pair(&rings[c], &rings[i])))
+                        .min_by(|a, b| a.1.4.total_cmp(&b.1.4))
+                        .unwrap_or((left[0], (cj, cq, 0, rings[left[0]][0], 0.0)));
+                    self.walk(&rings[c], (cj, cq), (sa, pa), z);
+                    (k, sb, pb)
+                }
+            };
+            left.retain(|&i| i != k);
+            self.link(q, z, from);
+            self.lap(&rings[k], j, q, exc.iter().filter(|e| e.0 == k).map(|e| (e.1, e.2, e.3, e.4)).collect(), z);
+            on = Some((k, j, q));
+        }
+    }
+
+    /// Along `ring` (already cut) from `a` to `b` (segment, point), forwards.
+    fn walk(&mut self, ring: &Ring, a: (usize, Pt), b: (usize, Pt), z: i64) {
+        let f = self.g.spec.feeds[1];
+        let m = ring.len();
+        let ta = nearest_on_seg(ring[a.0], ring[(a.0 + 1) % m], a.1).1;
+        let tb = nearest_on_seg(ring[b.0], ring[(b.0 + 1) % m], b.1).1;
+        let mut steps = (b.0 + m - a.0) % m;
+        if steps == 0 && tb < ta {
+            steps = m;
+        }
+        for k in 1..=steps {
+            self.push(Move::Line { to: p3(ring[(a.0 + k) % m], z), feed: f });
+        }
+        self.push(Move::Line { to: p3(b.1, z), feed: f });
+    }
+
+    /// Once around `ring` from `q` on segment `j` back to `q`, with the
+    /// excursions `exc` (segment, parameter, foot, visit): out to the visit and
+    /// back to the foot. A visit lies in the node's shape and its foot is the
+    /// nearest point of the shape's boundary: the disc about the visit through
+    /// the foot holds no boundary, so the excursion stays in the shape.
+    fn lap(&mut self, ring: &Ring, j: usize, q: Pt, exc: Vec<(usize, f64, Pt, Pt)>, z: i64) {
+        let f = self.g.spec.feeds[1];
+        let m = ring.len();
+        let tq = nearest_on_seg(ring[j], ring[(j + 1) % m], q).1;
+        // Positions along the lap: vertex j + k at k, the end q at m + tq.
+        let at = |s: usize, t: f64| {
+            let p = ((s + m - j) % m) as f64 + t;
+            if s == j && t < tq { p + m as f64 } else { p }
+        };
+        let mut ex: Vec<(f64, Pt, Pt)> = exc.into_iter().map(|(s, t, foot, v)| (at(s, t), foot, v)).collect();
+        ex.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let mut e = 0;
+        for k in 1..=m + 1 {
+            let (pos, to) = if k <= m { (k as f64, ring[(j + k) % m]) } else { (m as f64 + tq, q) };
+            while e < ex.len() && ex[e].0 <= pos {
+                let (_, foot, v) = ex[e];
+                self.push(Move::Line { to: p3(foot, z), feed: f });
+                self.push(Move::Line { to: p3(v, z), feed: f });
+                self.push(Move::Line { to: p3(foot, z), feed: f });
+                e += 1;
+            }
+            self.push(Move::Line { to: p3(to, z), feed: f });
         }
     }
 }

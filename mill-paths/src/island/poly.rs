@@ -126,12 +126,6 @@ pub fn area(c: &[Pt]) -> f64 {
     a / 2.0
 }
 
-/// Area of shapes (holes subtracted).
-#[cfg(test)]
-pub fn shapes_area(s: &Shapes) -> f64 {
-    s.iter().flatten().map(|c| area(c)).sum()
-}
-
 /// Whether `p` is inside the contours of `s` (nonzero winding over all of them).
 pub fn inside(s: &[Shape], p: Pt) -> bool {
     s.iter().any(|sh| inside_shape(sh, p))

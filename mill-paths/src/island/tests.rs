@@ -10,6 +10,11 @@ use std::vec::Vec;
 
 const MM: f64 = 1e6;
 
+std::thread_local! {
+    /// Links that left the tool-centre region and went up and in again instead.
+    pub(super) static REINSERTED: core::cell::Cell<usize> = const { core::cell::Cell::new(0) };
+}
+
 fn mm(v: f64) -> i64 {
     libm::round(v * MM) as i64
 }
@@ -293,18 +298,12 @@ fn reachable(w: &Walls, p: (f64, f64), r: f64, fal: f64) -> bool {
     false
 }
 
-/// (a) every reachable cell at least fal + one cell inside the walls is cut
-/// at the last level; (b) no tool-centre point of a cutting move at any level
-/// comes closer to a wall than r + fal (less 2 µm), nor does any rapid move at
-/// a level below the top. Returns the uncut count (0) and the moves.
-fn check_clearing(s: &IslandSpec, edge: &[Elem], islands: &[Vec<Elem>]) -> Vec<Move> {
-    let refs: Vec<&[Elem]> = islands.iter().map(|v| v.as_slice()).collect();
-    let moves = plan(s, edge, &refs).unwrap();
-    let walls = Walls::new(edge, islands);
+/// (b) no tool-centre point of a cutting move at any level of `moves` comes
+/// closer to a wall than r + fal (less 2 µm).
+fn check_gouge(s: &IslandSpec, walls: &Walls, moves: &[Move]) {
     let (r, fal) = (s.r as f64 / MM, s.fal as f64 / MM);
-    // (b) No gouge, every level, every move in the material (below the top).
     for k in 1..=s.levels.count {
-        for (a, b) in segments(&moves, s.levels.level(k)) {
+        for (a, b) in segments(moves, s.levels.level(k)) {
             let n = (libm::ceil(libm::hypot(b.0 - a.0, b.1 - a.1) / 0.05) as usize).max(1);
             for i in 0..=n {
                 let t = i as f64 / n as f64;
@@ -314,8 +313,12 @@ fn check_clearing(s: &IslandSpec, edge: &[Elem], islands: &[Vec<Elem>]) -> Vec<M
             }
         }
     }
-    // (a) Coverage at the last level.
-    let segs = segments(&moves, s.levels.to);
+}
+
+/// (a) every cell at least fal + one cell inside the walls that a cutter of
+/// the last spec's radius can reach is cut at the last level by one of the
+/// `plans` (each with its own cutter).
+fn check_cover(walls: &Walls, plans: &[(&IslandSpec, &[Move])]) {
     let e = &walls.edge;
     let b = [
         e.iter().map(|p| p.0).fold(f64::INFINITY, f64::min),
@@ -323,7 +326,18 @@ fn check_clearing(s: &IslandSpec, edge: &[Elem], islands: &[Vec<Elem>]) -> Vec<M
         e.iter().map(|p| p.0).fold(f64::NEG_INFINITY, f64::max),
         e.iter().map(|p| p.1).fold(f64::NEG_INFINITY, f64::max),
     ];
-    let ras = Raster::new(b, &segs, r);
+    let mut ras: Option<Raster> = None;
+    for (s, moves) in plans {
+        let segs = segments(moves, s.levels.to);
+        let one = Raster::new(b, &segs, s.r as f64 / MM);
+        match &mut ras {
+            None => ras = Some(one),
+            Some(r) => r.cut.iter_mut().zip(one.cut).for_each(|(a, b)| *a |= b),
+        }
+    }
+    let ras = ras.unwrap();
+    let last = plans.last().unwrap().0;
+    let (r, fal) = (last.r as f64 / MM, last.fal as f64 / MM);
     let mut missed = Vec::new();
     for j in 0..ras.h {
         for i in 0..ras.w {
@@ -331,12 +345,23 @@ fn check_clearing(s: &IslandSpec, edge: &[Elem], islands: &[Vec<Elem>]) -> Vec<M
                 continue;
             }
             let p = ras.centre(i, j);
-            if walls.dist(p) >= fal + CELL && reachable(&walls, p, r, fal) {
+            if walls.dist(p) >= fal + CELL && reachable(walls, p, r, fal) {
                 missed.push(p);
             }
         }
     }
     assert!(missed.is_empty(), "{} cells left: {:?}", missed.len(), &missed[..missed.len().min(20)]);
+}
+
+/// Roughing `s`: no gouge, nothing reachable left.
+fn check_clearing(s: &IslandSpec, edge: &[Elem], islands: &[Vec<Elem>]) -> Vec<Move> {
+    let refs: Vec<&[Elem]> = islands.iter().map(|v| v.as_slice()).collect();
+    REINSERTED.with(|c| c.set(0));
+    let moves = plan(s, edge, &refs).unwrap();
+    assert_eq!(REINSERTED.with(|c| c.get()), 0, "every link straight");
+    let walls = Walls::new(edge, islands);
+    check_gouge(s, &walls, &moves);
+    check_cover(&walls, &[(s, &moves)]);
     moves
 }
 
@@ -476,3 +501,225 @@ fn outer_rings_keep_r_plus_fal_from_every_wall() {
         }
     }
 }
+
+fn code(r: Result<Vec<Move>, CycleAlarm>) -> u16 {
+    match r {
+        Err(CycleAlarm::IslandPocket { code }) => code,
+        Err(e) => panic!("{e:?}"),
+        Ok(m) => panic!("no alarm: {} moves", m.len()),
+    }
+}
+
+#[test]
+fn every_alarm_has_its_case() {
+    let (edge, islands) = example1();
+    let s = spec(4.0, 0.5, 5.0, 0.0);
+    let is = refs(&islands);
+    // 61900: no edge contour.
+    assert_eq!(code(plan(&s, &[], &is)), 61900);
+    // 61901: not closed (the last element ends 2 mm off the start).
+    let mut open = edge.clone();
+    open.last_mut().unwrap().to.0 += mm(2.0);
+    assert_eq!(code(plan(&s, &open, &is)), 61901);
+    // 61983: the edge crosses itself (a bow tie), or has no area.
+    let bow = vec![
+        line((0.0, 0.0), (50.0, 50.0)),
+        line((50.0, 50.0), (50.0, 0.0)),
+        line((50.0, 0.0), (0.0, 50.0)),
+        line((0.0, 50.0), (0.0, 0.0)),
+    ];
+    assert_eq!(code(plan(&s, &bow, &[])), 61983);
+    let flat = vec![line((0.0, 0.0), (50.0, 0.0)), line((50.0, 0.0), (0.0, 0.0))];
+    assert_eq!(code(plan(&s, &flat, &[])), 61983);
+    // 61980: an island across the edge, outside it, crossing itself, empty.
+    let out = rect(110.0, 40.0, 130.0, 50.0);
+    assert_eq!(code(plan(&s, &edge, &[&out])), 61980);
+    let far = rect(200.0, 40.0, 230.0, 50.0);
+    assert_eq!(code(plan(&s, &edge, &[&far])), 61980);
+    let bow_i: Vec<Elem> = bow.iter().map(|e| Elem { from: (e.from.0 / 10 + mm(60.0), e.from.1 / 10 + mm(40.0)), to: (e.to.0 / 10 + mm(60.0), e.to.1 / 10 + mm(40.0)), arc: None }).collect();
+    assert_eq!(code(plan(&s, &edge, &[&bow_i])), 61980);
+    assert_eq!(code(plan(&s, &edge, &[&[]])), 61980);
+    // 61904: beyond the integer grid (±5 m).
+    let huge = rect(0.0, 0.0, 9.0e3, 9.0e3);
+    assert_eq!(code(plan(&s, &huge, &[])), 61904);
+    // 61905: no cutter radius.
+    assert_eq!(code(plan(&IslandSpec { r: 0, ..s }, &edge, &is)), 61905);
+    // 61912: nothing left for the centre (a 8 mm slot, r + fal = 4.5).
+    let slot = rect(0.0, 0.0, 50.0, 8.0);
+    assert_eq!(code(plan(&s, &slot, &[])), 61912);
+    // 61908: a manual start outside the tool-centre region (in an island; by a wall).
+    assert_eq!(code(plan(&IslandSpec { start: Some(pt((49.0, 50.0))), ..s }, &edge, &is)), 61908);
+    assert_eq!(code(plan(&IslandSpec { start: Some(pt((21.0, 50.0))), ..s }, &edge, &is)), 61908);
+    // 61909: a helix of diameter below the cutter radius.
+    let helix = |rad: f64| Plunge::Helix { rad: mm(rad), pitch: mm(1.0) };
+    assert_eq!(code(plan(&IslandSpec { plunge: helix(1.9), ..s }, &edge, &is)), 61909);
+    // 61910: the helix does not fit at an automatic start point (its centre is
+    // where the pocket is widest, 9 mm of room at most here).
+    let narrow = rect(0.0, 0.0, 100.0, 20.0);
+    assert!(plan(&IslandSpec { plunge: helix(5.0), ..s }, &narrow, &[]).is_ok());
+    assert_eq!(code(plan(&IslandSpec { plunge: helix(6.0), ..s }, &narrow, &[])), 61910);
+    // 61914: … at the manual start point.
+    let near_wall = IslandSpec { plunge: helix(3.0), start: Some(pt((50.0, 6.0))), ..s };
+    assert_eq!(code(plan(&near_wall, &narrow, &[])), 61914);
+    assert!(plan(&IslandSpec { start: Some(pt((50.0, 10.0))), ..near_wall }, &narrow, &[]).is_ok());
+    // 61915: no room for the edge finish's approach arc (the centre region is a
+    // 0.2 mm wide strip).
+    let thin = rect(0.0, 0.0, 50.0, 8.2);
+    assert_eq!(code(plan(&IslandSpec { job: Job::Edge, fal: 0, ..s }, &thin, &[])), 61915);
+    // 61916: too short for the oscillation (the centre region is 1 mm long).
+    let small = rect(0.0, 0.0, 10.0, 10.0);
+    let swing = IslandSpec { plunge: Plunge::Swing { tan: 0.1 }, ..s };
+    assert_eq!(code(plan(&swing, &small, &[])), 61916);
+    assert!(plan(&swing, &narrow, &[]).is_ok());
+    // 61918: the rest cutter not smaller than the previous one.
+    assert_eq!(code(plan(&IslandSpec { job: Job::Rest { prev_r: mm(4.0) }, ..s }, &edge, &is)), 61918);
+    // 61913: no rest material (a rectangle without islands, corners sharp: the
+    // rest is in the corners; with r = 4 after 4.1 almost nothing: a circle has none).
+    let circle = vec![arc((0.0, 0.0), (0.0, 0.0), (20.0, 0.0), false)];
+    assert_eq!(code(plan(&IslandSpec { job: Job::Rest { prev_r: mm(6.0) }, ..s }, &circle, &[])), 61913);
+}
+
+#[test]
+fn rest_clears_what_the_larger_cutter_left() {
+    let (edge, islands) = example1();
+    let big = spec(5.0, 0.5, 5.0, 0.0);
+    let rough = plan(&big, &edge, &refs(&islands)).unwrap();
+    let small = IslandSpec { job: Job::Rest { prev_r: mm(5.0) }, ..spec(2.0, 0.5, 5.0, 0.0) };
+    let rest = plan(&small, &edge, &refs(&islands)).unwrap();
+    let walls = Walls::new(&edge, &islands);
+    check_gouge(&small, &walls, &rest);
+    check_cover(&walls, &[(&big, &rough), (&small, &rest)]);
+    // Only the rest: far less path than roughing it all with the small cutter.
+    let all = plan(&IslandSpec { job: Job::Rough, ..small }, &edge, &refs(&islands)).unwrap();
+    let length = |m: &[Move]| segments(m, small.levels.to).iter().map(|(a, b)| libm::hypot(b.0 - a.0, b.1 - a.1)).sum::<f64>();
+    assert!(length(&rest) < length(&all) / 2.0, "{} vs {}", length(&rest), length(&all));
+}
+
+#[test]
+fn floor_finish_is_one_level_cleared_like_roughing() {
+    let (edge, islands) = example1();
+    let s = IslandSpec { job: Job::Floor, plunge: Plunge::Helix { rad: mm(3.0), pitch: mm(1.0) }, ..spec(4.0, 0.5, 17.5, 6.0) };
+    let moves = plan(&s, &edge, &refs(&islands)).unwrap();
+    let floor = IslandSpec { levels: Levels { count: 1, ..s.levels }, ..s };
+    let walls = Walls::new(&edge, &islands);
+    check_gouge(&floor, &walls, &moves);
+    check_cover(&walls, &[(&floor, &moves)]);
+    // Straight down (G1), only to the floor.
+    assert!(!moves.iter().any(|m| matches!(m, Move::Arc { to, .. } if to.d != s.levels.to)));
+    let d = descents(&moves);
+    assert!(d.iter().all(|(_, m)| matches!(m, Move::Line { to, .. } if to.d == s.levels.to)));
+}
+
+#[test]
+fn swing_ramps_at_most_at_the_angle_and_ends_flat() {
+    let (edge, islands) = example1();
+    let tan = 0.1;
+    let s = IslandSpec { plunge: Plunge::Swing { tan }, ..spec(4.0, 0.5, 8.0, 4.0) };
+    let moves = check_clearing(&s, &edge, &islands);
+    let mut pos = P3::default();
+    let mut ramps = 0;
+    for m in &moves {
+        let to = crate::end_of(m).unwrap();
+        if let Move::Line { .. } = m
+            && to.d != pos.d
+        {
+            let run = libm::hypot((to.a - pos.a) as f64, (to.o - pos.o) as f64);
+            assert!(((to.d - pos.d).abs() as f64) <= run * tan + 2.0, "{pos:?} → {to:?}");
+            ramps += 1;
+        }
+        pos = to;
+    }
+    assert!(ramps > 0);
+}
+
+#[test]
+fn a_manual_start_is_the_first_insertion_of_its_part() {
+    let edge = rect(0.0, 0.0, 100.0, 50.0);
+    let islands = vec![rect(45.0, 3.0, 55.0, 24.0), rect(45.0, 26.0, 55.0, 47.0)];
+    let s = IslandSpec { start: Some(pt((80.0, 30.0))), ..spec(4.0, 0.5, 5.0, 0.0) };
+    let pts = start_points(&s, &edge, &refs(&islands)).unwrap();
+    assert_eq!(pts[0], pt((80.0, 30.0)));
+    assert_eq!(pts.len(), 2);
+    let moves = check_clearing(&s, &edge, &islands);
+    assert!(matches!(moves[0], Move::Rapid(p) if (p.a, p.o) == pt((80.0, 30.0))));
+}
+
+#[test]
+fn g2_cuts_the_edge_clockwise_and_islands_the_other_way() {
+    let edge = rect(0.0, 0.0, 60.0, 40.0);
+    let islands = vec![rect(25.0, 15.0, 35.0, 25.0)];
+    for cw in [false, true] {
+        let s = IslandSpec { cw, ..spec(4.0, 0.5, 5.0, 0.0) };
+        let moves = check_clearing(&s, &edge, &islands);
+        // The signed area swept about the pocket's centre by the cutting moves
+        // of the outermost ring (the last ring before the lift), and about the
+        // island by the ring nearest it.
+        let segs = segments(&moves, s.levels.to);
+        let turn = |c: (f64, f64), near: &dyn Fn((f64, f64)) -> bool| {
+            segs.iter().filter(|(a, b)| near(*a) && near(*b)).map(|(a, b)| (a.0 - c.0) * (b.1 - c.1) - (a.1 - c.1) * (b.0 - c.0)).sum::<f64>()
+        };
+        let walls = Walls::new(&edge, &islands);
+        let w = |p: (f64, f64)| walls.dist(p);
+        let outer = turn((30.0, 20.0), &|p| (w(p) - 4.5).abs() < 0.01 && (p.0 < 20.0 || p.0 > 40.0 || p.1 < 10.0 || p.1 > 30.0));
+        let inner = turn((30.0, 20.0), &|p| (w(p) - 4.5).abs() < 0.01 && p.0 > 20.0 && p.0 < 40.0 && p.1 > 10.0 && p.1 < 30.0);
+        assert_eq!(outer < 0.0, cw, "edge {outer}");
+        assert_eq!(inner > 0.0, cw, "island {inner}");
+    }
+}
+
+#[test]
+fn odd_inputs_raise_alarms_or_plan_but_never_panic() {
+    let (edge, islands) = example1();
+    let base = spec(4.0, 0.5, 3.0, 0.0);
+    let zero = line((10.0, 10.0), (10.0, 10.0));
+    let mut with_zero = rect(0.0, 0.0, 40.0, 30.0);
+    with_zero.insert(2, Elem { from: with_zero[1].to, to: with_zero[1].to, arc: None });
+    let overlapping = vec![rect(10.0, 10.0, 20.0, 20.0), rect(15.0, 15.0, 25.0, 22.0)];
+    let nested = vec![rect(10.0, 10.0, 30.0, 25.0), rect(12.0, 12.0, 14.0, 14.0)];
+    let touching = vec![rect(0.0, 10.0, 10.0, 20.0)];
+    let cases: Vec<(Vec<Elem>, Vec<Vec<Elem>>)> = vec![
+        (vec![], vec![]),
+        (vec![zero], vec![]),
+        (with_zero.clone(), vec![]),
+        (rect(0.0, 0.0, 40.0, 30.0), overlapping),
+        (rect(0.0, 0.0, 40.0, 30.0), nested),
+        (rect(0.0, 0.0, 40.0, 30.0), touching),
+        (rect(0.0, 0.0, 4.0e6, 4.0e6), vec![]),
+        (rect(-1.0e9, -1.0e9, 1.0e9, 1.0e9), vec![]),
+        (rect(0.0, 0.0, 1e-6, 1e-6), vec![]),
+        (edge.clone(), islands.clone()),
+        (edge.clone(), vec![edge.clone()]),
+        (vec![arc((0.0, 0.0), (0.0, 0.0), (5.0, 0.0), true)], vec![]),
+        (vec![arc((0.0, 0.0), (10.0, 0.0), (5.0, 0.0), true), arc((10.0, 0.0), (0.0, 0.0), (5.0, 3.0), true)], vec![]),
+    ];
+    let specs = [
+        base,
+        IslandSpec { r: 1, ..base },
+        IslandSpec { step: 1, r: mm(0.5), ..base },
+        IslandSpec { step: 0, ..base },
+        IslandSpec { r: i64::MAX / 4, ..base },
+        IslandSpec { fal: -5, ..base },
+        IslandSpec { plunge: Plunge::Helix { rad: mm(3.0), pitch: 0 }, ..base },
+        IslandSpec { plunge: Plunge::Swing { tan: 0.0 }, ..base },
+        IslandSpec { job: Job::Rest { prev_r: mm(8.0) }, ..base },
+        IslandSpec { job: Job::Edge, ..base },
+        IslandSpec { job: Job::Floor, ..base },
+        IslandSpec { start: Some((i64::MAX, i64::MIN)), ..base },
+    ];
+    for (e, i) in &cases {
+        for s in &specs {
+            let r = std::panic::catch_unwind(|| (plan(s, e, &refs(i)), start_points(s, e, &refs(i))));
+            let (m, _) = r.unwrap_or_else(|_| panic!("panic: {s:?} {e:?} {i:?}"));
+            if let Ok(m) = m {
+                let mut pos = None;
+                for x in &m {
+                    let to = crate::end_of(x);
+                    let full = matches!(x, Move::Arc { centre, to, .. } if *centre != (to.a, to.o));
+                    assert!(full || to.is_none() || to != pos, "zero-length move");
+                    pos = to;
+                }
+            }
+        }
+    }
+}
+
