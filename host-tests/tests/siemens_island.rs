@@ -404,15 +404,16 @@ fn distance_transform(mask: &[bool], nx: usize, ny: usize) -> Vec<f64> {
     g
 }
 
-/// The cells of the grid that the cutter of radius `r` sweeps along `cuts`, and
-/// those it should: inside the pocket at least `fal` (+ a cell) from every wall,
-/// and reachable by a disc of radius `r` whose centre keeps `r + fal` from the
-/// walls. Returns the cells missed.
-fn missed(pocket: &Pocket, cuts: &[Seg], r: f64, fal: f64) -> Vec<[f64; 2]> {
+/// The cells of the grid that the cutters sweep along their `passes` (the
+/// cuts, the cutter's radius), and those a cutter of radius `r` should: inside
+/// the pocket at least `fal` (+ a cell) from every wall, and reachable by a disc
+/// of radius `r` whose centre keeps `r + fal` from the walls. Returns the cells
+/// missed.
+fn missed_by(pocket: &Pocket, passes: &[(&[Seg], f64)], r: f64, fal: f64) -> Vec<[f64; 2]> {
     let g = Raster::new(pocket);
     let (x0, y0, h, nx, ny) = (g.x0, g.y0, g.h, g.nx, g.ny);
     let mut cut = vec![false; nx * ny];
-    for s in cuts {
+    for (s, r) in passes.iter().flat_map(|&(cuts, r)| cuts.iter().map(move |s| (s, r))) {
         let (lo_x, hi_x, lo_y, hi_y) = match s.arc {
             // An arc's box: its whole circle's (simple, a little larger).
             Some((c, _)) => {
@@ -441,6 +442,11 @@ fn missed(pocket: &Pocket, cuts: &[Seg], r: f64, fal: f64) -> Vec<[f64; 2]> {
     let far = distance_transform(&centre, nx, ny);
     let reach = ((r - h) / h).powi(2);
     (0..nx * ny).filter(|&k| !cut[k] && g.inn[k] && g.d[k] >= fal + h && far[k] <= reach).map(|k| g.point(k)).collect()
+}
+
+/// [`missed_by`] one cutter of radius `r` along `cuts`.
+fn missed(pocket: &Pocket, cuts: &[Seg], r: f64, fal: f64) -> Vec<[f64; 2]> {
+    missed_by(pocket, &[(cuts, r)], r, fal)
 }
 
 /// No move below the reference plane brings the cutter's centre closer than
@@ -571,8 +577,7 @@ fn rest_material_after_a_larger_cutter_leaves_nothing_reachable() {
     // What T3 left at the depth: T5's cells reachable, not swept by T3.
     let before = missed(&pocket, &flat(&big, -17.5), 4.0, 0.5);
     assert!(!before.is_empty(), "T3 leaves material in the corners T5 reaches");
-    let both: Vec<Seg> = flat(&big, -17.5).into_iter().chain(flat(&small, -17.5)).collect();
-    let left = missed(&pocket, &both, 4.0, 0.5);
+    let left = missed_by(&pocket, &[(&flat(&big, -17.5), 6.0), (&flat(&small, -17.5), 4.0)], 4.0, 0.5);
     assert!(left.is_empty(), "{} cells left, first {:?}", left.len(), &left[..left.len().min(5)]);
     // The rest is much less cutting than a clearing.
     let length = |v: &[Seg]| {

@@ -1013,7 +1013,8 @@ impl<'g, 'a> Emit<'g, 'a> {
         // Each visit on its ring: (ring, segment, parameter, foot, visit).
         let mut exc: Vec<(usize, usize, f64, Pt, Pt)> = Vec::new();
         for &v in &n.visits {
-            let near = rings.iter().map(|c| poly::nearest_on_ring(c, v)).enumerate().min_by(|a, b| a.1.2.total_cmp(&b.1.2));
+            let near =
+                rings.iter().map(|c| poly::nearest_on_ring(c, v)).enumerate().min_by(|a, b| a.1.2.total_cmp(&b.1.2));
             if let Some((i, (j, q, _))) = near {
                 let m = rings[i].len();
                 let t = nearest_on_seg(rings[i][j], rings[i][(j + 1) % m], q).1;
