@@ -542,20 +542,22 @@ fn example1_inserts_on_a_helix_in_whole_turns() {
     assert!((flat_turn - 360.0).abs() < 1e-6, "one flat circle: {flat_turn}");
 }
 
-/// Example 1's edge finish (VARI 1113, T2 radius 5): the cutter's centre keeps
-/// exactly its radius from the walls, and every wall point is touched (its fillets
-/// are the cutter's radius: nothing out of reach).
+/// Example 1's edge finish (VARI 1113, T2 radius 5 less the example mill's wear
+/// of row 2, −0.02: 4.98): the cutter's centre keeps exactly that radius from the
+/// walls, and every wall point is touched (the fillets are larger than the
+/// cutter: nothing out of reach).
 #[test]
 fn example1_edge_finish_touches_every_wall_at_the_radius() {
     let finish = "1113, \"\", \"BEISPIEL1_MILL3\", \"5\", 10, 0, 1, -17.5, 0, , 2, , , 8000, 1000, 0, , , 4, 2";
     let segs = moves_of(&format!("{TRANSFER}T2 D1\nCYCLE73({finish})\n"), 4);
     let pocket = Pocket::example1();
-    no_gouge(&pocket, &segs, 5.0, 0.0);
+    let r = 4.98;
+    no_gouge(&pocket, &segs, r, 0.0);
     let cuts = flat(&segs, -17.5);
     let walls = pocket.edge.iter().chain(pocket.islands.iter().flatten());
     for p in walls.flat_map(|e| e.points()).step_by(10) {
         let d = cuts.iter().map(|s| move_dist(s, p)).fold(f64::MAX, f64::min);
-        assert!(d <= 5.002, "wall point {p:?} {d} from the nearest cut");
+        assert!(d <= r + 0.002, "wall point {p:?} {d} from the nearest cut");
     }
 }
 
