@@ -2028,9 +2028,119 @@ pub const CATALOG: &[CatalogEntry] = &[
         when: "CYCLE840 SDR the direction the spindle turns into the hole (it must reverse), or SDAC other than 0/3/4/5 (table: 编程错误的主轴方向)",
     },
     CatalogEntry {
+        code: 61900,
+        title: "no contour",
+        when: "CYCLE73 without a CYCLE74 before it in the run, or CYCLE75 before CYCLE74 (table: 没有轮廓出现)",
+    },
+    CatalogEntry {
+        code: 61901,
+        title: "contour not closed",
+        when: "a CYCLE74/CYCLE75 contour whose last point is not its first (line 6249; table: 轮廓不闭合)",
+    },
+    CatalogEntry {
+        code: 61903,
+        title: "too many contour elements",
+        when: "a CYCLE74/CYCLE75 contour of more than the 48 elements the contour store holds (table: 太多轮廓单元)",
+    },
+    CatalogEntry {
+        code: 61904,
+        title: "too many intersections",
+        when: "a CYCLE73 pocket beyond what the offsetting computes: coordinates beyond ±5 m, or more rings than it lays (table: 太多交叉点)",
+    },
+    CatalogEntry {
         code: 61905,
         title: "cutter radius too small",
-        when: "SLOT2 (not VARI x3) with a cutter diameter below half the slot width: material would stay in the slot (table: 铣刀半径太小)",
+        when: "SLOT2 (not VARI x3) with a cutter diameter below half the slot width: material would stay in the slot; CYCLE73 with a cutter radius of 0 or less (line 6257) (table: 铣刀半径太小)",
+    },
+    CatalogEntry {
+        code: 61906,
+        title: "too many contours",
+        when: "a 16th island transferred by CYCLE75 (the edge and 15 islands are kept; table: 太多轮廓)",
+    },
+    CatalogEntry {
+        code: 61908,
+        title: "start point wrong",
+        when: "CYCLE73 with a manual start point (_VARI 2xxx) where the cutter's centre may not be: in an island or closer than radius + _FAL to a wall (line 6831; table: 起始点说明出错)",
+    },
+    CatalogEntry {
+        code: 61909,
+        title: "helix radius too small",
+        when: "CYCLE73 helical insertion (_VARI x2x) with _RAD 0, or a helix too small for the cutter (its diameter below the cutter radius: a core would stay; table: 螺旋线半径太小)",
+    },
+    CatalogEntry {
+        code: 61910,
+        title: "helix violates the contour",
+        when: "CYCLE73 helical insertion at an automatic start point where the helix does not fit the pocket (table: 螺旋线破坏轮廓)",
+    },
+    CatalogEntry {
+        code: 61911,
+        title: "more insertion points required",
+        when: "CYCLE73 pre-drilling of a pocket divided into more than the 32 parts a drilling pattern lists, or material the clearing cannot reach in 200 rounds of extra insertions (table: 要求更多的插入点)",
+    },
+    CatalogEntry {
+        code: 61912,
+        title: "no path generated",
+        when: "a CYCLE73 pocket too narrow anywhere for the cutter's centre (radius + _FAL; table: 不要产生轨迹)",
+    },
+    CatalogEntry {
+        code: 61913,
+        title: "no rest material",
+        when: "CYCLE73 rest material (_VARI xxx2) where the larger cutter of _TN left nothing this one can reach (table: 没有产生剩余材料)",
+    },
+    CatalogEntry {
+        code: 61914,
+        title: "programmed helix violates the contour",
+        when: "CYCLE73 helical insertion at the manual start point (_PA/_PO) where the helix does not fit (table: 编程的螺旋线破坏轮廓)",
+    },
+    CatalogEntry {
+        code: 61915,
+        title: "approach/departure violates the contour",
+        when: "CYCLE73 edge finish (_VARI xxx3) where no tangential approach arc fits beside a contour (table: 返回运行/离开运行破坏轮廓)",
+    },
+    CatalogEntry {
+        code: 61916,
+        title: "ramp too short",
+        when: "CYCLE73 oscillating insertion (_VARI x3x) where the pocket leaves the ramp shorter than the cutter radius (table: 斜坡太短)",
+    },
+    CatalogEntry {
+        code: 61918,
+        title: "rest cutter radius too large",
+        when: "CYCLE73 rest material (_VARI xxx2) with a cutter not smaller than tool _TN's, whose rest it clears (table: 剩余材料的铣刀半径太大)",
+    },
+    CatalogEntry {
+        code: 61980,
+        title: "island contour wrong",
+        when: "CYCLE75 naming no contour, or an island that cannot be read, crosses itself, has no area, lies outside the edge or crosses it (table: 中心岛轮廓出错)",
+    },
+    CatalogEntry {
+        code: 61982,
+        title: "infeed width too large",
+        when: "CYCLE73 _MIDA above 80 % of the cutter diameter (line 6808; table: 平面中进刀宽度太大)",
+    },
+    CatalogEntry {
+        code: 61983,
+        title: "pocket edge contour wrong",
+        when: "CYCLE74 naming no contour, or an edge that cannot be read, crosses itself or has no area (table: 凹槽边缘轮廓出错)",
+    },
+    CatalogEntry {
+        code: 61984,
+        title: "_TN not defined",
+        when: "CYCLE73 with _TN empty or not a tool number of the table (line 6736; table: 刀具参数_TN没有定义)",
+    },
+    CatalogEntry {
+        code: 61985,
+        title: "drilling positions program name wrong",
+        when: "CYCLE73 pre-drilling (_VARI xxx5) with _BNAME empty (table: 钻孔位置程序名称出错)",
+    },
+    CatalogEntry {
+        code: 61988,
+        title: "pocket milling program name wrong",
+        when: "CYCLE73 with _PNAME empty (table: 凹槽铣削程序名称出错)",
+    },
+    CatalogEntry {
+        code: 61989,
+        title: "D1 not the active tool edge",
+        when: "CYCLE73 with a cutting edge other than D1 active (line 6760; table: 没有编程D1作为有效的刀具边沿)",
     },
 ];
 
@@ -2251,6 +2361,28 @@ mod tests {
             SiemensCycle(CycleAlarm::SlotContourViolated),
             SiemensCycle(CycleAlarm::InsertionAngleZero),
             SiemensCycle(CycleAlarm::CutterRadiusTooSmall),
+            SiemensCycle(CycleAlarm::IslandPocket { code: 61900 }),
+            SiemensCycle(CycleAlarm::IslandPocket { code: 61901 }),
+            SiemensCycle(CycleAlarm::IslandPocket { code: 61903 }),
+            SiemensCycle(CycleAlarm::IslandPocket { code: 61904 }),
+            SiemensCycle(CycleAlarm::IslandPocket { code: 61906 }),
+            SiemensCycle(CycleAlarm::IslandPocket { code: 61908 }),
+            SiemensCycle(CycleAlarm::IslandPocket { code: 61909 }),
+            SiemensCycle(CycleAlarm::IslandPocket { code: 61910 }),
+            SiemensCycle(CycleAlarm::IslandPocket { code: 61911 }),
+            SiemensCycle(CycleAlarm::IslandPocket { code: 61912 }),
+            SiemensCycle(CycleAlarm::IslandPocket { code: 61913 }),
+            SiemensCycle(CycleAlarm::IslandPocket { code: 61914 }),
+            SiemensCycle(CycleAlarm::IslandPocket { code: 61915 }),
+            SiemensCycle(CycleAlarm::IslandPocket { code: 61916 }),
+            SiemensCycle(CycleAlarm::IslandPocket { code: 61918 }),
+            SiemensCycle(CycleAlarm::IslandPocket { code: 61980 }),
+            SiemensCycle(CycleAlarm::IslandPocket { code: 61982 }),
+            SiemensCycle(CycleAlarm::IslandPocket { code: 61983 }),
+            SiemensCycle(CycleAlarm::IslandPocket { code: 61984 }),
+            SiemensCycle(CycleAlarm::IslandPocket { code: 61985 }),
+            SiemensCycle(CycleAlarm::IslandPocket { code: 61988 }),
+            SiemensCycle(CycleAlarm::IslandPocket { code: 61989 }),
         ]
     };
 

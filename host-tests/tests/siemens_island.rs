@@ -627,3 +627,45 @@ fn predrilling_drills_where_the_clearing_inserts() {
     assert_eq!(holes, inserts);
     let _ = first;
 }
+
+/// The alarms the pocket's geometry raises, on CYCLE73's line, before anything
+/// moves.
+#[test]
+fn geometry_alarms_move_nothing() {
+    let with = |i: usize, v: &str| {
+        let mut a: Vec<String> = ROUGH.split(", ").map(str::to_string).collect();
+        a[i] = v.to_string();
+        a.join(", ")
+    };
+    let edge = |labels: &str| format!("CYCLE74 (\"\", {labels})\n");
+    // A contour that does not close, one too small for the cutter, one of 49
+    // elements (a zigzag), a circle.
+    let extra = "M02\nN700 _OPEN:G0 X25 Y30\nG1 X118\nY96\n_ENDOPEN:X25\n\
+        N710 _SMALL:G0 X0 Y0\nG1 X8\nY8\nX0\n_ENDSMALL:Y0\n\
+        N720 _CIRCLE:G0 X60 Y60\nG3 X100 Y60 CR=20\n_ENDCIRCLE:X60 Y60 CR=20\n";
+    let zigzag: String = (1..=48).map(|k| format!("G1 X{} Y{}\n", k, if k % 2 == 0 { 0 } else { 1 })).collect();
+    let extra = format!("{extra}N730 _ZIG:G0 X0 Y0\n{zigzag}_ENDZIG:G1 X0 Y0\n");
+    for (body, code) in [
+        (format!("{}CYCLE73({ROUGH})\n{extra}", edge("\"_OPEN\", \"_ENDOPEN\"")), 61901),
+        (format!("{}CYCLE73({ROUGH})\n{extra}", edge("\"_SMALL\", \"_ENDSMALL\"")), 61912),
+        (format!("{}CYCLE73({ROUGH})\n{extra}", edge("\"_ZIG\", \"_ENDZIG\"")), 61903),
+        // A helix of radius 20 fits the pocket without islands, not with them.
+        (format!("{TRANSFER}CYCLE73({})\n", with(18, "20")), 61910),
+        (format!("{TRANSFER}CYCLE73({})\n", with(0, "2011").replacen(", , , 4, 3", ", 49, 50, 4, 3", 1)), 61908),
+        (
+            format!(
+                "{}CYCLE73({})\n{extra}",
+                edge("\"_CIRCLE\", \"_ENDCIRCLE\""),
+                with(0, "1012").replacen("\"5\"", "\"3\"", 1)
+            ),
+            61913,
+        ),
+    ] {
+        let k = body.lines().position(|l| l.starts_with("CYCLE73")).unwrap() as u32;
+        assert_eq!(alarm_at(&body, k), code, "{body}");
+    }
+    // A cutter of radius 0.
+    let (text, first) = program(&format!("{TRANSFER}CYCLE73({ROUGH})\n"));
+    let r = siemens(&text.replace("$TC_DP6[5,1]=4", "$TC_DP6[5,1]=0"));
+    assert_eq!(r.alarm_codes(), vec![(first + 3, 61905)]);
+}
