@@ -158,7 +158,7 @@ const TOL: f64 = 1000.0;
 /// chords), nm.
 const SLIVER: f64 = 3000.0;
 /// Most ring levels of one clearing (alarm 61904 beyond).
-const MAX_LEVELS: i64 = 2000;
+const MAX_LEVELS: i64 = 400;
 
 /// The polygon of one closed contour, counterclockwise. `island`: its arcs are
 /// approximated from outside the island (the chords never enter the pocket
@@ -312,7 +312,8 @@ struct Geometry<'a> {
 
 impl<'a> Geometry<'a> {
     fn new(spec: &'a IslandSpec, edge: &[Elem], islands: &[&[Elem]]) -> Result<Self, CycleAlarm> {
-        if spec.r <= 0 {
+        // Below the grid's resolution a cutter is no cutter.
+        if spec.r < 10_000 {
             return Err(alarm(61905));
         }
         let e = polygon(edge, false)?;
@@ -333,8 +334,10 @@ impl<'a> Geometry<'a> {
             return Err(alarm(61912));
         }
         let r = spec.r as f64;
-        let step = if spec.step > 0 { spec.step as f64 } else { 1.6 * r };
-        Ok(Geometry { spec, region, a0, step: step.max(r / 64.0).max(1000.0) })
+        // At most 80 % of the diameter (line 6799: the plane infeed never
+        // exceeds it; the front end raises 61982 for a larger `_MIDA`).
+        let step = if spec.step > 0 { (spec.step as f64).min(1.6 * r) } else { 1.6 * r };
+        Ok(Geometry { spec, region, a0, step: step.max(r / 16.0).max(1000.0) })
     }
 
     fn fal(&self) -> f64 {
@@ -437,7 +440,7 @@ impl<'a> Geometry<'a> {
             None => poly::offset(&self.a0, r).map_err(too_large)?,
         };
         let mut uncut = opening(&poly::boolean(&reach, &swept, OverlayRule::Difference).map_err(too_large)?)?;
-        for _ in 0..200 {
+        for _ in 0..50 {
             if uncut.is_empty() {
                 return Ok(());
             }
@@ -646,13 +649,17 @@ impl<'a> Geometry<'a> {
             let i = match pos {
                 None => 0,
                 Some(p) => (0..rings.len())
-                    .min_by(|&a, &b| poly::nearest_on_ring(&rings[a], p).2.total_cmp(&poly::nearest_on_ring(&rings[b], p).2))
+                    .min_by(|&a, &b| {
+                        poly::nearest_on_ring(&rings[a], p).2.total_cmp(&poly::nearest_on_ring(&rings[b], p).2)
+                    })
                     .unwrap_or(0),
             };
             let ring = self.oriented(rings.swap_remove(i));
             // The approach at the middle of the longest side.
             let n = ring.len();
-            let j = (0..n).max_by(|&a, &b| dist(ring[a], ring[(a + 1) % n]).total_cmp(&dist(ring[b], ring[(b + 1) % n]))).unwrap_or(0);
+            let j = (0..n)
+                .max_by(|&a, &b| dist(ring[a], ring[(a + 1) % n]).total_cmp(&dist(ring[b], ring[(b + 1) % n])))
+                .unwrap_or(0);
             let (a, b) = (ring[j], ring[(j + 1) % n]);
             let p = [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0];
             let t = v2::unit((b[0] - a[0], b[1] - a[1]));
@@ -757,7 +764,8 @@ impl<'a> Geometry<'a> {
             let from = self.approach(&levels, k);
             for l in laps {
                 e.insert(Plunge::Vertical, l.q_in, from, z);
-                let arc = |to: Pt| Move::Arc { to: p3(to, z), centre: (nm(l.m[0]), nm(l.m[1])), cw: self.spec.cw, feed: f };
+                let arc =
+                    |to: Pt| Move::Arc { to: p3(to, z), centre: (nm(l.m[0]), nm(l.m[1])), cw: self.spec.cw, feed: f };
                 e.push(arc(l.pts[0]));
                 for &p in &l.pts[1..] {
                     e.push(Move::Line { to: p3(p, z), feed: f });
@@ -819,12 +827,7 @@ fn closest_pair(a: &Ring, b: &Ring) -> (usize, Pt, usize, Pt, f64) {
 }
 
 fn nearest_boundary(s: &Shapes, p: Pt) -> Pt {
-    s.iter()
-        .flatten()
-        .map(|c| poly::nearest_on_ring(c, p))
-        .min_by(|a, b| a.2.total_cmp(&b.2))
-        .map(|x| x.1)
-        .unwrap_or(p)
+    s.iter().flatten().map(|c| poly::nearest_on_ring(c, p)).min_by(|a, b| a.2.total_cmp(&b.2)).map(|x| x.1).unwrap_or(p)
 }
 
 /// The deepest node whose shape holds `c` (or is nearest it).
@@ -1013,7 +1016,8 @@ impl<'g, 'a> Emit<'g, 'a> {
         // Each visit on its ring: (ring, segment, parameter, foot, visit).
         let mut exc: Vec<(usize, usize, f64, Pt, Pt)> = Vec::new();
         for &v in &n.visits {
-            let near = rings.iter().map(|c| poly::nearest_on_ring(c, v)).enumerate().min_by(|a, b| a.1.2.total_cmp(&b.1.2));
+            let near =
+                rings.iter().map(|c| poly::nearest_on_ring(c, v)).enumerate().min_by(|a, b| a.1.2.total_cmp(&b.1.2));
             if let Some((i, (j, q, _))) = near {
                 let m = rings[i].len();
                 let t = nearest_on_seg(rings[i][j], rings[i][(j + 1) % m], q).1;

@@ -53,4 +53,3 @@ pub(crate) fn tangent(e: &Elem, end: bool) -> V {
         }
     }
 }
-
