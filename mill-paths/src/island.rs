@@ -227,10 +227,8 @@ fn discretise(k: &[Elem], outside_left: Option<bool>) -> Option<Ring> {
                 sw += tau;
             }
         }
-        if v2::len(v2::sub(f, t)) > 1.0 {
-            if sw.abs() >= tau - 1e-12 {
-                sw = 0.0;
-            }
+        if v2::len(v2::sub(f, t)) > 1.0 && sw.abs() >= tau - 1e-12 {
+            sw = 0.0;
         }
         // Steps of at most the angle whose chord deviates DEV.
         let step = 2.0 * libm::acos((1.0 - DEV / r0).clamp(-1.0, 1.0));
