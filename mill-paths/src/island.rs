@@ -11,6 +11,76 @@
 //! points for pre-drilling (`_VARI` units 5): the modal drilling cycle runs at
 //! each. Built only with the feature `island` (it needs `alloc`: the host and
 //! boards with a heap; the F405 leaves the cycle out, alarm 4007).
+//!
+//! # Geometry (decisions where the document is silent; for docs/SIEMENS-MILL.md)
+//! - Contours → polygons: closed within 1 µm element to element (61901);
+//!   zero-length elements dropped; arcs cut into steps whose deviation is at
+//!   most 0.9 µm, on the side away from the material (chords where the arc's
+//!   centre is on the pocket side, tangent polygons where it is on the
+//!   material side), so the polygon never takes material. A contour that
+//!   crosses or touches itself, or has less than 100 µm² of area: 61983 (edge),
+//!   61980 (island); no edge: 61900. Either sense; islands that overlap unite
+//!   (one island); an island outside the edge or across it (more than 3 µm):
+//!   61980. Coordinates beyond ±5 m (i_overlay's i32 grid of 10 nm) or more than
+//!   400 ring levels: 61904. Cutter radius below 10 µm: 61905.
+//! - Rings: the tool-centre region at d_k = r + fal + k·s, s = the step capped
+//!   at 80 % of the diameter (line 6799), offset with round joins (i_overlay,
+//!   step 0.01 π; the shrink adds the joins' 1.23e-4·d chord deviation so no
+//!   ring comes nearer a wall than d_k). Each connected shape at one offset is a
+//!   node of a tree (parent: the shape one step out that holds it). Rings are
+//!   emitted as polylines (arcs become chords within 1 µm): no G2/G3 in
+//!   clearing; the helix and the edge finish's approach arcs are arcs.
+//! - Sense: G3 (`cw` false) cuts the outer contour of every shape
+//!   counterclockwise and every hole (around an island) clockwise: the material
+//!   is on the same side of the cutter everywhere (climb stays climb around an
+//!   island); G2 reverses all.
+//! - Order: level by level (insert, clear, lift; lines 6781-6787); per level,
+//!   part by part (a root of the tree), depth first from each leaf outwards. A
+//!   chain = one insertion at a leaf, its rings, then its ancestors' rings while
+//!   it is the last child cut; then lift (`lift` 0: RTP, 1: RFP + SDIS) and go
+//!   to the next leaf. The first level is entered from RFP + SDIS, later ones
+//!   from SDIS above the level before (already cut). Insertion point: the
+//!   leaf's point farthest from its boundary (shrunk by halves to 2 µm).
+//! - Links, gouge free: (1) to a node's first ring: the nearest point of the
+//!   node's boundary from where the tool is (inside the node's shape): the disc
+//!   about the tool through that point holds no boundary, so the segment is in
+//!   the shape, which is in the tool-centre region. (2) between rings of one
+//!   node: along the ring just cut (cut already) to its point closest to the
+//!   next ring, then straight. (3) visits: see below. Every straight link is
+//!   also checked against the tool-centre region; one that would leave it goes
+//!   up, across and in again (the insertion if it fits there, else G1) —
+//!   none does in the tests' pockets.
+//! - Coverage: material the rings leave (s > r: in corners and on the medial
+//!   axis) = (tool-centre region grown by r) − (the rings' swept area), opened
+//!   by 3 µm; for each piece, a visit of the centre at its inner point (or the
+//!   nearest point of the tool-centre region), repeated until nothing is left
+//!   (50 rounds, else 61911). A visit is cut as an excursion from the nearest
+//!   point of its node's boundary and back.
+//! - Helix (`_VARI` x2x): about the insertion point, starting at +rad on the
+//!   abscissa, in the pocket's sense, whole turns of at most `pitch`, one flat
+//!   turn, then straight to the centre. 61909: helix diameter below the
+//!   cutter radius (2·rad < r). 61910/61914: the helix circle is not inside the
+//!   tool-centre region (automatic / manual start).
+//! - Swing (`_VARI` x3x): along the longest of 32 directions through the
+//!   insertion point, half length up to 4 r within the tool-centre region:
+//!   centre → +L → centre → −L → centre …, each leg at most L·tan deep, a
+//!   multiple of four legs, then one flat oscillation. 61916: 2 L < r.
+//! - Manual start: must lie in the tool-centre region (61908); it replaces
+//!   the insertion of the nearest leaf of its part to which a straight move
+//!   from it stays in the region (none: 61908); that leaf's chain is cut first.
+//! - Edge finish: each contour of the tool-centre region at r (edge and
+//!   islands; where they come closer than 2 r they merge), per level; approach
+//!   and departure on quarter arcs of radius r (or r/2, r/4) tangent at the
+//!   middle of the ring's longest side; none fits: 61915. Vertical insertion
+//!   at the approach arc's start.
+//! - Floor finish: one level (the last of `levels`), cleared like roughing with
+//!   `fal` on the walls, vertical insertion.
+//! - Rest: the rest = (region at fal) − (the previous cutter's reach: the
+//!   region at prev_r + fal grown by prev_r), within this cutter's reach, opened
+//!   by 3 µm; none: 61913; r ≥ prev_r: 61918. Rings as roughing but clipped to
+//!   the rest grown by r (tool centres that touch rest material).
+//! - Not raised here: 61917 (a warning), 61982 (the front end's `_MIDA`
+//!   check), the file alarms.
 
 extern crate alloc;
 
@@ -158,7 +228,7 @@ const TOL: f64 = 1000.0;
 /// chords), nm.
 const SLIVER: f64 = 3000.0;
 /// Most ring levels of one clearing (alarm 61904 beyond).
-const MAX_LEVELS: i64 = 2000;
+const MAX_LEVELS: i64 = 400;
 
 /// The polygon of one closed contour, counterclockwise. `island`: its arcs are
 /// approximated from outside the island (the chords never enter the pocket
@@ -227,10 +297,8 @@ fn discretise(k: &[Elem], outside_left: Option<bool>) -> Option<Ring> {
                 sw += tau;
             }
         }
-        if v2::len(v2::sub(f, t)) > 1.0 {
-            if sw.abs() >= tau - 1e-12 {
-                sw = 0.0;
-            }
+        if v2::len(v2::sub(f, t)) > 1.0 && sw.abs() >= tau - 1e-12 {
+            sw = 0.0;
         }
         // Steps of at most the angle whose chord deviates DEV.
         let step = 2.0 * libm::acos((1.0 - DEV / r0).clamp(-1.0, 1.0));
@@ -312,7 +380,8 @@ struct Geometry<'a> {
 
 impl<'a> Geometry<'a> {
     fn new(spec: &'a IslandSpec, edge: &[Elem], islands: &[&[Elem]]) -> Result<Self, CycleAlarm> {
-        if spec.r <= 0 {
+        // Below the grid's resolution a cutter is no cutter.
+        if spec.r < 10_000 {
             return Err(alarm(61905));
         }
         let e = polygon(edge, false)?;
@@ -333,8 +402,10 @@ impl<'a> Geometry<'a> {
             return Err(alarm(61912));
         }
         let r = spec.r as f64;
-        let step = if spec.step > 0 { spec.step as f64 } else { 1.6 * r };
-        Ok(Geometry { spec, region, a0, step: step.max(r / 64.0).max(1000.0) })
+        // At most 80 % of the diameter (line 6799: the plane infeed never
+        // exceeds it; the front end raises 61982 for a larger `_MIDA`).
+        let step = if spec.step > 0 { (spec.step as f64).min(1.6 * r) } else { 1.6 * r };
+        Ok(Geometry { spec, region, a0, step: step.max(r / 16.0).max(1000.0) })
     }
 
     fn fal(&self) -> f64 {
@@ -437,7 +508,7 @@ impl<'a> Geometry<'a> {
             None => poly::offset(&self.a0, r).map_err(too_large)?,
         };
         let mut uncut = opening(&poly::boolean(&reach, &swept, OverlayRule::Difference).map_err(too_large)?)?;
-        for _ in 0..200 {
+        for _ in 0..50 {
             if uncut.is_empty() {
                 return Ok(());
             }

@@ -183,9 +183,12 @@ impl Walls {
     }
 }
 
+/// A piece of the tool centre's path (mm).
+type Seg = ((f64, f64), (f64, f64));
+
 /// The moves' tool-centre path at applicate `z` (mm), as segments (arcs cut
 /// into 0.05 mm pieces), from `start`.
-fn segments(moves: &[Move], z: i64) -> Vec<((f64, f64), (f64, f64))> {
+fn segments(moves: &[Move], z: i64) -> Vec<Seg> {
     let mut out = Vec::new();
     let mut pos: Option<P3> = None;
     let f = |p: P3| (p.a as f64 / MM, p.o as f64 / MM);
@@ -243,7 +246,7 @@ struct Raster {
 const CELL: f64 = 0.1;
 
 impl Raster {
-    fn new(b: [f64; 4], segs: &[((f64, f64), (f64, f64))], r: f64) -> Self {
+    fn new(b: [f64; 4], segs: &[Seg], r: f64) -> Self {
         let w = ((b[2] - b[0]) / CELL) as usize + 1;
         let h = ((b[3] - b[1]) / CELL) as usize + 1;
         let mut ras = Raster { x0: b[0], y0: b[1], w, h, cut: vec![false; w * h] };
@@ -707,7 +710,8 @@ fn odd_inputs_raise_alarms_or_plan_but_never_panic() {
         (rect(0.0, 0.0, 1e-6, 1e-6), vec![]),
         (edge.clone(), islands.clone()),
         (edge.clone(), vec![edge.clone()]),
-        (vec![arc((0.0, 0.0), (0.0, 0.0), (5.0, 0.0), true)], vec![]),
+        // (A full circle of radius 5 with r + fal = 4.5 plans, but takes 16 s in
+        // a debug build: left to every_alarm_has_its_case's rest case.)
         (vec![arc((0.0, 0.0), (10.0, 0.0), (5.0, 0.0), true), arc((10.0, 0.0), (0.0, 0.0), (5.0, 3.0), true)], vec![]),
     ];
     let specs = [
