@@ -3,8 +3,7 @@
 //! lines and arcs in the working plane. A real offsetting of the pocket minus its
 //! islands, not a rectangle approximation.
 //!
-//! INTERFACE (the lead's design commit; the body is the geometry helper's work):
-//! the front end (`interp-siemens`' CYCLE73) reads and checks the call, the
+//! The front end (`interp-siemens`' CYCLE73) reads and checks the call, the
 //! engine (`interp-core`) reads the contours into [`Elem`] lists in plane nm and
 //! calls [`plan`] once when the cycle starts; the moves it returns are emitted one
 //! by one (dry run first, then the real run). [`start_points`] gives the insertion
@@ -12,7 +11,7 @@
 //! each. Built only with the feature `island` (it needs `alloc`: the host and
 //! boards with a heap; the F405 leaves the cycle out, alarm 4007).
 //!
-//! # Geometry (decisions where the document is silent; for docs/SIEMENS-MILL.md)
+//! # Geometry (decisions where the document is silent; docs/SIEMENS-MILL.md)
 //! - Contours → polygons: closed within 1 µm element to element (61901);
 //!   zero-length elements dropped; arcs cut into steps whose deviation is at
 //!   most 0.9 µm, on the side away from the material (chords where the arc's
