@@ -2050,7 +2050,7 @@ pub const CATALOG: &[CatalogEntry] = &[
     CatalogEntry {
         code: 61905,
         title: "cutter radius too small",
-        when: "SLOT2 (not VARI x3) with a cutter diameter below half the slot width: material would stay in the slot; CYCLE73 with a cutter radius of 0 or less (line 6257) (table: 铣刀半径太小)",
+        when: "SLOT2 (not VARI x3) with a cutter diameter below half the slot width: material would stay in the slot; CYCLE73 with a cutter radius of 0 or less (line 6257) or below 10 µm (table: 铣刀半径太小)",
     },
     CatalogEntry {
         code: 61906,
