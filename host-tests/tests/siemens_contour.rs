@@ -26,19 +26,13 @@ fn corners() -> Vec<[f64; 2]> {
     ]
 }
 
-fn dist_seg(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
-    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
-    let t = (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / (dx * dx + dy * dy)).clamp(0.0, 1.0);
-    (p[0] - a[0] - t * dx).hypot(p[1] - a[1] - t * dy)
-}
-
 /// Distance of `p` to the programmed contour: the lines, then the G2 arc from
 /// (125, 135) to (150, 160) about (150, 135) (the quarter from 180° to 90°).
 fn dist(p: [f64; 2]) -> f64 {
     let k = corners();
     let mut d = f64::MAX;
     for w in k.windows(2) {
-        d = d.min(dist_seg(p, w[0], w[1]));
+        d = d.min(seg_dist(p, w[0], w[1]));
     }
     let (cx, cy) = (150.0, 135.0);
     let ang = (p[1] - cy).atan2(p[0] - cx).to_degrees();

@@ -115,14 +115,6 @@ fn len(a: [f64; 2]) -> f64 {
     a[0].hypot(a[1])
 }
 
-fn seg_dist(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
-    let d = sub(b, a);
-    let l2 = d[0] * d[0] + d[1] * d[1];
-    let t = if l2 == 0.0 { 0.0 } else { ((p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1]) / l2 };
-    let t = t.clamp(0.0, 1.0);
-    len(sub(p, [a[0] + t * d[0], a[1] + t * d[1]]))
-}
-
 /// Whether angle `a` lies on the arc from `a0` sweeping `sweep` (radians).
 fn on_sweep(a: f64, a0: f64, sweep: f64) -> bool {
     let tau = std::f64::consts::TAU;

@@ -111,6 +111,15 @@ pub fn samples(s: &Seg) -> Vec<[f64; 2]> {
     }
 }
 
+/// Distance from `p` to the segment `a`–`b` in the plane (a point if `a` = `b`).
+pub fn seg_dist(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let l2 = dx * dx + dy * dy;
+    let t = if l2 == 0.0 { 0.0 } else { ((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / l2 };
+    let t = t.clamp(0.0, 1.0);
+    (p[0] - a[0] - t * dx).hypot(p[1] - a[1] - t * dy)
+}
+
 /// Equal within 1.5 µm.
 pub fn near(a: f64, b: f64) -> bool {
     (a - b).abs() < 0.0015
